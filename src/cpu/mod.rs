@@ -1,0 +1,17 @@
+//! The f64 CPU reference stepper.
+//!
+//! A step runs the same passes the GPU runs, over the same packed layout:
+//! 1. `element_forces`: per element, tangent, axial force, half external load and
+//!    half mass ([`crate::physics::glmf_element`], or an older frame);
+//! 2. `node_update`: per node, gather over the incidence list, add point-mass loads
+//!    and seabed contact, build the 3x3 mass block, and solve for the acceleration;
+//!    constrained nodes take the Baumgarte acceleration of their route instead and
+//!    record the reaction;
+//! 3. the time update of the chosen scheme.
+//!
+//! Blocks (connected components) are independent, so each is advanced through a whole
+//! output interval on its own, and blocks are spread over threads with rayon.
+
+mod stepper;
+
+pub use stepper::{CpuSolver, Evaluation, StepFailure};

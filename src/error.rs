@@ -1,0 +1,66 @@
+//! The library's one error type.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong, with enough context to act on.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A scenario file is wrong: which file, which field, what is wrong.
+    #[error("{path}: {field}: {message}")]
+    Scenario {
+        /// The file.
+        path: PathBuf,
+        /// The offending field, as a dotted path (`cables[2].length`).
+        field: String,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// A model that cannot be built (inconsistent cables and nodes).
+    #[error("model: {0}")]
+    Model(String),
+    /// The state became non-finite or absurd.
+    #[error("simulation diverged at t = {time:.6} s: cable '{cable}', node {node}: {what}")]
+    Diverged {
+        /// Cable name.
+        cable: String,
+        /// Node index within the cable.
+        node: usize,
+        /// Simulated time, s.
+        time: f64,
+        /// What was found (non-finite position, speed over the limit, ...).
+        what: String,
+    },
+    /// An element frame (Euler, Frenet, RVEF) has no defined orientation.
+    #[error(
+        "{frame} frame singular at t = {time:.6} s: cable '{cable}', element {element}: {reason}"
+    )]
+    SingularFrame {
+        /// The frame.
+        frame: &'static str,
+        /// Cable name.
+        cable: String,
+        /// Element index within the cable.
+        element: usize,
+        /// Simulated time, s.
+        time: f64,
+        /// Why.
+        reason: String,
+    },
+    /// The static solver did not reach equilibrium.
+    #[error("initial equilibrium: {0}")]
+    Statics(String),
+    /// Writing output failed.
+    #[error("output {path}: {source}")]
+    Output {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// No usable GPU adapter.
+    #[error("no GPU adapter: {0}")]
+    NoAdapter(String),
+}
+
+/// Result with the library's error.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

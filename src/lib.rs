@@ -1,0 +1,17 @@
+//! cablesim: many underwater cables at once, with the Global Lumped Mass Formulation.
+//!
+//! Data flow: a scenario file ([`scenario`]) describes line types, cables and their
+//! ends; it becomes a [`model::ModelDef`], which is packed into a [`model::Layout`]
+//! (flat arrays over every cable of the run); the initial shape is relaxed to static
+//! equilibrium ([`statics`]); a stepper ([`cpu::CpuSolver`], the f64 reference path)
+//! advances it; [`sim`] drives the run and [`output`] writes what users read.
+#![warn(missing_docs)]
+
+pub mod cpu;
+pub mod error;
+pub mod math;
+pub mod model;
+pub mod options;
+pub mod physics;
+
+pub use error::{Error, Result};

@@ -1,0 +1,417 @@
+//! The packed layout: every cable of a run in flat arrays.
+//!
+//! Nodes and elements of all cables live in single arrays; each node has an
+//! incidence list (compressed rows) naming the elements it belongs to, so forces are
+//! gathered per node without atomics; constrained nodes point into a route table.
+//! Nodes and elements are ordered by *block*: a block is a connected component (one
+//! cable, or a network of cables sharing nodes), contiguous in both arrays, so blocks
+//! can be stepped independently (one thread, or one workgroup range, per block).
+//!
+//! The CPU reference path and the GPU path both read this layout.
+
+use super::{Current, Environment, LineCoefs, LineType, Route};
+use crate::error::Error;
+
+/// Sentinel for "no constraint".
+pub const NO_CONSTRAINT: u32 = u32::MAX;
+
+/// A point mass attached to a node (clump weight, buoy, end mass).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointMass {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Displaced volume, m^3 (buoyancy `rho V g`).
+    pub volume: f64,
+    /// Drag coefficient times frontal area `Cd A`, m^2 (isotropic quadratic drag).
+    pub drag_area: f64,
+    /// Isotropic added-mass coefficient `Ca` (added mass `Ca rho V`).
+    pub added_mass_coef: f64,
+}
+
+/// A node as a scenario describes it, before packing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NodeDef {
+    /// Initial position, m.
+    pub position: [f64; 3],
+    /// Optional point mass.
+    pub point: PointMass,
+    /// Prescribed motion, if any.
+    pub route: Option<Route>,
+    /// Name of the scenario entity that made this node (for error messages).
+    pub label: Option<String>,
+}
+
+/// A cable as a scenario describes it, before packing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CableDef {
+    /// Name, unique in the run.
+    pub name: String,
+    /// Index into `ModelDef::line_types`.
+    pub line_type: usize,
+    /// The chain of node indices (into `ModelDef::nodes`), start to end.
+    pub nodes: Vec<usize>,
+    /// Unstretched length of each element (`nodes.len() - 1` of them), m.
+    pub l0: Vec<f64>,
+    /// Index into `ModelDef::currents`.
+    pub current: usize,
+    /// Whether node positions of this cable are written to the output.
+    pub output_positions: bool,
+}
+
+/// A whole model as described, before packing.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct ModelDef {
+    /// Shared environment.
+    pub env: Environment,
+    /// Line types.
+    pub line_types: Vec<LineType>,
+    /// Current profiles (cables refer to them by index).
+    pub currents: Vec<Current>,
+    /// Nodes (shared nodes appear once and are referred to by several cables).
+    pub nodes: Vec<NodeDef>,
+    /// Cables.
+    pub cables: Vec<CableDef>,
+}
+
+/// A cable in the packed layout.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CableInfo {
+    /// Name.
+    pub name: String,
+    /// Packed node indices, start to end.
+    pub nodes: Vec<u32>,
+    /// Packed element indices, start to end.
+    pub elements: Vec<u32>,
+    /// Line type index.
+    pub line_type: usize,
+    /// Current index.
+    pub current: usize,
+    /// Whether node positions are written out.
+    pub output_positions: bool,
+}
+
+/// A contiguous range of nodes and elements forming one connected component.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Block {
+    /// First node.
+    pub node_start: u32,
+    /// One past the last node.
+    pub node_end: u32,
+    /// First element.
+    pub elem_start: u32,
+    /// One past the last element.
+    pub elem_end: u32,
+    /// True when the component is one simple chain in node order (node `i` and `i+1`
+    /// joined by element `i`), which the static solver exploits.
+    pub is_chain: bool,
+}
+
+/// All cables of a run in flat arrays (see the module doc).
+#[derive(Clone, Debug)]
+pub struct Layout {
+    /// Environment.
+    pub env: Environment,
+    /// Line types, as given.
+    pub line_types: Vec<LineType>,
+    /// Folded line constants, per line type.
+    pub line_coefs: Vec<LineCoefs>,
+    /// Currents, per profile.
+    pub currents: Vec<Current>,
+    /// Cables.
+    pub cables: Vec<CableInfo>,
+    /// Blocks (connected components), in node order.
+    pub blocks: Vec<Block>,
+
+    /// Per node: the cable it is reported under (the first cable that uses it).
+    pub node_cable: Vec<u32>,
+    /// Per node: its index within that cable's node list.
+    pub node_index_in_cable: Vec<u32>,
+    /// Per node: point mass, kg (plus its added mass, isotropic).
+    pub node_point_mass: Vec<f64>,
+    /// Per node: z component of the point's weight less buoyancy, N.
+    pub node_point_weight_z: Vec<f64>,
+    /// Per node: `1/2 rho Cd A` of the point, kg/m.
+    pub node_point_drag: Vec<f64>,
+    /// Per node: tributary length for seabed contact, m.
+    pub node_tributary: Vec<f64>,
+    /// Per node: current profile index (its cable's).
+    pub node_current: Vec<u32>,
+    /// Per node: constraint index, or [`NO_CONSTRAINT`].
+    pub node_constraint: Vec<u32>,
+    /// Incidence rows: node `i`'s entries are `inc[inc_start[i]..inc_start[i+1]]`.
+    pub inc_start: Vec<u32>,
+    /// Incidence entries: `element * 2 + side`, side 0 when the node is the element's
+    /// node a, 1 when it is node b.
+    pub inc: Vec<u32>,
+
+    /// Per element: node a.
+    pub elem_a: Vec<u32>,
+    /// Per element: node b.
+    pub elem_b: Vec<u32>,
+    /// Per element: unstretched length, m.
+    pub elem_l0: Vec<f64>,
+    /// Per element: line type index.
+    pub elem_line: Vec<u32>,
+    /// Per element: cable index.
+    pub elem_cable: Vec<u32>,
+    /// Per element: current profile index.
+    pub elem_current: Vec<u32>,
+
+    /// Per constraint: the node it holds.
+    pub constraint_node: Vec<u32>,
+    /// Per constraint: its route.
+    pub routes: Vec<Route>,
+}
+
+impl Layout {
+    /// Number of nodes.
+    pub fn n_nodes(&self) -> usize {
+        self.node_cable.len()
+    }
+    /// Number of elements.
+    pub fn n_elements(&self) -> usize {
+        self.elem_a.len()
+    }
+    /// The incidence entries of node `i`.
+    #[inline(always)]
+    pub fn incidence(&self, i: usize) -> &[u32] {
+        &self.inc[self.inc_start[i] as usize..self.inc_start[i + 1] as usize]
+    }
+    /// Where a packed node sits, for messages: `(cable name, node index in cable)`.
+    pub fn describe_node(&self, i: usize) -> (String, usize) {
+        let c = self.node_cable[i] as usize;
+        (
+            self.cables[c].name.clone(),
+            self.node_index_in_cable[i] as usize,
+        )
+    }
+    /// Where a packed element sits: `(cable name, element index in cable)`.
+    pub fn describe_element(&self, e: usize) -> (String, usize) {
+        let c = self.elem_cable[e] as usize;
+        let k = self.cables[c]
+            .elements
+            .iter()
+            .position(|&x| x as usize == e)
+            .unwrap_or(0);
+        (self.cables[c].name.clone(), k)
+    }
+
+    /// Packs a model description. Returns the layout and the initial positions in
+    /// packed node order.
+    pub fn build(def: &ModelDef) -> Result<(Layout, Vec<[f64; 3]>), Error> {
+        let nn = def.nodes.len();
+        let env = def.env;
+        for (ci, c) in def.cables.iter().enumerate() {
+            if c.nodes.len() < 2 || c.l0.len() + 1 != c.nodes.len() {
+                return Err(Error::Model(format!(
+                    "cable '{}' needs at least one element",
+                    c.name
+                )));
+            }
+            if c.line_type >= def.line_types.len() || c.current >= def.currents.len() {
+                return Err(Error::Model(format!(
+                    "cable {ci} refers to a missing line type or current"
+                )));
+            }
+            if let Some(&bad) = c.nodes.iter().find(|&&n| n >= nn) {
+                return Err(Error::Model(format!(
+                    "cable '{}' refers to missing node {bad}",
+                    c.name
+                )));
+            }
+        }
+        // Elements in description order, then union-find over nodes.
+        let mut parent: Vec<usize> = (0..nn).collect();
+        fn find(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        for c in &def.cables {
+            for w in c.nodes.windows(2) {
+                let (ra, rb) = (find(&mut parent, w[0]), find(&mut parent, w[1]));
+                if ra != rb {
+                    parent[ra] = rb;
+                }
+            }
+        }
+        // Order components by their first appearance (cables in order, then loose nodes),
+        // and nodes inside a component by first appearance along the cables: one cable
+        // alone comes out in chain order.
+        let mut new_index = vec![u32::MAX; nn];
+        let mut comp_nodes: Vec<Vec<usize>> = Vec::new();
+        let mut comp_of_root = std::collections::HashMap::new();
+        let mut visit = |n: usize, parent: &mut Vec<usize>, comp_nodes: &mut Vec<Vec<usize>>| {
+            let root = find(parent, n);
+            let ci = *comp_of_root.entry(root).or_insert_with(|| {
+                comp_nodes.push(Vec::new());
+                comp_nodes.len() - 1
+            });
+            if new_index[n] == u32::MAX {
+                new_index[n] = 0; // mark seen; real index below
+                comp_nodes[ci].push(n);
+            }
+        };
+        for c in &def.cables {
+            for &n in &c.nodes {
+                visit(n, &mut parent, &mut comp_nodes);
+            }
+        }
+        for n in 0..nn {
+            visit(n, &mut parent, &mut comp_nodes);
+        }
+        let mut order = Vec::with_capacity(nn);
+        let mut node_block = vec![0usize; nn];
+        for (bi, nodes) in comp_nodes.iter().enumerate() {
+            for &n in nodes {
+                new_index[n] = order.len() as u32;
+                node_block[n] = bi;
+                order.push(n);
+            }
+        }
+        // Elements grouped by block, in cable order within each block.
+        let mut block_elems: Vec<Vec<(usize, usize)>> = vec![Vec::new(); comp_nodes.len()];
+        for (ci, c) in def.cables.iter().enumerate() {
+            let b = node_block[c.nodes[0]];
+            for k in 0..c.l0.len() {
+                block_elems[b].push((ci, k));
+            }
+        }
+        let ne: usize = block_elems.iter().map(|v| v.len()).sum();
+        let line_coefs: Vec<LineCoefs> = def
+            .line_types
+            .iter()
+            .map(|lt| LineCoefs::new(lt, env.water_density, env.gravity))
+            .collect();
+
+        let mut lay = Layout {
+            env,
+            line_types: def.line_types.clone(),
+            line_coefs,
+            currents: def.currents.clone(),
+            cables: def
+                .cables
+                .iter()
+                .map(|c| CableInfo {
+                    name: c.name.clone(),
+                    nodes: c.nodes.iter().map(|&n| new_index[n]).collect(),
+                    elements: vec![0; c.l0.len()],
+                    line_type: c.line_type,
+                    current: c.current,
+                    output_positions: c.output_positions,
+                })
+                .collect(),
+            blocks: Vec::new(),
+            node_cable: vec![u32::MAX; nn],
+            node_index_in_cable: vec![0; nn],
+            node_point_mass: vec![0.0; nn],
+            node_point_weight_z: vec![0.0; nn],
+            node_point_drag: vec![0.0; nn],
+            node_tributary: vec![0.0; nn],
+            node_current: vec![0; nn],
+            node_constraint: vec![NO_CONSTRAINT; nn],
+            inc_start: Vec::new(),
+            inc: Vec::new(),
+            elem_a: Vec::with_capacity(ne),
+            elem_b: Vec::with_capacity(ne),
+            elem_l0: Vec::with_capacity(ne),
+            elem_line: Vec::with_capacity(ne),
+            elem_cable: Vec::with_capacity(ne),
+            elem_current: Vec::with_capacity(ne),
+            constraint_node: Vec::new(),
+            routes: Vec::new(),
+        };
+        let mut positions = vec![[0.0; 3]; nn];
+        for (old, nd) in def.nodes.iter().enumerate() {
+            let i = new_index[old] as usize;
+            positions[i] = nd.position;
+            let p = &nd.point;
+            let rho = env.water_density;
+            lay.node_point_mass[i] = p.mass + p.added_mass_coef * rho * p.volume;
+            lay.node_point_weight_z[i] = -(p.mass - rho * p.volume) * env.gravity;
+            lay.node_point_drag[i] = 0.5 * rho * p.drag_area;
+        }
+        let mut block_elem_start = vec![0usize; comp_nodes.len() + 1];
+        for (bi, elems) in block_elems.iter().enumerate() {
+            for &(ci, k) in elems {
+                let c = &def.cables[ci];
+                let e = lay.elem_a.len() as u32;
+                lay.cables[ci].elements[k] = e;
+                lay.elem_a.push(new_index[c.nodes[k]]);
+                lay.elem_b.push(new_index[c.nodes[k + 1]]);
+                lay.elem_l0.push(c.l0[k]);
+                lay.elem_line.push(c.line_type as u32);
+                lay.elem_cable.push(ci as u32);
+                lay.elem_current.push(c.current as u32);
+            }
+            block_elem_start[bi + 1] = lay.elem_a.len();
+        }
+        for (ci, c) in lay.cables.iter().enumerate() {
+            for (k, &n) in c.nodes.iter().enumerate() {
+                let n = n as usize;
+                if lay.node_cable[n] == u32::MAX {
+                    lay.node_cable[n] = ci as u32;
+                    lay.node_index_in_cable[n] = k as u32;
+                    lay.node_current[n] = c.current as u32;
+                }
+            }
+        }
+        // Loose nodes (a point on no cable) are reported under cable 0.
+        for n in lay.node_cable.iter_mut() {
+            if *n == u32::MAX {
+                *n = 0;
+            }
+        }
+        // Incidence (compressed rows), and tributary lengths.
+        let mut count = vec![0u32; nn + 1];
+        for e in 0..ne {
+            count[lay.elem_a[e] as usize + 1] += 1;
+            count[lay.elem_b[e] as usize + 1] += 1;
+        }
+        for i in 0..nn {
+            count[i + 1] += count[i];
+        }
+        let mut fill = count.clone();
+        lay.inc = vec![0; 2 * ne];
+        for e in 0..ne {
+            for (side, n) in [(0u32, lay.elem_a[e]), (1, lay.elem_b[e])] {
+                let n = n as usize;
+                lay.inc[fill[n] as usize] = e as u32 * 2 + side;
+                fill[n] += 1;
+                lay.node_tributary[n] += 0.5 * lay.elem_l0[e];
+            }
+        }
+        lay.inc_start = count;
+        // Constraints.
+        for (old, nd) in def.nodes.iter().enumerate() {
+            if let Some(r) = &nd.route {
+                let i = new_index[old];
+                lay.node_constraint[i as usize] = lay.routes.len() as u32;
+                lay.constraint_node.push(i);
+                lay.routes.push(r.clone());
+            }
+        }
+        // Blocks.
+        let mut node_start = 0u32;
+        for (bi, nodes) in comp_nodes.iter().enumerate() {
+            let node_end = node_start + nodes.len() as u32;
+            let (e0, e1) = (block_elem_start[bi], block_elem_start[bi + 1]);
+            let is_chain = (e1 - e0) + 1 == nodes.len()
+                && (e0..e1).all(|e| {
+                    let k = (e - e0) as u32;
+                    lay.elem_a[e] == node_start + k && lay.elem_b[e] == node_start + k + 1
+                });
+            lay.blocks.push(Block {
+                node_start,
+                node_end,
+                elem_start: e0 as u32,
+                elem_end: e1 as u32,
+                is_chain,
+            });
+            node_start = node_end;
+        }
+        Ok((lay, positions))
+    }
+}

@@ -1,0 +1,11 @@
+//! What is simulated: line types, environment, routes, and the packed layout.
+
+mod environment;
+mod layout;
+mod line_type;
+mod route;
+
+pub use environment::{Current, Environment, Seabed};
+pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};
+pub use line_type::{LineCoefs, LineType};
+pub use route::{circle_basis, Route, RouteState};

@@ -1,0 +1,209 @@
+//! Prescribed motions of constrained nodes (anchors, fairleads, towing points).
+//!
+//! A route gives the target position, velocity and acceleration `r_d, rd_d, rdd_d` at
+//! time `t`; the constraint drives the node onto it with Baumgarte stabilisation
+//! (MODEL.md, Eq. 6).
+
+use std::f64::consts::PI;
+
+/// A prescribed path `r_d(t)`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Route {
+    /// Held at a point (an anchor, a fixed fairlead).
+    Fixed {
+        /// Position, m.
+        position: [f64; 3],
+    },
+    /// Straight line at constant velocity: `r_d = start + velocity t`.
+    Line {
+        /// Position at `t = 0`, m.
+        start: [f64; 3],
+        /// Velocity, m/s.
+        velocity: [f64; 3],
+    },
+    /// Circle (and, with `advance != 0`, a screw: the circle advancing along its axis).
+    Circle {
+        /// Centre of the circle at `t = 0`, m.
+        center: [f64; 3],
+        /// Radius, m.
+        radius: f64,
+        /// Time of one revolution, s.
+        period: f64,
+        /// Unit axis; the motion is counter-clockwise about it.
+        axis: [f64; 3],
+        /// Angle at `t = 0`, rad, measured from the in-plane reference direction `e1`.
+        phase: f64,
+        /// Advance along `axis` per revolution, m (0 for a circle).
+        advance: f64,
+    },
+    /// Positions read from a table, linearly interpolated; held at the first and last
+    /// rows outside the table's time span.
+    Table {
+        /// Sample times, s, strictly increasing.
+        t: Vec<f64>,
+        /// Positions, m.
+        p: Vec<[f64; 3]>,
+    },
+}
+
+/// Target kinematics of a route at one time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RouteState {
+    /// Position, m.
+    pub r: [f64; 3],
+    /// Velocity, m/s.
+    pub v: [f64; 3],
+    /// Acceleration, m/s^2.
+    pub a: [f64; 3],
+}
+
+/// The in-plane basis `(e1, e2)` of a circle about unit `axis`: `e1` is the global x
+/// direction projected onto the plane (or y when the axis is along x), `e2 = axis x e1`.
+pub fn circle_basis(axis: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let n = axis;
+    let seed = if n[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let d = seed[0] * n[0] + seed[1] * n[1] + seed[2] * n[2];
+    let mut e1 = [seed[0] - d * n[0], seed[1] - d * n[1], seed[2] - d * n[2]];
+    let l = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
+    e1 = [e1[0] / l, e1[1] / l, e1[2] / l];
+    let e2 = [
+        n[1] * e1[2] - n[2] * e1[1],
+        n[2] * e1[0] - n[0] * e1[2],
+        n[0] * e1[1] - n[1] * e1[0],
+    ];
+    (e1, e2)
+}
+
+impl Route {
+    /// Target position, velocity and acceleration at time `t`.
+    pub fn eval(&self, t: f64) -> RouteState {
+        match self {
+            Route::Fixed { position } => RouteState {
+                r: *position,
+                v: [0.0; 3],
+                a: [0.0; 3],
+            },
+            Route::Line { start, velocity } => RouteState {
+                r: [
+                    start[0] + velocity[0] * t,
+                    start[1] + velocity[1] * t,
+                    start[2] + velocity[2] * t,
+                ],
+                v: *velocity,
+                a: [0.0; 3],
+            },
+            Route::Circle {
+                center,
+                radius,
+                period,
+                axis,
+                phase,
+                advance,
+            } => {
+                let w = 2.0 * PI / period;
+                let th = w * t + phase;
+                let (c, s) = (th.cos(), th.sin());
+                let (e1, e2) = circle_basis(*axis);
+                let adv = advance / period; // axial speed
+                let mut st = RouteState {
+                    r: [0.0; 3],
+                    v: [0.0; 3],
+                    a: [0.0; 3],
+                };
+                for k in 0..3 {
+                    st.r[k] = center[k] + radius * (c * e1[k] + s * e2[k]) + axis[k] * adv * t;
+                    st.v[k] = radius * w * (-s * e1[k] + c * e2[k]) + axis[k] * adv;
+                    st.a[k] = -radius * w * w * (c * e1[k] + s * e2[k]);
+                }
+                st
+            }
+            Route::Table { t: ts, p } => {
+                let n = ts.len();
+                if n == 1 || t <= ts[0] {
+                    return RouteState {
+                        r: p[0],
+                        v: [0.0; 3],
+                        a: [0.0; 3],
+                    };
+                }
+                if t >= ts[n - 1] {
+                    return RouteState {
+                        r: p[n - 1],
+                        v: [0.0; 3],
+                        a: [0.0; 3],
+                    };
+                }
+                let i = ts.partition_point(|&x| x <= t).max(1);
+                let (t0, t1) = (ts[i - 1], ts[i]);
+                let s = (t - t0) / (t1 - t0);
+                let mut st = RouteState {
+                    r: [0.0; 3],
+                    v: [0.0; 3],
+                    a: [0.0; 3],
+                };
+                for k in 0..3 {
+                    st.r[k] = p[i - 1][k] + s * (p[i][k] - p[i - 1][k]);
+                    st.v[k] = (p[i][k] - p[i - 1][k]) / (t1 - t0);
+                }
+                st
+            }
+        }
+    }
+
+    /// True for a route that never moves.
+    pub fn is_fixed(&self) -> bool {
+        matches!(self, Route::Fixed { .. })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn circle_velocity_and_acceleration_are_derivatives() {
+        let r = Route::Circle {
+            center: [1.0, 2.0, -3.0],
+            radius: 20.0,
+            period: 62.8,
+            axis: [0.0, 0.0, -1.0],
+            phase: 0.3,
+            advance: 62.8,
+        };
+        let h = 1e-4;
+        for &t in &[0.0, 7.0, 100.0] {
+            let (a, b, c) = (r.eval(t - h), r.eval(t), r.eval(t + h));
+            for k in 0..3 {
+                let v = (c.r[k] - a.r[k]) / (2.0 * h);
+                let acc = (c.r[k] - 2.0 * b.r[k] + a.r[k]) / (h * h);
+                assert!((v - b.v[k]).abs() < 1e-6, "v {k}: {v} vs {}", b.v[k]);
+                assert!((acc - b.a[k]).abs() < 1e-3, "a {k}: {acc} vs {}", b.a[k]);
+            }
+            // Distance from the (advancing) axis is the radius.
+        }
+        let s = r.eval(0.0);
+        let d = ((s.r[0] - 1.0).powi(2) + (s.r[1] - 2.0).powi(2)).sqrt();
+        assert!((d - 20.0).abs() < 1e-12);
+        // One revolution advances 62.8 m along -z.
+        let s1 = r.eval(62.8);
+        assert!((s1.r[2] - (s.r[2] - 62.8)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn table_interpolates_and_holds() {
+        let r = Route::Table {
+            t: vec![0.0, 10.0],
+            p: vec![[0.0, 0.0, 0.0], [10.0, 0.0, -5.0]],
+        };
+        let s = r.eval(5.0);
+        assert_eq!(s.r, [5.0, 0.0, -2.5]);
+        assert_eq!(s.v, [1.0, 0.0, -0.5]);
+        assert_eq!(r.eval(20.0).r, [10.0, 0.0, -5.0]);
+        assert_eq!(r.eval(20.0).v, [0.0; 3]);
+        assert_eq!(r.eval(-1.0).r, [0.0; 3]);
+    }
+}

@@ -1,0 +1,162 @@
+//! GLMF element loads (MODEL.md "Discretisation", paper Eq. 10, 20 and 40).
+//!
+//! Everything is expressed in the global frame through the tangent `t` and the
+//! normal-plane projection `P = I - t t^T`; no element frame is built, so the only
+//! singular configuration is a zero-length element.
+
+use crate::math::{Real, V3};
+use crate::model::LineCoefs;
+
+/// Line constants in the precision of the computation.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Coefs<T> {
+    /// `EA`, N.
+    pub ea: T,
+    /// `EA c`, N s.
+    pub ea_c: T,
+    /// `1/2 rho Cn d`, kg/m^2.
+    pub drag_n: T,
+    /// `1/2 rho Ct pi d`, kg/m^2.
+    pub drag_t: T,
+    /// `(1 + Cm) rho A`, kg/m.
+    pub froude_krylov: T,
+    /// `mbar`, kg/m.
+    pub mass: T,
+    /// `Cm rho A`, kg/m.
+    pub added_mass: T,
+    /// z component of weight less buoyancy per length, N/m.
+    pub wet_weight_z: T,
+    /// 1 when the elastic force acts in compression, else 0.
+    pub compression: T,
+}
+
+impl<T: Real> Coefs<T> {
+    /// Converts the folded `f64` constants.
+    pub fn from_line(c: &LineCoefs) -> Self {
+        Self {
+            ea: T::c(c.ea),
+            ea_c: T::c(c.ea_c),
+            drag_n: T::c(c.drag_n),
+            drag_t: T::c(c.drag_t),
+            froude_krylov: T::c(c.froude_krylov),
+            mass: T::c(c.mass),
+            added_mass: T::c(c.added_mass),
+            wet_weight_z: T::c(c.wet_weight_z),
+            compression: T::c(c.compression),
+        }
+    }
+}
+
+/// Kinematics of one element: its two nodes' states and the water at its midpoint.
+#[derive(Clone, Copy, Debug)]
+pub struct ElementInput<T> {
+    /// Position of node a, m.
+    pub ra: V3<T>,
+    /// Position of node b, m.
+    pub rb: V3<T>,
+    /// Velocity of node a, m/s.
+    pub va: V3<T>,
+    /// Velocity of node b, m/s.
+    pub vb: V3<T>,
+    /// Unstretched length `l0`, m.
+    pub l0: T,
+    /// Current at the midpoint, m/s.
+    pub current: V3<T>,
+    /// Water acceleration at the midpoint, m/s^2.
+    pub water_accel: V3<T>,
+}
+
+/// What an element contributes to its two nodes.
+///
+/// Node a receives `f_half + tension t`, node b `f_half - tension t`; each receives the
+/// mass block `half_mass I + half_added (I - t t^T)`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ElementLoads<T> {
+    /// Unit tangent `t = (r_b - r_a) / l`.
+    pub t: V3<T>,
+    /// Axial force `EA max(eps, 0) + EA c epsdot`, N (positive in tension).
+    pub tension: T,
+    /// Half of the external load `F_dn + F_dt + F_a + W`, N.
+    pub f_half: V3<T>,
+    /// Half of `mbar l0`, kg.
+    pub half_mass: T,
+    /// Half of the normal added mass `Cm rho A l0`, kg.
+    pub half_added: T,
+}
+
+/// External load parts of an element, kept apart for the frame comparisons and tests.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ExternalLoads<T> {
+    /// Normal drag `F_dn`, N.
+    pub drag_n: V3<T>,
+    /// Tangential drag `F_dt`, N.
+    pub drag_t: V3<T>,
+    /// Water-acceleration load `F_a`, N.
+    pub froude_krylov: V3<T>,
+    /// Weight less buoyancy `W`, N.
+    pub wet_weight: V3<T>,
+}
+
+impl<T: Real> ExternalLoads<T> {
+    /// Sum of the parts.
+    #[inline(always)]
+    pub fn total(&self) -> V3<T> {
+        self.drag_n + self.drag_t + self.froude_krylov + self.wet_weight
+    }
+}
+
+/// Axial force from stretch and stretch rate (paper Eq. 10 with the damping of Eq. 40).
+#[inline(always)]
+pub fn axial_force<T: Real>(c: &Coefs<T>, l: T, l0: T, t: V3<T>, dv: V3<T>) -> T {
+    let eps = l / l0 - T::one();
+    let epsdot = t.dot(dv) / l0;
+    // Slack: the elastic part vanishes in compression unless the line is a rod.
+    let elastic = c.ea
+        * eps
+        * if eps > T::zero() {
+            T::one()
+        } else {
+            c.compression
+        };
+    elastic + c.ea_c * epsdot
+}
+
+/// GLMF external loads of an element with tangent `t` and current length `l`.
+#[inline(always)]
+pub fn glmf_external<T: Real>(
+    c: &Coefs<T>,
+    e: &ElementInput<T>,
+    t: V3<T>,
+    l: T,
+) -> ExternalLoads<T> {
+    let half = T::c(0.5);
+    let vrel = e.current - (e.va + e.vb) * half;
+    let vt = t.dot(vrel);
+    let vn = vrel - t * vt; // P v_rel
+    let aw_n = e.water_accel - t * t.dot(e.water_accel); // P a_w
+    ExternalLoads {
+        drag_n: vn * (c.drag_n * l * vn.norm()),
+        drag_t: t * (c.drag_t * l * vt.abs() * vt),
+        froude_krylov: aw_n * (c.froude_krylov * e.l0),
+        wet_weight: V3::new(T::zero(), T::zero(), c.wet_weight_z * e.l0),
+    }
+}
+
+/// The GLMF loads of one element. A zero-length element gives non-finite output,
+/// which the steppers' blow-up check reports with the element's cable and time.
+#[inline(always)]
+pub fn glmf_element<T: Real>(c: &Coefs<T>, e: &ElementInput<T>) -> ElementLoads<T> {
+    let d = e.rb - e.ra;
+    let l = d.norm();
+    let t = d / l;
+    let tension = axial_force(c, l, e.l0, t, e.vb - e.va);
+    let ext = glmf_external(c, e, t, l);
+    let half = T::c(0.5);
+    ElementLoads {
+        t,
+        tension,
+        f_half: ext.total() * half,
+        half_mass: c.mass * e.l0 * half,
+        half_added: c.added_mass * e.l0 * half,
+    }
+}
