@@ -15,3 +15,8 @@ pub mod options;
 pub mod physics;
 
 pub use error::{Error, Result};
+pub mod initial;
+pub mod output;
+pub mod scenario;
+pub mod sim;
+pub mod stability;

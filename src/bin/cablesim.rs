@@ -1,1 +1,177 @@
-fn main() {}
+//! The `cablesim` command line: a thin layer over the library.
+
+use anyhow::{Context, Result};
+use cablesim::options::{Formulation, Scheme, SolverOptions};
+use cablesim::scenario::{Backend, Scenario};
+use cablesim::sim::{self, Overrides, RunOptions};
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "cablesim",
+    version,
+    about = "Many underwater cables at once (GLMF lumped mass)"
+)]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Run a simulation.
+    Run {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        /// Output directory (default: out/<scenario name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// auto | cpu | gpu (default: the scenario's, else auto).
+        #[arg(long)]
+        backend: Option<String>,
+        /// symplectic | rk2 | rk4.
+        #[arg(long)]
+        scheme: Option<String>,
+        /// glmf | rvef | euler | frenet.
+        #[arg(long)]
+        formulation: Option<String>,
+        /// Time step in seconds (overrides the scenario's `dt`).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Simulated duration in seconds (overrides the scenario's).
+        #[arg(long)]
+        duration: Option<f64>,
+        /// No progress bar.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Validate a scenario file without running it.
+    Check {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+    },
+}
+
+fn parse_opt<T>(
+    v: &Option<String>,
+    what: &str,
+    f: impl Fn(&str) -> Option<T>,
+) -> Result<Option<T>> {
+    match v {
+        None => Ok(None),
+        Some(s) => f(s)
+            .map(Some)
+            .ok_or_else(|| anyhow::anyhow!("--{what}: unknown value \"{s}\"")),
+    }
+}
+
+fn main() -> ExitCode {
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("info"))
+        .format_timestamp(None)
+        .init();
+    match real_main() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn real_main() -> Result<()> {
+    let cli = Cli::parse();
+    match cli.cmd {
+        Cmd::Check { scenario } => {
+            let sc = Scenario::load(&scenario)?;
+            let (lay, _) = cablesim::model::Layout::build(&sc.model)?;
+            let opts = SolverOptions {
+                scheme: sc.sim.scheme,
+                baumgarte: sc.sim.baumgarte,
+                ..Default::default()
+            };
+            let plan = sim::plan_steps(&sc, &lay, &opts, sc.sim.duration, sc.sim.dt)?;
+            if let Some(w) = &plan.warning {
+                log::warn!("{w}");
+            }
+            println!(
+                "{}: ok: {} cables, {} nodes, {} elements; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps",
+                scenario.display(),
+                lay.cables.len(),
+                lay.n_nodes(),
+                lay.n_elements(),
+                plan.dt,
+                plan.bound.dt,
+                plan.bound.term,
+                plan.total_steps
+            );
+            Ok(())
+        }
+        Cmd::Run {
+            scenario,
+            out,
+            backend,
+            scheme,
+            formulation,
+            dt,
+            duration,
+            quiet,
+        } => {
+            let overrides = Overrides {
+                backend: parse_opt(&backend, "backend", Backend::parse)?,
+                scheme: parse_opt(&scheme, "scheme", Scheme::parse)?,
+                formulation: parse_opt(&formulation, "formulation", Formulation::parse)?,
+                dt: dt
+                    .map(|d| {
+                        if d > 0.0 && d.is_finite() {
+                            Ok(d)
+                        } else {
+                            Err(anyhow::anyhow!("--dt must be a positive number"))
+                        }
+                    })
+                    .transpose()?,
+                duration: duration
+                    .map(|d| {
+                        if d > 0.0 && d.is_finite() {
+                            Ok(d)
+                        } else {
+                            Err(anyhow::anyhow!("--duration must be a positive number"))
+                        }
+                    })
+                    .transpose()?,
+            };
+            let sc = Scenario::load(&scenario)?;
+            let out_dir = out.unwrap_or_else(|| {
+                PathBuf::from("out").join(
+                    scenario
+                        .file_stem()
+                        .map(|s| s.to_os_string())
+                        .unwrap_or_else(|| "run".into()),
+                )
+            });
+            let ro = RunOptions {
+                out_dir: out_dir.clone(),
+                overrides,
+                progress: !quiet,
+            };
+            let s = sim::run(&sc, &ro).with_context(|| {
+                format!(
+                    "run of {} (output so far kept in {})",
+                    scenario.display(),
+                    out_dir.display()
+                )
+            })?;
+            eprintln!(
+                "done: {} steps of {:.4e} s to t = {} s in {:.3} s of stepping ({:.3e} node-steps/s); output in {}",
+                s.steps,
+                s.dt,
+                s.simulated_time,
+                s.wall_seconds,
+                s.node_steps_per_second,
+                out_dir.display()
+            );
+            Ok(())
+        }
+    }
+}

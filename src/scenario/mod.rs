@@ -1,0 +1,586 @@
+//! Scenario files (TOML): parsing, validation with precise messages, and the model
+//! they describe. The keys are documented in README.md ("Scenario files").
+
+mod ends;
+mod raw;
+mod route_file;
+
+use crate::error::Error;
+use crate::model::{CableDef, Current, Environment, ModelDef, NodeDef, PointMass};
+use crate::options::{Baumgarte, Formulation, Scheme};
+pub use ends::EndKind;
+use raw::{RawDt, RawScenario};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Which computing path runs the simulation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Backend {
+    /// The GPU when one is usable, else the CPU.
+    #[default]
+    Auto,
+    /// The f64 CPU reference path.
+    Cpu,
+    /// The GPU path (an error when no adapter is usable).
+    Gpu,
+}
+
+impl Backend {
+    /// Parses `auto | cpu | gpu`.
+    pub fn parse(s: &str) -> Option<Self> {
+        Some(match s {
+            "auto" => Backend::Auto,
+            "cpu" => Backend::Cpu,
+            "gpu" => Backend::Gpu,
+            _ => return None,
+        })
+    }
+}
+
+/// The time step as asked for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum DtSpec {
+    /// The largest stable step times a safety factor, rounded down to divide the
+    /// output interval.
+    Auto,
+    /// A given step, s.
+    Fixed(f64),
+}
+
+/// How a cable's nodes start.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InitialShape {
+    /// Evenly spaced on the segment between the ends.
+    Straight,
+    /// The analytic elastic catenary, then relaxed to the discrete static equilibrium.
+    Catenary,
+}
+
+/// The `[simulation]` table, validated.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SimulationConfig {
+    /// Simulated duration, s.
+    pub duration: f64,
+    /// Time step.
+    pub dt: DtSpec,
+    /// Output interval, s.
+    pub output_interval: f64,
+    /// Backend.
+    pub backend: Backend,
+    /// `f32` or `f64` on the GPU (the CPU path is always f64); `None` = the backend's default.
+    pub precision: Option<String>,
+    /// Time scheme.
+    pub scheme: Scheme,
+    /// Load formulation.
+    pub formulation: Formulation,
+    /// Constraint stabilisation.
+    pub baumgarte: Baumgarte,
+    /// Blow-up threshold on node speed, m/s.
+    pub max_speed: f64,
+}
+
+/// A validated scenario.
+#[derive(Clone, Debug)]
+pub struct Scenario {
+    /// The file it came from.
+    pub path: PathBuf,
+    /// Simulation settings.
+    pub sim: SimulationConfig,
+    /// The model.
+    pub model: ModelDef,
+    /// Initial shape of each cable (same order as `model.cables`).
+    pub initial: Vec<InitialShape>,
+}
+
+/// Builds `Error::Scenario` for `path`.
+pub(crate) fn err(path: &Path, field: impl Into<String>, message: impl Into<String>) -> Error {
+    Error::Scenario {
+        path: path.to_path_buf(),
+        field: field.into(),
+        message: message.into(),
+    }
+}
+
+/// Checks a number is finite (TOML allows `nan` and `inf`).
+pub(crate) fn finite(path: &Path, field: &str, x: f64) -> Result<f64, Error> {
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(err(
+            path,
+            field,
+            format!("must be a finite number, got {x}"),
+        ))
+    }
+}
+
+pub(crate) fn positive(path: &Path, field: &str, x: f64) -> Result<f64, Error> {
+    finite(path, field, x)?;
+    if x > 0.0 {
+        Ok(x)
+    } else {
+        Err(err(path, field, format!("must be positive, got {x}")))
+    }
+}
+
+pub(crate) fn non_negative(path: &Path, field: &str, x: f64) -> Result<f64, Error> {
+    finite(path, field, x)?;
+    if x >= 0.0 {
+        Ok(x)
+    } else {
+        Err(err(path, field, format!("must not be negative, got {x}")))
+    }
+}
+
+fn vec3(path: &Path, field: &str, v: [f64; 3]) -> Result<[f64; 3], Error> {
+    for (k, x) in v.iter().enumerate() {
+        finite(path, &format!("{field}[{k}]"), *x)?;
+    }
+    Ok(v)
+}
+
+fn current(
+    path: &Path,
+    field: &str,
+    uniform: Option<[f64; 3]>,
+    profile: &Option<Vec<[f64; 4]>>,
+) -> Result<Option<Current>, Error> {
+    match (uniform, profile) {
+        (Some(_), Some(_)) => Err(err(
+            path,
+            field,
+            "give either `current` or `current_profile`, not both",
+        )),
+        (Some(u), None) => Ok(Some(Current::uniform(vec3(
+            path,
+            &format!("{field}current"),
+            u,
+        )?))),
+        (None, Some(rows)) => {
+            let f = format!("{field}current_profile");
+            if rows.is_empty() {
+                return Err(err(path, &f, "needs at least one row [z, ux, uy, uz]"));
+            }
+            let mut table = Vec::with_capacity(rows.len());
+            for (i, r) in rows.iter().enumerate() {
+                for (k, x) in r.iter().enumerate() {
+                    finite(path, &format!("{f}[{i}][{k}]"), *x)?;
+                }
+                if i > 0 && r[0] <= rows[i - 1][0] {
+                    return Err(err(
+                        path,
+                        format!("{f}[{i}]"),
+                        "depths z must increase strictly from row to row",
+                    ));
+                }
+                table.push((r[0], [r[1], r[2], r[3]]));
+            }
+            Ok(Some(Current { table }))
+        }
+        (None, None) => Ok(None),
+    }
+}
+
+impl Scenario {
+    /// Reads and validates a scenario file.
+    pub fn load(path: impl AsRef<Path>) -> Result<Scenario, Error> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| err(path, "(file)", format!("cannot read: {e}")))?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses and validates scenario text; `path` names the file in messages and is the
+    /// base for relative route files.
+    pub fn parse(text: &str, path: &Path) -> Result<Scenario, Error> {
+        let de = toml::Deserializer::new(text);
+        let raw: RawScenario = serde_path_to_error::deserialize(de).map_err(|e| {
+            let field = e.path().to_string();
+            let field = if field == "." {
+                "(top level)".to_string()
+            } else {
+                field
+            };
+            // toml's message carries the line and column of the problem.
+            err(
+                path,
+                field,
+                e.into_inner().to_string().trim().replace('\n', " "),
+            )
+        })?;
+        Self::from_raw(raw, path)
+    }
+
+    fn from_raw(raw: RawScenario, path: &Path) -> Result<Scenario, Error> {
+        let p = path;
+        // [simulation]
+        let s = &raw.simulation;
+        let duration = positive(p, "simulation.duration", s.duration)?;
+        let output_interval = positive(p, "simulation.output_interval", s.output_interval)?;
+        let dt = match &s.dt {
+            None => DtSpec::Auto,
+            Some(RawDt::Word(w)) if w == "auto" => DtSpec::Auto,
+            Some(RawDt::Word(w)) => {
+                return Err(err(
+                    p,
+                    "simulation.dt",
+                    format!("must be \"auto\" or a step in seconds, got \"{w}\""),
+                ))
+            }
+            Some(RawDt::Number(x)) => DtSpec::Fixed(positive(p, "simulation.dt", *x)?),
+        };
+        let backend = match &s.backend {
+            None => Backend::Auto,
+            Some(b) => Backend::parse(b).ok_or_else(|| {
+                err(
+                    p,
+                    "simulation.backend",
+                    format!("must be auto, cpu or gpu, got \"{b}\""),
+                )
+            })?,
+        };
+        if let Some(pr) = &s.precision {
+            if pr != "f32" && pr != "f64" {
+                return Err(err(
+                    p,
+                    "simulation.precision",
+                    format!("must be f32 or f64, got \"{pr}\""),
+                ));
+            }
+        }
+        let scheme = match &s.scheme {
+            None => Scheme::default(),
+            Some(x) => Scheme::parse(x).ok_or_else(|| {
+                err(
+                    p,
+                    "simulation.scheme",
+                    format!("must be symplectic, rk2 or rk4, got \"{x}\""),
+                )
+            })?,
+        };
+        let formulation = match &s.formulation {
+            None => Formulation::Glmf,
+            Some(x) => Formulation::parse(x).ok_or_else(|| {
+                err(
+                    p,
+                    "simulation.formulation",
+                    format!("must be glmf, rvef, euler or frenet, got \"{x}\""),
+                )
+            })?,
+        };
+        let mut baumgarte = Baumgarte::default();
+        if let Some(a) = s.baumgarte_alpha {
+            baumgarte.alpha = non_negative(p, "simulation.baumgarte_alpha", a)?;
+        }
+        if let Some(b) = s.baumgarte_beta {
+            baumgarte.beta = non_negative(p, "simulation.baumgarte_beta", b)?;
+        }
+        let max_speed = match s.max_speed {
+            Some(v) => positive(p, "simulation.max_speed", v)?,
+            None => 1.0e4,
+        };
+        let sim = SimulationConfig {
+            duration,
+            dt,
+            output_interval,
+            backend,
+            precision: s.precision.clone(),
+            scheme,
+            formulation,
+            baumgarte,
+            max_speed,
+        };
+
+        // [environment]
+        let e = &raw.environment;
+        let depth = match e.depth {
+            Some(d) => positive(p, "environment.depth", d)?,
+            None => f64::INFINITY,
+        };
+        let sb = e.seabed;
+        non_negative(p, "environment.seabed.stiffness", sb.stiffness)?;
+        non_negative(p, "environment.seabed.damping", sb.damping)?;
+        non_negative(p, "environment.seabed.friction", sb.friction)?;
+        positive(
+            p,
+            "environment.seabed.friction_velocity",
+            sb.friction_velocity,
+        )?;
+        let env = Environment {
+            gravity: non_negative(p, "environment.gravity", e.gravity)?,
+            water_density: non_negative(p, "environment.water_density", e.water_density)?,
+            depth,
+            seabed: sb,
+        };
+        let global_current =
+            current(p, "environment.", e.current, &e.current_profile)?.unwrap_or_default();
+
+        // [[line_types]]
+        let mut lt_index = HashMap::new();
+        for (i, lt) in raw.line_types.iter().enumerate() {
+            let f = |k: &str| format!("line_types[{i}] (\"{}\").{k}", lt.name);
+            positive(p, &f("diameter"), lt.diameter)?;
+            positive(p, &f("mass_per_length"), lt.mass_per_length)?;
+            positive(p, &f("ea"), lt.ea)?;
+            non_negative(p, &f("damping"), lt.damping)?;
+            non_negative(p, &f("cn"), lt.cn)?;
+            non_negative(p, &f("ct"), lt.ct)?;
+            non_negative(p, &f("cm"), lt.cm)?;
+            non_negative(p, &f("ei"), lt.ei)?;
+            if lt_index.insert(lt.name.clone(), i).is_some() {
+                return Err(err(
+                    p,
+                    format!("line_types[{i}].name"),
+                    format!("duplicate line type name \"{}\"", lt.name),
+                ));
+            }
+        }
+        if raw.cables.is_empty() {
+            return Err(err(p, "cables", "the scenario has no [[cables]]"));
+        }
+
+        let mut model = ModelDef {
+            env,
+            line_types: raw.line_types.clone(),
+            currents: vec![global_current],
+            ..Default::default()
+        };
+
+        // [[points]]: named shared nodes.
+        let mut point_index: HashMap<String, usize> = HashMap::new();
+        for (i, t) in raw.points.iter().enumerate() {
+            let field = format!("points[{i}]");
+            let name = match t.get("name") {
+                Some(toml::Value::String(s)) => s.clone(),
+                _ => {
+                    return Err(err(
+                        p,
+                        format!("{field}.name"),
+                        "every point needs a string `name`",
+                    ))
+                }
+            };
+            let field = format!("points[{i}] (\"{name}\")");
+            let spec = ends::parse_end(p, &field, t, &["name"], &HashMap::new())?;
+            let (position, route, point) = match spec.kind {
+                EndKind::Point(_) => {
+                    return Err(err(p, field, "a point cannot refer to another point"))
+                }
+                EndKind::Fixed(x) | EndKind::Free(x) => (x, spec.route, spec.mass),
+                EndKind::Route => (
+                    spec.route
+                        .as_ref()
+                        .map(|r| r.eval(0.0).r)
+                        .unwrap_or([0.0; 3]),
+                    spec.route,
+                    spec.mass,
+                ),
+            };
+            if point_index
+                .insert(name.clone(), model.nodes.len())
+                .is_some()
+            {
+                return Err(err(
+                    p,
+                    format!("{field}.name"),
+                    format!("duplicate point name \"{name}\""),
+                ));
+            }
+            model.nodes.push(NodeDef {
+                position,
+                point,
+                route,
+                label: Some(name),
+            });
+        }
+
+        // [[cables]]
+        let mut initial = Vec::with_capacity(raw.cables.len());
+        let mut names = HashMap::new();
+        let many = raw.cables.len() > 20;
+        let positions_sel = output_selection(p, &raw.output.positions)?;
+        for (i, c) in raw.cables.iter().enumerate() {
+            let f = |k: &str| format!("cables[{i}] (\"{}\").{k}", c.name);
+            if names.insert(c.name.clone(), i).is_some() {
+                return Err(err(
+                    p,
+                    f("name"),
+                    format!("duplicate cable name \"{}\"", c.name),
+                ));
+            }
+            let &lt = lt_index.get(&c.line_type).ok_or_else(|| {
+                let mut known: Vec<_> = lt_index.keys().cloned().collect();
+                known.sort();
+                err(
+                    p,
+                    f("line_type"),
+                    format!(
+                        "unknown line type \"{}\" (defined: {})",
+                        c.line_type,
+                        known.join(", ")
+                    ),
+                )
+            })?;
+            let length = positive(p, &f("length"), c.length)?;
+            if c.segments < 1 || c.segments > 1_000_000 {
+                return Err(err(
+                    p,
+                    f("segments"),
+                    format!("must be an integer from 1 to 1000000, got {}", c.segments),
+                ));
+            }
+            let n = c.segments as usize;
+            let shape = match c.initial.as_deref() {
+                None | Some("straight") => InitialShape::Straight,
+                Some("catenary") => InitialShape::Catenary,
+                Some(x) => {
+                    return Err(err(
+                        p,
+                        f("initial"),
+                        format!("must be \"catenary\" or \"straight\", got \"{x}\""),
+                    ))
+                }
+            };
+            let cur = match current(
+                p,
+                &format!("cables[{i}] (\"{}\").", c.name),
+                c.current,
+                &c.current_profile,
+            )? {
+                Some(cu) => {
+                    model.currents.push(cu);
+                    model.currents.len() - 1
+                }
+                None => 0,
+            };
+            let start = ends::parse_end(p, &f("start"), &c.start, &[], &point_index)?;
+            let end = ends::parse_end(p, &f("end"), &c.end, &[], &point_index)?;
+            let mut ids = [0usize; 2];
+            let mut pos = [[0.0; 3]; 2];
+            for (k, spec) in [start, end].into_iter().enumerate() {
+                match spec.kind {
+                    EndKind::Point(idx) => {
+                        ids[k] = idx;
+                        pos[k] = model.nodes[idx].position;
+                    }
+                    EndKind::Fixed(x) | EndKind::Free(x) => {
+                        ids[k] = model.nodes.len();
+                        pos[k] = x;
+                        model.nodes.push(NodeDef {
+                            position: x,
+                            point: spec.mass,
+                            route: spec.route,
+                            label: None,
+                        });
+                    }
+                    EndKind::Route => {
+                        let r = spec.route.expect("route ends carry a route");
+                        pos[k] = r.eval(0.0).r;
+                        ids[k] = model.nodes.len();
+                        model.nodes.push(NodeDef {
+                            position: pos[k],
+                            point: spec.mass,
+                            route: Some(r),
+                            label: None,
+                        });
+                    }
+                }
+            }
+            if ids[0] == ids[1] {
+                return Err(err(
+                    p,
+                    f("end"),
+                    "a cable cannot start and end at the same point",
+                ));
+            }
+            let mut nodes = Vec::with_capacity(n + 1);
+            nodes.push(ids[0]);
+            for k in 1..n {
+                let s = k as f64 / n as f64;
+                let x = [0, 1, 2].map(|d| pos[0][d] + s * (pos[1][d] - pos[0][d]));
+                nodes.push(model.nodes.len());
+                model.nodes.push(NodeDef {
+                    position: x,
+                    point: PointMass::default(),
+                    route: None,
+                    label: None,
+                });
+            }
+            nodes.push(ids[1]);
+            let output_positions = c.output_positions.unwrap_or(match &positions_sel {
+                Selection::All => true,
+                Selection::None => false,
+                Selection::Auto => !many,
+                Selection::Names(v) => v.contains(&c.name),
+            });
+            model.cables.push(CableDef {
+                name: c.name.clone(),
+                line_type: lt,
+                nodes,
+                l0: vec![length / n as f64; n],
+                current: cur,
+                output_positions,
+            });
+            initial.push(shape);
+        }
+        if let Selection::Names(v) = &positions_sel {
+            if let Some(bad) = v.iter().find(|n| !names.contains_key(*n)) {
+                return Err(err(
+                    p,
+                    "output.positions",
+                    format!("no cable named \"{bad}\""),
+                ));
+            }
+        }
+        Ok(Scenario {
+            path: p.to_path_buf(),
+            sim,
+            model,
+            initial,
+        })
+    }
+}
+
+enum Selection {
+    Auto,
+    All,
+    None,
+    Names(Vec<String>),
+}
+
+fn output_selection(p: &Path, v: &Option<toml::Value>) -> Result<Selection, Error> {
+    let f = "output.positions";
+    Ok(match v {
+        None => Selection::Auto,
+        Some(toml::Value::String(s)) => {
+            match s.as_str() {
+                "auto" => Selection::Auto,
+                "all" => Selection::All,
+                "none" => Selection::None,
+                _ => return Err(err(
+                    p,
+                    f,
+                    format!(
+                        "must be \"auto\", \"all\", \"none\" or a list of cable names, got \"{s}\""
+                    ),
+                )),
+            }
+        }
+        Some(toml::Value::Array(a)) => Selection::Names(
+            a.iter()
+                .map(|x| {
+                    x.as_str()
+                        .map(str::to_string)
+                        .ok_or_else(|| err(p, f, "list entries must be cable names (strings)"))
+                })
+                .collect::<Result<_, _>>()?,
+        ),
+        Some(_) => {
+            return Err(err(
+                p,
+                f,
+                "must be \"auto\", \"all\", \"none\" or a list of cable names",
+            ))
+        }
+    })
+}

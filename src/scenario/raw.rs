@@ -1,0 +1,97 @@
+//! The scenario file as written (serde), before validation.
+
+use crate::model::{LineType, Seabed};
+use serde::Deserialize;
+
+/// Top level of a scenario file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScenario {
+    pub simulation: RawSimulation,
+    #[serde(default)]
+    pub environment: RawEnvironment,
+    pub line_types: Vec<LineType>,
+    #[serde(default)]
+    pub points: Vec<toml::Table>,
+    pub cables: Vec<RawCable>,
+    #[serde(default)]
+    pub output: RawOutput,
+}
+
+/// `dt = "auto"` or a number.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(untagged)]
+pub enum RawDt {
+    Number(f64),
+    Word(String),
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSimulation {
+    pub duration: f64,
+    pub dt: Option<RawDt>,
+    pub output_interval: f64,
+    pub backend: Option<String>,
+    pub precision: Option<String>,
+    pub scheme: Option<String>,
+    pub formulation: Option<String>,
+    pub baumgarte_alpha: Option<f64>,
+    pub baumgarte_beta: Option<f64>,
+    pub max_speed: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawEnvironment {
+    #[serde(default = "default_g")]
+    pub gravity: f64,
+    #[serde(default = "default_rho")]
+    pub water_density: f64,
+    pub depth: Option<f64>,
+    pub current: Option<[f64; 3]>,
+    pub current_profile: Option<Vec<[f64; 4]>>,
+    #[serde(default)]
+    pub seabed: Seabed,
+}
+
+impl Default for RawEnvironment {
+    fn default() -> Self {
+        Self {
+            gravity: default_g(),
+            water_density: default_rho(),
+            depth: None,
+            current: None,
+            current_profile: None,
+            seabed: Seabed::default(),
+        }
+    }
+}
+
+fn default_g() -> f64 {
+    9.81
+}
+fn default_rho() -> f64 {
+    1025.0
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCable {
+    pub name: String,
+    pub line_type: String,
+    pub length: f64,
+    pub segments: i64,
+    pub start: toml::Table,
+    pub end: toml::Table,
+    pub initial: Option<String>,
+    pub current: Option<[f64; 3]>,
+    pub current_profile: Option<Vec<[f64; 4]>>,
+    pub output_positions: Option<bool>,
+}
+
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct RawOutput {
+    pub positions: Option<toml::Value>,
+}

@@ -1,0 +1,293 @@
+//! Runs a scenario: set-up, initial equilibrium, time stepping, output.
+
+use crate::cpu::CpuSolver;
+use crate::error::Error;
+use crate::model::Layout;
+use crate::options::{Formulation, Scheme, SolverOptions};
+use crate::output::{end_force, CableSummary, EndForces, OutputWriter, Summary};
+use crate::scenario::{Backend, DtSpec, InitialShape, Scenario};
+use crate::stability::{stable_step, StepBound, AUTO_SAFETY};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Overrides from the command line (each `None` keeps the scenario's value).
+#[derive(Clone, Debug, Default)]
+pub struct Overrides {
+    /// Backend.
+    pub backend: Option<Backend>,
+    /// Scheme.
+    pub scheme: Option<Scheme>,
+    /// Formulation.
+    pub formulation: Option<Formulation>,
+    /// Time step, s.
+    pub dt: Option<f64>,
+    /// Duration, s.
+    pub duration: Option<f64>,
+}
+
+/// How a run is carried out.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Output directory.
+    pub out_dir: PathBuf,
+    /// Overrides of scenario settings.
+    pub overrides: Overrides,
+    /// Show a progress bar on stderr.
+    pub progress: bool,
+}
+
+/// The step plan of a run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepPlan {
+    /// Time step, s.
+    pub dt: f64,
+    /// Steps per output interval.
+    pub steps_per_output: u64,
+    /// Total steps.
+    pub total_steps: u64,
+    /// The stability bound.
+    pub bound: StepBound,
+    /// A warning to show (user step above the bound).
+    pub warning: Option<String>,
+}
+
+/// Chooses the step: `auto` takes [`AUTO_SAFETY`] of the stable step, rounded down so
+/// that a whole number of steps fits each output interval; a given step must divide the
+/// output interval and gets a warning when it is above the stable step.
+pub fn plan_steps(
+    sc: &Scenario,
+    lay: &Layout,
+    opts: &SolverOptions,
+    duration: f64,
+    dt: DtSpec,
+) -> Result<StepPlan, Error> {
+    let bound = stable_step(lay, opts.scheme, opts.baumgarte);
+    let oi = sc.sim.output_interval;
+    let (dt, spo, warning) = match dt {
+        DtSpec::Auto => {
+            let dmax = AUTO_SAFETY * bound.dt;
+            let n = (oi / dmax).ceil().max(1.0);
+            (oi / n, n as u64, None)
+        }
+        DtSpec::Fixed(d) => {
+            let n = (oi / d).round().max(1.0);
+            if ((n * d) - oi).abs() > 1e-9 * oi {
+                return Err(crate::scenario::err(
+                    &sc.path,
+                    "simulation.output_interval",
+                    format!("{oi} s is not a whole number of steps of dt = {d} s"),
+                ));
+            }
+            let warning = (d > bound.dt).then(|| {
+                format!(
+                    "dt = {d} s is above the stable step {:.4e} s of the {} scheme, set by {}; expect a blow-up",
+                    bound.dt,
+                    opts.scheme.name(),
+                    bound.term
+                )
+            });
+            (d, n as u64, warning)
+        }
+    };
+    let total = (duration / dt).round().max(1.0) as u64;
+    Ok(StepPlan {
+        dt,
+        steps_per_output: spo,
+        total_steps: total,
+        bound,
+        warning,
+    })
+}
+
+/// Builds the layout and the initial state (catenary first guesses relaxed to the
+/// discrete static equilibrium). Returns the layout, positions and the largest
+/// residual force left by the relaxation.
+pub fn prepare(sc: &Scenario) -> Result<(Layout, Vec<[f64; 3]>, f64), Error> {
+    let (lay, mut pos) = Layout::build(&sc.model)?;
+    let residual = crate::initial::apply(sc, &lay, &mut pos)?;
+    let _ = InitialShape::Straight;
+    Ok((lay, pos, residual))
+}
+
+/// Runs a scenario to the end, writing output as it goes.
+pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
+    let wall0 = Instant::now();
+    let ov = &ro.overrides;
+    let backend = ov.backend.unwrap_or(sc.sim.backend);
+    match backend {
+        Backend::Gpu => {
+            return Err(Error::NoAdapter(
+                "this build has no GPU path yet; use --backend cpu (or auto)".into(),
+            ));
+        }
+        Backend::Auto => log::info!(
+            "backend auto: this build has no GPU path yet, running the f64 CPU reference path"
+        ),
+        Backend::Cpu => {}
+    }
+    let mut opts = SolverOptions {
+        formulation: ov.formulation.unwrap_or(sc.sim.formulation),
+        scheme: ov.scheme.unwrap_or(sc.sim.scheme),
+        baumgarte: sc.sim.baumgarte,
+        max_speed: sc.sim.max_speed,
+        ..SolverOptions::default()
+    };
+    let duration = ov.duration.unwrap_or(sc.sim.duration);
+    let dt_spec = ov.dt.map(DtSpec::Fixed).unwrap_or(sc.sim.dt);
+    let (lay, pos, relax_residual) = prepare(sc)?;
+    let plan = plan_steps(sc, &lay, &opts, duration, dt_spec)?;
+    if let Some(w) = &plan.warning {
+        log::warn!("{w}");
+    }
+    log::info!(
+        "{} nodes, {} elements, {} cables; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps",
+        lay.n_nodes(),
+        lay.n_elements(),
+        lay.cables.len(),
+        plan.dt,
+        plan.bound.dt,
+        plan.bound.term,
+        plan.total_steps
+    );
+    opts.dt = plan.dt;
+    let mut out = OutputWriter::create(&ro.out_dir, &lay)?;
+    let mut solver = CpuSolver::new(lay, &pos, opts);
+
+    let bar = if ro.progress {
+        let b = indicatif::ProgressBar::new(plan.total_steps);
+        b.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{elapsed_precise} [{bar:40}] {percent}% t = {msg} (eta {eta})",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+        b
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    // Sub-chunks of about two million node-steps keep the bar moving on big runs.
+    let chunk = (2_000_000 / solver.layout.n_nodes().max(1) as u64).clamp(1, plan.steps_per_output);
+    let mut stepping = 0.0f64;
+    let mut result: Result<(), Error> = Ok(());
+    write_frame(&mut out, &solver)?;
+    let mut done = 0u64;
+    while done < plan.total_steps {
+        let next_out = ((done / plan.steps_per_output) + 1) * plan.steps_per_output;
+        let target = next_out.min(plan.total_steps);
+        while done < target {
+            let n = chunk.min(target - done);
+            let t0 = Instant::now();
+            let r = solver.advance(n);
+            stepping += t0.elapsed().as_secs_f64();
+            done += n;
+            bar.set_position(done);
+            bar.set_message(format!("{:.2} s", solver.t));
+            if let Err(e) = r {
+                result = Err(e);
+                break;
+            }
+        }
+        if result.is_err() {
+            break;
+        }
+        write_frame(&mut out, &solver)?;
+    }
+    bar.finish_and_clear();
+    out.flush()?;
+
+    let lay = &solver.layout;
+    let ev = solver.evaluate().ok();
+    let r: Vec<[f64; 3]> = solver.r.iter().map(|x| x.to_f64()).collect();
+    let cables = lay
+        .cables
+        .iter()
+        .map(|c| {
+            let n = c.nodes.len();
+            let (tension, reaction) = match &ev {
+                Some(ev) => (ev.tension.clone(), ev.reaction.clone()),
+                None => (
+                    vec![f64::NAN; lay.n_elements()],
+                    vec![[f64::NAN; 3]; lay.routes.len()],
+                ),
+            };
+            CableSummary {
+                name: c.name.clone(),
+                final_positions: c.nodes.iter().map(|&i| r[i as usize]).collect(),
+                final_tensions: c.elements.iter().map(|&e| tension[e as usize]).collect(),
+                end_forces: EndForces {
+                    start: end_force(
+                        lay,
+                        c.nodes[0],
+                        c.elements[0],
+                        true,
+                        &reaction,
+                        &tension,
+                        &r,
+                    ),
+                    end: end_force(
+                        lay,
+                        c.nodes[n - 1],
+                        c.elements[n - 2],
+                        false,
+                        &reaction,
+                        &tension,
+                        &r,
+                    ),
+                },
+            }
+        })
+        .collect();
+    let summary = Summary {
+        status: if result.is_ok() {
+            "completed".into()
+        } else {
+            "diverged".into()
+        },
+        error: result.as_ref().err().map(|e| e.to_string()),
+        scenario: sc.path.display().to_string(),
+        backend: "cpu".into(),
+        device: cpu_name(),
+        precision: "f64".into(),
+        scheme: opts.scheme.name().into(),
+        formulation: opts.formulation.name().into(),
+        steps: solver.steps,
+        dt: plan.dt,
+        dt_stable: plan.bound.dt,
+        dt_limited_by: plan.bound.term.clone(),
+        simulated_time: solver.t,
+        wall_seconds: stepping,
+        total_wall_seconds: wall0.elapsed().as_secs_f64(),
+        nodes: lay.n_nodes(),
+        elements: lay.n_elements(),
+        node_steps_per_second: if stepping > 0.0 {
+            lay.n_nodes() as f64 * solver.steps as f64 / stepping
+        } else {
+            0.0
+        },
+        threads: rayon::current_num_threads(),
+        relax_residual,
+        cables,
+    };
+    out.summary(&summary)?;
+    result.map(|_| summary)
+}
+
+fn write_frame(out: &mut OutputWriter, s: &CpuSolver) -> Result<(), Error> {
+    let ev = s.evaluate()?;
+    let r: Vec<[f64; 3]> = s.r.iter().map(|x| x.to_f64()).collect();
+    out.frame(s.t, &s.layout, &r, &ev.tension, &ev.reaction)
+}
+
+/// The CPU model name, from /proc/cpuinfo where there is one.
+pub fn cpu_name() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|x| x.trim().to_string())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string())
+}
