@@ -552,20 +552,20 @@ fn output_selection(p: &Path, v: &Option<toml::Value>) -> Result<Selection, Erro
     let f = "output.positions";
     Ok(match v {
         None => Selection::Auto,
-        Some(toml::Value::String(s)) => {
-            match s.as_str() {
-                "auto" => Selection::Auto,
-                "all" => Selection::All,
-                "none" => Selection::None,
-                _ => return Err(err(
+        Some(toml::Value::String(s)) => match s.as_str() {
+            "auto" => Selection::Auto,
+            "all" => Selection::All,
+            "none" => Selection::None,
+            _ => {
+                return Err(err(
                     p,
                     f,
                     format!(
                         "must be \"auto\", \"all\", \"none\" or a list of cable names, got \"{s}\""
                     ),
-                )),
+                ))
             }
-        }
+        },
         Some(toml::Value::Array(a)) => Selection::Names(
             a.iter()
                 .map(|x| {

@@ -1,0 +1,78 @@
+//! Model builders shared by the integration tests.
+#![allow(dead_code)]
+
+use cablesim::model::{
+    CableDef, Current, Environment, LineType, ModelDef, NodeDef, PointMass, Route, Seabed,
+};
+
+/// The catenary example's line type.
+pub fn wire() -> LineType {
+    LineType {
+        name: "wire".into(),
+        diameter: 0.04,
+        mass_per_length: 5.0265,
+        ea: 6.2832e7,
+        damping: 1e-5,
+        cn: 1.0,
+        ct: 0.01,
+        cm: 0.2,
+        ei: 0.0,
+        allow_compression: false,
+    }
+}
+
+/// An environment without water or gravity (pure elastic dynamics).
+pub fn vacuum() -> Environment {
+    Environment {
+        gravity: 0.0,
+        water_density: 0.0,
+        depth: f64::INFINITY,
+        seabed: Seabed::default(),
+    }
+}
+
+/// A single straight cable from `a` to `b` with `n` segments of unstretched length
+/// `length / n`; `ra`, `rb` are the end routes (None = free), `mass_b` a point mass at b.
+pub fn straight_cable(
+    env: Environment,
+    lt: LineType,
+    a: [f64; 3],
+    b: [f64; 3],
+    length: f64,
+    n: usize,
+    ra: Option<Route>,
+    rb: Option<Route>,
+    mass_b: PointMass,
+    current: [f64; 3],
+) -> ModelDef {
+    let mut nodes = Vec::new();
+    for k in 0..=n {
+        let s = k as f64 / n as f64;
+        nodes.push(NodeDef {
+            position: [0, 1, 2].map(|d| a[d] + s * (b[d] - a[d])),
+            point: if k == n { mass_b } else { PointMass::default() },
+            route: if k == 0 {
+                ra.clone()
+            } else if k == n {
+                rb.clone()
+            } else {
+                None
+            },
+            label: None,
+        });
+    }
+    ModelDef {
+        env,
+        line_types: vec![lt],
+        currents: vec![Current::uniform(current)],
+        cables: vec![CableDef {
+            name: "c0".into(),
+            line_type: 0,
+            nodes: (0..=n).collect(),
+            l0: vec![length / n as f64; n],
+            current: 0,
+            output_positions: true,
+        }],
+        nodes,
+    }
+}

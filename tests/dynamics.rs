@@ -1,0 +1,185 @@
+//! Dynamics of the f64 reference stepper against closed-form physics.
+
+mod common;
+
+use cablesim::cpu::CpuSolver;
+use cablesim::model::{Layout, PointMass, Route};
+use cablesim::options::{Scheme, SolverOptions};
+use common::*;
+
+/// Axial waves travel at sqrt(EA / mbar): a step in end velocity sent down a taut
+/// line reaches two elements at times whose difference gives the speed.
+#[test]
+fn axial_wave_travels_at_sqrt_ea_over_mbar() {
+    let mut lt = wire();
+    lt.damping = 0.0;
+    let (length, n) = (1000.0, 1000);
+    let eps0 = 1e-3;
+    let a = [0.0, 0.0, 0.0];
+    let b = [length * (1.0 + eps0), 0.0, 0.0];
+    let def = straight_cable(
+        vacuum(),
+        lt.clone(),
+        a,
+        b,
+        length,
+        n,
+        Some(Route::Fixed { position: a }),
+        Some(Route::Line {
+            start: b,
+            velocity: [0.5, 0.0, 0.0],
+        }),
+        PointMass::default(),
+        [0.0; 3],
+    );
+    let (lay, pos) = Layout::build(&def).unwrap();
+    let c = lt.wave_speed();
+    let dt = 0.5 * (length / n as f64) / c;
+    let mut s = CpuSolver::new(
+        lay,
+        &pos,
+        SolverOptions {
+            dt,
+            ..Default::default()
+        },
+    );
+    let t0 = lt.ea * eps0;
+    // The front raises tension from EA eps0 by the impedance jump mbar c v.
+    let jump = lt.mass_per_length * c * 0.5;
+    let probes = [750usize, 250]; // elements, counted from the fixed end
+    let mut arrival = [f64::NAN; 2];
+    while s.t < 1.2 * length / c {
+        s.advance(1).unwrap();
+        let ev = s.evaluate().unwrap();
+        for (k, &e) in probes.iter().enumerate() {
+            if arrival[k].is_nan() && ev.tension[e] > t0 + 0.5 * jump {
+                arrival[k] = s.t;
+            }
+        }
+    }
+    let distance = (probes[0] - probes[1]) as f64 * length / n as f64;
+    let speed = distance / (arrival[1] - arrival[0]);
+    assert!(
+        (speed / c - 1.0).abs() < 0.01,
+        "measured {speed} m/s, expected {c} m/s (arrivals {arrival:?})"
+    );
+}
+
+/// With drag and damping off, the symplectic scheme keeps the energy of a vibrating
+/// taut line bounded (no drift) over a long run.
+#[test]
+fn symplectic_energy_stays_bounded() {
+    let mut lt = wire();
+    lt.damping = 0.0;
+    let (length, n) = (100.0, 50);
+    let eps0 = 2e-3;
+    let a = [0.0, 0.0, 0.0];
+    let b = [length * (1.0 + eps0), 0.0, 0.0];
+    let def = straight_cable(
+        vacuum(),
+        lt.clone(),
+        a,
+        b,
+        length,
+        n,
+        Some(Route::Fixed { position: a }),
+        Some(Route::Fixed { position: b }),
+        PointMass::default(),
+        [0.0; 3],
+    );
+    let (lay, mut pos) = Layout::build(&def).unwrap();
+    // Pluck: a half-sine transverse displacement of 1 m.
+    for (k, p) in pos.iter_mut().enumerate() {
+        p[2] = (std::f64::consts::PI * k as f64 / n as f64).sin();
+    }
+    let dt = 0.5 * (length / n as f64) / lt.wave_speed();
+    let mut s = CpuSolver::new(
+        lay,
+        &pos,
+        SolverOptions {
+            dt,
+            scheme: Scheme::Symplectic,
+            ..Default::default()
+        },
+    );
+    let e0 = s.kinetic_energy() + s.strain_energy();
+    assert!(e0 > 1e3, "the pluck stores energy: {e0}");
+    let (mut lo, mut hi) = (e0, e0);
+    let mut early = 0.0;
+    let steps = 200_000;
+    for k in 0..steps / 100 {
+        s.advance(100).unwrap();
+        let e = s.kinetic_energy() + s.strain_energy();
+        lo = lo.min(e);
+        hi = hi.max(e);
+        if k == steps / 1000 {
+            early = e;
+        }
+    }
+    let spread = (hi - lo) / e0;
+    assert!(
+        spread < 0.02,
+        "energy wandered by {:.3}% (from {lo} to {hi})",
+        100.0 * spread
+    );
+    // And it does not drift: the last sample is as close as the early one.
+    let last = s.kinetic_energy() + s.strain_energy();
+    assert!(
+        (last - e0).abs() / e0 < 0.02 && (early - e0).abs() / e0 < 0.02,
+        "e0 {e0} early {early} last {last}"
+    );
+}
+
+/// A vertical cable with an end mass, released from its unstretched length, settles
+/// (with internal damping and water drag) to a top reaction equal to its wet weight
+/// plus the mass's.
+#[test]
+fn hanging_cable_with_end_mass_settles_to_wet_weight() {
+    let mut lt = wire();
+    // Enough internal damping to settle the mass's vertical bounce (about 53 rad/s)
+    // within the run: c = 1e-3 s gives a damping ratio c omega / 2 of about 3%.
+    lt.damping = 1e-3;
+    let env = cablesim::model::Environment {
+        depth: f64::INFINITY,
+        ..Default::default()
+    };
+    let (length, n) = (50.0, 10);
+    let mass = PointMass {
+        mass: 200.0,
+        volume: 0.01,
+        drag_area: 0.5,
+        added_mass_coef: 0.5,
+    };
+    let top = [0.0, 0.0, -1.0];
+    let def = straight_cable(
+        env,
+        lt.clone(),
+        top,
+        [0.0, 0.0, -1.0 - length],
+        length,
+        n,
+        Some(Route::Fixed { position: top }),
+        None,
+        mass,
+        [0.0; 3],
+    );
+    let (lay, pos) = Layout::build(&def).unwrap();
+    let mut s = CpuSolver::new(
+        lay,
+        &pos,
+        SolverOptions {
+            dt: 2e-4,
+            ..Default::default()
+        },
+    );
+    s.advance((60.0 / 2e-4) as u64).unwrap();
+    let ev = s.evaluate().unwrap();
+    let w =
+        lt.wet_weight_per_length(9.81, 1025.0) * length + (mass.mass - 1025.0 * mass.volume) * 9.81;
+    let fz = ev.reaction[0][2];
+    assert!(
+        (-fz / w - 1.0).abs() < 1e-3,
+        "top reaction {fz} N, wet weight {w} N"
+    );
+    assert!(ev.reaction[0][0].abs() < 1e-6 * w && ev.reaction[0][1].abs() < 1e-6 * w);
+}

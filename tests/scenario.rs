@@ -1,0 +1,264 @@
+//! Scenario files: the example parses, and bad input gives a clear error naming the
+//! file, the field and the problem (never a panic, never a partial run).
+
+use cablesim::error::Error;
+use cablesim::scenario::Scenario;
+use std::path::Path;
+use std::process::Command;
+
+const EXAMPLE: &str = include_str!("../examples/catenary.toml");
+
+fn parse(text: &str) -> Result<Scenario, Error> {
+    Scenario::parse(text, Path::new("/tmp/case.toml"))
+}
+
+/// Asserts `text` fails with an error whose field contains `field` and whose message
+/// contains `msg`.
+fn fails(text: &str, field: &str, msg: &str) {
+    match parse(text) {
+        Ok(_) => panic!("expected an error for field {field}"),
+        Err(Error::Scenario {
+            path,
+            field: f,
+            message,
+        }) => {
+            assert_eq!(path, Path::new("/tmp/case.toml"));
+            assert!(
+                f.contains(field),
+                "field `{f}` should name `{field}` (message: {message})"
+            );
+            assert!(
+                message.contains(msg),
+                "message `{message}` should say `{msg}`"
+            );
+        }
+        Err(e) => panic!("wrong error kind: {e}"),
+    }
+}
+
+#[test]
+fn example_parses() {
+    let sc = parse(EXAMPLE).unwrap();
+    assert_eq!(sc.model.cables.len(), 1);
+    assert_eq!(sc.model.cables[0].l0.len(), 50);
+    assert!((sc.model.cables[0].l0.iter().sum::<f64>() - 250.0).abs() < 1e-9);
+    assert_eq!(sc.model.env.depth, 100.0);
+}
+
+#[test]
+fn missing_field_is_named() {
+    fails(
+        &EXAMPLE.replace("length = 250.0", ""),
+        "cables[0]",
+        "missing field `length`",
+    );
+    fails(
+        &EXAMPLE.replace("ea = 6.2832e7", ""),
+        "line_types[0]",
+        "missing field `ea`",
+    );
+    fails(
+        &EXAMPLE.replace("output_interval = 1.0", ""),
+        "simulation",
+        "missing field `output_interval`",
+    );
+}
+
+#[test]
+fn negative_length_is_refused() {
+    fails(
+        &EXAMPLE.replace("length = 250.0", "length = -250.0"),
+        "cables[0] (\"line1\").length",
+        "must be positive",
+    );
+    fails(
+        &EXAMPLE.replace("segments = 50", "segments = 0"),
+        "segments",
+        "from 1 to",
+    );
+    fails(
+        &EXAMPLE.replace("diameter = 0.04", "diameter = -0.04"),
+        "line_types[0] (\"wire\").diameter",
+        "positive",
+    );
+}
+
+#[test]
+fn unknown_line_type_lists_known_ones() {
+    fails(
+        &EXAMPLE.replace("line_type = \"wire\"", "line_type = \"chain\""),
+        "line_type",
+        "unknown line type \"chain\" (defined: wire)",
+    );
+}
+
+#[test]
+fn nan_and_inf_are_refused() {
+    fails(
+        &EXAMPLE.replace("ea = 6.2832e7", "ea = nan"),
+        "ea",
+        "finite",
+    );
+    fails(
+        &EXAMPLE.replace(
+            "end = { fixed = [0.0, 0.0, -10.0] }",
+            "end = { fixed = [0.0, nan, -10.0] }",
+        ),
+        "end.fixed[1]",
+        "finite",
+    );
+    fails(
+        &EXAMPLE.replace("duration = 60.0", "duration = inf"),
+        "simulation.duration",
+        "finite",
+    );
+    fails(
+        &EXAMPLE.replace("current = [0.0, 0.0, 0.0]", "current = [0.0, 0.0, nan]"),
+        "current[2]",
+        "finite",
+    );
+}
+
+#[test]
+fn bad_keys_and_values_are_named() {
+    fails(
+        &EXAMPLE.replace("cm = 0.2", "cm = 0.2\ncolour = 3"),
+        "line_types[0]",
+        "unknown field `colour`",
+    );
+    fails(
+        &EXAMPLE.replace("dt = \"auto\"", "dt = \"fast\""),
+        "simulation.dt",
+        "\"auto\" or a step",
+    );
+    fails(
+        &EXAMPLE.replace("backend = \"auto\"", "backend = \"tpu\""),
+        "simulation.backend",
+        "auto, cpu or gpu",
+    );
+    fails(
+        &EXAMPLE.replace("initial = \"catenary\"", "initial = \"wavy\""),
+        "initial",
+        "catenary",
+    );
+    fails(
+        &EXAMPLE.replace("start = { fixed", "start = { fixd"),
+        "start",
+        "needs one of",
+    );
+    fails(
+        &EXAMPLE.replace(
+            "end = { fixed = [0.0, 0.0, -10.0] }",
+            "end = { fixed = [0.0, 0.0, -10.0], colour = 1 }",
+        ),
+        "end.colour",
+        "unknown key",
+    );
+    fails(
+        &EXAMPLE.replace("length = 250.0", "length = \"long\""),
+        "cables[0].length",
+        "invalid type",
+    );
+}
+
+fn with_route_file(rows: &str) -> (tempfile::TempDir, String) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("fairlead.csv"), rows).unwrap();
+    let text = EXAMPLE.replace(
+        "end = { fixed = [0.0, 0.0, -10.0] }",
+        "end = { route = \"table\", file = \"fairlead.csv\" }",
+    );
+    (dir, text)
+}
+
+#[test]
+fn route_file_is_read_relative_to_the_scenario() {
+    let (dir, text) = with_route_file("t,x,y,z\n0,0,0,-10\n10,5,0,-10\n");
+    let sc = Scenario::parse(&text, &dir.path().join("s.toml")).unwrap();
+    let route = sc.model.nodes.iter().find_map(|n| match &n.route {
+        Some(r @ cablesim::model::Route::Table { .. }) => Some(r.clone()),
+        _ => None,
+    });
+    let st = route.expect("a table route").eval(5.0);
+    assert_eq!(st.r, [2.5, 0.0, -10.0]);
+}
+
+#[test]
+fn route_file_errors_name_the_line() {
+    for (rows, msg) in [
+        (
+            "t,x,y,z\n0,0,0,-10\n1,abc,0,-10\n",
+            "line 3: `abc` is not a finite number",
+        ),
+        ("t,x,y,z\n0,0,0,-10\n1,0,0\n", "line 3: expected 4 values"),
+        (
+            "t,x,y,z\n0,0,0,-10\n0,1,0,-10\n",
+            "line 3: time 0 does not increase",
+        ),
+        ("time,x,y,z\n0,0,0,-10\n", "header must be `t,x,y,z`"),
+        ("t,x,y,z\n", "no rows"),
+        ("t,x,y,z\n0,0,NaN,-10\n", "not a finite number"),
+    ] {
+        let (dir, text) = with_route_file(rows);
+        match Scenario::parse(&text, &dir.path().join("s.toml")) {
+            Err(Error::Scenario { field, message, .. }) => {
+                assert!(field.contains("end.file"), "{field}");
+                assert!(
+                    message.contains(msg) && message.contains("fairlead.csv"),
+                    "`{message}` should say `{msg}`"
+                );
+            }
+            other => panic!("expected an error for {rows:?}, got {other:?}"),
+        }
+    }
+    let text = EXAMPLE.replace(
+        "end = { fixed = [0.0, 0.0, -10.0] }",
+        "end = { route = \"table\", file = \"missing.csv\" }",
+    );
+    match parse(&text) {
+        Err(Error::Scenario { message, .. }) => {
+            assert!(message.contains("cannot read route file"), "{message}")
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn cli_check_fails_with_the_field_and_runs_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bad.toml");
+    std::fs::write(&file, EXAMPLE.replace("length = 250.0", "length = -1.0")).unwrap();
+    let bin = env!("CARGO_BIN_EXE_cablesim");
+    let out = Command::new(bin).arg("check").arg(&file).output().unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.toml")
+            && err.contains("cables[0] (\"line1\").length")
+            && err.contains("must be positive"),
+        "{err}"
+    );
+    // `run` refuses too, before writing anything.
+    let out_dir = dir.path().join("out");
+    let out = Command::new(bin)
+        .arg("run")
+        .arg(&file)
+        .arg("--out")
+        .arg(&out_dir)
+        .arg("-q")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(!out_dir.exists(), "no partial run");
+    // And the good example checks out.
+    let out = Command::new(bin)
+        .arg("check")
+        .arg("examples/catenary.toml")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
