@@ -205,7 +205,7 @@ impl Scenario {
             err(
                 path,
                 field,
-                e.into_inner().to_string().trim().replace('\n', " "),
+                e.into_inner().to_string().trim().to_string(),
             )
         })?;
         Self::from_raw(raw, path)
