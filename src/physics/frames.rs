@@ -157,6 +157,13 @@ impl<T: Real> FrameAxes<T> {
     }
 }
 
+/// `!(x > threshold)`: true when `x` is at or below the threshold, and for NaN.
+#[inline(always)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+fn not_above<T: Real>(x: T, threshold: T) -> bool {
+    !(x > threshold)
+}
+
 #[inline(always)]
 fn arr<T: Real>(v: V3<T>) -> [T; 3] {
     [v.x, v.y, v.z]
@@ -177,7 +184,7 @@ pub fn element_frame<T: Real>(
     let tol = singular_tolerance::<T>();
     let d = e.rb - e.ra;
     let l = d.norm();
-    if !(l > tol * e.l0) || !(l > T::zero()) {
+    if not_above(l, tol * e.l0) || not_above(l, T::zero()) {
         return Err(format!(
             "zero-length element (l = {:.3e} m, l0 = {:.3e} m): its axis is undefined",
             l.f64(),
@@ -194,7 +201,7 @@ pub fn element_frame<T: Real>(
 /// Eqs. 7-9 (with Eq. 9's `r_{i-1}` read as `r_i`).
 fn euler_frame<T: Real>(d: V3<T>, l: T, tol: T) -> Result<FrameAxes<T>, String> {
     let (dx, dy, dz) = (d.x, d.y, d.z);
-    if !(dz.abs() > tol * l) {
+    if not_above(dz.abs(), tol * l) {
         return Err(format!(
             "Euler angle theta = atan(dx/dz) undefined: horizontal element \
              (dz = {:.3e} m, |dz|/l = {:.3e} <= {:.1e})",
@@ -210,7 +217,7 @@ fn euler_frame<T: Real>(d: V3<T>, l: T, tol: T) -> Result<FrameAxes<T>, String> 
         (-dy * ct / dz).atan()
     } else {
         // Second branch (theta >= pi/4, so |dx| >= |dz| mathematically; checked anyway).
-        if !(dx.abs() > tol * l) {
+        if not_above(dx.abs(), tol * l) {
             return Err(format!(
                 "Euler angle phi = atan(-dy sin(theta)/dx) undefined \
                  (dx = {:.3e} m, |dx|/l = {:.3e} <= {:.1e}, theta = {:.6} rad)",
@@ -250,7 +257,7 @@ fn frenet_frame<T: Real>(
     let s = alpha + beta;
     let sn = s.norm();
     let scale = alpha.norm() + beta.norm();
-    if !(sn > tol * scale) {
+    if not_above(sn, tol * scale) {
         return Err(format!(
             "|alpha + beta| = {:.3e} m is zero: tangent undefined",
             sn.f64()
@@ -260,7 +267,7 @@ fn frenet_frame<T: Real>(
     let dab = alpha - beta;
     let np = dab - t * t.dot(dab);
     let npn = np.norm();
-    if !(npn > tol * scale) {
+    if not_above(npn, tol * scale) {
         return Err(format!(
             "element and its virtual node collinear (straight cable): \
              |n'| = {:.3e} m <= {:.1e} x (|alpha| + |beta|) = {:.3e} m",
@@ -287,9 +294,9 @@ fn rvef_frame<T: Real>(e: &ElementInput<T>, z: V3<T>, tol: T) -> Result<FrameAxe
     let w = z.cross(vrel);
     let wn = w.norm();
     let scale = e.current.norm() + vm.norm();
-    if !(wn > tol * scale) {
+    if not_above(wn, tol * scale) {
         let vn = vrel.norm();
-        return Err(if !(vn > tol * scale) {
+        return Err(if not_above(vn, tol * scale) {
             format!(
                 "relative velocity zero (|v_rel| = {:.3e} m/s, |U| + |v_mid| = {:.3e} m/s): \
                  an element at rest in still water has no RVEF",
