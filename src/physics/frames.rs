@@ -48,18 +48,20 @@
 //! by is zero *relative to its own scale*, with the one relative tolerance
 //! [`singular_tolerance`] `= sqrt(eps)` (1.5e-8 in `f64`, 3.5e-4 in `f32`):
 //!
-//! | frame  | singular when                                       | scale                   |
-//! |--------|-----------------------------------------------------|-------------------------|
-//! | all    | `l = |E|` (zero-length element)                     | `l0`                    |
-//! | Euler  | `dz` (theta's and phi's first-branch denominator)    | `l`                     |
-//! | Euler  | `dx` (phi's second-branch denominator)              | `l`                     |
-//! | Frenet | `|n'|` (element and virtual node collinear)         | `|alpha| + |beta|`      |
-//! | RVEF   | `|z x v_rel|` (`v_rel` parallel to element, or 0)   | `|U| + |(v_a + v_b)/2|` |
+//! - every frame: the element length `l = norm(E)` (zero-length element), scale `l0`;
+//! - Euler: `dz`, the denominator of `theta` and of `phi`'s first branch, scale `l`
+//!   (a horizontal element, including one along `y`); and `dx`, the denominator of
+//!   `phi`'s second branch, scale `l` (only reached with `theta >= pi/4`, where
+//!   `abs(dx) >= abs(dz)`, so in exact arithmetic the `dz` test already covers it);
+//! - Frenet: `norm(n')`, scale `norm(alpha) + norm(beta)` (the element and its virtual
+//!   node collinear: a straight cable);
+//! - RVEF: `norm(z x v_rel)`, scale `norm(U) + norm((v_a + v_b)/2)` (`v_rel` parallel to
+//!   the element, or zero: a cable at rest in still water, or drifting with the water).
 //!
 //! Why `sqrt(eps)`: the round-off in a frame's axes is about `eps` times scale over the
 //! denominator (e.g. `cos(theta)` near `theta = -pi/2` carries a relative error
 //! `eps l/|dz|`, which `phi` inherits; the direction of `z x v_rel` carries an error
-//! `eps |U|/|z x v_rel|`, since `v_rel` is itself a difference). Below `sqrt(eps)` the
+//! `eps (|U| + |v_mid|)/|z x v_rel|`, since `v_rel` is itself a difference). Below `sqrt(eps)` the
 //! frame would be determined to fewer than half the working digits, i.e. by round-off
 //! rather than by the configuration; above it, at most half the digits are lost. The
 //! RVEF scale is the velocities `v_rel` is computed from, not `|v_rel|`, so a `v_rel`
