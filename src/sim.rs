@@ -170,7 +170,7 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     let chunk = (2_000_000 / solver.layout.n_nodes().max(1) as u64).clamp(1, plan.steps_per_output);
     let mut stepping = 0.0f64;
     let mut result: Result<(), Error> = Ok(());
-    write_frame(&mut out, &solver)?;
+    write_frame(&mut out, &solver, 0.0)?;
     let mut done = 0u64;
     while done < plan.total_steps {
         let next_out = ((done / plan.steps_per_output) + 1) * plan.steps_per_output;
@@ -191,7 +191,11 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         if result.is_err() {
             break;
         }
-        write_frame(&mut out, &solver)?;
+        write_frame(
+            &mut out,
+            &solver,
+            output_time(&plan, sc.sim.output_interval, done),
+        )?;
     }
     bar.finish_and_clear();
     out.flush()?;
@@ -255,7 +259,7 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         dt: plan.dt,
         dt_stable: plan.bound.dt,
         dt_limited_by: plan.bound.term.clone(),
-        simulated_time: solver.t,
+        simulated_time: output_time(&plan, sc.sim.output_interval, solver.steps),
         wall_seconds: stepping,
         total_wall_seconds: wall0.elapsed().as_secs_f64(),
         nodes: lay.n_nodes(),
@@ -273,10 +277,20 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     result.map(|_| summary)
 }
 
-fn write_frame(out: &mut OutputWriter, s: &CpuSolver) -> Result<(), Error> {
+fn write_frame(out: &mut OutputWriter, s: &CpuSolver, t: f64) -> Result<(), Error> {
     let ev = s.evaluate()?;
     let r: Vec<[f64; 3]> = s.r.iter().map(|x| x.to_f64()).collect();
-    out.frame(s.t, &s.layout, &r, &ev.tension, &ev.reaction)
+    out.frame(t, &s.layout, &r, &ev.tension, &ev.reaction)
+}
+
+/// The time of step `steps` as written out: an exact multiple of the output interval at
+/// output steps (`steps * dt` can be off by an ulp), else `steps * dt`.
+fn output_time(plan: &StepPlan, oi: f64, steps: u64) -> f64 {
+    if steps % plan.steps_per_output == 0 {
+        (steps / plan.steps_per_output) as f64 * oi
+    } else {
+        steps as f64 * plan.dt
+    }
 }
 
 /// The CPU model name, from /proc/cpuinfo where there is one.

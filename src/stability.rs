@@ -113,6 +113,8 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
         term: "nothing (no stiff term)".into(),
     };
     let sb = lay.env.seabed;
+    // Without a seabed (infinite depth) no node can touch one.
+    let has_seabed = lay.env.depth.is_finite();
     for i in 0..lay.n_nodes() {
         let (cable, node) = lay.describe_node(i);
         let mut parts: Vec<(Mode, String)> = Vec::with_capacity(3);
@@ -162,7 +164,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                     ));
                 }
             }
-            if lt > 0.0 && sb.stiffness > 0.0 {
+            if has_seabed && lt > 0.0 && sb.stiffness > 0.0 {
                 parts.push((
                     Mode {
                         omega2: sb.stiffness * lt / m,
@@ -171,7 +173,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                     format!("seabed stiffness at cable '{cable}' node {node}"),
                 ));
             }
-            if lt > 0.0 && sb.damping > 0.0 {
+            if has_seabed && lt > 0.0 && sb.damping > 0.0 {
                 parts.push((
                     Mode {
                         omega2: 0.0,

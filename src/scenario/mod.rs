@@ -202,11 +202,7 @@ impl Scenario {
                 field
             };
             // toml's message carries the line and column of the problem.
-            err(
-                path,
-                field,
-                e.into_inner().to_string().trim().to_string(),
-            )
+            err(path, field, e.into_inner().to_string().trim().to_string())
         })?;
         Self::from_raw(raw, path)
     }
