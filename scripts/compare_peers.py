@@ -693,6 +693,7 @@ def cablesim_run(binary: str, scenario: Path, outdir: Path, scheme: str, threads
                 "command": cmd}
     s = json.loads(summ.read_text())
     s["command"] = cmd
+    s["warnings"] = [ln.strip() for ln in (p.stderr + p.stdout).splitlines() if "WARN" in ln]
     if p.returncode != 0:
         s["error"] = f"exit {p.returncode}: {p.stderr[-1500:]}"
     return s
@@ -740,6 +741,7 @@ def cablesim_accuracy(binary: str, scenario: Path, out: Path, line: dict, scheme
         relax_residual=last.get("relax_residual"),
         positions=cab["final_positions"],
         command=" ".join(last["command"]),
+        warnings=last.get("warnings", []),
     )
     return row
 
@@ -955,8 +957,9 @@ def write_markdown(path: Path, rep: dict, main_rows: list, scale_rows: list) -> 
         f"pi d l); kBot = K/d = {p['kBot']:g} Pa/m; cBot = C/d = {p['cBot']:g} Pa s/m; "
         f"Cd = Cn, Ca = Cm, CaAx = 0. Fairlead held still as a coupled point.",
         "",
-        f"{rep['duration']:g} s simulated from each tool's own static start; forces at the "
-        "end are the forces the line exerts on its ends (H horizontal; V positive pulling "
+        f"{rep['duration']:g} s simulated with both ends held still, from each tool's own "
+        "start (MoorDyn: its static initial-condition solve; cablesim: the scenario's "
+        "`initial`); forces at the end are the forces the line exerts on its ends (H horizontal; V positive pulling "
         "the fairlead down and the anchor up). MoorDyn's and cablesim's end nodes carry half "
         "a segment's wet weight, so their anchor V is about -w l0/2 where MoorPy's is 0. "
         "node-steps/s = nodes x steps / wall seconds of stepping only, best of "
@@ -966,6 +969,18 @@ def write_markdown(path: Path, rep: dict, main_rows: list, scale_rows: list) -> 
         "",
         "MoorDyn's Euler is forward Euler: with Kelvin-Voigt damping it is stable only for "
         f"dt < c = {L['c']:g} s on this line, hence its small step.",
+        "",
+    ]
+    for r in rep["results"]:
+        if r.get("fairlead_T_last10s_mean") is not None:
+            lines.append(
+                f"- {r['tool']} {r['scheme']}: fairlead tension over the last 10 s: mean "
+                f"{r['fairlead_T_last10s_mean']:.1f} N, peak-to-peak "
+                f"{r['fairlead_T_last10s_peak_to_peak']:.2f} N; static solve "
+                f"{r.get('init_seconds', float('nan')):.2f} s.")
+        for wmsg in r.get("warnings", []):
+            lines.append(f"- {r['tool']} {r['scheme']}: `{wmsg}`")
+    lines += [
         "",
         "N identical lines in one system (MoorDyn from its catenary first guess, no static "
         "solve; cablesim at the same dt):",
