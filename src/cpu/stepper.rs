@@ -53,8 +53,6 @@ pub struct Evaluation {
 struct NodeScratch {
     r0: V,
     v0: V,
-    rs: V,
-    vs: V,
     sr: V,
     sv: V,
     acc: V,
@@ -67,6 +65,8 @@ struct Ctx<'a> {
     seabed: SeabedCoefs<f64>,
     opts: SolverOptions,
     elem_in_cable: &'a [u32],
+    /// Per current profile: its value when uniform (looked up without a table walk).
+    uniform_current: &'a [Option<V>],
 }
 
 /// The f64 reference solver: layout, state, and scratch.
@@ -85,6 +85,7 @@ pub struct CpuSolver {
     pub v: Vec<V>,
     coefs: Vec<Coefs<f64>>,
     elem_in_cable: Vec<u32>,
+    uniform_current: Vec<Option<V>>,
     elems: Vec<ElementLoads<f64>>,
     scratch: Vec<NodeScratch>,
     /// Groups of consecutive blocks handed to one task each.
@@ -102,7 +103,13 @@ impl CpuSolver {
             }
         }
         let chunks = make_chunks(&layout.blocks, rayon::current_num_threads());
+        let uniform_current = layout
+            .currents
+            .iter()
+            .map(|c| (c.table.len() <= 1).then(|| c.at(0.0)))
+            .collect();
         Self {
+            uniform_current,
             opts,
             t: 0.0,
             steps: 0,
@@ -131,6 +138,7 @@ impl CpuSolver {
             },
             opts: self.opts,
             elem_in_cable: &self.elem_in_cable,
+            uniform_current: &self.uniform_current,
         }
     }
 
@@ -149,6 +157,7 @@ impl CpuSolver {
             seabed: self.ctx().seabed,
             opts: self.opts,
             elem_in_cable: &self.elem_in_cable,
+            uniform_current: &self.uniform_current,
         };
         let blocks = &self.layout.blocks;
         // Split the state into disjoint per-chunk slices.
@@ -250,8 +259,10 @@ impl CpuSolver {
         for b in &lay.blocks {
             let (n0, n1) = (b.node_start as usize, b.node_end as usize);
             let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
+            let topo = GeneralTopo { lay, n0, e0 };
             element_pass(
                 &ctx,
+                &topo,
                 b,
                 &self.r[n0..n1],
                 &self.v[n0..n1],
@@ -262,8 +273,9 @@ impl CpuSolver {
             for i in n0..n1 {
                 let (a, f, m) = node_accel(
                     &ctx,
+                    &topo,
                     b,
-                    i,
+                    i - n0,
                     &self.r[n0..n1],
                     &self.v[n0..n1],
                     self.t,
@@ -300,8 +312,10 @@ impl CpuSolver {
                 },
                 ..ctx
             };
+            let topo = GeneralTopo { lay, n0, e0 };
             let _ = element_pass(
                 &ctx,
+                &topo,
                 b,
                 &self.r[n0..n1],
                 &self.v[n0..n1],
@@ -309,7 +323,7 @@ impl CpuSolver {
                 &mut elems[e0..e1],
             );
             for i in n0..n1 {
-                let m = node_mass(&ctx, b, i, &elems[e0..e1]);
+                let m = node_mass(&ctx, &topo, b, i - n0, &elems[e0..e1]);
                 let v = self.v[i];
                 ke += 0.5 * v.dot(m.mul_vec(v));
             }
@@ -360,10 +374,151 @@ fn make_chunks(blocks: &[Block], threads: usize) -> Vec<std::ops::Range<usize>> 
     chunks
 }
 
-/// Pass 1 over one block: element loads. `r`, `v`, `out` are block-local slices.
-#[inline]
-fn element_pass(
+/// How a block's elements and nodes are connected, in block-local indices.
+///
+/// Two implementations share the passes: [`ChainTopo`] for a block that is one chain
+/// in node order (element `k` joins nodes `k` and `k+1`: no index arrays read at all),
+/// and [`GeneralTopo`] for networks (element ends and incidence lists from the layout).
+/// Gathers are iterators (one loop body), not callbacks, so they inline.
+trait Topo {
+    /// The incidence iterator.
+    type Inc<'a>: Iterator<Item = (usize, f64)>
+    where
+        Self: 'a;
+    /// Block-local end nodes of block-local element `e`.
+    fn ends(&self, e: usize) -> (usize, usize);
+    /// `(element, sign)` for each element incident to block-local node `i`; `sign` is
+    /// +1 where the node is the element's node a, -1 where it is node b.
+    fn incident(&self, i: usize) -> Self::Inc<'_>;
+}
+
+/// One chain in node order.
+struct ChainTopo {
+    n_nodes: usize,
+}
+
+/// Incidence of a chain node: element `i-1` (as its node b), then element `i` (as a).
+struct ChainInc {
+    next: usize,
+    end: usize,
+}
+
+impl Iterator for ChainInc {
+    type Item = (usize, f64);
+    #[inline(always)]
+    fn next(&mut self) -> Option<(usize, f64)> {
+        if self.next >= self.end {
+            return None;
+        }
+        let k = self.next;
+        self.next += 1;
+        // Side 2i-1 is element i-1 (node b), side 2i is element i (node a).
+        Some((k >> 1, if k & 1 == 1 { -1.0 } else { 1.0 }))
+    }
+}
+
+impl Topo for ChainTopo {
+    type Inc<'a> = ChainInc;
+    #[inline(always)]
+    fn ends(&self, e: usize) -> (usize, usize) {
+        (e, e + 1)
+    }
+    #[inline(always)]
+    fn incident(&self, i: usize) -> ChainInc {
+        let start = if i > 0 { 2 * i - 1 } else { 0 };
+        let end = if i + 1 < self.n_nodes {
+            2 * i + 1
+        } else {
+            2 * i
+        };
+        ChainInc { next: start, end }
+    }
+}
+
+/// Any graph, through the layout's element ends and incidence lists.
+struct GeneralTopo<'a> {
+    lay: &'a Layout,
+    n0: usize,
+    e0: usize,
+}
+
+/// Incidence of a node from the layout's lists.
+struct GeneralInc<'a> {
+    it: std::slice::Iter<'a, u32>,
+    e0: usize,
+}
+
+impl Iterator for GeneralInc<'_> {
+    type Item = (usize, f64);
+    #[inline(always)]
+    fn next(&mut self) -> Option<(usize, f64)> {
+        self.it.next().map(|&inc| {
+            (
+                (inc >> 1) as usize - self.e0,
+                if inc & 1 == 0 { 1.0 } else { -1.0 },
+            )
+        })
+    }
+}
+
+impl<'l> Topo for GeneralTopo<'l> {
+    type Inc<'a>
+        = GeneralInc<'a>
+    where
+        Self: 'a;
+    #[inline(always)]
+    fn ends(&self, e: usize) -> (usize, usize) {
+        let g = self.e0 + e;
+        (
+            self.lay.elem_a[g] as usize - self.n0,
+            self.lay.elem_b[g] as usize - self.n0,
+        )
+    }
+    #[inline(always)]
+    fn incident(&self, i: usize) -> GeneralInc<'_> {
+        GeneralInc {
+            it: self.lay.incidence(self.n0 + i).iter(),
+            e0: self.e0,
+        }
+    }
+}
+
+/// Block-local input of element `k`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn element_input<T: Topo>(
     ctx: &Ctx,
+    topo: &T,
+    r: &[V],
+    v: &[V],
+    k: usize,
+    l0: f64,
+    current: u32,
+) -> ElementInput<f64> {
+    let (a, bn) = topo.ends(k);
+    let (ra, rb) = (r[a], r[bn]);
+    let ci = current as usize;
+    let current = match ctx.uniform_current[ci] {
+        Some(u) => u,
+        None => ctx.lay.currents[ci].at(0.5 * (ra.z + rb.z)),
+    };
+    // No waves yet: the water-acceleration load waits for a wave model.
+    ElementInput {
+        ra,
+        rb,
+        va: v[a],
+        vb: v[bn],
+        l0,
+        current,
+        water_accel: V::zero(),
+    }
+}
+
+/// Pass 1 over one block: element loads. `r`, `v`, `out` are block-local slices.
+#[inline(always)]
+fn element_pass<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
     b: &Block,
     r: &[V],
     v: &[V],
@@ -371,53 +526,57 @@ fn element_pass(
     out: &mut [ElementLoads<f64>],
 ) -> Result<(), StepFailure> {
     let lay = ctx.lay;
-    let n0 = b.node_start as usize;
     let e0 = b.elem_start as usize;
-    let aw = V::zero(); // no waves yet: the water-acceleration load needs a wave model
-    for (k, o) in out.iter_mut().enumerate() {
-        let e = e0 + k;
-        let a = lay.elem_a[e] as usize - n0;
-        let bn = lay.elem_b[e] as usize - n0;
-        let (ra, rb) = (r[a], r[bn]);
-        let current = lay.currents[lay.elem_current[e] as usize].at(0.5 * (ra.z + rb.z));
-        let input = ElementInput {
-            ra,
-            rb,
-            va: v[a],
-            vb: v[bn],
-            l0: lay.elem_l0[e],
-            current,
-            water_accel: aw,
-        };
-        let c = &ctx.coefs[lay.elem_line[e] as usize];
-        *o = match ctx.opts.formulation {
-            Formulation::Glmf => glmf_element(c, &input),
-            Formulation::Frame(frame) => {
+    let n_el = out.len();
+    let l0s = &lay.elem_l0[e0..e0 + n_el];
+    let lines = &lay.elem_line[e0..e0 + n_el];
+    let curs = &lay.elem_current[e0..e0 + n_el];
+    match ctx.opts.formulation {
+        Formulation::Glmf => {
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = glmf_element(
+                    &ctx.coefs[lines[k] as usize],
+                    &element_input(ctx, topo, r, v, k, l0s[k], curs[k]),
+                );
+            }
+        }
+        Formulation::Frame(frame) => {
+            let n0 = b.node_start as usize;
+            for (k, o) in out.iter_mut().enumerate() {
+                let e = e0 + k;
+                let inp = element_input(ctx, topo, r, v, k, l0s[k], curs[k]);
                 let cable = &lay.cables[lay.elem_cable[e] as usize];
                 let j = ctx.elem_in_cable[e] as usize;
                 let prev = (j > 0).then(|| r[cable.nodes[j - 1] as usize - n0]);
                 let next = cable.nodes.get(j + 2).map(|&n| r[n as usize - n0]);
-                let mid = frenet_virtual_node(prev, ra, rb, next);
-                frame_element(frame, c, &input, mid).map_err(|reason| StepFailure::Singular {
-                    element: e,
-                    time: t,
-                    frame: frame.name(),
-                    reason,
-                })?
+                let mid = frenet_virtual_node(prev, inp.ra, inp.rb, next);
+                *o = frame_element(frame, &ctx.coefs[lines[k] as usize], &inp, mid).map_err(
+                    |reason| StepFailure::Singular {
+                        element: e,
+                        time: t,
+                        frame: frame.name(),
+                        reason,
+                    },
+                )?;
             }
-        };
+        }
     }
     Ok(())
 }
 
 /// The node's mass block: point mass, half masses and half normal added masses.
 #[inline(always)]
-fn node_mass(ctx: &Ctx, b: &Block, i: usize, elems: &[ElementLoads<f64>]) -> Sym3<f64> {
-    let lay = ctx.lay;
-    let e0 = b.elem_start as usize;
-    let mut m = Sym3::scalar(lay.node_point_mass[i]);
-    for &inc in lay.incidence(i) {
-        let el = &elems[(inc >> 1) as usize - e0];
+fn node_mass<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    b: &Block,
+    li: usize,
+    elems: &[ElementLoads<f64>],
+) -> Sym3<f64> {
+    let i = b.node_start as usize + li;
+    let mut m = Sym3::scalar(ctx.lay.node_point_mass[i]);
+    for (e, _) in topo.incident(li) {
+        let el = &elems[e];
         let s = el.half_mass;
         m.xx += s;
         m.yy += s;
@@ -428,27 +587,25 @@ fn node_mass(ctx: &Ctx, b: &Block, i: usize, elems: &[ElementLoads<f64>]) -> Sym
 }
 
 /// Pass 2 for one node: gathered force, mass block, and acceleration (free or
-/// Baumgarte-constrained). `r`, `v`, `elems` are block-local; `i` is a packed index.
+/// Baumgarte-constrained). `r`, `v`, `elems` are block-local, `li` block-local too.
 #[inline(always)]
-fn node_accel(
+fn node_accel<T: Topo>(
     ctx: &Ctx,
+    topo: &T,
     b: &Block,
-    i: usize,
+    li: usize,
     r: &[V],
     v: &[V],
     t: f64,
     elems: &[ElementLoads<f64>],
 ) -> (V, V, Sym3<f64>) {
     let lay = ctx.lay;
-    let n0 = b.node_start as usize;
-    let e0 = b.elem_start as usize;
-    let li = i - n0;
+    let i = b.node_start as usize + li;
     let (ri, vi) = (r[li], v[li]);
     let mut f = V::new(0.0, 0.0, lay.node_point_weight_z[i]);
     let mut m = Sym3::scalar(lay.node_point_mass[i]);
-    for &inc in lay.incidence(i) {
-        let el = &elems[(inc >> 1) as usize - e0];
-        let sign = if inc & 1 == 0 { 1.0 } else { -1.0 };
+    for (e, sign) in topo.incident(li) {
+        let el = &elems[e];
         f += el.f_half + el.t * (sign * el.tension);
         let s = el.half_mass;
         m.xx += s;
@@ -503,10 +660,12 @@ fn check(ctx: &Ctx, r: V, v: V) -> Option<String> {
     })
 }
 
-/// Evaluates accelerations of every node of a block into `acc` (block-local).
-#[inline]
-fn accelerations(
+/// Evaluates accelerations of every node of a block (block-local), handing each to `store`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn accelerations<T: Topo>(
     ctx: &Ctx,
+    topo: &T,
     b: &Block,
     r: &[V],
     v: &[V],
@@ -514,16 +673,16 @@ fn accelerations(
     elems: &mut [ElementLoads<f64>],
     mut store: impl FnMut(usize, V),
 ) -> Result<(), StepFailure> {
-    element_pass(ctx, b, r, v, t, elems)?;
-    let n0 = b.node_start as usize;
+    element_pass(ctx, topo, b, r, v, t, elems)?;
     for li in 0..r.len() {
-        let (a, _, _) = node_accel(ctx, b, n0 + li, r, v, t, elems);
+        let (a, _, _) = node_accel(ctx, topo, b, li, r, v, t, elems);
         store(li, a);
     }
     Ok(())
 }
 
-/// Advances one block by `nsteps` steps starting at step number `step0`.
+/// Advances one block by `nsteps` steps starting at step number `step0`, with the
+/// chain fast path where the block is one chain in node order.
 #[allow(clippy::too_many_arguments)]
 fn advance_block(
     ctx: &Ctx,
@@ -538,53 +697,75 @@ fn advance_block(
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
+    if b.is_chain {
+        let topo = ChainTopo { n_nodes: r.len() };
+        advance_block_in(ctx, &topo, b, r, v, s, elems, rs, vs, step0, dt, nsteps)
+    } else {
+        let topo = GeneralTopo {
+            lay: ctx.lay,
+            n0: b.node_start as usize,
+            e0: b.elem_start as usize,
+        };
+        advance_block_in(ctx, &topo, b, r, v, s, elems, rs, vs, step0, dt, nsteps)
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn advance_block_in<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    b: &Block,
+    r: &mut [V],
+    v: &mut [V],
+    s: &mut [NodeScratch],
+    elems: &mut [ElementLoads<f64>],
+    rs: &mut Vec<V>,
+    vs: &mut Vec<V>,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
     let n0 = b.node_start as usize;
     let n = r.len();
+    rs.resize(n, V::zero());
+    vs.resize(n, V::zero());
+    let diverged = |li: usize, t: f64, what: String| StepFailure::Diverged {
+        node: n0 + li,
+        time: t,
+        what,
+    };
     for k in 0..nsteps {
         // Time from the step count, not by accumulation: output times stay exact.
         let t = (step0 + k) as f64 * dt;
         match ctx.opts.scheme {
             Scheme::Symplectic => {
-                element_pass(ctx, b, r, v, t, elems)?;
+                element_pass(ctx, topo, b, r, v, t, elems)?;
+                // The element pass has read every position and velocity of this step,
+                // so each node can be updated as soon as its acceleration is known.
                 for li in 0..n {
-                    let (a, _, _) = node_accel(ctx, b, n0 + li, r, v, t, elems);
-                    s[li].acc = a;
-                }
-                for li in 0..n {
-                    let vn = v[li] + s[li].acc * dt;
+                    let (a, _, _) = node_accel(ctx, topo, b, li, r, v, t, elems);
+                    let vn = v[li] + a * dt;
                     let rn = r[li] + vn * dt;
                     v[li] = vn;
                     r[li] = rn;
                     if let Some(what) = check(ctx, rn, vn) {
-                        return Err(StepFailure::Diverged {
-                            node: n0 + li,
-                            time: t + dt,
-                            what,
-                        });
+                        return Err(diverged(li, t + dt, what));
                     }
                 }
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
-                accelerations(ctx, b, r, v, t, elems, |li, a| s[li].acc = a)?;
+                accelerations(ctx, topo, b, r, v, t, elems, |li, a| s[li].acc = a)?;
                 for li in 0..n {
-                    s[li].rs = r[li] + v[li] * h;
-                    s[li].vs = v[li] + s[li].acc * h;
+                    rs[li] = r[li] + v[li] * h;
+                    vs[li] = v[li] + s[li].acc * h;
                 }
-                rs.clear();
-                vs.clear();
-                rs.extend(s.iter().map(|x| x.rs));
-                vs.extend(s.iter().map(|x| x.vs));
-                accelerations(ctx, b, rs, vs, t + h, elems, |li, a| s[li].acc = a)?;
+                accelerations(ctx, topo, b, rs, vs, t + h, elems, |li, a| s[li].acc = a)?;
                 for li in 0..n {
                     r[li] += vs[li] * dt;
                     v[li] += s[li].acc * dt;
                     if let Some(what) = check(ctx, r[li], v[li]) {
-                        return Err(StepFailure::Diverged {
-                            node: n0 + li,
-                            time: t + dt,
-                            what,
-                        });
+                        return Err(diverged(li, t + dt, what));
                     }
                 }
             }
@@ -596,25 +777,21 @@ fn advance_block(
                     s[li].sr = V::zero();
                     s[li].sv = V::zero();
                 }
-                rs.clear();
-                vs.clear();
-                rs.extend_from_slice(r);
-                vs.extend_from_slice(v);
+                rs.copy_from_slice(r);
+                vs.copy_from_slice(v);
                 for (stage, (tau, w, next)) in
                     [(0.0, 1.0, h), (h, 2.0, h), (h, 2.0, dt), (dt, 1.0, 0.0)]
                         .into_iter()
                         .enumerate()
                 {
-                    accelerations(ctx, b, rs, vs, t + tau, elems, |li, a| s[li].acc = a)?;
+                    accelerations(ctx, topo, b, rs, vs, t + tau, elems, |li, a| s[li].acc = a)?;
                     for li in 0..n {
                         let x = &mut s[li];
                         x.sr += vs[li] * w;
                         x.sv += x.acc * w;
                         if stage < 3 {
-                            let rn = x.r0 + vs[li] * next;
-                            let vn = x.v0 + x.acc * next;
-                            rs[li] = rn;
-                            vs[li] = vn;
+                            rs[li] = x.r0 + vs[li] * next;
+                            vs[li] = x.v0 + x.acc * next;
                         }
                     }
                 }
@@ -622,11 +799,7 @@ fn advance_block(
                     r[li] = s[li].r0 + s[li].sr * (dt / 6.0);
                     v[li] = s[li].v0 + s[li].sv * (dt / 6.0);
                     if let Some(what) = check(ctx, r[li], v[li]) {
-                        return Err(StepFailure::Diverged {
-                            node: n0 + li,
-                            time: t + dt,
-                            what,
-                        });
+                        return Err(diverged(li, t + dt, what));
                     }
                 }
             }
