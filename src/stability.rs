@@ -4,7 +4,8 @@
 //! (`omega^2 <= sum_e 2 (EA/l0) / m`, which is `4 EA / (mbar l0^2)` for a uniform chain),
 //! internal damping (`gamma = c omega^2`), seabed contact (`omega^2 = K lt / m`,
 //! `gamma = C lt / m`) and, for constrained nodes, the Baumgarte gains
-//! (`omega^2 = alpha`, `gamma = beta`). `m` is the node's scalar mass without added
+//! (`omega^2 = alpha`, `gamma = beta`); regularised seabed friction is a damper of
+//! rate `mu F_N / (v_eps m)` with `F_N` the node's wet weight. `m` is the node's scalar mass without added
 //! mass (the axial direction has none), so the estimate errs on the safe side. The
 //! modes of a node are summed (also conservative), and the scheme's own stability
 //! region turns `(omega^2, gamma)` into a step.
@@ -129,6 +130,8 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
         } else {
             let mut m = lay.node_point_mass[i];
             let (mut k, mut kc, mut lt) = (0.0, 0.0, 0.0);
+            // Weight the node would rest on the seabed with, for the friction term.
+            let mut wet = (-lay.node_point_weight_z[i]).max(0.0);
             let mut shortest = (f64::INFINITY, 0usize);
             for &inc in lay.incidence(i) {
                 let e = (inc >> 1) as usize;
@@ -138,6 +141,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                 k += 2.0 * c.ea / l0;
                 kc += 2.0 * c.ea_c / l0;
                 lt += 0.5 * l0;
+                wet += (-0.5 * c.wet_weight_z * l0).max(0.0);
                 if l0 < shortest.0 {
                     shortest = (l0, e);
                 }
@@ -180,6 +184,20 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                         gamma: sb.damping * lt / m,
                     },
                     format!("seabed damping at cable '{cable}' node {node}"),
+                ));
+            }
+            // Regularised friction is a viscous damper of slope mu F_N / v_eps below
+            // v_eps; F_N is about the node's wet weight when it rests on the seabed.
+            if has_seabed && lt > 0.0 && sb.friction > 0.0 && wet > 0.0 {
+                parts.push((
+                    Mode {
+                        omega2: 0.0,
+                        gamma: sb.friction * wet / (sb.friction_velocity * m),
+                    },
+                    format!(
+                        "seabed friction (mu = {}, v_eps = {} m/s) at cable '{cable}' node {node}",
+                        sb.friction, sb.friction_velocity
+                    ),
                 ));
             }
         }

@@ -12,6 +12,7 @@
 //! Blocks (connected components) are independent, so each is advanced through a whole
 //! output interval on its own, and blocks are spread over threads with rayon.
 
+mod chain;
 mod stepper;
 
 pub use stepper::{CpuSolver, Evaluation, StepFailure};

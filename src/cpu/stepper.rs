@@ -1,5 +1,6 @@
 //! Passes and schemes of the CPU reference path (see the module doc of `cpu`).
 
+use super::chain::{advance_chain, ChainConsts, ChainScratch};
 use crate::error::Error;
 use crate::math::{Sym3, V3};
 use crate::model::{Block, Layout, NO_CONSTRAINT};
@@ -88,6 +89,11 @@ pub struct CpuSolver {
     uniform_current: Vec<Option<V>>,
     elems: Vec<ElementLoads<f64>>,
     scratch: Vec<NodeScratch>,
+    /// Per block: constants of the chain fast path (`None` for networks).
+    chain_consts: Vec<Option<ChainConsts>>,
+    /// Use the vectorised fast path for chain blocks (GLMF only). On by default; the
+    /// general path is the reference the fast path is tested against.
+    pub use_chain_kernel: bool,
     /// Groups of consecutive blocks handed to one task each.
     chunks: Vec<std::ops::Range<usize>>,
 }
@@ -108,7 +114,14 @@ impl CpuSolver {
             .iter()
             .map(|c| (c.table.len() <= 1).then(|| c.at(0.0)))
             .collect();
+        let chain_consts = layout
+            .blocks
+            .iter()
+            .map(|b| b.is_chain.then(|| ChainConsts::new(&layout, b)))
+            .collect();
         Self {
+            chain_consts,
+            use_chain_kernel: true,
             uniform_current,
             opts,
             t: 0.0,
@@ -160,6 +173,8 @@ impl CpuSolver {
             uniform_current: &self.uniform_current,
         };
         let blocks = &self.layout.blocks;
+        let chain_consts = &self.chain_consts;
+        let fast = self.use_chain_kernel && self.opts.formulation == Formulation::Glmf;
         // Split the state into disjoint per-chunk slices.
         let mut parts = Vec::with_capacity(self.chunks.len());
         {
@@ -189,24 +204,39 @@ impl CpuSolver {
                 let base = blocks[ch.start];
                 // Stage buffers of the Runge-Kutta schemes, reused across the chunk's blocks.
                 let (mut rs, mut vs) = (Vec::new(), Vec::new());
-                for b in &blocks[ch] {
+                let mut chain_scratch = ChainScratch::default();
+                for (bi, b) in blocks[ch.clone()].iter().enumerate() {
                     let n0 = (b.node_start - base.node_start) as usize;
                     let n1 = (b.node_end - base.node_start) as usize;
                     let e0 = (b.elem_start - base.elem_start) as usize;
                     let e1 = (b.elem_end - base.elem_start) as usize;
-                    advance_block(
-                        &ctx,
-                        b,
-                        &mut r[n0..n1],
-                        &mut v[n0..n1],
-                        &mut s[n0..n1],
-                        &mut el[e0..e1],
-                        &mut rs,
-                        &mut vs,
-                        step0,
-                        dt,
-                        nsteps,
-                    )?;
+                    match &chain_consts[ch.start + bi] {
+                        Some(cc) if fast => advance_chain(
+                            cc,
+                            ctx.lay,
+                            &ctx.opts,
+                            &mut chain_scratch,
+                            &mut r[n0..n1],
+                            &mut v[n0..n1],
+                            b.node_start as usize,
+                            step0,
+                            dt,
+                            nsteps,
+                        )?,
+                        _ => advance_block(
+                            &ctx,
+                            b,
+                            &mut r[n0..n1],
+                            &mut v[n0..n1],
+                            &mut s[n0..n1],
+                            &mut el[e0..e1],
+                            &mut rs,
+                            &mut vs,
+                            step0,
+                            dt,
+                            nsteps,
+                        )?,
+                    }
                 }
                 Ok(())
             });
@@ -630,6 +660,30 @@ fn node_accel<T: Topo>(
         ad - (vi - vd) * bg.beta - (ri - rd) * bg.alpha
     };
     (a, f, m)
+}
+
+/// The failure for node `node` (packed index) found in state `r`, `v` at `time`.
+pub(crate) fn diverged(opts: &SolverOptions, r: V, v: V, node: usize, time: f64) -> StepFailure {
+    let what = if !r.is_finite() || !v.is_finite() {
+        format!(
+            "non-finite state (position {:?}, velocity {:?})",
+            r.to_f64(),
+            v.to_f64()
+        )
+    } else if v.max_abs() >= opts.max_speed {
+        format!(
+            "speed {:.3e} m/s over the limit {:.1e} m/s",
+            v.norm(),
+            opts.max_speed
+        )
+    } else {
+        format!(
+            "position {:?} farther than {:.1e} m from the origin",
+            r.to_f64(),
+            opts.max_distance
+        )
+    };
+    StepFailure::Diverged { node, time, what }
 }
 
 /// Checks a node's new state; `None` when sane.

@@ -1,0 +1,548 @@
+//! The fast path of the CPU stepper for blocks that are one chain in node order
+//! (mooring lines, towed cables: the common case).
+//!
+//! It runs the same two passes as the general path ([`super::stepper`]), on the same
+//! physics, but over structure-of-arrays scratch and without branches in the loops,
+//! so the compiler vectorises them (4 lanes of f64 with AVX2, chosen at run time):
+//! - the element pass reads node `k` and `k+1` for element `k` (no index arrays);
+//! - element results are stored with a zero "ghost" element at each end, so node `i`
+//!   always gathers padded elements `i` (element `i-1`, as its node b) and `i+1`
+//!   (element `i`, as its node a);
+//! - the 3x3 mass block `s I - a1 t1 t1^T - a2 t2 t2^T` of a chain node is solved in
+//!   closed form (Woodbury identity: a 2x2 system instead of a 3x3 adjugate);
+//! - the rare per-node extras (constrained nodes, point-mass drag) are fixed up after
+//!   the vectorised loop, from short index lists.
+//!
+//! A test checks it against the general path (`tests/chain_kernel.rs`).
+
+use super::stepper::StepFailure;
+use crate::model::{Block, Current, Layout, NO_CONSTRAINT};
+use crate::options::{Scheme, SolverOptions};
+
+/// Per-block constants of a chain, built once.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ChainConsts {
+    n: usize,
+    // Per element (length ne).
+    l0: Vec<f64>,
+    il0: Vec<f64>,
+    ea: Vec<f64>,
+    eac: Vec<f64>,
+    comp: Vec<f64>,
+    drag_n: Vec<f64>,
+    drag_t: Vec<f64>,
+    /// Half the element's weight less buoyancy (z), N.
+    half_wz: Vec<f64>,
+    /// Current profile per element.
+    current: Vec<u32>,
+    /// The block's current when every element shares one uniform current.
+    uniform: Option<[f64; 3]>,
+    // Per padded element (length ne + 2, ghosts zero).
+    hm: Vec<f64>,
+    ha: Vec<f64>,
+    // Per node (length n).
+    pm: Vec<f64>,
+    pwz: Vec<f64>,
+    /// `K lt`, `C lt`, `mu K lt` of the seabed per node.
+    kl: Vec<f64>,
+    cl: Vec<f64>,
+    mukl: Vec<f64>,
+    /// `(node, route index)` of constrained nodes.
+    constrained: Vec<(usize, usize)>,
+    /// `(node, 1/2 rho Cd A, current index)` of nodes with point drag.
+    point_drag: Vec<(usize, f64, usize)>,
+    zb: f64,
+    friction: bool,
+    v_eps: f64,
+}
+
+impl ChainConsts {
+    /// Folds the layout's constants for chain block `b`.
+    pub(crate) fn new(lay: &Layout, b: &Block) -> Self {
+        let n0 = b.node_start as usize;
+        let n = (b.node_end - b.node_start) as usize;
+        let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
+        let ne = e1 - e0;
+        let env = &lay.env;
+        let mut c = ChainConsts {
+            n,
+            ..Default::default()
+        };
+        c.hm = vec![0.0; ne + 2];
+        c.ha = vec![0.0; ne + 2];
+        for (k, e) in (e0..e1).enumerate() {
+            let lc = &lay.line_coefs[lay.elem_line[e] as usize];
+            let l0 = lay.elem_l0[e];
+            c.l0.push(l0);
+            c.il0.push(1.0 / l0);
+            c.ea.push(lc.ea);
+            c.eac.push(lc.ea_c);
+            c.comp.push(lc.compression);
+            c.drag_n.push(lc.drag_n);
+            c.drag_t.push(lc.drag_t);
+            c.half_wz.push(0.5 * lc.wet_weight_z * l0);
+            c.current.push(lay.elem_current[e]);
+            c.hm[k + 1] = 0.5 * lc.mass * l0;
+            c.ha[k + 1] = 0.5 * lc.added_mass * l0;
+        }
+        let first = c.current.first().copied().unwrap_or(0);
+        if c.current.iter().all(|&x| x == first) && lay.currents[first as usize].table.len() <= 1 {
+            c.uniform = Some(lay.currents[first as usize].at::<f64>(0.0).to_f64());
+        }
+        let has_seabed = env.depth.is_finite();
+        for li in 0..n {
+            let i = n0 + li;
+            c.pm.push(lay.node_point_mass[i]);
+            c.pwz.push(lay.node_point_weight_z[i]);
+            let lt = if has_seabed {
+                lay.node_tributary[i]
+            } else {
+                0.0
+            };
+            c.kl.push(env.seabed.stiffness * lt);
+            c.cl.push(env.seabed.damping * lt);
+            c.mukl.push(env.seabed.friction * env.seabed.stiffness * lt);
+            let k = lay.node_constraint[i];
+            if k != NO_CONSTRAINT {
+                c.constrained.push((li, k as usize));
+            }
+            if lay.node_point_drag[i] > 0.0 {
+                c.point_drag
+                    .push((li, lay.node_point_drag[i], lay.node_current[i] as usize));
+            }
+        }
+        c.zb = if has_seabed {
+            -env.depth
+        } else {
+            f64::NEG_INFINITY
+        };
+        c.friction = has_seabed && env.seabed.friction > 0.0;
+        c.v_eps = env.seabed.friction_velocity;
+        c
+    }
+}
+
+/// Structure-of-arrays state and scratch of one chain, reused across blocks.
+#[derive(Default)]
+pub(crate) struct ChainScratch {
+    x: [Vec<f64>; 6],
+    // Stage state and accumulators of the Runge-Kutta schemes.
+    xs: [Vec<f64>; 6],
+    x0: [Vec<f64>; 6],
+    sum: [Vec<f64>; 6],
+    a: [Vec<f64>; 3],
+    // Padded element results.
+    t: [Vec<f64>; 3],
+    ten: Vec<f64>,
+    f: [Vec<f64>; 3],
+    // Per-element current when not uniform.
+    u: [Vec<f64>; 3],
+}
+
+fn resize(v: &mut [Vec<f64>], n: usize) {
+    for x in v {
+        x.clear();
+        x.resize(n, 0.0);
+    }
+}
+
+/// Element pass over SoA positions `p` and velocities `w`.
+#[inline(always)]
+fn elements(
+    c: &ChainConsts,
+    p: &[Vec<f64>; 6],
+    u: &[Vec<f64>; 3],
+    t: &mut [Vec<f64>; 3],
+    ten: &mut [f64],
+    f: &mut [Vec<f64>; 3],
+) {
+    let ne = c.l0.len();
+    let (x, y, z) = (&p[0][..ne + 1], &p[1][..ne + 1], &p[2][..ne + 1]);
+    let (vx, vy, vz) = (&p[3][..ne + 1], &p[4][..ne + 1], &p[5][..ne + 1]);
+    let (ux, uy, uz) = (&u[0][..ne], &u[1][..ne], &u[2][..ne]);
+    let [tx, ty, tz] = t;
+    let [fx, fy, fz] = f;
+    let (tx, ty, tz) = (&mut tx[1..ne + 1], &mut ty[1..ne + 1], &mut tz[1..ne + 1]);
+    let (fx, fy, fz) = (&mut fx[1..ne + 1], &mut fy[1..ne + 1], &mut fz[1..ne + 1]);
+    let ten = &mut ten[1..ne + 1];
+    let (il0, ea, eac, comp) = (&c.il0[..ne], &c.ea[..ne], &c.eac[..ne], &c.comp[..ne]);
+    let (dn, dt, hw) = (&c.drag_n[..ne], &c.drag_t[..ne], &c.half_wz[..ne]);
+    for k in 0..ne {
+        let (dx, dy, dz) = (x[k + 1] - x[k], y[k + 1] - y[k], z[k + 1] - z[k]);
+        let l = (dx * dx + dy * dy + dz * dz).sqrt();
+        let il = 1.0 / l;
+        let (ex, ey, ez) = (dx * il, dy * il, dz * il);
+        let eps = l * il0[k] - 1.0;
+        let epsdot =
+            (ex * (vx[k + 1] - vx[k]) + ey * (vy[k + 1] - vy[k]) + ez * (vz[k + 1] - vz[k]))
+                * il0[k];
+        // Slack: the elastic part vanishes in compression unless the line is a rod.
+        let elastic = ea[k] * eps * if eps > 0.0 { 1.0 } else { comp[k] };
+        let tension = elastic + eac[k] * epsdot;
+        let rx = ux[k] - 0.5 * (vx[k] + vx[k + 1]);
+        let ry = uy[k] - 0.5 * (vy[k] + vy[k + 1]);
+        let rz = uz[k] - 0.5 * (vz[k] + vz[k + 1]);
+        let vt = ex * rx + ey * ry + ez * rz;
+        let (nx, ny, nz) = (rx - ex * vt, ry - ey * vt, rz - ez * vt);
+        let kn = dn[k] * l * (nx * nx + ny * ny + nz * nz).sqrt();
+        let kt = dt[k] * l * vt.abs() * vt;
+        // Half of drag, plus half the weight less buoyancy (no water acceleration yet).
+        fx[k] = 0.5 * (nx * kn + ex * kt);
+        fy[k] = 0.5 * (ny * kn + ey * kt);
+        fz[k] = 0.5 * (nz * kn + ez * kt) + hw[k];
+        tx[k] = ex;
+        ty[k] = ey;
+        tz[k] = ez;
+        ten[k] = tension;
+    }
+}
+
+/// Solves the chain node's mass block `s I - a1 t1 t1^T - a2 t2 t2^T` for `f`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn solve_mass(s: f64, a1: f64, a2: f64, t1: [f64; 3], t2: [f64; 3], f: [f64; 3]) -> [f64; 3] {
+    let w1 = t1[0] * f[0] + t1[1] * f[1] + t1[2] * f[2];
+    let w2 = t2[0] * f[0] + t2[1] * f[1] + t2[2] * f[2];
+    let d = t1[0] * t2[0] + t1[1] * t2[1] + t1[2] * t2[2];
+    let (p, q) = (s - a1, s - a2);
+    let idet = 1.0 / (p * q - a1 * a2 * d * d);
+    let c1 = a1 * (q * w1 + a2 * d * w2) * idet;
+    let c2 = a2 * (p * w2 + a1 * d * w1) * idet;
+    let is = 1.0 / s;
+    [
+        (f[0] + c1 * t1[0] + c2 * t2[0]) * is,
+        (f[1] + c1 * t1[1] + c2 * t2[1]) * is,
+        (f[2] + c1 * t1[2] + c2 * t2[2]) * is,
+    ]
+}
+
+/// Node pass: accelerations of every node into `a`, with constraints and point drag
+/// fixed up afterwards. `p` is the state the element pass used.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn nodes<const FRICTION: bool>(
+    c: &ChainConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    time: f64,
+    p: &[Vec<f64>; 6],
+    tv: &[Vec<f64>; 3],
+    ten: &[f64],
+    fv: &[Vec<f64>; 3],
+    a: &mut [Vec<f64>; 3],
+) {
+    let n = c.n;
+    let (z, vx, vy, vz) = (&p[2][..n], &p[3][..n], &p[4][..n], &p[5][..n]);
+    let (tx, ty, tz, tn) = (
+        &tv[0][..n + 1],
+        &tv[1][..n + 1],
+        &tv[2][..n + 1],
+        &ten[..n + 1],
+    );
+    let (fx, fy, fz) = (&fv[0][..n + 1], &fv[1][..n + 1], &fv[2][..n + 1]);
+    let (hm, ha) = (&c.hm[..n + 1], &c.ha[..n + 1]);
+    let (pm, pwz, kl, cl, mukl) = (
+        &c.pm[..n],
+        &c.pwz[..n],
+        &c.kl[..n],
+        &c.cl[..n],
+        &c.mukl[..n],
+    );
+    let [ax, ay, az] = a;
+    let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
+    let (zb, v_eps) = (c.zb, c.v_eps);
+    for i in 0..n {
+        // Padded element i is element i-1 (this node is its b end: -T t), i+1 is element i.
+        let (j, k) = (i, i + 1);
+        let mut gx = fx[j] + fx[k] - tn[j] * tx[j] + tn[k] * tx[k];
+        let mut gy = fy[j] + fy[k] - tn[j] * ty[j] + tn[k] * ty[k];
+        let mut gz = fz[j] + fz[k] - tn[j] * tz[j] + tn[k] * tz[k] + pwz[i];
+        let pen = zb - z[i];
+        let on = pen > 0.0;
+        gz += if on { kl[i] * pen - cl[i] * vz[i] } else { 0.0 };
+        if FRICTION {
+            let vh = (vx[i] * vx[i] + vy[i] * vy[i]).sqrt();
+            let fr = if on {
+                mukl[i] * pen / vh.max(v_eps)
+            } else {
+                0.0
+            };
+            gx -= fr * vx[i];
+            gy -= fr * vy[i];
+        }
+        let s = pm[i] + hm[j] + hm[k] + ha[j] + ha[k];
+        let acc = solve_mass(
+            s,
+            ha[j],
+            ha[k],
+            [tx[j], ty[j], tz[j]],
+            [tx[k], ty[k], tz[k]],
+            [gx, gy, gz],
+        );
+        ax[i] = acc[0];
+        ay[i] = acc[1];
+        az[i] = acc[2];
+    }
+    // Point-mass drag: the solve is linear, so add M^-1 of the drag force.
+    for &(i, pd, ci) in &c.point_drag {
+        let zi = p[2][i];
+        let u = lay.currents[ci].at::<f64>(zi).to_f64();
+        let r = [u[0] - p[3][i], u[1] - p[4][i], u[2] - p[5][i]];
+        let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+        let s = c.pm[i] + c.hm[i] + c.hm[i + 1] + c.ha[i] + c.ha[i + 1];
+        let d = solve_mass(
+            s,
+            c.ha[i],
+            c.ha[i + 1],
+            [tv[0][i], tv[1][i], tv[2][i]],
+            [tv[0][i + 1], tv[1][i + 1], tv[2][i + 1]],
+            [r[0] * k, r[1] * k, r[2] * k],
+        );
+        a[0][i] += d[0];
+        a[1][i] += d[1];
+        a[2][i] += d[2];
+    }
+    // Constrained nodes take the Baumgarte acceleration of their route.
+    let bg = opts.baumgarte;
+    for &(i, ri) in &c.constrained {
+        let d = lay.routes[ri].eval(time);
+        for (q, aq) in a.iter_mut().enumerate() {
+            aq[i] = d.a[q] - bg.beta * (p[3 + q][i] - d.v[q]) - bg.alpha * (p[q][i] - d.r[q]);
+        }
+    }
+}
+
+/// Fills the per-element current (midpoint height) when the block's is not uniform.
+fn currents(c: &ChainConsts, currents: &[Current], p: &[Vec<f64>; 6], u: &mut [Vec<f64>; 3]) {
+    let ne = c.l0.len();
+    if let Some(un) = c.uniform {
+        for (q, uq) in u.iter_mut().enumerate() {
+            uq[..ne].fill(un[q]);
+        }
+        return;
+    }
+    for k in 0..ne {
+        let v = currents[c.current[k] as usize]
+            .at::<f64>(0.5 * (p[2][k] + p[2][k + 1]))
+            .to_f64();
+        for q in 0..3 {
+            u[q][k] = v[q];
+        }
+    }
+}
+
+/// Counts nodes whose new state is non-finite or over the limits.
+#[inline(always)]
+fn count_bad(p: &[Vec<f64>; 6], n: usize, vmax: f64, rmax: f64) -> usize {
+    let mut bad = 0usize;
+    for i in 0..n {
+        let ok = p[0][i].abs() < rmax
+            && p[1][i].abs() < rmax
+            && p[2][i].abs() < rmax
+            && p[3][i].abs() < vmax
+            && p[4][i].abs() < vmax
+            && p[5][i].abs() < vmax;
+        bad += (!ok) as usize;
+    }
+    bad
+}
+
+/// Advances a chain block; `r`, `v` are its AoS state (block-local).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn advance_chain(
+    c: &ChainConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut ChainScratch,
+    r: &mut [crate::math::V3<f64>],
+    v: &mut [crate::math::V3<f64>],
+    n0: usize,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2, checked just above.
+            return unsafe { advance_chain_avx2(c, lay, opts, sc, r, v, n0, step0, dt, nsteps) };
+        }
+    }
+    advance_chain_body(c, lay, opts, sc, r, v, n0, step0, dt, nsteps)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn advance_chain_avx2(
+    c: &ChainConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut ChainScratch,
+    r: &mut [crate::math::V3<f64>],
+    v: &mut [crate::math::V3<f64>],
+    n0: usize,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    advance_chain_body(c, lay, opts, sc, r, v, n0, step0, dt, nsteps)
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn advance_chain_body(
+    c: &ChainConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut ChainScratch,
+    r: &mut [crate::math::V3<f64>],
+    v: &mut [crate::math::V3<f64>],
+    n0: usize,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    if c.friction {
+        advance_chain_scheme::<true>(c, lay, opts, sc, r, v, n0, step0, dt, nsteps)
+    } else {
+        advance_chain_scheme::<false>(c, lay, opts, sc, r, v, n0, step0, dt, nsteps)
+    }
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn advance_chain_scheme<const FRICTION: bool>(
+    c: &ChainConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut ChainScratch,
+    r: &mut [crate::math::V3<f64>],
+    v: &mut [crate::math::V3<f64>],
+    n0: usize,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    let n = c.n;
+    let ne = c.l0.len();
+    resize(&mut sc.x, n);
+    resize(&mut sc.a, n);
+    resize(&mut sc.t, ne + 2);
+    resize(&mut sc.f, ne + 2);
+    sc.ten.clear();
+    sc.ten.resize(ne + 2, 0.0);
+    resize(&mut sc.u, ne);
+    if opts.scheme != Scheme::Symplectic {
+        resize(&mut sc.xs, n);
+        resize(&mut sc.x0, n);
+        resize(&mut sc.sum, n);
+    }
+    for i in 0..n {
+        sc.x[0][i] = r[i].x;
+        sc.x[1][i] = r[i].y;
+        sc.x[2][i] = r[i].z;
+        sc.x[3][i] = v[i].x;
+        sc.x[4][i] = v[i].y;
+        sc.x[5][i] = v[i].z;
+    }
+    let ChainScratch {
+        x,
+        xs,
+        x0,
+        sum,
+        a,
+        t,
+        ten,
+        f,
+        u,
+    } = sc;
+    let mut eval = |state: &[Vec<f64>; 6], time: f64, a: &mut [Vec<f64>; 3]| {
+        currents(c, &lay.currents, state, u);
+        elements(c, state, u, t, ten, f);
+        nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, a);
+    };
+    let mut result = Ok(());
+    for k in 0..nsteps {
+        let time = (step0 + k) as f64 * dt;
+        match opts.scheme {
+            Scheme::Symplectic => {
+                eval(x, time, a);
+                for q in 0..3 {
+                    let (pq, rest) = x.split_at_mut(3);
+                    let (xq, vq, aq) = (&mut pq[q][..n], &mut rest[q][..n], &a[q][..n]);
+                    for i in 0..n {
+                        vq[i] += aq[i] * dt;
+                        xq[i] += vq[i] * dt;
+                    }
+                }
+            }
+            Scheme::Rk2 => {
+                let h = 0.5 * dt;
+                eval(x, time, a);
+                for q in 0..3 {
+                    for i in 0..n {
+                        xs[q][i] = x[q][i] + x[3 + q][i] * h;
+                        xs[3 + q][i] = x[3 + q][i] + a[q][i] * h;
+                    }
+                }
+                eval(xs, time + h, a);
+                for q in 0..3 {
+                    for i in 0..n {
+                        x[q][i] += xs[3 + q][i] * dt;
+                        x[3 + q][i] += a[q][i] * dt;
+                    }
+                }
+            }
+            Scheme::Rk4 => {
+                let h = 0.5 * dt;
+                for q in 0..6 {
+                    x0[q].copy_from_slice(&x[q]);
+                    xs[q].copy_from_slice(&x[q]);
+                    sum[q].fill(0.0);
+                }
+                for (stage, (tau, w, next)) in
+                    [(0.0, 1.0, h), (h, 2.0, h), (h, 2.0, dt), (dt, 1.0, 0.0)]
+                        .into_iter()
+                        .enumerate()
+                {
+                    eval(xs, time + tau, a);
+                    for q in 0..3 {
+                        for i in 0..n {
+                            sum[q][i] += xs[3 + q][i] * w;
+                            sum[3 + q][i] += a[q][i] * w;
+                            if stage < 3 {
+                                xs[q][i] = x0[q][i] + xs[3 + q][i] * next;
+                                xs[3 + q][i] = x0[3 + q][i] + a[q][i] * next;
+                            }
+                        }
+                    }
+                }
+                for q in 0..6 {
+                    for i in 0..n {
+                        x[q][i] = x0[q][i] + sum[q][i] * (dt / 6.0);
+                    }
+                }
+            }
+        }
+        if count_bad(x, n, opts.max_speed, opts.max_distance) > 0 {
+            let i = (0..n)
+                .find(|&i| {
+                    !(x[0][i].abs() < opts.max_distance
+                        && x[1][i].abs() < opts.max_distance
+                        && x[2][i].abs() < opts.max_distance
+                        && x[3][i].abs() < opts.max_speed
+                        && x[4][i].abs() < opts.max_speed
+                        && x[5][i].abs() < opts.max_speed)
+                })
+                .unwrap_or(0);
+            result = Err((i, time + dt));
+            break;
+        }
+    }
+    for i in 0..n {
+        r[i] = crate::math::V3::new(x[0][i], x[1][i], x[2][i]);
+        v[i] = crate::math::V3::new(x[3][i], x[4][i], x[5][i]);
+    }
+    result.map_err(|(i, time)| super::stepper::diverged(opts, r[i], v[i], n0 + i, time))
+}
