@@ -45,7 +45,7 @@ mod tests {
 
     #[test]
     fn contact_force_pushes_up_and_friction_opposes_sliding() {
-        let s = SeabedCoefs {
+        let s: SeabedCoefs<f64> = SeabedCoefs {
             z: -100.0,
             k: 3e6,
             c: 3e4,
