@@ -13,5 +13,6 @@ pub mod math;
 pub mod model;
 pub mod options;
 pub mod physics;
+pub mod statics;
 
 pub use error::{Error, Result};
