@@ -488,7 +488,7 @@ impl<'a> Sys<'a> {
             }
             let n2 = fi.norm2();
             // Written so that NaN propagates into the result.
-            if !(n2.sqrt() <= fmax) {
+            if n2.is_nan() || n2.sqrt() > fmax {
                 fmax = n2.sqrt();
                 worst = Some(li);
             }
@@ -502,15 +502,9 @@ impl<'a> Sys<'a> {
         let lay = self.lay;
         let mut load = 0.0;
         let mut kmax = 0.0f64;
-        for li in 0..self.nn {
+        for (li, ri) in r.iter().enumerate() {
             let i = self.n0 + li;
-            let mut own = V::new(0.0, 0.0, lay.node_point_weight_z[i]);
-            let pd = lay.node_point_drag[i];
-            if pd > 0.0 {
-                let u = lay.currents[lay.node_current[i] as usize].at(r[li].z);
-                own += u * (pd * u.norm());
-            }
-            load += own.norm();
+            load += self.point(i, *ri).norm();
             kmax = kmax.max(self.seabed.k * lay.node_tributary[i]);
         }
         for e in self.e0..self.e1 {
@@ -566,14 +560,14 @@ impl<'a> Sys<'a> {
             add(b, a, &kk[1][0]);
             add(b, b, &kk[1][1]);
         }
-        for li in 0..self.nn {
+        for (li, &ri) in r.iter().enumerate() {
             if !self.free[li] {
                 continue;
             }
             let i = self.n0 + li;
             let lay = self.lay;
             // Only the seabed and a current profile make a node's own loads vary.
-            let near_seabed = r[li].z < self.seabed.z + 1.0;
+            let near_seabed = ri.z < self.seabed.z + 1.0;
             let profile = lay.node_point_drag[i] > 0.0
                 && lay.currents[lay.node_current[i] as usize].table.len() > 1;
             if !(near_seabed || profile) {
@@ -582,7 +576,7 @@ impl<'a> Sys<'a> {
             let h = 1e-6 * lay.node_tributary[i].max(1e-3);
             let mut kn = M3::zeros();
             for k in 0..3 {
-                let (mut p, mut m) = (r[li], r[li]);
+                let (mut p, mut m) = (ri, ri);
                 let x = *comp(&mut p, k);
                 let (xp, xm) = (x + h, x - h);
                 *comp(&mut p, k) = xp;
@@ -738,7 +732,7 @@ impl<'a> Sys<'a> {
         let mut nu = 2.0;
         const LAMBDA_MIN: f64 = 1e-12;
         for it in 0..max_iterations {
-            if !(fmax > tol) {
+            if fmax <= tol {
                 return (it, fmax);
             }
             lin.clear();
@@ -864,7 +858,7 @@ impl<'a> Sys<'a> {
             }
             self.residual(r, &mut f);
             let (fmax, _, _) = self.measure(&f);
-            if !(fmax > tol) {
+            if fmax <= tol || !fmax.is_finite() {
                 return it;
             }
             let mut ke = 0.0;

@@ -97,7 +97,7 @@ pub fn catenary(
     if !(length.is_finite() && length > 0.0) {
         return Err(format!("unstretched length must be positive, got {length}"));
     }
-    if !(ea > 0.0) || ea.is_nan() {
+    if ea.is_nan() || ea <= 0.0 {
         return Err(format!("axial stiffness EA must be positive, got {ea}"));
     }
     if !(w.is_finite() && w > 0.0) {
@@ -105,7 +105,7 @@ pub fn catenary(
             "wet weight per length must be positive for a catenary, got {w} N/m"
         ));
     }
-    if !(xf.is_finite() && xf >= 0.0) || !zf.is_finite() {
+    if !(xf.is_finite() && xf >= 0.0 && zf.is_finite()) {
         return Err(format!(
             "span must be finite with xf >= 0, got xf = {xf}, zf = {zf}"
         ));
