@@ -83,7 +83,8 @@ type M3 = Matrix3<f64>;
 /// Options of [`relax`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RelaxOptions {
-    /// Newton iterations per block at most.
+    /// Newton iterations per solve at most (after the first pass, each stage of the
+    /// stiffness continuation and the final polish may use as many).
     pub max_iterations: usize,
     /// Tolerance relative to the block's load scale (see the module doc).
     pub rel_tol: f64,
