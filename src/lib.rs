@@ -13,6 +13,7 @@ pub mod math;
 pub mod model;
 pub mod options;
 pub mod physics;
+pub mod statics;
 
 pub use error::{Error, Result};
 pub mod initial;

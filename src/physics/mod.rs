@@ -1,5 +1,6 @@
 //! Force laws as small functions, generic over the float type.
 
+pub mod catenary;
 pub mod element;
 pub mod frames;
 pub mod seabed;
