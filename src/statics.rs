@@ -192,6 +192,17 @@ pub fn relax(
     positions: &mut [[f64; 3]],
     opts: &RelaxOptions,
 ) -> Result<RelaxReport, Error> {
+    relax_blocks(layout, positions, opts, &vec![true; layout.blocks.len()])
+}
+
+/// [`relax`] for the blocks where `which[block]` is true; the others keep their
+/// positions (route-held nodes are still put at their t = 0 places) and are not reported.
+pub fn relax_blocks(
+    layout: &Layout,
+    positions: &mut [[f64; 3]],
+    opts: &RelaxOptions,
+    which: &[bool],
+) -> Result<RelaxReport, Error> {
     if positions.len() != layout.n_nodes() {
         return Err(Error::Statics(format!(
             "{} positions for {} nodes",
@@ -212,7 +223,9 @@ pub fn relax(
         let (n0, n1) = (b.node_start as usize, b.node_end as usize);
         let (_, tail) = rest.split_at_mut(n0 - at);
         let (mine, tail) = tail.split_at_mut(n1 - n0);
-        parts.push((bi, *b, mine));
+        if which.get(bi).copied().unwrap_or(false) {
+            parts.push((bi, *b, mine));
+        }
         rest = tail;
         at = n1;
     }
