@@ -262,3 +262,65 @@ fn cli_check_fails_with_the_field_and_runs_nothing() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+#[test]
+fn net_panel_shares_knots_between_cables_and_holds_still() {
+    use cablesim::cpu::CpuSolver;
+    use cablesim::options::SolverOptions;
+    let sc = Scenario::load("examples/net_panel.toml").unwrap();
+    let (lay, pos, residual) = cablesim::sim::prepare(&sc).unwrap();
+    // 16 knots shared by 24 two-segment cables: 16 + 24 interior nodes, one block.
+    assert_eq!(lay.n_nodes(), 40);
+    assert_eq!(lay.blocks.len(), 1);
+    assert!(!lay.blocks[0].is_chain);
+    let knot = lay.cables[0].nodes[2]; // h00 ends at k10 ...
+    assert_eq!(knot, lay.cables[2].nodes[0]); // ... where h10 starts
+    assert!(residual < 1e-4, "relaxation residual {residual} N");
+    // The current pushes the hanging panel downstream (+y).
+    let sinker = lay.cables.iter().find(|c| c.name == "v02").unwrap().nodes[2] as usize;
+    assert!(pos[sinker][1] > 0.5, "sinker at {:?}", pos[sinker]);
+    let mut s = CpuSolver::new(
+        lay,
+        &pos,
+        SolverOptions {
+            dt: 5e-4,
+            ..Default::default()
+        },
+    );
+    s.advance(4000).unwrap();
+    let moved =
+        s.r.iter()
+            .zip(&pos)
+            .map(|(r, p)| {
+                (r.x - p[0])
+                    .abs()
+                    .max((r.y - p[1]).abs())
+                    .max((r.z - p[2]).abs())
+            })
+            .fold(0.0, f64::max);
+    assert!(moved < 1e-6, "the relaxed net moved {moved} m in 2 s");
+}
+
+#[test]
+fn point_references_are_checked() {
+    let net = include_str!("../examples/net_panel.toml");
+    fails(
+        &net.replace("end = { point = \"k10\" }", "end = { point = \"k99\" }"),
+        "end.point",
+        "unknown point \"k99\"",
+    );
+    fails(
+        &net.replacen("name = \"k10\"", "name = \"k00\"", 1),
+        "points[1]",
+        "duplicate point name",
+    );
+    fails(
+        &net.replacen(
+            "fixed = [0.0, 0.0, -2.0]",
+            "fixed = [0.0, 0.0, -2.0]\nfree = [0.0, 0.0, -2.0]",
+            1,
+        ),
+        "points[0]",
+        "only one of",
+    );
+}
