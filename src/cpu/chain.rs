@@ -313,6 +313,7 @@ fn nodes<const FRICTION: bool>(
 }
 
 /// Fills the per-element current (midpoint height) when the block's is not uniform.
+#[inline(always)]
 fn currents(c: &ChainConsts, currents: &[Current], p: &[Vec<f64>; 6], u: &mut [Vec<f64>; 3]) {
     let ne = c.l0.len();
     if let Some(un) = c.uniform {
@@ -335,13 +336,22 @@ fn currents(c: &ChainConsts, currents: &[Current], p: &[Vec<f64>; 6], u: &mut [V
 #[inline(always)]
 fn count_bad(p: &[Vec<f64>; 6], n: usize, vmax: f64, rmax: f64) -> usize {
     let mut bad = 0usize;
+    let p: [&[f64]; 6] = [
+        &p[0][..n],
+        &p[1][..n],
+        &p[2][..n],
+        &p[3][..n],
+        &p[4][..n],
+        &p[5][..n],
+    ];
     for i in 0..n {
-        let ok = p[0][i].abs() < rmax
-            && p[1][i].abs() < rmax
-            && p[2][i].abs() < rmax
-            && p[3][i].abs() < vmax
-            && p[4][i].abs() < vmax
-            && p[5][i].abs() < vmax;
+        // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
+        let ok = (p[0][i].abs() < rmax)
+            & (p[1][i].abs() < rmax)
+            & (p[2][i].abs() < rmax)
+            & (p[3][i].abs() < vmax)
+            & (p[4][i].abs() < vmax)
+            & (p[5][i].abs() < vmax);
         bad += (!ok) as usize;
     }
     bad
@@ -457,17 +467,32 @@ fn advance_chain_scheme<const FRICTION: bool>(
         f,
         u,
     } = sc;
-    let mut eval = |state: &[Vec<f64>; 6], time: f64, a: &mut [Vec<f64>; 3]| {
+    // A function, not a closure: closures are not inlined into the AVX2 caller and
+    // would be compiled for the baseline target.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn eval<const FRICTION: bool>(
+        c: &ChainConsts,
+        lay: &Layout,
+        opts: &SolverOptions,
+        state: &[Vec<f64>; 6],
+        time: f64,
+        u: &mut [Vec<f64>; 3],
+        t: &mut [Vec<f64>; 3],
+        ten: &mut [f64],
+        f: &mut [Vec<f64>; 3],
+        a: &mut [Vec<f64>; 3],
+    ) {
         currents(c, &lay.currents, state, u);
         elements(c, state, u, t, ten, f);
         nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, a);
-    };
+    }
     let mut result = Ok(());
     for k in 0..nsteps {
         let time = (step0 + k) as f64 * dt;
         match opts.scheme {
             Scheme::Symplectic => {
-                eval(x, time, a);
+                eval::<FRICTION>(c, lay, opts, x, time, u, t, ten, f, a);
                 for q in 0..3 {
                     let (pq, rest) = x.split_at_mut(3);
                     let (xq, vq, aq) = (&mut pq[q][..n], &mut rest[q][..n], &a[q][..n]);
@@ -479,14 +504,14 @@ fn advance_chain_scheme<const FRICTION: bool>(
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
-                eval(x, time, a);
+                eval::<FRICTION>(c, lay, opts, x, time, u, t, ten, f, a);
                 for q in 0..3 {
                     for i in 0..n {
                         xs[q][i] = x[q][i] + x[3 + q][i] * h;
                         xs[3 + q][i] = x[3 + q][i] + a[q][i] * h;
                     }
                 }
-                eval(xs, time + h, a);
+                eval::<FRICTION>(c, lay, opts, xs, time + h, u, t, ten, f, a);
                 for q in 0..3 {
                     for i in 0..n {
                         x[q][i] += xs[3 + q][i] * dt;
@@ -506,7 +531,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
                         .into_iter()
                         .enumerate()
                 {
-                    eval(xs, time + tau, a);
+                    eval::<FRICTION>(c, lay, opts, xs, time + tau, u, t, ten, f, a);
                     for q in 0..3 {
                         for i in 0..n {
                             sum[q][i] += xs[3 + q][i] * w;
