@@ -1,7 +1,9 @@
 //! What a run writes: `summary.json`, `end_forces.csv`, `tensions.csv`, `positions.csv`.
 
+use crate::cpu::Evaluation;
 use crate::error::Error;
-use crate::model::{Layout, NO_CONSTRAINT};
+use crate::math::{Sym3, V3};
+use crate::model::{CableInfo, Layout, NO_CONSTRAINT};
 use serde::Serialize;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -92,29 +94,34 @@ fn create(dir: &Path, name: &str) -> Result<BufWriter<File>, Error> {
         .map_err(|source| Error::Output { path, source })
 }
 
-/// The force a cable exerts at its end node `node`: the constraint reaction where the
-/// node is held, else the pull of the cable's end element on the node.
-pub fn end_force(
-    lay: &Layout,
-    node: u32,
-    elem: u32,
-    is_start: bool,
-    reaction: &[[f64; 3]],
-    tension: &[f64],
-    r: &[[f64; 3]],
-) -> [f64; 3] {
-    let c = lay.node_constraint[node as usize];
-    if c != NO_CONSTRAINT {
-        return reaction[c as usize];
+/// The forces a cable exerts at its two end nodes.
+///
+/// - An end node that only this cable's end element touches: if it is held, the
+///   constraint reaction `F_k - M_k a_k` (MODEL.md: every force on the node, its point
+///   mass and seabed contact included); if it is free, `F_e - M_e a_k`, the end
+///   element's lumped force less its share of the node's inertia, which is the force the
+///   cable exerts on an attached point mass (zero when nothing is attached).
+/// - A node shared by several elements (a `[[points]]` knot): `F_e - M_e a_k` of this
+///   cable's end element, its own share; the shares of all cables at a held knot add up
+///   to the knot's reaction less the point's own weight and inertia.
+pub fn end_forces(lay: &Layout, ev: &Evaluation, cable: &CableInfo) -> EndForces {
+    let n = cable.nodes.len();
+    let one = |node: u32, elem: u32, sign: f64| -> [f64; 3] {
+        let i = node as usize;
+        let k = lay.node_constraint[i];
+        if k != NO_CONSTRAINT && lay.incidence(i).len() == 1 {
+            return ev.reaction[k as usize];
+        }
+        let el = &ev.elements[elem as usize];
+        let a = V3::from_f64(ev.acc[i]);
+        let mut m = Sym3::scalar(el.half_mass);
+        m.add_normal_projection(el.half_added, el.t);
+        (el.f_half + el.t * (sign * el.tension) - m.mul_vec(a)).to_f64()
+    };
+    EndForces {
+        start: one(cable.nodes[0], cable.elements[0], 1.0),
+        end: one(cable.nodes[n - 1], cable.elements[n - 2], -1.0),
     }
-    let (a, b) = (
-        r[lay.elem_a[elem as usize] as usize],
-        r[lay.elem_b[elem as usize] as usize],
-    );
-    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    let s = tension[elem as usize] / l * if is_start { 1.0 } else { -1.0 };
-    [d[0] * s, d[1] * s, d[2] * s]
 }
 
 impl OutputWriter {
@@ -164,22 +171,13 @@ impl OutputWriter {
         t: f64,
         lay: &Layout,
         r: &[[f64; 3]],
-        tension: &[f64],
-        reaction: &[[f64; 3]],
+        ev: &Evaluation,
     ) -> Result<(), Error> {
+        let tension = &ev.tension;
         self.io("end_forces.csv", |w| {
             for c in &lay.cables {
-                let n = c.nodes.len();
-                let s = end_force(lay, c.nodes[0], c.elements[0], true, reaction, tension, r);
-                let e = end_force(
-                    lay,
-                    c.nodes[n - 1],
-                    c.elements[n - 2],
-                    false,
-                    reaction,
-                    tension,
-                    r,
-                );
+                let f = end_forces(lay, ev, c);
+                let (s, e) = (f.start, f.end);
                 writeln!(
                     w.end_forces,
                     "{t},{},start,{},{},{}",

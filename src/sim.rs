@@ -4,7 +4,7 @@ use crate::cpu::CpuSolver;
 use crate::error::Error;
 use crate::model::Layout;
 use crate::options::{Formulation, Scheme, SolverOptions};
-use crate::output::{end_force, CableSummary, EndForces, OutputWriter, Summary};
+use crate::output::{end_forces, CableSummary, OutputWriter, Summary};
 use crate::scenario::{Backend, DtSpec, InitialShape, Scenario};
 use crate::stability::{stable_step, StepBound, AUTO_SAFETY};
 use std::path::PathBuf;
@@ -206,40 +206,21 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     let cables = lay
         .cables
         .iter()
-        .map(|c| {
-            let n = c.nodes.len();
-            let (tension, reaction) = match &ev {
-                Some(ev) => (ev.tension.clone(), ev.reaction.clone()),
-                None => (
-                    vec![f64::NAN; lay.n_elements()],
-                    vec![[f64::NAN; 3]; lay.routes.len()],
-                ),
-            };
-            CableSummary {
-                name: c.name.clone(),
-                final_positions: c.nodes.iter().map(|&i| r[i as usize]).collect(),
-                final_tensions: c.elements.iter().map(|&e| tension[e as usize]).collect(),
-                end_forces: EndForces {
-                    start: end_force(
-                        lay,
-                        c.nodes[0],
-                        c.elements[0],
-                        true,
-                        &reaction,
-                        &tension,
-                        &r,
-                    ),
-                    end: end_force(
-                        lay,
-                        c.nodes[n - 1],
-                        c.elements[n - 2],
-                        false,
-                        &reaction,
-                        &tension,
-                        &r,
-                    ),
+        .map(|c| CableSummary {
+            name: c.name.clone(),
+            final_positions: c.nodes.iter().map(|&i| r[i as usize]).collect(),
+            final_tensions: c
+                .elements
+                .iter()
+                .map(|&e| ev.as_ref().map_or(f64::NAN, |ev| ev.tension[e as usize]))
+                .collect(),
+            end_forces: ev.as_ref().map_or(
+                crate::output::EndForces {
+                    start: [f64::NAN; 3],
+                    end: [f64::NAN; 3],
                 },
-            }
+                |ev| end_forces(lay, ev, c),
+            ),
         })
         .collect();
     let summary = Summary {
@@ -280,7 +261,7 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
 fn write_frame(out: &mut OutputWriter, s: &CpuSolver, t: f64) -> Result<(), Error> {
     let ev = s.evaluate()?;
     let r: Vec<[f64; 3]> = s.r.iter().map(|x| x.to_f64()).collect();
-    out.frame(t, &s.layout, &r, &ev.tension, &ev.reaction)
+    out.frame(t, &s.layout, &r, &ev)
 }
 
 /// The time of step `steps` as written out: an exact multiple of the output interval at

@@ -47,6 +47,8 @@ pub struct Evaluation {
     pub tension: Vec<f64>,
     /// Per constraint: the force the cable exerts on its support, `F_k - M_k a_k`, N.
     pub reaction: Vec<[f64; 3]>,
+    /// Per element: its loads (tangent, axial force, half external load, half masses).
+    pub elements: Vec<ElementLoads<f64>>,
 }
 
 /// Per-node scratch of the Runge-Kutta schemes.
@@ -284,6 +286,7 @@ impl CpuSolver {
             force: vec![[0.0; 3]; lay.n_nodes()],
             tension: vec![0.0; lay.n_elements()],
             reaction: vec![[0.0; 3]; lay.routes.len()],
+            elements: Vec::new(),
         };
         let mut elems = vec![ElementLoads::default(); lay.n_elements()];
         for b in &lay.blocks {
@@ -322,6 +325,7 @@ impl CpuSolver {
         for (e, el) in elems.iter().enumerate() {
             ev.tension[e] = el.tension;
         }
+        ev.elements = elems;
         Ok(ev)
     }
 
