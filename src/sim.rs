@@ -5,7 +5,7 @@ use crate::error::Error;
 use crate::model::Layout;
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::output::{end_forces, CableSummary, OutputWriter, Summary};
-use crate::scenario::{Backend, DtSpec, InitialShape, Scenario};
+use crate::scenario::{Backend, DtSpec, Scenario};
 use crate::stability::{stable_step, StepBound, AUTO_SAFETY};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -105,7 +105,6 @@ pub fn plan_steps(
 pub fn prepare(sc: &Scenario) -> Result<(Layout, Vec<[f64; 3]>, f64), Error> {
     let (lay, mut pos) = Layout::build(&sc.model)?;
     let residual = crate::initial::apply(sc, &lay, &mut pos)?;
-    let _ = InitialShape::Straight;
     Ok((lay, pos, residual))
 }
 

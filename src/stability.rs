@@ -118,7 +118,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
     let has_seabed = lay.env.depth.is_finite();
     for i in 0..lay.n_nodes() {
         let (cable, node) = lay.describe_node(i);
-        let mut parts: Vec<(Mode, String)> = Vec::with_capacity(3);
+        let mut parts: Vec<(Mode, String, u8)> = Vec::with_capacity(5);
         if lay.node_constraint[i] != NO_CONSTRAINT {
             parts.push((
                 Mode {
@@ -126,6 +126,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                     gamma: bg.beta,
                 },
                 format!("the Baumgarte gains at cable '{cable}' node {node}"),
+                3,
             ));
         } else {
             let mut m = lay.node_point_mass[i];
@@ -160,12 +161,12 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                         "axial waves at cable '{cable}' node {node} (element {ek}, l0 = {:.4} m)",
                         shortest.0
                     ),
+                    0,
                 ));
                 if kc > 0.0 {
                     parts.push((
                         Mode { omega2: 0.0, gamma: kc / m },
-                        format!("internal damping at cable '{cable}' node {node} (element {ek}, l0 = {:.4} m)", shortest.0),
-                    ));
+                        format!("internal damping at cable '{cable}' node {node} (element {ek}, l0 = {:.4} m)", shortest.0), 0));
                 }
             }
             if has_seabed && lt > 0.0 && sb.stiffness > 0.0 {
@@ -175,6 +176,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                         gamma: 0.0,
                     },
                     format!("seabed stiffness at cable '{cable}' node {node}"),
+                    1,
                 ));
             }
             if has_seabed && lt > 0.0 && sb.damping > 0.0 {
@@ -184,6 +186,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                         gamma: sb.damping * lt / m,
                     },
                     format!("seabed damping at cable '{cable}' node {node}"),
+                    1,
                 ));
             }
             // Regularised friction is a viscous damper of slope mu F_N / v_eps below
@@ -198,28 +201,50 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                         "seabed friction (mu = {}, v_eps = {} m/s) at cable '{cable}' node {node}",
                         sb.friction, sb.friction_velocity
                     ),
+                    2,
                 ));
             }
         }
         if parts.is_empty() {
             continue;
         }
-        let total = parts.iter().fold(
-            Mode {
-                omega2: 0.0,
-                gamma: 0.0,
-            },
-            |a, (p, _)| Mode {
-                omega2: a.omega2 + p.omega2,
-                gamma: a.gamma + p.gamma,
-            },
-        );
-        let dt = mode_step(scheme, total.omega2, total.gamma);
+        let sum = |group: Option<u8>| {
+            parts
+                .iter()
+                .filter(|(_, _, g)| group.is_none_or(|x| x == *g))
+                .fold(
+                    Mode {
+                        omega2: 0.0,
+                        gamma: 0.0,
+                    },
+                    |a, (p, _, _)| Mode {
+                        omega2: a.omega2 + p.omega2,
+                        gamma: a.gamma + p.gamma,
+                    },
+                )
+        };
+        let dt = match scheme {
+            // Damping only shrinks the symplectic step: summing every term is safe.
+            Scheme::Symplectic => {
+                let total = sum(None);
+                mode_step(scheme, total.omega2, total.gamma)
+            }
+            // Runge-Kutta steps grow with damping, so a mode may only count the damping
+            // that acts on it: axial waves with internal damping, seabed stiffness with
+            // seabed damping (another direction), friction, the constraint gains.
+            Scheme::Rk2 | Scheme::Rk4 => (0..4u8)
+                .filter(|g| parts.iter().any(|(_, _, x)| x == g))
+                .map(|g| {
+                    let m = sum(Some(g));
+                    mode_step(scheme, m.omega2, m.gamma)
+                })
+                .fold(f64::INFINITY, f64::min),
+        };
         if dt < best.dt {
             // Name the term that alone would set the smallest step.
             let (_, name) = parts
                 .iter()
-                .map(|(p, n)| (mode_step(scheme, p.omega2, p.gamma), n))
+                .map(|(p, n, _)| (mode_step(scheme, p.omega2, p.gamma), n))
                 .fold(
                     (f64::INFINITY, &parts[0].1),
                     |a, b| if b.0 < a.0 { b } else { a },
