@@ -7,7 +7,10 @@
 //! (`omega^2 = alpha`, `gamma = beta`); regularised seabed friction is a damper of
 //! rate `mu F_N / (v_eps m)` with `F_N` the node's wet weight. `m` is the node's scalar mass without added
 //! mass (the axial direction has none), so the estimate errs on the safe side. The
-//! modes of a node are summed (also conservative), and the scheme's own stability
+//! modes of a node are summed for the symplectic scheme (damping only shrinks its step);
+//! RK2 and RK4 steps grow with damping, so there each mode counts only the damping acting
+//! on it (axial waves with internal damping, seabed stiffness with seabed damping). The
+//! scheme's own stability
 //! region turns `(omega^2, gamma)` into a step.
 
 use crate::model::{Layout, NO_CONSTRAINT};
