@@ -146,7 +146,7 @@ fn resize(v: &mut [Vec<f64>], n: usize) {
     }
 }
 
-/// Element pass over SoA positions `p` and velocities `w`.
+/// Element pass over SoA positions and velocities `p`, currents `u`.
 #[inline(always)]
 fn elements(
     c: &ChainConsts,
@@ -157,14 +157,71 @@ fn elements(
     f: &mut [Vec<f64>; 3],
 ) {
     let ne = c.l0.len();
-    let (x, y, z) = (&p[0][..ne + 1], &p[1][..ne + 1], &p[2][..ne + 1]);
-    let (vx, vy, vz) = (&p[3][..ne + 1], &p[4][..ne + 1], &p[5][..ne + 1]);
-    let (ux, uy, uz) = (&u[0][..ne], &u[1][..ne], &u[2][..ne]);
     let [tx, ty, tz] = t;
     let [fx, fy, fz] = f;
-    let (tx, ty, tz) = (&mut tx[1..ne + 1], &mut ty[1..ne + 1], &mut tz[1..ne + 1]);
-    let (fx, fy, fz) = (&mut fx[1..ne + 1], &mut fy[1..ne + 1], &mut fz[1..ne + 1]);
-    let ten = &mut ten[1..ne + 1];
+    element_kernel(
+        &p[0][..ne + 1],
+        &p[1][..ne + 1],
+        &p[2][..ne + 1],
+        &p[3][..ne + 1],
+        &p[4][..ne + 1],
+        &p[5][..ne + 1],
+        &u[0][..ne],
+        &u[1][..ne],
+        &u[2][..ne],
+        c,
+        &mut tx[1..ne + 1],
+        &mut ty[1..ne + 1],
+        &mut tz[1..ne + 1],
+        &mut ten[1..ne + 1],
+        &mut fx[1..ne + 1],
+        &mut fy[1..ne + 1],
+        &mut fz[1..ne + 1],
+    );
+}
+
+/// The element loop. Every array is its own parameter: `&mut [f64]` parameters are
+/// known not to alias, which is what lets the compiler vectorise the loop (arrays
+/// reached through one `&mut [Vec<f64>; 3]` would need run-time overlap checks).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn element_kernel(
+    x: &[f64],
+    y: &[f64],
+    z: &[f64],
+    vx: &[f64],
+    vy: &[f64],
+    vz: &[f64],
+    ux: &[f64],
+    uy: &[f64],
+    uz: &[f64],
+    c: &ChainConsts,
+    tx: &mut [f64],
+    ty: &mut [f64],
+    tz: &mut [f64],
+    ten: &mut [f64],
+    fx: &mut [f64],
+    fy: &mut [f64],
+    fz: &mut [f64],
+) {
+    let ne = tx.len();
+    let (x, y, z, vx, vy, vz) = (
+        &x[..ne + 1],
+        &y[..ne + 1],
+        &z[..ne + 1],
+        &vx[..ne + 1],
+        &vy[..ne + 1],
+        &vz[..ne + 1],
+    );
+    let (ux, uy, uz) = (&ux[..ne], &uy[..ne], &uz[..ne]);
+    let (ty, tz, ten, fx, fy, fz) = (
+        &mut ty[..ne],
+        &mut tz[..ne],
+        &mut ten[..ne],
+        &mut fx[..ne],
+        &mut fy[..ne],
+        &mut fz[..ne],
+    );
     let (il0, ea, eac, comp) = (&c.il0[..ne], &c.ea[..ne], &c.eac[..ne], &c.comp[..ne]);
     let (dn, dt, hw) = (&c.drag_n[..ne], &c.drag_t[..ne], &c.half_wz[..ne]);
     for k in 0..ne {
@@ -231,15 +288,64 @@ fn nodes<const FRICTION: bool>(
     fv: &[Vec<f64>; 3],
     a: &mut [Vec<f64>; 3],
 ) {
-    let n = c.n;
-    let (z, vx, vy, vz) = (&p[2][..n], &p[3][..n], &p[4][..n], &p[5][..n]);
-    let (tx, ty, tz, tn) = (
-        &tv[0][..n + 1],
-        &tv[1][..n + 1],
-        &tv[2][..n + 1],
-        &ten[..n + 1],
+    let [ax, ay, az] = a;
+    node_kernel::<FRICTION>(
+        c, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2], ax, ay,
+        az,
     );
-    let (fx, fy, fz) = (&fv[0][..n + 1], &fv[1][..n + 1], &fv[2][..n + 1]);
+    // Point-mass drag: the solve is linear, so add M^-1 of the drag force.
+    for &(i, pd, ci) in &c.point_drag {
+        let zi = p[2][i];
+        let u = lay.currents[ci].at::<f64>(zi).to_f64();
+        let r = [u[0] - p[3][i], u[1] - p[4][i], u[2] - p[5][i]];
+        let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+        let s = c.pm[i] + c.hm[i] + c.hm[i + 1] + c.ha[i] + c.ha[i + 1];
+        let d = solve_mass(
+            s,
+            c.ha[i],
+            c.ha[i + 1],
+            [tv[0][i], tv[1][i], tv[2][i]],
+            [tv[0][i + 1], tv[1][i + 1], tv[2][i + 1]],
+            [r[0] * k, r[1] * k, r[2] * k],
+        );
+        a[0][i] += d[0];
+        a[1][i] += d[1];
+        a[2][i] += d[2];
+    }
+    // Constrained nodes take the Baumgarte acceleration of their route.
+    let bg = opts.baumgarte;
+    for &(i, ri) in &c.constrained {
+        let d = lay.routes[ri].eval(time);
+        for (q, aq) in a.iter_mut().enumerate() {
+            aq[i] = d.a[q] - bg.beta * (p[3 + q][i] - d.v[q]) - bg.alpha * (p[q][i] - d.r[q]);
+        }
+    }
+}
+
+/// The node loop (see [`element_kernel`] for why every array is a parameter).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn node_kernel<const FRICTION: bool>(
+    c: &ChainConsts,
+    z: &[f64],
+    vx: &[f64],
+    vy: &[f64],
+    vz: &[f64],
+    tx: &[f64],
+    ty: &[f64],
+    tz: &[f64],
+    tn: &[f64],
+    fx: &[f64],
+    fy: &[f64],
+    fz: &[f64],
+    ax: &mut [f64],
+    ay: &mut [f64],
+    az: &mut [f64],
+) {
+    let n = c.n;
+    let (z, vx, vy, vz) = (&z[..n], &vx[..n], &vy[..n], &vz[..n]);
+    let (tx, ty, tz, tn) = (&tx[..n + 1], &ty[..n + 1], &tz[..n + 1], &tn[..n + 1]);
+    let (fx, fy, fz) = (&fx[..n + 1], &fy[..n + 1], &fz[..n + 1]);
     let (hm, ha) = (&c.hm[..n + 1], &c.ha[..n + 1]);
     let (pm, pwz, kl, cl, mukl) = (
         &c.pm[..n],
@@ -248,7 +354,6 @@ fn nodes<const FRICTION: bool>(
         &c.cl[..n],
         &c.mukl[..n],
     );
-    let [ax, ay, az] = a;
     let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
     let (zb, v_eps) = (c.zb, c.v_eps);
     for i in 0..n {
@@ -283,32 +388,23 @@ fn nodes<const FRICTION: bool>(
         ay[i] = acc[1];
         az[i] = acc[2];
     }
-    // Point-mass drag: the solve is linear, so add M^-1 of the drag force.
-    for &(i, pd, ci) in &c.point_drag {
-        let zi = p[2][i];
-        let u = lay.currents[ci].at::<f64>(zi).to_f64();
-        let r = [u[0] - p[3][i], u[1] - p[4][i], u[2] - p[5][i]];
-        let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
-        let s = c.pm[i] + c.hm[i] + c.hm[i + 1] + c.ha[i] + c.ha[i + 1];
-        let d = solve_mass(
-            s,
-            c.ha[i],
-            c.ha[i + 1],
-            [tv[0][i], tv[1][i], tv[2][i]],
-            [tv[0][i + 1], tv[1][i + 1], tv[2][i + 1]],
-            [r[0] * k, r[1] * k, r[2] * k],
-        );
-        a[0][i] += d[0];
-        a[1][i] += d[1];
-        a[2][i] += d[2];
+}
+
+/// `x += v h` elementwise.
+#[inline(always)]
+fn axpy(x: &mut [f64], v: &[f64], h: f64) {
+    let v = &v[..x.len()];
+    for i in 0..x.len() {
+        x[i] += v[i] * h;
     }
-    // Constrained nodes take the Baumgarte acceleration of their route.
-    let bg = opts.baumgarte;
-    for &(i, ri) in &c.constrained {
-        let d = lay.routes[ri].eval(time);
-        for (q, aq) in a.iter_mut().enumerate() {
-            aq[i] = d.a[q] - bg.beta * (p[3 + q][i] - d.v[q]) - bg.alpha * (p[q][i] - d.r[q]);
-        }
+}
+
+/// `out = x + v h` elementwise.
+#[inline(always)]
+fn xpvh(out: &mut [f64], x: &[f64], v: &[f64], h: f64) {
+    let (x, v) = (&x[..out.len()], &v[..out.len()]);
+    for i in 0..out.len() {
+        out[i] = x[i] + v[i] * h;
     }
 }
 
@@ -493,30 +589,24 @@ fn advance_chain_scheme<const FRICTION: bool>(
         match opts.scheme {
             Scheme::Symplectic => {
                 eval::<FRICTION>(c, lay, opts, x, time, u, t, ten, f, a);
+                let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
-                    let (pq, rest) = x.split_at_mut(3);
-                    let (xq, vq, aq) = (&mut pq[q][..n], &mut rest[q][..n], &a[q][..n]);
-                    for i in 0..n {
-                        vq[i] += aq[i] * dt;
-                        xq[i] += vq[i] * dt;
-                    }
+                    axpy(&mut vel[q][..n], &a[q], dt);
+                    axpy(&mut pos[q][..n], &vel[q], dt);
                 }
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
                 eval::<FRICTION>(c, lay, opts, x, time, u, t, ten, f, a);
                 for q in 0..3 {
-                    for i in 0..n {
-                        xs[q][i] = x[q][i] + x[3 + q][i] * h;
-                        xs[3 + q][i] = x[3 + q][i] + a[q][i] * h;
-                    }
+                    xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
+                    xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
                 }
                 eval::<FRICTION>(c, lay, opts, xs, time + h, u, t, ten, f, a);
+                let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
-                    for i in 0..n {
-                        x[q][i] += xs[3 + q][i] * dt;
-                        x[3 + q][i] += a[q][i] * dt;
-                    }
+                    axpy(&mut pos[q][..n], &xs[3 + q], dt);
+                    axpy(&mut vel[q][..n], &a[q], dt);
                 }
             }
             Scheme::Rk4 => {
@@ -532,21 +622,18 @@ fn advance_chain_scheme<const FRICTION: bool>(
                         .enumerate()
                 {
                     eval::<FRICTION>(c, lay, opts, xs, time + tau, u, t, ten, f, a);
+                    let (spos, svel) = xs.split_at_mut(3);
                     for q in 0..3 {
-                        for i in 0..n {
-                            sum[q][i] += xs[3 + q][i] * w;
-                            sum[3 + q][i] += a[q][i] * w;
-                            if stage < 3 {
-                                xs[q][i] = x0[q][i] + xs[3 + q][i] * next;
-                                xs[3 + q][i] = x0[3 + q][i] + a[q][i] * next;
-                            }
+                        axpy(&mut sum[q][..n], &svel[q], w);
+                        axpy(&mut sum[3 + q][..n], &a[q], w);
+                        if stage < 3 {
+                            xpvh(&mut spos[q][..n], &x0[q], &svel[q], next);
+                            xpvh(&mut svel[q][..n], &x0[3 + q], &a[q], next);
                         }
                     }
                 }
                 for q in 0..6 {
-                    for i in 0..n {
-                        x[q][i] = x0[q][i] + sum[q][i] * (dt / 6.0);
-                    }
+                    xpvh(&mut x[q][..n], &x0[q], &sum[q], dt / 6.0);
                 }
             }
         }
