@@ -165,8 +165,10 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     } else {
         indicatif::ProgressBar::hidden()
     };
-    // Sub-chunks of about two million node-steps keep the bar moving on big runs.
-    let chunk = (2_000_000 / solver.layout.n_nodes().max(1) as u64).clamp(1, plan.steps_per_output);
+    // Sub-chunks of about twenty million node-steps (a tenth of a second or so) keep
+    // the bar moving on big runs without cutting the blocks' long runs too short.
+    let chunk =
+        (20_000_000 / solver.layout.n_nodes().max(1) as u64).clamp(1, plan.steps_per_output);
     let mut stepping = 0.0f64;
     let mut result: Result<(), Error> = Ok(());
     write_frame(&mut out, &solver, 0.0)?;

@@ -324,3 +324,73 @@ fn point_references_are_checked() {
         "only one of",
     );
 }
+
+#[test]
+fn cable_arrays_expand_with_variations_and_placement() {
+    let text = include_str!("../examples/fleet.toml");
+    let a = parse(text).unwrap();
+    let b = parse(text).unwrap();
+    assert_eq!(a.model.cables.len(), 1000);
+    assert_eq!(a.model.cables[41].name, "mooring_41");
+    // Random lengths: in range, reproducible from the seed, not all equal.
+    let lengths: Vec<f64> = a.model.cables.iter().map(|c| c.l0.iter().sum()).collect();
+    let again: Vec<f64> = b.model.cables.iter().map(|c| c.l0.iter().sum()).collect();
+    assert_eq!(lengths, again);
+    assert!(lengths.iter().all(|l| (245.0..255.0).contains(l)));
+    assert!(lengths.iter().any(|l| (l - lengths[0]).abs() > 1.0));
+    // Each cable has its own current, drawn per component in range.
+    let cur = |i: usize| a.model.currents[a.model.cables[i].current].table[0].1;
+    assert!((0..1000).all(|i| (0.0..0.8).contains(&cur(i)[0]) && (-0.3..0.3).contains(&cur(i)[1])));
+    assert_ne!(cur(0), cur(1));
+    // Grid: 40 columns 300 m apart in x, rows 100 m apart in y; cable 41 is row 1, column 1.
+    let anchor = a.model.nodes[a.model.cables[41].nodes[0]]
+        .route
+        .clone()
+        .unwrap()
+        .eval(0.0)
+        .r;
+    assert_eq!(anchor, [-220.0 + 300.0, 100.0, -100.0]);
+    let fairlead = a.model.nodes[*a.model.cables[41].nodes.last().unwrap()].position;
+    assert_eq!(fairlead, [300.0, 100.0, -10.0]);
+    // Positions are not written for so many cables unless asked.
+    assert!(a.model.cables.iter().all(|c| !c.output_positions));
+}
+
+#[test]
+fn cable_array_errors_are_named() {
+    let text = include_str!("../examples/fleet.toml");
+    fails(
+        &text.replace("count = 1000", "count = 0"),
+        "cable_arrays[0] (\"mooring\").count",
+        "integer from 1",
+    );
+    fails(
+        &text.replace("seed = 7", "seed = 7\ncolour = 1"),
+        "cable_arrays[0] (\"mooring\").colour",
+        "unknown key",
+    );
+    fails(
+        &text.replace(
+            "length = { random = [245.0, 255.0] }",
+            "length = { random = 3 }",
+        ),
+        "length",
+        "{ random = [low, high] }",
+    );
+    fails(
+        &text.replace(
+            "length = { random = [245.0, 255.0] }",
+            "length = { from = -1.0, to = 10.0 }",
+        ),
+        "cable_arrays[0] (\"mooring\") cable 0 (\"mooring_0\").length",
+        "must be positive",
+    );
+    fails(
+        &text.replace(
+            "line_type = \"wire\"\nlength",
+            "line_type = \"rope\"\nlength",
+        ),
+        "mooring_0",
+        "unknown line type \"rope\"",
+    );
+}

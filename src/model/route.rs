@@ -154,6 +154,39 @@ impl Route {
         }
     }
 
+    /// The same route moved by `d` (a whole pattern of cables shifted in space).
+    pub fn translated(&self, d: [f64; 3]) -> Route {
+        let add = |a: [f64; 3]| [a[0] + d[0], a[1] + d[1], a[2] + d[2]];
+        match self {
+            Route::Fixed { position } => Route::Fixed {
+                position: add(*position),
+            },
+            Route::Line { start, velocity } => Route::Line {
+                start: add(*start),
+                velocity: *velocity,
+            },
+            Route::Circle {
+                center,
+                radius,
+                period,
+                axis,
+                phase,
+                advance,
+            } => Route::Circle {
+                center: add(*center),
+                radius: *radius,
+                period: *period,
+                axis: *axis,
+                phase: *phase,
+                advance: *advance,
+            },
+            Route::Table { t, p } => Route::Table {
+                t: t.clone(),
+                p: p.iter().map(|x| add(*x)).collect(),
+            },
+        }
+    }
+
     /// True for a route that never moves.
     pub fn is_fixed(&self) -> bool {
         matches!(self, Route::Fixed { .. })

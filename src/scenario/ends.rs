@@ -115,7 +115,7 @@ pub fn parse_end(
             },
         ));
     }
-    let mut allowed: Vec<&str> = vec![kinds[0]];
+    let mut allowed: Vec<&str> = vec![kinds[0], "offset"];
     allowed.extend(MASS_KEYS);
     allowed.extend(extra);
     let (kind, route) = match kinds[0] {
@@ -224,6 +224,26 @@ pub fn parse_end(
             format!("unknown key (allowed here: {})", allowed.join(", ")),
         ));
     }
+    // `offset` moves the whole end (position or route): patterns of cables use it.
+    let (kind, route) = match get_vec3(p, field, t, "offset")? {
+        None => (kind, route),
+        Some(d) => {
+            let add = |a: [f64; 3]| [a[0] + d[0], a[1] + d[1], a[2] + d[2]];
+            let kind = match kind {
+                EndKind::Fixed(x) => EndKind::Fixed(add(x)),
+                EndKind::Free(x) => EndKind::Free(add(x)),
+                EndKind::Point(_) => {
+                    return Err(err(
+                        p,
+                        format!("{field}.offset"),
+                        "a point end cannot be offset (move the point)",
+                    ))
+                }
+                k => k,
+            };
+            (kind, route.map(|r| r.translated(d)))
+        }
+    };
     let mass = PointMass {
         mass: non_negative(
             p,

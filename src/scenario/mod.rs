@@ -1,6 +1,7 @@
 //! Scenario files (TOML): parsing, validation with precise messages, and the model
 //! they describe. The keys are documented in README.md ("Scenario files").
 
+mod arrays;
 mod ends;
 mod raw;
 mod route_file;
@@ -331,8 +332,19 @@ impl Scenario {
                 ));
             }
         }
-        if raw.cables.is_empty() {
-            return Err(err(p, "cables", "the scenario has no [[cables]]"));
+        let mut cables: Vec<(String, raw::RawCable)> = raw
+            .cables
+            .iter()
+            .enumerate()
+            .map(|(i, c)| (format!("cables[{i}] (\"{}\")", c.name), c.clone()))
+            .collect();
+        cables.extend(arrays::expand(p, &raw.cable_arrays)?);
+        if cables.is_empty() {
+            return Err(err(
+                p,
+                "cables",
+                "the scenario has no [[cables]] or [[cable_arrays]]",
+            ));
         }
 
         let mut model = ModelDef {
@@ -391,12 +403,12 @@ impl Scenario {
         }
 
         // [[cables]]
-        let mut initial = Vec::with_capacity(raw.cables.len());
+        let mut initial = Vec::with_capacity(cables.len());
         let mut names = HashMap::new();
-        let many = raw.cables.len() > 20;
+        let many = cables.len() > 20;
         let positions_sel = output_selection(p, &raw.output.positions)?;
-        for (i, c) in raw.cables.iter().enumerate() {
-            let f = |k: &str| format!("cables[{i}] (\"{}\").{k}", c.name);
+        for (i, (prefix, c)) in cables.iter().enumerate() {
+            let f = |k: &str| format!("{prefix}.{k}");
             if names.insert(c.name.clone(), i).is_some() {
                 return Err(err(
                     p,
@@ -437,12 +449,7 @@ impl Scenario {
                     ))
                 }
             };
-            let cur = match current(
-                p,
-                &format!("cables[{i}] (\"{}\").", c.name),
-                c.current,
-                &c.current_profile,
-            )? {
+            let cur = match current(p, &format!("{prefix}."), c.current, &c.current_profile)? {
                 Some(cu) => {
                     model.currents.push(cu);
                     model.currents.len() - 1

@@ -13,7 +13,10 @@ pub struct RawScenario {
     pub line_types: Vec<LineType>,
     #[serde(default)]
     pub points: Vec<toml::Table>,
+    #[serde(default)]
     pub cables: Vec<RawCable>,
+    #[serde(default)]
+    pub cable_arrays: Vec<toml::Table>,
     #[serde(default)]
     pub output: RawOutput,
 }
@@ -75,7 +78,7 @@ fn default_rho() -> f64 {
     1025.0
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct RawCable {
     pub name: String,
