@@ -340,3 +340,55 @@ fn gpu_f64_matches_cpu_f64_on_a_net() {
     let d = compare(&ctx, lay, &pos, opts, steps);
     check("net", &d, steps, 2.0e6);
 }
+
+/// A step far above the stable one blows up on the GPU as on the CPU: the error names
+/// the cable, the node and the time, and the times agree.
+#[test]
+fn gpu_blow_up_is_reported_like_the_cpu() {
+    let Some(ctx) = gpu_context("gpu_blow_up_is_reported_like_the_cpu", false) else {
+        return;
+    };
+    let (lay, pos) = line_model();
+    let opts = SolverOptions {
+        dt: 2e-2,
+        ..Default::default()
+    };
+    let mut cpu = CpuSolver::new(lay.clone(), &pos, opts);
+    cpu.use_chain_kernel = false;
+    let ce = cpu.advance(10_000).unwrap_err();
+    for p in [Precision::F32, Precision::F64] {
+        if !ctx.supports(p) {
+            continue;
+        }
+        let mut gpu = GpuSolver::new(&ctx, lay.clone(), &pos, opts, p).unwrap();
+        let ge = gpu.advance(10_000).unwrap_err();
+        eprintln!("CPU: {ce}\nGPU {}: {ge}", p.name());
+        match (&ce, &ge) {
+            (
+                cablesim::Error::Diverged {
+                    cable: cc,
+                    time: tc,
+                    ..
+                },
+                cablesim::Error::Diverged {
+                    cable: cg,
+                    node,
+                    time: tg,
+                    ..
+                },
+            ) => {
+                assert_eq!(cc, cg);
+                assert!(*node <= 50);
+                // Same step in f64; within a few steps in f32.
+                let slack = if p == Precision::F64 { 0.5 } else { 5.0 } * opts.dt;
+                assert!((tc - tg).abs() <= slack, "CPU at {tc} s, GPU at {tg} s");
+            }
+            _ => panic!("expected Diverged from both: {ce} / {ge}"),
+        }
+        let msg = ge.to_string();
+        assert!(
+            msg.contains("cable 'line1'") && msg.contains("node"),
+            "{msg}"
+        );
+    }
+}
