@@ -91,7 +91,11 @@ pub fn gpu_context(test: &str, need_f64: bool) -> Option<cablesim::gpu::GpuConte
             if required {
                 panic!("{test}: CABLESIM_REQUIRE_GPU=1 but {e}");
             }
-            eprintln!(
+            // Straight to the process's stderr: the test harness captures eprintln! of
+            // passing tests, and a skip must be seen.
+            use std::io::Write;
+            let _ = writeln!(
+                std::io::stderr(),
                 "\n*** SKIPPED {test}: {e}\n*** (set CABLESIM_REQUIRE_GPU=1 to make this a failure; \
                  on Linux `apt-get install mesa-vulkan-drivers libvulkan1` gives lavapipe, \
                  then WGPU_BACKEND=vulkan)\n"
