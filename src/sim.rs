@@ -291,7 +291,7 @@ pub enum BackendChoice {
     /// The f64 CPU reference path.
     Cpu,
     /// The GPU path on this device, at this precision.
-    Gpu(GpuContext, Precision),
+    Gpu(Box<GpuContext>, Precision),
 }
 
 /// Chooses the backend:
@@ -326,7 +326,7 @@ pub fn choose_backend(
             }
             let ctx = GpuContext::new(need_f64)?;
             log::info!("backend gpu: {} at {}", ctx.describe(), p.name());
-            Ok(BackendChoice::Gpu(ctx, p))
+            Ok(BackendChoice::Gpu(Box::new(ctx), p))
         }
         Backend::Auto => {
             if let Some(what) = crate::gpu::solver::unsupported(lay, opts) {
@@ -350,7 +350,7 @@ pub fn choose_backend(
                 }
                 Ok(ctx) => {
                     log::info!("backend auto: {} at {}", ctx.describe(), p.name());
-                    Ok(BackendChoice::Gpu(ctx, p))
+                    Ok(BackendChoice::Gpu(Box::new(ctx), p))
                 }
             }
         }

@@ -7,9 +7,12 @@ use cablesim::gpu::shaders;
 use cablesim::gpu::Precision;
 use std::collections::HashMap;
 
-/// `name -> (size, members)` of every WGSL struct of the prelude at precision `p`, and
-/// the names of the structs that bindings use.
-fn wgsl_structs(p: Precision) -> (HashMap<String, (usize, Vec<Field>)>, Vec<String>) {
+/// `name -> (size, members)` of WGSL structs.
+type Structs = HashMap<String, (usize, Vec<Field>)>;
+
+/// Every WGSL struct of the prelude at precision `p`, and the names of the structs
+/// that bindings use.
+fn wgsl_structs(p: Precision) -> (Structs, Vec<String>) {
     let src = shaders::prelude(p);
     let module = naga::front::wgsl::parse_str(&src)
         .unwrap_or_else(|e| panic!("prelude ({}):\n{}", p.name(), e.emit_to_string(&src)));

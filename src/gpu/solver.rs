@@ -31,6 +31,9 @@ pub const STEPS_PER_SUBMISSION: u32 = 512;
 /// Invocations per workgroup of every stage (the shaders' `@workgroup_size`).
 const WORKGROUP: u32 = 64;
 
+/// Node positions (absolute, m) and velocities (m/s), packed order.
+pub type NodeStates = (Vec<[f64; 3]>, Vec<[f64; 3]>);
+
 /// Precision-independent host data, computed once.
 struct Host {
     /// Per block: origin (absolute, m), a whole number of metres (exact in f32).
@@ -152,7 +155,7 @@ trait Engine: Send {
         n: u64,
     ) -> Result<Option<(u64, u32)>, Error>;
     /// Reads positions and velocities back (absolute positions).
-    fn download(&mut self, host: &Host) -> Result<(Vec<[f64; 3]>, Vec<[f64; 3]>), Error>;
+    fn download(&mut self, host: &Host) -> Result<NodeStates, Error>;
     /// Writes positions and velocities.
     fn upload(&mut self, host: &Host, r: &[[f64; 3]], v: &[[f64; 3]]);
     /// Loads, accelerations and reactions at step `step`.
@@ -599,7 +602,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         Ok((st.failed != 0).then_some((st.step as u64, st.node)))
     }
 
-    fn download(&mut self, host: &Host) -> Result<(Vec<[f64; 3]>, Vec<[f64; 3]>), Error> {
+    fn download(&mut self, host: &Host) -> Result<NodeStates, Error> {
         let bytes = (self.n_nodes * std::mem::size_of::<NodeState<R>>()) as u64;
         let out = self.read_back(&[(&self.buf.state, bytes.max(4))])?;
         let st: Vec<NodeState<R>> = decode(&out[0][..bytes as usize]);
@@ -769,7 +772,7 @@ impl GpuSolver {
     }
 
     /// Reads back node positions (absolute, m) and velocities (m/s), packed order.
-    pub fn state(&mut self) -> Result<(Vec<[f64; 3]>, Vec<[f64; 3]>), Error> {
+    pub fn state(&mut self) -> Result<NodeStates, Error> {
         self.engine.download(&self.host)
     }
 

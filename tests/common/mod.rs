@@ -33,6 +33,7 @@ pub fn vacuum() -> Environment {
 
 /// A single straight cable from `a` to `b` with `n` segments of unstretched length
 /// `length / n`; `ra`, `rb` are the end routes (None = free), `mass_b` a point mass at b.
+#[allow(clippy::too_many_arguments)]
 pub fn straight_cable(
     env: Environment,
     lt: LineType,
