@@ -245,8 +245,8 @@ fn compare(
             let (n0, n1) = (b.node_start as usize, b.node_end as usize);
             let mut m = [0.0; 3];
             for p in &cpu.r[n0..n1] {
-                for d in 0..3 {
-                    m[d] += p.to_f64()[d] / (n1 - n0) as f64;
+                for (md, pd) in m.iter_mut().zip(p.to_f64()) {
+                    *md += pd / (n1 - n0) as f64;
                 }
             }
             for p in &cpu.r[n0..n1] {
