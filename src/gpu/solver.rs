@@ -73,8 +73,12 @@ fn split<R: GpuReal>(x: f64) -> (R, R) {
     (hi, R::c(x - hi.f64()))
 }
 
-/// Route `route` of node `node` rebased to time `t0` and origin `o`.
-fn rebased_route<R: GpuReal>(route: &Route, node: u32, t0: f64, o: [f64; 3]) -> RouteParams<R> {
+/// Route `route` of node `node` rebased to time `t0` and origin `o`: what the shaders'
+/// `route_eval(q, tau)` turns into the target at `t0 + tau`, relative to `o`.
+///
+/// # Panics
+/// On a table route (the GPU path refuses them before this is called).
+pub fn rebased_route<R: GpuReal>(route: &Route, node: u32, t0: f64, o: [f64; 3]) -> RouteParams<R> {
     let mut q = RouteParams::<R> {
         node,
         ..Default::default()
