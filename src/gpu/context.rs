@@ -141,14 +141,13 @@ impl GpuContext {
                 .filter_map(|k| env(k))
                 .collect();
             return Err(Error::NoAdapter(format!(
-                "no usable adapter{}{} (backends tried: {:?}); adapters seen: {}",
+                "no usable adapter{}{}; adapters seen: {}",
                 if need_f64 { " with SHADER_F64" } else { "" },
                 if envs.is_empty() {
                     String::new()
                 } else {
                     format!(" with {}", envs.join(", "))
                 },
-                backends,
                 if seen.is_empty() {
                     "none (on Linux, `apt-get install mesa-vulkan-drivers libvulkan1` gives the lavapipe software adapter)".into()
                 } else {

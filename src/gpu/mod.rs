@@ -10,6 +10,18 @@
 //!    fixed or route-driven node (route evaluated in the shader), then the symplectic
 //!    update; a blow-up sets a status flag that stops later steps.
 //!
+//! Precision: f32 by default, f64 where the adapter has `SHADER_F64`, from one WGSL
+//! source (the scalar type is substituted). In f32 an absolute coordinate near 1 km
+//! resolves only ~6e-5 m, so positions are stored relative to a per-block origin
+//! (whole metres) and as compensated pairs `r_hi + r_lo` updated by an exact two-sum;
+//! element vectors are formed from the pairs, and routes are rebased to each
+//! submission's start. What is left is f32's resolution of an element's length (a
+//! tension to about `EA 2^-23`). `tests/gpu_f32.rs` and `tests/gpu_parity.rs` hold the
+//! evidence.
+//!
+//! Not on the GPU yet ([`solver::unsupported`] says which, and `--backend auto` falls
+//! back to the CPU): the RK2 and RK4 schemes, the older element frames, table routes.
+//!
 //! Modules: [`context`] (adapter and device), [`layout`] (Rust twins of the WGSL
 //! structs), [`shaders`] (WGSL assembly per precision), [`solver`] (buffers, pipelines,
 //! stepping and read-back).

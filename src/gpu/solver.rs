@@ -144,6 +144,13 @@ pub fn unsupported(lay: &Layout, opts: &SolverOptions) -> Option<String> {
     if lay.routes.iter().any(|r| matches!(r, Route::Table { .. })) {
         return Some("table routes (positions read from a file)".into());
     }
+    // One invocation per node or element along x only, so far.
+    let most = 65_535 * WORKGROUP as usize;
+    if lay.n_nodes() > most || lay.n_elements() > most {
+        return Some(format!(
+            "more than {most} nodes or elements (one dispatch dimension)"
+        ));
+    }
     None
 }
 
