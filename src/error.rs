@@ -60,6 +60,12 @@ pub enum Error {
     /// No usable GPU adapter.
     #[error("no GPU adapter: {0}")]
     NoAdapter(String),
+    /// The GPU device failed (validation error, out of memory, device lost).
+    #[error("GPU: {0}")]
+    Gpu(String),
+    /// The model or options use something the GPU path does not do yet.
+    #[error("not supported on the GPU path yet: {0}")]
+    GpuUnsupported(String),
 }
 
 /// Result with the library's error.

@@ -9,6 +9,7 @@
 
 pub mod cpu;
 pub mod error;
+pub mod gpu;
 pub mod math;
 pub mod model;
 pub mod options;

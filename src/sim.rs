@@ -1,7 +1,8 @@
 //! Runs a scenario: set-up, initial equilibrium, time stepping, output.
 
-use crate::cpu::CpuSolver;
+use crate::cpu::{CpuSolver, Evaluation};
 use crate::error::Error;
+use crate::gpu::{GpuContext, GpuSolver, Precision};
 use crate::model::Layout;
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::output::{end_forces, CableSummary, OutputWriter, Summary};
@@ -15,6 +16,8 @@ use std::time::Instant;
 pub struct Overrides {
     /// Backend.
     pub backend: Option<Backend>,
+    /// GPU precision (the CPU path is always f64).
+    pub precision: Option<Precision>,
     /// Scheme.
     pub scheme: Option<Scheme>,
     /// Formulation.
@@ -112,18 +115,6 @@ pub fn prepare(sc: &Scenario) -> Result<(Layout, Vec<[f64; 3]>, f64), Error> {
 pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     let wall0 = Instant::now();
     let ov = &ro.overrides;
-    let backend = ov.backend.unwrap_or(sc.sim.backend);
-    match backend {
-        Backend::Gpu => {
-            return Err(Error::NoAdapter(
-                "this build has no GPU path yet; use --backend cpu (or auto)".into(),
-            ));
-        }
-        Backend::Auto => log::info!(
-            "backend auto: this build has no GPU path yet, running the f64 CPU reference path"
-        ),
-        Backend::Cpu => {}
-    }
     let mut opts = SolverOptions {
         formulation: ov.formulation.unwrap_or(sc.sim.formulation),
         scheme: ov.scheme.unwrap_or(sc.sim.scheme),
@@ -149,8 +140,17 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         plan.total_steps
     );
     opts.dt = plan.dt;
+    let backend = ov.backend.unwrap_or(sc.sim.backend);
+    let precision = match ov.precision {
+        Some(p) => Some(p),
+        None => sc.sim.precision.as_deref().and_then(Precision::parse),
+    };
+    let choice = choose_backend(backend, precision, &lay, &opts)?;
     let mut out = OutputWriter::create(&ro.out_dir, &lay)?;
-    let mut solver = CpuSolver::new(lay, &pos, opts);
+    let mut solver = match choice {
+        BackendChoice::Cpu => Stepper::Cpu(CpuSolver::new(lay, &pos, opts)),
+        BackendChoice::Gpu(ctx, p) => Stepper::Gpu(GpuSolver::new(&ctx, lay, &pos, opts, p)?),
+    };
 
     let bar = if ro.progress {
         let b = indicatif::ProgressBar::new(plan.total_steps);
@@ -168,10 +168,10 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     // Sub-chunks of about twenty million node-steps (a tenth of a second or so) keep
     // the bar moving on big runs without cutting the blocks' long runs too short.
     let chunk =
-        (20_000_000 / solver.layout.n_nodes().max(1) as u64).clamp(1, plan.steps_per_output);
+        (20_000_000 / solver.layout().n_nodes().max(1) as u64).clamp(1, plan.steps_per_output);
     let mut stepping = 0.0f64;
     let mut result: Result<(), Error> = Ok(());
-    write_frame(&mut out, &solver, 0.0)?;
+    write_frame(&mut out, &mut solver, 0.0)?;
     let mut done = 0u64;
     while done < plan.total_steps {
         let next_out = ((done / plan.steps_per_output) + 1) * plan.steps_per_output;
@@ -183,7 +183,7 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
             stepping += t0.elapsed().as_secs_f64();
             done += n;
             bar.set_position(done);
-            bar.set_message(format!("{:.2} s", solver.t));
+            bar.set_message(format!("{:.2} s", solver.t()));
             if let Err(e) = r {
                 result = Err(e);
                 break;
@@ -194,16 +194,18 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         }
         write_frame(
             &mut out,
-            &solver,
+            &mut solver,
             output_time(&plan, sc.sim.output_interval, done),
         )?;
     }
     bar.finish_and_clear();
     out.flush()?;
 
-    let lay = &solver.layout;
     let ev = solver.evaluate().ok();
-    let r: Vec<[f64; 3]> = solver.r.iter().map(|x| x.to_f64()).collect();
+    let r: Vec<[f64; 3]> = solver.positions()?;
+    let (backend_name, device, precision_name) = solver.describe();
+    let steps = solver.steps();
+    let lay = solver.layout();
     let cables = lay
         .cables
         .iter()
@@ -232,22 +234,22 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         },
         error: result.as_ref().err().map(|e| e.to_string()),
         scenario: sc.path.display().to_string(),
-        backend: "cpu".into(),
-        device: cpu_name(),
-        precision: "f64".into(),
+        backend: backend_name.into(),
+        device,
+        precision: precision_name.into(),
         scheme: opts.scheme.name().into(),
         formulation: opts.formulation.name().into(),
-        steps: solver.steps,
+        steps,
         dt: plan.dt,
         dt_stable: plan.bound.dt,
         dt_limited_by: plan.bound.term.clone(),
-        simulated_time: output_time(&plan, sc.sim.output_interval, solver.steps),
+        simulated_time: output_time(&plan, sc.sim.output_interval, steps),
         wall_seconds: stepping,
         total_wall_seconds: wall0.elapsed().as_secs_f64(),
         nodes: lay.n_nodes(),
         elements: lay.n_elements(),
         node_steps_per_second: if stepping > 0.0 {
-            lay.n_nodes() as f64 * solver.steps as f64 / stepping
+            lay.n_nodes() as f64 * steps as f64 / stepping
         } else {
             0.0
         },
@@ -259,10 +261,141 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     result.map(|_| summary)
 }
 
-fn write_frame(out: &mut OutputWriter, s: &CpuSolver, t: f64) -> Result<(), Error> {
+fn write_frame(out: &mut OutputWriter, s: &mut Stepper, t: f64) -> Result<(), Error> {
     let ev = s.evaluate()?;
-    let r: Vec<[f64; 3]> = s.r.iter().map(|x| x.to_f64()).collect();
-    out.frame(t, &s.layout, &r, &ev)
+    let r = s.positions()?;
+    out.frame(t, s.layout(), &r, &ev)
+}
+
+/// The backend a run uses.
+pub enum BackendChoice {
+    /// The f64 CPU reference path.
+    Cpu,
+    /// The GPU path on this device, at this precision.
+    Gpu(Box<GpuContext>, Precision),
+}
+
+/// Chooses the backend:
+/// - `cpu`: the CPU path (always f64; a precision of f32 is ignored with a warning);
+/// - `gpu`: the best adapter (see [`crate::gpu::context`]) at the asked precision
+///   (default f32); an error when there is no usable adapter (or none with
+///   `SHADER_F64` for f64), or when the model needs what the GPU path lacks;
+/// - `auto`: the GPU path where it applies, else the CPU path with a logged reason:
+///   no usable adapter, the model needs what the GPU path lacks, or the only adapter
+///   is a software one (lavapipe, llvmpipe, WARP: slower than the CPU path; use
+///   `--backend gpu` to run on it anyway).
+pub fn choose_backend(
+    backend: Backend,
+    precision: Option<Precision>,
+    lay: &Layout,
+    opts: &SolverOptions,
+) -> Result<BackendChoice, Error> {
+    let need_f64 = precision == Some(Precision::F64);
+    let p = precision.unwrap_or_default();
+    match backend {
+        Backend::Cpu => {
+            if precision == Some(Precision::F32) {
+                log::warn!("the CPU path is always f64: precision f32 applies to the GPU only");
+            }
+            Ok(BackendChoice::Cpu)
+        }
+        Backend::Gpu => {
+            if let Some(what) = crate::gpu::solver::unsupported(lay, opts) {
+                return Err(Error::GpuUnsupported(format!(
+                    "{what}; use --backend cpu (or auto)"
+                )));
+            }
+            let ctx = GpuContext::new(need_f64)?;
+            log::info!("backend gpu: {} at {}", ctx.describe(), p.name());
+            Ok(BackendChoice::Gpu(Box::new(ctx), p))
+        }
+        Backend::Auto => {
+            if let Some(what) = crate::gpu::solver::unsupported(lay, opts) {
+                log::info!(
+                    "backend auto: the GPU path does not do {what} yet; running the f64 CPU reference path"
+                );
+                return Ok(BackendChoice::Cpu);
+            }
+            match GpuContext::new(need_f64) {
+                Err(e) => {
+                    log::warn!("backend auto: {e}; running the f64 CPU reference path");
+                    Ok(BackendChoice::Cpu)
+                }
+                Ok(ctx) if ctx.info.device_type == wgpu::DeviceType::Cpu => {
+                    log::info!(
+                        "backend auto: the best adapter, {}, is a software one (slower than the CPU path); \
+                         running the f64 CPU reference path (--backend gpu runs on it anyway)",
+                        ctx.describe()
+                    );
+                    Ok(BackendChoice::Cpu)
+                }
+                Ok(ctx) => {
+                    log::info!("backend auto: {} at {}", ctx.describe(), p.name());
+                    Ok(BackendChoice::Gpu(Box::new(ctx), p))
+                }
+            }
+        }
+    }
+}
+
+/// The solver a run steps: the CPU reference or the GPU path, behind one interface.
+pub enum Stepper {
+    /// The f64 CPU reference path.
+    Cpu(CpuSolver),
+    /// The GPU path.
+    Gpu(GpuSolver),
+}
+
+impl Stepper {
+    /// Advances `n` steps.
+    pub fn advance(&mut self, n: u64) -> Result<(), Error> {
+        match self {
+            Stepper::Cpu(s) => s.advance(n),
+            Stepper::Gpu(s) => s.advance(n),
+        }
+    }
+    /// Simulated time, s.
+    pub fn t(&self) -> f64 {
+        match self {
+            Stepper::Cpu(s) => s.t,
+            Stepper::Gpu(s) => s.t,
+        }
+    }
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        match self {
+            Stepper::Cpu(s) => s.steps,
+            Stepper::Gpu(s) => s.steps,
+        }
+    }
+    /// The packed model.
+    pub fn layout(&self) -> &Layout {
+        match self {
+            Stepper::Cpu(s) => &s.layout,
+            Stepper::Gpu(s) => &s.layout,
+        }
+    }
+    /// Node positions (packed order; read back from the GPU), m.
+    pub fn positions(&mut self) -> Result<Vec<[f64; 3]>, Error> {
+        match self {
+            Stepper::Cpu(s) => Ok(s.r.iter().map(|x| x.to_f64()).collect()),
+            Stepper::Gpu(s) => Ok(s.state()?.0),
+        }
+    }
+    /// Tensions, reactions and accelerations at the current state.
+    pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
+        match self {
+            Stepper::Cpu(s) => s.evaluate(),
+            Stepper::Gpu(s) => s.evaluate(),
+        }
+    }
+    /// `(backend, device, precision)` for the summary.
+    pub fn describe(&self) -> (&'static str, String, &'static str) {
+        match self {
+            Stepper::Cpu(_) => ("cpu", cpu_name(), "f64"),
+            Stepper::Gpu(s) => ("gpu", s.device().to_string(), s.precision.name()),
+        }
+    }
 }
 
 /// The time of step `steps` as written out: an exact multiple of the output interval at

@@ -1,6 +1,7 @@
 //! The `cablesim` command line: a thin layer over the library.
 
 use anyhow::{Context, Result};
+use cablesim::gpu::Precision;
 use cablesim::options::{Formulation, Scheme, SolverOptions};
 use cablesim::scenario::{Backend, Scenario};
 use cablesim::sim::{self, Overrides, RunOptions};
@@ -28,9 +29,14 @@ enum Cmd {
         /// Output directory (default: out/<scenario name>).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// auto | cpu | gpu (default: the scenario's, else auto).
+        /// auto | cpu | gpu (default: the scenario's, else auto). The GPU adapter can
+        /// be picked with WGPU_BACKEND (vulkan, gl, ...) and WGPU_ADAPTER_NAME.
         #[arg(long)]
         backend: Option<String>,
+        /// f32 | f64: GPU shader precision (default: the scenario's, else f32; f64
+        /// needs an adapter with SHADER_F64). The CPU path is always f64.
+        #[arg(long)]
+        precision: Option<String>,
         /// symplectic | rk2 | rk4.
         #[arg(long)]
         scheme: Option<String>,
@@ -112,6 +118,7 @@ fn real_main() -> Result<()> {
             scenario,
             out,
             backend,
+            precision,
             scheme,
             formulation,
             dt,
@@ -120,6 +127,7 @@ fn real_main() -> Result<()> {
         } => {
             let overrides = Overrides {
                 backend: parse_opt(&backend, "backend", Backend::parse)?,
+                precision: parse_opt(&precision, "precision", Precision::parse)?,
                 scheme: parse_opt(&scheme, "scheme", Scheme::parse)?,
                 formulation: parse_opt(&formulation, "formulation", Formulation::parse)?,
                 dt: dt

@@ -15,4 +15,5 @@
 mod chain;
 mod stepper;
 
+pub(crate) use stepper::diverged;
 pub use stepper::{CpuSolver, Evaluation, StepFailure};

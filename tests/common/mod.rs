@@ -33,6 +33,7 @@ pub fn vacuum() -> Environment {
 
 /// A single straight cable from `a` to `b` with `n` segments of unstretched length
 /// `length / n`; `ra`, `rb` are the end routes (None = free), `mass_b` a point mass at b.
+#[allow(clippy::too_many_arguments)]
 pub fn straight_cable(
     env: Environment,
     lt: LineType,
@@ -74,5 +75,33 @@ pub fn straight_cable(
             output_positions: true,
         }],
         nodes,
+    }
+}
+
+/// A GPU context for a test, or `None` (after saying so loudly on stderr) when the
+/// machine has no suitable adapter. With `CABLESIM_REQUIRE_GPU=1` a missing adapter
+/// (or a missing `SHADER_F64` when `need_f64`) fails the test instead.
+pub fn gpu_context(test: &str, need_f64: bool) -> Option<cablesim::gpu::GpuContext> {
+    match cablesim::gpu::GpuContext::new(need_f64) {
+        Ok(c) => {
+            eprintln!("{test}: running on {}", c.describe());
+            Some(c)
+        }
+        Err(e) => {
+            let required = std::env::var("CABLESIM_REQUIRE_GPU").is_ok_and(|v| v == "1");
+            if required {
+                panic!("{test}: CABLESIM_REQUIRE_GPU=1 but {e}");
+            }
+            // Straight to the process's stderr: the test harness captures eprintln! of
+            // passing tests, and a skip must be seen.
+            use std::io::Write;
+            let _ = writeln!(
+                std::io::stderr(),
+                "\n*** SKIPPED {test}: {e}\n*** (set CABLESIM_REQUIRE_GPU=1 to make this a failure; \
+                 on Linux `apt-get install mesa-vulkan-drivers libvulkan1` gives lavapipe, \
+                 then WGPU_BACKEND=vulkan)\n"
+            );
+            None
+        }
     }
 }

@@ -1,0 +1,443 @@
+// Shared structs, bindings and force functions of every cablesim compute stage.
+//
+// `gpu::shaders` prepends a header that defines the scalar type `R` (`f32` or
+// `f64`: one source for both precisions) and the constants `PIO2_HI`, `PIO2_LO`
+// (pi/2 split into two `R` values), then appends one stage file.
+//
+// Structs use scalar members only (plus `vec4<R>` in all-vector structs), never
+// `vec3`: keep them in step with `src/gpu/layout.rs` (tests/gpu_layout.rs compares
+// sizes and offsets through naga).
+//
+// Node positions are relative to their block's origin and stored as an unevaluated
+// sum `r_hi + r_lo` (see `add_compensated`): in f32 an absolute coordinate near 100 m
+// resolves only ~8e-6 m, which is a strain error of ~1e-6 on a 5 m element.
+
+const NO_CONSTRAINT: u32 = 0xffffffffu;
+const ROUTE_FIXED: u32 = 0u;
+const ROUTE_LINE: u32 = 1u;
+const ROUTE_CIRCLE: u32 = 2u;
+const FAIL_SPEED: u32 = 1u;
+const FAIL_DISTANCE: u32 = 2u;
+
+// Run constants. Rust: gpu::layout::{f32,f64}::Params.
+struct Params {
+    n_nodes: u32,
+    n_elems: u32,
+    n_routes: u32,
+    // 1 when there is a seabed plane.
+    seabed: u32,
+    // Steps of this advance call before the current submission.
+    step_base: u32,
+    pad: u32,
+    dt: R,
+    alpha: R,
+    beta: R,
+    max_speed: R,
+    max_distance: R,
+    seabed_k: R,
+    seabed_c: R,
+    seabed_mu: R,
+    seabed_v_eps: R,
+    // 1.0, read at run time: keeps the compiler from folding compensated sums.
+    one: R,
+}
+
+// The step within the current submission (a dynamic-offset uniform). Rust: StepInfo.
+struct StepInfo {
+    k: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+}
+
+// Folded line constants (physics::Coefs). Rust: LineParams.
+struct LineParams {
+    ea: R,
+    ea_c: R,
+    drag_n: R,
+    drag_t: R,
+    froude_krylov: R,
+    mass: R,
+    added_mass: R,
+    wet_weight_z: R,
+    compression: R,
+}
+
+// One element. Rust: ElemParams.
+struct ElemParams {
+    a: u32,
+    b: u32,
+    line: u32,
+    current: u32,
+    l0: R,
+}
+
+// One node; its incidence entries are inc[inc_start..inc_end]. Rust: NodeParams.
+struct NodeParams {
+    inc_start: u32,
+    inc_end: u32,
+    constraint: u32,
+    block: u32,
+    current: u32,
+    pad: u32,
+    point_mass: R,
+    point_weight_z: R,
+    point_drag: R,
+    tributary: R,
+}
+
+// A route rebased to the start of the submission and to the block origin:
+// fixed: r = p; line: r = p + vel tau; circle/screw: r = p + e1 cos(th) + e2 sin(th)
+// + vel tau with th = theta0 + w tau (e1, e2 scaled by the radius). `p` is a
+// compensated pair (p_hi + p_lo). Rust: RouteParams.
+struct RouteParams {
+    p_hi_x: R,
+    p_hi_y: R,
+    p_hi_z: R,
+    p_lo_x: R,
+    p_lo_y: R,
+    p_lo_z: R,
+    vel_x: R,
+    vel_y: R,
+    vel_z: R,
+    e1_x: R,
+    e1_y: R,
+    e1_z: R,
+    e2_x: R,
+    e2_y: R,
+    e2_z: R,
+    w: R,
+    theta0: R,
+    kind: u32,
+    node: u32,
+}
+
+// A block's origin (absolute, m) and its seabed height relative to the origin.
+// Rust: BlockParams.
+struct BlockParams {
+    ox: R,
+    oy: R,
+    oz: R,
+    zb: R,
+}
+
+// One row of a current profile. Rust: CurrentPoint.
+struct CurrentPoint {
+    z: R,
+    ux: R,
+    uy: R,
+    uz: R,
+}
+
+// The rows of one current profile. Rust: CurrentRange.
+struct CurrentRange {
+    start: u32,
+    len: u32,
+}
+
+// Node state: position r_hi + r_lo (relative to the block origin) and velocity.
+// Rust: NodeState.
+struct NodeState {
+    r_hi: vec4<R>,
+    r_lo: vec4<R>,
+    v: vec4<R>,
+}
+
+// What an element gives its nodes (physics::ElementLoads). Rust: ElemLoads.
+struct ElemLoads {
+    tx: R,
+    ty: R,
+    tz: R,
+    tension: R,
+    fx: R,
+    fy: R,
+    fz: R,
+    half_mass: R,
+    half_added: R,
+}
+
+// Per node, written by the evaluate pass: total force and acceleration.
+// Rust: NodeOut.
+struct NodeOut {
+    force: vec4<R>,
+    acc: vec4<R>,
+}
+
+// First blow-up of a submission. Rust: Status.
+struct Status {
+    failed: atomic<u32>,
+    // step_base + k of the failing step.
+    step: u32,
+    node: u32,
+    what: u32,
+}
+
+@group(0) @binding(0) var<storage, read> params: Params;
+@group(0) @binding(1) var<uniform> step: StepInfo;
+@group(0) @binding(2) var<storage, read> lines: array<LineParams>;
+@group(0) @binding(3) var<storage, read> elems: array<ElemParams>;
+@group(0) @binding(4) var<storage, read> nodes: array<NodeParams>;
+@group(0) @binding(5) var<storage, read> inc: array<u32>;
+@group(0) @binding(6) var<storage, read> routes: array<RouteParams>;
+@group(0) @binding(7) var<storage, read> blocks: array<BlockParams>;
+@group(0) @binding(8) var<storage, read> current_pts: array<CurrentPoint>;
+@group(0) @binding(9) var<storage, read> current_ranges: array<CurrentRange>;
+@group(0) @binding(10) var<storage, read_write> state: array<NodeState>;
+@group(0) @binding(11) var<storage, read_write> elem_loads: array<ElemLoads>;
+@group(0) @binding(12) var<storage, read_write> node_out: array<NodeOut>;
+@group(0) @binding(13) var<storage, read_write> reactions: array<vec4<R>>;
+@group(0) @binding(14) var<storage, read_write> status: Status;
+
+// ---- Small math ----
+
+// Symmetric 3x3 matrix (math::Sym3).
+struct Sym3 {
+    xx: R,
+    yy: R,
+    zz: R,
+    xy: R,
+    xz: R,
+    yz: R,
+}
+
+fn sym3_scalar(s: R) -> Sym3 {
+    return Sym3(s, s, s, R(0.0), R(0.0), R(0.0));
+}
+
+// m + s I + a (I - t t^T): a lumped element's half mass and half normal added mass.
+fn sym3_add_element(m: Sym3, s: R, a: R, t: vec3<R>) -> Sym3 {
+    var o = m;
+    o.xx += s;
+    o.yy += s;
+    o.zz += s;
+    o.xx += a - a * t.x * t.x;
+    o.yy += a - a * t.y * t.y;
+    o.zz += a - a * t.z * t.z;
+    o.xy -= a * t.x * t.y;
+    o.xz -= a * t.x * t.z;
+    o.yz -= a * t.y * t.z;
+    return o;
+}
+
+fn sym3_mul(m: Sym3, v: vec3<R>) -> vec3<R> {
+    return vec3<R>(
+        m.xx * v.x + m.xy * v.y + m.xz * v.z,
+        m.xy * v.x + m.yy * v.y + m.yz * v.z,
+        m.xz * v.x + m.yz * v.y + m.zz * v.z,
+    );
+}
+
+// Solves m x = b by the adjugate (math::Sym3::solve).
+fn sym3_solve(m: Sym3, b: vec3<R>) -> vec3<R> {
+    let c_xx = m.yy * m.zz - m.yz * m.yz;
+    let c_xy = m.xz * m.yz - m.xy * m.zz;
+    let c_xz = m.xy * m.yz - m.xz * m.yy;
+    let c_yy = m.xx * m.zz - m.xz * m.xz;
+    let c_yz = m.xy * m.xz - m.xx * m.yz;
+    let c_zz = m.xx * m.yy - m.xy * m.xy;
+    let det = m.xx * c_xx + m.xy * c_xy + m.xz * c_xz;
+    let inv = R(1.0) / det;
+    return vec3<R>(
+        (c_xx * b.x + c_xy * b.y + c_xz * b.z) * inv,
+        (c_xy * b.x + c_yy * b.y + c_yz * b.z) * inv,
+        (c_xz * b.x + c_yz * b.y + c_zz * b.z) * inv,
+    );
+}
+
+fn norm3(v: vec3<R>) -> R {
+    return sqrt(dot(v, v));
+}
+
+// (sin x, cos x) for |x| up to a few turns, in either precision: WGSL's sin and cos
+// are not defined for f64 (GLSL.std.450 has no double trigonometry). Reduction by
+// pi/2 (split in two parts), then the Taylor series to x^15 / x^16 on
+// |y| <= pi/4, whose truncation error (below 5e-17) is under an f64 ulp.
+fn sin_cos(x: R) -> vec2<R> {
+    let q = floor(x / (PIO2_HI + PIO2_LO) + R(0.5));
+    let y = (x - q * PIO2_HI) - q * PIO2_LO;
+    let y2 = y * y;
+    let s = y * (R(1.0) + y2 * (R(-1.0 / 6.0) + y2 * (R(1.0 / 120.0) + y2 * (R(-1.0 / 5040.0)
+        + y2 * (R(1.0 / 362880.0) + y2 * (R(-1.0 / 39916800.0) + y2 * (R(1.0 / 6227020800.0)
+        + y2 * R(-1.0 / 1307674368000.0))))))));
+    let c = R(1.0) + y2 * (R(-0.5) + y2 * (R(1.0 / 24.0) + y2 * (R(-1.0 / 720.0)
+        + y2 * (R(1.0 / 40320.0) + y2 * (R(-1.0 / 3628800.0) + y2 * (R(1.0 / 479001600.0)
+        + y2 * (R(-1.0 / 87178291200.0) + y2 * R(1.0 / 20922789888000.0))))))));
+    let quadrant = ((i32(q) % 4) + 4) % 4;
+    switch quadrant {
+        case 0: { return vec2<R>(s, c); }
+        case 1: { return vec2<R>(c, -s); }
+        case 2: { return vec2<R>(-s, -c); }
+        default: { return vec2<R>(-c, s); }
+    }
+}
+
+// Adds `d` to the compensated value `hi + lo` (Knuth's two-sum, then a renormalising
+// fast two-sum), returning the new (hi, lo). `params.one` is 1.0 at run time; the
+// multiplications keep compilers from rewriting `(hi + d) - hi` as `d`.
+fn add_compensated(hi: vec3<R>, lo: vec3<R>, d: vec3<R>) -> array<vec3<R>, 2> {
+    let s = (hi + d) * params.one;
+    let bb = s - hi;
+    let err = (hi - (s - bb)) + (d - bb);
+    let l = lo + err;
+    let h = (s + l) * params.one;
+    return array<vec3<R>, 2>(h, l - (h - s));
+}
+
+// ---- Environment ----
+
+// Current of profile `ci` at absolute height `z` (model::Current::at).
+fn current_at(ci: u32, z: R) -> vec3<R> {
+    let rg = current_ranges[ci];
+    if rg.len == 0u {
+        return vec3<R>(R(0.0), R(0.0), R(0.0));
+    }
+    let first = current_pts[rg.start];
+    if rg.len == 1u || z <= first.z {
+        return vec3<R>(first.ux, first.uy, first.uz);
+    }
+    let last = current_pts[rg.start + rg.len - 1u];
+    if z >= last.z {
+        return vec3<R>(last.ux, last.uy, last.uz);
+    }
+    var i = 1u;
+    while current_pts[rg.start + i].z < z {
+        i += 1u;
+    }
+    let p0 = current_pts[rg.start + i - 1u];
+    let p1 = current_pts[rg.start + i];
+    let s = (z - p0.z) / (p1.z - p0.z);
+    return vec3<R>(p0.ux + s * (p1.ux - p0.ux), p0.uy + s * (p1.uy - p0.uy), p0.uz + s * (p1.uz - p0.uz));
+}
+
+// ---- Physics (twins of src/physics) ----
+
+// What an element contributes to its two nodes (physics::ElementLoads).
+struct Element {
+    t: vec3<R>,
+    tension: R,
+    f_half: vec3<R>,
+    half_mass: R,
+    half_added: R,
+}
+
+// Axial force from stretch and stretch rate (physics::axial_force). The strain is
+// formed as (l - l0) / l0, which in f32 avoids rounding l / l0 near 1.
+fn axial_force(c: LineParams, l: R, l0: R, t: vec3<R>, dv: vec3<R>) -> R {
+    let eps = (l - l0) / l0;
+    let epsdot = dot(t, dv) / l0;
+    let k = select(c.compression, R(1.0), eps > R(0.0));
+    return c.ea * eps * k + c.ea_c * epsdot;
+}
+
+// The GLMF loads of an element with node-a-to-b vector `d` (physics::glmf_element):
+// tension with slack and damping, normal and tangential drag on the relative current
+// `u - (va + vb) / 2`, the water-acceleration load of `aw`, weight less buoyancy.
+fn glmf_element(c: LineParams, d: vec3<R>, va: vec3<R>, vb: vec3<R>, l0: R, u: vec3<R>, aw: vec3<R>) -> Element {
+    let l = norm3(d);
+    let t = d / l;
+    let tension = axial_force(c, l, l0, t, vb - va);
+    let vrel = u - (va + vb) * R(0.5);
+    let vt = dot(t, vrel);
+    let vn = vrel - t * vt;
+    let awn = aw - t * dot(t, aw);
+    let drag_n = vn * (c.drag_n * l * norm3(vn));
+    let drag_t = t * (c.drag_t * l * abs(vt) * vt);
+    let fk = awn * (c.froude_krylov * l0);
+    let w = vec3<R>(R(0.0), R(0.0), c.wet_weight_z * l0);
+    let total = drag_n + drag_t + fk + w;
+    return Element(t, tension, total * R(0.5), c.mass * l0 * R(0.5), c.added_mass * l0 * R(0.5));
+}
+
+// Seabed contact on a node penetrating by `pen` (seabed z minus node z, m) with
+// tributary length `lt`, moving at `v` (physics::seabed_force).
+fn seabed_force(pen: R, lt: R, v: vec3<R>) -> vec3<R> {
+    if !(pen > R(0.0)) {
+        return vec3<R>(R(0.0), R(0.0), R(0.0));
+    }
+    let fz = params.seabed_k * lt * pen - params.seabed_c * lt * v.z;
+    var f = vec3<R>(R(0.0), R(0.0), fz);
+    if params.seabed_mu > R(0.0) {
+        let fnorm = params.seabed_k * lt * pen;
+        let vh = vec3<R>(v.x, v.y, R(0.0));
+        let speed = max(norm3(vh), params.seabed_v_eps);
+        f += vh * (-params.seabed_mu * fnorm / speed);
+    }
+    return f;
+}
+
+// Target position (relative to the origin, as a compensated pair r_hi + r_lo),
+// velocity and acceleration of a route at `tau` seconds after the rebase time.
+struct RouteState {
+    r_hi: vec3<R>,
+    r_lo: vec3<R>,
+    v: vec3<R>,
+    a: vec3<R>,
+}
+
+fn route_eval(q: RouteParams, tau: R) -> RouteState {
+    let p_hi = vec3<R>(q.p_hi_x, q.p_hi_y, q.p_hi_z);
+    let p_lo = vec3<R>(q.p_lo_x, q.p_lo_y, q.p_lo_z);
+    let vel = vec3<R>(q.vel_x, q.vel_y, q.vel_z);
+    let zero = vec3<R>(R(0.0), R(0.0), R(0.0));
+    if q.kind == ROUTE_FIXED {
+        return RouteState(p_hi, p_lo, zero, zero);
+    }
+    if q.kind == ROUTE_LINE {
+        return RouteState(p_hi, p_lo + vel * tau, vel, zero);
+    }
+    let e1 = vec3<R>(q.e1_x, q.e1_y, q.e1_z);
+    let e2 = vec3<R>(q.e2_x, q.e2_y, q.e2_z);
+    let sc = sin_cos(q.theta0 + q.w * tau);
+    let radial = e1 * sc.y + e2 * sc.x;
+    return RouteState(
+        p_hi,
+        p_lo + radial + vel * tau,
+        (e2 * sc.y - e1 * sc.x) * q.w + vel,
+        -radial * (q.w * q.w),
+    );
+}
+
+// ---- Per-node gather shared by the update and evaluate passes ----
+
+struct NodeForce {
+    f: vec3<R>,
+    m: Sym3,
+}
+
+// Force and mass block of node `i`: its elements' loads and half masses gathered over
+// the incidence list (no atomics), point-mass weight and drag, seabed contact.
+fn gather_node(i: u32, nd: NodeParams, s: NodeState) -> NodeForce {
+    var f = vec3<R>(R(0.0), R(0.0), nd.point_weight_z);
+    var m = sym3_scalar(nd.point_mass);
+    for (var k = nd.inc_start; k < nd.inc_end; k += 1u) {
+        let entry = inc[k];
+        let el = elem_loads[entry >> 1u];
+        let sign = select(R(1.0), R(-1.0), (entry & 1u) == 1u);
+        let t = vec3<R>(el.tx, el.ty, el.tz);
+        f += vec3<R>(el.fx, el.fy, el.fz) + t * (sign * el.tension);
+        m = sym3_add_element(m, el.half_mass, el.half_added, t);
+    }
+    let v = s.v.xyz;
+    let blk = blocks[nd.block];
+    if nd.point_drag > R(0.0) {
+        let z = blk.oz + (s.r_hi.z + s.r_lo.z);
+        let vr = current_at(nd.current, z) - v;
+        f += vr * (nd.point_drag * norm3(vr));
+    }
+    if params.seabed != 0u {
+        let pen = (blk.zb - s.r_hi.z) - s.r_lo.z;
+        f += seabed_force(pen, nd.tributary, v);
+    }
+    return NodeForce(f, m);
+}
+
+// Acceleration of node `i`: free (mass block solve) or driven onto its route with
+// Baumgarte stabilisation `a = a_d - beta (v - v_d) - alpha (r - r_d)`.
+fn node_accel(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R) -> vec3<R> {
+    if nd.constraint == NO_CONSTRAINT {
+        return sym3_solve(nf.m, nf.f);
+    }
+    let d = route_eval(routes[nd.constraint], tau);
+    let dr = (s.r_hi.xyz - d.r_hi) + (s.r_lo.xyz - d.r_lo);
+    return d.a - (s.v.xyz - d.v) * params.beta - dr * params.alpha;
+}

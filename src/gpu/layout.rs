@@ -1,0 +1,393 @@
+//! Host twins of the WGSL structs in `shaders/shared/prelude.wgsl`.
+//!
+//! Each struct is `#[repr(C)]`, generic over the scalar type `R` (`f32` or `f64`, the
+//! WGSL alias `R` of the same name), and made only of 32-bit integers, `R` scalars and
+//! `[R; 4]` (WGSL `vec4<R>`, only in structs made entirely of them): no `vec3`, whose
+//! 16-byte alignment would open gaps that `#[repr(C)]` does not have. A compile-time
+//! assertion per precision shows each struct has no padding (so `Pod` is sound), and
+//! `tests/gpu_layout.rs` parses the WGSL with naga and checks every size and member
+//! offset against [`GpuStruct::fields`]. Keep both sides in step when editing either.
+
+use crate::math::Real;
+use bytemuck::{Pod, Zeroable};
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for f32 {}
+    impl Sealed for f64 {}
+}
+
+/// The scalar type of a GPU computation: `f32` or `f64` (sealed).
+pub trait GpuReal: Real + Pod + sealed::Sealed {
+    /// The WGSL name of the type.
+    const WGSL: &'static str;
+}
+
+impl GpuReal for f32 {
+    const WGSL: &'static str = "f32";
+}
+
+impl GpuReal for f64 {
+    const WGSL: &'static str = "f64";
+}
+
+/// One member of a struct as the layout test sees it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Field {
+    /// Member name (the same on both sides).
+    pub name: &'static str,
+    /// Byte offset.
+    pub offset: usize,
+    /// Byte size.
+    pub size: usize,
+}
+
+/// A struct shared with WGSL.
+pub trait GpuStruct: Pod {
+    /// The WGSL struct name.
+    const NAME: &'static str;
+    /// Members in declaration order.
+    fn fields() -> Vec<Field>;
+}
+
+/// Defines a shared struct generic over `R`, its `Pod` impls (with a no-padding
+/// assertion for both precisions) and its [`GpuStruct`] impl.
+macro_rules! gpu_struct {
+    ($(#[$m:meta])* $name:ident { $($(#[$fm:meta])* $field:ident : $ty:ty),* $(,)? }) => {
+        $(#[$m])*
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        pub struct $name<R> {
+            $($(#[$fm])* pub $field: $ty,)*
+        }
+        const _: () = {
+            type R = f32;
+            assert!(std::mem::size_of::<$name<R>>() == 0 $(+ std::mem::size_of::<$ty>())*);
+        };
+        const _: () = {
+            type R = f64;
+            assert!(std::mem::size_of::<$name<R>>() == 0 $(+ std::mem::size_of::<$ty>())*);
+        };
+        // SAFETY: `repr(C)`, every field is `Pod` for the two sealed scalar types, and
+        // the assertions above show there are no padding bytes.
+        unsafe impl<R: GpuReal> Zeroable for $name<R> {}
+        // SAFETY: as above.
+        unsafe impl<R: GpuReal> Pod for $name<R> {}
+        impl<R: GpuReal> GpuStruct for $name<R> {
+            const NAME: &'static str = stringify!($name);
+            fn fields() -> Vec<Field> {
+                vec![$(Field {
+                    name: stringify!($field),
+                    offset: std::mem::offset_of!($name<R>, $field),
+                    size: std::mem::size_of::<$ty>(),
+                }),*]
+            }
+        }
+    };
+}
+
+/// Defines a shared struct without scalars of type `R`.
+macro_rules! gpu_struct_u32 {
+    ($(#[$m:meta])* $name:ident { $($(#[$fm:meta])* $field:ident : $ty:ty),* $(,)? }) => {
+        $(#[$m])*
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+        pub struct $name {
+            $($(#[$fm])* pub $field: $ty,)*
+        }
+        impl GpuStruct for $name {
+            const NAME: &'static str = stringify!($name);
+            fn fields() -> Vec<Field> {
+                vec![$(Field {
+                    name: stringify!($field),
+                    offset: std::mem::offset_of!($name, $field),
+                    size: std::mem::size_of::<$ty>(),
+                }),*]
+            }
+        }
+    };
+}
+
+gpu_struct! {
+    /// Run constants (WGSL `Params`).
+    Params {
+        /// Number of nodes.
+        n_nodes: u32,
+        /// Number of elements.
+        n_elems: u32,
+        /// Number of routes (constrained nodes).
+        n_routes: u32,
+        /// 1 when there is a seabed plane, else 0.
+        seabed: u32,
+        /// Steps taken in this `advance` call before the current submission (so a
+        /// blow-up's step is `step_base + StepInfo::k`).
+        step_base: u32,
+        /// Padding.
+        pad: u32,
+        /// Time step, s.
+        dt: R,
+        /// Baumgarte position gain, s^-2.
+        alpha: R,
+        /// Baumgarte velocity gain, s^-1.
+        beta: R,
+        /// Blow-up speed, m/s.
+        max_speed: R,
+        /// Blow-up distance from the global origin, m.
+        max_distance: R,
+        /// Seabed stiffness per metre of cable, N/m^2.
+        seabed_k: R,
+        /// Seabed damping per metre of cable, N s/m^2.
+        seabed_c: R,
+        /// Seabed friction coefficient.
+        seabed_mu: R,
+        /// Friction regularisation velocity, m/s.
+        seabed_v_eps: R,
+        /// Always 1.0 (read at run time, so compensated sums are not folded away).
+        one: R,
+    }
+}
+
+gpu_struct_u32! {
+    /// The step index within a submission (WGSL `StepInfo`, a dynamic-offset uniform).
+    StepInfo {
+        /// Step index since the routes were last rebased.
+        k: u32,
+        /// Padding.
+        pad0: u32,
+        /// Padding.
+        pad1: u32,
+        /// Padding.
+        pad2: u32,
+    }
+}
+
+gpu_struct! {
+    /// Folded line constants (WGSL `LineParams`, [`crate::physics::Coefs`]).
+    LineParams {
+        /// `EA`, N.
+        ea: R,
+        /// `EA c`, N s.
+        ea_c: R,
+        /// `1/2 rho Cn d`, kg/m^2.
+        drag_n: R,
+        /// `1/2 rho Ct pi d`, kg/m^2.
+        drag_t: R,
+        /// `(1 + Cm) rho A`, kg/m.
+        froude_krylov: R,
+        /// `mbar`, kg/m.
+        mass: R,
+        /// `Cm rho A`, kg/m.
+        added_mass: R,
+        /// z component of weight less buoyancy per length, N/m.
+        wet_weight_z: R,
+        /// 1 when the elastic force acts in compression, else 0.
+        compression: R,
+    }
+}
+
+gpu_struct! {
+    /// One element (WGSL `ElemParams`).
+    ElemParams {
+        /// Node a.
+        a: u32,
+        /// Node b.
+        b: u32,
+        /// Line type.
+        line: u32,
+        /// Current profile.
+        current: u32,
+        /// Unstretched length, m.
+        l0: R,
+    }
+}
+
+gpu_struct! {
+    /// One node (WGSL `NodeParams`).
+    NodeParams {
+        /// First incidence entry.
+        inc_start: u32,
+        /// One past the last incidence entry.
+        inc_end: u32,
+        /// Route index, or `u32::MAX`.
+        constraint: u32,
+        /// Block index (origin, seabed height).
+        block: u32,
+        /// Current profile (for point drag).
+        current: u32,
+        /// Padding.
+        pad: u32,
+        /// Point mass plus its added mass, kg.
+        point_mass: R,
+        /// z component of the point's weight less buoyancy, N.
+        point_weight_z: R,
+        /// `1/2 rho Cd A` of the point, kg/m.
+        point_drag: R,
+        /// Tributary length for seabed contact, m.
+        tributary: R,
+    }
+}
+
+gpu_struct! {
+    /// A route rebased to a time and to its block's origin (WGSL `RouteParams`).
+    RouteParams {
+        /// Position at the rebase time, relative to the origin, high part, m.
+        p_hi_x: R,
+        /// See `p_hi_x`.
+        p_hi_y: R,
+        /// See `p_hi_x`.
+        p_hi_z: R,
+        /// Low part of the position (`p = p_hi + p_lo`), m.
+        p_lo_x: R,
+        /// See `p_lo_x`.
+        p_lo_y: R,
+        /// See `p_lo_x`.
+        p_lo_z: R,
+        /// Line velocity, or the screw's axial velocity, m/s.
+        vel_x: R,
+        /// See `vel_x`.
+        vel_y: R,
+        /// See `vel_x`.
+        vel_z: R,
+        /// Circle: radius times the first in-plane direction, m.
+        e1_x: R,
+        /// See `e1_x`.
+        e1_y: R,
+        /// See `e1_x`.
+        e1_z: R,
+        /// Circle: radius times the second in-plane direction, m.
+        e2_x: R,
+        /// See `e2_x`.
+        e2_y: R,
+        /// See `e2_x`.
+        e2_z: R,
+        /// Circle: angular velocity, rad/s.
+        w: R,
+        /// Circle: angle at the rebase time, in `[0, 2 pi)`, rad.
+        theta0: R,
+        /// 0 fixed, 1 line, 2 circle or screw.
+        kind: u32,
+        /// The node it drives.
+        node: u32,
+    }
+}
+
+gpu_struct! {
+    /// A block's origin and seabed height (WGSL `BlockParams`).
+    BlockParams {
+        /// Origin x (absolute), m.
+        ox: R,
+        /// Origin y, m.
+        oy: R,
+        /// Origin z, m.
+        oz: R,
+        /// Seabed height relative to the origin, m.
+        zb: R,
+    }
+}
+
+gpu_struct! {
+    /// One row of a current profile (WGSL `CurrentPoint`).
+    CurrentPoint {
+        /// Height, m.
+        z: R,
+        /// Current x, m/s.
+        ux: R,
+        /// Current y, m/s.
+        uy: R,
+        /// Current z, m/s.
+        uz: R,
+    }
+}
+
+gpu_struct_u32! {
+    /// The rows of one current profile (WGSL `CurrentRange`).
+    CurrentRange {
+        /// First row.
+        start: u32,
+        /// Number of rows.
+        len: u32,
+    }
+}
+
+gpu_struct! {
+    /// Node state (WGSL `NodeState`): position `r_hi + r_lo` relative to the block
+    /// origin, and velocity; the fourth components are unused.
+    NodeState {
+        /// Position, high part, m.
+        r_hi: [R; 4],
+        /// Position, low part, m.
+        r_lo: [R; 4],
+        /// Velocity, m/s.
+        v: [R; 4],
+    }
+}
+
+gpu_struct! {
+    /// What an element gives its nodes (WGSL `ElemLoads`, [`crate::physics::ElementLoads`]).
+    ElemLoads {
+        /// Tangent x.
+        tx: R,
+        /// Tangent y.
+        ty: R,
+        /// Tangent z.
+        tz: R,
+        /// Axial force, N.
+        tension: R,
+        /// Half external load x, N.
+        fx: R,
+        /// Half external load y, N.
+        fy: R,
+        /// Half external load z, N.
+        fz: R,
+        /// Half mass, kg.
+        half_mass: R,
+        /// Half normal added mass, kg.
+        half_added: R,
+    }
+}
+
+gpu_struct! {
+    /// Per node output of the evaluate pass (WGSL `NodeOut`).
+    NodeOut {
+        /// Total force, N.
+        force: [R; 4],
+        /// Acceleration, m/s^2.
+        acc: [R; 4],
+    }
+}
+
+gpu_struct_u32! {
+    /// First blow-up of a submission (WGSL `Status`; `failed` is atomic there).
+    Status {
+        /// Nonzero once a node has failed.
+        failed: u32,
+        /// Step of the failing step within the `advance` call (`step_base + k`).
+        step: u32,
+        /// Packed node index.
+        node: u32,
+        /// 1: speed over the limit (or non-finite), 2: too far (or non-finite).
+        what: u32,
+    }
+}
+
+/// Every shared struct's name and fields at precision `R` (for the layout test).
+pub fn all_structs<R: GpuReal>() -> Vec<(&'static str, usize, Vec<Field>)> {
+    fn one<S: GpuStruct>() -> (&'static str, usize, Vec<Field>) {
+        (S::NAME, std::mem::size_of::<S>(), S::fields())
+    }
+    vec![
+        one::<Params<R>>(),
+        one::<StepInfo>(),
+        one::<LineParams<R>>(),
+        one::<ElemParams<R>>(),
+        one::<NodeParams<R>>(),
+        one::<RouteParams<R>>(),
+        one::<BlockParams<R>>(),
+        one::<CurrentPoint<R>>(),
+        one::<CurrentRange>(),
+        one::<NodeState<R>>(),
+        one::<ElemLoads<R>>(),
+        one::<NodeOut<R>>(),
+        one::<Status>(),
+    ]
+}

@@ -1,0 +1,63 @@
+//! The GPU path: every cable of a run stepped together by WGSL compute shaders.
+//!
+//! Stages of a step (one dispatch each, many steps per submission):
+//! 1. `element_forces` (`shaders/element_forces.wgsl`): per element, tangent, axial
+//!    force (slack, damping), half external load (normal and tangential drag,
+//!    water-acceleration load, weight less buoyancy) and half masses;
+//! 2. `node_update` (`shaders/node_update.wgsl`): per node, gather over the incidence
+//!    list (no atomics), point-mass weight and drag, seabed contact with regularised
+//!    friction, the 3x3 mass block and its solve, or the Baumgarte acceleration of a
+//!    fixed or route-driven node (route evaluated in the shader), then the symplectic
+//!    update; a blow-up sets a status flag that stops later steps.
+//!
+//! Precision: f32 by default, f64 where the adapter has `SHADER_F64`, from one WGSL
+//! source (the scalar type is substituted). In f32 an absolute coordinate near 1 km
+//! resolves only ~6e-5 m, so positions are stored relative to a per-block origin
+//! (whole metres) and as compensated pairs `r_hi + r_lo` updated by an exact two-sum;
+//! element vectors are formed from the pairs, and routes are rebased to each
+//! submission's start. What is left is f32's resolution of an element's length (a
+//! tension to about `EA 2^-23`). `tests/gpu_f32.rs` and `tests/gpu_parity.rs` hold the
+//! evidence.
+//!
+//! Not on the GPU yet ([`solver::unsupported`] says which, and `--backend auto` falls
+//! back to the CPU): the RK2 and RK4 schemes, the older element frames, table routes.
+//!
+//! Modules: [`context`] (adapter and device), [`layout`] (Rust twins of the WGSL
+//! structs), [`shaders`] (WGSL assembly per precision), [`solver`] (buffers, pipelines,
+//! stepping and read-back).
+
+pub mod context;
+pub mod layout;
+pub mod shaders;
+pub mod solver;
+
+pub use context::GpuContext;
+pub use solver::GpuSolver;
+
+/// Floating-point precision of the GPU shaders.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Precision {
+    /// 32-bit floats (every adapter); positions kept as compensated pairs.
+    #[default]
+    F32,
+    /// 64-bit floats (adapters with `SHADER_F64`).
+    F64,
+}
+
+impl Precision {
+    /// Parses `f32 | f64`.
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "f32" => Some(Precision::F32),
+            "f64" => Some(Precision::F64),
+            _ => None,
+        }
+    }
+    /// The name used in files and messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Precision::F32 => "f32",
+            Precision::F64 => "f64",
+        }
+    }
+}

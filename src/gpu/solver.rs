@@ -1,0 +1,812 @@
+//! The GPU stepper: the packed layout uploaded once, many steps per submission.
+//!
+//! A step is two dispatches in one compute pass, `element_forces` then `node_update`
+//! (wgpu orders the storage writes of one dispatch before the reads of the next).
+//! [`STEPS_PER_SUBMISSION`] steps go into one command buffer; the step index reaches
+//! the shaders through a dynamic-offset uniform (one 16-byte `StepInfo` per step,
+//! written once), so nothing is written between steps. Before each submission the
+//! routes are rebased to its start time (see [`RouteParams`]): the shaders evaluate
+//! `r_d(t0 + tau)` with a small `tau`, which keeps f32 route positions and angles
+//! accurate over long runs. Nothing is read back while stepping except, at the end of
+//! an [`GpuSolver::advance`] call, the 16-byte status; state, tensions and reactions
+//! come back only when asked for, through one staging buffer created once.
+
+use super::context::GpuContext;
+use super::layout::*;
+use super::shaders::{self, Stage};
+use super::Precision;
+use crate::cpu::{diverged, Evaluation, StepFailure};
+use crate::error::Error;
+use crate::math::V3;
+use crate::model::{circle_basis, Layout, Route};
+use crate::options::{Formulation, Scheme, SolverOptions};
+use bytemuck::Zeroable;
+use std::f64::consts::PI;
+use std::marker::PhantomData;
+use wgpu::util::DeviceExt;
+
+/// Steps recorded in one command buffer (one submission).
+pub const STEPS_PER_SUBMISSION: u32 = 512;
+
+/// Invocations per workgroup of every stage (the shaders' `@workgroup_size`).
+const WORKGROUP: u32 = 64;
+
+/// Node positions (absolute, m) and velocities (m/s), packed order.
+pub type NodeStates = (Vec<[f64; 3]>, Vec<[f64; 3]>);
+
+/// Precision-independent host data, computed once.
+struct Host {
+    /// Per block: origin (absolute, m), a whole number of metres (exact in f32).
+    origin: Vec<[f64; 3]>,
+    /// Per node: its block.
+    node_block: Vec<u32>,
+}
+
+impl Host {
+    fn new(lay: &Layout, positions: &[[f64; 3]]) -> Self {
+        let mut origin = Vec::with_capacity(lay.blocks.len());
+        let mut node_block = vec![0u32; lay.n_nodes()];
+        for (bi, b) in lay.blocks.iter().enumerate() {
+            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
+            let mut o = [0.0; 3];
+            for p in &positions[n0..n1] {
+                for d in 0..3 {
+                    o[d] += p[d];
+                }
+            }
+            let n = (n1 - n0).max(1) as f64;
+            origin.push(o.map(|x| (x / n).round()));
+            node_block[n0..n1].iter_mut().for_each(|x| *x = bi as u32);
+        }
+        Self { origin, node_block }
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// `x` as a compensated pair `(hi, lo)` of `R`: `hi + lo` is `x` to about twice the
+/// precision of `R` (in f64, `lo` is zero).
+fn split<R: GpuReal>(x: f64) -> (R, R) {
+    let hi = R::c(x);
+    (hi, R::c(x - hi.f64()))
+}
+
+/// Route `route` of node `node` rebased to time `t0` and origin `o`: what the shaders'
+/// `route_eval(q, tau)` turns into the target at `t0 + tau`, relative to `o`.
+///
+/// # Panics
+/// On a table route (the GPU path refuses them before this is called).
+pub fn rebased_route<R: GpuReal>(route: &Route, node: u32, t0: f64, o: [f64; 3]) -> RouteParams<R> {
+    let mut q = RouteParams::<R> {
+        node,
+        ..Default::default()
+    };
+    let (p, vel) = match route {
+        Route::Fixed { position } => {
+            q.kind = 0;
+            (sub(*position, o), [0.0; 3])
+        }
+        Route::Line { start, velocity } => {
+            q.kind = 1;
+            let p = [0, 1, 2].map(|d| start[d] + velocity[d] * t0);
+            (sub(p, o), *velocity)
+        }
+        Route::Circle {
+            center,
+            radius,
+            period,
+            axis,
+            phase,
+            advance,
+        } => {
+            q.kind = 2;
+            let w = 2.0 * PI / period;
+            let adv = advance / period;
+            let (e1, e2) = circle_basis(*axis);
+            q.e1_x = R::c(radius * e1[0]);
+            q.e1_y = R::c(radius * e1[1]);
+            q.e1_z = R::c(radius * e1[2]);
+            q.e2_x = R::c(radius * e2[0]);
+            q.e2_y = R::c(radius * e2[1]);
+            q.e2_z = R::c(radius * e2[2]);
+            q.w = R::c(w);
+            q.theta0 = R::c((w * t0 + phase).rem_euclid(2.0 * PI));
+            let p = [0, 1, 2].map(|d| center[d] + axis[d] * adv * t0);
+            (sub(p, o), axis.map(|a| a * adv))
+        }
+        Route::Table { .. } => unreachable!("table routes are refused by GpuSolver::new"),
+    };
+    (q.p_hi_x, q.p_lo_x) = split(p[0]);
+    (q.p_hi_y, q.p_lo_y) = split(p[1]);
+    (q.p_hi_z, q.p_lo_z) = split(p[2]);
+    q.vel_x = R::c(vel[0]);
+    q.vel_y = R::c(vel[1]);
+    q.vel_z = R::c(vel[2]);
+    q
+}
+
+/// What the GPU solver does not do yet, or `None`.
+pub fn unsupported(lay: &Layout, opts: &SolverOptions) -> Option<String> {
+    if opts.formulation != Formulation::Glmf {
+        return Some(format!(
+            "the {} formulation (the GPU path is GLMF only)",
+            opts.formulation.name()
+        ));
+    }
+    if opts.scheme != Scheme::Symplectic {
+        return Some(format!(
+            "the {} scheme (the GPU path is symplectic Euler only so far)",
+            opts.scheme.name()
+        ));
+    }
+    if lay.routes.iter().any(|r| matches!(r, Route::Table { .. })) {
+        return Some("table routes (positions read from a file)".into());
+    }
+    // One invocation per node or element along x only, so far.
+    let most = 65_535 * WORKGROUP as usize;
+    if lay.n_nodes() > most || lay.n_elements() > most {
+        return Some(format!(
+            "more than {most} nodes or elements (one dispatch dimension)"
+        ));
+    }
+    None
+}
+
+/// The device side of a solver at one precision.
+trait Engine: Send {
+    /// Runs `n` steps from step `step0`; `Some((step, node))` names the first blow-up
+    /// (`step` counted from `step0`).
+    fn advance(
+        &mut self,
+        lay: &Layout,
+        host: &Host,
+        step0: u64,
+        n: u64,
+    ) -> Result<Option<(u64, u32)>, Error>;
+    /// Reads positions and velocities back (absolute positions).
+    fn download(&mut self, host: &Host) -> Result<NodeStates, Error>;
+    /// Writes positions and velocities.
+    fn upload(&mut self, host: &Host, r: &[[f64; 3]], v: &[[f64; 3]]);
+    /// Loads, accelerations and reactions at step `step`.
+    fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error>;
+}
+
+struct Buffers {
+    params: wgpu::Buffer,
+    step: wgpu::Buffer,
+    routes: wgpu::Buffer,
+    state: wgpu::Buffer,
+    elem_loads: wgpu::Buffer,
+    node_out: wgpu::Buffer,
+    reactions: wgpu::Buffer,
+    status: wgpu::Buffer,
+    staging: wgpu::Buffer,
+}
+
+struct GpuEngine<R: GpuReal> {
+    ctx: GpuContext,
+    params: Params<R>,
+    buf: Buffers,
+    bind_group: wgpu::BindGroup,
+    pipe_elem: wgpu::ComputePipeline,
+    pipe_node: wgpu::ComputePipeline,
+    pipe_eval: wgpu::ComputePipeline,
+    step_stride: u64,
+    /// The time step in f64 (the shaders hold it in `R`; route times are formed in f64).
+    dt64: f64,
+    n_nodes: usize,
+    n_elems: usize,
+    n_routes: usize,
+    _r: PhantomData<R>,
+}
+
+/// Bytes of `v`, or of one zeroed element when `v` is empty (bindings may not be empty).
+fn bytes_or_one<T: bytemuck::Pod>(v: &[T]) -> Vec<u8> {
+    if v.is_empty() {
+        vec![0u8; std::mem::size_of::<T>()]
+    } else {
+        bytemuck::cast_slice(v).to_vec()
+    }
+}
+
+fn align_up(x: u64, a: u64) -> u64 {
+    x.div_ceil(a) * a
+}
+
+impl<R: GpuReal> GpuEngine<R> {
+    fn new(
+        ctx: &GpuContext,
+        lay: &Layout,
+        host: &Host,
+        positions: &[[f64; 3]],
+        opts: &SolverOptions,
+    ) -> Result<Self, Error> {
+        let dev = &ctx.device;
+        let env = &lay.env;
+        let seabed = env.depth.is_finite();
+        let params = Params::<R> {
+            n_nodes: lay.n_nodes() as u32,
+            n_elems: lay.n_elements() as u32,
+            n_routes: lay.routes.len() as u32,
+            seabed: seabed as u32,
+            step_base: 0,
+            pad: 0,
+            dt: R::c(opts.dt),
+            alpha: R::c(opts.baumgarte.alpha),
+            beta: R::c(opts.baumgarte.beta),
+            max_speed: R::c(opts.max_speed),
+            max_distance: R::c(opts.max_distance),
+            seabed_k: R::c(env.seabed.stiffness),
+            seabed_c: R::c(env.seabed.damping),
+            seabed_mu: R::c(env.seabed.friction),
+            seabed_v_eps: R::c(env.seabed.friction_velocity),
+            one: R::c(1.0),
+        };
+        let lines: Vec<LineParams<R>> = lay
+            .line_coefs
+            .iter()
+            .map(|c| LineParams {
+                ea: R::c(c.ea),
+                ea_c: R::c(c.ea_c),
+                drag_n: R::c(c.drag_n),
+                drag_t: R::c(c.drag_t),
+                froude_krylov: R::c(c.froude_krylov),
+                mass: R::c(c.mass),
+                added_mass: R::c(c.added_mass),
+                wet_weight_z: R::c(c.wet_weight_z),
+                compression: R::c(c.compression),
+            })
+            .collect();
+        let elems: Vec<ElemParams<R>> = (0..lay.n_elements())
+            .map(|e| ElemParams {
+                a: lay.elem_a[e],
+                b: lay.elem_b[e],
+                line: lay.elem_line[e],
+                current: lay.elem_current[e],
+                l0: R::c(lay.elem_l0[e]),
+            })
+            .collect();
+        let nodes: Vec<NodeParams<R>> = (0..lay.n_nodes())
+            .map(|i| NodeParams {
+                inc_start: lay.inc_start[i],
+                inc_end: lay.inc_start[i + 1],
+                constraint: lay.node_constraint[i],
+                block: host.node_block[i],
+                current: lay.node_current[i],
+                pad: 0,
+                point_mass: R::c(lay.node_point_mass[i]),
+                point_weight_z: R::c(lay.node_point_weight_z[i]),
+                point_drag: R::c(lay.node_point_drag[i]),
+                tributary: R::c(lay.node_tributary[i]),
+            })
+            .collect();
+        let blocks: Vec<BlockParams<R>> = host
+            .origin
+            .iter()
+            .map(|o| BlockParams {
+                ox: R::c(o[0]),
+                oy: R::c(o[1]),
+                oz: R::c(o[2]),
+                zb: R::c(if seabed { -env.depth - o[2] } else { 0.0 }),
+            })
+            .collect();
+        let mut current_pts = Vec::new();
+        let mut current_ranges = Vec::new();
+        for c in &lay.currents {
+            current_ranges.push(CurrentRange {
+                start: current_pts.len() as u32,
+                len: c.table.len() as u32,
+            });
+            for (z, u) in &c.table {
+                current_pts.push(CurrentPoint {
+                    z: R::c(*z),
+                    ux: R::c(u[0]),
+                    uy: R::c(u[1]),
+                    uz: R::c(u[2]),
+                });
+            }
+        }
+        let n_nodes = lay.n_nodes();
+        let n_elems = lay.n_elements();
+        let n_routes = lay.routes.len();
+
+        let step_stride = align_up(
+            std::mem::size_of::<StepInfo>() as u64,
+            ctx.limits.min_uniform_buffer_offset_alignment as u64,
+        );
+        let mut steps = vec![0u8; (step_stride * STEPS_PER_SUBMISSION as u64) as usize];
+        for k in 0..STEPS_PER_SUBMISSION as usize {
+            let s = StepInfo {
+                k: k as u32,
+                ..Default::default()
+            };
+            let off = k * step_stride as usize;
+            steps[off..off + 16].copy_from_slice(bytemuck::bytes_of(&s));
+        }
+
+        use wgpu::BufferUsages as U;
+        let init = |label: &str, contents: &[u8], usage: U| {
+            dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        let ro = U::STORAGE;
+        let rw = U::STORAGE | U::COPY_SRC | U::COPY_DST;
+        let state_bytes = (n_nodes.max(1) * std::mem::size_of::<NodeState<R>>()) as u64;
+        let loads_bytes = (n_elems.max(1) * std::mem::size_of::<ElemLoads<R>>()) as u64;
+        let out_bytes = (n_nodes.max(1) * std::mem::size_of::<NodeOut<R>>()) as u64;
+        let react_bytes = (n_routes.max(1) * std::mem::size_of::<[R; 4]>()) as u64;
+        let staging_bytes = [state_bytes, loads_bytes, out_bytes, react_bytes, 16]
+            .iter()
+            .map(|&b| align_up(b, 256))
+            .sum();
+        let zeros = |n: u64| vec![0u8; n as usize];
+        let buf = Buffers {
+            params: init("params", bytemuck::bytes_of(&params), ro | U::COPY_DST),
+            step: init("step", &steps, U::UNIFORM),
+            routes: init(
+                "routes",
+                &bytes_or_one(&vec![RouteParams::<R>::zeroed(); n_routes]),
+                ro | U::COPY_DST,
+            ),
+            state: init("state", &zeros(state_bytes), rw),
+            elem_loads: init("elem_loads", &zeros(loads_bytes), rw),
+            node_out: init("node_out", &zeros(out_bytes), rw),
+            reactions: init("reactions", &zeros(react_bytes), rw),
+            status: init("status", &zeros(16), rw),
+            staging: dev.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("staging"),
+                size: staging_bytes,
+                usage: U::MAP_READ | U::COPY_DST,
+                mapped_at_creation: false,
+            }),
+        };
+        let lines_b = init("lines", &bytes_or_one(&lines), ro);
+        let elems_b = init("elems", &bytes_or_one(&elems), ro);
+        let nodes_b = init("nodes", &bytes_or_one(&nodes), ro);
+        let inc_b = init("inc", &bytes_or_one(&lay.inc), ro);
+        let blocks_b = init("blocks", &bytes_or_one(&blocks), ro);
+        let pts_b = init("current_pts", &bytes_or_one(&current_pts), ro);
+        let ranges_b = init("current_ranges", &bytes_or_one(&current_ranges), ro);
+
+        let scope = dev.push_error_scope(wgpu::ErrorFilter::Validation);
+        let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let mut entries = vec![storage(0, true)];
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: true,
+                min_binding_size: wgpu::BufferSize::new(16),
+            },
+            count: None,
+        });
+        entries.extend((2..=9).map(|b| storage(b, true)));
+        entries.extend((10..=14).map(|b| storage(b, false)));
+        let bgl = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("cablesim"),
+            entries: &entries,
+        });
+        fn whole(binding: u32, b: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry {
+                binding,
+                resource: b.as_entire_binding(),
+            }
+        }
+        let bind_group = dev.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("cablesim"),
+            layout: &bgl,
+            entries: &[
+                whole(0, &buf.params),
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &buf.step,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(16),
+                    }),
+                },
+                whole(2, &lines_b),
+                whole(3, &elems_b),
+                whole(4, &nodes_b),
+                whole(5, &inc_b),
+                whole(6, &buf.routes),
+                whole(7, &blocks_b),
+                whole(8, &pts_b),
+                whole(9, &ranges_b),
+                whole(10, &buf.state),
+                whole(11, &buf.elem_loads),
+                whole(12, &buf.node_out),
+                whole(13, &buf.reactions),
+                whole(14, &buf.status),
+            ],
+        });
+        let pl = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("cablesim"),
+            bind_group_layouts: &[Some(&bgl)],
+            immediate_size: 0,
+        });
+        let precision = if R::WGSL == "f64" {
+            Precision::F64
+        } else {
+            Precision::F32
+        };
+        let module = |stage: Stage| {
+            dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(stage.file()),
+                source: wgpu::ShaderSource::Wgsl(shaders::source(stage, precision).into()),
+            })
+        };
+        let m_elem = module(Stage::ElementForces);
+        let m_node = module(Stage::NodeUpdate);
+        let pipeline = |m: &wgpu::ShaderModule, entry: &str| {
+            dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pl),
+                module: m,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let pipe_elem = pipeline(&m_elem, "element_forces");
+        let pipe_node = pipeline(&m_node, "node_update");
+        let pipe_eval = pipeline(&m_node, "node_evaluate");
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(Error::Gpu(format!(
+                "building the {} pipelines: {e}",
+                precision.name()
+            )));
+        }
+        let mut engine = Self {
+            ctx: ctx.clone(),
+            params,
+            buf,
+            bind_group,
+            pipe_elem,
+            pipe_node,
+            pipe_eval,
+            step_stride,
+            dt64: opts.dt,
+            n_nodes,
+            n_elems,
+            n_routes,
+            _r: PhantomData,
+        };
+        engine.upload(host, positions, &vec![[0.0; 3]; n_nodes]);
+        engine.write_routes(lay, host, 0.0);
+        Ok(engine)
+    }
+
+    fn write_routes(&self, lay: &Layout, host: &Host, t0: f64) {
+        if lay.routes.is_empty() {
+            return;
+        }
+        let q: Vec<RouteParams<R>> = lay
+            .routes
+            .iter()
+            .zip(&lay.constraint_node)
+            .map(|(r, &n)| {
+                rebased_route(r, n, t0, host.origin[host.node_block[n as usize] as usize])
+            })
+            .collect();
+        self.ctx
+            .queue
+            .write_buffer(&self.buf.routes, 0, bytemuck::cast_slice(&q));
+    }
+
+    fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>, pipe: &wgpu::ComputePipeline, n: usize) {
+        pass.set_pipeline(pipe);
+        pass.dispatch_workgroups((n as u32).div_ceil(WORKGROUP).max(1), 1, 1);
+    }
+
+    /// Copies `(buffer, bytes)` pairs into the staging buffer, waits, and returns the
+    /// bytes of each.
+    fn read_back(&self, parts: &[(&wgpu::Buffer, u64)]) -> Result<Vec<Vec<u8>>, Error> {
+        let ctx = &self.ctx;
+        let mut enc = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("read_back"),
+            });
+        let mut offsets = Vec::new();
+        let mut off = 0u64;
+        for (b, n) in parts {
+            enc.copy_buffer_to_buffer(b, 0, &self.buf.staging, off, *n);
+            offsets.push(off);
+            off = align_up(off + n, 256);
+        }
+        ctx.queue.submit([enc.finish()]);
+        let slice = self.buf.staging.slice(0..off);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        ctx.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| Error::Gpu(format!("waiting for the device: {e}")))?;
+        ctx.take_error()?;
+        rx.recv()
+            .map_err(|e| Error::Gpu(format!("read-back: {e}")))?
+            .map_err(|e| Error::Gpu(format!("read-back: {e}")))?;
+        let out = {
+            let view = slice
+                .get_mapped_range()
+                .map_err(|e| Error::Gpu(format!("read-back: {e}")))?;
+            parts
+                .iter()
+                .zip(&offsets)
+                .map(|((_, n), &o)| view[o as usize..(o + n) as usize].to_vec())
+                .collect()
+        };
+        self.buf.staging.unmap();
+        Ok(out)
+    }
+}
+
+/// Decodes read-back bytes (the staging copy is not aligned for `T`).
+fn decode<T: bytemuck::Pod>(b: &[u8]) -> Vec<T> {
+    b.chunks_exact(std::mem::size_of::<T>())
+        .map(bytemuck::pod_read_unaligned)
+        .collect()
+}
+
+fn v3<R: GpuReal>(a: &[R]) -> [f64; 3] {
+    [a[0].f64(), a[1].f64(), a[2].f64()]
+}
+
+impl<R: GpuReal> Engine for GpuEngine<R> {
+    fn advance(
+        &mut self,
+        lay: &Layout,
+        host: &Host,
+        step0: u64,
+        n: u64,
+    ) -> Result<Option<(u64, u32)>, Error> {
+        let ctx = &self.ctx;
+        ctx.queue
+            .write_buffer(&self.buf.status, 0, bytemuck::bytes_of(&Status::default()));
+        let dt64 = self.dt64;
+        let mut done = 0u64;
+        while done < n {
+            let chunk = (n - done).min(STEPS_PER_SUBMISSION as u64);
+            self.write_routes(lay, host, (step0 + done) as f64 * dt64);
+            self.params.step_base = done as u32;
+            ctx.queue
+                .write_buffer(&self.buf.params, 0, bytemuck::bytes_of(&self.params));
+            let mut enc = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("steps"),
+                });
+            {
+                let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("step"),
+                    timestamp_writes: None,
+                });
+                for k in 0..chunk {
+                    let off = (k * self.step_stride) as u32;
+                    pass.set_bind_group(0, &self.bind_group, &[off]);
+                    self.dispatch(&mut pass, &self.pipe_elem, self.n_elems);
+                    self.dispatch(&mut pass, &self.pipe_node, self.n_nodes);
+                }
+            }
+            ctx.queue.submit([enc.finish()]);
+            done += chunk;
+        }
+        let out = self.read_back(&[(&self.buf.status, 16)])?;
+        let st: Status = bytemuck::pod_read_unaligned(&out[0][..16]);
+        Ok((st.failed != 0).then_some((st.step as u64, st.node)))
+    }
+
+    fn download(&mut self, host: &Host) -> Result<NodeStates, Error> {
+        let bytes = (self.n_nodes * std::mem::size_of::<NodeState<R>>()) as u64;
+        let out = self.read_back(&[(&self.buf.state, bytes.max(4))])?;
+        let st: Vec<NodeState<R>> = decode(&out[0][..bytes as usize]);
+        let mut r = Vec::with_capacity(self.n_nodes);
+        let mut v = Vec::with_capacity(self.n_nodes);
+        for (i, s) in st.iter().enumerate() {
+            let o = host.origin[host.node_block[i] as usize];
+            let (h, l) = (v3(&s.r_hi), v3(&s.r_lo));
+            r.push([0, 1, 2].map(|d| o[d] + (h[d] + l[d])));
+            v.push(v3(&s.v));
+        }
+        Ok((r, v))
+    }
+
+    fn upload(&mut self, host: &Host, r: &[[f64; 3]], v: &[[f64; 3]]) {
+        let st: Vec<NodeState<R>> = (0..self.n_nodes)
+            .map(|i| {
+                let o = host.origin[host.node_block[i] as usize];
+                let mut s = NodeState::<R>::default();
+                for d in 0..3 {
+                    (s.r_hi[d], s.r_lo[d]) = split(r[i][d] - o[d]);
+                    s.v[d] = R::c(v[i][d]);
+                }
+                s
+            })
+            .collect();
+        if !st.is_empty() {
+            self.ctx
+                .queue
+                .write_buffer(&self.buf.state, 0, bytemuck::cast_slice(&st));
+        }
+    }
+
+    fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error> {
+        let ctx = &self.ctx;
+        self.write_routes(lay, host, step as f64 * self.dt64);
+        self.params.step_base = 0;
+        ctx.queue
+            .write_buffer(&self.buf.params, 0, bytemuck::bytes_of(&self.params));
+        let mut enc = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("evaluate"),
+            });
+        {
+            let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("evaluate"),
+                timestamp_writes: None,
+            });
+            pass.set_bind_group(0, &self.bind_group, &[0]);
+            self.dispatch(&mut pass, &self.pipe_elem, self.n_elems);
+            self.dispatch(&mut pass, &self.pipe_eval, self.n_nodes);
+        }
+        ctx.queue.submit([enc.finish()]);
+        let loads_bytes = (self.n_elems * std::mem::size_of::<ElemLoads<R>>()) as u64;
+        let out_bytes = (self.n_nodes * std::mem::size_of::<NodeOut<R>>()) as u64;
+        let react_bytes = (self.n_routes * std::mem::size_of::<[R; 4]>()) as u64;
+        let out = self.read_back(&[
+            (&self.buf.elem_loads, loads_bytes.max(4)),
+            (&self.buf.node_out, out_bytes.max(4)),
+            (&self.buf.reactions, react_bytes.max(4)),
+        ])?;
+        let loads: Vec<ElemLoads<R>> = decode(&out[0][..loads_bytes as usize]);
+        let nout: Vec<NodeOut<R>> = decode(&out[1][..out_bytes as usize]);
+        let react: Vec<[R; 4]> = decode(&out[2][..react_bytes as usize]);
+        Ok(Evaluation {
+            acc: nout.iter().map(|o| v3(&o.acc)).collect(),
+            force: nout.iter().map(|o| v3(&o.force)).collect(),
+            tension: loads.iter().map(|l| l.tension.f64()).collect(),
+            reaction: react.iter().map(|x| v3(x)).collect(),
+            elements: loads
+                .iter()
+                .map(|l| crate::physics::ElementLoads {
+                    t: crate::math::V3::new(l.tx.f64(), l.ty.f64(), l.tz.f64()),
+                    tension: l.tension.f64(),
+                    f_half: crate::math::V3::new(l.fx.f64(), l.fy.f64(), l.fz.f64()),
+                    half_mass: l.half_mass.f64(),
+                    half_added: l.half_added.f64(),
+                })
+                .collect(),
+        })
+    }
+}
+
+/// The GPU solver: the same packed model and options as [`crate::cpu::CpuSolver`],
+/// stepped by WGSL compute shaders at f32 or f64.
+pub struct GpuSolver {
+    /// The packed model.
+    pub layout: Layout,
+    /// Options (GLMF, symplectic Euler; see [`unsupported`]).
+    pub opts: SolverOptions,
+    /// Shader precision.
+    pub precision: Precision,
+    /// Simulated time, s.
+    pub t: f64,
+    /// Number of steps taken.
+    pub steps: u64,
+    device: String,
+    host: Host,
+    engine: Box<dyn Engine>,
+}
+
+impl GpuSolver {
+    /// Uploads the model, at rest at `positions` (packed order), `t = 0`.
+    pub fn new(
+        ctx: &GpuContext,
+        layout: Layout,
+        positions: &[[f64; 3]],
+        opts: SolverOptions,
+        precision: Precision,
+    ) -> Result<Self, Error> {
+        if let Some(what) = unsupported(&layout, &opts) {
+            return Err(Error::GpuUnsupported(what));
+        }
+        if !ctx.supports(precision) {
+            return Err(Error::NoAdapter(format!(
+                "{} has no SHADER_F64: f64 shaders cannot run (use --precision f32)",
+                ctx.describe()
+            )));
+        }
+        let host = Host::new(&layout, positions);
+        let engine: Box<dyn Engine> = match precision {
+            Precision::F32 => Box::new(GpuEngine::<f32>::new(
+                ctx, &layout, &host, positions, &opts,
+            )?),
+            Precision::F64 => Box::new(GpuEngine::<f64>::new(
+                ctx, &layout, &host, positions, &opts,
+            )?),
+        };
+        Ok(Self {
+            layout,
+            opts,
+            precision,
+            t: 0.0,
+            steps: 0,
+            device: ctx.describe(),
+            host,
+            engine,
+        })
+    }
+
+    /// The adapter it runs on.
+    pub fn device(&self) -> &str {
+        &self.device
+    }
+
+    /// Advances `nsteps` steps of `opts.dt`, in submissions of
+    /// [`STEPS_PER_SUBMISSION`] steps, then reads the 16-byte status. On a blow-up the
+    /// state stays where it failed and the error names the cable, node and time, as on
+    /// the CPU.
+    pub fn advance(&mut self, nsteps: u64) -> Result<(), Error> {
+        if nsteps == 0 {
+            return Ok(());
+        }
+        let step0 = self.steps;
+        let failed = self
+            .engine
+            .advance(&self.layout, &self.host, step0, nsteps)?;
+        self.steps += nsteps;
+        self.t = self.steps as f64 * self.opts.dt;
+        if let Some((k, node)) = failed {
+            let (r, v) = self.engine.download(&self.host)?;
+            let i = node as usize;
+            let time = (step0 + k + 1) as f64 * self.opts.dt;
+            let f = diverged(&self.opts, V3::from_f64(r[i]), V3::from_f64(v[i]), i, time);
+            if let StepFailure::Diverged { node, time, what } = f {
+                let (cable, node) = self.layout.describe_node(node);
+                return Err(Error::Diverged {
+                    cable,
+                    node,
+                    time,
+                    what: format!("{what} (GPU, {})", self.precision.name()),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Reads back node positions (absolute, m) and velocities (m/s), packed order.
+    pub fn state(&mut self) -> Result<NodeStates, Error> {
+        self.engine.download(&self.host)
+    }
+
+    /// Replaces node positions and velocities (packed order).
+    pub fn set_state(&mut self, r: &[[f64; 3]], v: &[[f64; 3]]) {
+        assert_eq!(r.len(), self.layout.n_nodes());
+        assert_eq!(v.len(), self.layout.n_nodes());
+        self.engine.upload(&self.host, r, v);
+    }
+
+    /// Loads, accelerations and reactions at the current state, evaluated on the GPU
+    /// (an `element_forces` and a `node_evaluate` dispatch) and read back.
+    pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
+        self.engine.evaluate(&self.layout, &self.host, self.steps)
+    }
+}

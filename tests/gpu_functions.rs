@@ -1,0 +1,630 @@
+//! Each WGSL force function against its Rust twin, on random inputs, at f32 and f64.
+//!
+//! A test kernel (below) calls one prelude function per invocation; the Rust twin runs
+//! in f64 on the very same inputs (the values the GPU received, converted back), so
+//! only the GPU's arithmetic is measured. Contract: every output within
+//! `16 eps_R * scale`, where `eps_R` is the machine epsilon of the shader precision
+//! and `scale` the sum of the magnitudes of the terms that make the output (so
+//! cancellation is allowed for, and a missing or wrong term is not: it is of the size
+//! of `scale`).
+
+mod common;
+
+use cablesim::gpu::layout::*;
+use cablesim::gpu::solver::rebased_route;
+use cablesim::gpu::{shaders, GpuContext, Precision};
+use cablesim::math::{Sym3, V3};
+use cablesim::model::{Current, Route};
+use cablesim::physics::{glmf_element, seabed_force, Coefs, ElementInput, SeabedCoefs};
+use common::*;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+const KERNELS: &str = r#"
+@group(1) @binding(0) var<storage, read> tin: array<R>;
+@group(1) @binding(1) var<storage, read_write> tout: array<R>;
+
+fn v3in(k: u32) -> vec3<R> {
+    return vec3<R>(tin[k], tin[k + 1u], tin[k + 2u]);
+}
+
+fn v3out(k: u32, v: vec3<R>) {
+    tout[k] = v.x;
+    tout[k + 1u] = v.y;
+    tout[k + 2u] = v.z;
+}
+
+@compute @workgroup_size(64)
+fn t_element(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 25u {
+        return;
+    }
+    let b = i * 25u;
+    let c = LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
+        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u]);
+    let el = glmf_element(c, v3in(b + 9u), v3in(b + 12u), v3in(b + 15u), tin[b + 18u],
+        v3in(b + 19u), v3in(b + 22u));
+    let o = i * 9u;
+    v3out(o, el.t);
+    tout[o + 3u] = el.tension;
+    v3out(o + 4u, el.f_half);
+    tout[o + 7u] = el.half_mass;
+    tout[o + 8u] = el.half_added;
+}
+
+@compute @workgroup_size(64)
+fn t_seabed(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 5u {
+        return;
+    }
+    let b = i * 5u;
+    v3out(i * 3u, seabed_force(tin[b], tin[b + 1u], v3in(b + 2u)));
+}
+
+@compute @workgroup_size(64)
+fn t_mass(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 14u {
+        return;
+    }
+    let b = i * 14u;
+    var m = sym3_scalar(tin[b]);
+    m = sym3_add_element(m, tin[b + 1u], tin[b + 2u], v3in(b + 3u));
+    m = sym3_add_element(m, tin[b + 6u], tin[b + 7u], v3in(b + 8u));
+    let x = sym3_solve(m, v3in(b + 11u));
+    let o = i * 12u;
+    tout[o] = m.xx;
+    tout[o + 1u] = m.yy;
+    tout[o + 2u] = m.zz;
+    tout[o + 3u] = m.xy;
+    tout[o + 4u] = m.xz;
+    tout[o + 5u] = m.yz;
+    v3out(o + 6u, x);
+    v3out(o + 9u, sym3_mul(m, v3in(b + 11u)));
+}
+
+@compute @workgroup_size(64)
+fn t_sincos(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) {
+        return;
+    }
+    let sc = sin_cos(tin[i]);
+    tout[2u * i] = sc.x;
+    tout[2u * i + 1u] = sc.y;
+}
+
+@compute @workgroup_size(64)
+fn t_route(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) {
+        return;
+    }
+    let s = route_eval(routes[i], tin[i]);
+    let o = i * 12u;
+    v3out(o, s.r_hi);
+    v3out(o + 3u, s.r_lo);
+    v3out(o + 6u, s.v);
+    v3out(o + 9u, s.a);
+}
+
+@compute @workgroup_size(64)
+fn t_current(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 2u {
+        return;
+    }
+    v3out(i * 3u, current_at(u32(tin[2u * i]), tin[2u * i + 1u]));
+}
+"#;
+
+/// Runs `entry` over `input` with `group0` bound at group 0 and returns `n_out` values.
+fn run<R: GpuReal>(
+    ctx: &GpuContext,
+    p: Precision,
+    entry: &str,
+    group0: &[(u32, Vec<u8>)],
+    input: &[R],
+    n_threads: usize,
+    n_out: usize,
+) -> Vec<R> {
+    use wgpu::util::DeviceExt;
+    let dev = &ctx.device;
+    let src = format!("{}\n{KERNELS}", shaders::prelude(p));
+    let scope = dev.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("function parity"),
+        source: wgpu::ShaderSource::Wgsl(src.into()),
+    });
+    let pipe = dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry),
+        layout: None,
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
+    let buf = |label: &str, bytes: &[u8]| {
+        dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytes,
+            usage,
+        })
+    };
+    let g0: Vec<wgpu::Buffer> = group0.iter().map(|(_, b)| buf("group0", b)).collect();
+    let tin = buf("tin", bytemuck::cast_slice(input));
+    let out_bytes = (n_out * std::mem::size_of::<R>()) as u64;
+    let tout = buf("tout", &vec![0u8; out_bytes as usize]);
+    let staging = dev.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("staging"),
+        size: out_bytes,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let bg0 = dev.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipe.get_bind_group_layout(0),
+        entries: &group0
+            .iter()
+            .zip(&g0)
+            .map(|((binding, _), b)| wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: b.as_entire_binding(),
+            })
+            .collect::<Vec<_>>(),
+    });
+    let bg1 = dev.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipe.get_bind_group_layout(1),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: tin.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: tout.as_entire_binding(),
+            },
+        ],
+    });
+    let mut enc = dev.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipe);
+        pass.set_bind_group(0, &bg0, &[]);
+        pass.set_bind_group(1, &bg1, &[]);
+        pass.dispatch_workgroups((n_threads as u32).div_ceil(64), 1, 1);
+    }
+    enc.copy_buffer_to_buffer(&tout, 0, &staging, 0, out_bytes);
+    ctx.queue.submit([enc.finish()]);
+    if let Some(e) = pollster::block_on(scope.pop()) {
+        panic!("{entry} ({}): {e}", p.name());
+    }
+    staging
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, |r| r.unwrap());
+    dev.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+    let view = staging.slice(..).get_mapped_range().unwrap();
+    view.chunks_exact(std::mem::size_of::<R>())
+        .map(bytemuck::pod_read_unaligned)
+        .collect()
+}
+
+/// Records the worst `|gpu - rust| / (eps scale)` of a function.
+struct Worst {
+    name: &'static str,
+    eps: f64,
+    worst: f64,
+}
+
+impl Worst {
+    fn new<R: GpuReal>(name: &'static str) -> Self {
+        Self {
+            name,
+            eps: R::epsilon().f64(),
+            worst: 0.0,
+        }
+    }
+    fn check(&mut self, what: &str, case: usize, gpu: f64, rust: f64, scale: f64) {
+        let e = (gpu - rust).abs() / (self.eps * scale.max(f64::MIN_POSITIVE));
+        self.worst = self.worst.max(e);
+        assert!(
+            e <= 16.0,
+            "{} case {case} {what}: GPU {gpu:e}, Rust {rust:e}: {e:.1} eps x scale {scale:e}",
+            self.name
+        );
+    }
+    fn v(&mut self, what: &str, case: usize, gpu: &[f64], rust: V3<f64>, scale: f64) {
+        for (k, r) in [rust.x, rust.y, rust.z].into_iter().enumerate() {
+            self.check(what, case, gpu[k], r, scale);
+        }
+    }
+    fn report(&self, p: Precision) {
+        eprintln!(
+            "{} ({}): worst difference {:.2} eps x scale (limit 16)",
+            self.name,
+            p.name(),
+            self.worst
+        );
+    }
+}
+
+fn rv(rng: &mut ChaCha8Rng, a: f64) -> [f64; 3] {
+    [0, 1, 2].map(|_| rng.gen_range(-a..a))
+}
+
+/// Inputs as `R`, and back as f64 (what the GPU actually got).
+fn to_r<R: GpuReal>(x: &[f64]) -> (Vec<R>, Vec<f64>) {
+    let r: Vec<R> = x.iter().map(|&v| R::c(v)).collect();
+    let back = r.iter().map(|v| v.f64()).collect();
+    (r, back)
+}
+
+fn norm(v: V3<f64>) -> f64 {
+    v.norm()
+}
+
+fn check_element<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 500;
+    let mut x = Vec::new();
+    for i in 0..n {
+        let ea = 10f64.powf(rng.gen_range(5.0..9.0));
+        let l0 = rng.gen_range(0.5..50.0);
+        let l = l0 * (1.0 + rng.gen_range(-0.01..0.01));
+        let dir = V3::<f64>::from_f64(rv(rng, 1.0));
+        let d = dir / dir.norm() * l;
+        x.extend([
+            ea,
+            ea * rng.gen_range(0.0..1e-2),
+            rng.gen_range(0.0..30.0),
+            rng.gen_range(0.0..3.0),
+            rng.gen_range(0.0..5.0),
+            rng.gen_range(0.1..100.0),
+            rng.gen_range(0.0..5.0),
+            rng.gen_range(-500.0..50.0),
+            (i % 2) as f64,
+        ]);
+        x.extend(d.to_f64());
+        x.extend(rv(rng, 2.0));
+        x.extend(rv(rng, 2.0));
+        x.push(l0);
+        x.extend(rv(rng, 1.5));
+        x.extend(rv(rng, 1.0));
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_element", &[], &xr, n, 9 * n);
+    let mut w = Worst::new::<R>("glmf_element");
+    for i in 0..n {
+        let a = &x[25 * i..25 * (i + 1)];
+        let c = Coefs::<f64> {
+            ea: a[0],
+            ea_c: a[1],
+            drag_n: a[2],
+            drag_t: a[3],
+            froude_krylov: a[4],
+            mass: a[5],
+            added_mass: a[6],
+            wet_weight_z: a[7],
+            compression: a[8],
+        };
+        let v = |k: usize| V3::new(a[k], a[k + 1], a[k + 2]);
+        let inp = ElementInput {
+            ra: V3::zero(),
+            rb: v(9),
+            va: v(12),
+            vb: v(15),
+            l0: a[18],
+            current: v(19),
+            water_accel: v(22),
+        };
+        let el = glmf_element(&c, &inp);
+        let ext = cablesim::physics::glmf_external(&c, &inp, el.t, inp.rb.norm());
+        let o = &out[9 * i..9 * (i + 1)];
+        let o: Vec<f64> = o.iter().map(|v| v.f64()).collect();
+        w.v("t", i, &o[0..3], el.t, 1.0);
+        let l = inp.rb.norm();
+        let t_scale = c.ea * l / inp.l0 + c.ea_c * (norm(inp.vb - inp.va) / inp.l0);
+        w.check("tension", i, o[3], el.tension, t_scale);
+        let f_scale = 0.5
+            * (norm(ext.drag_n)
+                + norm(ext.drag_t)
+                + norm(ext.froude_krylov)
+                + norm(ext.wet_weight));
+        w.v("f_half", i, &o[4..7], el.f_half, f_scale);
+        w.check("half_mass", i, o[7], el.half_mass, el.half_mass);
+        w.check("half_added", i, o[8], el.half_added, el.half_added);
+    }
+    w.report(p);
+}
+
+fn params<R: GpuReal>(k: f64, c: f64, mu: f64, v_eps: f64) -> Vec<u8> {
+    let p = Params::<R> {
+        seabed: 1,
+        seabed_k: R::c(k),
+        seabed_c: R::c(c),
+        seabed_mu: R::c(mu),
+        seabed_v_eps: R::c(v_eps),
+        one: R::c(1.0),
+        ..Default::default()
+    };
+    bytemuck::bytes_of(&p).to_vec()
+}
+
+fn check_seabed<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 500;
+    let (k, c, mu, v_eps) = (3e6, 3e4, 0.6, 0.01);
+    let sc = {
+        let r = |x: f64| R::c(x).f64();
+        SeabedCoefs {
+            z: 0.0,
+            k: r(k),
+            c: r(c),
+            mu: r(mu),
+            v_eps: r(v_eps),
+        }
+    };
+    let mut x = Vec::new();
+    for i in 0..n {
+        x.push(rng.gen_range(-0.05..0.1));
+        x.push(rng.gen_range(0.5..50.0));
+        // Some at rest or creeping below v_eps, most sliding.
+        let vs = if i % 5 == 0 { 0.005 } else { 1.0 };
+        x.extend(rv(rng, vs));
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(
+        ctx,
+        p,
+        "t_seabed",
+        &[(0, params::<R>(k, c, mu, v_eps))],
+        &xr,
+        n,
+        3 * n,
+    );
+    let mut w = Worst::new::<R>("seabed_force");
+    for i in 0..n {
+        let a = &x[5 * i..5 * (i + 1)];
+        let (pen, lt, v) = (a[0], a[1], V3::new(a[2], a[3], a[4]));
+        // The twin takes the node's position: seabed at z = 0, node at z = -pen.
+        let f = seabed_force(&sc, lt, V3::new(0.0, 0.0, -pen), v);
+        let scale = sc.k * lt * pen.abs() * (1.0 + sc.mu) + sc.c * lt * v.z.abs();
+        let o: Vec<f64> = out[3 * i..3 * i + 3].iter().map(|v| v.f64()).collect();
+        w.v("force", i, &o, f, scale);
+    }
+    w.report(p);
+}
+
+fn check_mass<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 500;
+    let mut x = Vec::new();
+    for _ in 0..n {
+        x.push(if rng.gen_bool(0.2) {
+            rng.gen_range(0.0..1000.0)
+        } else {
+            0.0
+        });
+        for _ in 0..2 {
+            x.push(rng.gen_range(1.0..100.0));
+            x.push(rng.gen_range(0.0..50.0));
+            let t = V3::<f64>::from_f64(rv(rng, 1.0));
+            x.extend((t / t.norm()).to_f64());
+        }
+        x.extend(rv(rng, 1e4));
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_mass", &[], &xr, n, 12 * n);
+    let mut w = Worst::new::<R>("mass block (sym3_add_element, sym3_solve, sym3_mul)");
+    for i in 0..n {
+        let a = &x[14 * i..14 * (i + 1)];
+        let mut m = Sym3::scalar(a[0]);
+        let mut s_tot = a[0];
+        let mut a_tot = 0.0;
+        for k in [1usize, 6] {
+            m.xx += a[k];
+            m.yy += a[k];
+            m.zz += a[k];
+            m.add_normal_projection(a[k + 1], V3::new(a[k + 2], a[k + 3], a[k + 4]));
+            s_tot += a[k];
+            a_tot += a[k + 1];
+        }
+        let b = V3::new(a[11], a[12], a[13]);
+        let xs = m.solve(b);
+        let o: Vec<f64> = out[12 * i..12 * (i + 1)].iter().map(|v| v.f64()).collect();
+        let mscale = s_tot + a_tot;
+        for (k, r) in [m.xx, m.yy, m.zz, m.xy, m.xz, m.yz].into_iter().enumerate() {
+            w.check("m", i, o[k], r, mscale);
+        }
+        // Eigenvalues lie in [s_tot, s_tot + a_tot]: the solve's error is the
+        // condition number times eps times |x|'s scale |b| / s_tot.
+        let cond = (s_tot + a_tot) / s_tot;
+        w.v("solve", i, &o[6..9], xs, cond * cond * b.norm() / s_tot);
+        w.v("mul", i, &o[9..12], m.mul_vec(b), mscale * b.norm());
+    }
+    w.report(p);
+}
+
+fn check_sincos<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1000;
+    let x: Vec<f64> = (0..n).map(|_| rng.gen_range(-2.0..9.0)).collect();
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_sincos", &[], &xr, n, 2 * n);
+    let mut w = Worst::new::<R>("sin_cos");
+    for i in 0..n {
+        // The argument's own rounding does not count: scale 1 + |x|.
+        w.check("sin", i, out[2 * i].f64(), x[i].sin(), 1.0 + x[i].abs());
+        w.check("cos", i, out[2 * i + 1].f64(), x[i].cos(), 1.0 + x[i].abs());
+    }
+    w.report(p);
+}
+
+fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 300;
+    let mut routes = Vec::new();
+    let mut q = Vec::new();
+    let mut tau = Vec::new();
+    let mut meta = Vec::new();
+    for i in 0..n {
+        let route = match i % 3 {
+            0 => Route::Fixed {
+                position: rv(rng, 500.0),
+            },
+            1 => Route::Line {
+                start: rv(rng, 500.0),
+                velocity: rv(rng, 3.0),
+            },
+            _ => {
+                let ax = V3::<f64>::from_f64(rv(rng, 1.0));
+                Route::Circle {
+                    center: rv(rng, 500.0),
+                    radius: rng.gen_range(1.0..30.0),
+                    period: rng.gen_range(5.0..100.0),
+                    axis: (ax / ax.norm()).to_f64(),
+                    phase: rng.gen_range(-3.0..3.0),
+                    advance: rng.gen_range(-70.0..70.0),
+                }
+            }
+        };
+        let t0 = rng.gen_range(0.0..2000.0);
+        let o = rv(rng, 500.0).map(|x: f64| x.round());
+        q.push(rebased_route::<R>(&route, 0, t0, o));
+        let tr = R::c(rng.gen_range(0.0..0.5));
+        tau.push(tr);
+        meta.push((t0, o, tr.f64()));
+        routes.push(route);
+    }
+    let out = run::<R>(
+        ctx,
+        p,
+        "t_route",
+        &[(6, bytemuck::cast_slice(&q).to_vec())],
+        &tau,
+        n,
+        12 * n,
+    );
+    let mut w = Worst::new::<R>("route_eval (rebased)");
+    for i in 0..n {
+        let (t0, o, tau) = meta[i];
+        let s = routes[i].eval(t0 + tau);
+        let r = V3::from_f64(s.r) - V3::from_f64(o);
+        let o12: Vec<f64> = out[12 * i..12 * (i + 1)].iter().map(|v| v.f64()).collect();
+        let r_gpu = [0, 1, 2].map(|d| o12[d] + o12[3 + d]);
+        let (rad, w_ang, speed) = match &routes[i] {
+            Route::Circle {
+                radius,
+                period,
+                advance,
+                ..
+            } => (
+                *radius,
+                2.0 * std::f64::consts::PI / period,
+                (advance / period).abs(),
+            ),
+            Route::Line { velocity, .. } => (0.0, 0.0, norm(V3::from_f64(*velocity))),
+            _ => (0.0, 0.0, 0.0),
+        };
+        // The rebase time, its angle and the origin shift are formed in f64; in the
+        // shader only tau, the angle w tau and the radius vector round.
+        let r_scale =
+            rad * (1.0 + w_ang * tau + 2.0 * std::f64::consts::PI) + speed * tau + 1e-3 * r.norm();
+        let r_scale = if p == Precision::F64 {
+            // f64: the CPU's own angle w (t0 + tau) carries |w t| eps.
+            r_scale + rad * w_ang * (t0 + tau) + r.norm() + speed * (t0 + tau)
+        } else {
+            r_scale
+        };
+        w.v("r", i, &r_gpu, r, r_scale.max(1e-300));
+        let v_scale = rad * w_ang * (1.0 + w_ang * (t0 + tau) + 7.0) + speed;
+        w.v("v", i, &o12[6..9], V3::from_f64(s.v), v_scale.max(1e-300));
+        let a_scale = rad * w_ang * w_ang * (1.0 + w_ang * (t0 + tau) + 7.0);
+        w.v("a", i, &o12[9..12], V3::from_f64(s.a), a_scale.max(1e-300));
+    }
+    w.report(p);
+}
+
+fn check_current<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let r = |x: f64| R::c(x).f64();
+    let profiles = vec![
+        Current::default(),
+        Current::uniform([r(0.3), r(-0.2), r(0.05)]),
+        Current {
+            table: vec![
+                (r(-100.0), [r(0.1), r(0.0), r(0.0)]),
+                (r(-50.0), [r(0.4), r(0.2), r(0.0)]),
+                (r(-10.0), [r(0.7), r(0.25), r(0.01)]),
+                (r(0.0), [r(0.8), r(0.3), r(0.0)]),
+            ],
+        },
+    ];
+    let mut pts = Vec::new();
+    let mut ranges = Vec::new();
+    for c in &profiles {
+        ranges.push(CurrentRange {
+            start: pts.len() as u32,
+            len: c.table.len() as u32,
+        });
+        for (z, u) in &c.table {
+            pts.push(CurrentPoint::<R> {
+                z: R::c(*z),
+                ux: R::c(u[0]),
+                uy: R::c(u[1]),
+                uz: R::c(u[2]),
+            });
+        }
+    }
+    let n = 600;
+    let mut x = Vec::new();
+    for i in 0..n {
+        x.push((i % 3) as f64);
+        x.push(rng.gen_range(-130.0..20.0));
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(
+        ctx,
+        p,
+        "t_current",
+        &[
+            (8, bytemuck::cast_slice(&pts).to_vec()),
+            (9, bytemuck::cast_slice(&ranges).to_vec()),
+        ],
+        &xr,
+        n,
+        3 * n,
+    );
+    let mut w = Worst::new::<R>("current_at");
+    for i in 0..n {
+        let u = profiles[x[2 * i] as usize].at::<f64>(x[2 * i + 1]);
+        let o: Vec<f64> = out[3 * i..3 * i + 3].iter().map(|v| v.f64()).collect();
+        // The slope times the height's scale bounds the interpolation's rounding.
+        w.v("u", i, &o, u, 1.0 + 0.01 * x[2 * i + 1].abs());
+    }
+    w.report(p);
+}
+
+fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
+    let mut rng = ChaCha8Rng::seed_from_u64(20240611);
+    check_element::<R>(ctx, p, &mut rng);
+    check_seabed::<R>(ctx, p, &mut rng);
+    check_mass::<R>(ctx, p, &mut rng);
+    check_sincos::<R>(ctx, p, &mut rng);
+    check_route::<R>(ctx, p, &mut rng);
+    check_current::<R>(ctx, p, &mut rng);
+}
+
+#[test]
+fn wgsl_functions_match_their_rust_twins_in_f32() {
+    let Some(ctx) = gpu_context("wgsl_functions_match_their_rust_twins_in_f32", false) else {
+        return;
+    };
+    check_all::<f32>(&ctx, Precision::F32);
+}
+
+#[test]
+fn wgsl_functions_match_their_rust_twins_in_f64() {
+    let Some(ctx) = gpu_context("wgsl_functions_match_their_rust_twins_in_f64", true) else {
+        return;
+    };
+    check_all::<f64>(&ctx, Precision::F64);
+}

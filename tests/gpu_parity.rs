@@ -1,0 +1,394 @@
+//! GPU f64 against the CPU f64 reference path, run for run.
+//!
+//! Contract: the same physics in the same order of passes; the arithmetic differs only
+//! in round-off (positions relative to a block origin and kept as compensated pairs,
+//! routes rebased to each submission's start, the shaders' own sine and cosine, the
+//! strain formed as `(l - l0) / l0`, fused or reordered operations in the driver).
+//! Each of these perturbs a step by a few ulps of the quantity involved: positions by
+//! about `eps L` (`eps = 2^-52`, `L` the largest coordinate relative to the origin),
+//! velocities by `eps V` (`V` the largest speed). A stable, damped model does not
+//! amplify such perturbations exponentially, so after `N` steps the two runs differ by
+//! at most about `N eps L` in position, times a constant for the number of operations
+//! per step that round differently, taken as 10 below. (A damped line forgets old
+//! perturbations, so the measured differences stay far below this bound, flat in `N`:
+//! about 2e-12 m after 1000 to 16000 steps of the line below, where the CPU's own two
+//! f64 paths, chain kernel and general, differ by about 5e-13 m. The bound does not
+//! hold for a model that amplifies round-off exponentially, such as the violently
+//! released line of tests/chain_kernel.rs past 3000 steps, where the two CPU paths
+//! part just as fast.) A position difference `dr` in the fastest mode (the
+//! axial mode of the shortest element, `omega_max = 2 / dt_stable` from
+//! `stability::stable_step`) comes with a velocity difference `omega_max dr`, plus the
+//! velocity's own `N eps V`; it changes a strain by `dr / l0_min`, so a tension by
+//! `EA dr / l0_min`, plus the strain's own round-off `eps EA` and `eps T_max`.
+//! Reactions (`F - M a` at driven nodes) get the tension tolerance.
+
+mod common;
+
+use cablesim::cpu::CpuSolver;
+use cablesim::gpu::{GpuSolver, Precision};
+use cablesim::model::{
+    CableDef, Current, Environment, Layout, ModelDef, NodeDef, PointMass, Route,
+};
+use cablesim::options::SolverOptions;
+use cablesim::scenario::Scenario;
+use common::*;
+use std::path::Path;
+
+const CATENARY: &str = include_str!("../examples/catenary.toml");
+
+const EPS: f64 = f64::EPSILON;
+
+/// The catenary example (examples/catenary.toml, relaxed to its static equilibrium)
+/// made dynamic: the fairlead driven round a 5 m circle, a current profile, seabed
+/// friction, and a clump weight with drag half way along.
+fn line_model() -> (Layout, Vec<[f64; 3]>) {
+    let sc = Scenario::parse(CATENARY, Path::new("examples/catenary.toml")).unwrap();
+    let (mut lay, pos, _) = cablesim::sim::prepare(&sc).unwrap();
+    let fair = lay.cables[0].nodes[50] as usize;
+    let c = lay.node_constraint[fair] as usize;
+    let p = pos[fair];
+    lay.routes[c] = Route::Circle {
+        center: [p[0], p[1] + 5.0, p[2]],
+        radius: 5.0,
+        period: 20.0,
+        axis: [0.0, 0.0, 1.0],
+        phase: -std::f64::consts::FRAC_PI_2,
+        advance: 0.0,
+    };
+    lay.env.seabed.friction = 0.5;
+    lay.currents[0] = Current {
+        table: vec![
+            (-100.0, [0.1, 0.0, 0.0]),
+            (-50.0, [0.4, 0.2, 0.0]),
+            (0.0, [0.8, 0.3, 0.0]),
+        ],
+    };
+    let clump = lay.cables[0].nodes[30] as usize;
+    let rho = lay.env.water_density;
+    let (m, vol, cd_a, ca) = (200.0, 0.02, 0.5, 1.0);
+    lay.node_point_mass[clump] = m + ca * rho * vol;
+    lay.node_point_weight_z[clump] = -(m - rho * vol) * lay.env.gravity;
+    lay.node_point_drag[clump] = 0.5 * rho * cd_a;
+    (lay, pos)
+}
+
+/// A square net of `k x k` knots, `spacing` apart, joined by cables of `seg` elements
+/// along rows and columns (the knots are shared nodes); three corners fixed, the
+/// fourth towed along a line, a buoy with drag at the centre knot, a uniform current,
+/// and a second, separate line in the same run (two blocks).
+fn net_model() -> (Layout, Vec<[f64; 3]>) {
+    let (k, seg, spacing, z0) = (4usize, 4usize, 20.0, -40.0);
+    let env = Environment {
+        depth: 60.0,
+        ..Environment::default()
+    };
+    let mut lt = wire();
+    lt.ea = 2.0e6;
+    lt.damping = 2e-3;
+    lt.cm = 1.0;
+    let mut nodes = Vec::new();
+    let knot = |i: usize, j: usize| i * k + j;
+    for i in 0..k {
+        for j in 0..k {
+            nodes.push(NodeDef {
+                position: [j as f64 * spacing, i as f64 * spacing, z0],
+                point: PointMass::default(),
+                route: None,
+                label: None,
+            });
+        }
+    }
+    let corner = |i: usize, j: usize| [j as f64 * spacing, i as f64 * spacing, z0];
+    nodes[knot(0, 0)].route = Some(Route::Fixed {
+        position: corner(0, 0),
+    });
+    nodes[knot(0, k - 1)].route = Some(Route::Fixed {
+        position: corner(0, k - 1),
+    });
+    nodes[knot(k - 1, 0)].route = Some(Route::Fixed {
+        position: corner(k - 1, 0),
+    });
+    nodes[knot(k - 1, k - 1)].route = Some(Route::Line {
+        start: corner(k - 1, k - 1),
+        velocity: [0.5, 0.3, 0.2],
+    });
+    nodes[knot(1, 1)].point = PointMass {
+        mass: 50.0,
+        volume: 0.3,
+        drag_area: 0.5,
+        added_mass_coef: 0.5,
+    };
+    let mut cables = Vec::new();
+    let mut add_cable = |nodes: &mut Vec<NodeDef>, a: usize, b: usize, name: String| {
+        let (pa, pb) = (nodes[a].position, nodes[b].position);
+        let mut chain = vec![a];
+        for s in 1..seg {
+            let f = s as f64 / seg as f64;
+            // A little sag so the elements start slack-free but not straight.
+            let mut p = [0, 1, 2].map(|d| pa[d] + f * (pb[d] - pa[d]));
+            p[2] -= 2.0 * (std::f64::consts::PI * f).sin();
+            nodes.push(NodeDef {
+                position: p,
+                point: PointMass::default(),
+                route: None,
+                label: None,
+            });
+            chain.push(nodes.len() - 1);
+        }
+        chain.push(b);
+        cables.push(CableDef {
+            name,
+            line_type: 0,
+            nodes: chain,
+            l0: vec![spacing / seg as f64 * 1.02; seg],
+            current: 0,
+            output_positions: true,
+        });
+    };
+    for i in 0..k {
+        for j in 0..k - 1 {
+            add_cable(
+                &mut nodes,
+                knot(i, j),
+                knot(i, j + 1),
+                format!("row{i}_{j}"),
+            );
+            add_cable(
+                &mut nodes,
+                knot(j, i),
+                knot(j + 1, i),
+                format!("col{i}_{j}"),
+            );
+        }
+    }
+    // A separate hanging line: a second block, on its own origin.
+    let top = nodes.len();
+    for s in 0..=10 {
+        nodes.push(NodeDef {
+            position: [300.0 + 3.0 * s as f64, -50.0, -5.0 - 4.0 * s as f64],
+            point: PointMass::default(),
+            route: (s == 0).then_some(Route::Fixed {
+                position: [300.0, -50.0, -5.0],
+            }),
+            label: None,
+        });
+    }
+    cables.push(CableDef {
+        name: "hanging".into(),
+        line_type: 0,
+        nodes: (top..=top + 10).collect(),
+        l0: vec![5.0; 10],
+        current: 0,
+        output_positions: true,
+    });
+    let def = ModelDef {
+        env,
+        line_types: vec![lt],
+        currents: vec![Current::uniform([0.3, -0.2, 0.0])],
+        nodes,
+        cables,
+    };
+    Layout::build(&def).unwrap()
+}
+
+struct Diff {
+    r: f64,
+    v: f64,
+    tension: f64,
+    reaction: f64,
+    scale_l: f64,
+    scale_v: f64,
+    scale_t: f64,
+    omega: f64,
+    l0_min: f64,
+    moved: f64,
+}
+
+/// Runs both paths for `steps` steps and returns the largest differences.
+fn compare(
+    ctx: &cablesim::gpu::GpuContext,
+    lay: Layout,
+    pos: &[[f64; 3]],
+    opts: SolverOptions,
+    steps: u64,
+) -> Diff {
+    let omega = 2.0 / cablesim::stability::stable_step(&lay, opts.scheme, opts.baumgarte).dt;
+    let l0_min = lay.elem_l0.iter().cloned().fold(f64::INFINITY, f64::min);
+    let mut cpu = CpuSolver::new(lay.clone(), pos, opts);
+    cpu.use_chain_kernel = false;
+    let mut gpu = GpuSolver::new(ctx, lay, pos, opts, Precision::F64).unwrap();
+    // Several advance calls of uneven length: submissions and rebasing at odd steps.
+    let mut done = 0;
+    for n in [1u64, 700, 299, 1000].iter().cycle() {
+        let n = (*n).min(steps - done);
+        if n == 0 {
+            break;
+        }
+        cpu.advance(n).unwrap();
+        gpu.advance(n).unwrap();
+        done += n;
+    }
+    assert_eq!(gpu.steps, cpu.steps);
+    let (r, v) = gpu.state().unwrap();
+    let ec = cpu.evaluate().unwrap();
+    let eg = gpu.evaluate().unwrap();
+    let max = |it: &mut dyn Iterator<Item = f64>| it.fold(0.0f64, f64::max);
+    let dist = |a: [f64; 3], b: [f64; 3]| {
+        ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    };
+    let moved = max(&mut cpu.r.iter().zip(pos).map(|(a, b)| dist(a.to_f64(), *b)));
+    assert!(moved > 0.01, "the model should move: {moved} m");
+    let origin_scale = {
+        // Largest coordinate relative to a block's mean: what the GPU's origins leave.
+        let mut s = 0.0f64;
+        for b in &cpu.layout.blocks {
+            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
+            let mut m = [0.0; 3];
+            for p in &cpu.r[n0..n1] {
+                for (md, pd) in m.iter_mut().zip(p.to_f64()) {
+                    *md += pd / (n1 - n0) as f64;
+                }
+            }
+            for p in &cpu.r[n0..n1] {
+                s = s.max(dist(p.to_f64(), m) + 1.0);
+            }
+        }
+        s
+    };
+    Diff {
+        r: max(&mut r.iter().zip(&cpu.r).map(|(a, b)| dist(*a, b.to_f64()))),
+        v: max(&mut v.iter().zip(&cpu.v).map(|(a, b)| dist(*a, b.to_f64()))),
+        tension: max(&mut eg
+            .tension
+            .iter()
+            .zip(&ec.tension)
+            .map(|(a, b)| (a - b).abs())),
+        reaction: max(&mut eg
+            .reaction
+            .iter()
+            .zip(&ec.reaction)
+            .map(|(a, b)| dist(*a, *b))),
+        scale_l: origin_scale,
+        scale_v: max(&mut cpu.v.iter().map(|x| x.norm())).max(1e-3),
+        scale_t: max(&mut ec.tension.iter().map(|x| x.abs())),
+        omega,
+        l0_min,
+        moved,
+    }
+}
+
+fn check(name: &str, d: &Diff, steps: u64, ea: f64) {
+    let n = steps as f64;
+    let tol_r = 10.0 * n * EPS * d.scale_l;
+    let tol_v = d.omega * tol_r + 10.0 * n * EPS * d.scale_v;
+    let tol_t = ea * (tol_r / d.l0_min + 100.0 * EPS) + 100.0 * EPS * d.scale_t;
+    eprintln!(
+        "{name}: {steps} steps, largest displacement {:.3} m: |dr| {:.3e} m (tol {tol_r:.1e}), |dv| {:.3e} m/s (tol {tol_v:.1e}, omega_max {:.0} rad/s), \
+         |dT| {:.3e} N (tol {tol_t:.1e}, max T {:.3e} N), |dReaction| {:.3e} N",
+        d.moved, d.r, d.v, d.omega, d.tension, d.scale_t, d.reaction
+    );
+    assert!(
+        d.r <= tol_r,
+        "{name}: positions differ by {:e} m > {tol_r:e}",
+        d.r
+    );
+    assert!(
+        d.v <= tol_v,
+        "{name}: velocities differ by {:e} m/s > {tol_v:e}",
+        d.v
+    );
+    assert!(
+        d.tension <= tol_t,
+        "{name}: tensions differ by {:e} N > {tol_t:e}",
+        d.tension
+    );
+    assert!(
+        d.reaction <= tol_t,
+        "{name}: reactions differ by {:e} N > {tol_t:e}",
+        d.reaction
+    );
+}
+
+#[test]
+fn gpu_f64_matches_cpu_f64_on_a_line() {
+    let Some(ctx) = gpu_context("gpu_f64_matches_cpu_f64_on_a_line", true) else {
+        return;
+    };
+    let (lay, pos) = line_model();
+    // The example's automatic step.
+    let opts = SolverOptions {
+        dt: 2.5e-4,
+        ..Default::default()
+    };
+    let steps = 4000;
+    let d = compare(&ctx, lay, &pos, opts, steps);
+    check("line", &d, steps, wire().ea);
+}
+
+#[test]
+fn gpu_f64_matches_cpu_f64_on_a_net() {
+    let Some(ctx) = gpu_context("gpu_f64_matches_cpu_f64_on_a_net", true) else {
+        return;
+    };
+    let (lay, pos) = net_model();
+    assert!(lay.blocks.len() == 2 && !lay.blocks[0].is_chain);
+    let opts = SolverOptions {
+        dt: 2e-4,
+        ..Default::default()
+    };
+    let steps = 3000;
+    let d = compare(&ctx, lay, &pos, opts, steps);
+    check("net", &d, steps, 2.0e6);
+}
+
+/// A step far above the stable one blows up on the GPU as on the CPU: the error names
+/// the cable, the node and the time, and the times agree.
+#[test]
+fn gpu_blow_up_is_reported_like_the_cpu() {
+    let Some(ctx) = gpu_context("gpu_blow_up_is_reported_like_the_cpu", false) else {
+        return;
+    };
+    let (lay, pos) = line_model();
+    let opts = SolverOptions {
+        dt: 2e-2,
+        ..Default::default()
+    };
+    let mut cpu = CpuSolver::new(lay.clone(), &pos, opts);
+    cpu.use_chain_kernel = false;
+    let ce = cpu.advance(10_000).unwrap_err();
+    for p in [Precision::F32, Precision::F64] {
+        if !ctx.supports(p) {
+            continue;
+        }
+        let mut gpu = GpuSolver::new(&ctx, lay.clone(), &pos, opts, p).unwrap();
+        let ge = gpu.advance(10_000).unwrap_err();
+        eprintln!("CPU: {ce}\nGPU {}: {ge}", p.name());
+        match (&ce, &ge) {
+            (
+                cablesim::Error::Diverged {
+                    cable: cc,
+                    time: tc,
+                    ..
+                },
+                cablesim::Error::Diverged {
+                    cable: cg,
+                    node,
+                    time: tg,
+                    ..
+                },
+            ) => {
+                assert_eq!(cc, cg);
+                assert!(*node <= 50);
+                // Same step in f64; within a few steps in f32.
+                let slack = if p == Precision::F64 { 0.5 } else { 5.0 } * opts.dt;
+                assert!((tc - tg).abs() <= slack, "CPU at {tc} s, GPU at {tg} s");
+            }
+            _ => panic!("expected Diverged from both: {ce} / {ge}"),
+        }
+        let msg = ge.to_string();
+        assert!(
+            msg.contains("cable 'line1'") && msg.contains("node"),
+            "{msg}"
+        );
+    }
+}
