@@ -401,7 +401,7 @@ impl Stepper {
 /// The time of step `steps` as written out: an exact multiple of the output interval at
 /// output steps (`steps * dt` can be off by an ulp), else `steps * dt`.
 fn output_time(plan: &StepPlan, oi: f64, steps: u64) -> f64 {
-    if steps % plan.steps_per_output == 0 {
+    if steps.is_multiple_of(plan.steps_per_output) {
         (steps / plan.steps_per_output) as f64 * oi
     } else {
         steps as f64 * plan.dt

@@ -38,7 +38,7 @@ fn model() -> (Layout, Vec<[f64; 3]>) {
             radius: 5.0,
             period: 20.0,
             axis: [0.0, 0.0, 1.0],
-            phase: -1.5707963267948966,
+            phase: -std::f64::consts::FRAC_PI_2,
             advance: 0.0,
         }),
         PointMass::default(),

@@ -440,6 +440,7 @@ fn count_bad(p: &[Vec<f64>; 6], n: usize, vmax: f64, rmax: f64) -> usize {
         &p[4][..n],
         &p[5][..n],
     ];
+    #[allow(clippy::needless_range_loop)] // six arrays indexed together
     for i in 0..n {
         // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
         let ok = (p[0][i].abs() < rmax)

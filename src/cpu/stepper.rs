@@ -623,6 +623,7 @@ fn node_mass<T: Topo>(
 /// Pass 2 for one node: gathered force, mass block, and acceleration (free or
 /// Baumgarte-constrained). `r`, `v`, `elems` are block-local, `li` block-local too.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn node_accel<T: Topo>(
     ctx: &Ctx,
     topo: &T,

@@ -145,6 +145,7 @@ impl Route {
                     v: [0.0; 3],
                     a: [0.0; 3],
                 };
+                #[allow(clippy::needless_range_loop)] // three arrays indexed together
                 for k in 0..3 {
                     st.r[k] = p[i - 1][k] + s * (p[i][k] - p[i - 1][k]);
                     st.v[k] = (p[i][k] - p[i - 1][k]) / (t1 - t0);
