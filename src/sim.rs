@@ -1,10 +1,11 @@
 //! Runs a scenario: set-up, initial equilibrium, time stepping, output.
 
+use crate::ale::{WinchEnd, WinchTracker};
 use crate::cpu::CpuSolver;
 use crate::error::Error;
-use crate::model::Layout;
+use crate::model::{Layout, ModelDef};
 use crate::options::{Formulation, Scheme, SolverOptions};
-use crate::output::{end_forces, CableSummary, OutputWriter, Summary};
+use crate::output::{end_forces, CableSummary, OutputWriter, Summary, WinchSummary};
 use crate::scenario::{Backend, DtSpec, Scenario};
 use crate::stability::{stable_step, StepBound, AUTO_SAFETY};
 use std::path::PathBuf;
@@ -54,6 +55,12 @@ pub struct StepPlan {
 /// Chooses the step: `auto` takes [`AUTO_SAFETY`] of the stable step, rounded down so
 /// that a whole number of steps fits each output interval; a given step must divide the
 /// output interval and gets a warning when it is above the stable step.
+///
+/// With winches, the stable step is that of the worst mesh the run can reach (each
+/// variable element at its shortest, `0.5 l_s`; a cable hauled in to a single element
+/// when the schedule goes that far), and the schedules are followed over the planned
+/// step times without dynamics: a drum overrun or a haul-in past the last node is
+/// reported here, naming the cable and the time, before anything runs.
 pub fn plan_steps(
     sc: &Scenario,
     lay: &Layout,
@@ -61,7 +68,84 @@ pub fn plan_steps(
     duration: f64,
     dt: DtSpec,
 ) -> Result<StepPlan, Error> {
-    let bound = stable_step(lay, opts.scheme, opts.baumgarte);
+    let mut bound = stable_step(lay, opts.scheme, opts.baumgarte);
+    if sc.winches.is_empty() {
+        return plan_with(sc, opts, duration, dt, bound);
+    }
+    let worst = |bound: &mut StepBound, collapse: &[usize]| -> Result<(), Error> {
+        let (wl, _) = Layout::build(&winch_worst_case(&sc.model, sc, collapse))?;
+        let b = stable_step(&wl, opts.scheme, opts.baumgarte);
+        if b.dt < bound.dt {
+            *bound = StepBound {
+                dt: b.dt,
+                term: format!("{} (winch mesh at its shortest variable element)", b.term),
+            };
+        }
+        Ok(())
+    };
+    worst(&mut bound, &[])?;
+    let mut plan = plan_with(sc, opts, duration, dt, bound.clone())?;
+    let collapse = scan_winches(sc, &plan)?;
+    if !collapse.is_empty() {
+        worst(&mut bound, &collapse)?;
+        plan = plan_with(sc, opts, duration, dt, bound)?;
+        scan_winches(sc, &plan)?;
+    }
+    Ok(plan)
+}
+
+/// The model with every winch cable's variable element at `0.5 l_s`, and the cables
+/// listed in `collapse` hauled in to that single element.
+fn winch_worst_case(def: &ModelDef, sc: &Scenario, collapse: &[usize]) -> ModelDef {
+    let mut d = def.clone();
+    for (wi, w) in sc.winches.iter().enumerate() {
+        let c = &mut d.cables[w.cable];
+        let short = crate::ale::DELETE_RATIO * w.element_length;
+        if collapse.contains(&wi) {
+            // Interior nodes are left loose (no mass, no elements): the step ignores them.
+            let (a, b) = (c.nodes[0], c.nodes[c.nodes.len() - 1]);
+            c.nodes = vec![a, b];
+            c.l0 = vec![short];
+        } else {
+            let k = match w.end {
+                WinchEnd::Start => 0,
+                WinchEnd::End => c.l0.len() - 1,
+            };
+            c.l0[k] = short;
+        }
+    }
+    d
+}
+
+/// Follows every winch's schedule over the plan's step times; returns the winches
+/// whose cable gets down to a single element (from more), or the first limit passed.
+fn scan_winches(sc: &Scenario, plan: &StepPlan) -> Result<Vec<usize>, Error> {
+    let mut collapse = Vec::new();
+    for (wi, w) in sc.winches.iter().enumerate() {
+        let c = &sc.model.cables[w.cable];
+        let mut tr = WinchTracker::new(w, &c.l0, w.schedule.eval(0.0).dl);
+        let n0 = tr.n_elements();
+        let fewest =
+            tr.scan(&w.schedule, plan.dt, 0, plan.total_steps)
+                .map_err(|(time, lim)| Error::Winch {
+                    cable: c.name.clone(),
+                    time,
+                    message: lim.to_string(),
+                })?;
+        if fewest == 1 && n0 > 1 {
+            collapse.push(wi);
+        }
+    }
+    Ok(collapse)
+}
+
+fn plan_with(
+    sc: &Scenario,
+    opts: &SolverOptions,
+    duration: f64,
+    dt: DtSpec,
+    bound: StepBound,
+) -> Result<StepPlan, Error> {
     let oi = sc.sim.output_interval;
     let (dt, spo, warning) = match dt {
         DtSpec::Auto => {
@@ -150,7 +234,11 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     );
     opts.dt = plan.dt;
     let mut out = OutputWriter::create(&ro.out_dir, &lay)?;
-    let mut solver = CpuSolver::new(lay, &pos, opts);
+    let mut solver = if sc.winches.is_empty() {
+        CpuSolver::new(lay, &pos, opts)
+    } else {
+        CpuSolver::with_winches(sc.model.clone(), sc.winches.clone(), &pos, opts)?
+    };
 
     let bar = if ro.progress {
         let b = indicatif::ProgressBar::new(plan.total_steps);
@@ -202,10 +290,23 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     let lay = &solver.layout;
     let ev = solver.evaluate().ok();
     let r: Vec<[f64; 3]> = solver.r.iter().map(|x| x.to_f64()).collect();
+    let winches = solver.winch_status();
     let cables = lay
         .cables
         .iter()
-        .map(|c| CableSummary {
+        .enumerate()
+        .map(|(ci, c)| CableSummary {
+            winch: winches
+                .iter()
+                .find(|w| w.cable == ci)
+                .map(|w| WinchSummary {
+                    deployed_length: w.deployed_length,
+                    variable_l0: w.variable_l0,
+                    elements: w.elements,
+                    nodes_inserted: w.inserted,
+                    nodes_deleted: w.deleted,
+                    physical_coordinates: w.physical_coordinates.clone(),
+                }),
             name: c.name.clone(),
             final_positions: c.nodes.iter().map(|&i| r[i as usize]).collect(),
             final_tensions: c
@@ -245,7 +346,7 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         nodes: lay.n_nodes(),
         elements: lay.n_elements(),
         node_steps_per_second: if stepping > 0.0 {
-            lay.n_nodes() as f64 * solver.steps as f64 / stepping
+            solver.node_steps as f64 / stepping
         } else {
             0.0
         },
@@ -260,7 +361,8 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
 fn write_frame(out: &mut OutputWriter, s: &CpuSolver, t: f64) -> Result<(), Error> {
     let ev = s.evaluate()?;
     let r: Vec<[f64; 3]> = s.r.iter().map(|x| x.to_f64()).collect();
-    out.frame(t, &s.layout, &r, &ev)
+    out.frame(t, &s.layout, &r, &ev)?;
+    out.winches(t, &s.layout, &s.winch_status())
 }
 
 /// The time of step `steps` as written out: an exact multiple of the output interval at

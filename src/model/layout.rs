@@ -199,6 +199,12 @@ impl Layout {
     /// Packs a model description. Returns the layout and the initial positions in
     /// packed node order.
     pub fn build(def: &ModelDef) -> Result<(Layout, Vec<[f64; 3]>), Error> {
+        Self::build_indexed(def).map(|(lay, pos, _)| (lay, pos))
+    }
+
+    /// [`Layout::build`], also returning where each described node went: entry `d` is
+    /// the packed index of `def.nodes[d]`.
+    pub fn build_indexed(def: &ModelDef) -> Result<(Layout, Vec<[f64; 3]>, Vec<u32>), Error> {
         let nn = def.nodes.len();
         let env = def.env;
         for (ci, c) in def.cables.iter().enumerate() {
@@ -412,6 +418,6 @@ impl Layout {
             });
             node_start = node_end;
         }
-        Ok((lay, positions))
+        Ok((lay, positions, new_index))
     }
 }
