@@ -732,6 +732,7 @@ fn element_input<T: Topo>(
 
 /// Pass 1 over one block: element loads. `r`, `v`, `out` are block-local slices.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn element_pass<T: Topo>(
     ctx: &Ctx,
     topo: &T,
@@ -821,6 +822,7 @@ fn node_mass<T: Topo>(
 /// Pass 2 for one node: gathered force, mass block, and acceleration (free or
 /// Baumgarte-constrained). `r`, `v`, `elems` are block-local, `li` block-local too.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn node_accel<T: Topo>(
     ctx: &Ctx,
     topo: &T,
