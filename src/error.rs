@@ -46,6 +46,17 @@ pub enum Error {
         /// Why.
         reason: String,
     },
+    /// A winch cannot follow its payout schedule (drum capacity, hauled in past the
+    /// cable's last node).
+    #[error("winch of cable '{cable}' at t = {time:.6} s: {message}")]
+    Winch {
+        /// Cable name.
+        cable: String,
+        /// Simulated time, s.
+        time: f64,
+        /// What limit was passed.
+        message: String,
+    },
     /// The static solver did not reach equilibrium.
     #[error("initial equilibrium: {0}")]
     Statics(String),

@@ -4,9 +4,12 @@
 //! ends; it becomes a [`model::ModelDef`], which is packed into a [`model::Layout`]
 //! (flat arrays over every cable of the run); the initial shape is relaxed to static
 //! equilibrium ([`statics`]); a stepper ([`cpu::CpuSolver`], the f64 reference path)
-//! advances it; [`sim`] drives the run and [`output`] writes what users read.
+//! advances it; [`sim`] drives the run and [`output`] writes what users read. Cables
+//! of varying length (winch payout and retrieval) are the ALE-GLMF of [`ale`], which
+//! the CPU stepper applies and remeshes between steps.
 #![warn(missing_docs)]
 
+pub mod ale;
 pub mod cpu;
 pub mod error;
 pub mod gpu;

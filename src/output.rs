@@ -18,11 +18,32 @@ pub struct EndForces {
     pub end: [f64; 3],
 }
 
+/// Final state of a winch cable (ALE-GLMF).
+#[derive(Clone, Debug, Serialize)]
+pub struct WinchSummary {
+    /// Deployed unstretched length, m.
+    pub deployed_length: f64,
+    /// Unstretched length of the variable element next to the winch, m.
+    pub variable_l0: f64,
+    /// Elements of the cable.
+    pub elements: usize,
+    /// Nodes inserted during the run.
+    pub nodes_inserted: u64,
+    /// Nodes deleted during the run.
+    pub nodes_deleted: u64,
+    /// Physical coordinate `p` of each node (cable order, start to end): unstretched
+    /// arc length from the far end, m.
+    pub physical_coordinates: Vec<f64>,
+}
+
 /// Per-cable part of the summary.
 #[derive(Clone, Debug, Serialize)]
 pub struct CableSummary {
     /// Name.
     pub name: String,
+    /// The winch's final state, for a cable with a winch.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub winch: Option<WinchSummary>,
     /// Final node positions, m.
     pub final_positions: Vec<[f64; 3]>,
     /// Final axial force per element, N.
@@ -85,6 +106,7 @@ pub struct OutputWriter {
     end_forces: BufWriter<File>,
     tensions: BufWriter<File>,
     positions: Option<BufWriter<File>>,
+    winches: Option<BufWriter<File>>,
 }
 
 fn create(dir: &Path, name: &str) -> Result<BufWriter<File>, Error> {
@@ -140,6 +162,7 @@ impl OutputWriter {
             } else {
                 None
             },
+            winches: None,
         };
         w.io("end_forces.csv", |w| {
             writeln!(w.end_forces, "time,cable,end,fx,fy,fz")
@@ -214,8 +237,47 @@ impl OutputWriter {
         Ok(())
     }
 
+    /// Writes one output time of `winches.csv` (created at the first call with a
+    /// winch): `time,cable,deployed_length,variable_l0,elements`.
+    pub fn winches(
+        &mut self,
+        t: f64,
+        lay: &Layout,
+        winches: &[crate::cpu::WinchStatus],
+    ) -> Result<(), Error> {
+        if winches.is_empty() {
+            return Ok(());
+        }
+        if self.winches.is_none() {
+            let mut w = create(&self.dir, "winches.csv")?;
+            writeln!(w, "time,cable,deployed_length,variable_l0,elements").map_err(|source| {
+                Error::Output {
+                    path: self.dir.join("winches.csv"),
+                    source,
+                }
+            })?;
+            self.winches = Some(w);
+        }
+        self.io("winches.csv", |o| {
+            let f = o.winches.as_mut().expect("created above");
+            for w in winches {
+                writeln!(
+                    f,
+                    "{t},{},{},{},{}",
+                    lay.cables[w.cable].name, w.deployed_length, w.variable_l0, w.elements
+                )?;
+            }
+            Ok(())
+        })
+    }
+
     /// Flushes every file.
     pub fn flush(&mut self) -> Result<(), Error> {
+        if self.winches.is_some() {
+            self.io("winches.csv", |w| {
+                w.winches.as_mut().expect("checked").flush()
+            })?;
+        }
         self.io("end_forces.csv", |w| w.end_forces.flush())?;
         self.io("tensions.csv", |w| w.tensions.flush())?;
         if self.positions.is_some() {

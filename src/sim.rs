@@ -1,11 +1,12 @@
 //! Runs a scenario: set-up, initial equilibrium, time stepping, output.
 
-use crate::cpu::{CpuSolver, Evaluation};
+use crate::ale::{WinchEnd, WinchTracker};
+use crate::cpu::{CpuSolver, Evaluation, WinchStatus};
 use crate::error::Error;
 use crate::gpu::{GpuContext, GpuSolver, Precision};
-use crate::model::Layout;
+use crate::model::{Layout, ModelDef};
 use crate::options::{Formulation, Scheme, SolverOptions};
-use crate::output::{end_forces, CableSummary, OutputWriter, Summary};
+use crate::output::{end_forces, CableSummary, OutputWriter, Summary, WinchSummary};
 use crate::scenario::{Backend, DtSpec, Scenario};
 use crate::stability::{stable_step, StepBound, AUTO_SAFETY};
 use std::path::PathBuf;
@@ -57,6 +58,12 @@ pub struct StepPlan {
 /// Chooses the step: `auto` takes [`AUTO_SAFETY`] of the stable step, rounded down so
 /// that a whole number of steps fits each output interval; a given step must divide the
 /// output interval and gets a warning when it is above the stable step.
+///
+/// With winches, the stable step is that of the worst mesh the run can reach (each
+/// variable element at its shortest, `0.5 l_s`; a cable hauled in to a single element
+/// when the schedule goes that far), and the schedules are followed over the planned
+/// step times without dynamics: a drum overrun or a haul-in past the last node is
+/// reported here, naming the cable and the time, before anything runs.
 pub fn plan_steps(
     sc: &Scenario,
     lay: &Layout,
@@ -64,7 +71,84 @@ pub fn plan_steps(
     duration: f64,
     dt: DtSpec,
 ) -> Result<StepPlan, Error> {
-    let bound = stable_step(lay, opts.scheme, opts.baumgarte);
+    let mut bound = stable_step(lay, opts.scheme, opts.baumgarte);
+    if sc.winches.is_empty() {
+        return plan_with(sc, opts, duration, dt, bound);
+    }
+    let worst = |bound: &mut StepBound, collapse: &[usize]| -> Result<(), Error> {
+        let (wl, _) = Layout::build(&winch_worst_case(&sc.model, sc, collapse))?;
+        let b = stable_step(&wl, opts.scheme, opts.baumgarte);
+        if b.dt < bound.dt {
+            *bound = StepBound {
+                dt: b.dt,
+                term: format!("{} (winch mesh at its shortest variable element)", b.term),
+            };
+        }
+        Ok(())
+    };
+    worst(&mut bound, &[])?;
+    let mut plan = plan_with(sc, opts, duration, dt, bound.clone())?;
+    let collapse = scan_winches(sc, &plan)?;
+    if !collapse.is_empty() {
+        worst(&mut bound, &collapse)?;
+        plan = plan_with(sc, opts, duration, dt, bound)?;
+        scan_winches(sc, &plan)?;
+    }
+    Ok(plan)
+}
+
+/// The model with every winch cable's variable element at `0.5 l_s`, and the cables
+/// listed in `collapse` hauled in to that single element.
+fn winch_worst_case(def: &ModelDef, sc: &Scenario, collapse: &[usize]) -> ModelDef {
+    let mut d = def.clone();
+    for (wi, w) in sc.winches.iter().enumerate() {
+        let c = &mut d.cables[w.cable];
+        let short = crate::ale::DELETE_RATIO * w.element_length;
+        if collapse.contains(&wi) {
+            // Interior nodes are left loose (no mass, no elements): the step ignores them.
+            let (a, b) = (c.nodes[0], c.nodes[c.nodes.len() - 1]);
+            c.nodes = vec![a, b];
+            c.l0 = vec![short];
+        } else {
+            let k = match w.end {
+                WinchEnd::Start => 0,
+                WinchEnd::End => c.l0.len() - 1,
+            };
+            c.l0[k] = short;
+        }
+    }
+    d
+}
+
+/// Follows every winch's schedule over the plan's step times; returns the winches
+/// whose cable gets down to a single element (from more), or the first limit passed.
+fn scan_winches(sc: &Scenario, plan: &StepPlan) -> Result<Vec<usize>, Error> {
+    let mut collapse = Vec::new();
+    for (wi, w) in sc.winches.iter().enumerate() {
+        let c = &sc.model.cables[w.cable];
+        let mut tr = WinchTracker::new(w, &c.l0, w.schedule.eval(0.0).dl);
+        let n0 = tr.n_elements();
+        let fewest =
+            tr.scan(&w.schedule, plan.dt, 0, plan.total_steps)
+                .map_err(|(time, lim)| Error::Winch {
+                    cable: c.name.clone(),
+                    time,
+                    message: lim.to_string(),
+                })?;
+        if fewest == 1 && n0 > 1 {
+            collapse.push(wi);
+        }
+    }
+    Ok(collapse)
+}
+
+fn plan_with(
+    sc: &Scenario,
+    opts: &SolverOptions,
+    duration: f64,
+    dt: DtSpec,
+    bound: StepBound,
+) -> Result<StepPlan, Error> {
     let oi = sc.sim.output_interval;
     let (dt, spo, warning) = match dt {
         DtSpec::Auto => {
@@ -145,9 +229,15 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         Some(p) => Some(p),
         None => sc.sim.precision.as_deref().and_then(Precision::parse),
     };
-    let choice = choose_backend(backend, precision, &lay, &opts)?;
+    let choice = choose_backend(backend, precision, &lay, &opts, !sc.winches.is_empty())?;
     let mut out = OutputWriter::create(&ro.out_dir, &lay)?;
     let mut solver = match choice {
+        BackendChoice::Cpu if !sc.winches.is_empty() => Stepper::Cpu(CpuSolver::with_winches(
+            sc.model.clone(),
+            sc.winches.clone(),
+            &pos,
+            opts,
+        )?),
         BackendChoice::Cpu => Stepper::Cpu(CpuSolver::new(lay, &pos, opts)),
         BackendChoice::Gpu(ctx, p) => Stepper::Gpu(GpuSolver::new(&ctx, lay, &pos, opts, p)?),
     };
@@ -203,13 +293,27 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
 
     let ev = solver.evaluate().ok();
     let r: Vec<[f64; 3]> = solver.positions()?;
+    let winches = solver.winch_status();
     let (backend_name, device, precision_name) = solver.describe();
+    let node_steps = solver.node_steps();
     let steps = solver.steps();
     let lay = solver.layout();
     let cables = lay
         .cables
         .iter()
-        .map(|c| CableSummary {
+        .enumerate()
+        .map(|(ci, c)| CableSummary {
+            winch: winches
+                .iter()
+                .find(|w| w.cable == ci)
+                .map(|w| WinchSummary {
+                    deployed_length: w.deployed_length,
+                    variable_l0: w.variable_l0,
+                    elements: w.elements,
+                    nodes_inserted: w.inserted,
+                    nodes_deleted: w.deleted,
+                    physical_coordinates: w.physical_coordinates.clone(),
+                }),
             name: c.name.clone(),
             final_positions: c.nodes.iter().map(|&i| r[i as usize]).collect(),
             final_tensions: c
@@ -249,7 +353,7 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         nodes: lay.n_nodes(),
         elements: lay.n_elements(),
         node_steps_per_second: if stepping > 0.0 {
-            lay.n_nodes() as f64 * steps as f64 / stepping
+            node_steps as f64 / stepping
         } else {
             0.0
         },
@@ -264,7 +368,8 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
 fn write_frame(out: &mut OutputWriter, s: &mut Stepper, t: f64) -> Result<(), Error> {
     let ev = s.evaluate()?;
     let r = s.positions()?;
-    out.frame(t, s.layout(), &r, &ev)
+    out.frame(t, s.layout(), &r, &ev)?;
+    out.winches(t, s.layout(), &s.winch_status())
 }
 
 /// The backend a run uses.
@@ -289,6 +394,7 @@ pub fn choose_backend(
     precision: Option<Precision>,
     lay: &Layout,
     opts: &SolverOptions,
+    has_winches: bool,
 ) -> Result<BackendChoice, Error> {
     let need_f64 = precision == Some(Precision::F64);
     let p = precision.unwrap_or_default();
@@ -300,7 +406,9 @@ pub fn choose_backend(
             Ok(BackendChoice::Cpu)
         }
         Backend::Gpu => {
-            if let Some(what) = crate::gpu::solver::unsupported(lay, opts) {
+            let what = crate::gpu::solver::unsupported(lay, opts)
+                .or_else(|| has_winches.then(|| "winch cables (ALE-GLMF)".to_string()));
+            if let Some(what) = what {
                 return Err(Error::GpuUnsupported(format!(
                     "{what}; use --backend cpu (or auto)"
                 )));
@@ -310,7 +418,9 @@ pub fn choose_backend(
             Ok(BackendChoice::Gpu(Box::new(ctx), p))
         }
         Backend::Auto => {
-            if let Some(what) = crate::gpu::solver::unsupported(lay, opts) {
+            let what = crate::gpu::solver::unsupported(lay, opts)
+                .or_else(|| has_winches.then(|| "winch cables (ALE-GLMF)".to_string()));
+            if let Some(what) = what {
                 log::info!(
                     "backend auto: the GPU path does not do {what} yet; running the f64 CPU reference path"
                 );
@@ -359,6 +469,20 @@ impl Stepper {
         match self {
             Stepper::Cpu(s) => s.t,
             Stepper::Gpu(s) => s.t,
+        }
+    }
+    /// Node-steps taken (nodes times steps, counting the nodes each step had).
+    pub fn node_steps(&self) -> u64 {
+        match self {
+            Stepper::Cpu(s) => s.node_steps,
+            Stepper::Gpu(s) => s.layout.n_nodes() as u64 * s.steps,
+        }
+    }
+    /// State of the winch cables (CPU only: the GPU path has none).
+    pub fn winch_status(&self) -> Vec<WinchStatus> {
+        match self {
+            Stepper::Cpu(s) => s.winch_status(),
+            Stepper::Gpu(_) => Vec::new(),
         }
     }
     /// Steps taken.

@@ -11,9 +11,14 @@
 //!
 //! Blocks (connected components) are independent, so each is advanced through a whole
 //! output interval on its own, and blocks are spread over threads with rayon.
+//!
+//! Winch cables (ALE-GLMF, [`crate::ale`]) take the general passes with their variable
+//! element's length and mass-flow forces evaluated at each stage's time, and are
+//! remeshed between steps ([`CpuSolver::with_winches`]).
 
+mod ale;
 mod chain;
 mod stepper;
 
 pub(crate) use stepper::diverged;
-pub use stepper::{CpuSolver, Evaluation, StepFailure};
+pub use stepper::{CpuSolver, Evaluation, StepFailure, WinchStatus};

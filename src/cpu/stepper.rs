@@ -1,9 +1,11 @@
 //! Passes and schemes of the CPU reference path (see the module doc of `cpu`).
 
+use super::ale::{AleElem, AleState};
 use super::chain::{advance_chain, ChainConsts, ChainScratch};
+use crate::ale::{mass_flow_forces, Winch};
 use crate::error::Error;
 use crate::math::{Sym3, V3};
-use crate::model::{Block, Layout, NO_CONSTRAINT};
+use crate::model::{Block, Layout, ModelDef, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{glmf_element, seabed_force, Coefs, ElementInput, ElementLoads, SeabedCoefs};
@@ -49,6 +51,26 @@ pub struct Evaluation {
     pub reaction: Vec<[f64; 3]>,
     /// Per element: its loads (tangent, axial force, half external load, half masses).
     pub elements: Vec<ElementLoads<f64>>,
+}
+
+/// Where a winch cable stands (ALE-GLMF, [`crate::ale`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct WinchStatus {
+    /// Cable index (into `Layout::cables`).
+    pub cable: usize,
+    /// Deployed unstretched length `L(t)`, m.
+    pub deployed_length: f64,
+    /// Unstretched length of the variable element (next to the winch) now, m.
+    pub variable_l0: f64,
+    /// Physical coordinate `p` of each node of the cable, in the cable's node order
+    /// (start to end), m: unstretched arc length from the far end.
+    pub physical_coordinates: Vec<f64>,
+    /// Elements of the cable now.
+    pub elements: usize,
+    /// Nodes inserted so far.
+    pub inserted: u64,
+    /// Nodes deleted so far.
+    pub deleted: u64,
 }
 
 /// Per-node scratch of the Runge-Kutta schemes.
@@ -98,45 +120,192 @@ pub struct CpuSolver {
     pub use_chain_kernel: bool,
     /// Groups of consecutive blocks handed to one task each.
     chunks: Vec<std::ops::Range<usize>>,
+    /// Winch cables (ALE-GLMF), if any.
+    ale: Option<Box<AleState>>,
+    /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
+    pub node_steps: u64,
 }
 
 impl CpuSolver {
     /// A solver at rest at `positions` (packed order), `t = 0`.
     pub fn new(layout: Layout, positions: &[[f64; 3]], opts: SolverOptions) -> Self {
-        let coefs = layout.line_coefs.iter().map(Coefs::from_line).collect();
+        let mut s = Self {
+            chain_consts: Vec::new(),
+            use_chain_kernel: true,
+            uniform_current: Vec::new(),
+            opts,
+            t: 0.0,
+            steps: 0,
+            r: Vec::new(),
+            v: Vec::new(),
+            coefs: Vec::new(),
+            elem_in_cable: Vec::new(),
+            elems: Vec::new(),
+            scratch: Vec::new(),
+            chunks: Vec::new(),
+            layout: Layout::build(&ModelDef::default())
+                .expect("an empty model packs")
+                .0,
+            ale: None,
+            node_steps: 0,
+        };
+        let r = positions.iter().map(|p| V::from_f64(*p)).collect();
+        let v = vec![V::zero(); positions.len()];
+        s.install(layout, r, v);
+        s
+    }
+
+    /// A solver at rest at `positions` (packed order of `Layout::build(&def)`), `t = 0`,
+    /// whose cables listed in `winches` pay out or haul in (ALE-GLMF, [`crate::ale`]).
+    /// The description is kept: remeshing edits it and repacks the layout. Only the
+    /// GLMF formulation supports winches.
+    pub fn with_winches(
+        def: ModelDef,
+        winches: Vec<Winch>,
+        positions: &[[f64; 3]],
+        opts: SolverOptions,
+    ) -> Result<Self, Error> {
+        if winches.is_empty() {
+            let (lay, _) = Layout::build(&def)?;
+            return Ok(Self::new(lay, positions, opts));
+        }
+        if opts.formulation != Formulation::Glmf {
+            return Err(Error::Model(format!(
+                "cable '{}' has a winch: ALE-GLMF needs the glmf formulation, not {}",
+                def.cables
+                    .get(winches[0].cable)
+                    .map_or("?", |c| c.name.as_str()),
+                opts.formulation.name()
+            )));
+        }
+        let (lay, pos0, packed) = Layout::build_indexed(&def)?;
+        if pos0.len() != positions.len() {
+            return Err(Error::Model(format!(
+                "{} initial positions for {} nodes",
+                positions.len(),
+                pos0.len()
+            )));
+        }
+        let mut ale = AleState::new(def, winches, packed)?;
+        ale.index(&lay);
+        let mut s = Self::new(lay, positions, opts);
+        s.ale = Some(Box::new(ale));
+        // Winch blocks take the general passes.
+        s.install_chain_consts();
+        Ok(s)
+    }
+
+    /// Takes `layout` with state `r`, `v` (packed order) and rebuilds what depends on it.
+    fn install(&mut self, layout: Layout, r: Vec<V>, v: Vec<V>) {
+        self.coefs = layout.line_coefs.iter().map(Coefs::from_line).collect();
         let mut elem_in_cable = vec![0u32; layout.n_elements()];
         for c in &layout.cables {
             for (k, &e) in c.elements.iter().enumerate() {
                 elem_in_cable[e as usize] = k as u32;
             }
         }
-        let chunks = make_chunks(&layout.blocks, rayon::current_num_threads());
-        let uniform_current = layout
+        self.elem_in_cable = elem_in_cable;
+        self.chunks = make_chunks(&layout.blocks, rayon::current_num_threads());
+        self.uniform_current = layout
             .currents
             .iter()
             .map(|c| (c.table.len() <= 1).then(|| c.at(0.0)))
             .collect();
-        let chain_consts = layout
+        self.elems = vec![ElementLoads::default(); layout.n_elements()];
+        self.scratch = vec![NodeScratch::default(); layout.n_nodes()];
+        self.r = r;
+        self.v = v;
+        self.layout = layout;
+        self.install_chain_consts();
+    }
+
+    /// Chain fast-path constants for chain blocks without a winch.
+    fn install_chain_consts(&mut self) {
+        let lay = &self.layout;
+        let ale = self.ale.as_deref();
+        self.chain_consts = lay
             .blocks
             .iter()
-            .map(|b| b.is_chain.then(|| ChainConsts::new(&layout, b)))
+            .enumerate()
+            .map(|(bi, b)| {
+                let winch = ale.is_some_and(|a| !a.blocks[bi].is_empty());
+                (b.is_chain && !winch).then(|| ChainConsts::new(lay, b))
+            })
             .collect();
-        Self {
-            chain_consts,
-            use_chain_kernel: true,
-            uniform_current,
-            opts,
-            t: 0.0,
-            steps: 0,
-            r: positions.iter().map(|p| V::from_f64(*p)).collect(),
-            v: vec![V::zero(); positions.len()],
-            coefs,
-            elem_in_cable,
-            elems: vec![ElementLoads::default(); layout.n_elements()],
-            scratch: vec![NodeScratch::default(); layout.n_nodes()],
-            chunks,
-            layout,
+    }
+
+    /// The variable elements of block `bi` (none without winches).
+    fn ale_block(&self, bi: usize) -> &[AleElem] {
+        ale_of(self.ale.as_deref(), bi)
+    }
+
+    /// Unstretched length of every packed element now, m (the variable elements of
+    /// winch cables at the current time).
+    pub fn element_l0(&self) -> Vec<f64> {
+        let mut l0 = self.layout.elem_l0.clone();
+        if let Some(a) = self.ale.as_deref() {
+            for (bi, b) in self.layout.blocks.iter().enumerate() {
+                for ae in &a.blocks[bi] {
+                    l0[b.elem_start as usize + ae.elem] = ae.l0(ae.sched.eval(self.t).dl);
+                }
+            }
         }
+        l0
+    }
+
+    /// Where each winch cable stands now (empty without winches).
+    pub fn winch_status(&self) -> Vec<WinchStatus> {
+        let Some(a) = self.ale.as_deref() else {
+            return Vec::new();
+        };
+        a.winches
+            .iter()
+            .map(|(w, tr)| {
+                let dl = w.schedule.eval(self.t).dl;
+                let mut p = tr.physical_coordinates(dl);
+                // Far end first; the cable's node order runs from the winch when the
+                // winch is at its start.
+                if w.end == crate::ale::WinchEnd::Start {
+                    p.reverse();
+                }
+                WinchStatus {
+                    cable: w.cable,
+                    deployed_length: tr.deployed(dl),
+                    variable_l0: tr.variable_l0(dl),
+                    physical_coordinates: p,
+                    elements: tr.n_elements(),
+                    inserted: tr.inserted,
+                    deleted: tr.deleted,
+                }
+            })
+            .collect()
+    }
+
+    /// Advances `nsteps` steps of `opts.dt`. Blocks run independently (in parallel);
+    /// on failure the state is left where the failing block stopped and the error names
+    /// the cable, node (or element) and time. With winches, the steps are cut where a
+    /// winch cable must be remeshed (or passes a limit of its winch), which is done
+    /// between steps.
+    pub fn advance(&mut self, nsteps: u64) -> Result<(), Error> {
+        if self.ale.is_none() {
+            return self.advance_fixed(nsteps);
+        }
+        let dt = self.opts.dt;
+        let mut left = nsteps;
+        while left > 0 {
+            let ale = self.ale.as_deref().expect("winches");
+            // Steps up to the first step time at which some winch needs remeshing.
+            let k = (1..=left)
+                .find(|&k| ale.needs_action((self.steps + k) as f64 * dt))
+                .unwrap_or(left);
+            self.advance_fixed(k)?;
+            left -= k;
+            let ale = self.ale.as_deref_mut().expect("winches");
+            if let Some((lay, r, v)) = ale.remesh(self.t, &self.r, &self.v)? {
+                self.install(lay, r, v);
+            }
+        }
+        Ok(())
     }
 
     fn ctx(&self) -> Ctx<'_> {
@@ -157,10 +326,8 @@ impl CpuSolver {
         }
     }
 
-    /// Advances `nsteps` steps of `opts.dt`. Blocks run independently (in parallel);
-    /// on failure the state is left where the failing block stopped and the error names
-    /// the cable, node (or element) and time.
-    pub fn advance(&mut self, nsteps: u64) -> Result<(), Error> {
+    /// Advances `nsteps` steps on the current mesh.
+    fn advance_fixed(&mut self, nsteps: u64) -> Result<(), Error> {
         if nsteps == 0 {
             return Ok(());
         }
@@ -176,6 +343,7 @@ impl CpuSolver {
         };
         let blocks = &self.layout.blocks;
         let chain_consts = &self.chain_consts;
+        let ale_state = self.ale.as_deref();
         let fast = self.use_chain_kernel && self.opts.formulation == Formulation::Glmf;
         // Split the state into disjoint per-chunk slices.
         let mut parts = Vec::with_capacity(self.chunks.len());
@@ -208,6 +376,7 @@ impl CpuSolver {
                 let (mut rs, mut vs) = (Vec::new(), Vec::new());
                 let mut chain_scratch = ChainScratch::default();
                 for (bi, b) in blocks[ch.clone()].iter().enumerate() {
+                    let ale = ale_of(ale_state, ch.start + bi);
                     let n0 = (b.node_start - base.node_start) as usize;
                     let n1 = (b.node_end - base.node_start) as usize;
                     let e0 = (b.elem_start - base.elem_start) as usize;
@@ -228,6 +397,7 @@ impl CpuSolver {
                         _ => advance_block(
                             &ctx,
                             b,
+                            ale,
                             &mut r[n0..n1],
                             &mut v[n0..n1],
                             &mut s[n0..n1],
@@ -243,6 +413,7 @@ impl CpuSolver {
                 Ok(())
             });
         self.steps += nsteps;
+        self.node_steps += nsteps * self.layout.n_nodes() as u64;
         self.t = (self.steps as f64) * dt;
         result.map_err(|f| self.name_failure(f))
     }
@@ -289,7 +460,8 @@ impl CpuSolver {
             elements: Vec::new(),
         };
         let mut elems = vec![ElementLoads::default(); lay.n_elements()];
-        for b in &lay.blocks {
+        for (bi, b) in lay.blocks.iter().enumerate() {
+            let ale = self.ale_block(bi);
             let (n0, n1) = (b.node_start as usize, b.node_end as usize);
             let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
             let topo = GeneralTopo { lay, n0, e0 };
@@ -297,6 +469,7 @@ impl CpuSolver {
                 &ctx,
                 &topo,
                 b,
+                ale,
                 &self.r[n0..n1],
                 &self.v[n0..n1],
                 self.t,
@@ -308,6 +481,7 @@ impl CpuSolver {
                     &ctx,
                     &topo,
                     b,
+                    ale,
                     i - n0,
                     &self.r[n0..n1],
                     &self.v[n0..n1],
@@ -335,7 +509,8 @@ impl CpuSolver {
         let lay = &self.layout;
         let mut elems = vec![ElementLoads::default(); lay.n_elements()];
         let mut ke = 0.0;
-        for b in &lay.blocks {
+        for (bi, b) in lay.blocks.iter().enumerate() {
+            let ale = self.ale_block(bi);
             let (n0, n1) = (b.node_start as usize, b.node_end as usize);
             let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
             // Frames can only fail where GLMF would not; energy uses the GLMF masses.
@@ -351,6 +526,7 @@ impl CpuSolver {
                 &ctx,
                 &topo,
                 b,
+                ale,
                 &self.r[n0..n1],
                 &self.v[n0..n1],
                 self.t,
@@ -368,10 +544,11 @@ impl CpuSolver {
     /// Elastic strain energy `sum 1/2 EA l0 eps^2` over stretched elements, J.
     pub fn strain_energy(&self) -> f64 {
         let lay = &self.layout;
+        let l0s = self.element_l0();
         (0..lay.n_elements())
             .map(|e| {
                 let l = (self.r[lay.elem_b[e] as usize] - self.r[lay.elem_a[e] as usize]).norm();
-                let l0 = lay.elem_l0[e];
+                let l0 = l0s[e];
                 let c = &self.coefs[lay.elem_line[e] as usize];
                 let eps = l / l0 - 1.0;
                 if eps > 0.0 || c.compression > 0.0 {
@@ -382,6 +559,11 @@ impl CpuSolver {
             })
             .sum()
     }
+}
+
+/// The variable elements of block `bi` under `ale` (none without winches).
+fn ale_of(ale: Option<&AleState>, bi: usize) -> &[AleElem] {
+    ale.map_or(&[], |a| &a.blocks[bi][..])
 }
 
 /// Groups consecutive blocks into about `4 * threads` chunks of similar node counts.
@@ -550,10 +732,12 @@ fn element_input<T: Topo>(
 
 /// Pass 1 over one block: element loads. `r`, `v`, `out` are block-local slices.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn element_pass<T: Topo>(
     ctx: &Ctx,
     topo: &T,
     b: &Block,
+    ale: &[AleElem],
     r: &[V],
     v: &[V],
     t: f64,
@@ -572,6 +756,21 @@ fn element_pass<T: Topo>(
                     &ctx.coefs[lines[k] as usize],
                     &element_input(ctx, topo, r, v, k, l0s[k], curs[k]),
                 );
+            }
+            // Winch cables: the variable element at this stage's time.
+            for ae in ale {
+                let k = ae.elem;
+                let pay = ae.sched.eval(t);
+                let l0 = ae.l0(pay.dl);
+                let c = &ctx.coefs[lines[k] as usize];
+                out[k] = glmf_element(c, &element_input(ctx, topo, r, v, k, l0, curs[k]));
+                if pay.rate != 0.0 {
+                    // Internal damping acts on the material strain rate, and l0 changes:
+                    // epsdot = (t . dv - (l / l0) Ldot) / l0 (crate::ale).
+                    let (a, bn) = topo.ends(k);
+                    let l = (r[bn] - r[a]).norm();
+                    out[k].tension -= c.ea_c * l * pay.rate / (l0 * l0);
+                }
             }
         }
         Formulation::Frame(frame) => {
@@ -628,6 +827,7 @@ fn node_accel<T: Topo>(
     ctx: &Ctx,
     topo: &T,
     b: &Block,
+    ale: &[AleElem],
     li: usize,
     r: &[V],
     v: &[V],
@@ -654,7 +854,23 @@ fn node_accel<T: Topo>(
         let vr = u - vi;
         f += vr * (pd * vr.norm());
     }
-    f += seabed_force(&ctx.seabed, lay.node_tributary[i], ri, vi);
+    let mut trib = lay.node_tributary[i];
+    // Winch cables: the variable element's share of the tributary length, and the
+    // mass-flow forces of Eq. 39 on its two nodes (crate::ale).
+    for ae in ale {
+        if li == ae.m || li == ae.w {
+            let pay = ae.sched.eval(t);
+            let l0 = ae.l0(pay.dl);
+            trib += 0.5 * (l0 - ae.base_l0);
+            if pay.rate != 0.0 || pay.accel != 0.0 {
+                let (fm, fw) = mass_flow_forces(
+                    ae.mass, l0, pay.rate, pay.accel, r[ae.m], r[ae.w], v[ae.m], v[ae.w],
+                );
+                f += if li == ae.m { fm } else { fw };
+            }
+        }
+    }
+    f += seabed_force(&ctx.seabed, trib, ri, vi);
     let c = lay.node_constraint[i];
     let a = if c == NO_CONSTRAINT {
         m.solve(f)
@@ -726,15 +942,16 @@ fn accelerations<T: Topo>(
     ctx: &Ctx,
     topo: &T,
     b: &Block,
+    ale: &[AleElem],
     r: &[V],
     v: &[V],
     t: f64,
     elems: &mut [ElementLoads<f64>],
     mut store: impl FnMut(usize, V),
 ) -> Result<(), StepFailure> {
-    element_pass(ctx, topo, b, r, v, t, elems)?;
+    element_pass(ctx, topo, b, ale, r, v, t, elems)?;
     for li in 0..r.len() {
-        let (a, _, _) = node_accel(ctx, topo, b, li, r, v, t, elems);
+        let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, elems);
         store(li, a);
     }
     Ok(())
@@ -746,6 +963,7 @@ fn accelerations<T: Topo>(
 fn advance_block(
     ctx: &Ctx,
     b: &Block,
+    ale: &[AleElem],
     r: &mut [V],
     v: &mut [V],
     s: &mut [NodeScratch],
@@ -758,14 +976,18 @@ fn advance_block(
 ) -> Result<(), StepFailure> {
     if b.is_chain {
         let topo = ChainTopo { n_nodes: r.len() };
-        advance_block_in(ctx, &topo, b, r, v, s, elems, rs, vs, step0, dt, nsteps)
+        advance_block_in(
+            ctx, &topo, b, ale, r, v, s, elems, rs, vs, step0, dt, nsteps,
+        )
     } else {
         let topo = GeneralTopo {
             lay: ctx.lay,
             n0: b.node_start as usize,
             e0: b.elem_start as usize,
         };
-        advance_block_in(ctx, &topo, b, r, v, s, elems, rs, vs, step0, dt, nsteps)
+        advance_block_in(
+            ctx, &topo, b, ale, r, v, s, elems, rs, vs, step0, dt, nsteps,
+        )
     }
 }
 
@@ -774,6 +996,7 @@ fn advance_block_in<T: Topo>(
     ctx: &Ctx,
     topo: &T,
     b: &Block,
+    ale: &[AleElem],
     r: &mut [V],
     v: &mut [V],
     s: &mut [NodeScratch],
@@ -798,11 +1021,11 @@ fn advance_block_in<T: Topo>(
         let t = (step0 + k) as f64 * dt;
         match ctx.opts.scheme {
             Scheme::Symplectic => {
-                element_pass(ctx, topo, b, r, v, t, elems)?;
+                element_pass(ctx, topo, b, ale, r, v, t, elems)?;
                 // The element pass has read every position and velocity of this step,
                 // so each node can be updated as soon as its acceleration is known.
                 for li in 0..n {
-                    let (a, _, _) = node_accel(ctx, topo, b, li, r, v, t, elems);
+                    let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, elems);
                     let vn = v[li] + a * dt;
                     let rn = r[li] + vn * dt;
                     v[li] = vn;
@@ -814,12 +1037,14 @@ fn advance_block_in<T: Topo>(
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
-                accelerations(ctx, topo, b, r, v, t, elems, |li, a| s[li].acc = a)?;
+                accelerations(ctx, topo, b, ale, r, v, t, elems, |li, a| s[li].acc = a)?;
                 for li in 0..n {
                     rs[li] = r[li] + v[li] * h;
                     vs[li] = v[li] + s[li].acc * h;
                 }
-                accelerations(ctx, topo, b, rs, vs, t + h, elems, |li, a| s[li].acc = a)?;
+                accelerations(ctx, topo, b, ale, rs, vs, t + h, elems, |li, a| {
+                    s[li].acc = a
+                })?;
                 for li in 0..n {
                     r[li] += vs[li] * dt;
                     v[li] += s[li].acc * dt;
@@ -843,7 +1068,9 @@ fn advance_block_in<T: Topo>(
                         .into_iter()
                         .enumerate()
                 {
-                    accelerations(ctx, topo, b, rs, vs, t + tau, elems, |li, a| s[li].acc = a)?;
+                    accelerations(ctx, topo, b, ale, rs, vs, t + tau, elems, |li, a| {
+                        s[li].acc = a
+                    })?;
                     for li in 0..n {
                         let x = &mut s[li];
                         x.sr += vs[li] * w;

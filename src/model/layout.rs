@@ -90,6 +90,10 @@ pub struct CableInfo {
     pub output_positions: bool,
 }
 
+/// What [`Layout::build_indexed`] returns: the layout, the initial positions in packed
+/// order, and the packed index of each described node.
+pub type Packed = (Layout, Vec<[f64; 3]>, Vec<u32>);
+
 /// A contiguous range of nodes and elements forming one connected component.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Block {
@@ -199,6 +203,12 @@ impl Layout {
     /// Packs a model description. Returns the layout and the initial positions in
     /// packed node order.
     pub fn build(def: &ModelDef) -> Result<(Layout, Vec<[f64; 3]>), Error> {
+        Self::build_indexed(def).map(|(lay, pos, _)| (lay, pos))
+    }
+
+    /// [`Layout::build`], also returning where each described node went: entry `d` is
+    /// the packed index of `def.nodes[d]`.
+    pub fn build_indexed(def: &ModelDef) -> Result<Packed, Error> {
         let nn = def.nodes.len();
         let env = def.env;
         for (ci, c) in def.cables.iter().enumerate() {
@@ -412,6 +422,6 @@ impl Layout {
             });
             node_start = node_end;
         }
-        Ok((lay, positions))
+        Ok((lay, positions, new_index))
     }
 }

@@ -9,6 +9,8 @@
 //!   `current = { random = [[0.0, 0.0, 0.0], [1.0, 0.5, 0.0]] }` (per component), from the
 //!   array's `seed` (default 0): the same file gives the same cables on every machine.
 //!
+//! A `winch` table, if given, is the same for every cable of the array.
+//!
 //! Placement: `offset` (a vector, or a variation) and `grid = { columns = N, spacing =
 //! [dx, dy, dz], row_spacing = [...] }` move both ends of cable `i` (positions and
 //! routes) by `offset_i + (i % N) spacing + (i / N) row_spacing`.
@@ -20,7 +22,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::path::Path;
 
-const KEYS: [&str; 16] = [
+const KEYS: [&str; 15] = [
     "name",
     "count",
     "seed",
@@ -35,8 +37,7 @@ const KEYS: [&str; 16] = [
     "output_positions",
     "offset",
     "grid",
-    "phase",
-    "description",
+    "winch",
 ];
 
 fn num(v: &toml::Value) -> Option<f64> {
@@ -265,6 +266,11 @@ pub fn expand(p: &Path, arrays: &[toml::Table]) -> Result<Vec<(String, RawCable)
                     .map_err(|e| err(p, f("current_profile"), e.to_string()))?,
             ),
         };
+        let winch = match t.get("winch") {
+            None => None,
+            Some(toml::Value::Table(w)) => Some(w.clone()),
+            Some(_) => return Err(err(p, f("winch"), "must be a winch table")),
+        };
         let output_positions = match t.get("output_positions") {
             None => None,
             Some(toml::Value::Boolean(b)) => Some(*b),
@@ -290,6 +296,7 @@ pub fn expand(p: &Path, arrays: &[toml::Table]) -> Result<Vec<(String, RawCable)
                 current: currents.as_ref().map(|c| c[i]),
                 current_profile: current_profile.clone(),
                 output_positions,
+                winch: winch.clone(),
             };
             out.push((
                 format!("cable_arrays[{ai}] (\"{name}\") cable {i} (\"{name}_{i}\")"),

@@ -5,7 +5,9 @@ mod arrays;
 mod ends;
 mod raw;
 mod route_file;
+mod winch;
 
+use crate::ale::Winch;
 use crate::error::Error;
 use crate::model::{CableDef, Current, Environment, ModelDef, NodeDef, PointMass};
 use crate::options::{Baumgarte, Formulation, Scheme};
@@ -91,6 +93,8 @@ pub struct Scenario {
     pub model: ModelDef,
     /// Initial shape of each cable (same order as `model.cables`).
     pub initial: Vec<InitialShape>,
+    /// Winches (cables of varying length, ALE-GLMF), at most one per cable.
+    pub winches: Vec<Winch>,
 }
 
 /// Builds `Error::Scenario` for `path`.
@@ -404,6 +408,7 @@ impl Scenario {
 
         // [[cables]]
         let mut initial = Vec::with_capacity(cables.len());
+        let mut winches = Vec::new();
         let mut names = HashMap::new();
         let many = cables.len() > 20;
         let positions_sel = output_selection(p, &raw.output.positions)?;
@@ -458,6 +463,17 @@ impl Scenario {
             };
             let start = ends::parse_end(p, &f("start"), &c.start, &[], &point_index)?;
             let end = ends::parse_end(p, &f("end"), &c.end, &[], &point_index)?;
+            if let Some(w) = &c.winch {
+                winches.push(winch::parse(
+                    p,
+                    &format!("cables[{i}] (\"{}\")", c.name),
+                    w,
+                    i,
+                    length,
+                    n,
+                    [&start.kind, &end.kind],
+                )?);
+            }
             let mut ids = [0usize; 2];
             let mut pos = [[0.0; 3]; 2];
             for (k, spec) in [start, end].into_iter().enumerate() {
@@ -540,6 +556,7 @@ impl Scenario {
             sim,
             model,
             initial,
+            winches,
         })
     }
 }

@@ -91,6 +91,7 @@ pub struct RawCable {
     pub current: Option<[f64; 3]>,
     pub current_profile: Option<Vec<[f64; 4]>>,
     pub output_positions: Option<bool>,
+    pub winch: Option<toml::Table>,
 }
 
 #[derive(Debug, Deserialize, Default)]

@@ -1,0 +1,280 @@
+//! ALE-GLMF on the CPU path: the stepper side of [`crate::ale`].
+//!
+//! A winch cable is stepped by the general passes (not the chain fast path), with two
+//! additions at every stage, both evaluated at the stage's time: the variable element
+//! gets `l0_v(t)` (and with it its mass, weight and added mass; the tributary lengths
+//! of its two nodes follow), and its material node and winch node receive the
+//! mass-flow forces of Eq. 39. Remeshing happens between steps: the model description
+//! is edited (a node inserted or deleted next to the winch) and the packed layout is
+//! rebuilt, the state carried over node by node.
+
+use crate::ale::{MeshOp, PayoutSchedule, Winch, WinchEnd, WinchTracker};
+use crate::error::Error;
+use crate::math::V3;
+use crate::model::{Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};
+use std::sync::Arc;
+
+type V = V3<f64>;
+
+/// The variable element of one winch cable, in block-local indices, as the passes see it.
+#[derive(Clone, Debug)]
+pub(crate) struct AleElem {
+    /// Block-local index of the variable element.
+    pub elem: usize,
+    /// Block-local index of the material node next to the winch.
+    pub m: usize,
+    /// Block-local index of the winch node.
+    pub w: usize,
+    /// `l0` of the variable element at the last remeshing (the layout's `elem_l0`).
+    pub base_l0: f64,
+    /// Payout at the last remeshing.
+    pub base_dl: f64,
+    /// `mbar` of the cable, kg/m.
+    pub mass: f64,
+    /// The payout schedule.
+    pub sched: Arc<PayoutSchedule>,
+}
+
+impl AleElem {
+    /// The variable element's `l0` at payout `dl` (bitwise `base_l0` when nothing was
+    /// paid out since the last remeshing).
+    #[inline(always)]
+    pub fn l0(&self, dl: f64) -> f64 {
+        self.base_l0 + (dl - self.base_dl)
+    }
+}
+
+/// Everything the solver keeps for its winch cables.
+#[derive(Clone, Debug)]
+pub(crate) struct AleState {
+    /// The current mesh as a model description (edited at each remeshing).
+    pub def: ModelDef,
+    /// Packed index of each described node.
+    pub packed_of_def: Vec<u32>,
+    /// The winches and their mesh states.
+    pub winches: Vec<(Winch, WinchTracker)>,
+    /// Per block of the current layout: its variable elements (usually none or one).
+    pub blocks: Vec<Vec<AleElem>>,
+}
+
+impl AleState {
+    /// Checks the winches against the model and sets up their mesh states at `t = 0`.
+    pub fn new(def: ModelDef, winches: Vec<Winch>, packed_of_def: Vec<u32>) -> Result<Self, Error> {
+        let mut seen = vec![false; def.cables.len()];
+        let mut out = Vec::with_capacity(winches.len());
+        for w in winches {
+            let Some(c) = def.cables.get(w.cable) else {
+                return Err(Error::Model(format!(
+                    "a winch refers to missing cable {}",
+                    w.cable
+                )));
+            };
+            if std::mem::replace(&mut seen[w.cable], true) {
+                return Err(Error::Model(format!("cable '{}' has two winches", c.name)));
+            }
+            let node = match w.end {
+                WinchEnd::Start => c.nodes[0],
+                WinchEnd::End => c.nodes[c.nodes.len() - 1],
+            };
+            if def.nodes[node].route.is_none() {
+                return Err(Error::Model(format!(
+                    "cable '{}': the winch end must be held (fixed or on a route)",
+                    c.name
+                )));
+            }
+            let uses = def
+                .cables
+                .iter()
+                .map(|c| c.nodes.iter().filter(|&&n| n == node).count())
+                .sum::<usize>();
+            if uses != 1 {
+                return Err(Error::Model(format!(
+                    "cable '{}': the winch node must belong to this cable alone",
+                    c.name
+                )));
+            }
+            if !(w.element_length > 0.0 && w.element_length.is_finite()) {
+                return Err(Error::Model(format!(
+                    "cable '{}': the winch's standard element length must be positive, got {}",
+                    c.name, w.element_length
+                )));
+            }
+            let dl0 = w.schedule.eval(0.0).dl;
+            let tr = WinchTracker::new(&w, &c.l0, dl0);
+            out.push((w, tr));
+        }
+        Ok(Self {
+            def,
+            packed_of_def,
+            winches: out,
+            blocks: Vec::new(),
+        })
+    }
+
+    /// Fills `blocks` for layout `lay` (built from `def`).
+    pub fn index(&mut self, lay: &Layout) {
+        let mut blocks = vec![Vec::new(); lay.blocks.len()];
+        for (w, tr) in &self.winches {
+            let c = &lay.cables[w.cable];
+            let n = c.nodes.len();
+            let (elem, m, wn) = match w.end {
+                WinchEnd::Start => (c.elements[0], c.nodes[1], c.nodes[0]),
+                WinchEnd::End => (c.elements[n - 2], c.nodes[n - 2], c.nodes[n - 1]),
+            };
+            let bi = lay
+                .blocks
+                .iter()
+                .position(|b| b.node_start <= wn && wn < b.node_end)
+                .expect("every node is in a block");
+            let b = lay.blocks[bi];
+            debug_assert_eq!(lay.elem_l0[elem as usize], tr.base_l0);
+            blocks[bi].push(AleElem {
+                elem: (elem - b.elem_start) as usize,
+                m: (m - b.node_start) as usize,
+                w: (wn - b.node_start) as usize,
+                base_l0: tr.base_l0,
+                base_dl: tr.base_dl,
+                mass: lay.line_coefs[c.line_type].mass,
+                sched: w.schedule.clone(),
+            });
+        }
+        self.blocks = blocks;
+    }
+
+    /// True when some winch must remesh (or passes a limit) at time `t`.
+    pub fn needs_action(&self, t: f64) -> bool {
+        self.winches
+            .iter()
+            .any(|(w, tr)| tr.needs_action(w.schedule.eval(t).dl))
+    }
+
+    /// Remeshes every winch cable at time `t`, moving the described nodes. `r`, `v` are
+    /// the packed state. Returns the new packed layout and state when the mesh
+    /// changed, `None` when it did not; an error names the cable and the limit passed.
+    #[allow(clippy::type_complexity)]
+    pub fn remesh(
+        &mut self,
+        t: f64,
+        r: &[V],
+        v: &[V],
+    ) -> Result<Option<(Layout, Vec<V>, Vec<V>)>, Error> {
+        let mut plans = Vec::new();
+        for (wi, (w, tr)) in self.winches.iter_mut().enumerate() {
+            let pay = w.schedule.eval(t);
+            if !tr.needs_action(pay.dl) {
+                continue;
+            }
+            let ops = tr.remesh(pay.dl).map_err(|lim| Error::Winch {
+                cable: self.def.cables[w.cable].name.clone(),
+                time: t,
+                message: lim.to_string(),
+            })?;
+            if !ops.is_empty() {
+                plans.push((wi, ops, pay.rate));
+            }
+        }
+        if plans.is_empty() {
+            return Ok(None);
+        }
+        // The state in description order.
+        let mut rd: Vec<V> = self.packed_of_def.iter().map(|&i| r[i as usize]).collect();
+        let mut vd: Vec<V> = self.packed_of_def.iter().map(|&i| v[i as usize]).collect();
+        for (wi, ops, rate) in plans {
+            let (w, tr) = &self.winches[wi];
+            let ci = w.cable;
+            for op in ops {
+                let c = &self.def.cables[ci];
+                let n = c.nodes.len();
+                // Positions in the cable's node list of the winch node and of m.
+                let (kw, km) = match w.end {
+                    WinchEnd::Start => (0, 1),
+                    WinchEnd::End => (n - 1, n - 2),
+                };
+                let (dw, dm) = (c.nodes[kw], c.nodes[km]);
+                match op {
+                    MeshOp::Insert { xi, l0_before } => {
+                        let (rm, rw, vm, vw) = (rd[dm], rd[dw], vd[dm], vd[dw]);
+                        let rn = rm + (rw - rm) * xi;
+                        let vn = crate::ale::material_velocity(xi, l0_before, rate, rm, rw, vm, vw);
+                        let d = self.def.nodes.len();
+                        self.def.nodes.push(NodeDef {
+                            position: rn.to_f64(),
+                            point: PointMass::default(),
+                            route: None,
+                            label: None,
+                        });
+                        rd.push(rn);
+                        vd.push(vn);
+                        let l_var = l0_before - tr.l_std;
+                        let c = &mut self.def.cables[ci];
+                        match w.end {
+                            WinchEnd::Start => {
+                                c.nodes.insert(1, d);
+                                c.l0[0] = l_var;
+                                c.l0.insert(1, tr.l_std);
+                            }
+                            WinchEnd::End => {
+                                c.nodes.insert(n - 1, d);
+                                let last = c.l0.len() - 1;
+                                c.l0[last] = tr.l_std;
+                                c.l0.push(l_var);
+                            }
+                        }
+                    }
+                    MeshOp::Delete => {
+                        let c = &mut self.def.cables[ci];
+                        match w.end {
+                            WinchEnd::Start => {
+                                c.nodes.remove(1);
+                                let merged = c.l0[0] + c.l0[1];
+                                c.l0.remove(0);
+                                c.l0[0] = merged;
+                            }
+                            WinchEnd::End => {
+                                c.nodes.remove(n - 2);
+                                let last = c.l0.pop().expect("two elements at least");
+                                let k = c.l0.len() - 1;
+                                c.l0[k] += last;
+                            }
+                        }
+                        // Drop the described node: the last one takes its slot.
+                        let last = self.def.nodes.len() - 1;
+                        self.def.nodes.swap_remove(dm);
+                        rd.swap_remove(dm);
+                        vd.swap_remove(dm);
+                        if dm != last {
+                            for c in &mut self.def.cables {
+                                for x in c.nodes.iter_mut().filter(|x| **x == last) {
+                                    *x = dm;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            // The description holds the tracker's variable length exactly.
+            let c = &mut self.def.cables[ci];
+            let kv = match w.end {
+                WinchEnd::Start => 0,
+                WinchEnd::End => c.l0.len() - 1,
+            };
+            c.l0[kv] = tr.base_l0;
+        }
+        for (d, nd) in self.def.nodes.iter_mut().enumerate() {
+            nd.position = rd[d].to_f64();
+        }
+        let (lay, pos, packed) = Layout::build_indexed(&self.def)?;
+        let mut vp = vec![V::zero(); pos.len()];
+        for (d, &i) in packed.iter().enumerate() {
+            vp[i as usize] = vd[d];
+        }
+        let rp = pos.iter().map(|p| V::from_f64(*p)).collect();
+        self.packed_of_def = packed;
+        self.index(&lay);
+        debug_assert!(lay
+            .constraint_node
+            .iter()
+            .all(|&n| lay.node_constraint[n as usize] != NO_CONSTRAINT));
+        Ok(Some((lay, rp, vp)))
+    }
+}
