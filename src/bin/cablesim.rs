@@ -164,11 +164,16 @@ fn real_main() -> Result<()> {
                 progress: !quiet,
             };
             let s = sim::run(&sc, &ro).with_context(|| {
-                format!(
-                    "run of {} (output so far kept in {})",
-                    scenario.display(),
-                    out_dir.display()
-                )
+                // Name the output only when the run got as far as writing some.
+                if out_dir.join("end_forces.csv").exists() {
+                    format!(
+                        "run of {} (output so far kept in {})",
+                        scenario.display(),
+                        out_dir.display()
+                    )
+                } else {
+                    format!("run of {}", scenario.display())
+                }
             })?;
             eprintln!(
                 "done: {} steps of {:.4e} s to t = {} s in {:.3} s of stepping ({:.3e} node-steps/s); output in {}",
