@@ -264,17 +264,24 @@ fn zero_payout_is_bitwise_the_plain_glmf() {
                 PayoutSchedule::rates(&[(0.0, 0.0), (1.0, 0.0)]).unwrap(),
                 PayoutSchedule::table(&[(0.0, l), (100.0, l)]).unwrap(),
             ] {
-                let mut ale = solver(def.clone(), winch(end, sched, 1e3, l_s), dt, scheme);
+                // The winch cable on each path against the plain cable on the same path:
+                // the general path, and the chain fast path.
+                let mut ale = solver(def.clone(), winch(end, sched.clone(), 1e3, l_s), dt, scheme);
+                ale.use_chain_kernel = false;
                 ale.advance(steps).unwrap();
+                let mut ale_fast = solver(def.clone(), winch(end, sched, 1e3, l_s), dt, scheme);
+                ale_fast.advance(steps).unwrap();
                 let moved = (ale.r[n / 2] - V::from_f64(pos[n / 2])).norm();
                 assert!(moved > 0.05, "the current moves the cable ({moved} m)");
-                for i in 0..ale.r.len() {
-                    for (a, b) in [(ale.r[i], plain.r[i]), (ale.v[i], plain.v[i])] {
-                        assert_eq!(
-                            a.to_f64().map(f64::to_bits),
-                            b.to_f64().map(f64::to_bits),
-                            "{end:?} {scheme:?} node {i}"
-                        );
+                for (x, y, path) in [(&ale, &plain, "general"), (&ale_fast, &fast, "chain")] {
+                    for i in 0..x.r.len() {
+                        for (a, b) in [(x.r[i], y.r[i]), (x.v[i], y.v[i])] {
+                            assert_eq!(
+                                a.to_f64().map(f64::to_bits),
+                                b.to_f64().map(f64::to_bits),
+                                "{end:?} {scheme:?} {path} path node {i}"
+                            );
+                        }
                     }
                 }
                 let (ea, ep) = (ale.evaluate().unwrap(), plain.evaluate().unwrap());

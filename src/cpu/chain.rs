@@ -15,9 +15,13 @@
 //!
 //! A test checks it against the general path (`tests/chain_kernel.rs`).
 
+use super::ale::AleElem;
 use super::stepper::StepFailure;
+use crate::ale::mass_flow_forces;
+use crate::math::V3;
 use crate::model::{Block, Current, Layout, NO_CONSTRAINT};
 use crate::options::{Scheme, SolverOptions};
+use crate::physics::{glmf_element, Coefs, ElementInput};
 
 /// Per-block constants of a chain, built once.
 #[derive(Clone, Debug, Default)]
@@ -35,6 +39,8 @@ pub(crate) struct ChainConsts {
     half_wz: Vec<f64>,
     /// Current profile per element.
     current: Vec<u32>,
+    /// Line type per element (for the ALE variable element, evaluated apart).
+    line: Vec<u32>,
     /// The block's current when every element shares one uniform current.
     uniform: Option<[f64; 3]>,
     // Per padded element (length ne + 2, ghosts zero).
@@ -51,6 +57,12 @@ pub(crate) struct ChainConsts {
     constrained: Vec<(usize, usize)>,
     /// `(node, 1/2 rho Cd A, current index)` of nodes with point drag.
     point_drag: Vec<(usize, f64, usize)>,
+    /// Tributary length per node (seabed contact), m.
+    trib: Vec<f64>,
+    /// Seabed `K`, `C`, `mu` (zero without a seabed).
+    sb_k: f64,
+    sb_c: f64,
+    sb_mu: f64,
     zb: f64,
     friction: bool,
     v_eps: f64,
@@ -82,6 +94,7 @@ impl ChainConsts {
             c.drag_t.push(lc.drag_t);
             c.half_wz.push(0.5 * lc.wet_weight_z * l0);
             c.current.push(lay.elem_current[e]);
+            c.line.push(lay.elem_line[e]);
             c.hm[k + 1] = 0.5 * lc.mass * l0;
             c.ha[k + 1] = 0.5 * lc.added_mass * l0;
         }
@@ -99,6 +112,7 @@ impl ChainConsts {
             } else {
                 0.0
             };
+            c.trib.push(lt);
             c.kl.push(env.seabed.stiffness * lt);
             c.cl.push(env.seabed.damping * lt);
             c.mukl.push(env.seabed.friction * env.seabed.stiffness * lt);
@@ -110,6 +124,13 @@ impl ChainConsts {
                 c.point_drag
                     .push((li, lay.node_point_drag[i], lay.node_current[i] as usize));
             }
+        }
+        if has_seabed {
+            (c.sb_k, c.sb_c, c.sb_mu) = (
+                env.seabed.stiffness,
+                env.seabed.damping,
+                env.seabed.friction,
+            );
         }
         c.zb = if has_seabed {
             -env.depth
@@ -131,12 +152,25 @@ pub(crate) struct ChainScratch {
     x0: [Vec<f64>; 6],
     sum: [Vec<f64>; 6],
     a: [Vec<f64>; 3],
+    w: Work,
+}
+
+/// What one evaluation writes.
+#[derive(Default)]
+struct Work {
+    // Per-element current when not uniform.
+    u: [Vec<f64>; 3],
     // Padded element results.
     t: [Vec<f64>; 3],
     ten: Vec<f64>,
     f: [Vec<f64>; 3],
-    // Per-element current when not uniform.
-    u: [Vec<f64>; 3],
+    // Working copies of the half masses (padded) and seabed constants per node, which
+    // the ALE variable element changes every stage.
+    hm: Vec<f64>,
+    ha: Vec<f64>,
+    kl: Vec<f64>,
+    cl: Vec<f64>,
+    mukl: Vec<f64>,
 }
 
 fn resize(v: &mut [Vec<f64>], n: usize) {
@@ -286,31 +320,55 @@ fn nodes<const FRICTION: bool>(
     tv: &[Vec<f64>; 3],
     ten: &[f64],
     fv: &[Vec<f64>; 3],
+    m: &Masses,
+    ale: &[AleElem],
     a: &mut [Vec<f64>; 3],
 ) {
     let [ax, ay, az] = a;
     node_kernel::<FRICTION>(
-        c, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2], ax, ay,
-        az,
+        c, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2], m.hm,
+        m.ha, m.kl, m.cl, m.mukl, ax, ay, az,
     );
-    // Point-mass drag: the solve is linear, so add M^-1 of the drag force.
+    // The solve is linear: a node's extra force F adds M^-1 F to its acceleration.
+    let add = |a: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
+        let s = c.pm[i] + m.hm[i] + m.hm[i + 1] + m.ha[i] + m.ha[i + 1];
+        let d = solve_mass(
+            s,
+            m.ha[i],
+            m.ha[i + 1],
+            [tv[0][i], tv[1][i], tv[2][i]],
+            [tv[0][i + 1], tv[1][i + 1], tv[2][i + 1]],
+            f,
+        );
+        a[0][i] += d[0];
+        a[1][i] += d[1];
+        a[2][i] += d[2];
+    };
+    // Winch cables: the mass-flow forces of Eq. 39 on the variable element's two nodes
+    // (crate::ale; the winch node's is overwritten by its constraint below).
+    for ae in ale {
+        let pay = ae.sched.eval(time);
+        if pay.rate != 0.0 || pay.accel != 0.0 {
+            let node = |i: usize| {
+                (
+                    V3::new(p[0][i], p[1][i], p[2][i]),
+                    V3::new(p[3][i], p[4][i], p[5][i]),
+                )
+            };
+            let ((rm, vm), (rw, vw)) = (node(ae.m), node(ae.w));
+            let (fm, fw) =
+                mass_flow_forces(ae.mass, ae.l0(pay.dl), pay.rate, pay.accel, rm, rw, vm, vw);
+            add(a, ae.m, fm.to_f64());
+            add(a, ae.w, fw.to_f64());
+        }
+    }
+    // Point-mass drag.
     for &(i, pd, ci) in &c.point_drag {
         let zi = p[2][i];
         let u = lay.currents[ci].at::<f64>(zi).to_f64();
         let r = [u[0] - p[3][i], u[1] - p[4][i], u[2] - p[5][i]];
         let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
-        let s = c.pm[i] + c.hm[i] + c.hm[i + 1] + c.ha[i] + c.ha[i + 1];
-        let d = solve_mass(
-            s,
-            c.ha[i],
-            c.ha[i + 1],
-            [tv[0][i], tv[1][i], tv[2][i]],
-            [tv[0][i + 1], tv[1][i + 1], tv[2][i + 1]],
-            [r[0] * k, r[1] * k, r[2] * k],
-        );
-        a[0][i] += d[0];
-        a[1][i] += d[1];
-        a[2][i] += d[2];
+        add(a, i, [r[0] * k, r[1] * k, r[2] * k]);
     }
     // Constrained nodes take the Baumgarte acceleration of their route.
     let bg = opts.baumgarte;
@@ -338,6 +396,11 @@ fn node_kernel<const FRICTION: bool>(
     fx: &[f64],
     fy: &[f64],
     fz: &[f64],
+    hm: &[f64],
+    ha: &[f64],
+    kl: &[f64],
+    cl: &[f64],
+    mukl: &[f64],
     ax: &mut [f64],
     ay: &mut [f64],
     az: &mut [f64],
@@ -346,14 +409,8 @@ fn node_kernel<const FRICTION: bool>(
     let (z, vx, vy, vz) = (&z[..n], &vx[..n], &vy[..n], &vz[..n]);
     let (tx, ty, tz, tn) = (&tx[..n + 1], &ty[..n + 1], &tz[..n + 1], &tn[..n + 1]);
     let (fx, fy, fz) = (&fx[..n + 1], &fy[..n + 1], &fz[..n + 1]);
-    let (hm, ha) = (&c.hm[..n + 1], &c.ha[..n + 1]);
-    let (pm, pwz, kl, cl, mukl) = (
-        &c.pm[..n],
-        &c.pwz[..n],
-        &c.kl[..n],
-        &c.cl[..n],
-        &c.mukl[..n],
-    );
+    let (hm, ha) = (&hm[..n + 1], &ha[..n + 1]);
+    let (pm, pwz, kl, cl, mukl) = (&c.pm[..n], &c.pwz[..n], &kl[..n], &cl[..n], &mukl[..n]);
     let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
     let (zb, v_eps) = (c.zb, c.v_eps);
     for i in 0..n {
@@ -405,6 +462,85 @@ fn xpvh(out: &mut [f64], x: &[f64], v: &[f64], h: f64) {
     let (x, v) = (&x[..out.len()], &v[..out.len()]);
     for i in 0..out.len() {
         out[i] = x[i] + v[i] * h;
+    }
+}
+
+/// The per-stage half masses and seabed constants (the ALE variable element changes
+/// them; otherwise they are the block's constants).
+struct Masses<'a> {
+    hm: &'a [f64],
+    ha: &'a [f64],
+    kl: &'a [f64],
+    cl: &'a [f64],
+    mukl: &'a [f64],
+}
+
+/// Winch cables (ALE-GLMF, [`crate::ale`]): the variable element at time `time`, as the
+/// general path evaluates it. When nothing has been paid out since the last remeshing
+/// its `l0` is the layout's and the element loop's result stands (bitwise the plain
+/// GLMF); otherwise the element is re-evaluated with its current `l0` (internal damping
+/// on the material strain rate), and its half masses and its nodes' seabed tributary
+/// lengths follow.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn ale_patch(
+    c: &ChainConsts,
+    lay: &Layout,
+    ale: &[AleElem],
+    time: f64,
+    p: &[Vec<f64>; 6],
+    u: &[Vec<f64>; 3],
+    t: &mut [Vec<f64>; 3],
+    ten: &mut [f64],
+    f: &mut [Vec<f64>; 3],
+    hm: &mut [f64],
+    ha: &mut [f64],
+    kl: &mut [f64],
+    cl: &mut [f64],
+    mukl: &mut [f64],
+) {
+    for ae in ale {
+        let pay = ae.sched.eval(time);
+        let l0 = ae.l0(pay.dl);
+        let k = ae.elem;
+        let lc = Coefs::<f64>::from_line(&lay.line_coefs[c.line[k] as usize]);
+        let node = |i: usize| {
+            (
+                V3::new(p[0][i], p[1][i], p[2][i]),
+                V3::new(p[3][i], p[4][i], p[5][i]),
+            )
+        };
+        let ((ra, va), (rb, vb)) = (node(k), node(k + 1));
+        if l0 != ae.base_l0 || pay.rate != 0.0 {
+            let input = ElementInput {
+                ra,
+                rb,
+                va,
+                vb,
+                l0,
+                current: V3::new(u[0][k], u[1][k], u[2][k]),
+                water_accel: V3::zero(),
+            };
+            let mut el = glmf_element(&lc, &input);
+            if pay.rate != 0.0 {
+                // epsdot = (t . dv - (l / l0) Ldot) / l0 (crate::ale).
+                let l = (rb - ra).norm();
+                el.tension -= lc.ea_c * l * pay.rate / (l0 * l0);
+            }
+            let j = k + 1;
+            (t[0][j], t[1][j], t[2][j]) = (el.t.x, el.t.y, el.t.z);
+            ten[j] = el.tension;
+            (f[0][j], f[1][j], f[2][j]) = (el.f_half.x, el.f_half.y, el.f_half.z);
+            hm[j] = el.half_mass;
+            ha[j] = el.half_added;
+        }
+        for i in [ae.m, ae.w] {
+            // Without a seabed `sb_k = sb_c = 0`, so the tributary length does not matter.
+            let lt = c.trib[i] + 0.5 * (l0 - ae.base_l0);
+            kl[i] = c.sb_k * lt;
+            cl[i] = c.sb_c * lt;
+            mukl[i] = c.sb_mu * c.sb_k * lt;
+        }
     }
 }
 
@@ -461,6 +597,7 @@ pub(crate) fn advance_chain(
     lay: &Layout,
     opts: &SolverOptions,
     sc: &mut ChainScratch,
+    ale: &[AleElem],
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
@@ -472,10 +609,12 @@ pub(crate) fn advance_chain(
     {
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above.
-            return unsafe { advance_chain_avx2(c, lay, opts, sc, r, v, n0, step0, dt, nsteps) };
+            return unsafe {
+                advance_chain_avx2(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+            };
         }
     }
-    advance_chain_body(c, lay, opts, sc, r, v, n0, step0, dt, nsteps)
+    advance_chain_body(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -486,6 +625,7 @@ unsafe fn advance_chain_avx2(
     lay: &Layout,
     opts: &SolverOptions,
     sc: &mut ChainScratch,
+    ale: &[AleElem],
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
@@ -493,7 +633,7 @@ unsafe fn advance_chain_avx2(
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
-    advance_chain_body(c, lay, opts, sc, r, v, n0, step0, dt, nsteps)
+    advance_chain_body(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
 }
 
 #[inline(always)]
@@ -503,6 +643,7 @@ fn advance_chain_body(
     lay: &Layout,
     opts: &SolverOptions,
     sc: &mut ChainScratch,
+    ale: &[AleElem],
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
@@ -511,9 +652,9 @@ fn advance_chain_body(
     nsteps: u64,
 ) -> Result<(), StepFailure> {
     if c.friction {
-        advance_chain_scheme::<true>(c, lay, opts, sc, r, v, n0, step0, dt, nsteps)
+        advance_chain_scheme::<true>(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
     } else {
-        advance_chain_scheme::<false>(c, lay, opts, sc, r, v, n0, step0, dt, nsteps)
+        advance_chain_scheme::<false>(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
     }
 }
 
@@ -524,6 +665,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
     lay: &Layout,
     opts: &SolverOptions,
     sc: &mut ChainScratch,
+    ale: &[AleElem],
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
@@ -535,11 +677,11 @@ fn advance_chain_scheme<const FRICTION: bool>(
     let ne = c.l0.len();
     resize(&mut sc.x, n);
     resize(&mut sc.a, n);
-    resize(&mut sc.t, ne + 2);
-    resize(&mut sc.f, ne + 2);
-    sc.ten.clear();
-    sc.ten.resize(ne + 2, 0.0);
-    resize(&mut sc.u, ne);
+    resize(&mut sc.w.t, ne + 2);
+    resize(&mut sc.w.f, ne + 2);
+    sc.w.ten.clear();
+    sc.w.ten.resize(ne + 2, 0.0);
+    resize(&mut sc.w.u, ne);
     if opts.scheme != Scheme::Symplectic {
         resize(&mut sc.xs, n);
         resize(&mut sc.x0, n);
@@ -553,16 +695,20 @@ fn advance_chain_scheme<const FRICTION: bool>(
         sc.x[4][i] = v[i].y;
         sc.x[5][i] = v[i].z;
     }
+    if !ale.is_empty() {
+        sc.w.hm.clone_from(&c.hm);
+        sc.w.ha.clone_from(&c.ha);
+        sc.w.kl.clone_from(&c.kl);
+        sc.w.cl.clone_from(&c.cl);
+        sc.w.mukl.clone_from(&c.mukl);
+    }
     let ChainScratch {
         x,
         xs,
         x0,
         sum,
         a,
-        t,
-        ten,
-        f,
-        u,
+        w: wk,
     } = sc;
     // A function, not a closure: closures are not inlined into the AVX2 caller and
     // would be compiled for the baseline target.
@@ -572,24 +718,52 @@ fn advance_chain_scheme<const FRICTION: bool>(
         c: &ChainConsts,
         lay: &Layout,
         opts: &SolverOptions,
+        ale: &[AleElem],
         state: &[Vec<f64>; 6],
         time: f64,
-        u: &mut [Vec<f64>; 3],
-        t: &mut [Vec<f64>; 3],
-        ten: &mut [f64],
-        f: &mut [Vec<f64>; 3],
+        sc: &mut Work,
         a: &mut [Vec<f64>; 3],
     ) {
+        let Work {
+            u,
+            t,
+            ten,
+            f,
+            hm,
+            ha,
+            kl,
+            cl,
+            mukl,
+        } = sc;
         currents(c, &lay.currents, state, u);
         elements(c, state, u, t, ten, f);
-        nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, a);
+        if ale.is_empty() {
+            let m = Masses {
+                hm: &c.hm,
+                ha: &c.ha,
+                kl: &c.kl,
+                cl: &c.cl,
+                mukl: &c.mukl,
+            };
+            nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, a);
+        } else {
+            ale_patch(c, lay, ale, time, state, u, t, ten, f, hm, ha, kl, cl, mukl);
+            let m = Masses {
+                hm,
+                ha,
+                kl,
+                cl,
+                mukl,
+            };
+            nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, a);
+        }
     }
     let mut result = Ok(());
     for k in 0..nsteps {
         let time = (step0 + k) as f64 * dt;
         match opts.scheme {
             Scheme::Symplectic => {
-                eval::<FRICTION>(c, lay, opts, x, time, u, t, ten, f, a);
+                eval::<FRICTION>(c, lay, opts, ale, x, time, wk, a);
                 let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
                     axpy(&mut vel[q][..n], &a[q], dt);
@@ -598,12 +772,12 @@ fn advance_chain_scheme<const FRICTION: bool>(
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
-                eval::<FRICTION>(c, lay, opts, x, time, u, t, ten, f, a);
+                eval::<FRICTION>(c, lay, opts, ale, x, time, wk, a);
                 for q in 0..3 {
                     xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
                     xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
                 }
-                eval::<FRICTION>(c, lay, opts, xs, time + h, u, t, ten, f, a);
+                eval::<FRICTION>(c, lay, opts, ale, xs, time + h, wk, a);
                 let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
                     axpy(&mut pos[q][..n], &xs[3 + q], dt);
@@ -622,7 +796,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
                         .into_iter()
                         .enumerate()
                 {
-                    eval::<FRICTION>(c, lay, opts, xs, time + tau, u, t, ten, f, a);
+                    eval::<FRICTION>(c, lay, opts, ale, xs, time + tau, wk, a);
                     let (spos, svel) = xs.split_at_mut(3);
                     for q in 0..3 {
                         axpy(&mut sum[q][..n], &svel[q], w);

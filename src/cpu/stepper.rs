@@ -219,18 +219,14 @@ impl CpuSolver {
         self.install_chain_consts();
     }
 
-    /// Chain fast-path constants for chain blocks without a winch.
+    /// Chain fast-path constants for chain blocks (winch cables included: the fast
+    /// path applies the ALE variable element as the general path does).
     fn install_chain_consts(&mut self) {
         let lay = &self.layout;
-        let ale = self.ale.as_deref();
         self.chain_consts = lay
             .blocks
             .iter()
-            .enumerate()
-            .map(|(bi, b)| {
-                let winch = ale.is_some_and(|a| !a.blocks[bi].is_empty());
-                (b.is_chain && !winch).then(|| ChainConsts::new(lay, b))
-            })
+            .map(|b| b.is_chain.then(|| ChainConsts::new(lay, b)))
             .collect();
     }
 
@@ -387,6 +383,7 @@ impl CpuSolver {
                             ctx.lay,
                             &ctx.opts,
                             &mut chain_scratch,
+                            ale,
                             &mut r[n0..n1],
                             &mut v[n0..n1],
                             b.node_start as usize,
