@@ -763,14 +763,14 @@ fn winch_example_runs_and_outputs_follow_the_node_count() {
     );
 }
 
-/// Laying on the seabed (examples/cable_laying.toml): a ship moving at the payout
+/// Laying on the seabed (examples/case3_laying.toml): a ship moving at the payout
 /// speed lays the cable. Mass stays `mbar L`; the laid cable rests on the seabed
 /// (penetration of the order of its weight over the seabed stiffness, no vertical
 /// motion) and friction holds it still; the grounded length grows at the ship's speed;
 /// once the start-up transient is over, the top force is steady.
 #[test]
 fn laying_on_the_seabed_from_a_moving_ship() {
-    let sc = Scenario::load("examples/cable_laying.toml").unwrap();
+    let sc = Scenario::load("examples/case3_laying.toml").unwrap();
     let (lay, pos, _) = cablesim::sim::prepare(&sc).unwrap();
     let mut opts = SolverOptions::default();
     let plan = cablesim::sim::plan_steps(&sc, &lay, &opts, 60.0, sc.sim.dt).unwrap();
