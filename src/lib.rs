@@ -7,6 +7,7 @@
 //! advances it; [`sim`] drives the run and [`output`] writes what users read.
 #![warn(missing_docs)]
 
+pub mod ancf;
 pub mod cpu;
 pub mod error;
 pub mod gpu;
