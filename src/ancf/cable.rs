@@ -12,7 +12,7 @@ use crate::model::{Current, Environment, LineCoefs, LineType, PointMass, Route};
 use crate::options::Scheme;
 use crate::physics::{Coefs, SeabedCoefs};
 use crate::stability::mode_step;
-use nalgebra::{DMatrix, DVector, Matrix4};
+use nalgebra::{DMatrix, DVector};
 
 type V = V3<f64>;
 
@@ -421,7 +421,16 @@ impl AncfCable {
         }
 
         let uniform_current = (cfg.current.table.len() <= 1).then(|| cfg.current.at(0.0));
-        let (stable_dt, stable_term) = stable_step(&coefs, &lc, l_el, &gps, seabed, cfg.scheme);
+        let (stable_dt, stable_term) = stable_step(
+            &coefs,
+            &lc,
+            l_el,
+            n_el,
+            &gps,
+            seabed,
+            cfg.scheme,
+            [(&cfg.start, ends[0].mass), (&cfg.end, ends[1].mass)],
+        );
         let mut m = Model {
             name: name.clone(),
             n_el,
@@ -841,8 +850,9 @@ impl AncfCable {
     // ---------------------------------------------------------------------- statics
 
     /// Moves the free coordinates to static equilibrium at the current time (every
-    /// velocity zero but the prescribed ones; routes at their current positions; drag of
-    /// the current included). Velocities of free coordinates are zero afterwards.
+    /// velocity zero; routes at their current positions; drag of the current included).
+    /// Afterwards free coordinates are at rest and prescribed ones move with their routes
+    /// (a driven end starts moving at once, as the GLMF's does).
     ///
     /// Newton's method with Levenberg-Marquardt damping: the Jacobian `K = -dF/dq` is
     /// assembled from central differences of each element's generalized force (steps
@@ -862,14 +872,15 @@ impl AncfCable {
     /// Errors (`Error::Statics`): no convergence within `max_iterations` per stage.
     pub fn solve_static(&mut self, opts: &StaticOptions) -> Result<StaticReport, Error> {
         let t = self.t;
-        self.qd.iter_mut().for_each(|x| *x = 0.0);
         self.m.apply_prescribed(&mut self.q, &mut self.qd, t);
+        self.qd.iter_mut().for_each(|x| *x = 0.0);
         let flow = !self.m.current.is_still() || self.m.water_accel.norm() > 0.0;
         let stages: &[f64] = if flow {
             &[0.0, 0.25, 0.5, 0.75, 1.0]
         } else {
             &[1.0]
         };
+        let still = self.m.with_flow(0.0);
         let mut total = 0;
         let mut last = None;
         for &s in stages {
@@ -878,33 +889,29 @@ impl AncfCable {
             } else {
                 self.m.clone()
             };
-            let mut rep = newton(
-                &m,
-                &mut self.q,
-                &self.qd,
-                t,
-                &mut self.ws,
-                opts,
-                !flow || s == 0.0,
-            )?;
+            let mut rep = newton(&m, &still, &mut self.q, &self.qd, t, &mut self.ws, opts)?;
             total += rep.iterations;
             rep.iterations = total;
             last = Some(rep);
         }
+        // At rest, but a driven end moves with its route from the start.
+        self.m.apply_prescribed(&mut self.q, &mut self.qd, t);
         Ok(last.expect("at least one stage"))
     }
 }
 
 /// Newton-Levenberg-Marquardt on the free coordinates of `q` (see
-/// [`AncfCable::solve_static`]); `energy_merit` when the loads have a potential.
+/// [`AncfCable::solve_static`]). `still` is `m` without current: the potential energy
+/// of its loads, plus the work of the rest of `m`'s loads frozen at the iterate, is the
+/// merit function of the line search.
 fn newton(
     m: &Model,
+    still: &Model,
     q: &mut [f64],
     qd: &[f64],
     t: f64,
     ws: &mut Ws,
     opts: &StaticOptions,
-    energy_merit: bool,
 ) -> Result<StaticReport, Error> {
     let nd = q.len();
     let free: Vec<usize> = (0..nd).filter(|&i| !m.is_prescribed[i]).collect();
@@ -931,11 +938,7 @@ fn newton(
         pos[i] = k;
     }
     let (mut mx, mut n2) = residual(q, ws);
-    let mut energy = if energy_merit {
-        m.potential_energy(q)
-    } else {
-        0.0
-    };
+    let mut energy = still.potential_energy(q);
     let mut it = 0;
     let mut mu = 0.0f64;
     let mut qtry = q.to_vec();
@@ -949,6 +952,9 @@ fn newton(
         }
         it += 1;
         let f: Vec<f64> = free.iter().map(|&i| ws.f[i]).collect();
+        // The loads without potential (drag of the current), frozen over the step.
+        still.forces(q, qd, t, ws, false);
+        let f_nc: Vec<f64> = free.iter().zip(&f).map(|(&i, fi)| fi - ws.f[i]).collect();
         // K = -dF/dq over the free coordinates, element by element.
         let mut kmat = DMatrix::<f64>::zeros(nf, nf);
         for e in 0..m.n_el {
@@ -976,25 +982,60 @@ fn newton(
                 }
             }
         }
+        // Slack points have no axial stiffness: should the exact Jacobian's step fail,
+        // give them their taut material stiffness `EA (S_k' S_l') r' r'^T` (in the
+        // Jacobian, not in the residual), so Newton's model of a slack stretch is the
+        // taut line's, not a free drift (a straight, unstretched first guess).
+        let mut ktaut = kmat.clone();
+        if m.coefs.line.compression == 0.0 {
+            for e in 0..m.n_el {
+                let base = 6 * e;
+                let qe = &q[base..base + 12];
+                for gp in &m.gps {
+                    let sh = &gp.shape;
+                    let p = kinematics(sh, qe, &[0.0; 12]);
+                    if p.r1.norm2() > 1.0 {
+                        continue;
+                    }
+                    let r1 = [p.r1.x, p.r1.y, p.r1.z];
+                    let ea = m.coefs.line.ea * gp.dx;
+                    for k in 0..4 {
+                        for l in 0..4 {
+                            let x = ea * sh.ds[k] * sh.ds[l];
+                            for a in 0..3 {
+                                for b in 0..3 {
+                                    let (pi, pj) = (pos[base + 3 * k + a], pos[base + 3 * l + b]);
+                                    if pi != usize::MAX && pj != usize::MAX {
+                                        ktaut[(pi, pj)] += x * r1[a] * r1[b];
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
         // Levenberg-Marquardt scaling: |K_kk|, floored per kind of coordinate (a
         // slack, unbent stretch of line has no stiffness at all).
         let mut kmax = [0.0f64; 2];
         for (k, &i) in free.iter().enumerate() {
             let c = usize::from(i % 6 >= 3);
-            kmax[c] = kmax[c].max(kmat[(k, k)].abs());
+            kmax[c] = kmax[c].max(ktaut[(k, k)].abs());
         }
         let diag: Vec<f64> = free
             .iter()
             .enumerate()
             .map(|(k, &i)| {
                 let c = usize::from(i % 6 >= 3);
-                kmat[(k, k)].abs().max(1e-6 * kmax[c]).max(1e-300)
+                ktaut[(k, k)].abs().max(1e-6 * kmax[c]).max(1e-300)
             })
             .collect();
         let rhs = DVector::from_vec(f.clone());
-        // Damped steps until one is accepted.
+        // Damped steps until one is accepted: at each damping, the exact Jacobian
+        // first, then the taut one; the damping grows tenfold after both fail.
+        let mut exact = true;
         loop {
-            let mut a = kmat.clone();
+            let mut a = if exact { kmat.clone() } else { ktaut.clone() };
             for k in 0..nf {
                 a[(k, k)] += mu * diag[k];
             }
@@ -1018,24 +1059,16 @@ fn newton(
                             qtry[i] += alpha * dq[k];
                         }
                         let (mx1, n21) = residual(&qtry, ws);
-                        let better = if energy_merit {
-                            let e1 = m.potential_energy(&qtry);
-                            let noise = 1e-13 * (energy.abs() + e1.abs());
-                            (slope > 0.0 && e1 - energy <= -1e-4 * alpha * slope)
-                                || ((e1 - energy).abs() <= noise && n21 < n2)
-                        } else {
-                            n21 < (1.0 - 1e-4 * alpha) * n2
-                        };
-                        if std::env::var("ANCF_DEBUG").is_ok() {
-                            eprintln!("it {it} mu {mu:.1e} alpha {alpha:.3e} res {mx:.3e}/{n2:.3e} -> {mx1:.3e}/{n21:.3e} accept {better}");
-                        }
+                        let work: f64 = f_nc.iter().zip(dq.iter()).map(|(a, b)| a * b).sum();
+                        let e1 = still.potential_energy(&qtry) - alpha * work;
+                        let noise = 1e-13 * (energy.abs() + e1.abs());
+                        let better = (slope > 0.0 && e1 - energy <= -1e-4 * alpha * slope)
+                            || ((e1 - energy).abs() <= noise && n21 < n2);
                         if better && mx1.is_finite() {
                             q.copy_from_slice(&qtry);
                             mx = mx1;
                             n2 = n21;
-                            if energy_merit {
-                                energy = m.potential_energy(q);
-                            }
+                            energy = still.potential_energy(q);
                             ok = true;
                             break;
                         }
@@ -1054,7 +1087,12 @@ fn newton(
                 residual(q, ws);
                 break;
             }
-            mu = if mu == 0.0 { 1e-6 } else { mu * 10.0 };
+            if exact && ktaut != kmat {
+                exact = false;
+            } else {
+                exact = true;
+                mu = if mu == 0.0 { 1e-6 } else { mu * 10.0 };
+            }
         }
         // ws.f must hold the residual of q for the next Jacobian's right-hand side.
         residual(q, ws);
@@ -1265,58 +1303,169 @@ impl Model {
     }
 }
 
-/// The element eigenvalue bound of the fastest mode and the scheme's step for it.
+/// Elements in the chain whose fastest mode bounds the stable step.
+const EIG_ELEMENTS: usize = 32;
+
+/// The fastest mode of the cable and the scheme's stable step for it.
 ///
-/// The largest eigenvalue of the assembled `M^-1 K` is at most the largest of the
-/// elements' (`M_e` the line mass only: added and point masses only lower it). An
-/// element's stiffness is bounded by `EA s K_a + EI K_b + K_seabed M_e / mbar` with
-/// `K_a = int S' S'^T`, `K_b = int S'' S''^T`, `s` a strain allowance; the internal
-/// damping `c` makes the mode's damping `gamma = c omega^2` (plus `C / mbar` of the
-/// seabed).
+/// The mass matrix is `M_s (x) I` plus the positive added mass and the point masses, and the
+/// stiffness along any direction is at most `EA s K_a + EI K_b` (`K_a = int S' S'^T`,
+/// `K_b = int S'' S''^T` assembled, `s` a strain allowance covering the stretched
+/// line's `EA (1 + 3 eps0)` and the geometric stiffness `N K_a`), plus the seabed's
+/// `K / mbar M_s`. So `omega_max^2` is at most the largest eigenvalue of the scalar
+/// problem `(EA s K_a + EI K_b) x = omega^2 (mbar M_s + point masses) x` with the
+/// cable's end conditions (the normal added mass only lowers it), computed densely for a
+/// chain of `min(n, 32)` elements: the fastest modes are short waves in the bulk
+/// (`omega^2 = 42 EA / (mbar L^2)`) or, at a free end without a point mass, a mode of
+/// the end node (`91 EA / (mbar L^2)`), and a longer uniform chain has the same top of
+/// the spectrum. The internal damping makes
+/// the mode's damping `gamma = c omega^2` (plus `C / mbar` of the seabed).
+#[allow(clippy::too_many_arguments)]
 fn stable_step(
     c: &AncfCoefs,
     lc: &LineCoefs,
     l: f64,
+    n_el: usize,
     gps: &[GaussPoint],
     seabed: Option<SeabedCoefs<f64>>,
     scheme: Scheme,
+    ends: [(&AncfEnd, f64); 2],
 ) -> (f64, String) {
-    let mut ms = Matrix4::<f64>::zeros();
-    let mut ka = Matrix4::<f64>::zeros();
-    let mut kb = Matrix4::<f64>::zeros();
-    // A 6-point rule integrates these degree <= 6 products exactly whatever the
-    // cable's own rule.
+    let ne = n_el.min(EIG_ELEMENTS);
+    let nd = 2 * (ne + 1);
+    let mut ms = DMatrix::<f64>::zeros(nd, nd);
+    let mut ka = DMatrix::<f64>::zeros(nd, nd);
+    // A rule of at least 6 points integrates these degree <= 6 products exactly.
     let exact = gauss_points(l, 6.max(gps.len()));
-    for gp in &exact {
-        let sh = &gp.shape;
-        for i in 0..4 {
-            for j in 0..4 {
-                ms[(i, j)] += gp.dx * sh.s[i] * sh.s[j];
-                ka[(i, j)] += gp.dx * sh.ds[i] * sh.ds[j];
-                kb[(i, j)] += gp.dx * sh.dds[i] * sh.dds[j];
+    for e in 0..ne {
+        for gp in &exact {
+            let sh = &gp.shape;
+            for i in 0..4 {
+                for j in 0..4 {
+                    let (gi, gj) = (2 * e + i, 2 * e + j);
+                    ms[(gi, gj)] += gp.dx * lc.mass * sh.s[i] * sh.s[j];
+                    ka[(gi, gj)] += gp.dx
+                        * (c.line.ea * STRAIN_ALLOWANCE * sh.ds[i] * sh.ds[j]
+                            + c.ei * sh.dds[i] * sh.dds[j]);
+                }
             }
         }
     }
-    let lam = |k: &Matrix4<f64>| -> f64 {
-        let ch = ms.cholesky().expect("element mass is positive definite");
-        let li = ch.l().try_inverse().expect("invertible factor");
-        let a = li * k * li.transpose();
-        let a = (a + a.transpose()) * 0.5;
-        a.symmetric_eigenvalues().max()
-    };
-    let wa = lam(&ka) * c.line.ea * STRAIN_ALLOWANCE / lc.mass;
-    let wb = if c.ei > 0.0 {
-        lam(&kb) * c.ei / lc.mass
-    } else {
-        0.0
-    };
+    // End conditions: point masses on the end positions; prescribed coordinates
+    // removed (an identity row in the mass, nothing in the stiffness).
+    for (k, (end, mass)) in ends.iter().enumerate() {
+        let u = if k == 0 { 0 } else { nd - 2 };
+        ms[(u, u)] += mass;
+        let fixed = [end.route.is_some(), end.slope.is_some()];
+        for (d, &f) in fixed.iter().enumerate() {
+            if f {
+                for j in 0..nd {
+                    ms[(u + d, j)] = 0.0;
+                    ms[(j, u + d)] = 0.0;
+                    ka[(u + d, j)] = 0.0;
+                    ka[(j, u + d)] = 0.0;
+                }
+                ms[(u + d, u + d)] = 1.0;
+            }
+        }
+    }
+    let ch = ms
+        .cholesky()
+        .expect("the consistent mass matrix is positive definite");
+    let li = ch
+        .l()
+        .try_inverse()
+        .expect("a Cholesky factor is invertible");
+    let a = &li * ka * li.transpose();
+    let a = (&a + a.transpose()) * 0.5;
+    let we = a.symmetric_eigenvalues().max();
     let ws = seabed.map_or(0.0, |s| s.k / lc.mass);
-    let gamma = c.line.ea_c / c.line.ea * (wa + wb) + seabed.map_or(0.0, |s| s.c / lc.mass);
-    let omega2 = wa + wb + ws;
+    let gamma = c.line.ea_c / c.line.ea * we + seabed.map_or(0.0, |s| s.c / lc.mass);
+    let omega2 = we + ws;
     let dt = mode_step(scheme, omega2, gamma);
     let term = format!(
-        "element eigenvalue bound: axial omega^2 {wa:.4e}, bending {wb:.4e}, seabed {ws:.4e} s^-2, damping {gamma:.4e} s^-1 ({} scheme)",
+        "fastest mode of the cubic elements: elastic omega^2 {we:.4e} s^-2 (axial wave bound {:.4e}), seabed {ws:.4e} s^-2, damping {gamma:.4e} s^-1 ({} scheme)",
+        4.0 * c.line.ea / (lc.mass * l * l),
         scheme.name()
     );
     (dt, term)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Seabed;
+
+    fn line(ei: f64, compression: bool) -> LineType {
+        LineType {
+            name: "l".into(),
+            diameter: 0.04,
+            mass_per_length: 5.0,
+            ea: 6e7,
+            damping: 0.0,
+            cn: 1.0,
+            ct: 0.01,
+            cm: 0.0,
+            ei,
+            allow_compression: compression,
+        }
+    }
+
+    /// The static forces in still water are the negative gradient of the potential
+    /// energy (strain, weights, seabed) that the static solver descends.
+    #[test]
+    fn static_forces_are_the_energy_gradient() {
+        let env = Environment {
+            depth: 95.0,
+            seabed: Seabed::default(),
+            ..Default::default()
+        };
+        let cfg = AncfConfig::new(
+            line(50.0, false),
+            120.0,
+            3,
+            AncfEnd::fixed([0.0, 0.0, -90.0]),
+            AncfEnd::free([100.0, 5.0, 0.0]).with_point(PointMass {
+                mass: 100.0,
+                ..Default::default()
+            }),
+            env,
+        );
+        let mut c = AncfCable::new(cfg).unwrap();
+        c.set_shape(|s| {
+            let u = s / 120.0;
+            [
+                100.0 * u,
+                5.0 * u * u,
+                -90.0 + 90.0 * u - 10.0 * (3.0 * u).sin(),
+            ]
+        });
+        let q = c.q.clone();
+        let zero = vec![0.0; q.len()];
+        c.m.forces(&q, &zero, 0.0, &mut c.ws, false);
+        let f = c.ws.f.clone();
+        let n = q.len();
+        for trial in 0..4 {
+            let d: Vec<f64> = (0..n)
+                .map(|i| {
+                    if c.m.is_prescribed[i] {
+                        0.0
+                    } else {
+                        ((i * 7 + trial * 13) as f64 * 0.618).sin()
+                            * if i % 6 < 3 { 1.0 } else { 0.01 }
+                    }
+                })
+                .collect();
+            let h = 1e-5;
+            let plus: Vec<f64> = q.iter().zip(&d).map(|(a, b)| a + h * b).collect();
+            let minus: Vec<f64> = q.iter().zip(&d).map(|(a, b)| a - h * b).collect();
+            let de = (c.m.potential_energy(&plus) - c.m.potential_energy(&minus)) / (2.0 * h);
+            let fd: f64 = f.iter().zip(&d).map(|(a, b)| a * b).sum();
+            assert!(
+                (de + fd).abs() <= 1e-6 * fd.abs().max(1.0),
+                "trial {trial}: dE {de} vs -F.d {}",
+                -fd
+            );
+        }
+    }
 }
