@@ -117,5 +117,5 @@ pub mod element;
 pub mod shape;
 
 pub use cable::{
-    AncfCable, AncfConfig, AncfEnd, AncfEnergy, StaticOptions, StaticReport, AUTO_SAFETY,
+    AddedMass, AncfCable, AncfConfig, AncfEnd, AncfEnergy, StaticOptions, StaticReport, AUTO_SAFETY,
 };
