@@ -518,3 +518,105 @@ fn stable_step_is_the_real_limit() {
         assert!(bad.is_err(), "free end {free_end}: 1.25 of the bound ran");
     }
 }
+
+/// Seabed contact (paper Eq. 49, per metre of cable at the Gauss points, friction
+/// regularised below `v_eps`): a 100 m line laid straight on the seabed, in air so no
+/// drag or buoyancy blurs the figures (weight `w = mbar g` per metre).
+/// * It settles into the seabed by `w / K` everywhere (the cubic elements hold a uniform
+///   penetration exactly).
+/// * Pulled along its axis by `F = mu w L / 2`, below the sliding friction, it creeps at
+///   the regularised law's speed `v = v_eps F / (mu w L)`.
+/// * Pulled by `F = 3/2 mu w L`, it slides with acceleration `(F - mu w L) / (mbar L)`
+///   (no added mass along the axis, no water).
+#[test]
+fn seabed_contact_supports_and_friction_resists() {
+    let mut lt = wire();
+    lt.ei = 10.0;
+    let (mu, v_eps, depth) = (0.5, 0.01, 100.0);
+    let env = Environment {
+        gravity: 9.81,
+        water_density: 0.0,
+        depth,
+        seabed: Seabed {
+            friction: mu,
+            friction_velocity: v_eps,
+            ..Seabed::default()
+        },
+    };
+    let (l, n) = (100.0, 4);
+    let w = lt.mass_per_length * env.gravity;
+    let pen = w / env.seabed.stiffness;
+    let run = |force: f64, settle: f64, time: f64| -> (AncfCable, f64) {
+        let cfg = AncfConfig::new(
+            lt.clone(),
+            l,
+            n,
+            AncfEnd::free([0.0, 0.0, -depth]),
+            AncfEnd::free([l, 0.0, -depth]),
+            env,
+        );
+        let mut c = AncfCable::new(cfg).unwrap();
+        c.advance_time(settle).unwrap();
+        let x0 = c.node_positions()[0][0];
+        if time > 0.0 {
+            // Same line, now with the end force, from the settled state.
+            let (p, s) = (c.node_positions(), c.node_slopes());
+            let mut cfg = AncfConfig::new(
+                lt.clone(),
+                l,
+                n,
+                AncfEnd::free(p[0]),
+                AncfEnd::free(p[n]).with_force([force, 0.0, 0.0]),
+                env,
+            );
+            cfg.dt = Some(c.dt());
+            c = AncfCable::new(cfg).unwrap();
+            c.set_state(&p, &s);
+            c.advance_time(time).unwrap();
+        }
+        (c, x0)
+    };
+    // Settling.
+    let (c, _) = run(0.0, 1.0, 0.0);
+    let mut worst = 0.0f64;
+    for k in 0..=40 {
+        let z = c.position_at(l * k as f64 / 40.0)[2];
+        worst = worst.max((-depth - z - pen).abs() / pen);
+    }
+    // Creep below the friction limit.
+    let creep_force = 0.5 * mu * w * l;
+    let (creep, _) = run(creep_force, 1.0, 2.0);
+    let v_creep: f64 = creep.node_velocities().iter().map(|v| v[0]).sum::<f64>() / (n + 1) as f64;
+    let v_expected = v_eps * creep_force / (mu * w * l);
+    // Sliding above it.
+    let slide_force = 1.5 * mu * w * l;
+    // The mean velocity along the line (its centre of mass: the force sets off axial
+    // waves, +-0.2 m/s, that internal forces cannot change the momentum of), between
+    // 0.5 s and 1 s, once the mean speed is above the waves' so friction is saturated
+    // everywhere.
+    let mean_v = |c: &AncfCable| -> f64 {
+        (0..400)
+            .map(|k| c.velocity_at(l * (k as f64 + 0.5) / 400.0)[0])
+            .sum::<f64>()
+            / 400.0
+    };
+    let (mut slide, _) = run(slide_force, 1.0, 0.5);
+    let v1 = mean_v(&slide);
+    slide.advance_time(0.5).unwrap();
+    let a_slide = (mean_v(&slide) - v1) / 0.5;
+    let a_expected = (slide_force - mu * w * l) / (lt.mass_per_length * l);
+    eprintln!(
+        "seabed: penetration error {worst:.2e} of w/K = {pen:.3e} m; creep {v_creep:.6e} m/s (expected {v_expected:.6e}); \
+         sliding, acceleration {a_slide:.5} m/s^2 (expected {a_expected:.5}); dt {:.3e} s",
+        c.dt()
+    );
+    assert!(worst < 1e-3, "penetration error {worst:e}");
+    assert!(
+        (v_creep / v_expected - 1.0).abs() < 1e-3,
+        "creep {v_creep} vs {v_expected}"
+    );
+    assert!(
+        (a_slide / a_expected - 1.0).abs() < 1e-3,
+        "sliding {a_slide} m/s^2 vs {a_expected}"
+    );
+}

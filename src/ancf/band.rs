@@ -87,11 +87,20 @@ impl Band {
         for i in 0..n {
             let j0 = i.saturating_sub(BW);
             for j in j0..=i {
+                // Row i and row j of L overlap on columns k0..j, contiguous in storage.
                 let k0 = j0.max(j.saturating_sub(BW));
-                let mut s = self.a[Self::idx(i, j)];
-                for k in k0..j {
-                    s -= self.a[Self::idx(i, k)] * self.a[Self::idx(j, k)];
-                }
+                let len = j - k0;
+                let (ri, rj) = (Self::idx(i, k0), Self::idx(j, k0));
+                let dot: f64 = if len == 0 {
+                    0.0
+                } else {
+                    self.a[ri..ri + len]
+                        .iter()
+                        .zip(&self.a[rj..rj + len])
+                        .map(|(x, y)| x * y)
+                        .sum()
+                };
+                let s = self.a[Self::idx(i, j)] - dot;
                 if j == i {
                     if !(s > 0.0) {
                         return Err(i);

@@ -596,6 +596,15 @@ impl AncfCable {
             .to_f64()
     }
 
+    /// Velocity at unstretched arc length `s` from the start, m/s.
+    pub fn velocity_at(&self, s: f64) -> [f64; 3] {
+        let (e, xi) = self.locate(s);
+        let sh = hermite(self.m.l_el, xi);
+        kinematics(&sh, &self.q[6 * e..6 * e + 12], &self.qd[6 * e..6 * e + 12])
+            .rd
+            .to_f64()
+    }
+
     /// Axial force (tension) at unstretched arc length `s`, N: `|r'| EA (g eps0 + c
     /// eps0dot)`, the magnitude of the force `N r'` across the section (bending shear
     /// not included).
@@ -966,9 +975,14 @@ fn newton(
     let (mut mx, mut n2) = residual(q, ws);
     let mut energy = still.potential_energy(q);
     let mut it = 0;
-    let mut mu = 0.0f64;
+    let (mut mu_exact, mut mu_taut) = (0.0f64, 0.0f64);
     let mut qtry = q.to_vec();
-    let env = m.env();
+    // The Jacobian's finite differences leave the seabed out (its penetrations, w/K,
+    // are far below any useful step); its stiffness is added exactly below.
+    let env = ElementEnv {
+        seabed: None,
+        ..m.env()
+    };
     while !(mx <= tol) {
         if it >= opts.max_iterations || !mx.is_finite() {
             return Err(Error::Statics(format!(
@@ -1004,6 +1018,28 @@ fn newton(
                     let pi = pos[base + i];
                     if pi != usize::MAX {
                         kmat[(pi, pos[base + j])] -= (fp[i] - fm[i]) / (2.0 * h);
+                    }
+                }
+            }
+        }
+        // Seabed contact: K int S_k S_l e_z e_z^T over the penetrating points (at rest
+        // the damping and the regularised friction vanish).
+        if let Some(sb) = &m.seabed {
+            for e in 0..m.n_el {
+                let base = 6 * e;
+                for gp in &m.gps {
+                    let sh = &gp.shape;
+                    let p = kinematics(sh, &q[base..base + 12], &[0.0; 12]);
+                    if p.r.z >= sb.z {
+                        continue;
+                    }
+                    for k in 0..4 {
+                        for l in 0..4 {
+                            let (pi, pj) = (pos[base + 3 * k + 2], pos[base + 3 * l + 2]);
+                            if pi != usize::MAX && pj != usize::MAX {
+                                kmat[(pi, pj)] += sb.k * gp.dx * sh.s[k] * sh.s[l];
+                            }
+                        }
                     }
                 }
             }
@@ -1057,9 +1093,13 @@ fn newton(
             })
             .collect();
         let rhs = DVector::from_vec(f.clone());
-        // Damped steps until one is accepted: at each damping, the exact Jacobian
-        // first, then the taut one; the damping grows tenfold after both fail.
+        // Damped steps until one is accepted: the exact Jacobian with its damping grown
+        // tenfold up to three times, then (if it differs) the taut one with its own
+        // damping grown until a step is accepted.
+        let has_taut = ktaut != kmat;
         let mut exact = true;
+        let mut tries = 0;
+        let mut mu = mu_exact;
         loop {
             let mut a = if exact { kmat.clone() } else { ktaut.clone() };
             for k in 0..nf {
@@ -1105,7 +1145,12 @@ fn newton(
                 _ => false,
             };
             if accepted {
-                mu = if mu < 1e-9 { 0.0 } else { mu * 0.1 };
+                let next = if mu < 1e-9 { 0.0 } else { mu * 0.1 };
+                if exact {
+                    mu_exact = next;
+                } else {
+                    mu_taut = next;
+                }
                 break;
             }
             if mu > 1e12 {
@@ -1113,10 +1158,11 @@ fn newton(
                 residual(q, ws);
                 break;
             }
-            if exact && ktaut != kmat {
+            tries += 1;
+            if exact && has_taut && tries > 3 {
                 exact = false;
+                mu = mu_taut;
             } else {
-                exact = true;
                 mu = if mu == 0.0 { 1e-6 } else { mu * 10.0 };
             }
         }
@@ -1345,7 +1391,8 @@ const EIG_ELEMENTS: usize = 32;
 /// (`omega^2 = 42 EA / (mbar L^2)`) or, at a free end without a point mass, a mode of
 /// the end node (`91 EA / (mbar L^2)`), and a longer uniform chain has the same top of
 /// the spectrum. The internal damping makes
-/// the mode's damping `gamma = c omega^2` (plus `C / mbar` of the seabed).
+/// the mode's damping `gamma = c omega^2`, plus `C / mbar` of the seabed and its
+/// regularised friction, `mu w / (v_eps mbar)` (`w` the wet weight per length).
 #[allow(clippy::too_many_arguments)]
 fn stable_step(
     c: &AncfCoefs,
@@ -1406,7 +1453,12 @@ fn stable_step(
     let a = (&a + a.transpose()) * 0.5;
     let we = a.symmetric_eigenvalues().max();
     let ws = seabed.map_or(0.0, |s| s.k / lc.mass);
-    let gamma = c.line.ea_c / c.line.ea * we + seabed.map_or(0.0, |s| s.c / lc.mass);
+    // Seabed damping, and the regularised friction below v_eps: a damper of rate
+    // mu F_N / (v_eps m) with F_N the wet weight it carries.
+    let gamma = c.line.ea_c / c.line.ea * we
+        + seabed.map_or(0.0, |s| {
+            (s.c + s.mu * lc.wet_weight_z.abs() / s.v_eps.max(1e-300)) / lc.mass
+        });
     let omega2 = we + ws;
     let dt = mode_step(scheme, omega2, gamma);
     let term = format!(
