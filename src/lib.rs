@@ -10,6 +10,7 @@
 #![warn(missing_docs)]
 
 pub mod ale;
+pub mod ancf;
 pub mod cpu;
 pub mod error;
 pub mod gpu;

@@ -1,0 +1,121 @@
+//! The ANCF reference cable model (MODEL.md "The reference the paper validates
+//! against", paper Eqs. 37-44, 47, 49-50), CPU only, f64.
+//!
+//! The paper validates the GLMF against the absolute nodal coordinate formulation
+//! (ANCF): a few long elements whose shape is a cubic curve, with bending stiffness.
+//! This module is that reference for cables of fixed length (the ALE variant, with a
+//! material coordinate per node, is not here).
+//!
+//! # The element
+//! Gradient-deficient 3D cable element: per node the position `r` and the slope
+//! `r' = dr/dx` (`x` the unstretched arc length), 6 coordinates per node, cubic Hermite
+//! shape functions in `x` ([`shape`]). A cable of `n` equal elements has `6 (n + 1)`
+//! coordinates ordered node by node, `[r_0, r'_0, r_1, r'_1, ...]`.
+//!
+//! * Axial strain: the Green strain `eps0 = (r'.r' - 1)/2` of the paper (Eq. 37), stress
+//!   resultant `N = EA (g eps0 + c eps0dot)` with internal damping `c` (the line type's
+//!   `damping`, s). `g` is the crate's slack rule: 0 in compression unless the line
+//!   type allows compression. The tension reported is `N |r'|` (the magnitude of the
+//!   section force `N r'`); it equals the GLMF's `EA eps` to first order in the strain
+//!   (relative difference `1.5 eps`).
+//! * Bending: the full curvature `kappa = |r'' x r'| / |r'|^3` of the paper (Eq. 47),
+//!   not the simplified `|r''|`: the simplified form is the curvature only for a unit,
+//!   uniformly stretched slope and adds a spurious stiffness against stretch varying
+//!   along the element, while the full form costs a few cross products per Gauss point.
+//!   Its gradient is `d kappa/d q_k = S_k' g1 - S_k'' g2` with two vectors per point, so
+//!   the bending force and `kappadot` cost two dot products. The bending moment is
+//!   `EI (kappa + c kappadot)` (same `c` as the axial damping, Eq. 47). At zero curvature
+//!   the gradient is taken as zero: the elastic force `EI kappa dkappa/dq` is continuous
+//!   there, only the damping term's direction is undefined.
+//! * External loads per unit unstretched length (Eqs. 42, 49-50) with the GLMF's
+//!   [`Coefs`](crate::physics::Coefs): normal and tangential drag on the relative
+//!   velocity `U(r) - rdot` with the local tangent `r'/|r'|` (multiplied by the stretch
+//!   `|r'|`, like the GLMF's drag on the stretched length `l`), the water-acceleration
+//!   load `(1 + Cm) rho A P a_w`, weight less buoyancy, and seabed contact: the crate's
+//!   [`seabed_force`](crate::physics::seabed_force) per metre of cable at each Gauss
+//!   point (Eq. 49 with `zdot` for the paper's garbled damping term and the friction
+//!   regularised below `v_eps`).
+//! * Quadrature: `n`-point Gauss-Legendre per element, 5 by default
+//!   ([`AncfConfig::gauss_points`]): exact for the mass matrix (degree 6) and for the
+//!   elastic axial force of the Green strain (degree 8); the drag and the curvature
+//!   terms are not polynomials and are integrated to the rule's accuracy. The elastic
+//!   forces are the exact gradient of the quadrature's strain energy, so the discrete
+//!   system is conservative when drag and damping are off.
+//! * Mass: the consistent matrix `int S^T (mbar I + Cm rho A P) S dx` of Eqs. 43-44 with
+//!   the normal projection `P = I - t t^T` evaluated with the current tangent at each
+//!   Gauss point (exact, like the GLMF's tangent-dependent added mass; an isotropic
+//!   `Cm rho A I` would add tangential added mass the GLMF does not have). It is
+//!   therefore re-assembled and re-factored at every evaluation when `Cm > 0`: a band
+//!   Cholesky of half-bandwidth 11 ([`band`]), `6 (n+1) x 60` multiply-adds, less than
+//!   the Gauss loop. With `Cm = 0` (or no water) it is constant and factored once.
+//!   Point masses (with their isotropic added mass `Ca rho V`) add to the position
+//!   coordinates of end nodes, with their buoyancy and isotropic drag as in the GLMF.
+//!
+//! # Constraints
+//! An end on a [`Route`](crate::model::Route) (fixed or driven) has its three position
+//! coordinates prescribed; its slope stays free (a pinned end) unless the end also
+//! clamps it ([`AncfEnd::clamped`], a cantilever's root). Prescribed coordinates are
+//! eliminated directly, not stabilised: their values and rates are set from the route at
+//! every stage, their accelerations `a_p` are the route's, the free accelerations solve
+//! `M_ff a_f = F_f - M_fp a_p`. No Baumgarte gains, no drift. The force an end exerts on
+//! its support is `F_p - (M a)_p` over its position coordinates (MODEL.md "End forces").
+//!
+//! # Time integration
+//! Explicit, with the consistent mass solved by its Cholesky factor: symplectic Euler
+//! (default, one evaluation per step, as the GLMF stepper), explicit midpoint (RK2) or
+//! classical RK4 ([`crate::options::Scheme`]). Explicit because the fastest mode of a
+//! 50 m element is slow: the axial mode bound `omega^2 <= 60 EA / (mbar L^2)` of the
+//! cubic element (see [`AncfCable::stable_dt`]) gives about 3.7 ms for the paper's Case 2
+//! wire (`EA = 6.28e7 N`, `mbar = 5.03 kg/m`) with symplectic Euler, so 2000 s take
+//! about 700 000 steps of a few microseconds per element; an implicit scheme would
+//! need a Newton solve (Jacobian and factorisation) per step to gain a step it does
+//! not need. The stable step is bounded per element (the largest eigenvalue of the
+//! assembled `M^-1 K` is at most the largest element's): axial and bending stiffness
+//! over the line's mass (added and point masses only lower it), seabed stiffness, and
+//! the damping `gamma = c omega^2`, turned into a step by
+//! [`mode_step`](crate::stability::mode_step); the default step is
+//! [`AUTO_SAFETY`] of it.
+//!
+//! # Static equilibrium
+//! [`AncfCable::solve_static`]: Newton's method on the free coordinates at rest, the
+//! Jacobian from central differences of each element's force, a dense LU, a capped and
+//! backtracked step.
+//!
+//! # Use
+//! ```
+//! use cablesim::ancf::{AncfCable, AncfConfig, AncfEnd, StaticOptions};
+//! use cablesim::model::{Current, Environment, LineType, PointMass, Route};
+//!
+//! let lt = LineType {
+//!     name: "wire".into(), diameter: 0.04, mass_per_length: 5.0265, ea: 6.2832e7,
+//!     damping: 1e-5, cn: 1.0, ct: 0.01, cm: 0.2, ei: 10.0, allow_compression: false,
+//! };
+//! let top = Route::Circle {
+//!     center: [-20.0, 0.0, 0.0], radius: 20.0, period: 62.8, axis: [0.0, 0.0, 1.0],
+//!     phase: 0.0, advance: 0.0,
+//! };
+//! let env = Environment { depth: f64::INFINITY, ..Default::default() };
+//! let mut cfg = AncfConfig::new(
+//!     lt, 200.0, 4,
+//!     AncfEnd::driven(top),
+//!     AncfEnd::free([0.0, 0.0, -200.0]).with_point(PointMass { mass: 1000.0, ..Default::default() }),
+//!     env,
+//! );
+//! cfg.current = Current::uniform([1.0, 0.0, 0.0]);
+//! let mut cable = AncfCable::new(cfg).unwrap();
+//! cable.solve_static(&StaticOptions::default()).unwrap(); // at rest in the current
+//! cable.advance_time(1.0).unwrap();
+//! let last = cable.node_positions()[4];
+//! let top_force = cable.end_forces().unwrap()[0].unwrap(); // on the fairlead, N
+//! let t_mid = cable.tension_at(100.0); // N
+//! assert!(last[2] < -150.0 && top_force[2] < 0.0 && t_mid > 0.0);
+//! ```
+
+pub mod band;
+mod cable;
+pub mod element;
+pub mod shape;
+
+pub use cable::{
+    AddedMass, AncfCable, AncfConfig, AncfEnd, AncfEnergy, StaticOptions, StaticReport, AUTO_SAFETY,
+};
