@@ -11,7 +11,7 @@
 mod common;
 
 use cablesim::gpu::layout::*;
-use cablesim::gpu::solver::rebased_route;
+use cablesim::gpu::solver::{rebased_route, route_samples};
 use cablesim::gpu::{shaders, GpuContext, Precision};
 use cablesim::math::{Sym3, V3};
 use cablesim::model::{Current, Route};
@@ -466,8 +466,10 @@ fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng)
     let mut q = Vec::new();
     let mut tau = Vec::new();
     let mut meta = Vec::new();
+    let mut samples = Vec::new();
     for i in 0..n {
-        let route = match i % 3 {
+        let route = match i % 4 {
+            3 => random_table(rng),
             0 => Route::Fixed {
                 position: rv(rng, 500.0),
             },
@@ -487,9 +489,15 @@ fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng)
                 }
             }
         };
-        let t0 = rng.gen_range(0.0..2000.0);
+        let t0 = match &route {
+            // Before, inside and after the table's span, often a sample or more within
+            // the 0.5 s of tau.
+            Route::Table { t, .. } => rng.gen_range(t[0] - 3.0..t[t.len() - 1] + 1.0),
+            _ => rng.gen_range(0.0..2000.0),
+        };
         let o = rv(rng, 500.0).map(|x: f64| x.round());
-        q.push(rebased_route::<R>(&route, 0, t0, o));
+        q.push(rebased_route::<R>(&route, 0, t0, o, samples.len() as u32));
+        samples.extend(route_samples::<R>(&route, o));
         let tr = R::c(rng.gen_range(0.0..0.5));
         tau.push(tr);
         meta.push((t0, o, tr.f64()));
@@ -499,12 +507,16 @@ fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng)
         ctx,
         p,
         "t_route",
-        &[(6, bytemuck::cast_slice(&q).to_vec())],
+        &[
+            (6, bytemuck::cast_slice(&q).to_vec()),
+            (15, bytemuck::cast_slice(&samples).to_vec()),
+        ],
         &tau,
         n,
         12 * n,
     );
-    let mut w = Worst::new::<R>("route_eval (rebased)");
+    let mut w = Worst::new::<R>("route_eval (rebased; fixed, line, circle, screw)");
+    let mut wt = Worst::new::<R>("route_eval (rebased; table: search, interpolation, hold)");
     for i in 0..n {
         let (t0, o, tau) = meta[i];
         let s = routes[i].eval(t0 + tau);
@@ -523,6 +535,10 @@ fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng)
                 (advance / period).abs(),
             ),
             Route::Line { velocity, .. } => (0.0, 0.0, norm(V3::from_f64(*velocity))),
+            Route::Table { t, p } => {
+                check_table(&mut wt, p, t, i, t0, tau, o, &o12, s, r);
+                continue;
+            }
             _ => (0.0, 0.0, 0.0),
         };
         // The rebase time, its angle and the origin shift are formed in f64; in the
@@ -542,6 +558,74 @@ fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng)
         w.v("a", i, &o12[9..12], V3::from_f64(s.a), a_scale.max(1e-300));
     }
     w.report(p);
+    wt.report(p);
+}
+
+/// A table route: 1 to 40 samples, some far apart, some closer than the 0.5 s of tau.
+fn random_table(rng: &mut ChaCha8Rng) -> Route {
+    let n = rng.gen_range(1..=40);
+    let fine = rng.gen_bool(0.5);
+    let mut t = vec![rng.gen_range(0.0..1500.0)];
+    let mut p = vec![rv(rng, 500.0)];
+    for _ in 1..n {
+        let h = if fine {
+            rng.gen_range(0.01..0.3)
+        } else {
+            rng.gen_range(0.5..60.0)
+        };
+        t.push(t[t.len() - 1] + h);
+        let last = p[p.len() - 1];
+        let step = rv(rng, 3.0 * h);
+        p.push([0, 1, 2].map(|d| last[d] + step[d]));
+    }
+    Route::Table { t, p }
+}
+
+/// Checks a table route's GPU target against `Route::eval` at `t0 + tau`.
+/// Scales: the GPU interpolates in times relative to the rebase time and positions
+/// relative to the origin, both as compensated pairs, so its position rounds with the
+/// segment's extent `|dp|` and with the time into the segment `u` (times the speed);
+/// in f64 the CPU twin's own rounding of absolute coordinates (`|p|`, and `|p| / h` in
+/// the velocity) counts too.
+#[allow(clippy::too_many_arguments)]
+fn check_table(
+    w: &mut Worst,
+    p: &[[f64; 3]],
+    t: &[f64],
+    i: usize,
+    t0: f64,
+    tau: f64,
+    o: [f64; 3],
+    o12: &[f64],
+    s: cablesim::model::RouteState,
+    r: V3<f64>,
+) {
+    let tt = t0 + tau;
+    let k = t.partition_point(|&x| x <= tt).clamp(1, t.len().max(2) - 1);
+    let (dp, h, u) = if t.len() > 1 {
+        let dp = V3::from_f64(p[k]) - V3::from_f64(p[k - 1]);
+        (dp.norm(), t[k] - t[k - 1], (tt - t[k - 1]).abs())
+    } else {
+        (0.0, 1.0, 0.0)
+    };
+    let speed = norm(V3::from_f64(s.v));
+    let f64_terms = if w.eps < 1e-10 {
+        norm(V3::from_f64(p[k.min(p.len() - 1)])) + norm(V3::from_f64(o))
+    } else {
+        0.0
+    };
+    let r_gpu = [0, 1, 2].map(|d| o12[d] + o12[3 + d]);
+    let r_scale = dp + speed * (u + h + tau) + 1e-3 * r.norm() + f64_terms;
+    w.v("table r", i, &r_gpu, r, r_scale.max(1e-300));
+    let v_scale = speed + f64_terms / h;
+    w.v(
+        "table v",
+        i,
+        &o12[6..9],
+        V3::from_f64(s.v),
+        v_scale.max(1e-300),
+    );
+    w.v("table a", i, &o12[9..12], V3::from_f64(s.a), 1e-300);
 }
 
 fn check_current<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {

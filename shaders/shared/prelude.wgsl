@@ -16,6 +16,7 @@ const NO_CONSTRAINT: u32 = 0xffffffffu;
 const ROUTE_FIXED: u32 = 0u;
 const ROUTE_LINE: u32 = 1u;
 const ROUTE_CIRCLE: u32 = 2u;
+const ROUTE_TABLE: u32 = 3u;
 const FAIL_SPEED: u32 = 1u;
 const FAIL_DISTANCE: u32 = 2u;
 
@@ -89,7 +90,10 @@ struct NodeParams {
 // A route rebased to the start of the submission and to the block origin:
 // fixed: r = p; line: r = p + vel tau; circle/screw: r = p + e1 cos(th) + e2 sin(th)
 // + vel tau with th = theta0 + w tau (e1, e2 scaled by the radius). `p` is a
-// compensated pair (p_hi + p_lo). Rust: RouteParams.
+// compensated pair (p_hi + p_lo). table: samples route_samples[table_start ..
+// table_start + table_len] interpolated at t = (t0_hi + t0_lo) + tau, the search
+// starting at sample `cursor` (the number of samples at or before t0). Rust:
+// RouteParams.
 struct RouteParams {
     p_hi_x: R,
     p_hi_y: R,
@@ -108,8 +112,28 @@ struct RouteParams {
     e2_z: R,
     w: R,
     theta0: R,
+    // Table: the rebase time, a compensated pair (absolute, s).
+    t0_hi: R,
+    t0_lo: R,
     kind: u32,
     node: u32,
+    table_start: u32,
+    table_len: u32,
+    cursor: u32,
+    pad: u32,
+}
+
+// One sample of a table route: time (absolute, s) and position (relative to the
+// block origin, m), both as compensated pairs. Rust: RouteSample.
+struct RouteSample {
+    t_hi: R,
+    t_lo: R,
+    x_hi: R,
+    y_hi: R,
+    z_hi: R,
+    x_lo: R,
+    y_lo: R,
+    z_lo: R,
 }
 
 // A block's origin (absolute, m) and its seabed height relative to the origin.
@@ -187,6 +211,7 @@ struct Status {
 @group(0) @binding(12) var<storage, read_write> node_out: array<NodeOut>;
 @group(0) @binding(13) var<storage, read_write> reactions: array<vec4<R>>;
 @group(0) @binding(14) var<storage, read_write> status: Status;
+@group(0) @binding(15) var<storage, read> route_samples: array<RouteSample>;
 
 // ---- Small math ----
 
@@ -374,7 +399,60 @@ struct RouteState {
     a: vec3<R>,
 }
 
+// `t - t_j` for table sample `j` (index within the table) at `tau` after the rebase.
+fn table_dt(q: RouteParams, j: u32, tau: R) -> R {
+    let s = route_samples[q.table_start + j];
+    return ((q.t0_hi - s.t_hi) + (q.t0_lo - s.t_lo)) + tau;
+}
+
+fn sample_hi(j: u32) -> vec3<R> {
+    let s = route_samples[j];
+    return vec3<R>(s.x_hi, s.y_hi, s.z_hi);
+}
+
+fn sample_lo(j: u32) -> vec3<R> {
+    let s = route_samples[j];
+    return vec3<R>(s.x_lo, s.y_lo, s.z_lo);
+}
+
+// A table route (model::Route::Table): linear between samples, held at the first and
+// last samples outside the table's span (velocity zero there). The segment is found by
+// binary search from the cursor, as `partition_point(t_j <= t)` on the CPU.
+fn table_eval(q: RouteParams, tau: R) -> RouteState {
+    let zero = vec3<R>(R(0.0), R(0.0), R(0.0));
+    let n = q.table_len;
+    let b = q.table_start;
+    if n == 1u || table_dt(q, 0u, tau) <= R(0.0) {
+        return RouteState(sample_hi(b), sample_lo(b), zero, zero);
+    }
+    if table_dt(q, n - 1u, tau) >= R(0.0) {
+        return RouteState(sample_hi(b + n - 1u), sample_lo(b + n - 1u), zero, zero);
+    }
+    // The first sample after t lies in [lo, hi]; sample n - 1 is after t.
+    var lo = clamp(q.cursor, 1u, n - 1u);
+    var hi = n - 1u;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        if table_dt(q, mid, tau) >= R(0.0) {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    let s0 = route_samples[b + lo - 1u];
+    let s1 = route_samples[b + lo];
+    let h = (s1.t_hi - s0.t_hi) + (s1.t_lo - s0.t_lo);
+    let u = table_dt(q, lo - 1u, tau);
+    let p0_hi = vec3<R>(s0.x_hi, s0.y_hi, s0.z_hi);
+    let p0_lo = vec3<R>(s0.x_lo, s0.y_lo, s0.z_lo);
+    let dp = (vec3<R>(s1.x_hi, s1.y_hi, s1.z_hi) - p0_hi) + (vec3<R>(s1.x_lo, s1.y_lo, s1.z_lo) - p0_lo);
+    return RouteState(p0_hi, p0_lo + dp * (u / h), dp / h, zero);
+}
+
 fn route_eval(q: RouteParams, tau: R) -> RouteState {
+    if q.kind == ROUTE_TABLE {
+        return table_eval(q, tau);
+    }
     let p_hi = vec3<R>(q.p_hi_x, q.p_hi_y, q.p_hi_z);
     let p_lo = vec3<R>(q.p_lo_x, q.p_lo_y, q.p_lo_z);
     let vel = vec3<R>(q.vel_x, q.vel_y, q.vel_z);
