@@ -196,8 +196,10 @@ gpu_struct! {
         line: u32,
         /// Current profile.
         current: u32,
-        /// Unstretched length, m.
+        /// Unstretched length, high part, m.
         l0: R,
+        /// Unstretched length, low part (`l0 + l0_lo`; zero in f64), m.
+        l0_lo: R,
     }
 }
 
@@ -230,7 +232,8 @@ gpu_struct! {
 gpu_struct! {
     /// A route rebased to a time and to its block's origin (WGSL `RouteParams`).
     RouteParams {
-        /// Position at the rebase time, relative to the origin, high part, m.
+        /// Position at the rebase time (a circle's: on the circle), relative to the
+        /// origin, high part, m.
         p_hi_x: R,
         /// See `p_hi_x`.
         p_hi_y: R,
@@ -262,8 +265,10 @@ gpu_struct! {
         e2_z: R,
         /// Circle: angular velocity, rad/s.
         w: R,
-        /// Circle: angle at the rebase time, in `[0, 2 pi)`, rad.
-        theta0: R,
+        /// Circle: cosine of the angle at the rebase time.
+        c0: R,
+        /// Circle: sine of the angle at the rebase time.
+        s0: R,
         /// Table: the rebase time (absolute), high part, s.
         t0_hi: R,
         /// Table: low part of the rebase time (`t0 = t0_hi + t0_lo`), s.

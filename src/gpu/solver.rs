@@ -163,8 +163,13 @@ pub fn rebased_route<R: GpuReal>(
             q.e2_y = R::c(radius * e2[1]);
             q.e2_z = R::c(radius * e2[2]);
             q.w = R::c(w);
-            q.theta0 = R::c((w * t0 + phase).rem_euclid(2.0 * PI));
-            let p = [0, 1, 2].map(|d| center[d] + axis[d] * adv * t0);
+            let th0 = (w * t0 + phase).rem_euclid(2.0 * PI);
+            let (s0, c0) = th0.sin_cos();
+            q.c0 = R::c(c0);
+            q.s0 = R::c(s0);
+            // The point on the circle at t0, in f64: the shader adds the displacement.
+            let p = [0, 1, 2]
+                .map(|d| center[d] + axis[d] * adv * t0 + radius * (c0 * e1[d] + s0 * e2[d]));
             (sub(p, o), axis.map(|a| a * adv))
         }
         Route::Table { .. } => unreachable!("handled above"),
@@ -313,7 +318,8 @@ impl<R: GpuReal> GpuEngine<R> {
                 b: lay.elem_b[e],
                 line: lay.elem_line[e],
                 current: lay.elem_current[e],
-                l0: R::c(lay.elem_l0[e]),
+                l0: split::<R>(lay.elem_l0[e]).0,
+                l0_lo: split::<R>(lay.elem_l0[e]).1,
             })
             .collect();
         let nodes: Vec<NodeParams<R>> = (0..lay.n_nodes())
