@@ -19,7 +19,7 @@ fn node_update(@builtin(global_invocation_id) gid: vec3<u32>) {
     let nf = gather_node(i, nd, s);
     let a = node_accel(nd, s, nf, tau);
     let vn = s.v.xyz + a * params.dt;
-    let r = add_compensated(s.r_hi.xyz, s.r_lo.xyz, vn * params.dt);
+    let r = add_compensated(s.r_hi.xyz, s.r_lo.xyz, opaque3(vn * params.dt));
     state[i] = NodeState(vec4<R>(r[0], R(0.0)), vec4<R>(r[1], R(0.0)), vec4<R>(vn, R(0.0)));
     // Blow-up check, written so that NaN fails the comparisons (cpu::stepper check).
     let blk = blocks[nd.block];

@@ -11,7 +11,7 @@
 mod common;
 
 use cablesim::gpu::layout::*;
-use cablesim::gpu::solver::rebased_route;
+use cablesim::gpu::solver::{rebased_route, route_samples};
 use cablesim::gpu::{shaders, GpuContext, Precision};
 use cablesim::math::{Sym3, V3};
 use cablesim::model::{Current, Route};
@@ -43,14 +43,25 @@ fn t_element(@builtin(global_invocation_id) gid: vec3<u32>) {
     let b = i * 25u;
     let c = LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
         tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u]);
-    let el = glmf_element(c, v3in(b + 9u), v3in(b + 12u), v3in(b + 15u), tin[b + 18u],
-        v3in(b + 19u), v3in(b + 22u));
+    let d = v3in(b + 9u);
+    let el = glmf_element(c, d, norm3(d) - tin[b + 18u], v3in(b + 12u), v3in(b + 15u),
+        tin[b + 18u], v3in(b + 19u), v3in(b + 22u));
     let o = i * 9u;
     v3out(o, el.t);
     tout[o + 3u] = el.tension;
     v3out(o + 4u, el.f_half);
     tout[o + 7u] = el.half_mass;
     tout[o + 8u] = el.half_added;
+}
+
+@compute @workgroup_size(64)
+fn t_stretch(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 8u {
+        return;
+    }
+    let b = i * 8u;
+    tout[i] = element_stretch(v3in(b), v3in(b + 3u), tin[b + 6u], tin[b + 7u]);
 }
 
 @compute @workgroup_size(64)
@@ -340,6 +351,68 @@ fn check_element<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
     w.report(p);
 }
 
+/// `element_stretch`: the stretch `|d| - l0` of an element given as compensated pairs,
+/// against f64 on the same inputs (the pairs' sums are exact in f64). Contract in f32:
+/// within `16 eps (|stretch| + eps l0)`, accurate relative to the stretch itself
+/// (plain `|d| - l0` rounds to `eps l0`, a thousand to a million times more at strains
+/// of 1e-3 to 1e-6). In f64 the twin is no better than `eps l0`, so that is the scale.
+fn check_stretch<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1000;
+    let mut x = Vec::new();
+    let mut exact = Vec::new();
+    let pair = |v: f64| {
+        let hi = R::c(v);
+        let lo = R::c(v - hi.f64());
+        (hi, lo)
+    };
+    for i in 0..n {
+        let l0 = rng.gen_range(0.5..50.0);
+        let strain = match i % 4 {
+            0 => rng.gen_range(-1e-2..1e-2),
+            1 => rng.gen_range(-1e-4..1e-4),
+            2 => rng.gen_range(-1e-6..1e-6),
+            _ => rng.gen_range(-1e-7..1e-7),
+        };
+        let dir = V3::<f64>::from_f64(rv(rng, 1.0));
+        let d = dir / dir.norm() * (l0 * (1.0 + strain));
+        let (lh, ll) = pair(l0);
+        let mut row: Vec<R> = Vec::new();
+        let (mut dh, mut dl) = ([R::c(0.0); 3], [R::c(0.0); 3]);
+        for (k, v) in d.to_f64().into_iter().enumerate() {
+            (dh[k], dl[k]) = pair(v);
+        }
+        row.extend(dh);
+        row.extend(dl);
+        row.push(lh);
+        row.push(ll);
+        // What the GPU got, in f64 (exact sums of the pairs).
+        let dd: Vec<f64> = (0..3).map(|k| dh[k].f64() + dl[k].f64()).collect();
+        let l = (dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]).sqrt();
+        exact.push((l - (lh.f64() + ll.f64()), l0));
+        x.extend(row);
+    }
+    let out = run::<R>(
+        ctx,
+        p,
+        "t_stretch",
+        &[(0, params::<R>(0.0, 0.0, 0.0, 0.01))],
+        &x,
+        n,
+        n,
+    );
+    let mut w = Worst::new::<R>("element_stretch (compensated)");
+    let eps = R::epsilon().f64();
+    for (i, &(s, l0)) in exact.iter().enumerate() {
+        let scale = if p == Precision::F32 {
+            s.abs() + eps * l0
+        } else {
+            s.abs() + l0
+        };
+        w.check("stretch", i, out[i].f64(), s, scale);
+    }
+    w.report(p);
+}
+
 fn params<R: GpuReal>(k: f64, c: f64, mu: f64, v_eps: f64) -> Vec<u8> {
     let p = Params::<R> {
         seabed: 1,
@@ -466,8 +539,10 @@ fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng)
     let mut q = Vec::new();
     let mut tau = Vec::new();
     let mut meta = Vec::new();
+    let mut samples = Vec::new();
     for i in 0..n {
-        let route = match i % 3 {
+        let route = match i % 4 {
+            3 => random_table(rng),
             0 => Route::Fixed {
                 position: rv(rng, 500.0),
             },
@@ -487,9 +562,15 @@ fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng)
                 }
             }
         };
-        let t0 = rng.gen_range(0.0..2000.0);
+        let t0 = match &route {
+            // Before, inside and after the table's span, often a sample or more within
+            // the 0.5 s of tau.
+            Route::Table { t, .. } => rng.gen_range(t[0] - 3.0..t[t.len() - 1] + 1.0),
+            _ => rng.gen_range(0.0..2000.0),
+        };
         let o = rv(rng, 500.0).map(|x: f64| x.round());
-        q.push(rebased_route::<R>(&route, 0, t0, o));
+        q.push(rebased_route::<R>(&route, 0, t0, o, samples.len() as u32));
+        samples.extend(route_samples::<R>(&route, o));
         let tr = R::c(rng.gen_range(0.0..0.5));
         tau.push(tr);
         meta.push((t0, o, tr.f64()));
@@ -499,12 +580,16 @@ fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng)
         ctx,
         p,
         "t_route",
-        &[(6, bytemuck::cast_slice(&q).to_vec())],
+        &[
+            (6, bytemuck::cast_slice(&q).to_vec()),
+            (15, bytemuck::cast_slice(&samples).to_vec()),
+        ],
         &tau,
         n,
         12 * n,
     );
-    let mut w = Worst::new::<R>("route_eval (rebased)");
+    let mut w = Worst::new::<R>("route_eval (rebased; fixed, line, circle, screw)");
+    let mut wt = Worst::new::<R>("route_eval (rebased; table: search, interpolation, hold)");
     for i in 0..n {
         let (t0, o, tau) = meta[i];
         let s = routes[i].eval(t0 + tau);
@@ -523,12 +608,19 @@ fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng)
                 (advance / period).abs(),
             ),
             Route::Line { velocity, .. } => (0.0, 0.0, norm(V3::from_f64(*velocity))),
+            Route::Table { t, p } => {
+                check_table(&mut wt, p, t, i, t0, tau, o, &o12, s, r);
+                continue;
+            }
             _ => (0.0, 0.0, 0.0),
         };
-        // The rebase time, its angle and the origin shift are formed in f64; in the
-        // shader only tau, the angle w tau and the radius vector round.
-        let r_scale =
-            rad * (1.0 + w_ang * tau + 2.0 * std::f64::consts::PI) + speed * tau + 1e-3 * r.norm();
+        // The rebase time, its angle, the point on the circle there and the origin
+        // shift are formed in f64; in the shader only the displacement since the
+        // rebase rounds: of size rad w tau (arc) and speed tau (advance). (Rounding
+        // the rebase angle itself in f32 would cost rad 2 pi eps, a hundred times
+        // more for the short tau of a submission: micrometres on a 20 m circle,
+        // tens of newtons in a stiff fairlead element.)
+        let r_scale = rad * w_ang * tau + speed * tau + 1e-3 * r.norm();
         let r_scale = if p == Precision::F64 {
             // f64: the CPU's own angle w (t0 + tau) carries |w t| eps.
             r_scale + rad * w_ang * (t0 + tau) + r.norm() + speed * (t0 + tau)
@@ -542,6 +634,74 @@ fn check_route<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng)
         w.v("a", i, &o12[9..12], V3::from_f64(s.a), a_scale.max(1e-300));
     }
     w.report(p);
+    wt.report(p);
+}
+
+/// A table route: 1 to 40 samples, some far apart, some closer than the 0.5 s of tau.
+fn random_table(rng: &mut ChaCha8Rng) -> Route {
+    let n = rng.gen_range(1..=40);
+    let fine = rng.gen_bool(0.5);
+    let mut t = vec![rng.gen_range(0.0..1500.0)];
+    let mut p = vec![rv(rng, 500.0)];
+    for _ in 1..n {
+        let h = if fine {
+            rng.gen_range(0.01..0.3)
+        } else {
+            rng.gen_range(0.5..60.0)
+        };
+        t.push(t[t.len() - 1] + h);
+        let last = p[p.len() - 1];
+        let step = rv(rng, 3.0 * h);
+        p.push([0, 1, 2].map(|d| last[d] + step[d]));
+    }
+    Route::Table { t, p }
+}
+
+/// Checks a table route's GPU target against `Route::eval` at `t0 + tau`.
+/// Scales: the GPU interpolates in times relative to the rebase time and positions
+/// relative to the origin, both as compensated pairs, so its position rounds with the
+/// segment's extent `|dp|` and with the time into the segment `u` (times the speed);
+/// in f64 the CPU twin's own rounding of absolute coordinates (`|p|`, and `|p| / h` in
+/// the velocity) counts too.
+#[allow(clippy::too_many_arguments)]
+fn check_table(
+    w: &mut Worst,
+    p: &[[f64; 3]],
+    t: &[f64],
+    i: usize,
+    t0: f64,
+    tau: f64,
+    o: [f64; 3],
+    o12: &[f64],
+    s: cablesim::model::RouteState,
+    r: V3<f64>,
+) {
+    let tt = t0 + tau;
+    let k = t.partition_point(|&x| x <= tt).clamp(1, t.len().max(2) - 1);
+    let (dp, h, u) = if t.len() > 1 {
+        let dp = V3::from_f64(p[k]) - V3::from_f64(p[k - 1]);
+        (dp.norm(), t[k] - t[k - 1], (tt - t[k - 1]).abs())
+    } else {
+        (0.0, 1.0, 0.0)
+    };
+    let speed = norm(V3::from_f64(s.v));
+    let f64_terms = if w.eps < 1e-10 {
+        norm(V3::from_f64(p[k.min(p.len() - 1)])) + norm(V3::from_f64(o))
+    } else {
+        0.0
+    };
+    let r_gpu = [0, 1, 2].map(|d| o12[d] + o12[3 + d]);
+    let r_scale = dp + speed * (u + h + tau) + 1e-3 * r.norm() + f64_terms;
+    w.v("table r", i, &r_gpu, r, r_scale.max(1e-300));
+    let v_scale = speed + f64_terms / h;
+    w.v(
+        "table v",
+        i,
+        &o12[6..9],
+        V3::from_f64(s.v),
+        v_scale.max(1e-300),
+    );
+    w.v("table a", i, &o12[9..12], V3::from_f64(s.a), 1e-300);
 }
 
 fn check_current<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
@@ -606,6 +766,7 @@ fn check_current<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
 fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     let mut rng = ChaCha8Rng::seed_from_u64(20240611);
     check_element::<R>(ctx, p, &mut rng);
+    check_stretch::<R>(ctx, p, &mut rng);
     check_seabed::<R>(ctx, p, &mut rng);
     check_mass::<R>(ctx, p, &mut rng);
     check_sincos::<R>(ctx, p, &mut rng);

@@ -341,6 +341,47 @@ fn gpu_f64_matches_cpu_f64_on_a_net() {
     check("net", &d, steps, 2.0e6);
 }
 
+/// The line of [`gpu_f64_matches_cpu_f64_on_a_line`] with its fairlead on a table
+/// route instead of the circle: samples at uneven times that no step lands on (so both
+/// paths take the same segment at every step; at a sample time itself they could
+/// differ by one ulp of `t` and pick the two sides of a velocity jump), crossed many
+/// times per submission and at odd rebase steps, then held after the last sample.
+#[test]
+fn gpu_f64_matches_cpu_f64_with_a_table_route() {
+    let Some(ctx) = gpu_context("gpu_f64_matches_cpu_f64_with_a_table_route", true) else {
+        return;
+    };
+    let (mut lay, pos) = line_model();
+    let fair = lay.cables[0].nodes[50] as usize;
+    let c = lay.node_constraint[fair] as usize;
+    let p = pos[fair];
+    let (mut t, mut pts) = (Vec::new(), Vec::new());
+    let mut tk = 0.0137;
+    while tk < 0.8 {
+        // From rest to rest along (0.8, 0.6, 0.2) at up to 1.5 m/s: x = A (t - sin(w t) / w).
+        let w = 2.0 * std::f64::consts::PI / 0.8;
+        let x = 0.75 * (tk - (w * tk).sin() / w);
+        t.push(tk);
+        pts.push([p[0] + 0.8 * x, p[1] + 0.6 * x, p[2] + 0.2 * x]);
+        tk += 0.0131 + 0.007 * std::f64::consts::SQRT_2 * (t.len() % 3) as f64;
+    }
+    let opts = SolverOptions {
+        dt: 2.5e-4,
+        ..Default::default()
+    };
+    for &tk in &t {
+        let steps = tk / opts.dt;
+        assert!(
+            (steps - steps.round()).abs() > 1e-3,
+            "sample at {tk} s is a step time"
+        );
+    }
+    lay.routes[c] = Route::Table { t, p: pts };
+    let steps = 4000;
+    let d = compare(&ctx, lay, &pos, opts, steps);
+    check("table route", &d, steps, wire().ea);
+}
+
 /// A step far above the stable one blows up on the GPU as on the CPU: the error names
 /// the cable, the node and the time, and the times agree.
 #[test]

@@ -16,6 +16,7 @@ const NO_CONSTRAINT: u32 = 0xffffffffu;
 const ROUTE_FIXED: u32 = 0u;
 const ROUTE_LINE: u32 = 1u;
 const ROUTE_CIRCLE: u32 = 2u;
+const ROUTE_TABLE: u32 = 3u;
 const FAIL_SPEED: u32 = 1u;
 const FAIL_DISTANCE: u32 = 2u;
 
@@ -63,13 +64,15 @@ struct LineParams {
     compression: R,
 }
 
-// One element. Rust: ElemParams.
+// One element; its unstretched length is the compensated pair l0 + l0_lo (l0_lo is
+// zero in f64). Rust: ElemParams.
 struct ElemParams {
     a: u32,
     b: u32,
     line: u32,
     current: u32,
     l0: R,
+    l0_lo: R,
 }
 
 // One node; its incidence entries are inc[inc_start..inc_end]. Rust: NodeParams.
@@ -87,9 +90,14 @@ struct NodeParams {
 }
 
 // A route rebased to the start of the submission and to the block origin:
-// fixed: r = p; line: r = p + vel tau; circle/screw: r = p + e1 cos(th) + e2 sin(th)
-// + vel tau with th = theta0 + w tau (e1, e2 scaled by the radius). `p` is a
-// compensated pair (p_hi + p_lo). Rust: RouteParams.
+// fixed: r = p; line: r = p + vel tau; circle/screw: r = p + e1 (cos(th) - c0)
+// + e2 (sin(th) - s0) + vel tau with th = th0 + w tau, c0 = cos(th0), s0 = sin(th0)
+// (e1, e2 scaled by the radius; `p` is the point on the circle at the rebase time,
+// so only the displacement since then rounds in the shader). `p` is a
+// compensated pair (p_hi + p_lo). table: samples route_samples[table_start ..
+// table_start + table_len] interpolated at t = (t0_hi + t0_lo) + tau, the search
+// starting at sample `cursor` (the number of samples at or before t0). Rust:
+// RouteParams.
 struct RouteParams {
     p_hi_x: R,
     p_hi_y: R,
@@ -107,9 +115,30 @@ struct RouteParams {
     e2_y: R,
     e2_z: R,
     w: R,
-    theta0: R,
+    c0: R,
+    s0: R,
+    // Table: the rebase time, a compensated pair (absolute, s).
+    t0_hi: R,
+    t0_lo: R,
     kind: u32,
     node: u32,
+    table_start: u32,
+    table_len: u32,
+    cursor: u32,
+    pad: u32,
+}
+
+// One sample of a table route: time (absolute, s) and position (relative to the
+// block origin, m), both as compensated pairs. Rust: RouteSample.
+struct RouteSample {
+    t_hi: R,
+    t_lo: R,
+    x_hi: R,
+    y_hi: R,
+    z_hi: R,
+    x_lo: R,
+    y_lo: R,
+    z_lo: R,
 }
 
 // A block's origin (absolute, m) and its seabed height relative to the origin.
@@ -187,6 +216,7 @@ struct Status {
 @group(0) @binding(12) var<storage, read_write> node_out: array<NodeOut>;
 @group(0) @binding(13) var<storage, read_write> reactions: array<vec4<R>>;
 @group(0) @binding(14) var<storage, read_write> status: Status;
+@group(0) @binding(15) var<storage, read> route_samples: array<RouteSample>;
 
 // ---- Small math ----
 
@@ -271,9 +301,24 @@ fn sin_cos(x: R) -> vec2<R> {
     }
 }
 
+// `x`, opaque to the compiler: a select on a run-time condition (`params.one` is 1.0),
+// so that a product passed through it is rounded to `R` and used as such, not
+// contracted into an fma with the addition that consumes it (Mesa's NIR fuses
+// multiply-adds and reassociates multiplications by `params.one`, so `(a * b) * one`
+// is not enough; a select it leaves alone).
+fn opaque(x: R) -> R {
+    return select(R(0.0), x, params.one > R(0.5));
+}
+
+fn opaque3(x: vec3<R>) -> vec3<R> {
+    return select(vec3<R>(R(0.0)), x, params.one > R(0.5));
+}
+
 // Adds `d` to the compensated value `hi + lo` (Knuth's two-sum, then a renormalising
 // fast two-sum), returning the new (hi, lo). `params.one` is 1.0 at run time; the
-// multiplications keep compilers from rewriting `(hi + d) - hi` as `d`.
+// multiplications keep compilers from rewriting `(hi + d) - hi` as `d` (NIR applies
+// such inexact algebra unless it cannot see through the operands). Pass a product
+// `d` through `opaque3` first.
 fn add_compensated(hi: vec3<R>, lo: vec3<R>, d: vec3<R>) -> array<vec3<R>, 2> {
     let s = (hi + d) * params.one;
     let bb = s - hi;
@@ -281,6 +326,48 @@ fn add_compensated(hi: vec3<R>, lo: vec3<R>, d: vec3<R>) -> array<vec3<R>, 2> {
     let l = lo + err;
     let h = (s + l) * params.one;
     return array<vec3<R>, 2>(h, l - (h - s));
+}
+
+// (s, e) with s + e = a + b exactly (Knuth's two-sum; `params.one` as above).
+fn two_sum(a: R, b: R) -> vec2<R> {
+    let s = (a + b) * params.one;
+    let bb = (s - a) * params.one;
+    return vec2<R>(s, (a - (s - bb)) + (b - bb));
+}
+
+// (p, e) with p + e = a * a exactly: Veltkamp's split into halves whose products are
+// exact (`SPLITTER` = 2^12 + 1 in f32, 2^27 + 1 in f64), then Dekker's product. No
+// fma needed, and contracting the error term into fmas leaves it exact. The product
+// `p` goes through `opaque` so that it cannot be contracted into the addition that
+// consumes it (an fma there adds the exact square, not `p`, and the two-sums
+// downstream miss the difference: lavapipe does this).
+fn two_square(a: R) -> vec2<R> {
+    let c = (SPLITTER * a) * params.one;
+    let hi = c - (c - a) * params.one;
+    let lo = a - hi;
+    let p = opaque(a * a);
+    return vec2<R>(p, ((hi * hi - p) + R(2.0) * hi * lo) + lo * lo);
+}
+
+// The stretch `|d| - l0` of an element whose node-a-to-b vector is the compensated
+// `d_hi + d_lo` and whose unstretched length is `l0_hi + l0_lo`, accurate relative to
+// the stretch itself: `(|d|^2 - l0^2) / (|d| + l0)` with the numerator summed from
+// exact squares by two-sums, so the cancellation of `|d|^2` against `l0^2` loses
+// nothing. Plain `|d| - l0` in f32 knows the stretch only to `2^-24 l0`, a tension
+// only to `EA 2^-24`: 4 N on a steel wire, 50 N on a chain, and that noise, fed back
+// every step, rings the axial modes to tenths of a percent of the tension.
+fn element_stretch(d_hi: vec3<R>, d_lo: vec3<R>, l0_hi: R, l0_lo: R) -> R {
+    let x = two_square(d_hi.x);
+    let y = two_square(d_hi.y);
+    let z = two_square(d_hi.z);
+    let l0sq = two_square(l0_hi);
+    let s1 = two_sum(x.x, y.x);
+    let s2 = two_sum(s1.x, z.x);
+    let s3 = two_sum(s2.x, -l0sq.x);
+    let small = (s1.y + s2.y) + (x.y + y.y + z.y - l0sq.y)
+        + R(2.0) * (dot(d_hi, d_lo) - l0_hi * l0_lo);
+    let num = s3.x + (s3.y + small);
+    return num / (norm3(d_hi + d_lo) + (l0_hi + l0_lo));
 }
 
 // ---- Environment ----
@@ -320,22 +407,22 @@ struct Element {
     half_added: R,
 }
 
-// Axial force from stretch and stretch rate (physics::axial_force). The strain is
-// formed as (l - l0) / l0, which in f32 avoids rounding l / l0 near 1.
-fn axial_force(c: LineParams, l: R, l0: R, t: vec3<R>, dv: vec3<R>) -> R {
-    let eps = (l - l0) / l0;
+// Axial force from the stretch `l - l0` and the stretch rate (physics::axial_force).
+fn axial_force(c: LineParams, stretch: R, l0: R, t: vec3<R>, dv: vec3<R>) -> R {
+    let eps = stretch / l0;
     let epsdot = dot(t, dv) / l0;
     let k = select(c.compression, R(1.0), eps > R(0.0));
     return c.ea * eps * k + c.ea_c * epsdot;
 }
 
-// The GLMF loads of an element with node-a-to-b vector `d` (physics::glmf_element):
-// tension with slack and damping, normal and tangential drag on the relative current
-// `u - (va + vb) / 2`, the water-acceleration load of `aw`, weight less buoyancy.
-fn glmf_element(c: LineParams, d: vec3<R>, va: vec3<R>, vb: vec3<R>, l0: R, u: vec3<R>, aw: vec3<R>) -> Element {
+// The GLMF loads of an element with node-a-to-b vector `d` and stretch `|d| - l0`
+// (physics::glmf_element): tension with slack and damping, normal and tangential drag
+// on the relative current `u - (va + vb) / 2`, the water-acceleration load of `aw`,
+// weight less buoyancy.
+fn glmf_element(c: LineParams, d: vec3<R>, stretch: R, va: vec3<R>, vb: vec3<R>, l0: R, u: vec3<R>, aw: vec3<R>) -> Element {
     let l = norm3(d);
     let t = d / l;
-    let tension = axial_force(c, l, l0, t, vb - va);
+    let tension = axial_force(c, stretch, l0, t, vb - va);
     let vrel = u - (va + vb) * R(0.5);
     let vt = dot(t, vrel);
     let vn = vrel - t * vt;
@@ -374,7 +461,60 @@ struct RouteState {
     a: vec3<R>,
 }
 
+// `t - t_j` for table sample `j` (index within the table) at `tau` after the rebase.
+fn table_dt(q: RouteParams, j: u32, tau: R) -> R {
+    let s = route_samples[q.table_start + j];
+    return ((q.t0_hi - s.t_hi) + (q.t0_lo - s.t_lo)) + tau;
+}
+
+fn sample_hi(j: u32) -> vec3<R> {
+    let s = route_samples[j];
+    return vec3<R>(s.x_hi, s.y_hi, s.z_hi);
+}
+
+fn sample_lo(j: u32) -> vec3<R> {
+    let s = route_samples[j];
+    return vec3<R>(s.x_lo, s.y_lo, s.z_lo);
+}
+
+// A table route (model::Route::Table): linear between samples, held at the first and
+// last samples outside the table's span (velocity zero there). The segment is found by
+// binary search from the cursor, as `partition_point(t_j <= t)` on the CPU.
+fn table_eval(q: RouteParams, tau: R) -> RouteState {
+    let zero = vec3<R>(R(0.0), R(0.0), R(0.0));
+    let n = q.table_len;
+    let b = q.table_start;
+    if n == 1u || table_dt(q, 0u, tau) <= R(0.0) {
+        return RouteState(sample_hi(b), sample_lo(b), zero, zero);
+    }
+    if table_dt(q, n - 1u, tau) >= R(0.0) {
+        return RouteState(sample_hi(b + n - 1u), sample_lo(b + n - 1u), zero, zero);
+    }
+    // The first sample after t lies in [lo, hi]; sample n - 1 is after t.
+    var lo = clamp(q.cursor, 1u, n - 1u);
+    var hi = n - 1u;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        if table_dt(q, mid, tau) >= R(0.0) {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    let s0 = route_samples[b + lo - 1u];
+    let s1 = route_samples[b + lo];
+    let h = (s1.t_hi - s0.t_hi) + (s1.t_lo - s0.t_lo);
+    let u = table_dt(q, lo - 1u, tau);
+    let p0_hi = vec3<R>(s0.x_hi, s0.y_hi, s0.z_hi);
+    let p0_lo = vec3<R>(s0.x_lo, s0.y_lo, s0.z_lo);
+    let dp = (vec3<R>(s1.x_hi, s1.y_hi, s1.z_hi) - p0_hi) + (vec3<R>(s1.x_lo, s1.y_lo, s1.z_lo) - p0_lo);
+    return RouteState(p0_hi, p0_lo + dp * (u / h), dp / h, zero);
+}
+
 fn route_eval(q: RouteParams, tau: R) -> RouteState {
+    if q.kind == ROUTE_TABLE {
+        return table_eval(q, tau);
+    }
     let p_hi = vec3<R>(q.p_hi_x, q.p_hi_y, q.p_hi_z);
     let p_lo = vec3<R>(q.p_lo_x, q.p_lo_y, q.p_lo_z);
     let vel = vec3<R>(q.vel_x, q.vel_y, q.vel_z);
@@ -387,12 +527,22 @@ fn route_eval(q: RouteParams, tau: R) -> RouteState {
     }
     let e1 = vec3<R>(q.e1_x, q.e1_y, q.e1_z);
     let e2 = vec3<R>(q.e2_x, q.e2_y, q.e2_z);
-    let sc = sin_cos(q.theta0 + q.w * tau);
-    let radial = e1 * sc.y + e2 * sc.x;
+    // Angle addition from the rebase angle: cos(th0 + phi) - c0 = c0 (cos phi - 1)
+    // - s0 sin phi, with cos phi - 1 = -2 sin^2(phi / 2) (no cancellation), so the
+    // displacement rounds relative to its own size, not to the radius.
+    let phi = q.w * tau;
+    let sc = sin_cos(phi);
+    let half = sin_cos(phi * R(0.5));
+    let cm1 = R(-2.0) * half.x * half.x;
+    let dc = q.c0 * cm1 - q.s0 * sc.x;
+    let ds = q.s0 * cm1 + q.c0 * sc.x;
+    let c = q.c0 + dc;
+    let s = q.s0 + ds;
+    let radial = e1 * c + e2 * s;
     return RouteState(
         p_hi,
-        p_lo + radial + vel * tau,
-        (e2 * sc.y - e1 * sc.x) * q.w + vel,
+        p_lo + (e1 * dc + e2 * ds) + vel * tau,
+        (e2 * c - e1 * s) * q.w + vel,
         -radial * (q.w * q.w),
     );
 }

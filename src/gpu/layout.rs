@@ -196,8 +196,10 @@ gpu_struct! {
         line: u32,
         /// Current profile.
         current: u32,
-        /// Unstretched length, m.
+        /// Unstretched length, high part, m.
         l0: R,
+        /// Unstretched length, low part (`l0 + l0_lo`; zero in f64), m.
+        l0_lo: R,
     }
 }
 
@@ -230,7 +232,8 @@ gpu_struct! {
 gpu_struct! {
     /// A route rebased to a time and to its block's origin (WGSL `RouteParams`).
     RouteParams {
-        /// Position at the rebase time, relative to the origin, high part, m.
+        /// Position at the rebase time (a circle's: on the circle), relative to the
+        /// origin, high part, m.
         p_hi_x: R,
         /// See `p_hi_x`.
         p_hi_y: R,
@@ -262,12 +265,49 @@ gpu_struct! {
         e2_z: R,
         /// Circle: angular velocity, rad/s.
         w: R,
-        /// Circle: angle at the rebase time, in `[0, 2 pi)`, rad.
-        theta0: R,
-        /// 0 fixed, 1 line, 2 circle or screw.
+        /// Circle: cosine of the angle at the rebase time.
+        c0: R,
+        /// Circle: sine of the angle at the rebase time.
+        s0: R,
+        /// Table: the rebase time (absolute), high part, s.
+        t0_hi: R,
+        /// Table: low part of the rebase time (`t0 = t0_hi + t0_lo`), s.
+        t0_lo: R,
+        /// 0 fixed, 1 line, 2 circle or screw, 3 table.
         kind: u32,
         /// The node it drives.
         node: u32,
+        /// Table: first sample in the `route_samples` buffer.
+        table_start: u32,
+        /// Table: number of samples.
+        table_len: u32,
+        /// Table: samples at or before the rebase time (where the search starts).
+        cursor: u32,
+        /// Padding.
+        pad: u32,
+    }
+}
+
+gpu_struct! {
+    /// One sample of a table route (WGSL `RouteSample`): time and position relative to
+    /// the driven node's block origin, each as a compensated pair (`hi + lo`).
+    RouteSample {
+        /// Time (absolute), high part, s.
+        t_hi: R,
+        /// Time, low part, s.
+        t_lo: R,
+        /// Position x relative to the origin, high part, m.
+        x_hi: R,
+        /// See `x_hi`.
+        y_hi: R,
+        /// See `x_hi`.
+        z_hi: R,
+        /// Position x, low part, m.
+        x_lo: R,
+        /// See `x_lo`.
+        y_lo: R,
+        /// See `x_lo`.
+        z_lo: R,
     }
 }
 
@@ -382,6 +422,7 @@ pub fn all_structs<R: GpuReal>() -> Vec<(&'static str, usize, Vec<Field>)> {
         one::<ElemParams<R>>(),
         one::<NodeParams<R>>(),
         one::<RouteParams<R>>(),
+        one::<RouteSample<R>>(),
         one::<BlockParams<R>>(),
         one::<CurrentPoint<R>>(),
         one::<CurrentRange>(),

@@ -7,7 +7,8 @@
 //! 2. `node_update` (`shaders/node_update.wgsl`): per node, gather over the incidence
 //!    list (no atomics), point-mass weight and drag, seabed contact with regularised
 //!    friction, the 3x3 mass block and its solve, or the Baumgarte acceleration of a
-//!    fixed or route-driven node (route evaluated in the shader), then the symplectic
+//!    fixed or route-driven node (route evaluated in the shader: line, circle, screw,
+//!    or a table by binary search over its packed samples), then the symplectic
 //!    update; a blow-up sets a status flag that stops later steps.
 //!
 //! Precision: f32 by default, f64 where the adapter has `SHADER_F64`, from one WGSL
@@ -20,7 +21,7 @@
 //! evidence.
 //!
 //! Not on the GPU yet ([`solver::unsupported`] says which, and `--backend auto` falls
-//! back to the CPU): the RK2 and RK4 schemes, the older element frames, table routes.
+//! back to the CPU): the RK2 and RK4 schemes, the older element frames.
 //!
 //! Modules: [`context`] (adapter and device), [`layout`] (Rust twins of the WGSL
 //! structs), [`shaders`] (WGSL assembly per precision), [`solver`] (buffers, pipelines,

@@ -40,6 +40,8 @@ struct Host {
     origin: Vec<[f64; 3]>,
     /// Per node: its block.
     node_block: Vec<u32>,
+    /// Per route: where its samples start in the `route_samples` buffer (tables only).
+    table_start: Vec<u32>,
 }
 
 impl Host {
@@ -58,7 +60,25 @@ impl Host {
             origin.push(o.map(|x| (x / n).round()));
             node_block[n0..n1].iter_mut().for_each(|x| *x = bi as u32);
         }
-        Self { origin, node_block }
+        let mut table_start = Vec::with_capacity(lay.routes.len());
+        let mut next = 0u32;
+        for r in &lay.routes {
+            table_start.push(next);
+            if let Route::Table { t, .. } = r {
+                next += t.len() as u32;
+            }
+        }
+        Self {
+            origin,
+            node_block,
+            table_start,
+        }
+    }
+
+    /// The origin of the block of the node route `c` drives.
+    fn route_origin(&self, lay: &Layout, c: usize) -> [f64; 3] {
+        let n = lay.constraint_node[c] as usize;
+        self.origin[self.node_block[n] as usize]
     }
 }
 
@@ -73,16 +93,47 @@ fn split<R: GpuReal>(x: f64) -> (R, R) {
     (hi, R::c(x - hi.f64()))
 }
 
+/// The samples of a table route relative to origin `o` (what [`rebased_route`]'s
+/// `table_start` points at in the `route_samples` buffer); empty for other routes.
+pub fn route_samples<R: GpuReal>(route: &Route, o: [f64; 3]) -> Vec<RouteSample<R>> {
+    let Route::Table { t, p } = route else {
+        return Vec::new();
+    };
+    t.iter()
+        .zip(p)
+        .map(|(&t, p)| {
+            let mut s = RouteSample::<R>::default();
+            (s.t_hi, s.t_lo) = split(t);
+            (s.x_hi, s.x_lo) = split(p[0] - o[0]);
+            (s.y_hi, s.y_lo) = split(p[1] - o[1]);
+            (s.z_hi, s.z_lo) = split(p[2] - o[2]);
+            s
+        })
+        .collect()
+}
+
 /// Route `route` of node `node` rebased to time `t0` and origin `o`: what the shaders'
-/// `route_eval(q, tau)` turns into the target at `t0 + tau`, relative to `o`.
-///
-/// # Panics
-/// On a table route (the GPU path refuses them before this is called).
-pub fn rebased_route<R: GpuReal>(route: &Route, node: u32, t0: f64, o: [f64; 3]) -> RouteParams<R> {
+/// `route_eval(q, tau)` turns into the target at `t0 + tau`, relative to `o`. A table
+/// route's samples ([`route_samples`]) start at `table_start` in the samples buffer.
+pub fn rebased_route<R: GpuReal>(
+    route: &Route,
+    node: u32,
+    t0: f64,
+    o: [f64; 3],
+    table_start: u32,
+) -> RouteParams<R> {
     let mut q = RouteParams::<R> {
         node,
         ..Default::default()
     };
+    if let Route::Table { t, .. } = route {
+        q.kind = 3;
+        q.table_start = table_start;
+        q.table_len = t.len() as u32;
+        q.cursor = t.partition_point(|&x| x <= t0) as u32;
+        (q.t0_hi, q.t0_lo) = split(t0);
+        return q;
+    }
     let (p, vel) = match route {
         Route::Fixed { position } => {
             q.kind = 0;
@@ -112,11 +163,16 @@ pub fn rebased_route<R: GpuReal>(route: &Route, node: u32, t0: f64, o: [f64; 3])
             q.e2_y = R::c(radius * e2[1]);
             q.e2_z = R::c(radius * e2[2]);
             q.w = R::c(w);
-            q.theta0 = R::c((w * t0 + phase).rem_euclid(2.0 * PI));
-            let p = [0, 1, 2].map(|d| center[d] + axis[d] * adv * t0);
+            let th0 = (w * t0 + phase).rem_euclid(2.0 * PI);
+            let (s0, c0) = th0.sin_cos();
+            q.c0 = R::c(c0);
+            q.s0 = R::c(s0);
+            // The point on the circle at t0, in f64: the shader adds the displacement.
+            let p = [0, 1, 2]
+                .map(|d| center[d] + axis[d] * adv * t0 + radius * (c0 * e1[d] + s0 * e2[d]));
             (sub(p, o), axis.map(|a| a * adv))
         }
-        Route::Table { .. } => unreachable!("table routes are refused by GpuSolver::new"),
+        Route::Table { .. } => unreachable!("handled above"),
     };
     (q.p_hi_x, q.p_lo_x) = split(p[0]);
     (q.p_hi_y, q.p_lo_y) = split(p[1]);
@@ -140,9 +196,6 @@ pub fn unsupported(lay: &Layout, opts: &SolverOptions) -> Option<String> {
             "the {} scheme (the GPU path is symplectic Euler only so far)",
             opts.scheme.name()
         ));
-    }
-    if lay.routes.iter().any(|r| matches!(r, Route::Table { .. })) {
-        return Some("table routes (positions read from a file)".into());
     }
     // One invocation per node or element along x only, so far.
     let most = 65_535 * WORKGROUP as usize;
@@ -265,7 +318,8 @@ impl<R: GpuReal> GpuEngine<R> {
                 b: lay.elem_b[e],
                 line: lay.elem_line[e],
                 current: lay.elem_current[e],
-                l0: R::c(lay.elem_l0[e]),
+                l0: split::<R>(lay.elem_l0[e]).0,
+                l0_lo: split::<R>(lay.elem_l0[e]).1,
             })
             .collect();
         let nodes: Vec<NodeParams<R>> = (0..lay.n_nodes())
@@ -372,6 +426,13 @@ impl<R: GpuReal> GpuEngine<R> {
         let blocks_b = init("blocks", &bytes_or_one(&blocks), ro);
         let pts_b = init("current_pts", &bytes_or_one(&current_pts), ro);
         let ranges_b = init("current_ranges", &bytes_or_one(&current_ranges), ro);
+        let samples: Vec<RouteSample<R>> = lay
+            .routes
+            .iter()
+            .enumerate()
+            .flat_map(|(c, r)| route_samples::<R>(r, host.route_origin(lay, c)))
+            .collect();
+        let samples_b = init("route_samples", &bytes_or_one(&samples), ro);
 
         let scope = dev.push_error_scope(wgpu::ErrorFilter::Validation);
         let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
@@ -397,6 +458,7 @@ impl<R: GpuReal> GpuEngine<R> {
         });
         entries.extend((2..=9).map(|b| storage(b, true)));
         entries.extend((10..=14).map(|b| storage(b, false)));
+        entries.push(storage(15, true));
         let bgl = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("cablesim"),
             entries: &entries,
@@ -433,6 +495,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 whole(12, &buf.node_out),
                 whole(13, &buf.reactions),
                 whole(14, &buf.status),
+                whole(15, &samples_b),
             ],
         });
         let pl = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -499,9 +562,15 @@ impl<R: GpuReal> GpuEngine<R> {
         let q: Vec<RouteParams<R>> = lay
             .routes
             .iter()
-            .zip(&lay.constraint_node)
-            .map(|(r, &n)| {
-                rebased_route(r, n, t0, host.origin[host.node_block[n as usize] as usize])
+            .enumerate()
+            .map(|(c, r)| {
+                rebased_route(
+                    r,
+                    lay.constraint_node[c],
+                    t0,
+                    host.route_origin(lay, c),
+                    host.table_start[c],
+                )
             })
             .collect();
         self.ctx
