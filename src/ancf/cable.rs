@@ -990,7 +990,7 @@ fn newton(
         seabed: None,
         ..m.env()
     };
-    while !(mx <= tol) {
+    while mx.is_nan() || mx > tol {
         if it >= opts.max_iterations || !mx.is_finite() {
             return Err(Error::Statics(format!(
                 "ANCF cable '{}': Newton did not converge in {it} iterations: residual {mx:.3e} N, tolerance {tol:.3e} N",
