@@ -102,7 +102,7 @@ impl Band {
                 };
                 let s = self.a[Self::idx(i, j)] - dot;
                 if j == i {
-                    if !(s > 0.0) {
+                    if s.is_nan() || s <= 0.0 {
                         return Err(i);
                     }
                     self.a[Self::idx(i, i)] = s.sqrt();

@@ -186,8 +186,8 @@ pub fn element_forces(
             g1 = a;
             g2 = b;
         }
-        for k in 0..4 {
-            acc[k] += fe * sh.s[k] - ax * sh.ds[k] - (g1 * sh.ds[k] - g2 * sh.dds[k]) * bm;
+        for (k, a) in acc.iter_mut().enumerate() {
+            *a += fe * sh.s[k] - ax * sh.ds[k] - (g1 * sh.ds[k] - g2 * sh.dds[k]) * bm;
         }
         if let Some(ts) = tangents.as_deref_mut() {
             ts[g] = p.r1 / p.r1.norm();

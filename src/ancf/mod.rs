@@ -43,13 +43,15 @@
 //!   system is conservative when drag and damping are off.
 //! * Mass: the consistent matrix `int S^T (mbar I + Cm rho A P) S dx` of Eqs. 43-44 with
 //!   the normal projection `P = I - t t^T` evaluated with the current tangent at each
-//!   Gauss point (exact, like the GLMF's tangent-dependent added mass; an isotropic
-//!   `Cm rho A I` would add tangential added mass the GLMF does not have). It is
-//!   therefore re-assembled and re-factored at every evaluation when `Cm > 0`: a band
-//!   Cholesky of half-bandwidth 11 ([`band`]), `6 (n+1) x 60` multiply-adds, less than
-//!   the Gauss loop. With `Cm = 0` (or no water) it is constant and factored once.
-//!   Point masses (with their isotropic added mass `Ca rho V`) add to the position
-//!   coordinates of end nodes, with their buoyancy and isotropic drag as in the GLMF.
+//!   Gauss point (exact, like the GLMF's tangent-dependent added mass). It is therefore
+//!   re-assembled and re-factored at every evaluation when `Cm > 0`: a band Cholesky of
+//!   half-bandwidth 11 ([`band`]). [`AddedMass::Isotropic`] takes `Cm rho A I` instead
+//!   (tangential added mass the physics does not have, but a constant matrix factored
+//!   once: 2-3x faster; on the GLMF comparison case, `Cm rho A / mbar = 0.05`, it
+//!   changes the ANCF-GLMF difference from 1.16e-4 to 1.17e-4 of the length). With
+//!   `Cm = 0` or no water the matrix is constant anyway. Point masses (with their isotropic added mass `Ca rho V`) add to
+//!   the position coordinates of end nodes, with their buoyancy and isotropic drag as
+//!   in the GLMF.
 //!
 //! # Constraints
 //! An end on a [`Route`](crate::model::Route) (fixed or driven) has its three position
@@ -64,22 +66,40 @@
 //! Explicit, with the consistent mass solved by its Cholesky factor: symplectic Euler
 //! (default, one evaluation per step, as the GLMF stepper), explicit midpoint (RK2) or
 //! classical RK4 ([`crate::options::Scheme`]). Explicit because the fastest mode of a
-//! 50 m element is slow: the axial mode bound `omega^2 <= 60 EA / (mbar L^2)` of the
-//! cubic element (see [`AncfCable::stable_dt`]) gives about 3.7 ms for the paper's Case 2
-//! wire (`EA = 6.28e7 N`, `mbar = 5.03 kg/m`) with symplectic Euler, so 2000 s take
-//! about 700 000 steps of a few microseconds per element; an implicit scheme would
-//! need a Newton solve (Jacobian and factorisation) per step to gain a step it does
-//! not need. The stable step is bounded per element (the largest eigenvalue of the
-//! assembled `M^-1 K` is at most the largest element's): axial and bending stiffness
-//! over the line's mass (added and point masses only lower it), seabed stiffness, and
-//! the damping `gamma = c omega^2`, turned into a step by
-//! [`mode_step`](crate::stability::mode_step); the default step is
-//! [`AUTO_SAFETY`] of it.
+//! 50 m element is slow. The stable step is computed, not guessed
+//! ([`AncfCable::stable_dt`]): the largest eigenvalue of the scalar problem
+//! `(EA K_a + EI K_b) x = omega^2 (mbar M_s + point masses) x` of a uniform chain with
+//! the cable's end conditions (32 elements at most: the top of the spectrum is local),
+//! with a strain allowance, plus seabed stiffness, with internal, seabed and friction
+//! damping, turned into a step by [`mode_step`](crate::stability::mode_step). For cubic
+//! elements it is `omega^2 = 42 EA / (mbar L^2)` in the bulk and `91 EA / (mbar L^2)` at
+//! a free end without a point mass. A test shows the bound is the real limit: 0.95 of
+//! it runs, 1.25 of it blows up. For the paper's Case 2 wire (`EA = 6.28e7 N`,
+//! `mbar = 5.03 kg/m`) with 50 m elements it is 4.2 ms for symplectic Euler (5.9 ms for
+//! RK4, at four evaluations a step): the default 0.8 of it takes 2000 s in 600 000
+//! steps, 6 s of wall time for a 500 m line of 10 elements (1.1e6 node-steps/s; 2.4 s,
+//! 2.8e6 node-steps/s, with [`AddedMass::Isotropic`]); the band Cholesky is half of it.
+//! An implicit scheme would need a Newton solve (Jacobian and factorisation) per step
+//! to gain a step that the explicit one does not need. Symplectic Euler is first order
+//! and conserves a modified energy (no drift); halving its step changes the GLMF
+//! comparison by 2 % of the difference.
 //!
 //! # Static equilibrium
 //! [`AncfCable::solve_static`]: Newton's method on the free coordinates at rest, the
-//! Jacobian from central differences of each element's force, a dense LU, a capped and
-//! backtracked step.
+//! Jacobian from central differences of each element's force (exact seabed stiffness;
+//! slack Gauss points may get their taut stiffness when the exact step fails), a dense
+//! LU with Levenberg-Marquardt damping, a capped step backtracked on the potential
+//! energy with the drag of the current frozen over the step, the current switched on in
+//! steps. It converges from straight or parabolic first guesses on hanging lines and in
+//! currents; with seabed contact on coarse elements (a 100 m element bending over the
+//! touchdown point with no bending stiffness) it can stall, as Gauss points slip in and
+//! out of contact: refine the mesh there.
+//!
+//! # Outputs
+//! Node positions, slopes and velocities; position, velocity, curvature and tension
+//! (from the strain) at any arc length; node section forces and tensions from the
+//! elements' consistent nodal forces (the accurate tension: the strain of a stiff line
+//! oscillates along a cubic element); end forces on supports; energies.
 //!
 //! # Use
 //! ```
