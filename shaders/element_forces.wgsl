@@ -27,7 +27,7 @@ fn element_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         d = (sb.r_hi.xyz - sa.r_hi.xyz) + (sb.r_lo.xyz - sa.r_lo.xyz);
         stretch = norm3(d) - ep.l0;
     }
-    let oz = blocks[nodes[ep.a].block].oz;
+    let oz = blocks[ep.block].oz;
     let zmid = oz + ((sa.r_hi.z + sb.r_hi.z) + (sa.r_lo.z + sb.r_lo.z)) * R(0.5);
     let u = current_at(ep.current, zmid);
     // No waves yet: the water-acceleration load waits for a wave model.

@@ -71,6 +71,8 @@ struct ElemParams {
     b: u32,
     line: u32,
     current: u32,
+    block: u32,
+    pad: u32,
     l0: R,
     l0_lo: R,
 }

@@ -196,6 +196,10 @@ gpu_struct! {
         line: u32,
         /// Current profile.
         current: u32,
+        /// Block (for its origin's height; saves reading the node's parameters).
+        block: u32,
+        /// Padding.
+        pad: u32,
         /// Unstretched length, high part, m.
         l0: R,
         /// Unstretched length, low part (`l0 + l0_lo`; zero in f64), m.

@@ -33,7 +33,7 @@ pub mod shaders;
 pub mod solver;
 
 pub use context::GpuContext;
-pub use solver::GpuSolver;
+pub use solver::{GpuSolver, GpuTimings};
 
 /// Floating-point precision of the GPU shaders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

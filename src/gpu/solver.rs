@@ -23,6 +23,7 @@ use crate::options::{Formulation, Scheme, SolverOptions};
 use bytemuck::Zeroable;
 use std::f64::consts::PI;
 use std::marker::PhantomData;
+use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 /// Steps recorded in one command buffer (one submission).
@@ -224,6 +225,31 @@ trait Engine: Send {
     fn upload(&mut self, host: &Host, r: &[[f64; 3]], v: &[[f64; 3]]);
     /// Loads, accelerations and reactions at step `step`.
     fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error>;
+    /// Where the host's time went in `advance` so far.
+    fn timings(&self) -> GpuTimings;
+}
+
+/// Where [`GpuSolver::advance`]'s wall time went, summed over its calls: recording the
+/// command buffers on the host, submitting them, and waiting for the device at the end
+/// of each call (the one read-back of the status). The device runs while the host
+/// records the next submission, so `wait_seconds` is the device time the host could
+/// not hide; on a software adapter (lavapipe) the "device" is the same CPU cores.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GpuTimings {
+    /// Steps taken.
+    pub steps: u64,
+    /// Compute dispatches recorded (two per step).
+    pub dispatches: u64,
+    /// Command buffers submitted.
+    pub submissions: u64,
+    /// Recording (route and parameter writes, encoding the dispatches), s.
+    pub encode_seconds: f64,
+    /// `Queue::submit`, s.
+    pub submit_seconds: f64,
+    /// Waiting for the device and reading the status back, s.
+    pub wait_seconds: f64,
+    /// All of `advance`, s.
+    pub advance_seconds: f64,
 }
 
 struct Buffers {
@@ -252,6 +278,7 @@ struct GpuEngine<R: GpuReal> {
     n_nodes: usize,
     n_elems: usize,
     n_routes: usize,
+    timings: GpuTimings,
     _r: PhantomData<R>,
 }
 
@@ -318,6 +345,8 @@ impl<R: GpuReal> GpuEngine<R> {
                 b: lay.elem_b[e],
                 line: lay.elem_line[e],
                 current: lay.elem_current[e],
+                block: host.node_block[lay.elem_a[e] as usize],
+                pad: 0,
                 l0: split::<R>(lay.elem_l0[e]).0,
                 l0_lo: split::<R>(lay.elem_l0[e]).1,
             })
@@ -548,6 +577,7 @@ impl<R: GpuReal> GpuEngine<R> {
             n_nodes,
             n_elems,
             n_routes,
+            timings: GpuTimings::default(),
             _r: PhantomData,
         };
         engine.upload(host, positions, &vec![[0.0; 3]; n_nodes]);
@@ -651,8 +681,10 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             .write_buffer(&self.buf.status, 0, bytemuck::bytes_of(&Status::default()));
         let dt64 = self.dt64;
         let mut done = 0u64;
+        let t_start = Instant::now();
         while done < n {
             let chunk = (n - done).min(STEPS_PER_SUBMISSION as u64);
+            let t_enc = Instant::now();
             self.write_routes(lay, host, (step0 + done) as f64 * dt64);
             self.params.step_base = done as u32;
             ctx.queue
@@ -674,12 +706,26 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                     self.dispatch(&mut pass, &self.pipe_node, self.n_nodes);
                 }
             }
-            ctx.queue.submit([enc.finish()]);
+            let cb = enc.finish();
+            self.timings.encode_seconds += t_enc.elapsed().as_secs_f64();
+            let t_sub = Instant::now();
+            ctx.queue.submit([cb]);
+            self.timings.submit_seconds += t_sub.elapsed().as_secs_f64();
+            self.timings.submissions += 1;
             done += chunk;
         }
+        let t_wait = Instant::now();
         let out = self.read_back(&[(&self.buf.status, 16)])?;
+        self.timings.wait_seconds += t_wait.elapsed().as_secs_f64();
+        self.timings.advance_seconds += t_start.elapsed().as_secs_f64();
+        self.timings.steps += n;
+        self.timings.dispatches += 2 * n;
         let st: Status = bytemuck::pod_read_unaligned(&out[0][..16]);
         Ok((st.failed != 0).then_some((st.step as u64, st.node)))
+    }
+
+    fn timings(&self) -> GpuTimings {
+        self.timings
     }
 
     fn download(&mut self, host: &Host) -> Result<NodeStates, Error> {
@@ -827,6 +873,12 @@ impl GpuSolver {
     /// The adapter it runs on.
     pub fn device(&self) -> &str {
         &self.device
+    }
+
+    /// Where the wall time of [`Self::advance`] went so far (host recording, submission,
+    /// waiting for the device).
+    pub fn timings(&self) -> GpuTimings {
+        self.engine.timings()
     }
 
     /// Advances `nsteps` steps of `opts.dt`, in submissions of

@@ -1,0 +1,243 @@
+//! Node-steps per second against the number of cables, for every path in one run:
+//! the CPU path on one core and on all cores, and the GPU path at f32 and f64 on the
+//! adapter at hand (wgpu's choice, honouring `WGPU_BACKEND` / `WGPU_ADAPTER_NAME`).
+//!
+//! ```sh
+//! cargo bench --bench gpu_vs_cpu                                  # the default table
+//! cargo bench --bench gpu_vs_cpu -- --cables 1,10,100 --segments 100 --seconds 2
+//! ```
+//!
+//! Options (after `--`): `--cables LIST` (default `1,10,100,1000,10000`), `--segments N`
+//! (elements per cable, default 50: the catenary example's 51-node line, the line
+//! `scripts/compare_peers.py` gives MoorDyn), `--seconds S` (wall time aimed at per
+//! measurement, default 1), `--repeats N` (best of, default 3), `--paths LIST` (any of
+//! `cpu1,cpu,gpu32,gpu64`), `--gpu-max-nodes N` (skip GPU sizes above it, default
+//! unlimited), `--dt S` (default 1e-4 s, as `benches/lib.rs`), `--steps N` (exactly `N`
+//! steps per path, once, no warm-up: for instruction counts under callgrind, taken as
+//! the difference of two step counts).
+//!
+//! The model is `benches/common`'s fleet: copies of the catenary example's line, each
+//! between its anchor and fairlead, starting straight in a 0.5 m/s current, so tension,
+//! drag and seabed contact are all active. Each figure is nodes x steps / wall seconds
+//! of `advance` alone (the GPU's includes its one status read-back per call, i.e. the
+//! full synchronisation), after a warm-up step, best of `--repeats`. The `us/step` columns
+//! are wall time per step: at one cable that is the fixed cost of a step (for the GPU,
+//! the two dispatches' encoding, submission and execution overhead).
+
+mod common;
+
+use cablesim::cpu::CpuSolver;
+use cablesim::gpu::{GpuContext, GpuSolver, GpuTimings, Precision};
+use cablesim::options::SolverOptions;
+use std::time::Instant;
+
+struct Args {
+    cables: Vec<usize>,
+    segments: usize,
+    seconds: f64,
+    repeats: usize,
+    paths: Vec<String>,
+    gpu_max_nodes: usize,
+    dt: f64,
+    /// Exactly this many steps per path, timed once (for instruction counts).
+    steps: Option<u64>,
+}
+
+fn args() -> Args {
+    let mut a = Args {
+        cables: vec![1, 10, 100, 1000, 10000],
+        segments: 50,
+        seconds: 1.0,
+        repeats: 3,
+        paths: ["cpu1", "cpu", "gpu32", "gpu64"].map(String::from).to_vec(),
+        gpu_max_nodes: usize::MAX,
+        dt: 1e-4,
+        steps: None,
+    };
+    let argv: Vec<String> = std::env::args().skip(1).collect();
+    let mut i = 0;
+    while i < argv.len() {
+        let val = || argv.get(i + 1).cloned().unwrap_or_default();
+        match argv[i].as_str() {
+            "--cables" => a.cables = val().split(',').map(|x| x.parse().unwrap()).collect(),
+            "--segments" => a.segments = val().parse().unwrap(),
+            "--seconds" => a.seconds = val().parse().unwrap(),
+            "--repeats" => a.repeats = val().parse().unwrap(),
+            "--paths" => a.paths = val().split(',').map(String::from).collect(),
+            "--gpu-max-nodes" => a.gpu_max_nodes = val().parse().unwrap(),
+            "--dt" => a.dt = val().parse().unwrap(),
+            "--steps" => a.steps = Some(val().parse().unwrap()),
+            // `cargo bench` passes `--bench`; ignore it and anything unknown.
+            _ => {
+                i += 1;
+                continue;
+            }
+        }
+        i += 2;
+    }
+    a
+}
+
+/// Best node-steps/s and seconds per step of `step(n)` over `repeats` timed runs of
+/// about `seconds` each (after a probe that also warms up).
+fn measure(
+    nodes: usize,
+    seconds: f64,
+    repeats: usize,
+    exact: Option<u64>,
+    mut step: impl FnMut(u64),
+) -> (f64, f64) {
+    if let Some(n) = exact {
+        let t0 = Instant::now();
+        step(n);
+        let s = t0.elapsed().as_secs_f64();
+        return (nodes as f64 * n as f64 / s, s / n.max(1) as f64);
+    }
+    // Warm-up (the first GPU submission compiles and uploads), then probe: grow the
+    // step count until a call takes 50 ms or more.
+    step(1);
+    let mut n = 1u64;
+    let per_step = loop {
+        let t0 = Instant::now();
+        step(n);
+        let s = t0.elapsed().as_secs_f64();
+        if s >= 0.05 || n >= 1 << 24 {
+            break s / n as f64;
+        }
+        n *= 4;
+    };
+    let n = ((seconds / per_step).round() as u64).max(1);
+    let mut best = f64::INFINITY;
+    for _ in 0..repeats {
+        let t0 = Instant::now();
+        step(n);
+        best = best.min(t0.elapsed().as_secs_f64());
+    }
+    (nodes as f64 * n as f64 / best, best / n as f64)
+}
+
+/// `b - a`, field by field.
+fn since(b: GpuTimings, a: GpuTimings) -> GpuTimings {
+    GpuTimings {
+        steps: b.steps - a.steps,
+        dispatches: b.dispatches - a.dispatches,
+        submissions: b.submissions - a.submissions,
+        encode_seconds: b.encode_seconds - a.encode_seconds,
+        submit_seconds: b.submit_seconds - a.submit_seconds,
+        wait_seconds: b.wait_seconds - a.wait_seconds,
+        advance_seconds: b.advance_seconds - a.advance_seconds,
+    }
+}
+
+fn sci(x: f64) -> String {
+    if x.is_nan() {
+        "-".into()
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
+fn main() {
+    let a = args();
+    let threads = rayon::current_num_threads();
+    let ctx = GpuContext::new(false).ok();
+    let device = ctx
+        .as_ref()
+        .map_or("no adapter".to_string(), |c| c.describe());
+    let f64_ok = ctx.as_ref().is_some_and(|c| c.supports(Precision::F64));
+    eprintln!(
+        "CPU: {} ({threads} threads); GPU: {device}",
+        cablesim::sim::cpu_name()
+    );
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let want = |p: &str| a.paths.iter().any(|x| x == p);
+    let mut split: Vec<(usize, usize, Precision, GpuTimings)> = Vec::new();
+    println!(
+        "| cables | nodes | CPU 1 core | CPU {threads} cores | GPU f32 | GPU f64 | CPU 1 core us/step | GPU f32 us/step | GPU f64 us/step |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for &nc in &a.cables {
+        let (lay, pos) = common::fleet(nc, a.segments);
+        let nodes = lay.n_nodes();
+        let opts = SolverOptions {
+            dt: a.dt,
+            ..Default::default()
+        };
+        let nan = (f64::NAN, f64::NAN);
+        let cpu1 = if want("cpu1") {
+            let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+            one.install(|| {
+                measure(nodes, a.seconds, a.repeats, a.steps, |n| {
+                    s.advance(n).unwrap()
+                })
+            })
+        } else {
+            nan
+        };
+        let cpu = if want("cpu") {
+            let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+            measure(nodes, a.seconds, a.repeats, a.steps, |n| {
+                s.advance(n).unwrap()
+            })
+        } else {
+            nan
+        };
+        let mut gpu = |p: Precision| {
+            let ok = match p {
+                Precision::F32 => want("gpu32"),
+                Precision::F64 => want("gpu64") && f64_ok,
+            };
+            match (&ctx, ok && nodes <= a.gpu_max_nodes) {
+                (Some(ctx), true) => {
+                    let mut s = GpuSolver::new(ctx, lay.clone(), &pos, opts, p).unwrap();
+                    s.advance(1).unwrap();
+                    let t0 = s.timings();
+                    let m = measure(nodes, a.seconds, a.repeats, a.steps, |n| {
+                        s.advance(n).unwrap()
+                    });
+                    split.push((nc, nodes, p, since(s.timings(), t0)));
+                    m
+                }
+                _ => nan,
+            }
+        };
+        let g32 = gpu(Precision::F32);
+        let g64 = gpu(Precision::F64);
+        println!(
+            "| {nc} | {nodes} | {} | {} | {} | {} | {:.1} | {:.1} | {:.1} |",
+            sci(cpu1.0),
+            sci(cpu.0),
+            sci(g32.0),
+            sci(g64.0),
+            cpu1.1 * 1e6,
+            g32.1 * 1e6,
+            g64.1 * 1e6
+        );
+    }
+    if !split.is_empty() {
+        println!();
+        println!(
+            "GPU path: where the host's wall time went, per step, over every `advance` call above \
+             (record: route/parameter writes and encoding two dispatches; wait: device work the \
+             host could not overlap, and the status read-back)"
+        );
+        println!();
+        println!("| cables | nodes | precision | us/step | record us/step | submit us/step | wait us/step | steps |");
+        println!("|---:|---:|---|---:|---:|---:|---:|---:|");
+        for (nc, nodes, p, t) in &split {
+            let per = |x: f64| 1e6 * x / t.steps.max(1) as f64;
+            println!(
+                "| {nc} | {nodes} | {} | {:.1} | {:.2} | {:.2} | {:.1} | {} |",
+                p.name(),
+                per(t.advance_seconds),
+                per(t.encode_seconds),
+                per(t.submit_seconds),
+                per(t.wait_seconds),
+                t.steps
+            );
+        }
+    }
+}
