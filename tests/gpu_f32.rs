@@ -117,9 +117,10 @@ fn perturbed(pos: &[[f64; 3]]) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// Runs GPU f32 and CPU f64 from `pos` (at rest, or moving at `vel`) for `seconds`, comparing at `checks` evenly
-/// spaced times (the GPU advanced one call per simulated second at most, as the run
-/// driver does per output), and asserts the contract of the module doc: positions at
+/// Runs GPU f32 and CPU f64 from `pos` (at rest, or moving at `vel`) for `seconds`,
+/// comparing at `checks` evenly spaced times (the GPU advanced one call per simulated
+/// second at most, as the run driver does per output), and asserts the contract of the
+/// module doc: positions at
 /// every checkpoint, end forces at those from `settle` seconds on. A second CPU f64
 /// run from [`perturbed`] positions measures the model's own sensitivity to
 /// round-off; `Worst::sensitivity` is its worst end-force ratio from `settle` on, and
