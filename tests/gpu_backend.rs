@@ -95,3 +95,78 @@ fn gpu_backend_reports_device_and_precision() {
         }
     }
 }
+
+/// A scenario whose fairlead follows a table route (a CSV file beside it) runs on the
+/// GPU end to end (the route used to be refused there), and its end forces after the
+/// motion match the CPU path's within 1%.
+#[test]
+fn table_route_scenario_runs_on_the_gpu() {
+    let Some(ctx) = gpu_context("table_route_scenario_runs_on_the_gpu", false) else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    // Out 1 m along x over 2 s and held there (the run lasts 3 s).
+    std::fs::write(
+        dir.path().join("fairlead.csv"),
+        "t,x,y,z\n0,0,0,-10\n0.5,0.15,0,-10\n1,0.5,0,-10\n1.5,0.85,0,-10\n2,1,0,-10\n",
+    )
+    .unwrap();
+    let text = std::fs::read_to_string("examples/catenary.toml")
+        .unwrap()
+        .replace(
+            "end = { fixed = [0.0, 0.0, -10.0] }",
+            "end = { route = \"table\", file = \"fairlead.csv\" }",
+        );
+    assert!(text.contains("route = \"table\""));
+    let scen = dir.path().join("table.toml");
+    std::fs::write(&scen, text).unwrap();
+    let env = format!("{:?}", ctx.info.backend).to_lowercase();
+    let run = |backend: &str| {
+        let out = dir.path().join(format!("out-{backend}"));
+        let o = Command::new(env!("CARGO_BIN_EXE_cablesim"))
+            .arg("run")
+            .arg(&scen)
+            .args(["--out", out.to_str().unwrap(), "-q", "--duration", "3"])
+            .args(["--backend", backend])
+            .env("WGPU_BACKEND", &env)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(o.status.success(), "{backend}: {err}");
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        (s, err)
+    };
+    let (gpu, _) = run("gpu");
+    let (cpu, _) = run("cpu");
+    assert_eq!(gpu["backend"], "gpu");
+    assert_eq!(gpu["status"], "completed");
+    let (_, err) = run("auto");
+    if ctx.info.device_type == wgpu::DeviceType::Cpu {
+        assert!(err.contains("software"), "{err}");
+    }
+    let end = |s: &serde_json::Value| -> Vec<f64> {
+        s["cables"][0]["end_forces"]["end"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (g, c) = (end(&gpu), end(&cpu));
+    let d = g
+        .iter()
+        .zip(&c)
+        .map(|(a, b)| (a - b).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    let n = c.iter().map(|a| a * a).sum::<f64>().sqrt();
+    eprintln!("table route: fairlead force GPU {g:?} N, CPU {c:?} N");
+    assert!(d < 0.01 * n, "fairlead force {g:?} vs CPU {c:?}");
+    let x = gpu["cables"][0]["final_positions"][50][0].as_f64().unwrap();
+    assert!(
+        (x - 1.0).abs() < 1e-3,
+        "the fairlead should be held at x = 1 m: {x}"
+    );
+}

@@ -15,10 +15,20 @@
 //! source (the scalar type is substituted). In f32 an absolute coordinate near 1 km
 //! resolves only ~6e-5 m, so positions are stored relative to a per-block origin
 //! (whole metres) and as compensated pairs `r_hi + r_lo` updated by an exact two-sum;
-//! element vectors are formed from the pairs, and routes are rebased to each
-//! submission's start. What is left is f32's resolution of an element's length (a
-//! tension to about `EA 2^-23`). `tests/gpu_f32.rs` and `tests/gpu_parity.rs` hold the
-//! evidence.
+//! element vectors are formed from the pairs by two-sums, and an element's stretch
+//! `l - l0` from them by exact squares (Veltkamp-Dekker) and two-sums, so that a
+//! tension is known to f32 precision of itself rather than of `EA` (plain f32 knows it
+//! to `EA 2^-24`, whose noise rings the axial modes of stiff lines); routes are rebased
+//! to each submission's start (a circle from its point and angle there). Compilers may
+//! contract and reassociate floating-point operations in shaders (Mesa's NIR does), so
+//! the compensated arithmetic passes products through an opaque select and multiplies
+//! by a run-time 1.0 (see the prelude). `tests/gpu_f32.rs` and `tests/gpu_parity.rs`
+//! hold the evidence.
+//!
+//! Speed: on a datacenter GPU the step is bound by memory bandwidth (about 300 bytes
+//! and 400 flops per node-step in f32); on a software adapter by the adapter's own
+//! per-lane memory access and per-dispatch synchronisation (BENCHMARKS.md).
+//! [`GpuSolver::timings`] splits the host's time into recording, submission and waiting.
 //!
 //! Not on the GPU yet ([`solver::unsupported`] says which, and `--backend auto` falls
 //! back to the CPU): the RK2 and RK4 schemes, the older element frames.
