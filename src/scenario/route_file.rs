@@ -5,9 +5,18 @@ use crate::error::Error;
 use crate::model::Route;
 use std::path::Path;
 
-/// Reads a route table. `scenario` and `field` name where it was referred from.
-pub fn read(file: &Path, scenario: &Path, field: &str) -> Result<Route, Error> {
+/// Reads a CSV table of finite numbers with exactly the columns `header` (`what` names
+/// the kind of file in messages). Returns each row's file line and values; every
+/// problem is an error naming the file, the line and what is wrong.
+pub(crate) fn read_numbers(
+    file: &Path,
+    scenario: &Path,
+    field: &str,
+    what: &str,
+    header: &[&str],
+) -> Result<Vec<(usize, Vec<f64>)>, Error> {
     let shown = file.display();
+    let names = header.join(",");
     let mut rdr = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
@@ -17,52 +26,72 @@ pub fn read(file: &Path, scenario: &Path, field: &str) -> Result<Route, Error> {
             err(
                 scenario,
                 field,
-                format!("cannot read route file {shown}: {e}"),
+                format!("cannot read {what} file {shown}: {e}"),
             )
         })?;
-    let header = rdr
+    let found = rdr
         .headers()
         .map_err(|e| err(scenario, field, format!("{shown}: {e}")))?
         .clone();
-    let h: Vec<&str> = header.iter().collect();
-    if h != ["t", "x", "y", "z"] {
+    let h: Vec<&str> = found.iter().collect();
+    if h != header {
         return Err(err(
             scenario,
             field,
             format!(
-                "{shown}: the header must be `t,x,y,z`, found `{}`",
+                "{shown}: the header must be `{names}`, found `{}`",
                 h.join(",")
             ),
         ));
     }
-    let (mut ts, mut ps) = (Vec::new(), Vec::new());
+    let mut rows = Vec::new();
     for rec in rdr.records() {
         let rec = rec.map_err(|e| err(scenario, field, format!("{shown}: {e}")))?;
-        let line = rec.position().map(|p| p.line()).unwrap_or(0);
-        if rec.len() != 4 {
+        let line = rec.position().map(|p| p.line() as usize).unwrap_or(0);
+        if rec.len() != header.len() {
             return Err(err(
                 scenario,
                 field,
                 format!(
-                    "{shown} line {line}: expected 4 values t,x,y,z, found {}",
+                    "{shown} line {line}: expected {} values {names}, found {}",
+                    header.len(),
                     rec.len()
                 ),
             ));
         }
-        let mut v = [0.0; 4];
-        for (k, s) in rec.iter().enumerate() {
-            v[k] = s
-                .parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| {
-                    err(
-                        scenario,
-                        field,
-                        format!("{shown} line {line}: `{s}` is not a finite number"),
-                    )
-                })?;
-        }
+        let v = rec
+            .iter()
+            .map(|s| {
+                s.parse::<f64>()
+                    .ok()
+                    .filter(|x| x.is_finite())
+                    .ok_or_else(|| {
+                        err(
+                            scenario,
+                            field,
+                            format!("{shown} line {line}: `{s}` is not a finite number"),
+                        )
+                    })
+            })
+            .collect::<Result<Vec<f64>, Error>>()?;
+        rows.push((line, v));
+    }
+    if rows.is_empty() {
+        return Err(err(
+            scenario,
+            field,
+            format!("{shown}: no rows after the header"),
+        ));
+    }
+    Ok(rows)
+}
+
+/// Reads a route table. `scenario` and `field` name where it was referred from.
+pub fn read(file: &Path, scenario: &Path, field: &str) -> Result<Route, Error> {
+    let shown = file.display();
+    let rows = read_numbers(file, scenario, field, "route", &["t", "x", "y", "z"])?;
+    let (mut ts, mut ps) = (Vec::new(), Vec::new());
+    for (line, v) in rows {
         if let Some(&last) = ts.last() {
             if v[0] <= last {
                 return Err(err(
@@ -77,13 +106,6 @@ pub fn read(file: &Path, scenario: &Path, field: &str) -> Result<Route, Error> {
         }
         ts.push(v[0]);
         ps.push([v[1], v[2], v[3]]);
-    }
-    if ts.is_empty() {
-        return Err(err(
-            scenario,
-            field,
-            format!("{shown}: no rows after the header"),
-        ));
     }
     Ok(Route::Table { t: ts, p: ps })
 }

@@ -188,72 +188,9 @@ pub fn parse(
 /// Reads a payout table: CSV with the header `t,length`.
 fn read_table(file: &Path, scenario: &Path, field: &str) -> Result<PayoutSchedule, Error> {
     let shown = file.display();
-    let mut rdr = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .flexible(true)
-        .comment(Some(b'#'))
-        .from_path(file)
-        .map_err(|e| {
-            err(
-                scenario,
-                field,
-                format!("cannot read payout file {shown}: {e}"),
-            )
-        })?;
-    let header = rdr
-        .headers()
-        .map_err(|e| err(scenario, field, format!("{shown}: {e}")))?
-        .clone();
-    let h: Vec<&str> = header.iter().collect();
-    if h != ["t", "length"] {
-        return Err(err(
-            scenario,
-            field,
-            format!(
-                "{shown}: the header must be `t,length`, found `{}`",
-                h.join(",")
-            ),
-        ));
-    }
-    let mut rows = Vec::new();
-    let mut lines = Vec::new();
-    for rec in rdr.records() {
-        let rec = rec.map_err(|e| err(scenario, field, format!("{shown}: {e}")))?;
-        let line = rec.position().map(|p| p.line()).unwrap_or(0);
-        if rec.len() != 2 {
-            return Err(err(
-                scenario,
-                field,
-                format!(
-                    "{shown} line {line}: expected 2 values t,length, found {}",
-                    rec.len()
-                ),
-            ));
-        }
-        let mut v = [0.0; 2];
-        for (k, s) in rec.iter().enumerate() {
-            v[k] = s
-                .parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| {
-                    err(
-                        scenario,
-                        field,
-                        format!("{shown} line {line}: `{s}` is not a finite number"),
-                    )
-                })?;
-        }
-        rows.push((v[0], v[1]));
-        lines.push(line);
-    }
-    if rows.is_empty() {
-        return Err(err(
-            scenario,
-            field,
-            format!("{shown}: no rows after the header"),
-        ));
-    }
+    let read = super::route_file::read_numbers(file, scenario, field, "payout", &["t", "length"])?;
+    let rows: Vec<(f64, f64)> = read.iter().map(|(_, v)| (v[0], v[1])).collect();
+    let lines: Vec<usize> = read.iter().map(|(l, _)| *l).collect();
     PayoutSchedule::table(&rows).map_err(|m| {
         // Name the file line of the offending row.
         let msg = match m
