@@ -33,6 +33,25 @@ impl Formulation {
     }
 }
 
+/// Which cable model a run uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum CableModel {
+    /// Lumped masses (GLMF or an older frame: [`Formulation`]), on the CPU or the GPU.
+    #[default]
+    LumpedMass,
+    /// The ANCF reference model (ALE-ANCF with a winch), CPU only ([`crate::ancf`]).
+    Ancf,
+}
+
+/// Parses a `formulation` value: `glmf | rvef | euler | frenet` (lumped mass, with
+/// that formulation) or `ancf` (the ANCF reference model).
+pub fn parse_formulation(s: &str) -> Option<(CableModel, Formulation)> {
+    if s == "ancf" {
+        return Some((CableModel::Ancf, Formulation::Glmf));
+    }
+    Formulation::parse(s).map(|f| (CableModel::LumpedMass, f))
+}
+
 /// Explicit fixed-step time integration schemes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -5,7 +5,7 @@ use crate::cpu::{CpuSolver, Evaluation, WinchStatus};
 use crate::error::Error;
 use crate::gpu::{GpuContext, GpuSolver, Precision};
 use crate::model::{Layout, ModelDef};
-use crate::options::{Formulation, Scheme, SolverOptions};
+use crate::options::{CableModel, Formulation, Scheme, SolverOptions};
 use crate::output::{end_forces, CableSummary, OutputWriter, Summary, WinchSummary};
 use crate::scenario::{Backend, DtSpec, Scenario};
 use crate::stability::{stable_step, StepBound, AUTO_SAFETY};
@@ -21,8 +21,10 @@ pub struct Overrides {
     pub precision: Option<Precision>,
     /// Scheme.
     pub scheme: Option<Scheme>,
-    /// Formulation.
+    /// Formulation (of the lumped-mass model).
     pub formulation: Option<Formulation>,
+    /// Cable model (lumped mass or ANCF).
+    pub model: Option<CableModel>,
     /// Time step, s.
     pub dt: Option<f64>,
     /// Duration, s.
@@ -199,6 +201,14 @@ pub fn prepare(sc: &Scenario) -> Result<(Layout, Vec<[f64; 3]>, f64), Error> {
 pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     let wall0 = Instant::now();
     let ov = &ro.overrides;
+    if ov.model.unwrap_or(sc.sim.model) == CableModel::Ancf {
+        if ov.backend.unwrap_or(sc.sim.backend) == Backend::Gpu {
+            return Err(Error::GpuUnsupported(
+                "the ANCF model (CPU only); use --backend cpu (or auto)".into(),
+            ));
+        }
+        return crate::ancf::run::run(sc, ro, &sc.ancf);
+    }
     let mut opts = SolverOptions {
         formulation: ov.formulation.unwrap_or(sc.sim.formulation),
         scheme: ov.scheme.unwrap_or(sc.sim.scheme),

@@ -3,9 +3,11 @@
 
 use super::band::{Band, BW};
 use super::element::{
-    element_forces, gauss_points, kinematics, strain_energy, AncfCoefs, ElementEnv, GaussPoint,
+    ale_kinematics, element_forces, gauss_points, kinematics, strain_energy, AleLoad, AncfCoefs,
+    ElementEnv, GaussPoint, PointKinematics,
 };
-use super::shape::hermite;
+use super::shape::{ale_shape, hermite, AleShapeAt};
+use crate::ale::{MeshOp, Winch, WinchEnd, WinchTracker};
 use crate::error::Error;
 use crate::math::V3;
 use crate::model::{Current, Environment, LineCoefs, LineType, PointMass, Route};
@@ -118,6 +120,9 @@ pub struct AncfConfig {
     pub added_mass: AddedMass,
     /// A node faster than this, m/s, stops the run as a blow-up.
     pub max_speed: f64,
+    /// A winch at one end (ALE-ANCF): that end must be on a route; its `element_length`
+    /// is the standard element length of the remeshing rules (`cable` is ignored).
+    pub winch: Option<Winch>,
 }
 
 /// How the added mass `Cm rho A` (per unit length) enters the consistent mass matrix.
@@ -160,6 +165,7 @@ impl AncfConfig {
             dt: None,
             added_mass: AddedMass::Normal,
             max_speed: 1e4,
+            winch: None,
         }
     }
 }
@@ -208,9 +214,18 @@ struct EndLoad {
 struct Model {
     name: String,
     n_el: usize,
+    /// Standard element length (the winch's `l_s` with a winch), m: scales only.
     l_el: f64,
+    /// Unstretched length of each element, m (the variable element's at the last
+    /// remeshing: its length now is [`Model::ale_now`]'s).
+    lens: Vec<f64>,
     coefs: AncfCoefs,
-    gps: Vec<GaussPoint>,
+    /// Gauss points per element.
+    n_gauss: usize,
+    /// The Gauss rule of each element.
+    egps: Vec<Vec<GaussPoint>>,
+    /// The winch of an ALE-ANCF cable.
+    ale: Option<AleWinch>,
     current: Current,
     uniform_current: Option<V>,
     water_accel: V,
@@ -236,6 +251,30 @@ struct Model {
     max_speed: f64,
     stable_dt: f64,
     stable_term: String,
+}
+
+/// The winch of an ALE-ANCF cable: its schedule and the mesh state.
+#[derive(Clone, Debug)]
+struct AleWinch {
+    winch: Winch,
+    tracker: WinchTracker,
+    /// Index of the variable element (next to the winch).
+    elem: usize,
+    /// The winch is node 0 (else the last node).
+    at_start: bool,
+    /// Payout rates taken as zero (static solutions).
+    frozen: bool,
+}
+
+/// The variable element at one time: its length, rates and Gauss rule.
+#[derive(Clone, Debug)]
+struct AleNow {
+    elem: usize,
+    l: f64,
+    ldot: f64,
+    lddot: f64,
+    gps: Vec<GaussPoint>,
+    shapes: Vec<AleShapeAt>,
 }
 
 /// Work arrays of one evaluation.
@@ -313,6 +352,8 @@ pub struct AncfCable {
     steps: u64,
     dt: f64,
     rk: Vec<Vec<f64>>,
+    /// What the cable was built from (a remeshing rebuilds the model from it).
+    cfg: AncfConfig,
 }
 
 fn bad(name: &str, msg: impl std::fmt::Display) -> Error {
@@ -350,165 +391,71 @@ impl AncfCable {
             return Err(bad(&name, "ei and damping must not be negative"));
         }
         let n_el = cfg.elements;
-        let l_el = cfg.length / n_el as f64;
-        let nd = 6 * (n_el + 1);
-        let env = &cfg.env;
-        let lc = LineCoefs::new(lt, env.water_density, env.gravity);
-        let coefs = AncfCoefs {
-            line: Coefs::from_line(&lc),
-            ei: lt.ei,
-            ei_c: lt.ei * lt.damping,
-        };
-        let gps = gauss_points(l_el, cfg.gauss_points);
-        let seabed = env.depth.is_finite().then(|| SeabedCoefs {
-            z: -env.depth,
-            k: env.seabed.stiffness,
-            c: env.seabed.damping,
-            mu: env.seabed.friction,
-            v_eps: env.seabed.friction_velocity,
-        });
-
-        // Ends: point masses, applied forces, constraints.
-        let rho = env.water_density;
-        let mut ends = Vec::new();
-        let mut prescribed = Vec::new();
-        let mut supported = [None, None];
-        for (k, e) in [&cfg.start, &cfg.end].into_iter().enumerate() {
-            let node = if k == 0 { 0 } else { n_el };
-            let p = e.point;
-            let mut force = V::from_f64(e.force);
-            force.z += -(p.mass - rho * p.volume) * env.gravity;
-            ends.push(EndLoad {
-                node,
-                mass: p.mass + p.added_mass_coef * rho * p.volume,
-                force,
-                drag: 0.5 * rho * p.drag_area,
-            });
-            if let Some(r) = &e.route {
-                prescribed.push(Prescribed {
-                    dof: 6 * node,
-                    motion: Motion::Route(r.clone()),
-                });
-                supported[k] = Some(node);
-            }
-            if let Some(s) = e.slope {
-                prescribed.push(Prescribed {
-                    dof: 6 * node + 3,
-                    motion: Motion::Constant(V::from_f64(s)),
-                });
-            }
-        }
-        let mut is_prescribed = vec![false; nd];
-        for p in &prescribed {
-            for a in 0..3 {
-                is_prescribed[p.dof + a] = true;
-            }
-        }
-
-        // Constant mass: line mass and (isotropic part of) added mass, point masses.
-        let added_iso = lc.added_mass;
-        let added = match cfg.added_mass {
-            AddedMass::Normal => added_iso,
-            AddedMass::Isotropic => 0.0,
-        };
-        let mut mass_base = Band::zeros(nd);
-        let mbar = lc.mass + added_iso;
-        // At least 4 points: exact for `S_k S_l` (degree 6) whatever the load rule.
-        let exact = gauss_points(l_el, gps.len().max(4));
-        for e in 0..n_el {
-            for gp in &exact {
-                let s = &gp.shape.s;
-                for k in 0..4 {
-                    for l in 0..=k {
-                        let x = mbar * gp.dx * s[k] * s[l];
-                        for a in 0..3 {
-                            mass_base.add_lower(6 * e + 3 * k + a, 6 * e + 3 * l + a, x);
-                        }
-                    }
+        let l_init = cfg.length / n_el as f64;
+        let lens = vec![l_init; n_el];
+        let ale = match &cfg.winch {
+            None => None,
+            Some(w) => {
+                let at_start = w.end == WinchEnd::Start;
+                let end = if at_start { &cfg.start } else { &cfg.end };
+                if end.route.is_none() {
+                    return Err(bad(
+                        &name,
+                        "the winch's end must be held (fixed or on a route)",
+                    ));
                 }
-            }
-        }
-        for el in &ends {
-            for a in 0..3 {
-                mass_base.add_lower(6 * el.node + a, 6 * el.node + a, el.mass);
-            }
-        }
-
-        // Constant generalized force of weights and applied forces.
-        let mut const_force = vec![0.0; nd];
-        for e in 0..n_el {
-            for gp in &exact {
-                for k in 0..4 {
-                    const_force[6 * e + 3 * k + 2] += gp.dx * gp.shape.s[k] * lc.wet_weight_z;
+                if !(w.element_length.is_finite() && w.element_length > 0.0) {
+                    return Err(bad(
+                        &name,
+                        format!(
+                            "the winch's element length must be positive, got {}",
+                            w.element_length
+                        ),
+                    ));
                 }
+                Some(AleWinch {
+                    winch: w.clone(),
+                    tracker: WinchTracker::new(w, &lens, w.schedule.eval(0.0).dl),
+                    elem: if at_start { 0 } else { n_el - 1 },
+                    at_start,
+                    frozen: false,
+                })
             }
-        }
-        for el in &ends {
-            for a in 0..3 {
-                const_force[6 * el.node + a] += [el.force.x, el.force.y, el.force.z][a];
+        };
+        // The stable step of the worst mesh the run can reach: with a winch, the
+        // variable element at 0.5 l_s next to the winch, the others no longer than l_s.
+        let eig_lens: Vec<f64> = match &ale {
+            None => lens.clone(),
+            Some(a) => {
+                let l_s = a.winch.element_length;
+                let n = n_el.max(2);
+                let mut v = vec![l_init.min(l_s); n];
+                let k = if a.at_start { 0 } else { n - 1 };
+                v[k] = crate::ale::DELETE_RATIO * l_s;
+                v
             }
-        }
-
-        let uniform_current = (cfg.current.table.len() <= 1).then(|| cfg.current.at(0.0));
+        };
+        let mut m = Model::build(&cfg, lens, ale, (0.0, String::new()))?;
+        let lc = LineCoefs::new(lt, cfg.env.water_density, cfg.env.gravity);
         let (stable_dt, stable_term) = stable_step(
-            &coefs,
+            &m.coefs,
             &lc,
-            l_el,
-            n_el,
-            &gps,
-            seabed,
+            &eig_lens,
+            cfg.gauss_points,
+            m.seabed,
             cfg.scheme,
-            [(&cfg.start, ends[0].mass), (&cfg.end, ends[1].mass)],
+            [(&cfg.start, m.ends[0].mass), (&cfg.end, m.ends[1].mass)],
         );
-        let mut m = Model {
-            name: name.clone(),
-            n_el,
-            l_el,
-            coefs,
-            gps,
-            current: cfg.current.clone(),
-            uniform_current,
-            water_accel: V::from_f64(cfg.water_accel),
-            seabed,
-            ends,
-            prescribed,
-            is_prescribed,
-            supported,
-            mass_base,
-            added_iso,
-            added,
-            chol_const: None,
-            const_force,
-            scheme: cfg.scheme,
-            max_speed: cfg.max_speed,
-            stable_dt,
-            stable_term,
-        };
-        if added == 0.0 {
-            let mut c = m.mass_base.clone();
-            m.eliminate(&mut c);
-            c.cholesky().map_err(|i| {
-                bad(
-                    &name,
-                    format!("mass matrix not positive definite at row {i}"),
-                )
-            })?;
-            m.chol_const = Some(c);
-        }
+        m.stable_dt = stable_dt;
+        m.stable_term = stable_term;
         let dt = match cfg.dt {
             Some(dt) if dt > 0.0 && dt.is_finite() => dt,
             Some(dt) => return Err(bad(&name, format!("time step must be positive, got {dt}"))),
             None => AUTO_SAFETY * stable_dt,
         };
-        let ng = m.gps.len();
+        let nd = m.n_dofs();
         let mut cable = Self {
-            ws: Ws {
-                f: vec![0.0; nd],
-                m: Band::zeros(nd),
-                chol: Band::zeros(nd),
-                acc: vec![0.0; nd],
-                tangents: vec![V::zero(); ng],
-            },
+            ws: Ws::new(nd, m.n_gauss),
             m,
             q: vec![0.0; nd],
             qd: vec![0.0; nd],
@@ -516,13 +463,15 @@ impl AncfCable {
             steps: 0,
             dt,
             rk: Vec::new(),
+            cfg,
         };
         let (a, b) = (
-            V::from_f64(cfg.start.position),
-            V::from_f64(cfg.end.position),
+            V::from_f64(cable.cfg.start.position),
+            V::from_f64(cable.cfg.end.position),
         );
-        let length = cfg.length;
+        let length = cable.cfg.length;
         cable.set_shape(|s| (a + (b - a) * (s / length)).to_f64());
+        cable.remesh()?;
         Ok(cable)
     }
 
@@ -552,7 +501,8 @@ impl AncfCable {
     pub fn n_nodes(&self) -> usize {
         self.m.n_el + 1
     }
-    /// Unstretched element length, m.
+    /// Standard element length, m: that of every element of a cable without a winch,
+    /// the winch's `l_s` with one ([`AncfCable::element_lengths`] has each one's).
     pub fn element_length(&self) -> f64 {
         self.m.l_el
     }
@@ -584,29 +534,40 @@ impl AncfCable {
             .collect()
     }
 
-    /// Element index and local `xi` of unstretched arc length `s` (clamped to the cable).
-    fn locate(&self, s: f64) -> (usize, f64) {
-        let x = (s / self.m.l_el).clamp(0.0, self.m.n_el as f64);
-        let e = (x.floor() as usize).min(self.m.n_el - 1);
-        (e, x - e as f64)
+    /// Kinematics at unstretched arc length `s` from node 0 (clamped to the cable):
+    /// material velocity and rates (convective parts included on a winch's variable
+    /// element).
+    fn point_at(&self, s: f64) -> PointKinematics {
+        let lens = self.m.lens_at(self.t);
+        let mut e = 0;
+        let mut x = s.max(0.0);
+        while e + 1 < lens.len() && x > lens[e] {
+            x -= lens[e];
+            e += 1;
+        }
+        let l = lens[e];
+        let xi = (x / l).clamp(0.0, 1.0);
+        let sh = hermite(l, xi);
+        let (q, qd) = (&self.q[6 * e..6 * e + 12], &self.qd[6 * e..6 * e + 12]);
+        let mut p = kinematics(&sh, q, qd);
+        if let (Some(a), Some(now)) = (&self.m.ale, self.m.ale_now(self.t)) {
+            if now.elem == e {
+                let al = ale_shape(l, xi, a.at_start, &sh);
+                ale_kinematics(&al, now.ldot, now.lddot, q, qd, &mut p);
+            }
+        }
+        p
     }
 
     /// Position at unstretched arc length `s` from the start, m.
     pub fn position_at(&self, s: f64) -> [f64; 3] {
-        let (e, xi) = self.locate(s);
-        let sh = hermite(self.m.l_el, xi);
-        kinematics(&sh, &self.q[6 * e..6 * e + 12], &self.qd[6 * e..6 * e + 12])
-            .r
-            .to_f64()
+        self.point_at(s).r.to_f64()
     }
 
-    /// Velocity at unstretched arc length `s` from the start, m/s.
+    /// Velocity at unstretched arc length `s` from the start, m/s (of the material
+    /// there).
     pub fn velocity_at(&self, s: f64) -> [f64; 3] {
-        let (e, xi) = self.locate(s);
-        let sh = hermite(self.m.l_el, xi);
-        kinematics(&sh, &self.q[6 * e..6 * e + 12], &self.qd[6 * e..6 * e + 12])
-            .rd
-            .to_f64()
+        self.point_at(s).rd.to_f64()
     }
 
     /// Axial force (tension) at unstretched arc length `s`, N: `|r'| EA (g eps0 + c
@@ -616,19 +577,63 @@ impl AncfCable {
     /// elements on a 1000 m catenary); [`AncfCable::node_tensions`] is the accurate one
     /// (1e-6 there).
     pub fn tension_at(&self, s: f64) -> f64 {
-        let (e, xi) = self.locate(s);
-        let sh = hermite(self.m.l_el, xi);
-        let p = kinematics(&sh, &self.q[6 * e..6 * e + 12], &self.qd[6 * e..6 * e + 12]);
+        let p = self.point_at(s);
         let (_, _, n) = super::element::axial(&self.m.coefs.line, &p);
         n * p.r1.norm()
     }
 
     /// Curvature at unstretched arc length `s`, 1/m.
     pub fn curvature_at(&self, s: f64) -> f64 {
-        let (e, xi) = self.locate(s);
-        let sh = hermite(self.m.l_el, xi);
-        let p = kinematics(&sh, &self.q[6 * e..6 * e + 12], &self.qd[6 * e..6 * e + 12]);
-        super::element::curvature(&p).0
+        super::element::curvature(&self.point_at(s)).0
+    }
+
+    /// Unstretched length of each element now, node 0 to the end, m (with a winch the
+    /// variable element's follows the payout; the sum is the deployed length).
+    pub fn element_lengths(&self) -> Vec<f64> {
+        self.m.lens_at(self.t)
+    }
+
+    /// Unstretched (deployed) length of the cable now, m.
+    pub fn length(&self) -> f64 {
+        self.element_lengths().iter().sum()
+    }
+
+    /// The cable's name.
+    pub fn name(&self) -> &str {
+        &self.m.name
+    }
+
+    /// Unstretched length of the variable element next to the winch now, m (`None`
+    /// without a winch).
+    pub fn variable_length(&self) -> Option<f64> {
+        self.m.ale_now(self.t).map(|a| a.l)
+    }
+
+    /// Physical coordinate `p` of each node, node 0 to the end: unstretched arc length
+    /// from the far end (the end opposite the winch), m (`None` without a winch).
+    pub fn physical_coordinates(&self) -> Option<Vec<f64>> {
+        let a = self.m.ale.as_ref()?;
+        let lens = self.element_lengths();
+        let mut p = vec![0.0];
+        if a.at_start {
+            for l in lens.iter().rev() {
+                p.push(p[p.len() - 1] + l);
+            }
+            p.reverse();
+        } else {
+            for l in &lens {
+                p.push(p[p.len() - 1] + l);
+            }
+        }
+        Some(p)
+    }
+
+    /// Nodes inserted and deleted by the winch's remeshing so far.
+    pub fn remeshes(&self) -> (u64, u64) {
+        self.m
+            .ale
+            .as_ref()
+            .map_or((0, 0), |a| (a.tracker.inserted, a.tracker.deleted))
     }
 
     /// Sets the shape from a function of unstretched arc length giving the position;
@@ -636,13 +641,15 @@ impl AncfCable {
     /// set to zero, prescribed coordinates to their values at the current time.
     pub fn set_shape(&mut self, f: impl Fn(f64) -> [f64; 3]) {
         let h = 1e-4 * self.m.l_el;
+        let lens = self.m.lens_at(self.t);
+        let mut s = 0.0;
         for k in 0..self.n_nodes() {
-            let s = k as f64 * self.m.l_el;
             let r = f(s);
             let (p, m) = (V::from_f64(f(s + h)), V::from_f64(f(s - h)));
             let d = (p - m) / (2.0 * h);
             self.q[6 * k..6 * k + 3].copy_from_slice(&r);
             self.q[6 * k + 3..6 * k + 6].copy_from_slice(&d.to_f64());
+            s += lens.get(k).copied().unwrap_or(0.0);
         }
         self.qd.iter_mut().for_each(|x| *x = 0.0);
         let t = self.t;
@@ -681,24 +688,27 @@ impl AncfCable {
         let n_el = self.m.n_el;
         let env = self.m.env();
         let c = &self.m.coefs.line;
+        let now = self.m.ale_now(t);
         let mut out = vec![V::zero(); n_el + 1];
         let mut count = vec![0.0; n_el + 1];
         for e in 0..n_el {
             let b = 6 * e;
             let mut f = [0.0; 12];
+            let (gps, ale) = self.m.element_rule(e, &now);
             element_forces(
                 &self.m.coefs,
-                &self.m.gps,
+                gps,
                 &env,
                 &q[b..b + 12],
                 &qd[b..b + 12],
                 &mut f,
                 Some(&mut self.ws.tangents[..]),
+                ale.as_ref(),
             );
             // Consistent inertia forces (M_e a_e) on the element's two position coordinates.
             let acc = &self.ws.acc[b..b + 12];
             let (mut ia, mut ib) = (V::zero(), V::zero());
-            for (gp, tg) in self.m.gps.iter().zip(&self.ws.tangents) {
+            for (gp, tg) in gps.iter().zip(&self.ws.tangents) {
                 let sh = &gp.shape;
                 let a = kinematics(sh, acc, &[0.0; 12]).r;
                 let ma = a * (c.mass + self.m.added_iso) - *tg * (self.m.added * tg.dot(a));
@@ -737,7 +747,7 @@ impl AncfCable {
         self.m
             .accelerations(&q, &qd, t, &mut self.ws)
             .map_err(|e| self.m.diverged(0, t, e))?;
-        let mfull = if self.m.added > 0.0 {
+        let mfull = if self.m.mass_varies() {
             &self.ws.m
         } else {
             &self.m.mass_base
@@ -762,7 +772,7 @@ impl AncfCable {
     /// Kinetic, strain and potential energy at the current state (the potential counts
     /// weights and applied forces; drag, seabed and damping are not conservative).
     pub fn energy(&mut self) -> AncfEnergy {
-        let mfull = if self.m.added > 0.0 {
+        let mfull = if self.m.mass_varies() {
             let (q, qd, t) = (self.q.clone(), self.qd.clone(), self.t);
             self.m.forces(&q, &qd, t, &mut self.ws, true);
             &self.ws.m
@@ -772,8 +782,12 @@ impl AncfCable {
         let mut mv = vec![0.0; self.q.len()];
         mfull.mul_vec(&self.qd, &mut mv);
         let kinetic = 0.5 * mv.iter().zip(&self.qd).map(|(a, b)| a * b).sum::<f64>();
+        let now = self.m.ale_now(self.t);
         let strain = (0..self.m.n_el)
-            .map(|e| strain_energy(&self.m.coefs, &self.m.gps, &self.q[6 * e..6 * e + 12]))
+            .map(|e| {
+                let (gps, _) = self.m.element_rule(e, &now);
+                strain_energy(&self.m.coefs, gps, &self.q[6 * e..6 * e + 12])
+            })
             .sum();
         let potential = -self
             .m
@@ -856,7 +870,8 @@ impl AncfCable {
         self.steps += 1;
         let t1 = self.t;
         self.m.apply_prescribed(&mut self.q, &mut self.qd, t1);
-        self.check()
+        self.check()?;
+        self.remesh()
     }
 
     /// Advances `n` steps.
@@ -870,6 +885,86 @@ impl AncfCable {
     /// Advances by `duration` seconds (rounded to whole steps).
     pub fn advance_time(&mut self, duration: f64) -> Result<(), Error> {
         self.advance((duration / self.dt).round() as u64)
+    }
+
+    /// Applies the winch's remeshing rules at the current time (paper Fig. 14, the
+    /// same [`WinchTracker`] as the ALE-GLMF): a material node inserted on the variable
+    /// element at `l_s` from its material node takes the position and slope of the
+    /// cubic there and the material velocity and slope rate (so the shape and the
+    /// motion of the new fixed element are exactly those of the old element's part); a
+    /// deleted node's neighbours keep their coordinates (the merged element is the
+    /// cubic through them: the one approximation of remeshing). The model is then
+    /// rebuilt on the new mesh; the time step is kept (it was set for the worst mesh).
+    fn remesh(&mut self) -> Result<(), Error> {
+        let Some(a) = self.m.ale.as_ref() else {
+            return Ok(());
+        };
+        let pay = a.winch.schedule.eval(self.t);
+        if !a.tracker.needs_action(pay.dl) {
+            return Ok(());
+        }
+        let (at_start, frozen) = (a.at_start, a.frozen);
+        let mut tracker = a.tracker.clone();
+        let ops = tracker.remesh(pay.dl).map_err(|lim| Error::Winch {
+            cable: self.m.name.clone(),
+            time: self.t,
+            message: lim.to_string(),
+        })?;
+        let (ldot, lddot) = (pay.rate, pay.accel);
+        for op in ops {
+            let n_el = self.q.len() / 6 - 1;
+            let e = if at_start { 0 } else { n_el - 1 };
+            match op {
+                MeshOp::Insert { xi, l0_before } => {
+                    // `xi` runs from the material node towards the winch.
+                    let x = if at_start { 1.0 - xi } else { xi };
+                    let sh = hermite(l0_before, x);
+                    let al = ale_shape(l0_before, x, at_start, &sh);
+                    let (qe, qde) = (&self.q[6 * e..6 * e + 12], &self.qd[6 * e..6 * e + 12]);
+                    let mut p = kinematics(&sh, qe, qde);
+                    ale_kinematics(&al, ldot, lddot, qe, qde, &mut p);
+                    let at = 6 * (e + 1);
+                    let (nq, nqd) = ([p.r, p.r1], [p.rd, p.r1d]);
+                    for (k, (x, xd)) in nq.iter().zip(&nqd).enumerate() {
+                        let i = at + 3 * k;
+                        for (c, (v, vd)) in [(x.x, xd.x), (x.y, xd.y), (x.z, xd.z)]
+                            .into_iter()
+                            .enumerate()
+                        {
+                            self.q.insert(i + c, v);
+                            self.qd.insert(i + c, vd);
+                        }
+                    }
+                }
+                MeshOp::Delete => {
+                    let node = if at_start { 1 } else { n_el - 1 };
+                    self.q.drain(6 * node..6 * node + 6);
+                    self.qd.drain(6 * node..6 * node + 6);
+                }
+            }
+        }
+        let mut lens = tracker.fixed.clone(); // far end to the winch
+        if at_start {
+            lens.reverse();
+            lens.insert(0, tracker.base_l0);
+        } else {
+            lens.push(tracker.base_l0);
+        }
+        let winch = self.m.ale.as_ref().expect("checked above").winch.clone();
+        let elem = if at_start { 0 } else { lens.len() - 1 };
+        let ale = AleWinch {
+            winch,
+            tracker,
+            elem,
+            at_start,
+            frozen,
+        };
+        let stable = (self.m.stable_dt, self.m.stable_term.clone());
+        self.m = Model::build(&self.cfg, lens, Some(ale), stable)?;
+        self.ws = Ws::new(self.q.len(), self.m.n_gauss);
+        self.rk.clear();
+        debug_assert_eq!(self.q.len(), self.m.n_dofs());
+        Ok(())
     }
 
     fn check(&self) -> Result<(), Error> {
@@ -913,6 +1008,20 @@ impl AncfCable {
     ///
     /// Errors (`Error::Statics`): no convergence within `max_iterations` per stage.
     pub fn solve_static(&mut self, opts: &StaticOptions) -> Result<StaticReport, Error> {
+        // The payout stands still in a static solution (the variable element keeps its
+        // length now); restored afterwards, whatever the outcome.
+        let frozen = self.m.ale.as_ref().map(|a| a.frozen);
+        if let Some(a) = self.m.ale.as_mut() {
+            a.frozen = true;
+        }
+        let rep = self.solve_static_frozen(opts);
+        if let (Some(a), Some(f)) = (self.m.ale.as_mut(), frozen) {
+            a.frozen = f;
+        }
+        rep
+    }
+
+    fn solve_static_frozen(&mut self, opts: &StaticOptions) -> Result<StaticReport, Error> {
         let t = self.t;
         self.m.apply_prescribed(&mut self.q, &mut self.qd, t);
         self.qd.iter_mut().for_each(|x| *x = 0.0);
@@ -990,6 +1099,7 @@ fn newton(
         seabed: None,
         ..m.env()
     };
+    let now = m.ale_now(t);
     while mx.is_nan() || mx > tol {
         if it >= opts.max_iterations || !mx.is_finite() {
             return Err(Error::Statics(format!(
@@ -1009,6 +1119,7 @@ fn newton(
             let mut qe = [0.0; 12];
             qe.copy_from_slice(&q[base..base + 12]);
             let qde = &qd[base..base + 12];
+            let (gps, ale) = m.element_rule(e, &now);
             for j in 0..12 {
                 if pos[base + j] == usize::MAX {
                     continue;
@@ -1017,9 +1128,9 @@ fn newton(
                 let (mut fp, mut fm) = ([0.0; 12], [0.0; 12]);
                 let x0 = qe[j];
                 qe[j] = x0 + h;
-                element_forces(&m.coefs, &m.gps, &env, &qe, qde, &mut fp, None);
+                element_forces(&m.coefs, gps, &env, &qe, qde, &mut fp, None, ale.as_ref());
                 qe[j] = x0 - h;
-                element_forces(&m.coefs, &m.gps, &env, &qe, qde, &mut fm, None);
+                element_forces(&m.coefs, gps, &env, &qe, qde, &mut fm, None, ale.as_ref());
                 qe[j] = x0;
                 for i in 0..12 {
                     let pi = pos[base + i];
@@ -1034,7 +1145,7 @@ fn newton(
         if let Some(sb) = &m.seabed {
             for e in 0..m.n_el {
                 let base = 6 * e;
-                for gp in &m.gps {
+                for gp in m.element_rule(e, &now).0 {
                     let sh = &gp.shape;
                     let p = kinematics(sh, &q[base..base + 12], &[0.0; 12]);
                     if p.r.z >= sb.z {
@@ -1060,7 +1171,7 @@ fn newton(
             for e in 0..m.n_el {
                 let base = 6 * e;
                 let qe = &q[base..base + 12];
-                for gp in &m.gps {
+                for gp in m.element_rule(e, &now).0 {
                     let sh = &gp.shape;
                     let p = kinematics(sh, qe, &[0.0; 12]);
                     if p.r1.norm2() > 1.0 {
@@ -1183,7 +1294,235 @@ fn newton(
     })
 }
 
+impl Ws {
+    fn new(nd: usize, ng: usize) -> Self {
+        Self {
+            f: vec![0.0; nd],
+            m: Band::zeros(nd),
+            chol: Band::zeros(nd),
+            acc: vec![0.0; nd],
+            tangents: vec![V::zero(); ng],
+        }
+    }
+}
+
 impl Model {
+    /// The model of `cfg` on a mesh of element lengths `lens` (node 0 to the end), with
+    /// the winch state `ale`, and the given stable step.
+    fn build(
+        cfg: &AncfConfig,
+        lens: Vec<f64>,
+        ale: Option<AleWinch>,
+        stable: (f64, String),
+    ) -> Result<Model, Error> {
+        let name = cfg.name.clone();
+        let lt = &cfg.line_type;
+        let n_el = lens.len();
+        let l_el = match &ale {
+            Some(a) => a.winch.element_length,
+            None => cfg.length / cfg.elements as f64,
+        };
+        let nd = 6 * (n_el + 1);
+        let env = &cfg.env;
+        let lc = LineCoefs::new(lt, env.water_density, env.gravity);
+        let coefs = AncfCoefs {
+            line: Coefs::from_line(&lc),
+            ei: lt.ei,
+            ei_c: lt.ei * lt.damping,
+        };
+        let egps: Vec<Vec<GaussPoint>> = lens
+            .iter()
+            .map(|&l| gauss_points(l, cfg.gauss_points))
+            .collect();
+        let seabed = env.depth.is_finite().then(|| SeabedCoefs {
+            z: -env.depth,
+            k: env.seabed.stiffness,
+            c: env.seabed.damping,
+            mu: env.seabed.friction,
+            v_eps: env.seabed.friction_velocity,
+        });
+
+        // Ends: point masses, applied forces, constraints.
+        let rho = env.water_density;
+        let mut ends = Vec::new();
+        let mut prescribed = Vec::new();
+        let mut supported = [None, None];
+        for (k, e) in [&cfg.start, &cfg.end].into_iter().enumerate() {
+            let node = if k == 0 { 0 } else { n_el };
+            let p = e.point;
+            let mut force = V::from_f64(e.force);
+            force.z += -(p.mass - rho * p.volume) * env.gravity;
+            ends.push(EndLoad {
+                node,
+                mass: p.mass + p.added_mass_coef * rho * p.volume,
+                force,
+                drag: 0.5 * rho * p.drag_area,
+            });
+            if let Some(r) = &e.route {
+                prescribed.push(Prescribed {
+                    dof: 6 * node,
+                    motion: Motion::Route(r.clone()),
+                });
+                supported[k] = Some(node);
+            }
+            if let Some(s) = e.slope {
+                prescribed.push(Prescribed {
+                    dof: 6 * node + 3,
+                    motion: Motion::Constant(V::from_f64(s)),
+                });
+            }
+        }
+        let mut is_prescribed = vec![false; nd];
+        for p in &prescribed {
+            for a in 0..3 {
+                is_prescribed[p.dof + a] = true;
+            }
+        }
+
+        // Constant mass: line mass and (isotropic part of) added mass, point masses.
+        // The variable element of a winch cable adds its own at every evaluation.
+        let added_iso = lc.added_mass;
+        let added = match cfg.added_mass {
+            AddedMass::Normal => added_iso,
+            AddedMass::Isotropic => 0.0,
+        };
+        let mut mass_base = Band::zeros(nd);
+        let mbar = lc.mass + added_iso;
+        let variable = ale.as_ref().map(|a| a.elem);
+        for (e, &l) in lens.iter().enumerate() {
+            if Some(e) != variable {
+                add_element_mass(&mut mass_base, e, l, cfg.gauss_points, mbar);
+            }
+        }
+        for el in &ends {
+            for a in 0..3 {
+                mass_base.add_lower(6 * el.node + a, 6 * el.node + a, el.mass);
+            }
+        }
+
+        // Constant generalized force of weights and applied forces (the variable
+        // element's at its length at the last remeshing).
+        let mut const_force = vec![0.0; nd];
+        for (e, &l) in lens.iter().enumerate() {
+            for gp in &gauss_points(l, cfg.gauss_points.max(4)) {
+                for k in 0..4 {
+                    const_force[6 * e + 3 * k + 2] += gp.dx * gp.shape.s[k] * lc.wet_weight_z;
+                }
+            }
+        }
+        for el in &ends {
+            for a in 0..3 {
+                const_force[6 * el.node + a] += [el.force.x, el.force.y, el.force.z][a];
+            }
+        }
+
+        let uniform_current = (cfg.current.table.len() <= 1).then(|| cfg.current.at(0.0));
+        let mut m = Model {
+            name: name.clone(),
+            n_el,
+            l_el,
+            lens,
+            coefs,
+            n_gauss: cfg.gauss_points,
+            egps,
+            ale,
+            current: cfg.current.clone(),
+            uniform_current,
+            water_accel: V::from_f64(cfg.water_accel),
+            seabed,
+            ends,
+            prescribed,
+            is_prescribed,
+            supported,
+            mass_base,
+            added_iso,
+            added,
+            chol_const: None,
+            const_force,
+            scheme: cfg.scheme,
+            max_speed: cfg.max_speed,
+            stable_dt: stable.0,
+            stable_term: stable.1,
+        };
+        if !m.mass_varies() {
+            let mut c = m.mass_base.clone();
+            m.eliminate(&mut c);
+            c.cholesky().map_err(|i| {
+                bad(
+                    &name,
+                    format!("mass matrix not positive definite at row {i}"),
+                )
+            })?;
+            m.chol_const = Some(c);
+        }
+        Ok(m)
+    }
+
+    /// Number of coordinates.
+    fn n_dofs(&self) -> usize {
+        6 * (self.n_el + 1)
+    }
+
+    /// True when the mass matrix is assembled at every evaluation: the normal added
+    /// mass follows the tangent, or a winch changes the variable element's length.
+    fn mass_varies(&self) -> bool {
+        self.added > 0.0 || self.ale.is_some()
+    }
+
+    /// The variable element at `t` (a winch cable only).
+    fn ale_now(&self, t: f64) -> Option<AleNow> {
+        let a = self.ale.as_ref()?;
+        let pay = a.winch.schedule.eval(t);
+        let l = a.tracker.variable_l0(pay.dl);
+        let (ldot, lddot) = if a.frozen {
+            (0.0, 0.0)
+        } else {
+            (pay.rate, pay.accel)
+        };
+        let gps = gauss_points(l, self.n_gauss);
+        let shapes = gps
+            .iter()
+            .map(|gp| ale_shape(l, gp.xi, a.at_start, &gp.shape))
+            .collect();
+        Some(AleNow {
+            elem: a.elem,
+            l,
+            ldot,
+            lddot,
+            gps,
+            shapes,
+        })
+    }
+
+    /// Element `e`'s Gauss rule and ALE terms (given the variable element now).
+    #[inline]
+    fn element_rule<'a>(
+        &'a self,
+        e: usize,
+        now: &'a Option<AleNow>,
+    ) -> (&'a [GaussPoint], Option<AleLoad<'a>>) {
+        match now {
+            Some(a) if a.elem == e => (
+                &a.gps,
+                Some(AleLoad {
+                    shapes: &a.shapes,
+                    ldot: a.ldot,
+                    lddot: a.lddot,
+                }),
+            ),
+            _ => (&self.egps[e], None),
+        }
+    }
+
+    /// Unstretched element lengths at `t`, m.
+    fn lens_at(&self, t: f64) -> Vec<f64> {
+        let mut l = self.lens.clone();
+        if let Some(a) = self.ale_now(t) {
+            l[a.elem] = a.l;
+        }
+        l
+    }
+
     /// The same model with its current (and water acceleration) scaled by `s`.
     fn with_flow(&self, s: f64) -> Model {
         let mut m = self.clone();
@@ -1208,9 +1547,10 @@ impl Model {
         let zero = [0.0; 12];
         for el in 0..self.n_el {
             let qe = &q[6 * el..6 * el + 12];
-            e += strain_energy(&self.coefs, &self.gps, qe);
+            let gps = &self.egps[el];
+            e += strain_energy(&self.coefs, gps, qe);
             if let Some(s) = &self.seabed {
-                for gp in &self.gps {
+                for gp in gps {
                     let p = kinematics(&gp.shape, qe, &zero);
                     let pen = s.z - p.r.z;
                     if pen > 0.0 {
@@ -1250,7 +1590,7 @@ impl Model {
         let per_length = c.wet_weight_z.abs()
             + (c.drag_n + c.drag_t) * u * u
             + c.froude_krylov * self.water_accel.norm();
-        let mut s = per_length * self.l_el * self.n_el as f64;
+        let mut s = per_length * self.lens.iter().sum::<f64>();
         for e in &self.ends {
             s += e.force.norm() + e.drag * u * u;
         }
@@ -1276,27 +1616,34 @@ impl Model {
     }
 
     /// Generalized force into `ws.f`; with `with_mass` also the mass matrix into `ws.m`.
-    fn forces(&self, q: &[f64], qd: &[f64], _t: f64, ws: &mut Ws, with_mass: bool) {
+    fn forces(&self, q: &[f64], qd: &[f64], t: f64, ws: &mut Ws, with_mass: bool) {
         ws.f.iter_mut().for_each(|x| *x = 0.0);
+        let now = self.ale_now(t);
         if with_mass {
             ws.m.copy_from(&self.mass_base);
+            if let Some(a) = &now {
+                let mbar = self.coefs.line.mass + self.added_iso;
+                add_element_mass(&mut ws.m, a.elem, a.l, self.n_gauss, mbar);
+            }
         }
         let env = self.env();
         for e in 0..self.n_el {
             let b = 6 * e;
+            let (gps, ale) = self.element_rule(e, &now);
             element_forces(
                 &self.coefs,
-                &self.gps,
+                gps,
                 &env,
                 &q[b..b + 12],
                 &qd[b..b + 12],
                 &mut ws.f[b..b + 12],
                 with_mass.then_some(&mut ws.tangents[..]),
+                ale.as_ref(),
             );
-            if with_mass {
+            if with_mass && self.added > 0.0 {
                 // Normal added mass: subtract Cm rho A int S_k S_l t t^T from the
                 // isotropic part already in `mass_base`.
-                for (gp, t) in self.gps.iter().zip(&ws.tangents) {
+                for (gp, t) in gps.iter().zip(&ws.tangents) {
                     let s = &gp.shape.s;
                     let tv = [t.x, t.y, t.z];
                     for k in 0..4 {
@@ -1336,7 +1683,7 @@ impl Model {
     /// Accelerations `ws.acc` of state `(q, qd)` at `t`: forces, mass, prescribed
     /// accelerations by direct elimination, Cholesky solve.
     fn accelerations(&self, q: &[f64], qd: &[f64], t: f64, ws: &mut Ws) -> Result<(), String> {
-        let variable = self.added > 0.0;
+        let variable = self.mass_varies();
         self.forces(q, qd, t, ws, variable);
         ws.acc.copy_from_slice(&ws.f);
         let mfull = if variable { &ws.m } else { &self.mass_base };
@@ -1382,6 +1729,22 @@ impl Model {
     }
 }
 
+/// Adds the consistent mass `mbar int S_k S_l dx (x) I` of element `e` of length `l`
+/// to `m` (a rule of at least 4 points: exact for the degree-6 products).
+fn add_element_mass(m: &mut Band, e: usize, l: f64, n_gauss: usize, mbar: f64) {
+    for gp in &gauss_points(l, n_gauss.max(4)) {
+        let s = &gp.shape.s;
+        for k in 0..4 {
+            for j in 0..=k {
+                let x = mbar * gp.dx * s[k] * s[j];
+                for a in 0..3 {
+                    m.add_lower(6 * e + 3 * k + a, 6 * e + 3 * j + a, x);
+                }
+            }
+        }
+    }
+}
+
 /// Elements in the chain whose fastest mode bounds the stable step.
 const EIG_ELEMENTS: usize = 32;
 
@@ -1404,21 +1767,31 @@ const EIG_ELEMENTS: usize = 32;
 fn stable_step(
     c: &AncfCoefs,
     lc: &LineCoefs,
-    l: f64,
-    n_el: usize,
-    gps: &[GaussPoint],
+    lens: &[f64],
+    n_gauss: usize,
     seabed: Option<SeabedCoefs<f64>>,
     scheme: Scheme,
     ends: [(&AncfEnd, f64); 2],
 ) -> (f64, String) {
-    let ne = n_el.min(EIG_ELEMENTS);
+    // The first and last elements of a long cable, keeping both ends' conditions.
+    let chain: Vec<f64> = if lens.len() <= EIG_ELEMENTS {
+        lens.to_vec()
+    } else {
+        let h = EIG_ELEMENTS / 2;
+        lens[..h]
+            .iter()
+            .chain(&lens[lens.len() - h..])
+            .copied()
+            .collect()
+    };
+    let ne = chain.len();
+    let l = chain.iter().copied().fold(f64::INFINITY, f64::min);
     let nd = 2 * (ne + 1);
     let mut ms = DMatrix::<f64>::zeros(nd, nd);
     let mut ka = DMatrix::<f64>::zeros(nd, nd);
-    // A rule of at least 6 points integrates these degree <= 6 products exactly.
-    let exact = gauss_points(l, 6.max(gps.len()));
-    for e in 0..ne {
-        for gp in &exact {
+    for (e, &le) in chain.iter().enumerate() {
+        // A rule of at least 6 points integrates these degree <= 6 products exactly.
+        for gp in &gauss_points(le, 6.max(n_gauss)) {
             let sh = &gp.shape;
             for i in 0..4 {
                 for j in 0..4 {
@@ -1552,5 +1925,192 @@ mod tests {
                 -fd
             );
         }
+    }
+
+    /// A winch cable hanging from a moving top with a clump at its far end, curved and
+    /// moving (so every ALE term is non-zero), element length 10 m.
+    fn winch_cable(at_start: bool, schedule: crate::ale::PayoutSchedule) -> AncfCable {
+        use crate::ale::{Winch, WinchEnd};
+        let mut lt = line(200.0, false);
+        lt.cm = 0.2;
+        lt.damping = 1e-4;
+        let top = Route::Circle {
+            center: [0.0, 0.0, 0.0],
+            radius: 5.0,
+            period: 20.0,
+            axis: [0.0, 0.0, 1.0],
+            phase: 0.0,
+            advance: 0.0,
+        };
+        let clump = PointMass {
+            mass: 200.0,
+            ..Default::default()
+        };
+        let (held, free) = (
+            AncfEnd::driven(top),
+            AncfEnd::free([5.0, 0.0, -40.0]).with_point(clump),
+        );
+        let (start, end) = if at_start { (held, free) } else { (free, held) };
+        let mut cfg = AncfConfig::new(
+            lt,
+            40.0,
+            4,
+            start,
+            end,
+            Environment {
+                depth: f64::INFINITY,
+                ..Default::default()
+            },
+        );
+        cfg.current = Current::uniform([0.5, 0.2, 0.0]);
+        cfg.winch = Some(Winch {
+            cable: 0,
+            end: if at_start {
+                WinchEnd::Start
+            } else {
+                WinchEnd::End
+            },
+            schedule: std::sync::Arc::new(schedule),
+            drum_length: 200.0,
+            element_length: 10.0,
+        });
+        AncfCable::new(cfg).unwrap()
+    }
+
+    /// Translational mass in the assembled mass matrix: the position blocks' diagonal
+    /// directions summed. The position shape functions sum to one, so it is
+    /// `int (3 mbar + 3 Cm rho A - Cm rho A t.t) dx` = `(3 mbar + 2 Cm rho A) L` plus
+    /// three times the point masses.
+    fn assembled_mass(c: &mut AncfCable) -> f64 {
+        let (q, qd, t) = (c.q.clone(), c.qd.clone(), c.t);
+        c.m.forces(&q, &qd, t, &mut c.ws, true);
+        let n = c.n_nodes();
+        let mut s = 0.0;
+        for i in 0..n {
+            for j in 0..n {
+                for a in 0..3 {
+                    s += c.ws.m.get(6 * i + a, 6 * j + a);
+                }
+            }
+        }
+        s
+    }
+
+    /// An inserted node carries the cubic's position and slope and the material
+    /// velocity and slope rate: shape and motion of the cable are unchanged by the
+    /// insertion (positions everywhere, velocities on the new fixed element).
+    #[test]
+    fn ale_insertion_keeps_shape_and_material_motion() {
+        for at_start in [true, false] {
+            let mut c = winch_cable(at_start, crate::ale::PayoutSchedule::constant(0.8).unwrap());
+            c.set_shape(|s| [5.0 + 3.0 * (s / 13.0).sin(), 0.5 * s / 40.0, -s]);
+            if !at_start {
+                c.set_shape(|s| [5.0 + 3.0 * (s / 13.0).sin(), 0.5 * s / 40.0, s - 40.0]);
+            }
+            for (k, v) in c.qd.iter_mut().enumerate() {
+                *v = 0.3 * ((k * 7) as f64).sin();
+            }
+            let t = c.t;
+            c.m.apply_prescribed(&mut c.q, &mut c.qd, t);
+            // Just past the 1.5 l_s threshold: 40 m + 5.5 m, variable element 15.5 m.
+            c.t = 5.5 / 0.8;
+            let len = c.length();
+            let far = |s_from_far: f64| {
+                if at_start {
+                    len - s_from_far
+                } else {
+                    s_from_far
+                }
+            };
+            let before: Vec<PointKinematics> =
+                (0..=90).map(|k| c.point_at(far(k as f64 * 0.5))).collect();
+            let n0 = c.n_nodes();
+            c.remesh().unwrap();
+            assert_eq!(c.n_nodes(), n0 + 1, "one node inserted");
+            assert!((c.length() - len).abs() < 1e-12);
+            for (k, b) in before.iter().enumerate() {
+                let s = k as f64 * 0.5;
+                let a = c.point_at(far(s));
+                assert!(
+                    (a.r - b.r).norm() < 1e-10,
+                    "at {s} m from the far end: {:?} vs {:?}",
+                    a.r,
+                    b.r
+                );
+                // The new fixed element spans 30..40 m from the far end.
+                if (30.0..=40.0).contains(&s) {
+                    assert!(
+                        (a.rd - b.rd).norm() < 1e-10,
+                        "velocity at {s} m: {:?} vs {:?}",
+                        a.rd,
+                        b.rd
+                    );
+                }
+            }
+        }
+    }
+
+    /// The mass in the water is `mbar` times the deployed length at every step, through
+    /// insertions and deletions; a payout and an equal retrieval return to the starting
+    /// mesh.
+    #[test]
+    fn ale_mass_follows_the_deployed_length_through_remeshing() {
+        for at_start in [true, false] {
+            let sched = crate::ale::PayoutSchedule::rates(&[
+                (0.0, 2.0),
+                (30.0, 2.0),
+                (30.0, -2.0),
+                (60.0, -2.0),
+                (60.0, 0.0),
+            ])
+            .unwrap();
+            let mut c = winch_cable(at_start, sched);
+            let per_length = 3.0 * c.m.coefs.line.mass + 2.0 * c.m.added_iso;
+            let n0 = c.n_elements();
+            let mut max_err = 0.0f64;
+            let (mut most, mut fewest) = (n0, n0);
+            while c.t() < 60.0 {
+                c.advance(200).unwrap();
+                let expect = per_length * c.length() + 3.0 * 200.0;
+                max_err = max_err.max((assembled_mass(&mut c) - expect).abs() / expect);
+                let lens = c.element_lengths();
+                let sum: f64 = lens.iter().sum();
+                let deployed = 40.0 + 2.0 * c.t().min(60.0 - c.t()).max(0.0);
+                assert!(
+                    (sum - deployed).abs() < 1e-9,
+                    "t {}: {sum} vs {deployed}",
+                    c.t()
+                );
+                most = most.max(c.n_elements());
+                fewest = fewest.min(c.n_elements());
+            }
+            assert!(max_err < 1e-13, "mass error {max_err:e}");
+            assert_eq!(most, 4 + 6, "60 m paid out in 10 m elements");
+            assert_eq!(c.n_elements(), n0, "back to the starting mesh");
+            let (ins, del) = c.remeshes();
+            assert_eq!((ins, del), (6, 6));
+            assert!(fewest >= 4);
+        }
+    }
+
+    /// With a still schedule the ALE-ANCF cable moves as the plain one, to round-off
+    /// (the mass matrix is summed in another order, so not bitwise).
+    #[test]
+    fn ale_with_zero_payout_is_the_plain_cable() {
+        let mut a = winch_cable(true, crate::ale::PayoutSchedule::constant(0.0).unwrap());
+        let mut cfg = a.cfg.clone();
+        cfg.winch = None;
+        cfg.dt = Some(a.dt());
+        let mut b = AncfCable::new(cfg).unwrap();
+        a.advance(3000).unwrap();
+        b.advance(3000).unwrap();
+        let d = a
+            .node_positions()
+            .iter()
+            .zip(b.node_positions())
+            .map(|(x, y)| (V::from_f64(*x) - V::from_f64(y)).norm())
+            .fold(0.0, f64::max);
+        assert_eq!(a.n_nodes(), b.n_nodes());
+        assert!(d < 1e-9, "zero payout moved the cable by {d} m");
     }
 }

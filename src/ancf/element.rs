@@ -6,7 +6,7 @@
 //! acting on coordinate `q_k` from a load `f` per unit unstretched length is
 //! `int S_k f dx`.
 
-use super::shape::{gauss_legendre, hermite, ShapeAt};
+use super::shape::{gauss_legendre, hermite, AleShapeAt, ShapeAt};
 use crate::math::V3;
 use crate::model::Current;
 use crate::physics::{seabed_force, Coefs, SeabedCoefs};
@@ -158,10 +158,57 @@ pub fn external_load(c: &Coefs<f64>, env: &ElementEnv, p: &PointKinematics) -> V
     f
 }
 
+/// The ALE terms of the variable (winch) element of an ALE-ANCF cable at one
+/// evaluation (see [`AleShapeAt`]): the element's length changes at `ldot` (the payout
+/// rate) and `lddot`.
+#[derive(Clone, Copy, Debug)]
+pub struct AleLoad<'a> {
+    /// [`AleShapeAt`] at each Gauss point of the element.
+    pub shapes: &'a [AleShapeAt],
+    /// `dl/dt`, m/s.
+    pub ldot: f64,
+    /// `d2l/dt2`, m/s^2.
+    pub lddot: f64,
+}
+
+/// Adds the convective (ALE) parts of the material rates to `p` (velocity, slope rate,
+/// rate of `r''`) and returns the convective acceleration `rddot_p` (Eq. 36).
+#[inline(always)]
+pub fn ale_kinematics(
+    al: &AleShapeAt,
+    ldot: f64,
+    lddot: f64,
+    q: &[f64],
+    qd: &[f64],
+    p: &mut PointKinematics,
+) -> V {
+    let (mut dq, mut dqd, mut d2q, mut d1, mut d2) =
+        (V::zero(), V::zero(), V::zero(), V::zero(), V::zero());
+    for k in 0..4 {
+        let (x, xd) = (vec_at(q, k), vec_at(qd, k));
+        dq += x * al.d[k];
+        dqd += xd * al.d[k];
+        d2q += x * al.d2[k];
+        d1 += x * al.d_ds[k];
+        d2 += x * al.d_dds[k];
+    }
+    p.rd += dq * ldot;
+    p.r1d += d1 * ldot;
+    p.r2d += d2 * ldot;
+    dqd * (2.0 * ldot) + dq * lddot + d2q * (ldot * ldot)
+}
+
 /// Adds the element's generalized force (internal and external) at coordinates `q`
 /// and rates `qd` to `f` (12 entries each). When `tangents` is given it receives the
 /// unit tangent at each Gauss point (for the normal added mass).
+///
+/// With `ale` (the variable element of an ALE-ANCF cable) the velocity, strain rate
+/// and curvature rate are the material ones (convective parts included: drag and
+/// damping see the material, not the mesh), and the mass-flow force
+/// `-int mbar S_k rddot_p dx` of Eq. 39 is added, with the cable's own `mbar` (the
+/// reading of Eq. 39's density argued in [`crate::ale`]).
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub fn element_forces(
     c: &AncfCoefs,
     gps: &[GaussPoint],
@@ -170,13 +217,19 @@ pub fn element_forces(
     qd: &[f64],
     f: &mut [f64],
     mut tangents: Option<&mut [V]>,
+    ale: Option<&AleLoad>,
 ) {
     let mut acc = [V::zero(); 4];
     for (g, gp) in gps.iter().enumerate() {
         let sh = &gp.shape;
-        let p = kinematics(sh, q, qd);
+        let mut p = kinematics(sh, q, qd);
+        let mut flow = V::zero();
+        if let Some(a) = ale {
+            let rpp = ale_kinematics(&a.shapes[g], a.ldot, a.lddot, q, qd, &mut p);
+            flow = rpp * (-c.line.mass);
+        }
         let (_, _, n) = axial(&c.line, &p);
-        let fe = external_load(&c.line, env, &p) * gp.dx;
+        let fe = (external_load(&c.line, env, &p) + flow) * gp.dx;
         let ax = p.r1 * (n * gp.dx);
         let (mut bm, mut g1, mut g2) = (0.0, V::zero(), V::zero());
         if c.ei > 0.0 {

@@ -134,6 +134,7 @@
 pub mod band;
 mod cable;
 pub mod element;
+pub mod run;
 pub mod shape;
 
 pub use cable::{

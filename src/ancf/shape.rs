@@ -50,6 +50,60 @@ pub fn hermite(l: f64, xi: f64) -> ShapeAt {
     }
 }
 
+/// How the shape functions of the variable (winch) element of an ALE-ANCF cable change
+/// with the element's unstretched length `l` at a fixed **material** point (paper
+/// Eqs. 35-36).
+///
+/// A material point keeps its unstretched distance `v` from the element's material node
+/// `m`; the winch is at the other end. With the winch at the element's start (`xi = 0`)
+/// the point's coordinate is `xi = 1 - v / l`, at the end `xi = v / l`, so
+/// `dxi/dl = c = (1 - xi) / l` or `-xi / l`, and in both cases `D c = -2 c / l`, where
+/// `D = d/dl` at fixed `v`. Each shape function is `S_k = l^a_k g_k(xi)` (`a_k = 0` for
+/// positions, 1 for slopes), so, with primes for `d/dx`:
+///
+/// ```text
+/// D S_k     = a_k S_k / l + c l dS_k
+/// D^2 S_k   = 2 c (a_k - 1) dS_k + c^2 l^2 d2S_k
+/// D dS_k    = (a_k - 1) dS_k / l + c l d2S_k
+/// D d2S_k   = (a_k - 2) d2S_k / l + c l d3S_k
+/// ```
+///
+/// The material velocity is `S qdot + ldot (D S) q`, and the part of the material
+/// acceleration the coordinates' accelerations do not carry is
+/// `2 ldot (D S) qdot + lddot (D S) q + ldot^2 (D^2 S) q` (the mass-flow term of Eq. 39).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AleShapeAt {
+    /// `D S_k`.
+    pub d: [f64; 4],
+    /// `D^2 S_k`.
+    pub d2: [f64; 4],
+    /// `D dS_k`.
+    pub d_ds: [f64; 4],
+    /// `D d2S_k`.
+    pub d_dds: [f64; 4],
+}
+
+/// [`AleShapeAt`] of an element of length `l` at `xi`, whose winch node is its start
+/// (`winch_at_start`) or its end; `sh` is [`hermite`]`(l, xi)`.
+pub fn ale_shape(l: f64, xi: f64, winch_at_start: bool, sh: &ShapeAt) -> AleShapeAt {
+    let c = if winch_at_start {
+        (1.0 - xi) / l
+    } else {
+        -xi / l
+    };
+    let a = [0.0, 1.0, 0.0, 1.0];
+    let (l2, l3) = (l * l, l * l * l);
+    let d3s = [12.0 / l3, 6.0 / l2, -12.0 / l3, 6.0 / l2];
+    let mut out = AleShapeAt::default();
+    for k in 0..4 {
+        out.d[k] = a[k] * sh.s[k] / l + c * l * sh.ds[k];
+        out.d2[k] = 2.0 * c * (a[k] - 1.0) * sh.ds[k] + c * c * l2 * sh.dds[k];
+        out.d_ds[k] = (a[k] - 1.0) * sh.ds[k] / l + c * l * sh.dds[k];
+        out.d_dds[k] = (a[k] - 2.0) * sh.dds[k] / l + c * l * d3s[k];
+    }
+    out
+}
+
 /// The `n`-point Gauss-Legendre rule on `[0, 1]`: `(points, weights)`, weights summing
 /// to 1. Exact for polynomials of degree `2 n - 1`. Nodes are the roots of the Legendre
 /// polynomial `P_n`, found by Newton's method from Chebyshev first guesses (converged
@@ -102,6 +156,48 @@ mod tests {
                 );
             }
             assert!(x.windows(2).all(|p| p[0] < p[1]));
+        }
+    }
+
+    /// The ALE derivatives are the derivatives in `l` at a fixed distance from the
+    /// material node, by central differences.
+    #[test]
+    fn ale_shape_derivatives_match_finite_differences() {
+        for &start in &[true, false] {
+            for &(l, v) in &[(50.0, 12.0), (7.0, 6.5), (20.0, 0.3)] {
+                let xi_of = |l: f64| if start { 1.0 - v / l } else { v / l };
+                let at = |l: f64| hermite(l, xi_of(l));
+                let a = ale_shape(l, xi_of(l), start, &at(l));
+                let h = 1e-4 * l;
+                let (m, c, p) = (at(l - h), at(l), at(l + h));
+                let close = |x: f64, y: f64| (x - y).abs() <= 1e-6 * (1.0 + y.abs());
+                for k in 0..4 {
+                    let d = (p.s[k] - m.s[k]) / (2.0 * h);
+                    let d2 = (p.s[k] - 2.0 * c.s[k] + m.s[k]) / (h * h);
+                    let dds = (p.ds[k] - m.ds[k]) / (2.0 * h);
+                    let ddds = (p.dds[k] - m.dds[k]) / (2.0 * h);
+                    assert!(
+                        close(a.d[k], d),
+                        "start {start} l {l} k {k}: D S {} vs {d}",
+                        a.d[k]
+                    );
+                    assert!(
+                        close(a.d2[k], d2),
+                        "start {start} l {l} k {k}: D2 S {} vs {d2}",
+                        a.d2[k]
+                    );
+                    assert!(
+                        close(a.d_ds[k], dds),
+                        "start {start} k {k}: D dS {} vs {dds}",
+                        a.d_ds[k]
+                    );
+                    assert!(
+                        close(a.d_dds[k], ddds),
+                        "start {start} k {k}: D d2S {} vs {ddds}",
+                        a.d_dds[k]
+                    );
+                }
+            }
         }
     }
 

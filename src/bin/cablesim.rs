@@ -2,7 +2,7 @@
 
 use anyhow::{Context, Result};
 use cablesim::gpu::Precision;
-use cablesim::options::{Formulation, Scheme, SolverOptions};
+use cablesim::options::{parse_formulation, Scheme, SolverOptions};
 use cablesim::scenario::{Backend, Scenario};
 use cablesim::sim::{self, Overrides, RunOptions};
 use clap::{Parser, Subcommand};
@@ -40,7 +40,8 @@ enum Cmd {
         /// symplectic | rk2 | rk4.
         #[arg(long)]
         scheme: Option<String>,
-        /// glmf | rvef | euler | frenet.
+        /// glmf | rvef | euler | frenet (lumped mass), or ancf (the ANCF reference
+        /// model, ALE-ANCF for winch cables; CPU only; see the scenario's `[ancf]`).
         #[arg(long)]
         formulation: Option<String>,
         /// Time step in seconds (overrides the scenario's `dt`).
@@ -125,11 +126,13 @@ fn real_main() -> Result<()> {
             duration,
             quiet,
         } => {
+            let fm = parse_opt(&formulation, "formulation", parse_formulation)?;
             let overrides = Overrides {
                 backend: parse_opt(&backend, "backend", Backend::parse)?,
                 precision: parse_opt(&precision, "precision", Precision::parse)?,
                 scheme: parse_opt(&scheme, "scheme", Scheme::parse)?,
-                formulation: parse_opt(&formulation, "formulation", Formulation::parse)?,
+                formulation: fm.map(|x| x.1),
+                model: fm.map(|x| x.0),
                 dt: dt
                     .map(|d| {
                         if d > 0.0 && d.is_finite() {

@@ -8,9 +8,11 @@ mod route_file;
 mod winch;
 
 use crate::ale::Winch;
+use crate::ancf::run::AncfSettings;
+use crate::ancf::AddedMass;
 use crate::error::Error;
 use crate::model::{CableDef, Current, Environment, ModelDef, NodeDef, PointMass};
-use crate::options::{Baumgarte, Formulation, Scheme};
+use crate::options::{parse_formulation, Baumgarte, CableModel, Formulation, Scheme};
 pub use ends::EndKind;
 use raw::{RawDt, RawScenario};
 use std::collections::HashMap;
@@ -74,8 +76,10 @@ pub struct SimulationConfig {
     pub precision: Option<String>,
     /// Time scheme.
     pub scheme: Scheme,
-    /// Load formulation.
+    /// Load formulation (of the lumped-mass model).
     pub formulation: Formulation,
+    /// Cable model: lumped mass, or the ANCF reference (`formulation = "ancf"`).
+    pub model: CableModel,
     /// Constraint stabilisation.
     pub baumgarte: Baumgarte,
     /// Blow-up threshold on node speed, m/s.
@@ -95,6 +99,8 @@ pub struct Scenario {
     pub initial: Vec<InitialShape>,
     /// Winches (cables of varying length, ALE-GLMF), at most one per cable.
     pub winches: Vec<Winch>,
+    /// The `[ancf]` table (used when the ANCF model runs).
+    pub ancf: AncfSettings,
 }
 
 /// Builds `Error::Scenario` for `path`.
@@ -259,13 +265,13 @@ impl Scenario {
                 )
             })?,
         };
-        let formulation = match &s.formulation {
-            None => Formulation::Glmf,
-            Some(x) => Formulation::parse(x).ok_or_else(|| {
+        let (cable_model, formulation) = match &s.formulation {
+            None => (CableModel::LumpedMass, Formulation::Glmf),
+            Some(x) => parse_formulation(x).ok_or_else(|| {
                 err(
                     p,
                     "simulation.formulation",
-                    format!("must be glmf, rvef, euler or frenet, got \"{x}\""),
+                    format!("must be glmf, rvef, euler, frenet or ancf, got \"{x}\""),
                 )
             })?,
         };
@@ -288,6 +294,7 @@ impl Scenario {
             precision: s.precision.clone(),
             scheme,
             formulation,
+            model: cable_model,
             baumgarte,
             max_speed,
         };
@@ -557,8 +564,41 @@ impl Scenario {
             model,
             initial,
             winches,
+            ancf: ancf_settings(p, &raw.ancf)?,
         })
     }
+}
+
+/// The `[ancf]` table, validated.
+fn ancf_settings(p: &Path, a: &raw::RawAncf) -> Result<AncfSettings, Error> {
+    let mut s = AncfSettings::default();
+    if let Some(l) = a.element_length {
+        s.element_length = Some(positive(p, "ancf.element_length", l)?);
+    }
+    if let Some(n) = a.gauss_points {
+        if !(1..=16).contains(&n) {
+            return Err(err(
+                p,
+                "ancf.gauss_points",
+                format!("must be between 1 and 16, got {n}"),
+            ));
+        }
+        s.gauss_points = n as usize;
+    }
+    if let Some(m) = &a.added_mass {
+        s.added_mass = match m.as_str() {
+            "normal" => AddedMass::Normal,
+            "isotropic" => AddedMass::Isotropic,
+            other => {
+                return Err(err(
+                    p,
+                    "ancf.added_mass",
+                    format!("must be \"normal\" or \"isotropic\", got \"{other}\""),
+                ))
+            }
+        };
+    }
+    Ok(s)
 }
 
 enum Selection {

@@ -19,6 +19,17 @@ pub struct RawScenario {
     pub cable_arrays: Vec<toml::Table>,
     #[serde(default)]
     pub output: RawOutput,
+    #[serde(default)]
+    pub ancf: RawAncf,
+}
+
+/// The `[ancf]` table: settings of the ANCF reference model.
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct RawAncf {
+    pub element_length: Option<f64>,
+    pub gauss_points: Option<i64>,
+    pub added_mass: Option<String>,
 }
 
 /// `dt = "auto"` or a number.
