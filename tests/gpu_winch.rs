@@ -255,16 +255,38 @@ fn gpu_f64_matches_cpu_f64_through_payout_and_retrieval() {
             let eg = gpu.evaluate().unwrap();
             let scale_t = max_of(ec.tension.iter().map(|t| t.abs()));
             let tol_t = rope().ea * (tol_r / l0_min + 100.0 * EPS) + 100.0 * EPS * scale_t;
-            let dt_ = max_of(eg.tension.iter().zip(&ec.tension).map(|(a, b)| (a - b).abs()));
+            let dt_ = max_of(
+                eg.tension
+                    .iter()
+                    .zip(&ec.tension)
+                    .map(|(a, b)| (a - b).abs()),
+            );
             let df = max_of(
                 end_force_diffs(&gpu.layout, &eg, &cpu.layout, &ec, 0)
                     .iter()
                     .map(|x| x.0),
             );
-            let dreact = max_of(eg.reaction.iter().zip(&ec.reaction).map(|(a, b)| dist(*a, *b)));
-            assert!(dr <= tol_r, "{end:?} t = {} s: |dr| {dr:e} > {tol_r:e}", cpu.t);
-            assert!(dv <= tol_v, "{end:?} t = {} s: |dv| {dv:e} > {tol_v:e}", cpu.t);
-            assert!(dt_ <= tol_t, "{end:?} t = {} s: |dT| {dt_:e} > {tol_t:e}", cpu.t);
+            let dreact = max_of(
+                eg.reaction
+                    .iter()
+                    .zip(&ec.reaction)
+                    .map(|(a, b)| dist(*a, *b)),
+            );
+            assert!(
+                dr <= tol_r,
+                "{end:?} t = {} s: |dr| {dr:e} > {tol_r:e}",
+                cpu.t
+            );
+            assert!(
+                dv <= tol_v,
+                "{end:?} t = {} s: |dv| {dv:e} > {tol_v:e}",
+                cpu.t
+            );
+            assert!(
+                dt_ <= tol_t,
+                "{end:?} t = {} s: |dT| {dt_:e} > {tol_t:e}",
+                cpu.t
+            );
             assert!(
                 df <= tol_t && dreact <= tol_t,
                 "{end:?} t = {} s: end forces differ by {df:e}, reactions by {dreact:e} > {tol_t:e}",
@@ -300,7 +322,10 @@ fn gpu_f64_matches_cpu_f64_through_payout_and_retrieval() {
         assert_eq!((st.inserted, st.deleted), (3, 3), "{end:?}");
         assert_eq!(meshes, vec![4, 5, 6, 7, 6, 5, 4], "{end:?}");
         assert_eq!(gpu.remeshes, 6);
-        assert!(worst_mass < 1e-13, "{end:?}: GPU mass vs mbar L: {worst_mass:e}");
+        assert!(
+            worst_mass < 1e-13,
+            "{end:?}: GPU mass vs mbar L: {worst_mass:e}"
+        );
         // The cable moved: the check is not of a cable at rest.
         let moved = max_of(cpu.r.iter().zip(&pos).map(|(a, b)| dist(a.to_f64(), *b)));
         assert!(moved > 0.5, "{end:?}: moved {moved} m");
@@ -347,7 +372,10 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
         let l = sg.deployed_length;
         let (r, _) = gpu.state().unwrap();
         let last = |nodes: &[u32]| nodes[nodes.len() - 1] as usize;
-        let (ig, ic) = (last(&gpu.layout.cables[ci].nodes), last(&cpu.layout.cables[ci].nodes));
+        let (ig, ic) = (
+            last(&gpu.layout.cables[ci].nodes),
+            last(&cpu.layout.cables[ci].nodes),
+        );
         let dpos = dist(r[ig], cpu.r[ic].to_f64());
         assert!(
             dpos <= 1e-4 * l,
@@ -388,7 +416,10 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
     assert!(st.inserted >= 2, "{path}: the run should remesh ({st:?})");
     assert_eq!(gpu.remeshes, st.inserted + st.deleted);
     // The masses are f32 sums of f32 half masses.
-    assert!(worst_mass < 1e-5, "{path}: GPU f32 mass vs mbar L: {worst_mass:e}");
+    assert!(
+        worst_mass < 1e-5,
+        "{path}: GPU f32 mass vs mbar L: {worst_mass:e}"
+    );
 }
 
 #[test]

@@ -9,7 +9,13 @@
 //! `r_d(t0 + tau)` with a small `tau`, which keeps f32 route positions and angles
 //! accurate over long runs. Nothing is read back while stepping except, at the end of
 //! an [`GpuSolver::advance`] call, the 16-byte status; state, tensions and reactions
-//! come back only when asked for, through one staging buffer created once.
+//! come back only when asked for, through one staging buffer created once per layout.
+//!
+//! Winch cables: per submission the host also writes the `payout` rows (one [`Payout`]
+//! per winch and step), and an `advance` call stops its submissions at each step after
+//! which a winch cable must be remeshed, reads the state back, remeshes on the host
+//! (`cpu::ale::AleState::remesh`, the CPU path's code), rebuilds the layout's buffers
+//! and bind group (the pipelines stay) and uploads the state: see [`GpuSolver`].
 
 use super::context::GpuContext;
 use super::layout::*;
@@ -779,8 +785,11 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         n: u64,
     ) -> Result<Option<(u64, u32)>, Error> {
         let ctx = &self.ctx;
-        ctx.queue
-            .write_buffer(&self.inst.buf.status, 0, bytemuck::bytes_of(&Status::default()));
+        ctx.queue.write_buffer(
+            &self.inst.buf.status,
+            0,
+            bytemuck::bytes_of(&Status::default()),
+        );
         let dt64 = self.dt64;
         let mut done = 0u64;
         let t_start = Instant::now();
@@ -790,8 +799,11 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             self.write_routes(lay, host, (step0 + done) as f64 * dt64);
             self.write_payout(host, step0 + done, chunk);
             self.inst.params.step_base = done as u32;
-            ctx.queue
-                .write_buffer(&self.inst.buf.params, 0, bytemuck::bytes_of(&self.inst.params));
+            ctx.queue.write_buffer(
+                &self.inst.buf.params,
+                0,
+                bytemuck::bytes_of(&self.inst.params),
+            );
             let mut enc = ctx
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -896,8 +908,11 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         self.write_routes(lay, host, step as f64 * self.dt64);
         self.write_payout(host, step, 1);
         self.inst.params.step_base = 0;
-        ctx.queue
-            .write_buffer(&self.inst.buf.params, 0, bytemuck::bytes_of(&self.inst.params));
+        ctx.queue.write_buffer(
+            &self.inst.buf.params,
+            0,
+            bytemuck::bytes_of(&self.inst.params),
+        );
         let mut enc = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
