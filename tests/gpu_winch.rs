@@ -5,7 +5,9 @@
 //!   and deleted counts, physical coordinates) after every remeshing, positions,
 //!   velocities, tensions and the winch reaction to round-off, with the tolerances
 //!   derived as in tests/gpu_parity.rs (`N` steps of a damped model perturbed by a few
-//!   ulps per step: `|dr| <= 10 N eps L`, and from it the velocity and tension bounds).
+//!   ulps per step: `|dr| <= 10 N eps L`, and from it the velocity and tension bounds);
+//!   and the same with several cables in one packed layout, remeshing at different
+//!   steps.
 //! - GPU f32 against CPU f64 on `examples/winch_deploy.toml` (its whole 150 s) and on
 //!   `examples/case2_circle.toml` shortened to 100 s: the last node within `1e-4` of
 //!   the deployed length, both end forces within 1%, the same mesh throughout.
@@ -186,6 +188,161 @@ fn variable_element(lay: &Layout, c: usize, end: WinchEnd) -> usize {
     }
 }
 
+/// Runs `def` with `winches` on the CPU (f64, general path) and the GPU (f64) for
+/// `steps` steps of `dt`, comparing every 500 steps: the winch status of every winch
+/// and the layout are identical, positions, velocities, tensions, end forces and
+/// reactions within the round-off bounds of tests/gpu_parity.rs, and the mass in the
+/// water of each winch cable from the GPU's half masses is `mbar L(t)`. Returns the
+/// element counts each winch cable went through, and the final winch status.
+fn compare_f64(
+    ctx: &GpuContext,
+    label: &str,
+    def: ModelDef,
+    winches: Vec<Winch>,
+    dt: f64,
+    steps: u64,
+) -> (Vec<Vec<usize>>, Vec<cablesim::cpu::WinchStatus>, u64) {
+    let chunk = 500u64;
+    let mbar = rope().mass_per_length;
+    let (lay0, pos) = Layout::build(&def).unwrap();
+    let opts = SolverOptions {
+        dt,
+        ..Default::default()
+    };
+    // The fastest mode: every element at the shortest a variable one gets, 0.5 l_s.
+    let l0_min = winches
+        .iter()
+        .map(|w| 0.5 * w.element_length)
+        .fold(f64::INFINITY, f64::min);
+    let mut worst = lay0.clone();
+    worst.elem_l0.iter_mut().for_each(|l| *l = l0_min);
+    let omega = 2.0 / cablesim::stability::stable_step(&worst, opts.scheme, opts.baumgarte).dt;
+    let mut cpu = CpuSolver::with_winches(def.clone(), winches.clone(), &pos, opts).unwrap();
+    cpu.use_chain_kernel = false;
+    let mut gpu = GpuSolver::with_winches(
+        ctx,
+        def.clone(),
+        winches.clone(),
+        &pos,
+        opts,
+        Precision::F64,
+    )
+    .unwrap();
+    let (mut worst_r, mut worst_v, mut worst_t, mut worst_f) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let (mut ratio_r, mut ratio_v, mut ratio_t) = (0.0f64, 0.0f64, 0.0f64);
+    let mut worst_mass = 0.0f64;
+    let mut meshes: Vec<Vec<usize>> = cpu
+        .winch_status()
+        .iter()
+        .map(|s| vec![s.elements])
+        .collect();
+    let mut done = 0;
+    while done < steps {
+        let n = chunk.min(steps - done);
+        cpu.advance(n).unwrap();
+        gpu.advance(n).unwrap();
+        done += n;
+        assert_eq!(gpu.steps, cpu.steps);
+        // The same mesh: the host remeshes both from the same schedules at the same
+        // steps, so the mesh state is identical, not just close.
+        let (sc, sg) = (cpu.winch_status(), gpu.winch_status());
+        assert_eq!(sc, sg, "{label}: winch status at t = {} s", cpu.t);
+        assert_eq!(gpu.layout.n_nodes(), cpu.layout.n_nodes());
+        for (a, b) in gpu.layout.cables.iter().zip(&cpu.layout.cables) {
+            assert_eq!(a.nodes, b.nodes, "{label}: cable {}", a.name);
+        }
+        assert_eq!(gpu.layout.elem_l0, cpu.layout.elem_l0);
+        for (m, s) in meshes.iter_mut().zip(&sc) {
+            if *m.last().unwrap() != s.elements {
+                m.push(s.elements);
+            }
+        }
+        // Round-off bounds after `done` steps (tests/gpu_parity.rs): the largest
+        // coordinate relative to its block's mean (what the GPU's origins leave).
+        let nf = done as f64;
+        let mut scale_l = 0.0f64;
+        for b in &cpu.layout.blocks {
+            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
+            let k = (n1 - n0) as f64;
+            let mean = cpu.r[n0..n1].iter().fold([0.0; 3], |m, p| {
+                let p = p.to_f64();
+                [m[0] + p[0] / k, m[1] + p[1] / k, m[2] + p[2] / k]
+            });
+            scale_l = scale_l.max(max_of(
+                cpu.r[n0..n1].iter().map(|p| dist(p.to_f64(), mean) + 1.0),
+            ));
+        }
+        let scale_v = max_of(cpu.v.iter().map(|v| v.norm())).max(1e-3);
+        let tol_r = 10.0 * nf * EPS * scale_l;
+        let tol_v = omega * tol_r + 10.0 * nf * EPS * scale_v;
+        let (r, v) = gpu.state().unwrap();
+        let dr = max_of(r.iter().zip(&cpu.r).map(|(a, b)| dist(*a, b.to_f64())));
+        let dv = max_of(v.iter().zip(&cpu.v).map(|(a, b)| dist(*a, b.to_f64())));
+        let ec = cpu.evaluate().unwrap();
+        let eg = gpu.evaluate().unwrap();
+        let scale_t = max_of(ec.tension.iter().map(|t| t.abs()));
+        let tol_t = rope().ea * (tol_r / l0_min + 100.0 * EPS) + 100.0 * EPS * scale_t;
+        let dt_ = max_of(
+            eg.tension
+                .iter()
+                .zip(&ec.tension)
+                .map(|(a, b)| (a - b).abs()),
+        );
+        let df = max_of(
+            (0..cpu.layout.cables.len())
+                .flat_map(|c| end_force_diffs(&gpu.layout, &eg, &cpu.layout, &ec, c).map(|x| x.0)),
+        );
+        let dreact = max_of(
+            eg.reaction
+                .iter()
+                .zip(&ec.reaction)
+                .map(|(a, b)| dist(*a, *b)),
+        );
+        let t = cpu.t;
+        assert!(dr <= tol_r, "{label} t = {t} s: |dr| {dr:e} > {tol_r:e}");
+        assert!(dv <= tol_v, "{label} t = {t} s: |dv| {dv:e} > {tol_v:e}");
+        assert!(dt_ <= tol_t, "{label} t = {t} s: |dT| {dt_:e} > {tol_t:e}");
+        assert!(
+            df <= tol_t && dreact <= tol_t,
+            "{label} t = {t} s: end forces differ by {df:e}, reactions by {dreact:e} > {tol_t:e}"
+        );
+        (worst_r, worst_v, worst_t, worst_f) = (
+            worst_r.max(dr),
+            worst_v.max(dv),
+            worst_t.max(dt_),
+            worst_f.max(df.max(dreact)),
+        );
+        (ratio_r, ratio_v, ratio_t) = (
+            ratio_r.max(dr / tol_r),
+            ratio_v.max(dv / tol_v),
+            ratio_t.max(dt_ / tol_t),
+        );
+        // Mass in the water from the GPU's own half masses: mbar L(t).
+        for (w, st) in winches.iter().zip(&sg) {
+            let var = variable_element(&gpu.layout, w.cable, w.end);
+            let (mass, len) = mass_and_length(&gpu.layout, &eg, w.cable, var, st.variable_l0);
+            let l = st.deployed_length;
+            assert!((len - l).abs() <= 1e-12 * l, "layout length {len} vs L {l}");
+            worst_mass = worst_mass.max((mass - mbar * l).abs() / (mbar * l));
+        }
+    }
+    eprintln!(
+        "{label}: meshes {meshes:?} elements ({} GPU remeshings); \
+         worst |dr| {worst_r:.2e} m, |dv| {worst_v:.2e} m/s, |dT| {worst_t:.2e} N, |dF_end|, |dReaction| {worst_f:.2e} N \
+         (largest fraction of the round-off bound: r {ratio_r:.1e}, v {ratio_v:.1e}, T {ratio_t:.1e}); \
+         GPU mass vs mbar L: {worst_mass:.1e}",
+        gpu.remeshes
+    );
+    assert!(
+        worst_mass < 1e-13,
+        "{label}: GPU mass vs mbar L: {worst_mass:e}"
+    );
+    // The cables moved: the check is not of cables at rest.
+    let moved = max_of(cpu.r.iter().zip(&pos).map(|(a, b)| dist(a.to_f64(), *b)));
+    assert!(moved > 0.5, "{label}: moved {moved} m");
+    (meshes, gpu.winch_status(), gpu.remeshes)
+}
+
 #[test]
 fn gpu_f64_matches_cpu_f64_through_payout_and_retrieval() {
     let Some(ctx) = gpu_context("gpu_f64_matches_cpu_f64_through_payout_and_retrieval", true)
@@ -193,143 +350,70 @@ fn gpu_f64_matches_cpu_f64_through_payout_and_retrieval() {
         return;
     };
     let (l_s, n0, dt) = (2.0, 4usize, 2e-4);
-    let steps = (5.5 / dt) as u64;
-    let chunk = 500u64;
-    let mbar = rope().mass_per_length;
     for end in [WinchEnd::Start, WinchEnd::End] {
         let def = hanging(n0, l_s, end);
-        let (lay0, pos) = Layout::build(&def).unwrap();
-        let opts = SolverOptions {
-            dt,
-            ..Default::default()
-        };
-        // The fastest mode: the variable element at its shortest, 0.5 l_s.
-        let mut worst = lay0.clone();
-        worst.elem_l0.iter_mut().for_each(|l| *l = 0.5 * l_s);
-        let omega = 2.0 / cablesim::stability::stable_step(&worst, opts.scheme, opts.baumgarte).dt;
-        let l0_min = 0.5 * l_s;
-        let w = || winch(end, out_and_back(), l_s);
-        let mut cpu = CpuSolver::with_winches(def.clone(), vec![w()], &pos, opts).unwrap();
-        cpu.use_chain_kernel = false;
-        let mut gpu =
-            GpuSolver::with_winches(&ctx, def.clone(), vec![w()], &pos, opts, Precision::F64)
-                .unwrap();
-        let (mut worst_r, mut worst_v, mut worst_t, mut worst_f) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-        let (mut ratio_r, mut ratio_v, mut ratio_t) = (0.0f64, 0.0f64, 0.0f64);
-        let mut worst_mass = 0.0f64;
-        let mut meshes = vec![n0];
-        let mut done = 0;
-        while done < steps {
-            let n = chunk.min(steps - done);
-            cpu.advance(n).unwrap();
-            gpu.advance(n).unwrap();
-            done += n;
-            assert_eq!(gpu.steps, cpu.steps);
-            // The same mesh: the host remeshes both from the same schedule at the same
-            // steps, so the mesh state is identical, not just close.
-            let (sc, sg) = (&cpu.winch_status()[0], &gpu.winch_status()[0]);
-            assert_eq!(sc, sg, "{end:?}: winch status at t = {} s", cpu.t);
-            assert_eq!(gpu.layout.n_nodes(), cpu.layout.n_nodes());
-            assert_eq!(gpu.layout.cables[0].nodes, cpu.layout.cables[0].nodes);
-            assert_eq!(gpu.layout.elem_l0, cpu.layout.elem_l0);
-            if *meshes.last().unwrap() != sc.elements {
-                meshes.push(sc.elements);
-            }
-            // Round-off bounds after `done` steps (tests/gpu_parity.rs).
-            let nf = done as f64;
-            // Largest coordinate relative to the (one) block's mean: what the GPU's
-            // origin leaves.
-            let nn = cpu.r.len() as f64;
-            let mean = cpu.r.iter().fold([0.0; 3], |m, p| {
-                let p = p.to_f64();
-                [m[0] + p[0] / nn, m[1] + p[1] / nn, m[2] + p[2] / nn]
-            });
-            let scale_l = max_of(cpu.r.iter().map(|p| dist(p.to_f64(), mean) + 1.0));
-            let scale_v = max_of(cpu.v.iter().map(|v| v.norm())).max(1e-3);
-            let tol_r = 10.0 * nf * EPS * scale_l;
-            let tol_v = omega * tol_r + 10.0 * nf * EPS * scale_v;
-            let (r, v) = gpu.state().unwrap();
-            let dr = max_of(r.iter().zip(&cpu.r).map(|(a, b)| dist(*a, b.to_f64())));
-            let dv = max_of(v.iter().zip(&cpu.v).map(|(a, b)| dist(*a, b.to_f64())));
-            let ec = cpu.evaluate().unwrap();
-            let eg = gpu.evaluate().unwrap();
-            let scale_t = max_of(ec.tension.iter().map(|t| t.abs()));
-            let tol_t = rope().ea * (tol_r / l0_min + 100.0 * EPS) + 100.0 * EPS * scale_t;
-            let dt_ = max_of(
-                eg.tension
-                    .iter()
-                    .zip(&ec.tension)
-                    .map(|(a, b)| (a - b).abs()),
-            );
-            let df = max_of(
-                end_force_diffs(&gpu.layout, &eg, &cpu.layout, &ec, 0)
-                    .iter()
-                    .map(|x| x.0),
-            );
-            let dreact = max_of(
-                eg.reaction
-                    .iter()
-                    .zip(&ec.reaction)
-                    .map(|(a, b)| dist(*a, *b)),
-            );
-            assert!(
-                dr <= tol_r,
-                "{end:?} t = {} s: |dr| {dr:e} > {tol_r:e}",
-                cpu.t
-            );
-            assert!(
-                dv <= tol_v,
-                "{end:?} t = {} s: |dv| {dv:e} > {tol_v:e}",
-                cpu.t
-            );
-            assert!(
-                dt_ <= tol_t,
-                "{end:?} t = {} s: |dT| {dt_:e} > {tol_t:e}",
-                cpu.t
-            );
-            assert!(
-                df <= tol_t && dreact <= tol_t,
-                "{end:?} t = {} s: end forces differ by {df:e}, reactions by {dreact:e} > {tol_t:e}",
-                cpu.t
-            );
-            (worst_r, worst_v, worst_t, worst_f) = (
-                worst_r.max(dr),
-                worst_v.max(dv),
-                worst_t.max(dt_),
-                worst_f.max(df.max(dreact)),
-            );
-            (ratio_r, ratio_v, ratio_t) = (
-                ratio_r.max(dr / tol_r),
-                ratio_v.max(dv / tol_v),
-                ratio_t.max(dt_ / tol_t),
-            );
-            // Mass in the water from the GPU's own half masses: mbar L(t).
-            let var = variable_element(&gpu.layout, 0, end);
-            let (mass, len) = mass_and_length(&gpu.layout, &eg, 0, var, sg.variable_l0);
-            let l = sg.deployed_length;
-            assert!((len - l).abs() <= 1e-12 * l, "layout length {len} vs L {l}");
-            worst_mass = worst_mass.max((mass - mbar * l).abs() / (mbar * l));
-        }
-        let st = &gpu.winch_status()[0];
-        eprintln!(
-            "{end:?}: meshes {meshes:?} elements ({} inserted, {} deleted, {} GPU remeshings); \
-             worst |dr| {worst_r:.2e} m, |dv| {worst_v:.2e} m/s, |dT| {worst_t:.2e} N, |dF_end| {worst_f:.2e} N \
-             (largest fraction of the round-off bound: r {ratio_r:.1e}, v {ratio_v:.1e}, T {ratio_t:.1e}); \
-             GPU mass vs mbar L: {worst_mass:.1e}",
-            st.inserted, st.deleted, gpu.remeshes
-        );
+        let w = winch(end, out_and_back(), l_s);
+        let label = format!("{end:?}");
+        let (meshes, st, remeshes) = compare_f64(&ctx, &label, def, vec![w], dt, 27_500);
         // Both node insertion and deletion happened, and the mesh came back.
-        assert_eq!((st.inserted, st.deleted), (3, 3), "{end:?}");
-        assert_eq!(meshes, vec![4, 5, 6, 7, 6, 5, 4], "{end:?}");
-        assert_eq!(gpu.remeshes, 6);
-        assert!(
-            worst_mass < 1e-13,
-            "{end:?}: GPU mass vs mbar L: {worst_mass:e}"
-        );
-        // The cable moved: the check is not of a cable at rest.
-        let moved = max_of(cpu.r.iter().zip(&pos).map(|(a, b)| dist(a.to_f64(), *b)));
-        assert!(moved > 0.5, "{end:?}: moved {moved} m");
+        assert_eq!((st[0].inserted, st[0].deleted), (3, 3), "{end:?}");
+        assert_eq!(meshes[0], vec![4, 5, 6, 7, 6, 5, 4], "{end:?}");
+        assert_eq!(remeshes, 6);
     }
+}
+
+/// Several cables in one packed layout (separate blocks): one paid out from its start
+/// node, one hauled in (then paid out) at its end node at another rate, so that they
+/// remesh at different steps, and one plain cable without a winch between them.
+#[test]
+fn gpu_f64_matches_cpu_f64_with_several_winch_cables() {
+    let Some(ctx) = gpu_context("gpu_f64_matches_cpu_f64_with_several_winch_cables", true) else {
+        return;
+    };
+    let (l_s, dt) = (2.0, 2e-4);
+    let mut def = hanging(4, l_s, WinchEnd::Start);
+    for (k, (n, end)) in [(5usize, WinchEnd::End), (6, WinchEnd::End)]
+        .into_iter()
+        .enumerate()
+    {
+        let mut d = hanging(n, l_s, end);
+        let off = def.nodes.len();
+        for nd in &mut d.nodes {
+            nd.position[0] += 10.0 * (k + 1) as f64;
+            if let Some(Route::Fixed { position }) = &mut nd.route {
+                position[0] += 10.0 * (k + 1) as f64;
+            }
+        }
+        def.nodes.extend(d.nodes);
+        let mut c = d.cables.remove(0);
+        c.nodes.iter_mut().for_each(|x| *x += off);
+        c.name = format!("c{}", k + 1);
+        def.cables.push(c);
+    }
+    // Cable 2 (the 6-element one) hauls 4.5 m in at up to 2.25 m/s, then pays 4.5 m
+    // out (no remeshing falls on a step where the variable element is exactly at a
+    // threshold: 1.5 m at the turn).
+    let in_and_out = PayoutSchedule::rates(&[
+        (0.0, 0.0),
+        (0.5, -2.25),
+        (2.0, -2.25),
+        (2.5, 0.0),
+        (3.0, 2.25),
+        (4.5, 2.25),
+        (5.0, 0.0),
+    ])
+    .unwrap();
+    let winches = vec![
+        winch(WinchEnd::Start, out_and_back(), l_s),
+        Winch {
+            cable: 2,
+            ..winch(WinchEnd::End, in_and_out, l_s)
+        },
+    ];
+    let (meshes, st, remeshes) = compare_f64(&ctx, "several", def, winches, dt, 27_500);
+    assert_eq!(meshes[0], vec![4, 5, 6, 7, 6, 5, 4]);
+    assert_eq!(meshes[1], vec![6, 5, 4, 5, 6]);
+    assert_eq!(remeshes, 10, "{st:?}");
 }
 
 /// A scenario run on the CPU (f64) and the GPU (f32), compared every `every` s.
