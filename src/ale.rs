@@ -4,7 +4,11 @@
 //! ([`PayoutSchedule`]), the winch description ([`Winch`]), the kinematic mesh state
 //! of a winch cable and its remeshing rules ([`WinchTracker`], paper Fig. 14), and
 //! the mass-flow force ([`mass_flow_forces`], paper Eq. 39). The CPU stepper applies
-//! them (`cpu::CpuSolver::with_winches`).
+//! them (`cpu::CpuSolver::with_winches`), and so does the GPU path
+//! (`gpu::GpuSolver::with_winches`): its shaders evaluate the variable element and the
+//! mass-flow force from per-step rows the host computes from the schedule, and its
+//! remeshing is the CPU path's own code, run on the host at the steps the schedule
+//! fixes in advance, with one state read-back per remeshing.
 //!
 //! # Physical coordinate
 //! Every node of a winch cable carries a physical coordinate `p`: the *unstretched*

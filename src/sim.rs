@@ -239,7 +239,7 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         Some(p) => Some(p),
         None => sc.sim.precision.as_deref().and_then(Precision::parse),
     };
-    let choice = choose_backend(backend, precision, &lay, &opts, !sc.winches.is_empty())?;
+    let choice = choose_backend(backend, precision, &lay, &opts, sc)?;
     let mut out = OutputWriter::create(&ro.out_dir, &lay)?;
     let mut solver = match choice {
         BackendChoice::Cpu if !sc.winches.is_empty() => Stepper::Cpu(CpuSolver::with_winches(
@@ -249,6 +249,9 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
             opts,
         )?),
         BackendChoice::Cpu => Stepper::Cpu(CpuSolver::new(lay, &pos, opts)),
+        BackendChoice::Gpu(ctx, p) if !sc.winches.is_empty() => Stepper::Gpu(
+            GpuSolver::with_winches(&ctx, sc.model.clone(), sc.winches.clone(), &pos, opts, p)?,
+        ),
         BackendChoice::Gpu(ctx, p) => Stepper::Gpu(GpuSolver::new(&ctx, lay, &pos, opts, p)?),
     };
 
@@ -404,8 +407,12 @@ pub fn choose_backend(
     precision: Option<Precision>,
     lay: &Layout,
     opts: &SolverOptions,
-    has_winches: bool,
+    sc: &Scenario,
 ) -> Result<BackendChoice, Error> {
+    let unsupported = || {
+        crate::gpu::solver::unsupported(lay, opts)
+            .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
+    };
     let need_f64 = precision == Some(Precision::F64);
     let p = precision.unwrap_or_default();
     match backend {
@@ -416,9 +423,7 @@ pub fn choose_backend(
             Ok(BackendChoice::Cpu)
         }
         Backend::Gpu => {
-            let what = crate::gpu::solver::unsupported(lay, opts)
-                .or_else(|| has_winches.then(|| "winch cables (ALE-GLMF)".to_string()));
-            if let Some(what) = what {
+            if let Some(what) = unsupported() {
                 return Err(Error::GpuUnsupported(format!(
                     "{what}; use --backend cpu (or auto)"
                 )));
@@ -428,9 +433,7 @@ pub fn choose_backend(
             Ok(BackendChoice::Gpu(Box::new(ctx), p))
         }
         Backend::Auto => {
-            let what = crate::gpu::solver::unsupported(lay, opts)
-                .or_else(|| has_winches.then(|| "winch cables (ALE-GLMF)".to_string()));
-            if let Some(what) = what {
+            if let Some(what) = unsupported() {
                 log::info!(
                     "backend auto: the GPU path does not do {what} yet; running the f64 CPU reference path"
                 );
@@ -485,14 +488,14 @@ impl Stepper {
     pub fn node_steps(&self) -> u64 {
         match self {
             Stepper::Cpu(s) => s.node_steps,
-            Stepper::Gpu(s) => s.layout.n_nodes() as u64 * s.steps,
+            Stepper::Gpu(s) => s.node_steps,
         }
     }
-    /// State of the winch cables (CPU only: the GPU path has none).
+    /// State of the winch cables.
     pub fn winch_status(&self) -> Vec<WinchStatus> {
         match self {
             Stepper::Cpu(s) => s.winch_status(),
-            Stepper::Gpu(_) => Vec::new(),
+            Stepper::Gpu(s) => s.winch_status(),
         }
     }
     /// Steps taken.

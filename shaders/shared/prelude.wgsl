@@ -13,6 +13,9 @@
 // resolves only ~8e-6 m, which is a strain error of ~1e-6 on a 5 m element.
 
 const NO_CONSTRAINT: u32 = 0xffffffffu;
+// ElemParams.winch and NodeParams.winch of everything that is not a variable element
+// of a winch cable (or one of its two nodes).
+const NO_WINCH: u32 = 0xffffffffu;
 const ROUTE_FIXED: u32 = 0u;
 const ROUTE_LINE: u32 = 1u;
 const ROUTE_CIRCLE: u32 = 2u;
@@ -29,7 +32,8 @@ struct Params {
     seabed: u32,
     // Steps of this advance call before the current submission.
     step_base: u32,
-    pad: u32,
+    // Winch cables: rows of `payout` per step.
+    n_winch: u32,
     dt: R,
     alpha: R,
     beta: R,
@@ -65,30 +69,47 @@ struct LineParams {
 }
 
 // One element; its unstretched length is the compensated pair l0 + l0_lo (l0_lo is
-// zero in f64). Rust: ElemParams.
+// zero in f64). The variable element of a winch cable has winch = 2 x its winch
+// index (+ 1 when the winch node is b) and takes its l0 from `payout`; every other
+// element has NO_WINCH. Rust: ElemParams.
 struct ElemParams {
     a: u32,
     b: u32,
     line: u32,
     current: u32,
     block: u32,
-    pad: u32,
+    winch: u32,
     l0: R,
     l0_lo: R,
 }
 
-// One node; its incidence entries are inc[inc_start..inc_end]. Rust: NodeParams.
+// One node; its incidence entries are inc[inc_start..inc_end]. `winch` is the winch
+// index of the two nodes of a variable element (m and w), else NO_WINCH.
+// Rust: NodeParams.
 struct NodeParams {
     inc_start: u32,
     inc_end: u32,
     constraint: u32,
     block: u32,
     current: u32,
-    pad: u32,
+    winch: u32,
     point_mass: R,
     point_weight_z: R,
     point_drag: R,
     tributary: R,
+}
+
+// The variable element of one winch cable at one step (ALE-GLMF, crate::ale),
+// evaluated on the host from the payout schedule exactly as the CPU path does:
+// l0 + l0_lo = l0_base + (dL(t) - dL_base), the payout rate and acceleration, and
+// the change (l0 - l0_base) / 2 of the tributary lengths of its two nodes. Row
+// `step.k * params.n_winch + winch` of `payout`. Rust: Payout.
+struct Payout {
+    l0: R,
+    l0_lo: R,
+    rate: R,
+    accel: R,
+    trib: R,
 }
 
 // A route rebased to the start of the submission and to the block origin:
@@ -187,8 +208,11 @@ struct ElemLoads {
     half_added: R,
 }
 
-// Per node, written by the evaluate pass: total force and acceleration.
-// Rust: NodeOut.
+// Per node, written by the evaluate pass: total force and acceleration. While
+// stepping, `force` of the two nodes of a variable element carries the mass-flow
+// force of Eq. 39, written by the element pass and read by the node pass (the node
+// pass cannot compute it: it would read the other node's state while that node's
+// invocation overwrites it). Rust: NodeOut.
 struct NodeOut {
     force: vec4<R>,
     acc: vec4<R>,
@@ -219,6 +243,7 @@ struct Status {
 @group(0) @binding(13) var<storage, read_write> reactions: array<vec4<R>>;
 @group(0) @binding(14) var<storage, read_write> status: Status;
 @group(0) @binding(15) var<storage, read> route_samples: array<RouteSample>;
+@group(0) @binding(16) var<storage, read> payout: array<Payout>;
 
 // ---- Small math ----
 
@@ -576,9 +601,19 @@ fn gather_node(i: u32, nd: NodeParams, s: NodeState) -> NodeForce {
         let vr = current_at(nd.current, z) - v;
         f += vr * (nd.point_drag * norm3(vr));
     }
+    var trib = nd.tributary;
+    if nd.winch != NO_WINCH {
+        // A node of a variable element: its tributary length follows l0_v, and the
+        // element pass left the mass-flow force of Eq. 39 in node_out (crate::ale).
+        let py = payout[step.k * params.n_winch + nd.winch];
+        trib += py.trib;
+        if py.rate != R(0.0) || py.accel != R(0.0) {
+            f += node_out[i].force.xyz;
+        }
+    }
     if params.seabed != 0u {
         let pen = (blk.zb - s.r_hi.z) - s.r_lo.z;
-        f += seabed_force(pen, nd.tributary, v);
+        f += seabed_force(pen, trib, v);
     }
     return NodeForce(f, m);
 }

@@ -8,6 +8,7 @@
 //! is edited (a node inserted or deleted next to the winch) and the packed layout is
 //! rebuilt, the state carried over node by node.
 
+use super::WinchStatus;
 use crate::ale::{MeshOp, PayoutSchedule, Winch, WinchEnd, WinchTracker};
 use crate::error::Error;
 use crate::math::V3;
@@ -139,6 +140,49 @@ impl AleState {
             });
         }
         self.blocks = blocks;
+    }
+
+    /// Where each winch cable stands at time `t`.
+    pub fn status(&self, t: f64) -> Vec<WinchStatus> {
+        self.winches
+            .iter()
+            .map(|(w, tr)| {
+                let dl = w.schedule.eval(t).dl;
+                let mut p = tr.physical_coordinates(dl);
+                // Far end first; the cable's node order runs from the winch when the
+                // winch is at its start.
+                if w.end == WinchEnd::Start {
+                    p.reverse();
+                }
+                WinchStatus {
+                    cable: w.cable,
+                    deployed_length: tr.deployed(dl),
+                    variable_l0: tr.variable_l0(dl),
+                    physical_coordinates: p,
+                    elements: tr.n_elements(),
+                    inserted: tr.inserted,
+                    deleted: tr.deleted,
+                }
+            })
+            .collect()
+    }
+
+    /// The variable elements of layout `lay` (the one [`Self::index`] was last given)
+    /// in packed indices, block by block: `(element, m, w, its AleElem)`.
+    pub fn packed_variable_elements<'a>(
+        &'a self,
+        lay: &'a Layout,
+    ) -> impl Iterator<Item = (usize, usize, usize, &'a AleElem)> + 'a {
+        lay.blocks.iter().zip(&self.blocks).flat_map(|(b, v)| {
+            v.iter().map(move |ae| {
+                (
+                    b.elem_start as usize + ae.elem,
+                    b.node_start as usize + ae.m,
+                    b.node_start as usize + ae.w,
+                    ae,
+                )
+            })
+        })
     }
 
     /// True when some winch must remesh (or passes a limit) at time `t`.

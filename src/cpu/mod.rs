@@ -16,7 +16,7 @@
 //! element's length and mass-flow forces evaluated at each stage's time, and are
 //! remeshed between steps ([`CpuSolver::with_winches`]).
 
-mod ale;
+pub(crate) mod ale;
 mod chain;
 mod stepper;
 

@@ -251,30 +251,9 @@ impl CpuSolver {
 
     /// Where each winch cable stands now (empty without winches).
     pub fn winch_status(&self) -> Vec<WinchStatus> {
-        let Some(a) = self.ale.as_deref() else {
-            return Vec::new();
-        };
-        a.winches
-            .iter()
-            .map(|(w, tr)| {
-                let dl = w.schedule.eval(self.t).dl;
-                let mut p = tr.physical_coordinates(dl);
-                // Far end first; the cable's node order runs from the winch when the
-                // winch is at its start.
-                if w.end == crate::ale::WinchEnd::Start {
-                    p.reverse();
-                }
-                WinchStatus {
-                    cable: w.cable,
-                    deployed_length: tr.deployed(dl),
-                    variable_l0: tr.variable_l0(dl),
-                    physical_coordinates: p,
-                    elements: tr.n_elements(),
-                    inserted: tr.inserted,
-                    deleted: tr.deleted,
-                }
-            })
-            .collect()
+        self.ale
+            .as_deref()
+            .map_or_else(Vec::new, |a| a.status(self.t))
     }
 
     /// Advances `nsteps` steps of `opts.dt`. Blocks run independently (in parallel);

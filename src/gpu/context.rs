@@ -19,7 +19,7 @@ use crate::error::Error;
 use std::sync::{Arc, Mutex};
 
 /// Storage buffers the solver binds in one stage (see the prelude's bindings).
-pub const STORAGE_BUFFERS_PER_STAGE: u32 = 15;
+pub const STORAGE_BUFFERS_PER_STAGE: u32 = 16;
 
 /// An open device, its queue, and what the adapter is.
 #[derive(Clone, Debug)]

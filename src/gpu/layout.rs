@@ -122,8 +122,8 @@ gpu_struct! {
         /// Steps taken in this `advance` call before the current submission (so a
         /// blow-up's step is `step_base + StepInfo::k`).
         step_base: u32,
-        /// Padding.
-        pad: u32,
+        /// Number of winch cables (rows of the `payout` buffer per step).
+        n_winch: u32,
         /// Time step, s.
         dt: R,
         /// Baumgarte position gain, s^-2.
@@ -198,8 +198,9 @@ gpu_struct! {
         current: u32,
         /// Block (for its origin's height; saves reading the node's parameters).
         block: u32,
-        /// Padding.
-        pad: u32,
+        /// The variable element of a winch cable: `2 x` its winch index, plus 1 when
+        /// the winch node is node b; `u32::MAX` for every other element.
+        winch: u32,
         /// Unstretched length, high part, m.
         l0: R,
         /// Unstretched length, low part (`l0 + l0_lo`; zero in f64), m.
@@ -220,8 +221,9 @@ gpu_struct! {
         block: u32,
         /// Current profile (for point drag).
         current: u32,
-        /// Padding.
-        pad: u32,
+        /// The winch index of a node of a variable element (its material node `m` or
+        /// its winch node `w`), or `u32::MAX`.
+        winch: u32,
         /// Point mass plus its added mass, kg.
         point_mass: R,
         /// z component of the point's weight less buoyancy, N.
@@ -230,6 +232,24 @@ gpu_struct! {
         point_drag: R,
         /// Tributary length for seabed contact, m.
         tributary: R,
+    }
+}
+
+gpu_struct! {
+    /// The variable element of one winch cable at one step (WGSL `Payout`), computed
+    /// on the host from the schedule as the CPU path computes it (`crate::ale`).
+    Payout {
+        /// `l0_v = l0_base + (dL(t) - dL_base)`, high part, m.
+        l0: R,
+        /// Low part of `l0_v` (zero in f64), m.
+        l0_lo: R,
+        /// Payout rate `Ldot`, m/s.
+        rate: R,
+        /// Payout acceleration `Lddot`, m/s^2.
+        accel: R,
+        /// Change of the tributary length of `m` and `w` since the last remeshing,
+        /// `(l0_v - l0_base) / 2`, m.
+        trib: R,
     }
 }
 
@@ -434,5 +454,6 @@ pub fn all_structs<R: GpuReal>() -> Vec<(&'static str, usize, Vec<Field>)> {
         one::<ElemLoads<R>>(),
         one::<NodeOut<R>>(),
         one::<Status>(),
+        one::<Payout<R>>(),
     ]
 }

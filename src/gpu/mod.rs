@@ -11,6 +11,16 @@
 //!    or a table by binary search over its packed samples), then the symplectic
 //!    update; a blow-up sets a status flag that stops later steps.
 //!
+//! Winch cables (ALE-GLMF, [`crate::ale`]) are part of the same packed layout: the
+//! variable element of each is marked in its `ElemParams` and its two nodes in their
+//! `NodeParams`; the host writes per submission one `Payout` row per winch and step
+//! (`l0_v(t)` formed in f64 as on the CPU, rate, acceleration, tributary change) and
+//! the element pass evaluates the variable element with it, subtracts the damping of
+//! its changing `l0`, and leaves the mass-flow forces of Eq. 39 in `node_out` for the
+//! node pass. Remeshing happens on the host, with the CPU path's code, at the steps the
+//! schedules fix in advance: one state read-back and layout re-upload per remeshing
+//! ([`GpuSolver`]).
+//!
 //! Precision: f32 by default, f64 where the adapter has `SHADER_F64`, from one WGSL
 //! source (the scalar type is substituted). In f32 an absolute coordinate near 1 km
 //! resolves only ~6e-5 m, so positions are stored relative to a per-block origin

@@ -9,16 +9,24 @@
 //! `r_d(t0 + tau)` with a small `tau`, which keeps f32 route positions and angles
 //! accurate over long runs. Nothing is read back while stepping except, at the end of
 //! an [`GpuSolver::advance`] call, the 16-byte status; state, tensions and reactions
-//! come back only when asked for, through one staging buffer created once.
+//! come back only when asked for, through one staging buffer created once per layout.
+//!
+//! Winch cables: per submission the host also writes the `payout` rows (one [`Payout`]
+//! per winch and step), and an `advance` call stops its submissions at each step after
+//! which a winch cable must be remeshed, reads the state back, remeshes on the host
+//! (`cpu::ale::AleState::remesh`, the CPU path's code), rebuilds the layout's buffers
+//! and bind group (the pipelines stay) and uploads the state: see [`GpuSolver`].
 
 use super::context::GpuContext;
 use super::layout::*;
 use super::shaders::{self, Stage};
 use super::Precision;
-use crate::cpu::{diverged, Evaluation, StepFailure};
+use crate::ale::Winch;
+use crate::cpu::ale::{AleElem, AleState};
+use crate::cpu::{diverged, Evaluation, StepFailure, WinchStatus};
 use crate::error::Error;
 use crate::math::V3;
-use crate::model::{circle_basis, Layout, Route};
+use crate::model::{circle_basis, Layout, ModelDef, Route};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use bytemuck::Zeroable;
 use std::f64::consts::PI;
@@ -35,7 +43,7 @@ const WORKGROUP: u32 = 64;
 /// Node positions (absolute, m) and velocities (m/s), packed order.
 pub type NodeStates = (Vec<[f64; 3]>, Vec<[f64; 3]>);
 
-/// Precision-independent host data, computed once.
+/// Precision-independent host data, computed once per layout.
 struct Host {
     /// Per block: origin (absolute, m), a whole number of metres (exact in f32).
     origin: Vec<[f64; 3]>,
@@ -43,10 +51,20 @@ struct Host {
     node_block: Vec<u32>,
     /// Per route: where its samples start in the `route_samples` buffer (tables only).
     table_start: Vec<u32>,
+    /// Per element: `ElemParams::winch`.
+    elem_winch: Vec<u32>,
+    /// Per node: `NodeParams::winch`.
+    node_winch: Vec<u32>,
+    /// The variable elements of the winch cables, in winch index order (the rows of
+    /// the `payout` buffer).
+    winches: Vec<AleElem>,
 }
 
+/// `ElemParams::winch` and `NodeParams::winch` of what is not a variable element.
+const NO_WINCH: u32 = u32::MAX;
+
 impl Host {
-    fn new(lay: &Layout, positions: &[[f64; 3]]) -> Self {
+    fn new(lay: &Layout, positions: &[[f64; 3]], ale: Option<&AleState>) -> Result<Self, Error> {
         let mut origin = Vec::with_capacity(lay.blocks.len());
         let mut node_block = vec![0u32; lay.n_nodes()];
         for (bi, b) in lay.blocks.iter().enumerate() {
@@ -69,11 +87,32 @@ impl Host {
                 next += t.len() as u32;
             }
         }
-        Self {
+        let mut elem_winch = vec![NO_WINCH; lay.n_elements()];
+        let mut node_winch = vec![NO_WINCH; lay.n_nodes()];
+        let mut winches = Vec::new();
+        if let Some(ale) = ale {
+            for (wi, (e, m, w, ae)) in ale.packed_variable_elements(lay).enumerate() {
+                elem_winch[e] = 2 * wi as u32 + (lay.elem_b[e] as usize == w) as u32;
+                for n in [m, w] {
+                    if node_winch[n] != NO_WINCH {
+                        let (cable, node) = lay.describe_node(n);
+                        return Err(Error::GpuUnsupported(format!(
+                            "node {node} of cable '{cable}' ends the variable elements of two winch cables"
+                        )));
+                    }
+                    node_winch[n] = wi as u32;
+                }
+                winches.push(ae.clone());
+            }
+        }
+        Ok(Self {
             origin,
             node_block,
             table_start,
-        }
+            elem_winch,
+            node_winch,
+            winches,
+        })
     }
 
     /// The origin of the block of the node route `c` drives.
@@ -227,6 +266,14 @@ trait Engine: Send {
     fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error>;
     /// Where the host's time went in `advance` so far.
     fn timings(&self) -> GpuTimings;
+    /// Replaces the layout (after a remeshing) with state `r`, `v`.
+    fn install(
+        &mut self,
+        lay: &Layout,
+        host: &Host,
+        r: &[[f64; 3]],
+        v: &[[f64; 3]],
+    ) -> Result<(), Error>;
 }
 
 /// Where [`GpuSolver::advance`]'s wall time went, summed over its calls: recording the
@@ -261,23 +308,22 @@ struct Buffers {
     node_out: wgpu::Buffer,
     reactions: wgpu::Buffer,
     status: wgpu::Buffer,
+    payout: wgpu::Buffer,
     staging: wgpu::Buffer,
 }
 
 struct GpuEngine<R: GpuReal> {
     ctx: GpuContext,
-    params: Params<R>,
-    buf: Buffers,
-    bind_group: wgpu::BindGroup,
+    opts: SolverOptions,
+    /// The layout's buffers (replaced at each remeshing).
+    inst: Installed<R>,
+    bgl: wgpu::BindGroupLayout,
     pipe_elem: wgpu::ComputePipeline,
     pipe_node: wgpu::ComputePipeline,
     pipe_eval: wgpu::ComputePipeline,
     step_stride: u64,
     /// The time step in f64 (the shaders hold it in `R`; route times are formed in f64).
     dt64: f64,
-    n_nodes: usize,
-    n_elems: usize,
-    n_routes: usize,
     timings: GpuTimings,
     _r: PhantomData<R>,
 }
@@ -295,6 +341,17 @@ fn align_up(x: u64, a: u64) -> u64 {
     x.div_ceil(a) * a
 }
 
+/// Everything on the device that depends on the layout (rebuilt at each remeshing of
+/// a winch cable); the pipelines do not.
+struct Installed<R: GpuReal> {
+    params: Params<R>,
+    buf: Buffers,
+    bind_group: wgpu::BindGroup,
+    n_nodes: usize,
+    n_elems: usize,
+    n_routes: usize,
+}
+
 impl<R: GpuReal> GpuEngine<R> {
     fn new(
         ctx: &GpuContext,
@@ -304,15 +361,115 @@ impl<R: GpuReal> GpuEngine<R> {
         opts: &SolverOptions,
     ) -> Result<Self, Error> {
         let dev = &ctx.device;
+        let step_stride = align_up(
+            std::mem::size_of::<StepInfo>() as u64,
+            ctx.limits.min_uniform_buffer_offset_alignment as u64,
+        );
+        let scope = dev.push_error_scope(wgpu::ErrorFilter::Validation);
+        let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let mut entries = vec![storage(0, true)];
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: true,
+                min_binding_size: wgpu::BufferSize::new(16),
+            },
+            count: None,
+        });
+        entries.extend((2..=9).map(|b| storage(b, true)));
+        entries.extend((10..=14).map(|b| storage(b, false)));
+        entries.extend((15..=16).map(|b| storage(b, true)));
+        let bgl = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("cablesim"),
+            entries: &entries,
+        });
+        let pl = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("cablesim"),
+            bind_group_layouts: &[Some(&bgl)],
+            immediate_size: 0,
+        });
+        let precision = if R::WGSL == "f64" {
+            Precision::F64
+        } else {
+            Precision::F32
+        };
+        let module = |stage: Stage| {
+            dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(stage.file()),
+                source: wgpu::ShaderSource::Wgsl(shaders::source(stage, precision).into()),
+            })
+        };
+        let m_elem = module(Stage::ElementForces);
+        let m_node = module(Stage::NodeUpdate);
+        let pipeline = |m: &wgpu::ShaderModule, entry: &str| {
+            dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pl),
+                module: m,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let pipe_elem = pipeline(&m_elem, "element_forces");
+        let pipe_node = pipeline(&m_node, "node_update");
+        let pipe_eval = pipeline(&m_node, "node_evaluate");
+        let inst = Self::build(ctx, &bgl, step_stride, lay, host, opts);
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(Error::Gpu(format!(
+                "building the {} pipelines: {e}",
+                precision.name()
+            )));
+        }
+        let mut engine = Self {
+            ctx: ctx.clone(),
+            opts: *opts,
+            inst,
+            bgl,
+            pipe_elem,
+            pipe_node,
+            pipe_eval,
+            step_stride,
+            dt64: opts.dt,
+            timings: GpuTimings::default(),
+            _r: PhantomData,
+        };
+        engine.upload(host, positions, &vec![[0.0; 3]; positions.len()]);
+        engine.write_routes(lay, host, 0.0);
+        Ok(engine)
+    }
+
+    /// Creates the layout's buffers and their bind group.
+    fn build(
+        ctx: &GpuContext,
+        bgl: &wgpu::BindGroupLayout,
+        step_stride: u64,
+        lay: &Layout,
+        host: &Host,
+        opts: &SolverOptions,
+    ) -> Installed<R> {
+        let dev = &ctx.device;
         let env = &lay.env;
         let seabed = env.depth.is_finite();
+        let n_winch = host.winches.len();
         let params = Params::<R> {
             n_nodes: lay.n_nodes() as u32,
             n_elems: lay.n_elements() as u32,
             n_routes: lay.routes.len() as u32,
             seabed: seabed as u32,
             step_base: 0,
-            pad: 0,
+            n_winch: n_winch as u32,
             dt: R::c(opts.dt),
             alpha: R::c(opts.baumgarte.alpha),
             beta: R::c(opts.baumgarte.beta),
@@ -346,7 +503,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 line: lay.elem_line[e],
                 current: lay.elem_current[e],
                 block: host.node_block[lay.elem_a[e] as usize],
-                pad: 0,
+                winch: host.elem_winch[e],
                 l0: split::<R>(lay.elem_l0[e]).0,
                 l0_lo: split::<R>(lay.elem_l0[e]).1,
             })
@@ -358,7 +515,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 constraint: lay.node_constraint[i],
                 block: host.node_block[i],
                 current: lay.node_current[i],
-                pad: 0,
+                winch: host.node_winch[i],
                 point_mass: R::c(lay.node_point_mass[i]),
                 point_weight_z: R::c(lay.node_point_weight_z[i]),
                 point_drag: R::c(lay.node_point_drag[i]),
@@ -395,10 +552,6 @@ impl<R: GpuReal> GpuEngine<R> {
         let n_elems = lay.n_elements();
         let n_routes = lay.routes.len();
 
-        let step_stride = align_up(
-            std::mem::size_of::<StepInfo>() as u64,
-            ctx.limits.min_uniform_buffer_offset_alignment as u64,
-        );
         let mut steps = vec![0u8; (step_stride * STEPS_PER_SUBMISSION as u64) as usize];
         for k in 0..STEPS_PER_SUBMISSION as usize {
             let s = StepInfo {
@@ -423,6 +576,8 @@ impl<R: GpuReal> GpuEngine<R> {
         let loads_bytes = (n_elems.max(1) * std::mem::size_of::<ElemLoads<R>>()) as u64;
         let out_bytes = (n_nodes.max(1) * std::mem::size_of::<NodeOut<R>>()) as u64;
         let react_bytes = (n_routes.max(1) * std::mem::size_of::<[R; 4]>()) as u64;
+        let payout_bytes = ((STEPS_PER_SUBMISSION as usize * n_winch).max(1)
+            * std::mem::size_of::<Payout<R>>()) as u64;
         let staging_bytes = [state_bytes, loads_bytes, out_bytes, react_bytes, 16]
             .iter()
             .map(|&b| align_up(b, 256))
@@ -441,6 +596,7 @@ impl<R: GpuReal> GpuEngine<R> {
             node_out: init("node_out", &zeros(out_bytes), rw),
             reactions: init("reactions", &zeros(react_bytes), rw),
             status: init("status", &zeros(16), rw),
+            payout: init("payout", &zeros(payout_bytes), ro | U::COPY_DST),
             staging: dev.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("staging"),
                 size: staging_bytes,
@@ -462,36 +618,6 @@ impl<R: GpuReal> GpuEngine<R> {
             .flat_map(|(c, r)| route_samples::<R>(r, host.route_origin(lay, c)))
             .collect();
         let samples_b = init("route_samples", &bytes_or_one(&samples), ro);
-
-        let scope = dev.push_error_scope(wgpu::ErrorFilter::Validation);
-        let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let mut entries = vec![storage(0, true)];
-        entries.push(wgpu::BindGroupLayoutEntry {
-            binding: 1,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: true,
-                min_binding_size: wgpu::BufferSize::new(16),
-            },
-            count: None,
-        });
-        entries.extend((2..=9).map(|b| storage(b, true)));
-        entries.extend((10..=14).map(|b| storage(b, false)));
-        entries.push(storage(15, true));
-        let bgl = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("cablesim"),
-            entries: &entries,
-        });
         fn whole(binding: u32, b: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
             wgpu::BindGroupEntry {
                 binding,
@@ -500,7 +626,7 @@ impl<R: GpuReal> GpuEngine<R> {
         }
         let bind_group = dev.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("cablesim"),
-            layout: &bgl,
+            layout: bgl,
             entries: &[
                 whole(0, &buf.params),
                 wgpu::BindGroupEntry {
@@ -525,64 +651,46 @@ impl<R: GpuReal> GpuEngine<R> {
                 whole(13, &buf.reactions),
                 whole(14, &buf.status),
                 whole(15, &samples_b),
+                whole(16, &buf.payout),
             ],
         });
-        let pl = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("cablesim"),
-            bind_group_layouts: &[Some(&bgl)],
-            immediate_size: 0,
-        });
-        let precision = if R::WGSL == "f64" {
-            Precision::F64
-        } else {
-            Precision::F32
-        };
-        let module = |stage: Stage| {
-            dev.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(stage.file()),
-                source: wgpu::ShaderSource::Wgsl(shaders::source(stage, precision).into()),
-            })
-        };
-        let m_elem = module(Stage::ElementForces);
-        let m_node = module(Stage::NodeUpdate);
-        let pipeline = |m: &wgpu::ShaderModule, entry: &str| {
-            dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry),
-                layout: Some(&pl),
-                module: m,
-                entry_point: Some(entry),
-                compilation_options: Default::default(),
-                cache: None,
-            })
-        };
-        let pipe_elem = pipeline(&m_elem, "element_forces");
-        let pipe_node = pipeline(&m_node, "node_update");
-        let pipe_eval = pipeline(&m_node, "node_evaluate");
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(Error::Gpu(format!(
-                "building the {} pipelines: {e}",
-                precision.name()
-            )));
-        }
-        let mut engine = Self {
-            ctx: ctx.clone(),
+        Installed {
             params,
             buf,
             bind_group,
-            pipe_elem,
-            pipe_node,
-            pipe_eval,
-            step_stride,
-            dt64: opts.dt,
             n_nodes,
             n_elems,
             n_routes,
-            timings: GpuTimings::default(),
-            _r: PhantomData,
-        };
-        engine.upload(host, positions, &vec![[0.0; 3]; n_nodes]);
-        engine.write_routes(lay, host, 0.0);
-        Ok(engine)
+        }
+    }
+
+    /// Writes the `payout` rows of steps `step0 .. step0 + n` (rows `0 .. n`): the
+    /// variable element of each winch cable at each step's time, from its schedule, in
+    /// f64 exactly as the CPU path forms them (`cpu::ale::AleElem::l0`).
+    fn write_payout(&self, host: &Host, step0: u64, n: u64) {
+        if host.winches.is_empty() {
+            return;
+        }
+        let mut rows = Vec::with_capacity(n as usize * host.winches.len());
+        for k in 0..n {
+            // Time from the step count, as the CPU path forms it.
+            let t = (step0 + k) as f64 * self.dt64;
+            for ae in &host.winches {
+                let pay = ae.sched.eval(t);
+                let l0 = ae.l0(pay.dl);
+                let (hi, lo) = split::<R>(l0);
+                rows.push(Payout::<R> {
+                    l0: hi,
+                    l0_lo: lo,
+                    rate: R::c(pay.rate),
+                    accel: R::c(pay.accel),
+                    trib: R::c(0.5 * (l0 - ae.base_l0)),
+                });
+            }
+        }
+        self.ctx
+            .queue
+            .write_buffer(&self.inst.buf.payout, 0, bytemuck::cast_slice(&rows));
     }
 
     fn write_routes(&self, lay: &Layout, host: &Host, t0: f64) {
@@ -605,7 +713,7 @@ impl<R: GpuReal> GpuEngine<R> {
             .collect();
         self.ctx
             .queue
-            .write_buffer(&self.buf.routes, 0, bytemuck::cast_slice(&q));
+            .write_buffer(&self.inst.buf.routes, 0, bytemuck::cast_slice(&q));
     }
 
     fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>, pipe: &wgpu::ComputePipeline, n: usize) {
@@ -625,12 +733,12 @@ impl<R: GpuReal> GpuEngine<R> {
         let mut offsets = Vec::new();
         let mut off = 0u64;
         for (b, n) in parts {
-            enc.copy_buffer_to_buffer(b, 0, &self.buf.staging, off, *n);
+            enc.copy_buffer_to_buffer(b, 0, &self.inst.buf.staging, off, *n);
             offsets.push(off);
             off = align_up(off + n, 256);
         }
         ctx.queue.submit([enc.finish()]);
-        let slice = self.buf.staging.slice(0..off);
+        let slice = self.inst.buf.staging.slice(0..off);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {
             let _ = tx.send(r);
@@ -652,7 +760,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 .map(|((_, n), &o)| view[o as usize..(o + n) as usize].to_vec())
                 .collect()
         };
-        self.buf.staging.unmap();
+        self.inst.buf.staging.unmap();
         Ok(out)
     }
 }
@@ -677,8 +785,11 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         n: u64,
     ) -> Result<Option<(u64, u32)>, Error> {
         let ctx = &self.ctx;
-        ctx.queue
-            .write_buffer(&self.buf.status, 0, bytemuck::bytes_of(&Status::default()));
+        ctx.queue.write_buffer(
+            &self.inst.buf.status,
+            0,
+            bytemuck::bytes_of(&Status::default()),
+        );
         let dt64 = self.dt64;
         let mut done = 0u64;
         let t_start = Instant::now();
@@ -686,9 +797,13 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             let chunk = (n - done).min(STEPS_PER_SUBMISSION as u64);
             let t_enc = Instant::now();
             self.write_routes(lay, host, (step0 + done) as f64 * dt64);
-            self.params.step_base = done as u32;
-            ctx.queue
-                .write_buffer(&self.buf.params, 0, bytemuck::bytes_of(&self.params));
+            self.write_payout(host, step0 + done, chunk);
+            self.inst.params.step_base = done as u32;
+            ctx.queue.write_buffer(
+                &self.inst.buf.params,
+                0,
+                bytemuck::bytes_of(&self.inst.params),
+            );
             let mut enc = ctx
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -701,9 +816,9 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                 });
                 for k in 0..chunk {
                     let off = (k * self.step_stride) as u32;
-                    pass.set_bind_group(0, &self.bind_group, &[off]);
-                    self.dispatch(&mut pass, &self.pipe_elem, self.n_elems);
-                    self.dispatch(&mut pass, &self.pipe_node, self.n_nodes);
+                    pass.set_bind_group(0, &self.inst.bind_group, &[off]);
+                    self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
+                    self.dispatch(&mut pass, &self.pipe_node, self.inst.n_nodes);
                 }
             }
             let cb = enc.finish();
@@ -715,7 +830,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             done += chunk;
         }
         let t_wait = Instant::now();
-        let out = self.read_back(&[(&self.buf.status, 16)])?;
+        let out = self.read_back(&[(&self.inst.buf.status, 16)])?;
         self.timings.wait_seconds += t_wait.elapsed().as_secs_f64();
         self.timings.advance_seconds += t_start.elapsed().as_secs_f64();
         self.timings.steps += n;
@@ -728,12 +843,38 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         self.timings
     }
 
+    fn install(
+        &mut self,
+        lay: &Layout,
+        host: &Host,
+        r: &[[f64; 3]],
+        v: &[[f64; 3]],
+    ) -> Result<(), Error> {
+        let scope = self
+            .ctx
+            .device
+            .push_error_scope(wgpu::ErrorFilter::Validation);
+        self.inst = Self::build(
+            &self.ctx,
+            &self.bgl,
+            self.step_stride,
+            lay,
+            host,
+            &self.opts,
+        );
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(Error::Gpu(format!("rebuilding the buffers: {e}")));
+        }
+        self.upload(host, r, v);
+        Ok(())
+    }
+
     fn download(&mut self, host: &Host) -> Result<NodeStates, Error> {
-        let bytes = (self.n_nodes * std::mem::size_of::<NodeState<R>>()) as u64;
-        let out = self.read_back(&[(&self.buf.state, bytes.max(4))])?;
+        let bytes = (self.inst.n_nodes * std::mem::size_of::<NodeState<R>>()) as u64;
+        let out = self.read_back(&[(&self.inst.buf.state, bytes.max(4))])?;
         let st: Vec<NodeState<R>> = decode(&out[0][..bytes as usize]);
-        let mut r = Vec::with_capacity(self.n_nodes);
-        let mut v = Vec::with_capacity(self.n_nodes);
+        let mut r = Vec::with_capacity(self.inst.n_nodes);
+        let mut v = Vec::with_capacity(self.inst.n_nodes);
         for (i, s) in st.iter().enumerate() {
             let o = host.origin[host.node_block[i] as usize];
             let (h, l) = (v3(&s.r_hi), v3(&s.r_lo));
@@ -744,7 +885,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
     }
 
     fn upload(&mut self, host: &Host, r: &[[f64; 3]], v: &[[f64; 3]]) {
-        let st: Vec<NodeState<R>> = (0..self.n_nodes)
+        let st: Vec<NodeState<R>> = (0..self.inst.n_nodes)
             .map(|i| {
                 let o = host.origin[host.node_block[i] as usize];
                 let mut s = NodeState::<R>::default();
@@ -758,16 +899,20 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         if !st.is_empty() {
             self.ctx
                 .queue
-                .write_buffer(&self.buf.state, 0, bytemuck::cast_slice(&st));
+                .write_buffer(&self.inst.buf.state, 0, bytemuck::cast_slice(&st));
         }
     }
 
     fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error> {
         let ctx = &self.ctx;
         self.write_routes(lay, host, step as f64 * self.dt64);
-        self.params.step_base = 0;
-        ctx.queue
-            .write_buffer(&self.buf.params, 0, bytemuck::bytes_of(&self.params));
+        self.write_payout(host, step, 1);
+        self.inst.params.step_base = 0;
+        ctx.queue.write_buffer(
+            &self.inst.buf.params,
+            0,
+            bytemuck::bytes_of(&self.inst.params),
+        );
         let mut enc = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -778,18 +923,18 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                 label: Some("evaluate"),
                 timestamp_writes: None,
             });
-            pass.set_bind_group(0, &self.bind_group, &[0]);
-            self.dispatch(&mut pass, &self.pipe_elem, self.n_elems);
-            self.dispatch(&mut pass, &self.pipe_eval, self.n_nodes);
+            pass.set_bind_group(0, &self.inst.bind_group, &[0]);
+            self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
+            self.dispatch(&mut pass, &self.pipe_eval, self.inst.n_nodes);
         }
         ctx.queue.submit([enc.finish()]);
-        let loads_bytes = (self.n_elems * std::mem::size_of::<ElemLoads<R>>()) as u64;
-        let out_bytes = (self.n_nodes * std::mem::size_of::<NodeOut<R>>()) as u64;
-        let react_bytes = (self.n_routes * std::mem::size_of::<[R; 4]>()) as u64;
+        let loads_bytes = (self.inst.n_elems * std::mem::size_of::<ElemLoads<R>>()) as u64;
+        let out_bytes = (self.inst.n_nodes * std::mem::size_of::<NodeOut<R>>()) as u64;
+        let react_bytes = (self.inst.n_routes * std::mem::size_of::<[R; 4]>()) as u64;
         let out = self.read_back(&[
-            (&self.buf.elem_loads, loads_bytes.max(4)),
-            (&self.buf.node_out, out_bytes.max(4)),
-            (&self.buf.reactions, react_bytes.max(4)),
+            (&self.inst.buf.elem_loads, loads_bytes.max(4)),
+            (&self.inst.buf.node_out, out_bytes.max(4)),
+            (&self.inst.buf.reactions, react_bytes.max(4)),
         ])?;
         let loads: Vec<ElemLoads<R>> = decode(&out[0][..loads_bytes as usize]);
         let nout: Vec<NodeOut<R>> = decode(&out[1][..out_bytes as usize]);
@@ -815,8 +960,21 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
 
 /// The GPU solver: the same packed model and options as [`crate::cpu::CpuSolver`],
 /// stepped by WGSL compute shaders at f32 or f64.
+///
+/// Winch cables (ALE-GLMF, [`crate::ale`]; [`GpuSolver::with_winches`]) step inside
+/// the same submissions as every other cable: the variable element's `l0_v(t)`, payout
+/// rate and acceleration of each step are written by the host per submission (one
+/// small row per winch and step, from the schedule, in f64 as the CPU path forms them),
+/// and the shaders apply the variable `l0` (its mass, weight, added mass, stretch and
+/// tributary lengths), the ALE strain-rate damping and the mass-flow forces of Eq. 39.
+/// The schedule fixes in advance the step at which a cable must be remeshed, so an
+/// [`GpuSolver::advance`] call ends its submissions exactly there, reads the state
+/// back, remeshes on the host with the CPU path's code (`WinchTracker` and the same
+/// node insertion or deletion), rebuilds and uploads the layout's buffers (the
+/// pipelines are kept), and goes on: one round trip per remeshing, every `l_s / Ldot`
+/// seconds, none per step.
 pub struct GpuSolver {
-    /// The packed model.
+    /// The packed model (the current mesh, with winches).
     pub layout: Layout,
     /// Options (GLMF, symplectic Euler; see [`unsupported`]).
     pub opts: SolverOptions,
@@ -826,9 +984,15 @@ pub struct GpuSolver {
     pub t: f64,
     /// Number of steps taken.
     pub steps: u64,
+    /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
+    pub node_steps: u64,
+    /// Remeshings of winch cables so far (each one state read-back and re-upload).
+    pub remeshes: u64,
     device: String,
     host: Host,
     engine: Box<dyn Engine>,
+    /// Winch cables, if any.
+    ale: Option<Box<AleState>>,
 }
 
 impl GpuSolver {
@@ -840,6 +1004,48 @@ impl GpuSolver {
         opts: SolverOptions,
         precision: Precision,
     ) -> Result<Self, Error> {
+        Self::build(ctx, layout, positions, opts, precision, None)
+    }
+
+    /// Uploads the model of `def`, at rest at `positions` (packed order of
+    /// `Layout::build(&def)`), `t = 0`, whose cables listed in `winches` pay out or
+    /// haul in (ALE-GLMF), as [`crate::cpu::CpuSolver::with_winches`] does on the CPU.
+    pub fn with_winches(
+        ctx: &GpuContext,
+        def: ModelDef,
+        winches: Vec<Winch>,
+        positions: &[[f64; 3]],
+        opts: SolverOptions,
+        precision: Precision,
+    ) -> Result<Self, Error> {
+        if winches.is_empty() {
+            let (lay, _) = Layout::build(&def)?;
+            return Self::new(ctx, lay, positions, opts, precision);
+        }
+        if let Some(what) = unsupported_winches(&def, &winches) {
+            return Err(Error::GpuUnsupported(what));
+        }
+        let (lay, pos0, packed) = Layout::build_indexed(&def)?;
+        if pos0.len() != positions.len() {
+            return Err(Error::Model(format!(
+                "{} initial positions for {} nodes",
+                positions.len(),
+                pos0.len()
+            )));
+        }
+        let mut ale = AleState::new(def, winches, packed)?;
+        ale.index(&lay);
+        Self::build(ctx, lay, positions, opts, precision, Some(Box::new(ale)))
+    }
+
+    fn build(
+        ctx: &GpuContext,
+        layout: Layout,
+        positions: &[[f64; 3]],
+        opts: SolverOptions,
+        precision: Precision,
+        ale: Option<Box<AleState>>,
+    ) -> Result<Self, Error> {
         if let Some(what) = unsupported(&layout, &opts) {
             return Err(Error::GpuUnsupported(what));
         }
@@ -849,7 +1055,7 @@ impl GpuSolver {
                 ctx.describe()
             )));
         }
-        let host = Host::new(&layout, positions);
+        let host = Host::new(&layout, positions, ale.as_deref())?;
         let engine: Box<dyn Engine> = match precision {
             Precision::F32 => Box::new(GpuEngine::<f32>::new(
                 ctx, &layout, &host, positions, &opts,
@@ -864,9 +1070,12 @@ impl GpuSolver {
             precision,
             t: 0.0,
             steps: 0,
+            node_steps: 0,
+            remeshes: 0,
             device: ctx.describe(),
             host,
             engine,
+            ale,
         })
     }
 
@@ -881,11 +1090,60 @@ impl GpuSolver {
         self.engine.timings()
     }
 
+    /// Where each winch cable stands now (empty without winches).
+    pub fn winch_status(&self) -> Vec<WinchStatus> {
+        self.ale
+            .as_deref()
+            .map_or_else(Vec::new, |a| a.status(self.t))
+    }
+
     /// Advances `nsteps` steps of `opts.dt`, in submissions of
     /// [`STEPS_PER_SUBMISSION`] steps, then reads the 16-byte status. On a blow-up the
     /// state stays where it failed and the error names the cable, node and time, as on
-    /// the CPU.
+    /// the CPU. With winches, the submissions end at each step after which a winch
+    /// cable must be remeshed (known in advance from the schedules); the state is read
+    /// back, remeshed on the host as on the CPU path, and uploaded with the new layout.
     pub fn advance(&mut self, nsteps: u64) -> Result<(), Error> {
+        if self.ale.is_none() {
+            return self.advance_fixed(nsteps);
+        }
+        let dt = self.opts.dt;
+        let mut left = nsteps;
+        while left > 0 {
+            let ale = self.ale.as_deref().expect("winches");
+            // Steps up to the first step time at which some winch needs remeshing.
+            let k = (1..=left)
+                .find(|&k| ale.needs_action((self.steps + k) as f64 * dt))
+                .unwrap_or(left);
+            self.advance_fixed(k)?;
+            left -= k;
+            if self.ale.as_deref().expect("winches").needs_action(self.t) {
+                self.remesh()?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Reads the state back, remeshes the winch cables at the current time and
+    /// installs the new layout and state.
+    fn remesh(&mut self) -> Result<(), Error> {
+        let (r, v) = self.engine.download(&self.host)?;
+        let r: Vec<V3<f64>> = r.iter().map(|p| V3::from_f64(*p)).collect();
+        let v: Vec<V3<f64>> = v.iter().map(|p| V3::from_f64(*p)).collect();
+        let ale = self.ale.as_deref_mut().expect("winches");
+        if let Some((lay, r, v)) = ale.remesh(self.t, &r, &v)? {
+            let r: Vec<[f64; 3]> = r.iter().map(|x| x.to_f64()).collect();
+            let v: Vec<[f64; 3]> = v.iter().map(|x| x.to_f64()).collect();
+            self.host = Host::new(&lay, &r, Some(ale))?;
+            self.engine.install(&lay, &self.host, &r, &v)?;
+            self.layout = lay;
+            self.remeshes += 1;
+        }
+        Ok(())
+    }
+
+    /// Advances `nsteps` steps on the current mesh.
+    fn advance_fixed(&mut self, nsteps: u64) -> Result<(), Error> {
         if nsteps == 0 {
             return Ok(());
         }
@@ -894,6 +1152,7 @@ impl GpuSolver {
             .engine
             .advance(&self.layout, &self.host, step0, nsteps)?;
         self.steps += nsteps;
+        self.node_steps += nsteps * self.layout.n_nodes() as u64;
         self.t = self.steps as f64 * self.opts.dt;
         if let Some((k, node)) = failed {
             let (r, v) = self.engine.download(&self.host)?;
@@ -926,8 +1185,31 @@ impl GpuSolver {
     }
 
     /// Loads, accelerations and reactions at the current state, evaluated on the GPU
-    /// (an `element_forces` and a `node_evaluate` dispatch) and read back.
+    /// (an `element_forces` and a `node_evaluate` dispatch) and read back. A winch
+    /// cable's variable element is evaluated at the current time.
     pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
         self.engine.evaluate(&self.layout, &self.host, self.steps)
     }
+}
+
+/// What the GPU path cannot do with these winches, or `None`: two winch cables that
+/// share a node (a node of both variable elements after remeshing would need two
+/// mass-flow forces; the CPU path runs them).
+pub fn unsupported_winches(def: &ModelDef, winches: &[Winch]) -> Option<String> {
+    let mut owner: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    for w in winches {
+        let c = def.cables.get(w.cable)?;
+        for &n in &c.nodes {
+            if let Some(&o) = owner.get(&n) {
+                if o != w.cable {
+                    return Some(format!(
+                        "winch cables '{}' and '{}' sharing a node (ALE-GLMF on the GPU)",
+                        def.cables[o].name, c.name
+                    ));
+                }
+            }
+            owner.insert(n, w.cable);
+        }
+    }
+    None
 }
