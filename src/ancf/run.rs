@@ -13,9 +13,12 @@
 //!   not supported: the ANCF reference is a model of single cables.
 //! - Line type, environment, current: the cable's; `ei` of the line type is the
 //!   bending stiffness (0 when not given).
-//! - Initial shape: the lumped-mass initial positions (straight, or the relaxed
-//!   catenary) interpolated along the arc length; a `catenary` cable is then brought to
-//!   the ANCF's own static equilibrium, so a line whose ends hold still stays still.
+//! - Initial shape: `straight` as the lumped-mass model's; `catenary` the analytic
+//!   elastic catenary (on a fine polyline: the lumped-mass nodes' kink at the
+//!   touchdown would give cubic elements large spurious strains), then brought to the
+//!   ANCF's own static equilibrium, so a line whose ends hold still stays still. Where
+//!   that Newton solve stalls (Gauss points slipping in and out of seabed contact) the
+//!   run starts from the catenary with a warning.
 //! - Step: `dt = "auto"` takes [`AUTO_SAFETY`] of each cable's stable step (with a winch,
 //!   of its worst mesh), rounded down to divide the output interval; a given `dt` is
 //!   used for every cable, with a warning when it is above a cable's stable step.
@@ -29,6 +32,7 @@ use super::{AddedMass, AncfCable, AncfConfig, AncfEnd, StaticOptions, AUTO_SAFET
 use crate::error::Error;
 use crate::model::ModelDef;
 use crate::output::{CableSummary, EndForces, Summary, WinchSummary};
+use crate::physics::catenary::catenary_positions;
 use crate::scenario::{DtSpec, InitialShape, Scenario};
 use crate::sim::RunOptions;
 use rayon::prelude::*;
@@ -207,7 +211,28 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
         };
         cfg.dt = Some(dt);
         let mut cable = AncfCable::new(cfg)?;
-        cable.set_shape(|s| along(&pts, &l0, s));
+        if sc.initial[ci] == InitialShape::Catenary {
+            // The analytic elastic catenary on a fine polyline: the lumped-mass nodes'
+            // kinks (touchdown) would give the cubic elements large spurious strains.
+            let lt = &sc.model.line_types[sc.model.cables[ci].line_type];
+            let env = &sc.model.env;
+            let w = lt.wet_weight_per_length(env.gravity, env.water_density);
+            let length: f64 = l0.iter().sum();
+            let n_fine = 64 * cable.n_elements();
+            let fine = catenary_positions(
+                pts[0],
+                pts[pts.len() - 1],
+                length,
+                n_fine,
+                lt.ea,
+                w,
+                -env.depth,
+            );
+            let fl = vec![length / n_fine as f64; n_fine];
+            cable.set_shape(|s| along(&fine, &fl, s));
+        } else {
+            cable.set_shape(|s| along(&pts, &l0, s));
+        }
         if sc.initial[ci] == InitialShape::Catenary {
             let mut trial = cable.clone();
             match trial.solve_static(&StaticOptions::default()) {
