@@ -245,6 +245,19 @@ fn cli_runs_ancf_and_refuses_what_it_cannot_do() {
     assert!(!gpu.status.success());
     assert!(String::from_utf8_lossy(&gpu.stderr).contains("ANCF model (CPU only)"));
 
+    // `check` with `formulation = "ancf"` in the file reports the ANCF mesh and step.
+    let text = std::fs::read_to_string("examples/case2_straight.toml")
+        .unwrap()
+        .replace("[simulation]", "[simulation]\nformulation = \"ancf\"");
+    let path = dir.path().join("case2_straight.toml");
+    std::fs::write(&path, text).unwrap();
+    let check = Command::new(BIN).arg("check").arg(&path).output().unwrap();
+    let so = String::from_utf8_lossy(&check.stdout);
+    assert!(
+        check.status.success() && so.contains("ANCF, 2 elements, stable step"),
+        "{so}"
+    );
+
     let net = cli(
         &[
             "run",

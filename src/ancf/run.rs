@@ -144,6 +144,23 @@ pub fn cable_config(
     Ok(cfg)
 }
 
+/// Checks that every cable of `sc` can run with the ANCF model; returns per cable its
+/// name, element count and stable step (s) with what sets it.
+pub fn check(
+    sc: &Scenario,
+    settings: &AncfSettings,
+) -> Result<Vec<(String, usize, f64, String)>, Error> {
+    (0..sc.model.cables.len())
+        .map(|ci| {
+            let mut cfg = cable_config(sc, settings, ci)?;
+            cfg.scheme = sc.sim.scheme;
+            let c = AncfCable::new(cfg)?;
+            let (dt, term) = c.stable_dt();
+            Ok((c.name().to_string(), c.n_elements(), dt, term.to_string()))
+        })
+        .collect()
+}
+
 /// Position at arc length `s` along the polyline `pts` whose segments have unstretched
 /// lengths `l0` (linear between nodes, and extended straight beyond the ends, so that
 /// the central differences giving the end slopes see the end segments).

@@ -2,7 +2,7 @@
 
 use anyhow::{Context, Result};
 use cablesim::gpu::Precision;
-use cablesim::options::{parse_formulation, Scheme, SolverOptions};
+use cablesim::options::{parse_formulation, CableModel, Scheme, SolverOptions};
 use cablesim::scenario::{Backend, Scenario};
 use cablesim::sim::{self, Overrides, RunOptions};
 use clap::{Parser, Subcommand};
@@ -98,6 +98,15 @@ fn real_main() -> Result<()> {
                 baumgarte: sc.sim.baumgarte,
                 ..Default::default()
             };
+            if sc.sim.model == CableModel::Ancf {
+                for (name, n, dt, term) in cablesim::ancf::run::check(&sc, &sc.ancf)? {
+                    println!(
+                        "{}: ok: cable '{name}': ANCF, {n} elements, stable step {dt:.4e} s ({term})",
+                        scenario.display()
+                    );
+                }
+                return Ok(());
+            }
             let plan = sim::plan_steps(&sc, &lay, &opts, sc.sim.duration, sc.sim.dt)?;
             if let Some(w) = &plan.warning {
                 log::warn!("{w}");
