@@ -56,6 +56,9 @@ pub(crate) struct AleState {
     pub winches: Vec<(Winch, WinchTracker)>,
     /// Per block of the current layout: its variable elements (usually none or one).
     pub blocks: Vec<Vec<AleElem>>,
+    /// Cables whose mesh the last [`Self::remesh`] changed (every other block of the
+    /// new layout equals the old one but for its position and constraint numbers).
+    pub last_changed: Vec<usize>,
 }
 
 impl AleState {
@@ -109,6 +112,7 @@ impl AleState {
             packed_of_def,
             winches: out,
             blocks: Vec::new(),
+            last_changed: Vec::new(),
         })
     }
 
@@ -122,11 +126,9 @@ impl AleState {
                 WinchEnd::Start => (c.elements[0], c.nodes[1], c.nodes[0]),
                 WinchEnd::End => (c.elements[n - 2], c.nodes[n - 2], c.nodes[n - 1]),
             };
-            let bi = lay
-                .blocks
-                .iter()
-                .position(|b| b.node_start <= wn && wn < b.node_end)
-                .expect("every node is in a block");
+            // Blocks are in node order.
+            let bi = lay.blocks.partition_point(|b| b.node_end <= wn);
+            debug_assert!(lay.blocks[bi].node_start <= wn && wn < lay.blocks[bi].node_end);
             let b = lay.blocks[bi];
             debug_assert_eq!(lay.elem_l0[elem as usize], tr.base_l0);
             blocks[bi].push(AleElem {
@@ -220,6 +222,7 @@ impl AleState {
         if plans.is_empty() {
             return Ok(None);
         }
+        self.last_changed = plans.iter().map(|p| self.winches[p.0].0.cable).collect();
         // The state in description order.
         let mut rd: Vec<V> = self.packed_of_def.iter().map(|&i| r[i as usize]).collect();
         let mut vd: Vec<V> = self.packed_of_def.iter().map(|&i| v[i as usize]).collect();

@@ -143,6 +143,21 @@ impl ChainConsts {
     }
 }
 
+impl ChainConsts {
+    /// Re-reads the constraint numbers of block `b` of `lay` (the same chain as the one
+    /// these constants were made for, possibly renumbered by a rebuild).
+    pub(crate) fn refresh_constraints(&mut self, lay: &Layout, b: &Block) {
+        debug_assert_eq!(self.n, (b.node_end - b.node_start) as usize);
+        self.constrained.clear();
+        for li in 0..self.n {
+            let k = lay.node_constraint[b.node_start as usize + li];
+            if k != NO_CONSTRAINT {
+                self.constrained.push((li, k as usize));
+            }
+        }
+    }
+}
+
 /// Structure-of-arrays state and scratch of one chain, reused across blocks.
 #[derive(Default)]
 pub(crate) struct ChainScratch {

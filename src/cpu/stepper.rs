@@ -197,6 +197,12 @@ impl CpuSolver {
 
     /// Takes `layout` with state `r`, `v` (packed order) and rebuilds what depends on it.
     fn install(&mut self, layout: Layout, r: Vec<V>, v: Vec<V>) {
+        self.install_state(layout, r, v);
+        self.install_chain_consts();
+    }
+
+    /// Everything [`Self::install`] sets but the chain constants.
+    fn install_state(&mut self, layout: Layout, r: Vec<V>, v: Vec<V>) {
         self.coefs = layout.line_coefs.iter().map(Coefs::from_line).collect();
         let mut elem_in_cable = vec![0u32; layout.n_elements()];
         for c in &layout.cables {
@@ -216,7 +222,38 @@ impl CpuSolver {
         self.r = r;
         self.v = v;
         self.layout = layout;
-        self.install_chain_consts();
+    }
+
+    /// [`Self::install`] after a remesh that changed the meshes of `changed` cables
+    /// only: the chain constants of every other block are kept (their block is the same
+    /// in the new layout, at a new position, and only its constraint numbers may have
+    /// changed), so a fleet of winch cables does not rebuild thousands of them at every
+    /// remesh of one cable.
+    fn install_remeshed(&mut self, layout: Layout, r: Vec<V>, v: Vec<V>, changed: &[usize]) {
+        let mut old = std::mem::take(&mut self.chain_consts);
+        let same_blocks = old.len() == layout.blocks.len();
+        self.install_state(layout, r, v);
+        if !same_blocks {
+            self.install_chain_consts();
+            return;
+        }
+        let lay = &self.layout;
+        let mut redo = vec![false; lay.blocks.len()];
+        for &ci in changed {
+            let first = lay.cables[ci].nodes[0];
+            redo[lay.blocks.partition_point(|b| b.node_end <= first)] = true;
+        }
+        for (bi, (b, c)) in lay.blocks.iter().zip(old.iter_mut()).enumerate() {
+            *c = match (b.is_chain, c.take()) {
+                (true, Some(mut k)) if !redo[bi] => {
+                    k.refresh_constraints(lay, b);
+                    Some(k)
+                }
+                (true, _) => Some(ChainConsts::new(lay, b)),
+                (false, _) => None,
+            };
+        }
+        self.chain_consts = old;
     }
 
     /// Chain fast-path constants for chain blocks (winch cables included: the fast
@@ -277,7 +314,8 @@ impl CpuSolver {
             left -= k;
             let ale = self.ale.as_deref_mut().expect("winches");
             if let Some((lay, r, v)) = ale.remesh(self.t, &self.r, &self.v)? {
-                self.install(lay, r, v);
+                let changed = ale.last_changed.clone();
+                self.install_remeshed(lay, r, v, &changed);
             }
         }
         Ok(())

@@ -249,47 +249,66 @@ impl Layout {
         }
         // Order components by their first appearance (cables in order, then loose nodes),
         // and nodes inside a component by first appearance along the cables: one cable
-        // alone comes out in chain order.
+        // alone comes out in chain order. Flat arrays, no per-component allocation: a
+        // winch remesh rebuilds the layout of thousands of cables.
+        let mut comp_of_root = vec![u32::MAX; nn];
+        let mut node_comp = vec![u32::MAX; nn];
+        let mut first_seen: Vec<usize> = Vec::with_capacity(nn);
+        let mut comp_count: Vec<usize> = Vec::new();
+        {
+            let mut visit = |n: usize, parent: &mut Vec<usize>| {
+                if node_comp[n] != u32::MAX {
+                    return;
+                }
+                let root = find(parent, n);
+                if comp_of_root[root] == u32::MAX {
+                    comp_of_root[root] = comp_count.len() as u32;
+                    comp_count.push(0);
+                }
+                let ci = comp_of_root[root];
+                node_comp[n] = ci;
+                comp_count[ci as usize] += 1;
+                first_seen.push(n);
+            };
+            for c in &def.cables {
+                for &n in &c.nodes {
+                    visit(n, &mut parent);
+                }
+            }
+            for n in 0..nn {
+                visit(n, &mut parent);
+            }
+        }
+        let n_comp = comp_count.len();
+        let mut comp_start = vec![0usize; n_comp + 1];
+        for (k, &c) in comp_count.iter().enumerate() {
+            comp_start[k + 1] = comp_start[k] + c;
+        }
         let mut new_index = vec![u32::MAX; nn];
-        let mut comp_nodes: Vec<Vec<usize>> = Vec::new();
-        let mut comp_of_root = std::collections::HashMap::new();
-        let mut visit = |n: usize, parent: &mut Vec<usize>, comp_nodes: &mut Vec<Vec<usize>>| {
-            let root = find(parent, n);
-            let ci = *comp_of_root.entry(root).or_insert_with(|| {
-                comp_nodes.push(Vec::new());
-                comp_nodes.len() - 1
-            });
-            if new_index[n] == u32::MAX {
-                new_index[n] = 0; // mark seen; real index below
-                comp_nodes[ci].push(n);
-            }
-        };
+        let mut fill_comp = comp_start.clone();
+        for &n in &first_seen {
+            let ci = node_comp[n] as usize;
+            new_index[n] = fill_comp[ci] as u32;
+            fill_comp[ci] += 1;
+        }
+        // Elements grouped by block, in cable order within each block: `(cable, k)`.
+        let mut elem_count = vec![0usize; n_comp + 1];
         for c in &def.cables {
-            for &n in &c.nodes {
-                visit(n, &mut parent, &mut comp_nodes);
-            }
+            elem_count[node_comp[c.nodes[0]] as usize + 1] += c.l0.len();
         }
-        for n in 0..nn {
-            visit(n, &mut parent, &mut comp_nodes);
+        for k in 0..n_comp {
+            elem_count[k + 1] += elem_count[k];
         }
-        let mut order = Vec::with_capacity(nn);
-        let mut node_block = vec![0usize; nn];
-        for (bi, nodes) in comp_nodes.iter().enumerate() {
-            for &n in nodes {
-                new_index[n] = order.len() as u32;
-                node_block[n] = bi;
-                order.push(n);
-            }
-        }
-        // Elements grouped by block, in cable order within each block.
-        let mut block_elems: Vec<Vec<(usize, usize)>> = vec![Vec::new(); comp_nodes.len()];
+        let mut block_elems = vec![(0usize, 0usize); elem_count[n_comp]];
+        let mut fill_e = elem_count.clone();
         for (ci, c) in def.cables.iter().enumerate() {
-            let b = node_block[c.nodes[0]];
+            let b = node_comp[c.nodes[0]] as usize;
             for k in 0..c.l0.len() {
-                block_elems[b].push((ci, k));
+                block_elems[fill_e[b]] = (ci, k);
+                fill_e[b] += 1;
             }
         }
-        let ne: usize = block_elems.iter().map(|v| v.len()).sum();
+        let ne = block_elems.len();
         let line_coefs: Vec<LineCoefs> = def
             .line_types
             .iter()
@@ -343,9 +362,9 @@ impl Layout {
             lay.node_point_weight_z[i] = -(p.mass - rho * p.volume) * env.gravity;
             lay.node_point_drag[i] = 0.5 * rho * p.drag_area;
         }
-        let mut block_elem_start = vec![0usize; comp_nodes.len() + 1];
-        for (bi, elems) in block_elems.iter().enumerate() {
-            for &(ci, k) in elems {
+        let mut block_elem_start = vec![0usize; n_comp + 1];
+        for bi in 0..n_comp {
+            for &(ci, k) in &block_elems[elem_count[bi]..elem_count[bi + 1]] {
                 let c = &def.cables[ci];
                 let e = lay.elem_a.len() as u32;
                 lay.cables[ci].elements[k] = e;
@@ -405,10 +424,11 @@ impl Layout {
         }
         // Blocks.
         let mut node_start = 0u32;
-        for (bi, nodes) in comp_nodes.iter().enumerate() {
-            let node_end = node_start + nodes.len() as u32;
+        for bi in 0..n_comp {
+            let count = comp_count[bi];
+            let node_end = node_start + count as u32;
             let (e0, e1) = (block_elem_start[bi], block_elem_start[bi + 1]);
-            let is_chain = (e1 - e0) + 1 == nodes.len()
+            let is_chain = (e1 - e0) + 1 == count
                 && (e0..e1).all(|e| {
                     let k = (e - e0) as u32;
                     lay.elem_a[e] == node_start + k && lay.elem_b[e] == node_start + k + 1
