@@ -3,9 +3,11 @@
 mod environment;
 mod layout;
 mod line_type;
+pub mod net;
 mod route;
 
 pub use environment::{Current, Environment, Seabed};
 pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};
 pub use line_type::{LineCoefs, LineType};
+pub use net::{add_net, NetShape, NetSpec};
 pub use route::{circle_basis, Route, RouteState};

@@ -3,6 +3,7 @@
 
 mod arrays;
 mod ends;
+mod nets;
 mod raw;
 mod route_file;
 mod winch;
@@ -11,7 +12,7 @@ use crate::ale::Winch;
 use crate::ancf::run::AncfSettings;
 use crate::ancf::AddedMass;
 use crate::error::Error;
-use crate::model::{CableDef, Current, Environment, ModelDef, NodeDef, PointMass};
+use crate::model::{add_net, CableDef, Current, Environment, ModelDef, NodeDef, PointMass};
 use crate::options::{parse_formulation, Baumgarte, CableModel, Formulation, Scheme};
 pub use ends::EndKind;
 use raw::{RawDt, RawScenario};
@@ -350,11 +351,11 @@ impl Scenario {
             .map(|(i, c)| (format!("cables[{i}] (\"{}\")", c.name), c.clone()))
             .collect();
         cables.extend(arrays::expand(p, &raw.cable_arrays)?);
-        if cables.is_empty() {
+        if cables.is_empty() && raw.nets.is_empty() {
             return Err(err(
                 p,
                 "cables",
-                "the scenario has no [[cables]] or [[cable_arrays]]",
+                "the scenario has no [[cables]], [[cable_arrays]] or [[nets]]",
             ));
         }
 
@@ -548,6 +549,36 @@ impl Scenario {
                 output_positions,
             });
             initial.push(shape);
+        }
+        // [[nets]]
+        for (i, net) in raw.nets.iter().enumerate() {
+            let field = format!("nets[{i}] (\"{}\")", net.name);
+            let spec =
+                nets::parse(
+                    p,
+                    &field,
+                    net,
+                    &lt_index,
+                    &mut model,
+                    |name| match &positions_sel {
+                        Selection::All => true,
+                        Selection::None | Selection::Auto => false,
+                        Selection::Names(v) => v.iter().any(|n| n == name),
+                    },
+                )?;
+            let first = model.cables.len();
+            add_net(&mut model, &spec).map_err(|e| err(p, &field, e.to_string()))?;
+            for (k, c) in model.cables[first..].iter().enumerate() {
+                if names.insert(c.name.clone(), first + k).is_some() {
+                    return Err(err(
+                        p,
+                        format!("{field}.name"),
+                        format!("its twine \"{}\" has the name of another cable", c.name),
+                    ));
+                }
+                initial.push(InitialShape::Straight);
+            }
+            names.insert(net.name.clone(), first);
         }
         if let Selection::Names(v) = &positions_sel {
             if let Some(bad) = v.iter().find(|n| !names.contains_key(*n)) {

@@ -18,9 +18,38 @@ pub struct RawScenario {
     #[serde(default)]
     pub cable_arrays: Vec<toml::Table>,
     #[serde(default)]
+    pub nets: Vec<RawNet>,
+    #[serde(default)]
     pub output: RawOutput,
     #[serde(default)]
     pub ancf: RawAncf,
+}
+
+/// A `[[nets]]` entry: a net panel or cylindrical cage (see `model::net`).
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawNet {
+    pub name: String,
+    pub line_type: String,
+    pub shape: String,
+    pub knots: [i64; 2],
+    pub size: [f64; 2],
+    pub top: [f64; 3],
+    pub segments: Option<i64>,
+    pub sinker: Option<RawSinker>,
+    pub current: Option<[f64; 3]>,
+    pub current_profile: Option<Vec<[f64; 4]>>,
+    pub output_positions: Option<bool>,
+}
+
+/// The point mass at each bottom knot of a net.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawSinker {
+    pub mass: f64,
+    pub volume: Option<f64>,
+    pub drag_area: Option<f64>,
+    pub added_mass: Option<f64>,
 }
 
 /// The `[ancf]` table: settings of the ANCF reference model.
