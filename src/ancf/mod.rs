@@ -3,8 +3,31 @@
 //!
 //! The paper validates the GLMF against the absolute nodal coordinate formulation
 //! (ANCF): a few long elements whose shape is a cubic curve, with bending stiffness.
-//! This module is that reference for cables of fixed length (the ALE variant, with a
-//! material coordinate per node, is not here).
+//! This module is that reference, for cables of fixed length and, with a winch, of
+//! varying length (ALE-ANCF, below); [`run`] runs a scenario with it
+//! (`formulation = "ancf"`).
+//!
+//! # ALE-ANCF (winch cables)
+//! [`AncfConfig::winch`] makes the cable's length follow a payout schedule with the
+//! ALE-GLMF's physical coordinate (unstretched arc length from the far end; the winch
+//! node's is `L(t)`) and remeshing rules ([`crate::ale::WinchTracker`], 1.5x / 0.5x the
+//! standard length). Only the element next to the winch changes length, `l(t)`. A
+//! material point in it keeps its distance `v` from the element's material node, so its
+//! element coordinate `xi` and, through the slope shape functions, the shape functions
+//! themselves depend on `l`: with `D = d/dl` at fixed `v`
+//! ([`shape::ale_shape`], closed forms checked against finite differences) the material
+//! velocity is `S qdot + ldot (D S) q` and the material acceleration
+//! `S qddot + 2 ldot (D S) qdot + lddot (D S) q + ldot^2 (D^2 S) q` (paper Eqs. 35-36). The
+//! last three terms give the mass-flow force `-int mbar S^T rddot_p dx` (Eq. 39, the
+//! cable's own `mbar` as in [`crate::ale`]); drag, internal damping (strain and
+//! curvature rates) and seabed contact use the material rates; the element's consistent
+//! mass and Gauss rule follow `l(t)` at every evaluation. A test checks the momentum
+//! balance `dP/dt = W - R + mbar Ldot v_w` of the deployed cable. An inserted node takes
+//! the cubic's position and slope and the material velocity and slope rate at its
+//! material point: the shape and the motion are unchanged (exact). A deleted node's
+//! neighbours keep their coordinates, and the merged element is the cubic through them
+//! (the one approximation of remeshing). The stable step is computed once for the worst
+//! mesh (the variable element at 0.5 of the standard length).
 //!
 //! # The element
 //! Gradient-deficient 3D cable element: per node the position `r` and the slope
