@@ -53,7 +53,7 @@ pub mod shaders;
 pub mod solver;
 
 pub use context::GpuContext;
-pub use solver::{GpuSolver, GpuTimings};
+pub use solver::{GpuKernel, GpuSolver, GpuTimings};
 
 /// Floating-point precision of the GPU shaders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
