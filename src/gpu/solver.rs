@@ -1,7 +1,12 @@
 //! The GPU stepper: the packed layout uploaded once, many steps per submission.
 //!
-//! A step is two dispatches in one compute pass, `element_forces` then `node_update`
-//! (wgpu orders the storage writes of one dispatch before the reads of the next).
+//! With the fused kernel ([`GpuKernel::Fused`], chosen by [`fused_workgroup`] where it
+//! applies) a submission is one dispatch of `fused_steps`, one workgroup per block,
+//! looping over the submission's steps (`Params::n_steps`) inside the shader. With the
+//! two-pass kernel a step is two dispatches in one compute pass, `element_forces` then
+//! `node_update` (wgpu orders the storage writes of one dispatch before the reads of the
+//! next). Both read the step's route and payout rows the same way, so the rest of this
+//! note holds for both.
 //! [`STEPS_PER_SUBMISSION`] steps go into one command buffer; the step index reaches
 //! the shaders through a dynamic-offset uniform (one 16-byte `StepInfo` per step,
 //! written once), so nothing is written between steps. Before each submission the
@@ -88,7 +93,7 @@ impl GpuKernel {
 }
 
 /// The fused kernel's workgroup size for this layout at precision `p` under `limits`,
-/// or why the fused kernel cannot step it: the smallest multiple of 32 that holds the
+/// or why the fused kernel cannot step it: the smallest multiple of 8 that holds the
 /// nodes and the elements of every block, at most [`MAX_FUSED_WORKGROUP`] and what
 /// the adapter's workgroup limits allow; no winch cables.
 pub fn fused_workgroup(
@@ -120,8 +125,9 @@ pub fn fused_workgroup(
     let cap = MAX_FUSED_WORKGROUP
         .min(limits.max_compute_invocations_per_workgroup)
         .min(limits.max_compute_workgroup_size_x)
-        .min(limits.max_compute_workgroup_storage_size.saturating_sub(16) / per_lane);
-    let wg = need.max(1).div_ceil(32) * 32;
+        .min(limits.max_compute_workgroup_storage_size.saturating_sub(16) / per_lane / 8 * 8);
+    // A multiple of 8 (a software adapter's SIMD width; a GPU runs whole warps anyway).
+    let wg = need.max(1).div_ceil(8) * 8;
     if wg > cap {
         return Err(format!(
             "a block of {need} nodes or elements, more than the {cap} invocations the fused \
