@@ -444,9 +444,10 @@ gpu_struct_u32! {
         /// Two-pass: the failing step within the `advance` call (`step_base + k`);
         /// fused: the `step_base` of the submission that failed.
         step: u32,
-        /// Packed node index.
+        /// Packed node index (two-pass; the host finds the fused kernel's node).
         node: u32,
-        /// 1: speed over the limit (or non-finite), 2: too far (or non-finite).
+        /// 1: speed over the limit (or non-finite), 2: too far (or non-finite)
+        /// (two-pass only).
         what: u32,
     }
 }
