@@ -1,6 +1,8 @@
 //! Node-steps per second against the number of cables, for every path in one run:
 //! the CPU path on one core and on all cores, and the GPU path at f32 and f64 on the
-//! adapter at hand (wgpu's choice, honouring `WGPU_BACKEND` / `WGPU_ADAPTER_NAME`).
+//! adapter at hand (wgpu's choice, honouring `WGPU_BACKEND` / `WGPU_ADAPTER_NAME`),
+//! each with the fused kernel (one workgroup per cable, a whole submission of steps
+//! per dispatch) and with the two-pass kernel (two dispatches per step).
 //!
 //! ```sh
 //! cargo bench --bench gpu_vs_cpu                                  # the default table
@@ -11,7 +13,8 @@
 //! (elements per cable, default 50: the catenary example's 51-node line, the line
 //! `scripts/compare_peers.py` gives MoorDyn), `--seconds S` (wall time aimed at per
 //! measurement, default 1), `--repeats N` (best of, default 3), `--paths LIST` (any of
-//! `cpu1,cpu,gpu32,gpu64`), `--gpu-max-nodes N` (skip GPU sizes above it, default
+//! `cpu1,cpu,gpu32,gpu64,gpu32tp,gpu64tp`: `gpu32`/`gpu64` the fused kernel, the `tp`
+//! ones the two-pass kernel), `--gpu-max-nodes N` (skip GPU sizes above it, default
 //! unlimited), `--dt S` (default 1e-4 s, as `benches/lib.rs`), `--steps N` (exactly `N`
 //! steps per path, once, no warm-up: for instruction counts under callgrind, taken as
 //! the difference of two step counts).
@@ -22,12 +25,12 @@
 //! of `advance` alone (the GPU's includes its one status read-back per call, i.e. the
 //! full synchronisation), after a warm-up step, best of `--repeats`. The `us/step` columns
 //! are wall time per step: at one cable that is the fixed cost of a step (for the GPU,
-//! the two dispatches' encoding, submission and execution overhead).
+//! the dispatches' encoding, submission and execution overhead).
 
 mod common;
 
 use cablesim::cpu::CpuSolver;
-use cablesim::gpu::{GpuContext, GpuSolver, GpuTimings, Precision};
+use cablesim::gpu::{GpuContext, GpuKernel, GpuSolver, GpuTimings, Precision};
 use cablesim::options::SolverOptions;
 use std::time::Instant;
 
@@ -49,7 +52,9 @@ fn args() -> Args {
         segments: 50,
         seconds: 1.0,
         repeats: 3,
-        paths: ["cpu1", "cpu", "gpu32", "gpu64"].map(String::from).to_vec(),
+        paths: ["cpu1", "cpu", "gpu32", "gpu64", "gpu32tp", "gpu64tp"]
+            .map(String::from)
+            .to_vec(),
         gpu_max_nodes: usize::MAX,
         dt: 1e-4,
         steps: None,
@@ -154,11 +159,12 @@ fn main() {
         .build()
         .unwrap();
     let want = |p: &str| a.paths.iter().any(|x| x == p);
-    let mut split: Vec<(usize, usize, Precision, GpuTimings)> = Vec::new();
+    let mut split: Vec<(usize, usize, Precision, GpuKernel, GpuTimings)> = Vec::new();
     println!(
-        "| cables | nodes | CPU 1 core | CPU {threads} cores | GPU f32 | GPU f64 | CPU 1 core us/step | GPU f32 us/step | GPU f64 us/step |"
+        "| cables | nodes | CPU 1 core | CPU {threads} cores | GPU f32 fused | GPU f32 two-pass | GPU f64 fused | GPU f64 two-pass | \
+         CPU 1 core us/step | f32 fused us/step | f32 two-pass us/step | f64 fused us/step | f64 two-pass us/step |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for &nc in &a.cables {
         let (lay, pos) = common::fleet(nc, a.segments);
         let nodes = lay.n_nodes();
@@ -185,58 +191,71 @@ fn main() {
         } else {
             nan
         };
-        let mut gpu = |p: Precision| {
+        let mut gpu = |p: Precision, k: GpuKernel| {
+            let tp = if k == GpuKernel::TwoPass { "tp" } else { "" };
             let ok = match p {
-                Precision::F32 => want("gpu32"),
-                Precision::F64 => want("gpu64") && f64_ok,
+                Precision::F32 => want(&format!("gpu32{tp}")),
+                Precision::F64 => want(&format!("gpu64{tp}")) && f64_ok,
             };
             match (&ctx, ok && nodes <= a.gpu_max_nodes) {
                 (Some(ctx), true) => {
                     let mut s = GpuSolver::new(ctx, lay.clone(), &pos, opts, p).unwrap();
+                    if let Err(e) = s.set_kernel(k) {
+                        eprintln!("{nc} cables, {}: {e}", p.name());
+                        return nan;
+                    }
                     s.advance(1).unwrap();
                     let t0 = s.timings();
                     let m = measure(nodes, a.seconds, a.repeats, a.steps, |n| {
                         s.advance(n).unwrap()
                     });
-                    split.push((nc, nodes, p, since(s.timings(), t0)));
+                    split.push((nc, nodes, p, k, since(s.timings(), t0)));
                     m
                 }
                 _ => nan,
             }
         };
-        let g32 = gpu(Precision::F32);
-        let g64 = gpu(Precision::F64);
+        let g32 = gpu(Precision::F32, GpuKernel::Fused);
+        let g32tp = gpu(Precision::F32, GpuKernel::TwoPass);
+        let g64 = gpu(Precision::F64, GpuKernel::Fused);
+        let g64tp = gpu(Precision::F64, GpuKernel::TwoPass);
         println!(
-            "| {nc} | {nodes} | {} | {} | {} | {} | {:.1} | {:.1} | {:.1} |",
+            "| {nc} | {nodes} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} |",
             sci(cpu1.0),
             sci(cpu.0),
             sci(g32.0),
+            sci(g32tp.0),
             sci(g64.0),
+            sci(g64tp.0),
             cpu1.1 * 1e6,
             g32.1 * 1e6,
-            g64.1 * 1e6
+            g32tp.1 * 1e6,
+            g64.1 * 1e6,
+            g64tp.1 * 1e6
         );
     }
     if !split.is_empty() {
         println!();
         println!(
             "GPU path: where the host's wall time went, per step, over every `advance` call above \
-             (record: route/parameter writes and encoding two dispatches; wait: device work the \
+             (record: route/parameter writes and encoding the dispatches; wait: device work the \
              host could not overlap, and the status read-back)"
         );
         println!();
-        println!("| cables | nodes | precision | us/step | record us/step | submit us/step | wait us/step | steps |");
-        println!("|---:|---:|---|---:|---:|---:|---:|---:|");
-        for (nc, nodes, p, t) in &split {
+        println!("| cables | nodes | precision | kernel | us/step | record us/step | submit us/step | wait us/step | steps | dispatches |");
+        println!("|---:|---:|---|---|---:|---:|---:|---:|---:|---:|");
+        for (nc, nodes, p, k, t) in &split {
             let per = |x: f64| 1e6 * x / t.steps.max(1) as f64;
             println!(
-                "| {nc} | {nodes} | {} | {:.1} | {:.2} | {:.2} | {:.1} | {} |",
+                "| {nc} | {nodes} | {} | {} | {:.1} | {:.2} | {:.2} | {:.1} | {} | {} |",
                 p.name(),
+                k.name(),
                 per(t.advance_seconds),
                 per(t.encode_seconds),
                 per(t.submit_seconds),
                 per(t.wait_seconds),
-                t.steps
+                t.steps,
+                t.dispatches
             );
         }
     }

@@ -1,7 +1,8 @@
 // Stage 2 of a step, `node_update`: per node, gather the element loads over the
 // incidence list, add point-mass and seabed loads, solve the 3x3 mass block (or take
 // the route's Baumgarte acceleration), and advance by symplectic Euler:
-// v += a dt; r += v dt (r kept as a compensated pair).
+// v += a dt; r += v dt (r kept as a compensated pair) (shared/prelude.wgsl:
+// gather_node, node_advance, node_check).
 // CPU twin: cpu::stepper node_accel and the Symplectic arm of advance_block_in.
 //
 // `node_evaluate` is the same gather without the update, for output: per node force
@@ -16,25 +17,15 @@ fn node_update(@builtin(global_invocation_id) gid: vec3<u32>) {
     let nd = nodes[i];
     let s = state[i];
     let tau = R(step.k) * params.dt;
-    let nf = gather_node(i, nd, s);
-    let a = node_accel(nd, s, nf, tau);
-    let vn = s.v.xyz + a * params.dt;
-    let r = add_compensated(s.r_hi.xyz, s.r_lo.xyz, opaque3(vn * params.dt));
-    state[i] = NodeState(vec4<R>(r[0], R(0.0)), vec4<R>(r[1], R(0.0)), vec4<R>(vn, R(0.0)));
-    // Blow-up check, written so that NaN fails the comparisons (cpu::stepper check).
-    let blk = blocks[nd.block];
-    let ra = vec3<R>(blk.ox, blk.oy, blk.oz) + (r[0] + r[1]);
-    var what = 0u;
-    if !all(abs(vn) < vec3<R>(params.max_speed)) {
-        what = FAIL_SPEED;
-    } else if !all(abs(ra) < vec3<R>(params.max_distance)) {
-        what = FAIL_DISTANCE;
-    }
+    let nf = gather_node(i, nd, s, step.k);
+    let sn = node_advance(nd, s, nf, tau);
+    state[i] = sn;
+    let what = node_check(blocks[nd.block], sn);
     if what != 0u {
         // The first node to fail in a submission reports; the passes of later steps see
         // the flag and do nothing, so the state stays at the blow-up.
         if atomicExchange(&status.failed, 1u) == 0u {
-            status.step = params.step_base + step.k;
+            atomicStore(&status.step, params.step_base + step.k);
             status.node = i;
             status.what = what;
         }
@@ -50,7 +41,7 @@ fn node_evaluate(@builtin(global_invocation_id) gid: vec3<u32>) {
     let nd = nodes[i];
     let s = state[i];
     let tau = R(step.k) * params.dt;
-    let nf = gather_node(i, nd, s);
+    let nf = gather_node(i, nd, s, step.k);
     let a = node_accel(nd, s, nf, tau);
     node_out[i] = NodeOut(vec4<R>(nf.f, R(0.0)), vec4<R>(a, R(0.0)));
     if nd.constraint != NO_CONSTRAINT {

@@ -254,6 +254,12 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         ),
         BackendChoice::Gpu(ctx, p) => Stepper::Gpu(GpuSolver::new(&ctx, lay, &pos, opts, p)?),
     };
+    if let Stepper::Gpu(g) = &solver {
+        match g.fused_unavailable() {
+            Some(why) => log::info!("GPU kernel: {} (not fused: {why})", g.kernel().name()),
+            None => log::info!("GPU kernel: {}", g.kernel().name()),
+        }
+    }
 
     let bar = if ro.progress {
         let b = indicatif::ProgressBar::new(plan.total_steps);

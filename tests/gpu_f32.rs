@@ -40,7 +40,7 @@
 mod common;
 
 use cablesim::cpu::{CpuSolver, Evaluation};
-use cablesim::gpu::{GpuContext, GpuSolver, Precision};
+use cablesim::gpu::{GpuContext, GpuKernel, GpuSolver, Precision};
 use cablesim::model::{
     CableDef, Current, Environment, Layout, LineType, ModelDef, NodeDef, PointMass, Route,
 };
@@ -125,10 +125,13 @@ fn perturbed(pos: &[[f64; 3]]) -> Vec<[f64; 3]> {
 /// every checkpoint, end forces at those from `settle` seconds on. A second CPU f64
 /// run from [`perturbed`] positions measures the model's own sensitivity to
 /// round-off; `Worst::sensitivity` is its worst end-force ratio from `settle` on, and
-/// `Worst::sensitivity_before` before.
+/// `Worst::sensitivity_before` before. With `both`, a second GPU f32 run on the
+/// two-pass kernel is held to the same contract (the first runs on the kernel
+/// `GpuSolver` picks: the fused one where it applies, asserted for these models).
 #[allow(clippy::too_many_arguments)]
 fn compare(
     name: &str,
+    both: bool,
     ctx: &GpuContext,
     lay: &Layout,
     pos: &[[f64; 3]],
@@ -141,11 +144,24 @@ fn compare(
     let steps = (seconds / opts.dt).round() as u64;
     let mut cpu = CpuSolver::new(lay.clone(), pos, opts);
     let mut twin = CpuSolver::new(lay.clone(), &perturbed(pos), opts);
-    let mut gpu = GpuSolver::new(ctx, lay.clone(), pos, opts, Precision::F32).unwrap();
+    let mut gpus = vec![GpuSolver::new(ctx, lay.clone(), pos, opts, Precision::F32).unwrap()];
+    assert_eq!(
+        gpus[0].kernel(),
+        GpuKernel::Fused,
+        "{name}: {:?}",
+        gpus[0].fused_unavailable()
+    );
+    if both {
+        let mut g = GpuSolver::new(ctx, lay.clone(), pos, opts, Precision::F32).unwrap();
+        g.set_kernel(GpuKernel::TwoPass).unwrap();
+        gpus.push(g);
+    }
     if let Some(v) = vel {
         cpu.v = v.iter().map(|x| cablesim::math::V3::from_f64(*x)).collect();
         twin.v = cpu.v.clone();
-        gpu.set_state(pos, v);
+        for gpu in &mut gpus {
+            gpu.set_state(pos, v);
+        }
     }
     let per_call = ((1.0 / opts.dt).round() as u64).max(1);
     let length: Vec<f64> = lay
@@ -160,13 +176,18 @@ fn compare(
     for k in 1..=checks {
         let target = steps * k / checks;
         let t0 = std::time::Instant::now();
-        while done < target {
-            let n = per_call.min(target - done);
-            gpu.advance(n).unwrap();
-            done += n;
+        let mut results = Vec::new();
+        for gpu in &mut gpus {
+            let mut d = done;
+            while d < target {
+                let n = per_call.min(target - d);
+                gpu.advance(n).unwrap();
+                d += n;
+            }
+            let (r, _) = gpu.state().unwrap();
+            results.push((gpu.kernel(), r, gpu.evaluate().unwrap()));
         }
-        let (r, _) = gpu.state().unwrap();
-        let eg = gpu.evaluate().unwrap();
+        done = target;
         gpu_s += t0.elapsed().as_secs_f64();
         let t0 = std::time::Instant::now();
         cpu.advance(target - cpu.steps).unwrap();
@@ -189,41 +210,45 @@ fn compare(
             w.sensitivity_before = w.sensitivity_before.max(sens);
         }
         for (ci, cable) in lay.cables.iter().enumerate() {
-            let l = length[ci];
-            for (j, &i) in cable.nodes.iter().enumerate() {
-                let i = i as usize;
-                let rc = cpu.r[i].to_f64();
-                let d = dist(r[i], rc) / l;
-                moved = moved.max(dist(rc, pos[i]));
-                assert!(
+            for (kernel, r, eg) in &results {
+                let l = length[ci];
+                for (j, &i) in cable.nodes.iter().enumerate() {
+                    let i = i as usize;
+                    let rc = cpu.r[i].to_f64();
+                    let d = dist(r[i], rc) / l;
+                    moved = moved.max(dist(rc, pos[i]));
+                    assert!(
                     d <= 1e-4,
-                    "{name}: cable '{}' node {j} at t = {t} s: GPU {:?}, CPU {rc:?}: {d:.2e} of its length",
+                    "{name} ({}): cable '{}' node {j} at t = {t} s: GPU {:?}, CPU {rc:?}: {d:.2e} of its length",
+                    kernel.name(),
                     cable.name,
                     r[i]
                 );
-                w.node = w.node.max(d);
-                if j + 1 == cable.nodes.len() {
-                    w.last = w.last.max(d);
+                    w.node = w.node.max(d);
+                    if j + 1 == cable.nodes.len() {
+                        w.last = w.last.max(d);
+                    }
                 }
-            }
-            if t >= settle - 1e-9 {
-                check_forces(name, t, lay, ci, &eg, &ec, &mut w);
-            } else {
-                let (a, b) = (end_forces(lay, &ec, cable), end_forces(lay, &eg, cable));
-                let scale = norm(a.start).max(norm(a.end));
-                for (x, y) in [(a.start, b.start), (a.end, b.end)] {
-                    w.force_before = w.force_before.max(dist(x, y) / tolerance(x, scale));
+                if t >= settle - 1e-9 {
+                    check_forces(name, t, lay, ci, eg, &ec, &mut w);
+                } else {
+                    let (a, b) = (end_forces(lay, &ec, cable), end_forces(lay, eg, cable));
+                    let scale = norm(a.start).max(norm(a.end));
+                    for (x, y) in [(a.start, b.start), (a.end, b.end)] {
+                        w.force_before = w.force_before.max(dist(x, y) / tolerance(x, scale));
+                    }
                 }
             }
         }
     }
     w.moved = moved;
     eprintln!(
-        "{name}: {steps} steps of {:.4e} s ({seconds} s), {} cables, {} nodes: GPU {gpu_s:.1} s, CPU {cpu_s:.1} s; \
+        "{name}: GPU kernels {:?}, {steps} steps of {:.4e} s ({seconds} s), {} cables, {} nodes: GPU {gpu_s:.1} s, CPU {cpu_s:.1} s; \
          largest displacement {moved:.2} m; |dr| / L: last node {:.2e}, any node {:.2e} (limit 1e-4); \
          end forces: {} ends, largest {:.3e} N, {} near zero, worst |dF| / |F| over the others {:.2e} (limit 1e-2), \
          worst |dF| / (0.01 |F| + 1e-3 F_cable) {:.2} at {}; free ends' last tension: worst ratio {:.2}; \
          CPU f64 from positions moved by 1e-9 m: worst force ratio {:.2} (before {settle} s: {:.2}, GPU f32 there {:.2})",
+        gpus.iter().map(|g| g.kernel().name()).collect::<Vec<_>>(),
         opts.dt,
         lay.cables.len(),
         lay.n_nodes(),
@@ -327,6 +352,7 @@ fn gpu_f32_matches_cpu_f64_on_the_catenary_example() {
     let (lay, pos, opts) = scenario(CATENARY, "examples/catenary.toml");
     compare(
         "catenary example",
+        true,
         &ctx,
         &lay,
         &pos,
@@ -367,6 +393,7 @@ fn gpu_f32_matches_cpu_f64_on_the_driven_catenary() {
     };
     compare(
         "driven catenary",
+        true,
         &ctx,
         &lay,
         &pos,
@@ -399,6 +426,7 @@ fn gpu_f32_matches_cpu_f64_on_case1_screw() {
     let (lay, pos, opts) = scenario(CASE1, "examples/case1_screw.toml");
     let w = compare(
         "case 1 (screw, 100 s)",
+        true,
         &ctx,
         &lay,
         &pos,
@@ -431,7 +459,18 @@ fn gpu_f32_matches_cpu_f64_on_the_net_panel() {
     };
     let (mut lay, pos, opts) = scenario(NET, "examples/net_panel.toml");
     assert!(lay.blocks.len() == 1 && !lay.blocks[0].is_chain);
-    compare("net panel", &ctx, &lay, &pos, None, opts, 20.0, 10, 0.0);
+    compare(
+        "net panel",
+        true,
+        &ctx,
+        &lay,
+        &pos,
+        None,
+        opts,
+        20.0,
+        10,
+        0.0,
+    );
     let v = [0.4, 0.3, -0.1];
     assert_eq!(lay.routes.len(), 4);
     for r in lay.routes.iter_mut() {
@@ -446,6 +485,7 @@ fn gpu_f32_matches_cpu_f64_on_the_net_panel() {
     let vel = vec![v; lay.n_nodes()];
     let w = compare(
         "towed net panel",
+        true,
         &ctx,
         &lay,
         &pos,
@@ -716,6 +756,7 @@ fn gpu_f32_matches_cpu_f64_on_1000_random_cables() {
     };
     let w = compare(
         "1000 random cables",
+        false,
         &ctx,
         &lay,
         &pos,

@@ -25,7 +25,7 @@
 mod common;
 
 use cablesim::cpu::CpuSolver;
-use cablesim::gpu::{GpuSolver, Precision};
+use cablesim::gpu::{GpuKernel, GpuSolver, Precision};
 use cablesim::model::{
     CableDef, Current, Environment, Layout, ModelDef, NodeDef, PointMass, Route,
 };
@@ -204,7 +204,9 @@ struct Diff {
     moved: f64,
 }
 
-/// Runs both paths for `steps` steps and returns the largest differences.
+/// Runs the CPU path and the GPU path on each kernel (the fused one, asserted to be
+/// what `GpuSolver` picks for these models, and the two-pass one) for `steps` steps
+/// and returns the largest differences over both kernels.
 fn compare(
     ctx: &cablesim::gpu::GpuContext,
     lay: Layout,
@@ -212,11 +214,48 @@ fn compare(
     opts: SolverOptions,
     steps: u64,
 ) -> Diff {
+    let mut worst: Option<Diff> = None;
+    for kernel in [GpuKernel::Fused, GpuKernel::TwoPass] {
+        let d = compare_on(ctx, lay.clone(), pos, opts, steps, kernel);
+        eprintln!(
+            "{}: |dr| {:.3e} m, |dv| {:.3e} m/s, |dT| {:.3e} N, |dReaction| {:.3e} N",
+            kernel.name(),
+            d.r,
+            d.v,
+            d.tension,
+            d.reaction
+        );
+        worst = Some(match worst {
+            None => d,
+            Some(w) => Diff {
+                r: w.r.max(d.r),
+                v: w.v.max(d.v),
+                tension: w.tension.max(d.tension),
+                reaction: w.reaction.max(d.reaction),
+                ..w
+            },
+        });
+    }
+    worst.expect("two kernels")
+}
+
+fn compare_on(
+    ctx: &cablesim::gpu::GpuContext,
+    lay: Layout,
+    pos: &[[f64; 3]],
+    opts: SolverOptions,
+    steps: u64,
+    kernel: GpuKernel,
+) -> Diff {
     let omega = 2.0 / cablesim::stability::stable_step(&lay, opts.scheme, opts.baumgarte).dt;
     let l0_min = lay.elem_l0.iter().cloned().fold(f64::INFINITY, f64::min);
     let mut cpu = CpuSolver::new(lay.clone(), pos, opts);
     cpu.use_chain_kernel = false;
     let mut gpu = GpuSolver::new(ctx, lay, pos, opts, Precision::F64).unwrap();
+    if kernel == GpuKernel::Fused {
+        assert_eq!(gpu.kernel(), kernel, "{:?}", gpu.fused_unavailable());
+    }
+    gpu.set_kernel(kernel).unwrap();
     // Several advance calls of uneven length: submissions and rebasing at odd steps.
     let mut done = 0;
     for n in [1u64, 700, 299, 1000].iter().cycle() {
@@ -401,35 +440,38 @@ fn gpu_blow_up_is_reported_like_the_cpu() {
         if !ctx.supports(p) {
             continue;
         }
-        let mut gpu = GpuSolver::new(&ctx, lay.clone(), &pos, opts, p).unwrap();
-        let ge = gpu.advance(10_000).unwrap_err();
-        eprintln!("CPU: {ce}\nGPU {}: {ge}", p.name());
-        match (&ce, &ge) {
-            (
-                cablesim::Error::Diverged {
-                    cable: cc,
-                    time: tc,
-                    ..
-                },
-                cablesim::Error::Diverged {
-                    cable: cg,
-                    node,
-                    time: tg,
-                    ..
-                },
-            ) => {
-                assert_eq!(cc, cg);
-                assert!(*node <= 50);
-                // Same step in f64; within a few steps in f32.
-                let slack = if p == Precision::F64 { 0.5 } else { 5.0 } * opts.dt;
-                assert!((tc - tg).abs() <= slack, "CPU at {tc} s, GPU at {tg} s");
+        for kernel in [GpuKernel::Fused, GpuKernel::TwoPass] {
+            let mut gpu = GpuSolver::new(&ctx, lay.clone(), &pos, opts, p).unwrap();
+            gpu.set_kernel(kernel).unwrap();
+            let ge = gpu.advance(10_000).unwrap_err();
+            eprintln!("CPU: {ce}\nGPU {} {}: {ge}", p.name(), kernel.name());
+            match (&ce, &ge) {
+                (
+                    cablesim::Error::Diverged {
+                        cable: cc,
+                        time: tc,
+                        ..
+                    },
+                    cablesim::Error::Diverged {
+                        cable: cg,
+                        node,
+                        time: tg,
+                        ..
+                    },
+                ) => {
+                    assert_eq!(cc, cg);
+                    assert!(*node <= 50);
+                    // Same step in f64; within a few steps in f32.
+                    let slack = if p == Precision::F64 { 0.5 } else { 5.0 } * opts.dt;
+                    assert!((tc - tg).abs() <= slack, "CPU at {tc} s, GPU at {tg} s");
+                }
+                _ => panic!("expected Diverged from both: {ce} / {ge}"),
             }
-            _ => panic!("expected Diverged from both: {ce} / {ge}"),
+            let msg = ge.to_string();
+            assert!(
+                msg.contains("cable 'line1'") && msg.contains("node"),
+                "{msg}"
+            );
         }
-        let msg = ge.to_string();
-        assert!(
-            msg.contains("cable 'line1'") && msg.contains("node"),
-            "{msg}"
-        );
     }
 }

@@ -22,6 +22,8 @@ const ROUTE_CIRCLE: u32 = 2u;
 const ROUTE_TABLE: u32 = 3u;
 const FAIL_SPEED: u32 = 1u;
 const FAIL_DISTANCE: u32 = 2u;
+// Status.failed of a blow-up found by the fused kernel (see Status).
+const FUSED_FAILED: u32 = 0x80000000u;
 
 // Run constants. Rust: gpu::layout::{f32,f64}::Params.
 struct Params {
@@ -34,6 +36,9 @@ struct Params {
     step_base: u32,
     // Winch cables: rows of `payout` per step.
     n_winch: u32,
+    // Steps of the current submission (the fused kernel's loop count).
+    n_steps: u32,
+    pad: u32,
     dt: R,
     alpha: R,
     beta: R,
@@ -164,13 +169,18 @@ struct RouteSample {
     z_lo: R,
 }
 
-// A block's origin (absolute, m) and its seabed height relative to the origin.
+// A block's origin (absolute, m), its seabed height relative to the origin, and its
+// node and element ranges (what a workgroup of the fused kernel steps).
 // Rust: BlockParams.
 struct BlockParams {
     ox: R,
     oy: R,
     oz: R,
     zb: R,
+    node_start: u32,
+    node_end: u32,
+    elem_start: u32,
+    elem_end: u32,
 }
 
 // One row of a current profile. Rust: CurrentPoint.
@@ -218,11 +228,14 @@ struct NodeOut {
     acc: vec4<R>,
 }
 
-// First blow-up of a submission. Rust: Status.
+// First blow-up of an advance call. Rust: Status. The two-pass path sets `failed`
+// to 1 and `step` to step_base + k of the failing step. The fused kernel sets
+// `failed` to the largest `FUSED_FAILED | (0x7fff - k) << 16 | (0xffff - block)`
+// (the earliest step of the submission, then the lowest block) and `step` to the
+// submission's step_base; the host finds the node in the block.
 struct Status {
     failed: atomic<u32>,
-    // step_base + k of the failing step.
-    step: u32,
+    step: atomic<u32>,
     node: u32,
     what: u32,
 }
@@ -574,28 +587,112 @@ fn route_eval(q: RouteParams, tau: R) -> RouteState {
     );
 }
 
-// ---- Per-node gather shared by the update and evaluate passes ----
+// ---- One element and one node of a step, shared by the two-pass stages and the
+// fused kernel (each computes exactly this, only from different memory) ----
+
+// The GLMF loads of element `ep` (line `lp`, its block's origin height `oz`) from the
+// states `sa`, `sb` of its nodes a and b at step `k` of the submission (the row of
+// `payout` of a winch cable's variable element). CPU twin: cpu::stepper element_pass.
+fn element_step(ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeState, k: u32) -> ElemLoads {
+    // A winch cable's variable element takes l0_v(t) of this step (crate::ale).
+    var l0 = ep.l0;
+    var l0_lo = ep.l0_lo;
+    var py = Payout(R(0.0), R(0.0), R(0.0), R(0.0), R(0.0));
+    let var_elem = ep.winch != NO_WINCH;
+    if var_elem {
+        py = payout[k * params.n_winch + (ep.winch >> 1u)];
+        l0 = py.l0;
+        l0_lo = py.l0_lo;
+    }
+    // Compensated positions: the difference of the hi parts is made exact by a
+    // two-sum, the lo parts add the rest: d = d_hi + d_lo to about eps^2.
+    var stretch: R;
+    var d: vec3<R>;
+    if COMPENSATED {
+        let x = two_sum(sb.r_hi.x, -sa.r_hi.x);
+        let y = two_sum(sb.r_hi.y, -sa.r_hi.y);
+        let z = two_sum(sb.r_hi.z, -sa.r_hi.z);
+        let d_hi = vec3<R>(x.x, y.x, z.x);
+        let d_lo = vec3<R>(x.y, y.y, z.y) + (sb.r_lo.xyz - sa.r_lo.xyz);
+        d = d_hi + d_lo;
+        stretch = element_stretch(d_hi, d_lo, l0, l0_lo);
+    } else {
+        d = (sb.r_hi.xyz - sa.r_hi.xyz) + (sb.r_lo.xyz - sa.r_lo.xyz);
+        stretch = norm3(d) - l0;
+    }
+    let zmid = oz + ((sa.r_hi.z + sb.r_hi.z) + (sa.r_lo.z + sb.r_lo.z)) * R(0.5);
+    let u = current_at(ep.current, zmid);
+    // No waves yet: the water-acceleration load waits for a wave model.
+    let aw = vec3<R>(R(0.0), R(0.0), R(0.0));
+    let el = glmf_element(lp, d, stretch, sa.v.xyz, sb.v.xyz, l0, u, aw);
+    var tension = el.tension;
+    if var_elem {
+        tension = variable_element(ep, lp, py, d, sa.v.xyz, sb.v.xyz, tension);
+    }
+    return ElemLoads(
+        el.t.x, el.t.y, el.t.z, tension,
+        el.f_half.x, el.f_half.y, el.f_half.z, el.half_mass, el.half_added,
+    );
+}
+
+// The ALE additions of a winch cable's variable element (crate::ale; CPU twin:
+// cpu::stepper element_pass and node_accel): the internal damping acts on the
+// material strain rate, epsdot = (t . dv - (l / l0) Ldot) / l0, so the tension loses
+// EA c l Ldot / l0^2; and the mass-flow forces of Eq. 39 on its material node m and
+// winch node w, F_m = -mbar l0 g / 6, F_w = -mbar l0 g / 3 with
+// g = -2 (Ldot / l0) (v_w - v_m) + (2 Ldot^2 / l0^2 - Lddot / l0) (r_w - r_m),
+// left in node_out for the node pass. Returns the tension.
+fn variable_element(ep: ElemParams, lp: LineParams, py: Payout, d: vec3<R>, va: vec3<R>, vb: vec3<R>, tension: R) -> R {
+    var ten = tension;
+    let l0 = py.l0;
+    if py.rate != R(0.0) {
+        let l = norm3(d);
+        ten -= lp.ea_c * l * py.rate / (l0 * l0);
+    }
+    let w_is_b = (ep.winch & 1u) == 1u;
+    let m = select(ep.b, ep.a, w_is_b);
+    let w = select(ep.a, ep.b, w_is_b);
+    var fm = vec3<R>(R(0.0), R(0.0), R(0.0));
+    var fw = fm;
+    if py.rate != R(0.0) || py.accel != R(0.0) {
+        // r_w - r_m and v_w - v_m from the element's a-to-b difference.
+        let e = select(-d, d, w_is_b);
+        let dv = select(va - vb, vb - va, w_is_b);
+        let il0 = R(1.0) / l0;
+        let g = dv * (R(-2.0) * py.rate * il0) + e * ((R(2.0) * py.rate * py.rate * il0 - py.accel) * il0);
+        let s = -lp.mass * l0;
+        fm = g * (s / R(6.0));
+        fw = g * (s / R(3.0));
+    }
+    node_out[m].force = vec4<R>(fm, R(0.0));
+    node_out[w].force = vec4<R>(fw, R(0.0));
+    return ten;
+}
 
 struct NodeForce {
     f: vec3<R>,
     m: Sym3,
 }
 
-// Force and mass block of node `i`: its elements' loads and half masses gathered over
-// the incidence list (no atomics), point-mass weight and drag, seabed contact.
-fn gather_node(i: u32, nd: NodeParams, s: NodeState) -> NodeForce {
-    var f = vec3<R>(R(0.0), R(0.0), nd.point_weight_z);
-    var m = sym3_scalar(nd.point_mass);
-    for (var k = nd.inc_start; k < nd.inc_end; k += 1u) {
-        let entry = inc[k];
-        let el = elem_loads[entry >> 1u];
-        let sign = select(R(1.0), R(-1.0), (entry & 1u) == 1u);
-        let t = vec3<R>(el.tx, el.ty, el.tz);
-        f += vec3<R>(el.fx, el.fy, el.fz) + t * (sign * el.tension);
-        m = sym3_add_element(m, el.half_mass, el.half_added, t);
-    }
+// The start of node `nd`'s gather: its point mass and the point's weight.
+fn gather_begin(nd: NodeParams) -> NodeForce {
+    return NodeForce(vec3<R>(R(0.0), R(0.0), nd.point_weight_z), sym3_scalar(nd.point_mass));
+}
+
+// Adds the loads `el` of the element of incidence entry `entry` (element * 2 + side).
+fn gather_add(nf: NodeForce, el: ElemLoads, entry: u32) -> NodeForce {
+    var f = nf.f;
+    let sign = select(R(1.0), R(-1.0), (entry & 1u) == 1u);
+    let t = vec3<R>(el.tx, el.ty, el.tz);
+    f += vec3<R>(el.fx, el.fy, el.fz) + t * (sign * el.tension);
+    return NodeForce(f, sym3_add_element(nf.m, el.half_mass, el.half_added, t));
+}
+
+// The end of node `i`'s gather (block `blk`, state `s`, step `k` of the submission):
+// point drag, a winch node's mass-flow force and tributary change, seabed contact.
+fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockParams, k: u32) -> NodeForce {
+    var f = nf.f;
     let v = s.v.xyz;
-    let blk = blocks[nd.block];
     if nd.point_drag > R(0.0) {
         let z = blk.oz + (s.r_hi.z + s.r_lo.z);
         let vr = current_at(nd.current, z) - v;
@@ -605,7 +702,7 @@ fn gather_node(i: u32, nd: NodeParams, s: NodeState) -> NodeForce {
     if nd.winch != NO_WINCH {
         // A node of a variable element: its tributary length follows l0_v, and the
         // element pass left the mass-flow force of Eq. 39 in node_out (crate::ale).
-        let py = payout[step.k * params.n_winch + nd.winch];
+        let py = payout[k * params.n_winch + nd.winch];
         trib += py.trib;
         if py.rate != R(0.0) || py.accel != R(0.0) {
             f += node_out[i].force.xyz;
@@ -615,7 +712,19 @@ fn gather_node(i: u32, nd: NodeParams, s: NodeState) -> NodeForce {
         let pen = (blk.zb - s.r_hi.z) - s.r_lo.z;
         f += seabed_force(pen, trib, v);
     }
-    return NodeForce(f, m);
+    return NodeForce(f, nf.m);
+}
+
+// Force and mass block of node `i`: its elements' loads and half masses gathered over
+// the incidence list from `elem_loads` (no atomics), point-mass weight and drag,
+// seabed contact.
+fn gather_node(i: u32, nd: NodeParams, s: NodeState, k: u32) -> NodeForce {
+    var nf = gather_begin(nd);
+    for (var j = nd.inc_start; j < nd.inc_end; j += 1u) {
+        let entry = inc[j];
+        nf = gather_add(nf, elem_loads[entry >> 1u], entry);
+    }
+    return gather_end(i, nd, s, nf, blocks[nd.block], k);
 }
 
 // Acceleration of node `i`: free (mass block solve) or driven onto its route with
@@ -627,4 +736,25 @@ fn node_accel(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R) -> vec3<R> {
     let d = route_eval(routes[nd.constraint], tau);
     let dr = (s.r_hi.xyz - d.r_hi) + (s.r_lo.xyz - d.r_lo);
     return d.a - (s.v.xyz - d.v) * params.beta - dr * params.alpha;
+}
+
+// Symplectic Euler from state `s` under `nf` at `tau` into the step:
+// v += a dt; r += v dt (r kept as a compensated pair).
+fn node_advance(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R) -> NodeState {
+    let a = node_accel(nd, s, nf, tau);
+    let vn = s.v.xyz + a * params.dt;
+    let r = add_compensated(s.r_hi.xyz, s.r_lo.xyz, opaque3(vn * params.dt));
+    return NodeState(vec4<R>(r[0], R(0.0)), vec4<R>(r[1], R(0.0)), vec4<R>(vn, R(0.0)));
+}
+
+// Blow-up check of a node's new state in block `blk`, written so that NaN fails the
+// comparisons (cpu::stepper check): 0, FAIL_SPEED or FAIL_DISTANCE.
+fn node_check(blk: BlockParams, s: NodeState) -> u32 {
+    let ra = vec3<R>(blk.ox, blk.oy, blk.oz) + (s.r_hi.xyz + s.r_lo.xyz);
+    if !all(abs(s.v.xyz) < vec3<R>(params.max_speed)) {
+        return FAIL_SPEED;
+    } else if !all(abs(ra) < vec3<R>(params.max_distance)) {
+        return FAIL_DISTANCE;
+    }
+    return 0u;
 }

@@ -165,6 +165,11 @@ impl GpuContext {
             max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_PER_STAGE,
             max_storage_buffer_binding_size: alim.max_storage_buffer_binding_size,
             max_buffer_size: alim.max_buffer_size,
+            // The fused kernel keeps a block's state in workgroup memory: as much as the
+            // adapter has (32 KiB on lavapipe, 48 KiB and more on discrete GPUs).
+            max_compute_workgroup_storage_size: alim
+                .max_compute_workgroup_storage_size
+                .max(wgpu::Limits::downlevel_defaults().max_compute_workgroup_storage_size),
             ..wgpu::Limits::downlevel_defaults()
         }
         .using_alignment(alim.clone());

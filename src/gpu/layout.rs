@@ -124,6 +124,10 @@ gpu_struct! {
         step_base: u32,
         /// Number of winch cables (rows of the `payout` buffer per step).
         n_winch: u32,
+        /// Steps of the current submission (the fused kernel's loop count).
+        n_steps: u32,
+        /// Padding.
+        pad: u32,
         /// Time step, s.
         dt: R,
         /// Baumgarte position gain, s^-2.
@@ -336,7 +340,8 @@ gpu_struct! {
 }
 
 gpu_struct! {
-    /// A block's origin and seabed height (WGSL `BlockParams`).
+    /// A block's origin, seabed height, and node and element ranges (WGSL
+    /// `BlockParams`).
     BlockParams {
         /// Origin x (absolute), m.
         ox: R,
@@ -346,6 +351,14 @@ gpu_struct! {
         oz: R,
         /// Seabed height relative to the origin, m.
         zb: R,
+        /// First node.
+        node_start: u32,
+        /// One past the last node.
+        node_end: u32,
+        /// First element.
+        elem_start: u32,
+        /// One past the last element.
+        elem_end: u32,
     }
 }
 
@@ -421,15 +434,20 @@ gpu_struct! {
 }
 
 gpu_struct_u32! {
-    /// First blow-up of a submission (WGSL `Status`; `failed` is atomic there).
+    /// First blow-up of an `advance` call (WGSL `Status`; `failed` and `step` are
+    /// atomic there).
     Status {
-        /// Nonzero once a node has failed.
+        /// Nonzero once a node has failed: 1 from the two-pass path; from the fused
+        /// kernel `FUSED_FAILED | (0x7fff - k) << 16 | (0xffff - block)` of the
+        /// earliest failing step `k` of the submission.
         failed: u32,
-        /// Step of the failing step within the `advance` call (`step_base + k`).
+        /// Two-pass: the failing step within the `advance` call (`step_base + k`);
+        /// fused: the `step_base` of the submission that failed.
         step: u32,
-        /// Packed node index.
+        /// Packed node index (two-pass; the host finds the fused kernel's node).
         node: u32,
-        /// 1: speed over the limit (or non-finite), 2: too far (or non-finite).
+        /// 1: speed over the limit (or non-finite), 2: too far (or non-finite)
+        /// (two-pass only).
         what: u32,
     }
 }

@@ -1,6 +1,33 @@
 //! The GPU path: every cable of a run stepped together by WGSL compute shaders.
 //!
-//! Stages of a step (one dispatch each, many steps per submission):
+//! Two kernels step the same physics with the same WGSL functions (the prelude's
+//! `element_step`, `gather_begin` / `gather_add` / `gather_end`, `node_advance`,
+//! `node_check`; one implementation each), so their results agree to round-off (bit
+//! for bit on lavapipe, `tests/gpu_fused.rs`):
+//!
+//! - **Fused** ([`GpuKernel::Fused`], `shaders/fused_chain.wgsl`), used wherever it
+//!   applies: one workgroup per block (a cable, or a small network of cables sharing
+//!   nodes) advances it through a whole submission of up to
+//!   [`solver::STEPS_PER_SUBMISSION`] steps in one dispatch. Invocation `j` owns the
+//!   block's node `j` (its state in registers) and element `j`; node states and
+//!   element loads are exchanged through workgroup memory with two
+//!   `workgroupBarrier`s a step, and global memory is touched once per dispatch
+//!   (state in and out, parameters) apart from small cached tables (incidence,
+//!   currents, routes). It applies when every block has at most
+//!   [`solver::MAX_FUSED_WORKGROUP`] nodes and elements (the workgroup is the
+//!   smallest multiple of 8 that holds the largest block) and fits the adapter's
+//!   workgroup memory (18 scalars per invocation: 72 bytes in f32, 144 in f64), and
+//!   there are no winch cables ([`solver::fused_workgroup`] says why not).
+//!   A blow-up stops its block at the failing step and is reported with the
+//!   earliest failing step's cable, node and time; the other blocks finish the
+//!   submission, and later submissions do nothing.
+//! - **Two-pass** ([`GpuKernel::TwoPass`]), any layout: two dispatches per step over
+//!   the whole packed layout, described below.
+//!
+//! [`GpuSolver::set_kernel`] or `CABLESIM_GPU_KERNEL=two-pass` forces the two-pass
+//! kernel (`fused` demands the fused one and fails where it does not apply).
+//!
+//! Stages of a two-pass step (one dispatch each, many steps per submission):
 //! 1. `element_forces` (`shaders/element_forces.wgsl`): per element, tangent, axial
 //!    force (slack, damping), half external load (normal and tangential drag,
 //!    water-acceleration load, weight less buoyancy) and half masses;
@@ -35,17 +62,21 @@
 //! by a run-time 1.0 (see the prelude). `tests/gpu_f32.rs` and `tests/gpu_parity.rs`
 //! hold the evidence.
 //!
-//! Speed: on a datacenter GPU the step is bound by memory bandwidth (about 300 bytes
-//! and 400 flops per node-step in f32); on a software adapter by the adapter's own
-//! per-lane memory access and per-dispatch synchronisation (BENCHMARKS.md).
+//! Speed: on a datacenter GPU the two-pass step is bound by memory bandwidth (about 300
+//! bytes and 400 flops per node-step in f32); the fused kernel moves under one byte of
+//! global memory per node-step (the state once per submission) and about 220 bytes of
+//! workgroup memory in f32, so it is bound by arithmetic and occupancy there, and it
+//! launches one dispatch per submission instead of two per step. On a software adapter
+//! both are bound by the adapter's own per-lane memory access; the fused kernel removes
+//! its per-dispatch synchronisation (BENCHMARKS.md).
 //! [`GpuSolver::timings`] splits the host's time into recording, submission and waiting.
 //!
 //! Not on the GPU yet ([`solver::unsupported`] says which, and `--backend auto` falls
 //! back to the CPU): the RK2 and RK4 schemes, the older element frames.
 //!
 //! Modules: [`context`] (adapter and device), [`layout`] (Rust twins of the WGSL
-//! structs), [`shaders`] (WGSL assembly per precision), [`solver`] (buffers, pipelines,
-//! stepping and read-back).
+//! structs), [`shaders`] (WGSL assembly per precision and fused workgroup size),
+//! [`solver`] (buffers, pipelines, kernel choice, stepping and read-back).
 
 pub mod context;
 pub mod layout;
@@ -53,7 +84,7 @@ pub mod shaders;
 pub mod solver;
 
 pub use context::GpuContext;
-pub use solver::{GpuSolver, GpuTimings};
+pub use solver::{GpuKernel, GpuSolver, GpuTimings};
 
 /// Floating-point precision of the GPU shaders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -3,8 +3,9 @@
 //! One source serves both precisions: a short generated header defines the scalar
 //! alias `R` (`f32` or `f64`), the two-part `pi/2` used by the shaders' own sine
 //! and cosine, Veltkamp's splitting constant and whether element stretches are formed
-//! from compensated pairs (f32 only), then comes `shaders/shared/prelude.wgsl` (structs, bindings, physics),
-//! then the stage file.
+//! from compensated pairs (f32 only) and the fused kernel's workgroup size `FUSED_WG`,
+//! then comes `shaders/shared/prelude.wgsl` (structs, bindings, physics), then the
+//! stage file.
 
 use super::Precision;
 
@@ -19,17 +20,25 @@ pub enum Stage {
     /// `shaders/node_update.wgsl`: per-node gather, mass solve, constraints, time
     /// update (and the evaluate pass for output).
     NodeUpdate,
+    /// `shaders/fused_chain.wgsl`: one workgroup steps one block through a whole
+    /// submission (element and node work of every step, state in workgroup memory).
+    FusedSteps,
 }
+
+/// The fused kernel's workgroup size in [`source`] (the solver picks its own with
+/// [`source_with`]).
+pub const DEFAULT_FUSED_WORKGROUP: u32 = 64;
 
 impl Stage {
     /// Every stage.
-    pub const ALL: [Stage; 2] = [Stage::ElementForces, Stage::NodeUpdate];
+    pub const ALL: [Stage; 3] = [Stage::ElementForces, Stage::NodeUpdate, Stage::FusedSteps];
 
     /// The file name under `shaders/`.
     pub fn file(self) -> &'static str {
         match self {
             Stage::ElementForces => "element_forces.wgsl",
             Stage::NodeUpdate => "node_update.wgsl",
+            Stage::FusedSteps => "fused_chain.wgsl",
         }
     }
 
@@ -38,6 +47,7 @@ impl Stage {
         match self {
             Stage::ElementForces => include_str!("../../shaders/element_forces.wgsl"),
             Stage::NodeUpdate => include_str!("../../shaders/node_update.wgsl"),
+            Stage::FusedSteps => include_str!("../../shaders/fused_chain.wgsl"),
         }
     }
 
@@ -46,12 +56,19 @@ impl Stage {
         match self {
             Stage::ElementForces => &["element_forces"],
             Stage::NodeUpdate => &["node_update", "node_evaluate"],
+            Stage::FusedSteps => &["fused_steps"],
         }
     }
 }
 
-/// The generated header: the scalar alias and precision-specific constants.
+/// The generated header: the scalar alias and precision-specific constants, with the
+/// fused kernel's workgroup size [`DEFAULT_FUSED_WORKGROUP`].
 pub fn header(p: Precision) -> String {
+    header_with(p, DEFAULT_FUSED_WORKGROUP)
+}
+
+/// The generated header with the fused kernel's workgroup size `fused_wg`.
+pub fn header_with(p: Precision, fused_wg: u32) -> String {
     let pio2 = std::f64::consts::FRAC_PI_2;
     let (ty, hi, lo, splitter, compensated) = match p {
         Precision::F32 => {
@@ -76,13 +93,21 @@ pub fn header(p: Precision) -> String {
          // Veltkamp's splitting constant, 2^(p/2) + 1 for a p-bit significand.\n\
          const SPLITTER: R = {splitter:e};\n\
          // Element stretches from compensated pairs (f32; f64 needs no help).\n\
-         const COMPENSATED: bool = {compensated};\n\n"
+         const COMPENSATED: bool = {compensated};\n\
+         // Invocations per workgroup of the fused kernel (nodes per block at most).\n\
+         const FUSED_WG: u32 = {fused_wg}u;\n\n"
     )
 }
 
 /// The complete WGSL of `stage` at precision `p`: header, prelude, stage body.
 pub fn source(stage: Stage, p: Precision) -> String {
-    let mut s = header(p);
+    source_with(stage, p, DEFAULT_FUSED_WORKGROUP)
+}
+
+/// The complete WGSL of `stage` at precision `p` with the fused kernel's workgroup
+/// size `fused_wg`.
+pub fn source_with(stage: Stage, p: Precision, fused_wg: u32) -> String {
+    let mut s = header_with(p, fused_wg);
     s.push_str(PRELUDE);
     s.push('\n');
     s.push_str(stage.body());

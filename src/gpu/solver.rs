@@ -1,7 +1,12 @@
 //! The GPU stepper: the packed layout uploaded once, many steps per submission.
 //!
-//! A step is two dispatches in one compute pass, `element_forces` then `node_update`
-//! (wgpu orders the storage writes of one dispatch before the reads of the next).
+//! With the fused kernel ([`GpuKernel::Fused`], chosen by [`fused_workgroup`] where it
+//! applies) a submission is one dispatch of `fused_steps`, one workgroup per block,
+//! looping over the submission's steps (`Params::n_steps`) inside the shader. With the
+//! two-pass kernel a step is two dispatches in one compute pass, `element_forces` then
+//! `node_update` (wgpu orders the storage writes of one dispatch before the reads of the
+//! next). Both read the step's route and payout rows the same way, so the rest of this
+//! note holds for both.
 //! [`STEPS_PER_SUBMISSION`] steps go into one command buffer; the step index reaches
 //! the shaders through a dynamic-offset uniform (one 16-byte `StepInfo` per step,
 //! written once), so nothing is written between steps. Before each submission the
@@ -34,11 +39,118 @@ use std::marker::PhantomData;
 use std::time::Instant;
 use wgpu::util::DeviceExt;
 
+/// `Status::failed` of a blow-up found by the fused kernel (WGSL `FUSED_FAILED`).
+const FUSED_FAILED: u32 = 0x8000_0000;
+
 /// Steps recorded in one command buffer (one submission).
 pub const STEPS_PER_SUBMISSION: u32 = 512;
 
-/// Invocations per workgroup of every stage (the shaders' `@workgroup_size`).
+/// Invocations per workgroup of the two-pass stages (the shaders' `@workgroup_size`).
 const WORKGROUP: u32 = 64;
+
+/// The largest workgroup the fused kernel uses (nodes or elements of a block at most).
+pub const MAX_FUSED_WORKGROUP: u32 = 256;
+
+/// Bytes of workgroup memory the fused kernel needs per invocation at precision `p`:
+/// a node state and an element's loads, 9 scalars each.
+fn fused_bytes_per_lane(p: Precision) -> u32 {
+    let r = match p {
+        Precision::F32 => 4,
+        Precision::F64 => 8,
+    };
+    2 * 9 * r
+}
+
+/// How [`GpuSolver::advance`] steps the layout.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GpuKernel {
+    /// One workgroup per block advances it through a whole submission in one
+    /// dispatch (`shaders/fused_chain.wgsl`), with the block's state in workgroup
+    /// memory: for layouts whose blocks all have at most [`MAX_FUSED_WORKGROUP`]
+    /// nodes and elements (and fit the adapter's workgroup memory), without winches.
+    Fused,
+    /// Two dispatches per step over the whole packed layout (`element_forces`, then
+    /// `node_update`): any layout.
+    TwoPass,
+}
+
+impl GpuKernel {
+    /// `fused` or `two-pass`.
+    pub fn name(self) -> &'static str {
+        match self {
+            GpuKernel::Fused => "fused",
+            GpuKernel::TwoPass => "two-pass",
+        }
+    }
+    /// Parses `fused | two-pass`.
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "fused" => Some(GpuKernel::Fused),
+            "two-pass" => Some(GpuKernel::TwoPass),
+            _ => None,
+        }
+    }
+}
+
+/// The fused kernel's workgroup size for this layout at precision `p` under `limits`,
+/// or why the fused kernel cannot step it: the smallest multiple of 8 that holds the
+/// nodes and the elements of every block, at most [`MAX_FUSED_WORKGROUP`] and what
+/// the adapter's workgroup limits allow; no winch cables.
+pub fn fused_workgroup(
+    lay: &Layout,
+    p: Precision,
+    limits: &wgpu::Limits,
+    winches: bool,
+) -> Result<u32, String> {
+    if winches {
+        return Err("winch cables (their payout rows are per step and per dispatch)".into());
+    }
+    if lay.blocks.is_empty() {
+        return Err("no blocks".into());
+    }
+    if lay.blocks.len() > limits.max_compute_workgroups_per_dimension as usize {
+        return Err(format!(
+            "{} blocks, more than the {} workgroups of one dispatch dimension",
+            lay.blocks.len(),
+            limits.max_compute_workgroups_per_dimension
+        ));
+    }
+    let need = lay
+        .blocks
+        .iter()
+        .map(|b| (b.node_end - b.node_start).max(b.elem_end - b.elem_start))
+        .max()
+        .unwrap_or(1);
+    let per_lane = fused_bytes_per_lane(p);
+    let cap = MAX_FUSED_WORKGROUP
+        .min(limits.max_compute_invocations_per_workgroup)
+        .min(limits.max_compute_workgroup_size_x)
+        .min(limits.max_compute_workgroup_storage_size.saturating_sub(16) / per_lane / 8 * 8);
+    // A multiple of 8 (a software adapter's SIMD width; a GPU runs whole warps anyway).
+    let wg = need.max(1).div_ceil(8) * 8;
+    if wg > cap {
+        return Err(format!(
+            "a block of {need} nodes or elements, more than the {cap} invocations the fused \
+             kernel may use ({} bytes of workgroup memory each, {} available)",
+            per_lane, limits.max_compute_workgroup_storage_size
+        ));
+    }
+    Ok(wg)
+}
+
+/// The kernel the environment variable `CABLESIM_GPU_KERNEL` asks for (`fused`,
+/// `two-pass`; unset, empty or `auto`: none).
+fn kernel_from_env() -> Result<Option<GpuKernel>, Error> {
+    match std::env::var("CABLESIM_GPU_KERNEL") {
+        Err(_) => Ok(None),
+        Ok(v) if v.is_empty() || v == "auto" => Ok(None),
+        Ok(v) => GpuKernel::parse(&v).map(Some).ok_or_else(|| {
+            Error::Gpu(format!(
+                "CABLESIM_GPU_KERNEL={v}: expected fused, two-pass or auto"
+            ))
+        }),
+    }
+}
 
 /// Node positions (absolute, m) and velocities (m/s), packed order.
 pub type NodeStates = (Vec<[f64; 3]>, Vec<[f64; 3]>);
@@ -266,6 +378,12 @@ trait Engine: Send {
     fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error>;
     /// Where the host's time went in `advance` so far.
     fn timings(&self) -> GpuTimings;
+    /// The kernel `advance` uses.
+    fn kernel(&self) -> GpuKernel;
+    /// Why the fused kernel cannot step the current layout, or `None`.
+    fn fused_unavailable(&self) -> Option<&str>;
+    /// Chooses the kernel (`Fused` only when available).
+    fn set_kernel(&mut self, k: GpuKernel) -> Result<(), Error>;
     /// Replaces the layout (after a remeshing) with state `r`, `v`.
     fn install(
         &mut self,
@@ -285,7 +403,8 @@ trait Engine: Send {
 pub struct GpuTimings {
     /// Steps taken.
     pub steps: u64,
-    /// Compute dispatches recorded (two per step).
+    /// Compute dispatches recorded (two per step on the two-pass path, one per
+    /// submission on the fused path).
     pub dispatches: u64,
     /// Command buffers submitted.
     pub submissions: u64,
@@ -321,6 +440,10 @@ struct GpuEngine<R: GpuReal> {
     pipe_elem: wgpu::ComputePipeline,
     pipe_node: wgpu::ComputePipeline,
     pipe_eval: wgpu::ComputePipeline,
+    /// The fused kernel's pipeline and workgroup size, or why there is none.
+    pipe_fused: Result<(wgpu::ComputePipeline, u32), String>,
+    /// Whether `advance` uses the fused kernel.
+    use_fused: bool,
     step_stride: u64,
     /// The time step in f64 (the shaders hold it in `R`; route times are formed in f64).
     dt64: f64,
@@ -350,6 +473,7 @@ struct Installed<R: GpuReal> {
     n_nodes: usize,
     n_elems: usize,
     n_routes: usize,
+    n_blocks: usize,
 }
 
 impl<R: GpuReal> GpuEngine<R> {
@@ -425,6 +549,17 @@ impl<R: GpuReal> GpuEngine<R> {
         let pipe_elem = pipeline(&m_elem, "element_forces");
         let pipe_node = pipeline(&m_node, "node_update");
         let pipe_eval = pipeline(&m_node, "node_evaluate");
+        let pipe_fused = fused_workgroup(lay, precision, &ctx.limits, !host.winches.is_empty())
+            .map(|wg| {
+                let m = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(Stage::FusedSteps.file()),
+                    source: wgpu::ShaderSource::Wgsl(
+                        shaders::source_with(Stage::FusedSteps, precision, wg).into(),
+                    ),
+                });
+                (pipeline(&m, "fused_steps"), wg)
+            });
+        let use_fused = pipe_fused.is_ok();
         let inst = Self::build(ctx, &bgl, step_stride, lay, host, opts);
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(Error::Gpu(format!(
@@ -440,6 +575,8 @@ impl<R: GpuReal> GpuEngine<R> {
             pipe_elem,
             pipe_node,
             pipe_eval,
+            pipe_fused,
+            use_fused,
             step_stride,
             dt64: opts.dt,
             timings: GpuTimings::default(),
@@ -470,6 +607,8 @@ impl<R: GpuReal> GpuEngine<R> {
             seabed: seabed as u32,
             step_base: 0,
             n_winch: n_winch as u32,
+            n_steps: 0,
+            pad: 0,
             dt: R::c(opts.dt),
             alpha: R::c(opts.baumgarte.alpha),
             beta: R::c(opts.baumgarte.beta),
@@ -525,11 +664,16 @@ impl<R: GpuReal> GpuEngine<R> {
         let blocks: Vec<BlockParams<R>> = host
             .origin
             .iter()
-            .map(|o| BlockParams {
+            .zip(&lay.blocks)
+            .map(|(o, b)| BlockParams {
                 ox: R::c(o[0]),
                 oy: R::c(o[1]),
                 oz: R::c(o[2]),
                 zb: R::c(if seabed { -env.depth - o[2] } else { 0.0 }),
+                node_start: b.node_start,
+                node_end: b.node_end,
+                elem_start: b.elem_start,
+                elem_end: b.elem_end,
             })
             .collect();
         let mut current_pts = Vec::new();
@@ -551,6 +695,7 @@ impl<R: GpuReal> GpuEngine<R> {
         let n_nodes = lay.n_nodes();
         let n_elems = lay.n_elements();
         let n_routes = lay.routes.len();
+        let n_blocks = lay.blocks.len();
 
         let mut steps = vec![0u8; (step_stride * STEPS_PER_SUBMISSION as u64) as usize];
         for k in 0..STEPS_PER_SUBMISSION as usize {
@@ -661,6 +806,7 @@ impl<R: GpuReal> GpuEngine<R> {
             n_nodes,
             n_elems,
             n_routes,
+            n_blocks,
         }
     }
 
@@ -799,6 +945,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             self.write_routes(lay, host, (step0 + done) as f64 * dt64);
             self.write_payout(host, step0 + done, chunk);
             self.inst.params.step_base = done as u32;
+            self.inst.params.n_steps = chunk as u32;
             ctx.queue.write_buffer(
                 &self.inst.buf.params,
                 0,
@@ -814,11 +961,23 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                     label: Some("step"),
                     timestamp_writes: None,
                 });
-                for k in 0..chunk {
-                    let off = (k * self.step_stride) as u32;
-                    pass.set_bind_group(0, &self.inst.bind_group, &[off]);
-                    self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
-                    self.dispatch(&mut pass, &self.pipe_node, self.inst.n_nodes);
+                match (&self.pipe_fused, self.use_fused) {
+                    (Ok((pipe, _)), true) => {
+                        // One workgroup per block, all `chunk` steps in one dispatch.
+                        pass.set_bind_group(0, &self.inst.bind_group, &[0]);
+                        pass.set_pipeline(pipe);
+                        pass.dispatch_workgroups(self.inst.n_blocks as u32, 1, 1);
+                        self.timings.dispatches += 1;
+                    }
+                    _ => {
+                        for k in 0..chunk {
+                            let off = (k * self.step_stride) as u32;
+                            pass.set_bind_group(0, &self.inst.bind_group, &[off]);
+                            self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
+                            self.dispatch(&mut pass, &self.pipe_node, self.inst.n_nodes);
+                        }
+                        self.timings.dispatches += 2 * chunk;
+                    }
                 }
             }
             let cb = enc.finish();
@@ -834,13 +993,50 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         self.timings.wait_seconds += t_wait.elapsed().as_secs_f64();
         self.timings.advance_seconds += t_start.elapsed().as_secs_f64();
         self.timings.steps += n;
-        self.timings.dispatches += 2 * n;
         let st: Status = bytemuck::pod_read_unaligned(&out[0][..16]);
-        Ok((st.failed != 0).then_some((st.step as u64, st.node)))
+        if st.failed & FUSED_FAILED == 0 {
+            return Ok((st.failed != 0).then_some((st.step as u64, st.node)));
+        }
+        // The fused kernel: the earliest failing step of the failing submission and
+        // its block; the block stopped there, so its failing node is the first whose
+        // state fails the check.
+        let k = 0x7fff - ((st.failed >> 16) & 0x7fff);
+        let b = &lay.blocks[(0xffff - (st.failed & 0xffff)) as usize];
+        let (r, v) = self.download(host)?;
+        let bad = |i: usize| {
+            !(r[i].iter().all(|x| x.abs() < self.opts.max_distance)
+                && v[i].iter().all(|x| x.abs() < self.opts.max_speed))
+        };
+        let node = (b.node_start..b.node_end)
+            .find(|&i| bad(i as usize))
+            .unwrap_or(b.node_start);
+        Ok(Some((st.step as u64 + k as u64, node)))
     }
 
     fn timings(&self) -> GpuTimings {
         self.timings
+    }
+
+    fn kernel(&self) -> GpuKernel {
+        if self.use_fused && self.pipe_fused.is_ok() {
+            GpuKernel::Fused
+        } else {
+            GpuKernel::TwoPass
+        }
+    }
+
+    fn fused_unavailable(&self) -> Option<&str> {
+        self.pipe_fused.as_ref().err().map(|s| s.as_str())
+    }
+
+    fn set_kernel(&mut self, k: GpuKernel) -> Result<(), Error> {
+        if k == GpuKernel::Fused {
+            if let Err(why) = &self.pipe_fused {
+                return Err(Error::GpuUnsupported(format!("the fused kernel: {why}")));
+            }
+        }
+        self.use_fused = k == GpuKernel::Fused;
+        Ok(())
     }
 
     fn install(
@@ -1064,6 +1260,10 @@ impl GpuSolver {
                 ctx, &layout, &host, positions, &opts,
             )?),
         };
+        let mut engine = engine;
+        if let Some(k) = kernel_from_env()? {
+            engine.set_kernel(k)?;
+        }
         Ok(Self {
             layout,
             opts,
@@ -1088,6 +1288,25 @@ impl GpuSolver {
     /// waiting for the device).
     pub fn timings(&self) -> GpuTimings {
         self.engine.timings()
+    }
+
+    /// The kernel [`Self::advance`] uses: [`GpuKernel::Fused`] where it applies
+    /// ([`fused_workgroup`]), unless [`Self::set_kernel`] or the environment variable
+    /// `CABLESIM_GPU_KERNEL=two-pass` asked for the two-pass path.
+    pub fn kernel(&self) -> GpuKernel {
+        self.engine.kernel()
+    }
+
+    /// Why the fused kernel cannot step this layout on this adapter, or `None`.
+    pub fn fused_unavailable(&self) -> Option<&str> {
+        self.engine.fused_unavailable()
+    }
+
+    /// Chooses the kernel of later [`Self::advance`] calls (both step the same
+    /// physics; results agree to round-off). Asking for [`GpuKernel::Fused`] where it
+    /// does not apply is an error.
+    pub fn set_kernel(&mut self, k: GpuKernel) -> Result<(), Error> {
+        self.engine.set_kernel(k)
     }
 
     /// Where each winch cable stands now (empty without winches).

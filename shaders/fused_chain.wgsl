@@ -1,0 +1,122 @@
+// The fused kernel, `fused_steps`: one workgroup advances one block (a cable, or any
+// connected component with at most FUSED_WG nodes and FUSED_WG elements) through all
+// `params.n_steps` steps of a submission in one dispatch. Invocation `j` owns node
+// `node_start + j` (its state in registers) and element `elem_start + j`; the node
+// states its elements need and the element loads its nodes gather are exchanged
+// through workgroup memory, with two barriers a step:
+//   element: loads of element j from the published states of its two nodes;
+//   barrier (with the blow-up flag of the previous step, read uniformly);
+//   node: gather over node j's incidence list from the workgroup's loads, solve,
+//         update, check, publish the new state;
+//   barrier.
+// The per-element and per-node arithmetic is that of the two-pass stages
+// (shared/prelude.wgsl: element_step, gather_begin/gather_add/gather_end,
+// node_advance, node_check), so the two paths agree to the last bit unless the
+// compiler contracts differently. Global memory is read once per dispatch (state,
+// parameters) and written once (state), except current tables and routes, read per
+// step. A blow-up stops the block at the failing step (its state stays there) and
+// raises `status.failed` (see Status), after which later dispatches do nothing.
+// FUSED_WG comes from the generated header.
+
+// A node state in workgroup memory (no vec3: 9 scalars, no padding).
+struct WgState {
+    hx: R,
+    hy: R,
+    hz: R,
+    lx: R,
+    ly: R,
+    lz: R,
+    vx: R,
+    vy: R,
+    vz: R,
+}
+
+var<workgroup> wg_state: array<WgState, FUSED_WG>;
+var<workgroup> wg_loads: array<ElemLoads, FUSED_WG>;
+// Set (atomically, any invocation) when a node of the block fails this step.
+var<workgroup> wg_fail: atomic<u32>;
+// Stop flag, written by invocation 0 and read with workgroupUniformLoad.
+var<workgroup> wg_stop: u32;
+
+fn wg_pack(s: NodeState) -> WgState {
+    return WgState(s.r_hi.x, s.r_hi.y, s.r_hi.z, s.r_lo.x, s.r_lo.y, s.r_lo.z, s.v.x, s.v.y, s.v.z);
+}
+
+fn wg_unpack(w: WgState) -> NodeState {
+    return NodeState(
+        vec4<R>(w.hx, w.hy, w.hz, R(0.0)),
+        vec4<R>(w.lx, w.ly, w.lz, R(0.0)),
+        vec4<R>(w.vx, w.vy, w.vz, R(0.0)),
+    );
+}
+
+@compute @workgroup_size(FUSED_WG)
+fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_index) j: u32) {
+    let b = wid.x;
+    let blk = blocks[b];
+    let nn = blk.node_end - blk.node_start;
+    let ne = blk.elem_end - blk.elem_start;
+    let has_node = j < nn;
+    let has_elem = j < ne;
+    let i = blk.node_start + j;
+    let e = blk.elem_start + j;
+    if j == 0u {
+        // A blow-up in an earlier submission stops every block.
+        wg_stop = atomicLoad(&status.failed);
+        atomicStore(&wg_fail, 0u);
+    }
+    var nd: NodeParams;
+    var s: NodeState;
+    if has_node {
+        nd = nodes[i];
+        s = state[i];
+        wg_state[j] = wg_pack(s);
+    }
+    var ep: ElemParams;
+    var lp: LineParams;
+    var oz = R(0.0);
+    var la = 0u;
+    var lb = 0u;
+    if has_elem {
+        ep = elems[e];
+        lp = lines[ep.line];
+        oz = blocks[ep.block].oz;
+        la = ep.a - blk.node_start;
+        lb = ep.b - blk.node_start;
+    }
+    if workgroupUniformLoad(&wg_stop) != 0u {
+        return;
+    }
+    for (var k = 0u; k < params.n_steps; k += 1u) {
+        if has_elem {
+            wg_loads[j] = element_step(ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k);
+        }
+        if j == 0u {
+            wg_stop = atomicLoad(&wg_fail);
+        }
+        // Loads ready, states read; stop after a failed step (its state is kept).
+        if workgroupUniformLoad(&wg_stop) != 0u {
+            break;
+        }
+        if has_node {
+            var nf = gather_begin(nd);
+            for (var q = nd.inc_start; q < nd.inc_end; q += 1u) {
+                let entry = inc[q];
+                nf = gather_add(nf, wg_loads[(entry >> 1u) - blk.elem_start], entry);
+            }
+            nf = gather_end(i, nd, s, nf, blk, k);
+            s = node_advance(nd, s, nf, R(k) * params.dt);
+            wg_state[j] = wg_pack(s);
+            let what = node_check(blk, s);
+            if what != 0u && atomicExchange(&wg_fail, 1u) == 0u {
+                // Earliest step first, then lowest block (see Status).
+                atomicMax(&status.failed, FUSED_FAILED | ((0x7fffu - k) << 16u) | (0xffffu - b));
+                atomicMax(&status.step, params.step_base);
+            }
+        }
+        workgroupBarrier();
+    }
+    if has_node {
+        state[i] = s;
+    }
+}
