@@ -1197,7 +1197,7 @@ impl SpinBarrier {
             let mut spins = 0u32;
             while self.sense.load(Ordering::Acquire) != *local {
                 spins += 1;
-                if spins < 1 << 12 {
+                if spins < 1 << 8 {
                     std::hint::spin_loop();
                 } else {
                     std::thread::yield_now();
