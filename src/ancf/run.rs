@@ -67,6 +67,8 @@ struct Runner {
     cable: AncfCable,
     /// Steps per output interval.
     per_output: u64,
+    /// Whether its node positions are written (`output_positions`).
+    positions: bool,
 }
 
 fn unsupported(sc: &Scenario, ci: usize, what: String) -> Error {
@@ -275,7 +277,11 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
             info.name,
             cable.n_elements()
         );
-        runners.push(Runner { cable, per_output });
+        runners.push(Runner {
+            cable,
+            per_output,
+            positions: sc.model.cables[ci].output_positions,
+        });
     }
 
     let mut out = Files::create(&ro.out_dir, sc.winches.is_empty())?;
@@ -458,9 +464,11 @@ impl Files {
                 writeln!(self.tensions, "{t},{name},{k},{}", 0.5 * (w[0] + w[1]))
                     .map_err(io_err(&d, "tensions.csv"))?;
             }
-            for (k, x) in c.node_positions().iter().enumerate() {
-                writeln!(self.positions, "{t},{name},{k},{},{},{}", x[0], x[1], x[2])
-                    .map_err(io_err(&d, "positions.csv"))?;
+            if r.positions {
+                for (k, x) in c.node_positions().iter().enumerate() {
+                    writeln!(self.positions, "{t},{name},{k},{},{},{}", x[0], x[1], x[2])
+                        .map_err(io_err(&d, "positions.csv"))?;
+                }
             }
             if let (Some(w), Some(var)) = (self.winches.as_mut(), c.variable_length()) {
                 writeln!(w, "{t},{name},{},{var},{}", c.length(), c.n_elements())
