@@ -1,18 +1,21 @@
 //! ALE-GLMF on the CPU path: the stepper side of [`crate::ale`].
 //!
-//! A winch cable is stepped by the general passes (not the chain fast path), with two
-//! additions at every stage, both evaluated at the stage's time: the variable element
-//! gets `l0_v(t)` (and with it its mass, weight and added mass; the tributary lengths
-//! of its two nodes follow), and its material node and winch node receive the
-//! mass-flow forces of Eq. 39. Remeshing happens between steps: the model description
-//! is edited (a node inserted or deleted next to the winch) and the packed layout is
-//! rebuilt, the state carried over node by node.
+//! A winch cable is stepped by the chain fast path (or the general passes when it is
+//! part of a network), with two additions at every stage, both evaluated at the stage's
+//! time: the variable element gets `l0_v(t)` (and with it its mass, weight and added
+//! mass; the tributary lengths of its two nodes follow), and its material node and
+//! winch node receive the mass-flow forces of Eq. 39. Remeshing happens between steps:
+//! the model description is edited (a node inserted or deleted next to the winch, the
+//! other nodes kept in order) and the remeshed cable, when it is a block of its own, is
+//! spliced into the packed layout in place ([`AleState::remesh_in_place`]; equal to a
+//! full rebuild, which is what a cable in a network and the GPU path get), the state
+//! carried over node by node.
 
 use super::WinchStatus;
 use crate::ale::{MeshOp, PayoutSchedule, Winch, WinchEnd, WinchTracker};
 use crate::error::Error;
 use crate::math::V3;
-use crate::model::{Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};
+use crate::model::{CableDef, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};
 use std::sync::Arc;
 
 type V = V3<f64>;
@@ -204,6 +207,136 @@ impl AleState {
         r: &[V],
         v: &[V],
     ) -> Result<Option<(Layout, Vec<V>, Vec<V>)>, Error> {
+        let Some((rd, vd)) = self.edit(t, r, v)? else {
+            return Ok(None);
+        };
+        Ok(Some(self.rebuild(&rd, &vd)?))
+    }
+
+    /// Packs the edited description afresh; `rd`, `vd` the state in description order.
+    fn rebuild(&mut self, rd: &[V], vd: &[V]) -> Result<(Layout, Vec<V>, Vec<V>), Error> {
+        for (d, nd) in self.def.nodes.iter_mut().enumerate() {
+            nd.position = rd[d].to_f64();
+        }
+        let (lay, pos, packed) = Layout::build_indexed(&self.def)?;
+        let mut vp = vec![V::zero(); pos.len()];
+        for (d, &i) in packed.iter().enumerate() {
+            vp[i as usize] = vd[d];
+        }
+        let rp = pos.iter().map(|p| V::from_f64(*p)).collect();
+        self.packed_of_def = packed;
+        self.index(&lay);
+        debug_assert!(lay
+            .constraint_node
+            .iter()
+            .all(|&n| lay.node_constraint[n as usize] != NO_CONSTRAINT));
+        Ok((lay, rp, vp))
+    }
+
+    /// [`Self::remesh`] in place: `lay`, `r`, `v` become the new packed layout and
+    /// state. Each changed cable that is a block of its own is spliced into the layout
+    /// ([`Layout::splice_chain`]: nothing else is rebuilt, and the result equals a full
+    /// [`Layout::build`]); otherwise the layout is rebuilt. Returns whether the mesh
+    /// changed.
+    pub fn remesh_in_place(
+        &mut self,
+        t: f64,
+        lay: &mut Layout,
+        r: &mut Vec<V>,
+        v: &mut Vec<V>,
+    ) -> Result<bool, Error> {
+        // Where each winch cable's block and constraints are before the edit.
+        let before: Vec<(usize, usize, Vec<u32>, bool)> = self
+            .winches
+            .iter()
+            .map(|(w, _)| {
+                let c = &lay.cables[w.cable];
+                let first = c.nodes[0];
+                let bi = lay.blocks.partition_point(|b| b.node_end <= first);
+                let b = lay.blocks[bi];
+                let alone = (b.node_end - b.node_start) as usize == c.nodes.len() && b.is_chain;
+                let cons = [c.nodes[0], c.nodes[c.nodes.len() - 1]]
+                    .iter()
+                    .map(|&n| lay.node_constraint[n as usize])
+                    .filter(|&k| k != NO_CONSTRAINT)
+                    .collect();
+                (w.cable, bi, cons, alone)
+            })
+            .collect();
+        let n_before = lay.n_nodes();
+        let Some((rd, vd)) = self.edit(t, r, v)? else {
+            return Ok(false);
+        };
+        let changed: Vec<&(usize, usize, Vec<u32>, bool)> = before
+            .iter()
+            .filter(|(ci, ..)| self.last_changed.contains(ci))
+            .collect();
+        if changed.iter().any(|(.., alone)| !alone) {
+            let (l, rp, vp) = self.rebuild(&rd, &vd)?;
+            (*lay, *r, *v) = (l, rp, vp);
+            return Ok(true);
+        }
+        // Later blocks first, so earlier blocks' indices stay valid.
+        let mut order = changed;
+        order.sort_by_key(|(_, bi, ..)| std::cmp::Reverse(*bi));
+        for &&(ci, bi, ref cons, _) in &order {
+            let c = &self.def.cables[ci];
+            let one_def = ModelDef {
+                env: self.def.env,
+                line_types: vec![self.def.line_types[c.line_type].clone()],
+                currents: vec![self.def.currents[c.current].clone()],
+                nodes: c
+                    .nodes
+                    .iter()
+                    .map(|&d| NodeDef {
+                        position: rd[d].to_f64(),
+                        ..self.def.nodes[d].clone()
+                    })
+                    .collect(),
+                cables: vec![CableDef {
+                    name: c.name.clone(),
+                    line_type: 0,
+                    nodes: (0..c.nodes.len()).collect(),
+                    l0: c.l0.clone(),
+                    current: 0,
+                    output_positions: c.output_positions,
+                }],
+            };
+            let (one, _, _) = Layout::build_indexed(&one_def)?;
+            let b = lay.blocks[bi];
+            let (ns, ne) = (b.node_start as usize, b.node_end as usize);
+            r.splice(ns..ne, c.nodes.iter().map(|&d| rd[d]));
+            v.splice(ns..ne, c.nodes.iter().map(|&d| vd[d]));
+            lay.splice_chain(bi, ci, &one, cons, c.line_type as u32, c.current as u32);
+        }
+        // Where each described node is now: cable nodes from the cables; loose nodes
+        // (points on no cable) come after every cable's block and moved by the change
+        // in the node count.
+        let dn = lay.n_nodes() as i64 - n_before as i64;
+        let mut on_cable = vec![false; self.def.nodes.len()];
+        for (c, lc) in self.def.cables.iter().zip(&lay.cables) {
+            for (&d, &p) in c.nodes.iter().zip(&lc.nodes) {
+                self.packed_of_def[d] = p;
+                on_cable[d] = true;
+            }
+        }
+        for (d, p) in self.packed_of_def.iter_mut().enumerate() {
+            if !on_cable[d] {
+                *p = (*p as i64 + dn) as u32;
+            }
+        }
+        for (d, nd) in self.def.nodes.iter_mut().enumerate() {
+            nd.position = rd[d].to_f64();
+        }
+        self.index(lay);
+        Ok(true)
+    }
+
+    /// Applies the remeshing rules of every winch at time `t` to the description;
+    /// returns the state in description order (moved and extended like the
+    /// description), or `None` when no mesh changed.
+    #[allow(clippy::type_complexity)]
+    fn edit(&mut self, t: f64, r: &[V], v: &[V]) -> Result<Option<(Vec<V>, Vec<V>)>, Error> {
         let mut plans = Vec::new();
         for (wi, (w, tr)) in self.winches.iter_mut().enumerate() {
             let pay = w.schedule.eval(t);
@@ -252,6 +385,7 @@ impl AleState {
                         });
                         rd.push(rn);
                         vd.push(vn);
+                        self.packed_of_def.push(u32::MAX); // set by the caller
                         let l_var = l0_before - tr.l_std;
                         let c = &mut self.def.cables[ci];
                         match w.end {
@@ -284,16 +418,16 @@ impl AleState {
                                 c.l0[k] += last;
                             }
                         }
-                        // Drop the described node: the last one takes its slot.
-                        let last = self.def.nodes.len() - 1;
-                        self.def.nodes.swap_remove(dm);
-                        rd.swap_remove(dm);
-                        vd.swap_remove(dm);
-                        if dm != last {
-                            for c in &mut self.def.cables {
-                                for x in c.nodes.iter_mut().filter(|x| **x == last) {
-                                    *x = dm;
-                                }
+                        // Drop the described node, keeping the others in order (the
+                        // constraints are numbered in description order: a rebuild
+                        // then numbers them as before).
+                        self.def.nodes.remove(dm);
+                        rd.remove(dm);
+                        vd.remove(dm);
+                        self.packed_of_def.remove(dm);
+                        for c in &mut self.def.cables {
+                            for x in c.nodes.iter_mut().filter(|x| **x > dm) {
+                                *x -= 1;
                             }
                         }
                     }
@@ -307,21 +441,137 @@ impl AleState {
             };
             c.l0[kv] = tr.base_l0;
         }
-        for (d, nd) in self.def.nodes.iter_mut().enumerate() {
-            nd.position = rd[d].to_f64();
+        Ok(Some((rd, vd)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ale::PayoutSchedule;
+    use crate::model::{Current, Environment, LineType, Route};
+
+    fn cable(def: &mut ModelDef, name: &str, x: f64, n: usize, top_route: bool) -> usize {
+        let first = def.nodes.len();
+        for k in 0..=n {
+            let p = [x, 0.0, -5.0 - 5.0 * k as f64];
+            def.nodes.push(NodeDef {
+                position: p,
+                point: PointMass::default(),
+                route: (k == 0 && top_route).then_some(Route::Fixed { position: p }),
+                label: None,
+            });
         }
-        let (lay, pos, packed) = Layout::build_indexed(&self.def)?;
-        let mut vp = vec![V::zero(); pos.len()];
-        for (d, &i) in packed.iter().enumerate() {
-            vp[i as usize] = vd[d];
+        def.cables.push(CableDef {
+            name: name.into(),
+            line_type: 0,
+            nodes: (first..=first + n).collect(),
+            l0: vec![5.0; n],
+            current: def.cables.len() % 2,
+            output_positions: false,
+        });
+        def.cables.len() - 1
+    }
+
+    /// Splicing the remeshed cables into the layout gives exactly the layout a full
+    /// build of the edited description gives, state included, through insertions and
+    /// deletions at either end, with plain cables and a network in between.
+    #[test]
+    fn splice_equals_a_full_rebuild() {
+        let lt = LineType {
+            name: "w".into(),
+            diameter: 0.04,
+            mass_per_length: 5.0,
+            ea: 6e7,
+            damping: 0.0,
+            cn: 1.0,
+            ct: 0.0,
+            cm: 0.0,
+            ei: 0.0,
+            allow_compression: false,
+        };
+        let mut def = ModelDef {
+            env: Environment::default(),
+            line_types: vec![lt],
+            currents: vec![
+                Current::uniform([0.1, 0.0, 0.0]),
+                Current::uniform([0.0, 0.2, 0.0]),
+            ],
+            ..Default::default()
+        };
+        let a = cable(&mut def, "a", 0.0, 4, true);
+        let _plain = cable(&mut def, "plain", 10.0, 3, true);
+        let b = cable(&mut def, "b", 20.0, 5, false);
+        // b is held at its far (end) node: the winch there.
+        let last = *def.cables[b].nodes.last().unwrap();
+        def.nodes[last].route = Some(Route::Fixed {
+            position: def.nodes[last].position,
+        });
+        // A small network: two cables sharing a knot.
+        let n1 = cable(&mut def, "n1", 30.0, 2, true);
+        let knot = *def.cables[n1].nodes.last().unwrap();
+        let n2 = cable(&mut def, "n2", 40.0, 2, true);
+        let k2 = def.cables[n2].nodes.len() - 1;
+        def.cables[n2].nodes[k2] = knot;
+        let c = cable(&mut def, "c", 50.0, 3, true);
+        let winch = |cable, end, rates: &[(f64, f64)]| Winch {
+            cable,
+            end,
+            schedule: Arc::new(PayoutSchedule::rates(rates).unwrap()),
+            drum_length: 1e3,
+            element_length: 5.0,
+        };
+        let winches = vec![
+            winch(
+                a,
+                WinchEnd::Start,
+                &[(0.0, 1.0), (20.0, 1.0), (20.0, -1.3), (40.0, -1.3)],
+            ),
+            winch(
+                b,
+                WinchEnd::End,
+                &[(0.0, -0.7), (10.0, -0.7), (10.0, 1.1), (40.0, 1.1)],
+            ),
+            winch(c, WinchEnd::Start, &[(0.0, 0.37)]),
+        ];
+        let (lay0, pos, packed) = Layout::build_indexed(&def).unwrap();
+        let mut ale = AleState::new(def, winches, packed).unwrap();
+        ale.index(&lay0);
+        let mut lay = lay0;
+        let mut r: Vec<V> = pos.iter().map(|p| V::from_f64(*p)).collect();
+        let mut v: Vec<V> = (0..r.len())
+            .map(|i| V::new(i as f64, -(i as f64), 0.5))
+            .collect();
+        let mut events = 0;
+        for k in 1..=4000 {
+            let t = k as f64 * 0.01;
+            // Move the state so positions and velocities carry through.
+            for (i, x) in r.iter_mut().enumerate() {
+                x.x += 1e-3 * (i as f64).sin();
+            }
+            if !ale.needs_action(t) {
+                continue;
+            }
+            assert!(ale.remesh_in_place(t, &mut lay, &mut r, &mut v).unwrap());
+            events += 1;
+            let (full, fpos, fpacked) = Layout::build_indexed(&ale.def).unwrap();
+            assert!(
+                lay == full,
+                "t = {t}: the spliced layout differs from a full build"
+            );
+            assert_eq!(ale.packed_of_def, fpacked, "t = {t}");
+            for (i, p) in fpos.iter().enumerate() {
+                assert_eq!(r[i].to_f64(), *p, "t = {t}: node {i}");
+            }
+            assert_eq!(r.len(), v.len());
         }
-        let rp = pos.iter().map(|p| V::from_f64(*p)).collect();
-        self.packed_of_def = packed;
-        self.index(&lay);
-        debug_assert!(lay
-            .constraint_node
+        let (ins, del): (u64, u64) = ale
+            .winches
             .iter()
-            .all(|&n| lay.node_constraint[n as usize] != NO_CONSTRAINT));
-        Ok(Some((lay, rp, vp)))
+            .fold((0, 0), |s, (_, tr)| (s.0 + tr.inserted, s.1 + tr.deleted));
+        assert!(
+            events > 10 && ins > 5 && del > 5,
+            "{events} events, {ins} insertions, {del} deletions"
+        );
     }
 }

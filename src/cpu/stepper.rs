@@ -314,9 +314,19 @@ impl CpuSolver {
             self.advance_fixed(k)?;
             left -= k;
             let ale = self.ale.as_deref_mut().expect("winches");
-            if let Some((lay, r, v)) = ale.remesh(self.t, &self.r, &self.v)? {
-                let changed = ale.last_changed.clone();
-                self.install_remeshed(lay, r, v, &changed);
+            let mut lay = std::mem::take(&mut self.layout);
+            let (mut r, mut v) = (std::mem::take(&mut self.r), std::mem::take(&mut self.v));
+            let changed = ale.remesh_in_place(self.t, &mut lay, &mut r, &mut v);
+            let cables = ale.last_changed.clone();
+            match changed {
+                Ok(true) => self.install_remeshed(lay, r, v, &cables),
+                Ok(false) => (self.layout, self.r, self.v) = (lay, r, v),
+                Err(e) => {
+                    // The description moved on, the layout may be half spliced: the
+                    // run ends here (a limit of the winch was passed).
+                    (self.layout, self.r, self.v) = (lay, r, v);
+                    return Err(e);
+                }
             }
         }
         Ok(())

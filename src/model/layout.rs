@@ -111,7 +111,7 @@ pub struct Block {
 }
 
 /// All cables of a run in flat arrays (see the module doc).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Layout {
     /// Environment.
     pub env: Environment,
@@ -198,6 +198,171 @@ impl Layout {
             .position(|&x| x as usize == e)
             .unwrap_or(0);
         (self.cables[c].name.clone(), k)
+    }
+
+    /// Replaces block `bi`, which must hold cable `ci` alone (a chain), by `one`: the
+    /// layout of that cable alone (built from a description of it with this layout's
+    /// one line type and current), whose node and element counts may differ. Nodes and
+    /// elements after the block move by the difference; the block's constraints keep
+    /// their numbers (`one`'s constraint `k` is this layout's `constraints[k]`, in the
+    /// order `one` numbers them). The arrays are moved in place: no other block is
+    /// rebuilt, so a winch cable remeshes in time proportional to the model's size
+    /// with a small constant, not a full [`Layout::build`].
+    /// `one` has one line type and one current; `line` and `current` are their indices
+    /// here.
+    pub fn splice_chain(
+        &mut self,
+        bi: usize,
+        ci: usize,
+        one: &Layout,
+        constraints: &[u32],
+        line: u32,
+        current: u32,
+    ) {
+        let b = self.blocks[bi];
+        let (ns, ne_old) = (b.node_start as usize, b.node_end as usize);
+        let (es, ee_old) = (b.elem_start as usize, b.elem_end as usize);
+        let (n_new, e_new) = (one.n_nodes(), one.n_elements());
+        let dn = n_new as i64 - (ne_old - ns) as i64;
+        let de = e_new as i64 - (ee_old - es) as i64;
+        let sh = |x: u32, d: i64| (x as i64 + d) as u32;
+        fn splice<T: Clone>(
+            v: &mut Vec<T>,
+            r: std::ops::Range<usize>,
+            new: impl IntoIterator<Item = T>,
+        ) {
+            v.splice(r, new);
+        }
+        // Per node.
+        splice(
+            &mut self.node_cable,
+            ns..ne_old,
+            std::iter::repeat_n(ci as u32, n_new),
+        );
+        splice(
+            &mut self.node_index_in_cable,
+            ns..ne_old,
+            one.node_index_in_cable.iter().copied(),
+        );
+        splice(
+            &mut self.node_point_mass,
+            ns..ne_old,
+            one.node_point_mass.iter().copied(),
+        );
+        splice(
+            &mut self.node_point_weight_z,
+            ns..ne_old,
+            one.node_point_weight_z.iter().copied(),
+        );
+        splice(
+            &mut self.node_point_drag,
+            ns..ne_old,
+            one.node_point_drag.iter().copied(),
+        );
+        splice(
+            &mut self.node_tributary,
+            ns..ne_old,
+            one.node_tributary.iter().copied(),
+        );
+        splice(
+            &mut self.node_current,
+            ns..ne_old,
+            std::iter::repeat_n(current, n_new),
+        );
+        splice(
+            &mut self.node_constraint,
+            ns..ne_old,
+            one.node_constraint.iter().map(|&k| {
+                if k == NO_CONSTRAINT {
+                    k
+                } else {
+                    constraints[k as usize]
+                }
+            }),
+        );
+        // Incidence rows of the block, then everything after it.
+        let (i0, i1) = (self.inc_start[ns] as usize, self.inc_start[ne_old] as usize);
+        let di = one.inc.len() as i64 - (i1 - i0) as i64;
+        splice(
+            &mut self.inc,
+            i0..i1,
+            one.inc.iter().map(|&x| x + 2 * es as u32),
+        );
+        for x in &mut self.inc[i0 + one.inc.len()..] {
+            *x = sh(*x, 2 * de);
+        }
+        splice(
+            &mut self.inc_start,
+            ns..ne_old + 1,
+            one.inc_start.iter().map(|&x| x + i0 as u32),
+        );
+        for x in &mut self.inc_start[ns + n_new + 1..] {
+            *x = sh(*x, di);
+        }
+        // Per element.
+        splice(
+            &mut self.elem_a,
+            es..ee_old,
+            one.elem_a.iter().map(|&x| x + ns as u32),
+        );
+        splice(
+            &mut self.elem_b,
+            es..ee_old,
+            one.elem_b.iter().map(|&x| x + ns as u32),
+        );
+        for x in self.elem_a[es + e_new..]
+            .iter_mut()
+            .chain(&mut self.elem_b[es + e_new..])
+        {
+            *x = sh(*x, dn);
+        }
+        splice(&mut self.elem_l0, es..ee_old, one.elem_l0.iter().copied());
+        splice(
+            &mut self.elem_line,
+            es..ee_old,
+            std::iter::repeat_n(line, e_new),
+        );
+        splice(
+            &mut self.elem_cable,
+            es..ee_old,
+            std::iter::repeat_n(ci as u32, e_new),
+        );
+        splice(
+            &mut self.elem_current,
+            es..ee_old,
+            std::iter::repeat_n(current, e_new),
+        );
+        // Constraints, cables, blocks.
+        for x in &mut self.constraint_node {
+            if *x as usize >= ne_old {
+                *x = sh(*x, dn);
+            }
+        }
+        for (k, &gk) in constraints.iter().enumerate() {
+            self.constraint_node[gk as usize] = one.constraint_node[k] + ns as u32;
+        }
+        for (cj, c) in self.cables.iter_mut().enumerate() {
+            if cj != ci && c.nodes.first().is_some_and(|&x| x as usize >= ne_old) {
+                c.nodes.iter_mut().for_each(|x| *x = sh(*x, dn));
+                c.elements.iter_mut().for_each(|x| *x = sh(*x, de));
+            }
+        }
+        let c = &mut self.cables[ci];
+        c.nodes = one.cables[0].nodes.iter().map(|&x| x + ns as u32).collect();
+        c.elements = one.cables[0]
+            .elements
+            .iter()
+            .map(|&x| x + es as u32)
+            .collect();
+        self.blocks[bi].node_end = (ns + n_new) as u32;
+        self.blocks[bi].elem_end = (es + e_new) as u32;
+        self.blocks[bi].is_chain = one.blocks[0].is_chain;
+        for b in &mut self.blocks[bi + 1..] {
+            b.node_start = sh(b.node_start, dn);
+            b.node_end = sh(b.node_end, dn);
+            b.elem_start = sh(b.elem_start, de);
+            b.elem_end = sh(b.elem_end, de);
+        }
     }
 
     /// Packs a model description. Returns the layout and the initial positions in
