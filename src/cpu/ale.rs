@@ -190,6 +190,15 @@ impl AleState {
         })
     }
 
+    /// How many of the next `left` steps (of `dt`, after step `step`) run on the
+    /// current mesh: up to and including the first step after which some winch must
+    /// remesh (or passes a limit), else all of them.
+    pub fn steps_on_this_mesh(&self, step: u64, left: u64, dt: f64) -> u64 {
+        (1..=left)
+            .find(|&k| self.needs_action((step + k) as f64 * dt))
+            .unwrap_or(left)
+    }
+
     /// True when some winch must remesh (or passes a limit) at time `t`.
     pub fn needs_action(&self, t: f64) -> bool {
         self.winches

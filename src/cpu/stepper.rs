@@ -307,10 +307,7 @@ impl CpuSolver {
         let mut left = nsteps;
         while left > 0 {
             let ale = self.ale.as_deref().expect("winches");
-            // Steps up to the first step time at which some winch needs remeshing.
-            let k = (1..=left)
-                .find(|&k| ale.needs_action((self.steps + k) as f64 * dt))
-                .unwrap_or(left);
+            let k = ale.steps_on_this_mesh(self.steps, left, dt);
             self.advance_fixed(k)?;
             left -= k;
             let ale = self.ale.as_deref_mut().expect("winches");

@@ -1330,10 +1330,7 @@ impl GpuSolver {
         let mut left = nsteps;
         while left > 0 {
             let ale = self.ale.as_deref().expect("winches");
-            // Steps up to the first step time at which some winch needs remeshing.
-            let k = (1..=left)
-                .find(|&k| ale.needs_action((self.steps + k) as f64 * dt))
-                .unwrap_or(left);
+            let k = ale.steps_on_this_mesh(self.steps, left, dt);
             self.advance_fixed(k)?;
             left -= k;
             if self.ale.as_deref().expect("winches").needs_action(self.t) {
