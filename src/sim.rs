@@ -144,19 +144,16 @@ fn scan_winches(sc: &Scenario, plan: &StepPlan) -> Result<Vec<usize>, Error> {
     Ok(collapse)
 }
 
-fn plan_with(
-    sc: &Scenario,
-    opts: &SolverOptions,
-    duration: f64,
-    dt: DtSpec,
-    bound: StepBound,
-) -> Result<StepPlan, Error> {
+/// The step of `spec` for a model whose stable step is `stable` (s), and the steps per
+/// output interval: `auto` takes [`AUTO_SAFETY`] of `stable`, rounded down so that a
+/// whole number of steps fits the output interval; a given step must divide it (an
+/// error naming the field otherwise).
+pub(crate) fn fit_step(sc: &Scenario, spec: DtSpec, stable: f64) -> Result<(f64, u64), Error> {
     let oi = sc.sim.output_interval;
-    let (dt, spo, warning) = match dt {
+    match spec {
         DtSpec::Auto => {
-            let dmax = AUTO_SAFETY * bound.dt;
-            let n = (oi / dmax).ceil().max(1.0);
-            (oi / n, n as u64, None)
+            let n = (oi / (AUTO_SAFETY * stable)).ceil().max(1.0);
+            Ok((oi / n, n as u64))
         }
         DtSpec::Fixed(d) => {
             let n = (oi / d).round().max(1.0);
@@ -167,17 +164,27 @@ fn plan_with(
                     format!("{oi} s is not a whole number of steps of dt = {d} s"),
                 ));
             }
-            let warning = (d > bound.dt).then(|| {
-                format!(
-                    "dt = {d} s is above the stable step {:.4e} s of the {} scheme, set by {}; expect a blow-up",
-                    bound.dt,
-                    opts.scheme.name(),
-                    bound.term
-                )
-            });
-            (d, n as u64, warning)
+            Ok((d, n as u64))
         }
-    };
+    }
+}
+
+fn plan_with(
+    sc: &Scenario,
+    opts: &SolverOptions,
+    duration: f64,
+    dt_spec: DtSpec,
+    bound: StepBound,
+) -> Result<StepPlan, Error> {
+    let (dt, spo) = fit_step(sc, dt_spec, bound.dt)?;
+    let warning = (matches!(dt_spec, DtSpec::Fixed(_)) && dt > bound.dt).then(|| {
+        format!(
+            "dt = {dt} s is above the stable step {:.4e} s of the {} scheme, set by {}; expect a blow-up",
+            bound.dt,
+            opts.scheme.name(),
+            bound.term
+        )
+    });
     let total = (duration / dt).round().max(1.0) as u64;
     Ok(StepPlan {
         dt,

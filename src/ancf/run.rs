@@ -19,7 +19,7 @@
 //!   ANCF's own static equilibrium, so a line whose ends hold still stays still. Where
 //!   that Newton solve stalls (Gauss points slipping in and out of seabed contact) the
 //!   run starts from the catenary with a warning.
-//! - Step: `dt = "auto"` takes [`AUTO_SAFETY`] of each cable's stable step (with a winch,
+//! - Step: `dt = "auto"` takes [`crate::stability::AUTO_SAFETY`] of each cable's stable step (with a winch,
 //!   of its worst mesh), rounded down to divide the output interval; a given `dt` is
 //!   used for every cable, with a warning when it is above a cable's stable step.
 //! - Outputs: `positions.csv` has the ANCF nodes (fewer than the lumped mass's: the
@@ -28,7 +28,7 @@
 //!   force on each held end (zero at a free end); `winches.csv` and `summary.json` as
 //!   for the lumped-mass model.
 
-use super::{AddedMass, AncfCable, AncfConfig, AncfEnd, StaticOptions, AUTO_SAFETY};
+use super::{AddedMass, AncfCable, AncfConfig, AncfEnd, StaticOptions};
 use crate::error::Error;
 use crate::model::ModelDef;
 use crate::output::{CableSummary, EndForces, Summary, WinchSummary};
@@ -205,29 +205,13 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
             .collect();
         let probe = AncfCable::new(cfg.clone())?;
         let (stable, term) = probe.stable_dt();
-        let (dt, per_output) = match dt_spec {
-            DtSpec::Auto => {
-                let n = (oi / (AUTO_SAFETY * stable)).ceil().max(1.0);
-                (oi / n, n as u64)
-            }
-            DtSpec::Fixed(d) => {
-                let n = (oi / d).round().max(1.0);
-                if ((n * d) - oi).abs() > 1e-9 * oi {
-                    return Err(crate::scenario::err(
-                        &sc.path,
-                        "simulation.output_interval",
-                        format!("{oi} s is not a whole number of steps of dt = {d} s"),
-                    ));
-                }
-                if d > stable {
-                    log::warn!(
-                        "cable '{}': dt = {d} s is above the ANCF stable step {stable:.4e} s ({term}); expect a blow-up",
-                        cfg.name
-                    );
-                }
-                (d, n as u64)
-            }
-        };
+        let (dt, per_output) = crate::sim::fit_step(sc, dt_spec, stable)?;
+        if matches!(dt_spec, DtSpec::Fixed(_)) && dt > stable {
+            log::warn!(
+                "cable '{}': dt = {dt} s is above the ANCF stable step {stable:.4e} s ({term}); expect a blow-up",
+                cfg.name
+            );
+        }
         cfg.dt = Some(dt);
         let mut cable = AncfCable::new(cfg)?;
         if sc.initial[ci] == InitialShape::Catenary {
