@@ -290,8 +290,13 @@ impl OutputWriter {
 
     /// Writes `summary.json`.
     pub fn summary(&self, s: &Summary) -> Result<(), Error> {
-        let path = self.dir.join("summary.json");
-        let text = serde_json::to_string_pretty(s).expect("summary serialises");
-        std::fs::write(&path, text).map_err(|source| Error::Output { path, source })
+        write_summary(&self.dir, s)
     }
+}
+
+/// Writes `summary.json` into `dir`.
+pub fn write_summary(dir: &Path, s: &Summary) -> Result<(), Error> {
+    let path = dir.join("summary.json");
+    let text = serde_json::to_string_pretty(s).expect("summary serialises");
+    std::fs::write(&path, text).map_err(|source| Error::Output { path, source })
 }

@@ -478,8 +478,6 @@ impl Files {
     }
 
     fn summary(&self, s: &Summary) -> Result<(), Error> {
-        let path = self.dir.join("summary.json");
-        let text = serde_json::to_string_pretty(s).expect("summary serialises");
-        std::fs::write(&path, text).map_err(|source| Error::Output { path, source })
+        crate::output::write_summary(&self.dir, s)
     }
 }
