@@ -6,88 +6,62 @@ mod common;
 
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{
-    CableDef, Current, Environment, Layout, ModelDef, NodeDef, PointMass, Route,
+    add_net, Current, Environment, Layout, ModelDef, NetShape, NetSpec, PointMass, Route,
 };
 use cablesim::options::{Baumgarte, Scheme, SolverOptions};
 use cablesim::stability::stable_step;
 use common::wire;
 
-/// A square net of `k x k` knots 2 m apart, twines of `seg` elements between
-/// neighbouring knots, the top row held (one corner towed), sinkers on the bottom row,
-/// a seabed the lower part reaches, a current.
+/// A vertical panel of `k x k` knots 2 m apart (`model::add_net`), twines of `seg`
+/// elements, the top row held with one corner towed, sinkers on the bottom row, a
+/// seabed the lowest rows reach, a current.
 fn net(k: usize, seg: usize) -> ModelDef {
-    let spacing = 2.0;
     let mut lt = wire();
     lt.diameter = 0.003;
     lt.mass_per_length = 0.01;
     lt.ea = 2.0e4;
     lt.damping = 1e-3;
-    let mut nodes: Vec<NodeDef> = Vec::new();
-    let knot = |i: usize, j: usize| i * k + j;
-    for i in 0..k {
-        for j in 0..k {
-            let p = [j as f64 * spacing, 0.3 * i as f64, -(i as f64) * spacing];
-            nodes.push(NodeDef {
-                position: p,
-                point: if i == k - 1 {
-                    PointMass {
-                        mass: 2.0,
-                        volume: 2.0e-4,
-                        drag_area: 0.01,
-                        added_mass_coef: 1.0,
-                    }
-                } else {
-                    PointMass::default()
-                },
-                route: (i == 0).then_some(Route::Fixed { position: p }),
-                label: None,
-            });
-        }
-    }
-    nodes[knot(0, k - 1)].route = Some(Route::Line {
-        start: nodes[knot(0, k - 1)].position,
-        velocity: [0.3, 0.2, 0.0],
-    });
-    let mut cables = Vec::new();
-    let mut twine = |nodes: &mut Vec<NodeDef>, a: usize, b: usize| {
-        let (pa, pb) = (nodes[a].position, nodes[b].position);
-        let mut chain = vec![a];
-        for s in 1..seg {
-            let f = s as f64 / seg as f64;
-            nodes.push(NodeDef {
-                position: [0, 1, 2].map(|d| pa[d] + f * (pb[d] - pa[d])),
-                point: PointMass::default(),
-                route: None,
-                label: None,
-            });
-            chain.push(nodes.len() - 1);
-        }
-        chain.push(b);
-        cables.push(CableDef {
-            name: format!("t{}", cables.len()),
-            line_type: 0,
-            nodes: chain,
-            l0: vec![spacing / seg as f64; seg],
-            current: 0,
-            output_positions: false,
-        });
-    };
-    for i in 0..k {
-        for j in 0..k - 1 {
-            twine(&mut nodes, knot(i, j), knot(i, j + 1));
-            twine(&mut nodes, knot(j, i), knot(j + 1, i));
-        }
-    }
-    ModelDef {
+    let size = 2.0 * (k - 1) as f64;
+    let mut def = ModelDef {
         env: Environment {
-            depth: 2.0 * (k as f64 - 1.5),
+            depth: size - 1.0,
             ..Environment::default()
         },
         line_types: vec![lt],
         currents: vec![Current::uniform([0.4, 0.1, 0.0])],
-        nodes,
-        cables,
-    }
+        ..Default::default()
+    };
+    add_net(
+        &mut def,
+        &NetSpec {
+            name: "net".into(),
+            line_type: 0,
+            current: 0,
+            shape: NetShape::Panel {
+                columns: k,
+                rows: k,
+                width: size,
+                depth: size,
+                top: [0.0, 0.0, 0.0],
+            },
+            segments: seg,
+            sinker: PointMass {
+                mass: 2.0,
+                volume: 2.0e-4,
+                drag_area: 0.01,
+                added_mass_coef: 1.0,
+            },
+            output_positions: false,
+        },
+    )
+    .unwrap();
+    // Tow the top-right knot.
+    let corner = &mut def.nodes[k - 1];
+    corner.route = Some(Route::Line {
+        start: corner.position,
+        velocity: [0.3, 0.2, 0.0],
+    });
+    def
 }
 
 fn run(
