@@ -59,7 +59,7 @@ pub(crate) struct AleState {
     pub winches: Vec<(Winch, WinchTracker)>,
     /// Per block of the current layout: its variable elements (usually none or one).
     pub blocks: Vec<Vec<AleElem>>,
-    /// Cables whose mesh the last [`Self::remesh`] changed (every other block of the
+    /// Cables whose mesh the last [`Self::remesh_in_place`] changed (every other block of the
     /// new layout equals the old one but for its position and constraint numbers).
     pub last_changed: Vec<usize>,
 }
@@ -206,22 +206,6 @@ impl AleState {
             .any(|(w, tr)| tr.needs_action(w.schedule.eval(t).dl))
     }
 
-    /// Remeshes every winch cable at time `t`, moving the described nodes. `r`, `v` are
-    /// the packed state. Returns the new packed layout and state when the mesh
-    /// changed, `None` when it did not; an error names the cable and the limit passed.
-    #[allow(clippy::type_complexity)]
-    pub fn remesh(
-        &mut self,
-        t: f64,
-        r: &[V],
-        v: &[V],
-    ) -> Result<Option<(Layout, Vec<V>, Vec<V>)>, Error> {
-        let Some((rd, vd)) = self.edit(t, r, v)? else {
-            return Ok(None);
-        };
-        Ok(Some(self.rebuild(&rd, &vd)?))
-    }
-
     /// Packs the edited description afresh; `rd`, `vd` the state in description order.
     fn rebuild(&mut self, rd: &[V], vd: &[V]) -> Result<(Layout, Vec<V>, Vec<V>), Error> {
         for (d, nd) in self.def.nodes.iter_mut().enumerate() {
@@ -242,8 +226,9 @@ impl AleState {
         Ok((lay, rp, vp))
     }
 
-    /// [`Self::remesh`] in place: `lay`, `r`, `v` become the new packed layout and
-    /// state. Each changed cable that is a block of its own is spliced into the layout
+    /// Remeshes every winch cable at time `t`, moving the described nodes: `lay`, `r`,
+    /// `v` (the packed layout and state) become the new ones; an error names the cable
+    /// and the limit passed. Each changed cable that is a block of its own is spliced into the layout
     /// ([`Layout::splice_chain`]: nothing else is rebuilt, and the result equals a full
     /// [`Layout::build`]); otherwise the layout is rebuilt. Returns whether the mesh
     /// changed.

@@ -1166,8 +1166,8 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
 /// The schedule fixes in advance the step at which a cable must be remeshed, so an
 /// [`GpuSolver::advance`] call ends its submissions exactly there, reads the state
 /// back, remeshes on the host with the CPU path's code (`WinchTracker` and the same
-/// node insertion or deletion), rebuilds and uploads the layout's buffers (the
-/// pipelines are kept), and goes on: one round trip per remeshing, every `l_s / Ldot`
+/// node insertion or deletion, spliced into the host's packed layout), uploads the
+/// layout's buffers (the pipelines are kept), and goes on: one round trip per remeshing, every `l_s / Ldot`
 /// seconds, none per step.
 pub struct GpuSolver {
     /// The packed model (the current mesh, with winches).
@@ -1344,15 +1344,16 @@ impl GpuSolver {
     /// installs the new layout and state.
     fn remesh(&mut self) -> Result<(), Error> {
         let (r, v) = self.engine.download(&self.host)?;
-        let r: Vec<V3<f64>> = r.iter().map(|p| V3::from_f64(*p)).collect();
-        let v: Vec<V3<f64>> = v.iter().map(|p| V3::from_f64(*p)).collect();
+        let mut r: Vec<V3<f64>> = r.iter().map(|p| V3::from_f64(*p)).collect();
+        let mut v: Vec<V3<f64>> = v.iter().map(|p| V3::from_f64(*p)).collect();
         let ale = self.ale.as_deref_mut().expect("winches");
-        if let Some((lay, r, v)) = ale.remesh(self.t, &r, &v)? {
+        // The host's layout is spliced in place where it can be (as on the CPU path);
+        // the device buffers are uploaded whole.
+        if ale.remesh_in_place(self.t, &mut self.layout, &mut r, &mut v)? {
             let r: Vec<[f64; 3]> = r.iter().map(|x| x.to_f64()).collect();
             let v: Vec<[f64; 3]> = v.iter().map(|x| x.to_f64()).collect();
-            self.host = Host::new(&lay, &r, Some(ale))?;
-            self.engine.install(&lay, &self.host, &r, &v)?;
-            self.layout = lay;
+            self.host = Host::new(&self.layout, &r, Some(ale))?;
+            self.engine.install(&self.layout, &self.host, &r, &v)?;
             self.remeshes += 1;
         }
         Ok(())
