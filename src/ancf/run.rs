@@ -79,24 +79,31 @@ fn unsupported(sc: &Scenario, ci: usize, what: String) -> Error {
     ))
 }
 
-/// The ANCF configuration of cable `ci` (see the module doc).
+/// How many cable node lists each described node of `def` appears in.
+pub fn node_uses(def: &ModelDef) -> Vec<u32> {
+    let mut uses = vec![0u32; def.nodes.len()];
+    for c in &def.cables {
+        for &n in &c.nodes {
+            uses[n] += 1;
+        }
+    }
+    uses
+}
+
+/// The ANCF configuration of cable `ci` (see the module doc); `uses` is
+/// [`node_uses`]`(&sc.model)`.
 pub fn cable_config(
     sc: &Scenario,
     settings: &AncfSettings,
     ci: usize,
+    uses: &[u32],
 ) -> Result<AncfConfig, Error> {
     let def: &ModelDef = &sc.model;
     let c = &def.cables[ci];
-    let uses = |node: usize| {
-        def.cables
-            .iter()
-            .map(|o| o.nodes.iter().filter(|&&n| n == node).count())
-            .sum::<usize>()
-    };
     for (k, &n) in c.nodes.iter().enumerate() {
         let inner = k > 0 && k + 1 < c.nodes.len();
         let nd = &def.nodes[n];
-        if uses(n) > 1 {
+        if uses[n] > 1 {
             let label = nd.label.clone().unwrap_or_else(|| format!("node {n}"));
             return Err(unsupported(
                 sc,
@@ -152,9 +159,10 @@ pub fn check(
     sc: &Scenario,
     settings: &AncfSettings,
 ) -> Result<Vec<(String, usize, f64, String)>, Error> {
+    let uses = node_uses(&sc.model);
     (0..sc.model.cables.len())
         .map(|ci| {
-            let mut cfg = cable_config(sc, settings, ci)?;
+            let mut cfg = cable_config(sc, settings, ci, &uses)?;
             cfg.scheme = sc.sim.scheme;
             let c = AncfCable::new(cfg)?;
             let (dt, term) = c.stable_dt();
@@ -192,9 +200,10 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
     }
     // The lumped-mass initial state (relaxed catenaries included) gives the shapes.
     let (lay, pos, relax_residual) = crate::sim::prepare(sc)?;
+    let uses = node_uses(&sc.model);
     let mut runners = Vec::new();
     for ci in 0..sc.model.cables.len() {
-        let mut cfg = cable_config(sc, settings, ci)?;
+        let mut cfg = cable_config(sc, settings, ci, &uses)?;
         cfg.scheme = scheme;
         let info = &lay.cables[ci];
         let pts: Vec<[f64; 3]> = info.nodes.iter().map(|&n| pos[n as usize]).collect();
@@ -203,17 +212,17 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
             .iter()
             .map(|&e| lay.elem_l0[e as usize])
             .collect();
-        let probe = AncfCable::new(cfg.clone())?;
-        let (stable, term) = probe.stable_dt();
+        let mut cable = AncfCable::new(cfg)?;
+        let (stable, term) = cable.stable_dt();
+        let term = term.to_string();
         let (dt, per_output) = crate::sim::fit_step(sc, dt_spec, stable)?;
         if matches!(dt_spec, DtSpec::Fixed(_)) && dt > stable {
             log::warn!(
                 "cable '{}': dt = {dt} s is above the ANCF stable step {stable:.4e} s ({term}); expect a blow-up",
-                cfg.name
+                cable.name()
             );
         }
-        cfg.dt = Some(dt);
-        let mut cable = AncfCable::new(cfg)?;
+        cable.set_dt(dt);
         if sc.initial[ci] == InitialShape::Catenary {
             // The analytic elastic catenary on a fine polyline: the lumped-mass nodes'
             // kinks (touchdown) would give the cubic elements large spurious strains.
