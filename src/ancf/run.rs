@@ -201,8 +201,14 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
     // The lumped-mass initial state (relaxed catenaries included) gives the shapes.
     let (lay, pos, relax_residual) = crate::sim::prepare(sc)?;
     let uses = node_uses(&sc.model);
-    let mut runners = Vec::new();
-    for ci in 0..sc.model.cables.len() {
+    // Per-cable lines at info level only for a few cables.
+    let level = if sc.model.cables.len() <= 20 {
+        log::Level::Info
+    } else {
+        log::Level::Debug
+    };
+    // Cables are set up (static solves included) one per thread.
+    let build = |ci: usize| -> Result<Runner, Error> {
         let mut cfg = cable_config(sc, settings, ci, &uses)?;
         cfg.scheme = scheme;
         let info = &lay.cables[ci];
@@ -249,7 +255,8 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
             let mut trial = cable.clone();
             match trial.solve_static(&StaticOptions::default()) {
                 Ok(rep) => {
-                    log::info!(
+                    log::log!(
+                        level,
                         "cable '{}': ANCF static equilibrium in {} Newton iterations, residual {:.3e} N",
                         info.name,
                         rep.iterations,
@@ -258,29 +265,49 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
                     cable = trial;
                 }
                 // Newton can stall where Gauss points slip in and out of seabed
-                // contact; the lumped-mass equilibrium is then a close start.
+                // contact; the analytic catenary is then a close start.
                 Err(e) => log::warn!(
-                    "cable '{}': {e}; starting from the lumped-mass equilibrium shape instead (expect a short transient)",
+                    "cable '{}': {e}; starting from the analytic catenary instead (expect a short transient)",
                     info.name
                 ),
             }
         }
-        log::info!(
+        log::log!(
+            level,
             "cable '{}': ANCF, {} elements, dt = {dt:.4e} s (stable {stable:.4e} s: {term})",
             info.name,
             cable.n_elements()
         );
-        runners.push(Runner {
+        Ok(Runner {
             cable,
             per_output,
             positions: sc.model.cables[ci].output_positions,
-        });
-    }
+        })
+    };
+    let mut runners: Vec<Runner> = (0..sc.model.cables.len())
+        .into_par_iter()
+        .map(build)
+        .collect::<Result<_, _>>()?;
+    log::info!(
+        "ANCF: {} cables, {} nodes",
+        runners.len(),
+        runners.iter().map(|r| r.cable.n_nodes()).sum::<usize>()
+    );
 
     let mut out = Files::create(&ro.out_dir, sc.winches.is_empty())?;
-    let outputs = ((duration / oi).round().max(1.0)) as u64;
+    // Whole output intervals, then what is left of the duration (each cable at its own
+    // step, the lumped-mass plan's rounding: `round(duration / dt)` steps in all).
+    let outputs = (duration / oi + 1e-9).floor() as u64;
+    let tail: Vec<u64> = runners
+        .iter()
+        .map(|r| {
+            let total = (duration / r.cable.dt()).round().max(1.0) as u64;
+            total.saturating_sub(outputs * r.per_output)
+        })
+        .collect();
+    let has_tail = tail.iter().any(|&n| n > 0);
     let bar = if ro.progress {
-        let b = indicatif::ProgressBar::new(outputs);
+        let b = indicatif::ProgressBar::new(outputs + u64::from(has_tail));
         b.set_style(
             indicatif::ProgressStyle::with_template(
                 "{elapsed_precise} [{bar:40}] {percent}% t = {msg} (eta {eta})",
@@ -295,22 +322,25 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
     out.frame(0.0, &mut runners)?;
     let mut stepping = 0.0;
     let mut result = Ok(());
-    let mut frames = 0;
-    for k in 1..=outputs {
+    let mut reached = 0.0;
+    for k in 1..=outputs + u64::from(has_tail) {
+        let last = k > outputs;
         let t0 = Instant::now();
         // Cables are independent: one thread each.
         let r: Result<(), Error> = runners
             .par_iter_mut()
-            .try_for_each(|c| c.cable.advance(c.per_output));
+            .zip(&tail)
+            .try_for_each(|(c, &n)| c.cable.advance(if last { n } else { c.per_output }));
         stepping += t0.elapsed().as_secs_f64();
+        let t = if last { duration } else { k as f64 * oi };
         bar.set_position(k);
-        bar.set_message(format!("{:.2} s", k as f64 * oi));
+        bar.set_message(format!("{t:.2} s"));
         if let Err(e) = r {
             result = Err(e);
             break;
         }
-        frames = k;
-        out.frame(k as f64 * oi, &mut runners)?;
+        reached = t;
+        out.frame(t, &mut runners)?;
     }
     bar.finish_and_clear();
     out.flush()?;
@@ -378,7 +408,7 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
         dt,
         dt_stable,
         dt_limited_by: term,
-        simulated_time: frames as f64 * oi,
+        simulated_time: reached,
         wall_seconds: stepping,
         total_wall_seconds: wall0.elapsed().as_secs_f64(),
         nodes: runners.iter().map(|r| r.cable.n_nodes()).sum(),
