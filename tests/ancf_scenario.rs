@@ -230,6 +230,37 @@ fn cli_runs_ancf_and_refuses_what_it_cannot_do() {
     let pos = std::fs::read_to_string(dir.path().join("a/positions.csv")).unwrap();
     assert_eq!(pos.lines().count(), 1 + 6 * 3);
 
+    // A duration that is not a whole number of output intervals ends on time.
+    let part = cli(
+        &[
+            "run",
+            "examples/case2_straight.toml",
+            "--formulation",
+            "ancf",
+            "--duration",
+            "2.5",
+            "-q",
+        ],
+        &dir.path().join("p"),
+    );
+    assert!(
+        part.status.success(),
+        "{}",
+        String::from_utf8_lossy(&part.stderr)
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("p/summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(s["simulated_time"].as_f64(), Some(2.5));
+    let times: Vec<String> = std::fs::read_to_string(dir.path().join("p/end_forces.csv"))
+        .unwrap()
+        .lines()
+        .skip(1)
+        .step_by(2)
+        .map(|l| l.split(',').next().unwrap().to_string())
+        .collect();
+    assert_eq!(times, ["0", "1", "2", "2.5"]);
+
     let gpu = cli(
         &[
             "run",
