@@ -294,7 +294,11 @@ pub fn run(sc: &Scenario, ro: &RunOptions, settings: &AncfSettings) -> Result<Su
         runners.iter().map(|r| r.cable.n_nodes()).sum::<usize>()
     );
 
-    let mut out = Files::create(&ro.out_dir, sc.winches.is_empty())?;
+    let mut out = Files::create(
+        &ro.out_dir,
+        sc.winches.is_empty(),
+        runners.iter().any(|r| r.positions),
+    )?;
     // Whole output intervals, then what is left of the duration (each cable at its own
     // step, the lumped-mass plan's rounding: `round(duration / dt)` steps in all).
     let outputs = (duration / oi + 1e-9).floor() as u64;
@@ -431,7 +435,7 @@ struct Files {
     dir: std::path::PathBuf,
     end_forces: BufWriter<File>,
     tensions: BufWriter<File>,
-    positions: BufWriter<File>,
+    positions: Option<BufWriter<File>>,
     winches: Option<BufWriter<File>>,
 }
 
@@ -444,7 +448,7 @@ fn io_err(dir: &Path, name: &str) -> impl Fn(std::io::Error) -> Error {
 }
 
 impl Files {
-    fn create(dir: &Path, no_winch: bool) -> Result<Self, Error> {
+    fn create(dir: &Path, no_winch: bool, positions: bool) -> Result<Self, Error> {
         std::fs::create_dir_all(dir).map_err(io_err(dir, ""))?;
         let open = |name: &str, header: &str| -> Result<BufWriter<File>, Error> {
             let mut f = BufWriter::new(File::create(dir.join(name)).map_err(io_err(dir, name))?);
@@ -455,7 +459,11 @@ impl Files {
             dir: dir.to_path_buf(),
             end_forces: open("end_forces.csv", "time,cable,end,fx,fy,fz")?,
             tensions: open("tensions.csv", "time,cable,element,tension")?,
-            positions: open("positions.csv", "time,cable,node,x,y,z")?,
+            positions: if positions {
+                Some(open("positions.csv", "time,cable,node,x,y,z")?)
+            } else {
+                None
+            },
             winches: if no_winch {
                 None
             } else {
@@ -487,9 +495,9 @@ impl Files {
                 writeln!(self.tensions, "{t},{name},{k},{}", 0.5 * (w[0] + w[1]))
                     .map_err(io_err(&d, "tensions.csv"))?;
             }
-            if r.positions {
+            if let (Some(p), true) = (self.positions.as_mut(), r.positions) {
                 for (k, x) in c.node_positions().iter().enumerate() {
-                    writeln!(self.positions, "{t},{name},{k},{},{},{}", x[0], x[1], x[2])
+                    writeln!(p, "{t},{name},{k},{},{},{}", x[0], x[1], x[2])
                         .map_err(io_err(&d, "positions.csv"))?;
                 }
             }
@@ -507,9 +515,9 @@ impl Files {
             .flush()
             .map_err(io_err(&d, "end_forces.csv"))?;
         self.tensions.flush().map_err(io_err(&d, "tensions.csv"))?;
-        self.positions
-            .flush()
-            .map_err(io_err(&d, "positions.csv"))?;
+        if let Some(p) = self.positions.as_mut() {
+            p.flush().map_err(io_err(&d, "positions.csv"))?;
+        }
         if let Some(w) = self.winches.as_mut() {
             w.flush().map_err(io_err(&d, "winches.csv"))?;
         }
