@@ -9,7 +9,7 @@ use cablesim::ale::{mass_flow_forces, PayoutSchedule, Winch, WinchEnd};
 use cablesim::cpu::CpuSolver;
 use cablesim::error::Error;
 use cablesim::math::V3;
-use cablesim::model::{Environment, Layout, LineType, ModelDef, PointMass, Route, Seabed};
+use cablesim::model::{Layout, LineType, ModelDef, PointMass, Route};
 use cablesim::options::{Scheme, SolverOptions};
 use cablesim::scenario::Scenario;
 use common::*;
@@ -17,31 +17,6 @@ use std::path::Path;
 use std::sync::Arc;
 
 type V = V3<f64>;
-
-/// A light rope (stable steps of a fraction of a millisecond on 1-2 m elements).
-fn rope() -> LineType {
-    LineType {
-        name: "rope".into(),
-        diameter: 0.02,
-        mass_per_length: 1.0,
-        ea: 2.0e6,
-        damping: 1e-4,
-        cn: 1.2,
-        ct: 0.01,
-        cm: 1.0,
-        ei: 0.0,
-        allow_compression: false,
-    }
-}
-
-fn water() -> Environment {
-    Environment {
-        gravity: 9.81,
-        water_density: 1025.0,
-        depth: f64::INFINITY,
-        seabed: Seabed::default(),
-    }
-}
 
 const TOP: [f64; 3] = [0.0, 0.0, -2.0];
 

@@ -23,7 +23,7 @@ mod common;
 use cablesim::ale::{PayoutSchedule, Winch, WinchEnd};
 use cablesim::cpu::{CpuSolver, Evaluation};
 use cablesim::gpu::{GpuContext, GpuSolver, Precision};
-use cablesim::model::{Environment, Layout, LineType, ModelDef, PointMass, Route, Seabed};
+use cablesim::model::{Layout, ModelDef, PointMass, Route};
 use cablesim::options::SolverOptions;
 use cablesim::output::end_forces;
 use cablesim::scenario::Scenario;
@@ -32,31 +32,6 @@ use std::process::Command;
 use std::sync::Arc;
 
 const EPS: f64 = f64::EPSILON;
-
-/// A light rope (stable steps of a fraction of a millisecond on 1-2 m elements).
-fn rope() -> LineType {
-    LineType {
-        name: "rope".into(),
-        diameter: 0.02,
-        mass_per_length: 1.0,
-        ea: 2.0e6,
-        damping: 1e-4,
-        cn: 1.2,
-        ct: 0.01,
-        cm: 1.0,
-        ei: 0.0,
-        allow_compression: false,
-    }
-}
-
-fn water() -> Environment {
-    Environment {
-        gravity: 9.81,
-        water_density: 1025.0,
-        depth: f64::INFINITY,
-        seabed: Seabed::default(),
-    }
-}
 
 const TOP: [f64; 3] = [0.0, 0.0, -2.0];
 

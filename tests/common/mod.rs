@@ -21,6 +21,32 @@ pub fn wire() -> LineType {
     }
 }
 
+/// A light rope (stable steps of a fraction of a millisecond on 1-2 m elements).
+pub fn rope() -> LineType {
+    LineType {
+        name: "rope".into(),
+        diameter: 0.02,
+        mass_per_length: 1.0,
+        ea: 2.0e6,
+        damping: 1e-4,
+        cn: 1.2,
+        ct: 0.01,
+        cm: 1.0,
+        ei: 0.0,
+        allow_compression: false,
+    }
+}
+
+/// Open water: gravity, sea water, no seabed.
+pub fn water() -> Environment {
+    Environment {
+        gravity: 9.81,
+        water_density: 1025.0,
+        depth: f64::INFINITY,
+        seabed: Seabed::default(),
+    }
+}
+
 /// An environment without water or gravity (pure elastic dynamics).
 pub fn vacuum() -> Environment {
     Environment {
