@@ -24,5 +24,6 @@ pub use error::{Error, Result};
 pub mod initial;
 pub mod output;
 pub mod scenario;
+pub mod sea;
 pub mod sim;
 pub mod stability;
