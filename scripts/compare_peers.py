@@ -50,7 +50,7 @@ v2.7 source, source/Line.cpp, Line::getStateDeriv, which the PyPI wheel is built
 * BA/-zeta [N s]: a positive value is the internal damping coefficient BA; the
   damping force of a segment is BA * (d l_stretched/dt) / l_unstretched = BA * epsdot
   (Line.cpp: `Td[i] = BA * ldstr[i] / l[i] * qs[i]`). cablesim's is EA c epsdot
-  (MODEL.md), so BA = EA * c. A negative value would be a ratio of critical damping
+  (docs/src/model/glmf.md), so BA = EA * c. A negative value would be a ratio of critical damping
   per segment instead; not used here.
 * Cd (normal drag) w.r.t. the frontal area d l: 1/2 rho Cd d l |vp| vp, cablesim's
   Cn unchanged.
@@ -74,7 +74,7 @@ v2.7 source, source/Line.cpp, Line::getStateDeriv, which the PyPI wheel is built
 * End forces: MoorDyn's `Fnet` of an end node (the line's pull plus the half segment's
   wet weight and loads lumped on it) is what the line exerts on the end point; the
   force a coupled point gets back from `moordyn.Step` is the sum of those. cablesim's
-  end_forces are the same quantity (MODEL.md, "End forces"). MoorPy's are the
+  end_forces are the same quantity (docs/src/model/constraints.md, "End forces"). MoorPy's are the
   continuous catenary's end tensions, which have no lumped half segment: at the anchor
   MoorDyn and cablesim report a vertical pull of -w l0 / 2 (-91.7 N here) where
   MoorPy reports 0.
