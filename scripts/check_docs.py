@@ -12,6 +12,8 @@
    in the first column of a table in docs/src/scenario.md is a key of the code in
    src/scenario/ (or of the serde structs it reads), and every key of the code is in the
    first column of a table somewhere in the book.
+4. Every row of a Markdown table in README.md and the book has as many cells as its
+   header.
 
 Standard library only. Exits non-zero with one line per problem.
 """
@@ -188,6 +190,28 @@ def check_book(problems, book):
                     problems.append(f"book {rel}: link {link!r}: no element with id {parts.fragment!r}")
 
 
+def check_tables(problems, files):
+    """Every row of a Markdown table has as many cells as its header: an unescaped `|`
+    inside a cell (`|v| v` in a formula) splits it and shifts the row."""
+    for f in files:
+        rel = f.relative_to(ROOT)
+        in_code, width = False, None
+        for no, line in enumerate(f.read_text(encoding="utf-8").splitlines(), 1):
+            if line.startswith("```"):
+                in_code = not in_code
+            if in_code or not line.startswith("|"):
+                width = None
+                continue
+            cells = len(line.replace("\\|", "").strip().strip("|").split("|"))
+            if width is None:
+                width = cells
+            elif cells != width:
+                problems.append(
+                    f"{rel}:{no}: table row has {cells} cells, its header {width} "
+                    "(escape a | inside a cell as \\|)"
+                )
+
+
 # --- scenario keys -------------------------------------------------------------------
 
 # Files whose serde structs are read from scenario files.
@@ -276,6 +300,7 @@ def main():
     check_outside(problems)
     check_markdown_links(problems, ["README.md", "BENCHMARKS.md"])
     check_book(problems, (ROOT / args.book))
+    check_tables(problems, [ROOT / "README.md", *sorted((ROOT / "docs/src").rglob("*.md"))])
     check_keys(problems)
     for p in problems:
         print(p)
