@@ -369,7 +369,7 @@ pub enum WinchEnd {
     End,
 }
 
-/// A winch paying out or hauling in a cable (MODEL.md "ALE-GLMF").
+/// A winch paying out or hauling in a cable (docs/src/model/winches.md).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Winch {
     /// Index of the cable (into `ModelDef::cables`, the same order as `Layout::cables`).

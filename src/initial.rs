@@ -1,5 +1,5 @@
 //! Initial shapes: straight lines as laid out by the scenario, or catenaries relaxed to
-//! the discrete model's static equilibrium (MODEL.md "Initial conditions").
+//! the discrete model's static equilibrium (docs/src/model/initial.md).
 
 use crate::error::Error;
 use crate::model::Layout;

@@ -119,7 +119,7 @@ fn create(dir: &Path, name: &str) -> Result<BufWriter<File>, Error> {
 /// The forces a cable exerts at its two end nodes.
 ///
 /// - An end node that only this cable's end element touches: if it is held, the
-///   constraint reaction `F_k - M_k a_k` (MODEL.md: every force on the node, its point
+///   constraint reaction `F_k - M_k a_k` (docs/src/model/constraints.md: every force on the node, its point
 ///   mass and seabed contact included); if it is free, `F_e - M_e a_k`, the end
 ///   element's lumped force less its share of the node's inertia, which is the force the
 ///   cable exerts on an attached point mass (zero when nothing is attached).

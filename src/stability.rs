@@ -1,4 +1,4 @@
-//! The stable explicit time step (MODEL.md "Explicit time step").
+//! The stable explicit time step (docs/src/model/time_stepping.md).
 //!
 //! Each node is bounded with Gershgorin estimates of its fastest modes: axial waves
 //! (`omega^2 <= sum_e 2 (EA/l0) / m`, which is `4 EA / (mbar l0^2)` for a uniform chain),
@@ -46,7 +46,7 @@ pub fn mode_step(scheme: Scheme, omega2: f64, gamma: f64) -> f64 {
         return f64::INFINITY;
     }
     match scheme {
-        // (omega dt)^2 + 2 gamma dt < 4  (MODEL.md)
+        // (omega dt)^2 + 2 gamma dt < 4  (docs/src/model/time_stepping.md)
         Scheme::Symplectic => {
             if omega2 <= 0.0 {
                 2.0 / gamma

@@ -1,4 +1,4 @@
-//! Static equilibrium of the discrete model (MODEL.md "Initial conditions").
+//! Static equilibrium of the discrete model (docs/src/model/initial.md).
 //!
 //! A catenary or straight first guess is not an equilibrium of the lumped-mass chain;
 //! [`relax`] moves the free nodes until the force the dynamic model computes on each of
@@ -268,7 +268,7 @@ pub fn relax_blocks(
 /// The static force (every velocity zero, `t = 0`) on every node, N, in packed order:
 /// the residual that [`relax`] drives to zero on free nodes. On a route-held node it is
 /// the force the cable exerts on its support at rest (the reaction `F_k - M_k a_k` of
-/// a node at rest on a fixed route, MODEL.md "End forces").
+/// a node at rest on a fixed route, docs/src/model/constraints.md, "End forces").
 pub fn static_forces(layout: &Layout, positions: &[[f64; 3]]) -> Vec<[f64; 3]> {
     let coefs: Vec<Coefs<f64>> = layout.line_coefs.iter().map(Coefs::from_line).collect();
     let seabed = seabed_coefs(layout);

@@ -97,7 +97,7 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 /// Time step of the dynamic checks. The symplectic scheme is stable for
-/// `(omega dt)^2 + 2 gamma dt < 4` (MODEL.md "Explicit time step"); on a grounded node
+/// `(omega dt)^2 + 2 gamma dt < 4` (docs/src/model/time_stepping.md); on a grounded node
 /// of the 5 m chain the seabed damping alone has `gamma = C lt / m = 3e4 * 5 / 25.1
 /// = 6e3 /s`, so 1e-3 s is unstable there (a grounded node's velocity grows 4.7-fold per
 /// step) and the limit with the axial and seabed stiffness is about 3.1e-4 s.

@@ -740,8 +740,8 @@ impl AncfCable {
     }
 
     /// The force each supported end (one on a route) exerts on its support at the
-    /// current state, `F_k - (M a)_k` over the end's position coordinates, N (MODEL.md
-    /// "End forces"); `None` for an end without a route.
+    /// current state, `F_k - (M a)_k` over the end's position coordinates, N
+    /// (docs/src/model/constraints.md, "End forces"); `None` for an end without a route.
     pub fn end_forces(&mut self) -> Result<[Option<[f64; 3]>; 2], Error> {
         let (q, qd, t) = (self.q.clone(), self.qd.clone(), self.t);
         self.m

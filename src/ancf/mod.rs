@@ -1,5 +1,5 @@
-//! The ANCF reference cable model (MODEL.md "The reference the paper validates
-//! against", paper Eqs. 37-44, 47, 49-50), CPU only, f64.
+//! The ANCF reference cable model (docs/src/model/ancf.md;
+//! paper Eqs. 37-44, 47, 49-50), CPU only, f64.
 //!
 //! The paper validates the GLMF against the absolute nodal coordinate formulation
 //! (ANCF): a few long elements whose shape is a cubic curve, with bending stiffness.
@@ -83,7 +83,7 @@
 //! eliminated directly, not stabilised: their values and rates are set from the route at
 //! every stage, their accelerations `a_p` are the route's, the free accelerations solve
 //! `M_ff a_f = F_f - M_fp a_p`. No Baumgarte gains, no drift. The force an end exerts on
-//! its support is `F_p - (M a)_p` over its position coordinates (MODEL.md "End forces").
+//! its support is `F_p - (M a)_p` over its position coordinates (docs/src/model/constraints.md, "End forces").
 //!
 //! # Time integration
 //! Explicit, with the consistent mass solved by its Cholesky factor: symplectic Euler

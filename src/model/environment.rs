@@ -3,7 +3,7 @@
 use crate::math::{Real, V3};
 use serde::{Deserialize, Serialize};
 
-/// Seabed contact constants (MODEL.md "Seabed contact"), per metre of cable.
+/// Seabed contact constants (docs/src/model/seabed.md), per metre of cable.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Seabed {

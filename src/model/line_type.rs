@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
-/// A line type (MODEL.md "Conventions"). Every field is in SI units.
+/// A line type (docs/src/model/conventions.md). Every field is in SI units.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LineType {

@@ -2,7 +2,7 @@
 //!
 //! A route gives the target position, velocity and acceleration `r_d, rd_d, rdd_d` at
 //! time `t`; the constraint drives the node onto it with Baumgarte stabilisation
-//! (MODEL.md, Eq. 6).
+//! (docs/src/model/constraints.md, paper Eq. 6).
 
 use std::f64::consts::PI;
 

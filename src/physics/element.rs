@@ -1,4 +1,4 @@
-//! GLMF element loads (MODEL.md "Discretisation", paper Eq. 10, 20 and 40).
+//! GLMF element loads (docs/src/model/glmf.md, paper Eq. 10, 20 and 40).
 //!
 //! Everything is expressed in the global frame through the tangent `t` and the
 //! normal-plane projection `P = I - t t^T`; no element frame is built, so the only

@@ -1,6 +1,6 @@
 //! The older element frames (paper Sec. 2.1-2.3, 2.6): Euler, Frenet and RVEF.
 //!
-//! Each frame writes the GLMF loads of MODEL.md through an orthonormal element frame
+//! Each frame writes the GLMF loads (docs/src/model/glmf.md) through an orthonormal element frame
 //! `A = [c0 c1 c2]` (columns in global components, one of them along the element):
 //! the relative velocity `v_rel = U - (v_a + v_b)/2` and the water acceleration are
 //! taken into the frame (`A^T v`), the drag and water-acceleration laws are applied to

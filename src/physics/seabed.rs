@@ -1,4 +1,4 @@
-//! Seabed contact (MODEL.md "Seabed contact", paper Eq. 48 with `zdot` for `z` and a
+//! Seabed contact (docs/src/model/seabed.md, paper Eq. 48 with `zdot` for `z` and a
 //! regularised friction law).
 
 use crate::math::{Real, V3};

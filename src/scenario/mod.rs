@@ -1,5 +1,5 @@
 //! Scenario files (TOML): parsing, validation with precise messages, and the model
-//! they describe. The keys are documented in README.md ("Scenario files").
+//! they describe. The keys are documented in docs/src/scenario.md.
 
 mod arrays;
 mod ends;

@@ -1,4 +1,4 @@
-//! `[[nets]]`: a net panel or a cylindrical cage from a few numbers (README.md, "Nets");
+//! `[[nets]]`: a net panel or a cylindrical cage from a few numbers (docs/src/scenario.md, "[[nets]]");
 //! the geometry is built by [`crate::model::add_net`].
 
 use super::raw::RawNet;

@@ -1,6 +1,6 @@
 //! The `winch` key of a cable: `{ end = "start" | "end", schedule = "constant" |
 //! "rates" | "table", rate = .., rates = [[t, rate], ..], file = "payout.csv",
-//! drum_length = .. }` (README.md, "Winches").
+//! drum_length = .. }` (docs/src/scenario.md, "Winches").
 
 use super::{err, finite, positive, EndKind};
 use crate::ale::{PayoutSchedule, Winch, WinchEnd};
