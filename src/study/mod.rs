@@ -8,9 +8,10 @@
 //!    text; [`StudyPlan::new`] resolves the channels against the base model
 //!    ([`channels`]), enumerates the members with their wave seeds ([`members`]) and takes
 //!    the study hash ([`hash`]).
-//! 2. The runner runs the members of its shard ([`ShardSpec`], `K/N`), pushing each
-//!    channel's samples into a [`ChannelStats`] from [`StudyPlan::new_stats`] (fixed
-//!    memory, [`channel_stats`]); each finished member becomes a [`MemberResult`], and the
+//! 2. The runner runs the members of its shard ([`ShardSpec`], `K/N`), each with its sea
+//!    state ([`StudyPlan::sea_state_of`]) and wave seed; at every output time a
+//!    [`Sampler`] pushes each channel's value into a [`ChannelStats`] from
+//!    [`StudyPlan::new_stats`] (fixed memory, [`channel_stats`]); each finished member becomes a [`MemberResult`], and the
 //!    shard a [`ShardResult`] written as `shard.json` ([`results`]).
 //! 3. [`merge`] checks that the shard files are the complete set of one study and puts the
 //!    members back in member order; [`summarise`] fits the seed maxima of each sea state
@@ -29,6 +30,7 @@ pub mod gumbel;
 pub mod hash;
 pub mod members;
 pub mod results;
+pub mod sampling;
 pub mod tables;
 
 pub use channel_stats::{ChannelStats, Extreme};
@@ -38,6 +40,7 @@ pub use extremes::{summarise, ChannelSummary, SeaStateSummary, StudySummary};
 pub use gumbel::{Gumbel, GumbelFit};
 pub use members::{Member, ShardSpec};
 pub use results::{merge, MemberResult, MemberStatus, ShardResult, StudyResults};
+pub use sampling::{BodySnapshot, CableSnapshot, Sampler};
 
 use crate::error::Error;
 use crate::scenario::err;
@@ -95,6 +98,11 @@ impl StudyPlan {
     pub fn shard_members(&self, shard: ShardSpec, source: &Path) -> Result<&[Member], Error> {
         shard.check(self.members.len(), source)?;
         Ok(&self.members[shard.range(self.members.len())])
+    }
+
+    /// The sea state a member runs.
+    pub fn sea_state_of(&self, m: &Member) -> &SeaState {
+        &self.def.sea_states[m.sea_state]
     }
 
     /// Empty statistics for one member: one per channel, in channel order.
