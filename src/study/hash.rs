@@ -6,7 +6,9 @@
 //! validation (defaults filled in, sea states read from their CSV), so two files that
 //! differ only in layout, comments, key order or defaults written out hash the same, and a changed sea
 //! state, seed, channel or factor changes the hash. The base scenario is hashed as
-//! text: any change to the model makes a different study.
+//! text: any change to the model makes a different study. Files the scenario reads in
+//! turn (route or motion tables) are not hashed here; a runner that wants them covered
+//! appends their text to `scenario_text`.
 
 use super::definition::StudyDef;
 use sha2::{Digest, Sha256};
