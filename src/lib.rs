@@ -27,3 +27,4 @@ pub mod scenario;
 pub mod sea;
 pub mod sim;
 pub mod stability;
+pub mod study;

@@ -1,0 +1,454 @@
+//! The `[study]` table: what a study runs and reduces, parsed and validated.
+//!
+//! A study is either a `[study]` table inside a scenario file (the base model is that
+//! file), or a study file whose `[study]` table names the base scenario with
+//! `scenario = "PATH"` (relative to the study file) and holds nothing else. The keys are
+//! documented in `docs/studies.md`.
+
+use super::channels;
+use super::gumbel::GumbelFit;
+use crate::error::Error;
+use crate::scenario::{err, finite, non_negative, positive};
+use serde::{Deserialize, Serialize};
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// One design sea state: irregular waves and a uniform current.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SeaState {
+    /// A label for the tables (optional).
+    pub name: Option<String>,
+    /// Significant wave height `Hs`, m.
+    pub hs: f64,
+    /// Spectral peak period `Tp`, s.
+    pub tp: f64,
+    /// JONSWAP peak factor `gamma`; `None` leaves it to the waves' default (from `Hs` and
+    /// `Tp`, DNV-RP-C205).
+    pub gamma: Option<f64>,
+    /// Direction the waves travel towards, degrees from +x towards +y.
+    pub heading: f64,
+    /// Current speed, m/s (uniform over depth).
+    pub current_speed: f64,
+    /// Direction the current flows towards, degrees from +x towards +y.
+    pub current_heading: f64,
+}
+
+/// Partial safety factors and line capacities of the design check
+/// `T_d = mean_factor T_mean + dynamic_factor (T_MPM - T_mean)`, utilisation `T_d / S_C`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DesignInputs {
+    /// Partial safety factor on the mean tension `g_mean`.
+    pub mean_factor: f64,
+    /// Partial safety factor on the dynamic tension `g_dyn`.
+    pub dynamic_factor: f64,
+    /// Characteristic strength `S_C` per line type name, N.
+    pub capacities: BTreeMap<String, f64>,
+}
+
+/// A validated study definition. Its JSON form (field order as here) is the canonical
+/// text the study hash is taken of.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StudyDef {
+    /// The study seed, from which every member's wave seed is derived.
+    pub seed: u64,
+    /// The seed numbers run in every sea state (`1..=N` for a count).
+    pub seeds: Vec<u64>,
+    /// Simulated duration of each member, s.
+    pub duration: f64,
+    /// Start-up time discarded from every record, s (shorter than the duration).
+    pub transient: f64,
+    /// The sea states.
+    pub sea_states: Vec<SeaState>,
+    /// Channel entries as written (resolved against the base model by the plan).
+    pub channels: Vec<String>,
+    /// Probability of the reported quantile of the maxima (default 0.9).
+    pub quantile: f64,
+    /// The fit that gives the most probable maximum, the quantile and the design tension.
+    pub fit: GumbelFit,
+    /// The design check, when asked for.
+    pub design: Option<DesignInputs>,
+}
+
+/// A study file read from disk: the definition and its base scenario.
+#[derive(Clone, Debug)]
+pub struct StudyFile {
+    /// The file holding the `[study]` table.
+    pub path: PathBuf,
+    /// The base scenario file (the same file when the table sits inside a scenario).
+    pub scenario_path: PathBuf,
+    /// The base scenario's text, as read (part of the study hash).
+    pub scenario_text: String,
+    /// The validated definition.
+    pub def: StudyDef,
+}
+
+#[derive(Deserialize)]
+struct RawDoc {
+    study: Option<RawStudy>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawStudy {
+    scenario: Option<String>,
+    seed: Option<u64>,
+    seeds: Option<toml::Value>,
+    duration: Option<f64>,
+    transient: Option<f64>,
+    sea_states: Option<Vec<RawSeaState>>,
+    sea_states_file: Option<String>,
+    channels: Option<Vec<String>>,
+    quantile: Option<f64>,
+    fit: Option<String>,
+    design: Option<RawDesign>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSeaState {
+    name: Option<String>,
+    hs: Option<f64>,
+    tp: Option<f64>,
+    gamma: Option<f64>,
+    heading: Option<f64>,
+    current_speed: Option<f64>,
+    current_heading: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawDesign {
+    mean_factor: Option<f64>,
+    dynamic_factor: Option<f64>,
+    capacities: Option<BTreeMap<String, f64>>,
+}
+
+const SEA_STATE_COLUMNS: [&str; 7] = [
+    "name",
+    "hs",
+    "tp",
+    "gamma",
+    "heading",
+    "current_speed",
+    "current_heading",
+];
+
+impl StudyFile {
+    /// Reads a study: the `[study]` table of `path`, and its base scenario.
+    pub fn load(path: impl AsRef<Path>) -> Result<StudyFile, Error> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| err(path, "(file)", format!("cannot read: {e}")))?;
+        let (def, scenario) = parse_study(&text, path)?;
+        match scenario {
+            None => Ok(StudyFile {
+                path: path.to_path_buf(),
+                scenario_path: path.to_path_buf(),
+                scenario_text: text,
+                def,
+            }),
+            Some(rel) => {
+                let scenario_path = path.parent().unwrap_or(Path::new(".")).join(&rel);
+                let scenario_text = std::fs::read_to_string(&scenario_path).map_err(|e| {
+                    err(
+                        path,
+                        "study.scenario",
+                        format!("cannot read \"{}\": {e}", scenario_path.display()),
+                    )
+                })?;
+                Ok(StudyFile {
+                    path: path.to_path_buf(),
+                    scenario_path,
+                    scenario_text,
+                    def,
+                })
+            }
+        }
+    }
+}
+
+/// Parses and validates the `[study]` table of `text`; `path` names the file in
+/// messages and is the base for relative paths. Returns the definition and the base
+/// scenario path as written (`None` when the table sits inside the scenario).
+pub fn parse_study(text: &str, path: &Path) -> Result<(StudyDef, Option<String>), Error> {
+    let de = toml::Deserializer::new(text);
+    let doc: RawDoc = serde_path_to_error::deserialize(de).map_err(|e| {
+        let field = e.path().to_string();
+        // toml's message carries the line and column of the problem.
+        err(path, field, e.into_inner().to_string().trim().to_string())
+    })?;
+    let raw = doc
+        .study
+        .ok_or_else(|| err(path, "study", "the file has no [study] table"))?;
+    if raw.scenario.is_some() {
+        let table: toml::Table = text
+            .parse()
+            .map_err(|e| err(path, "(top level)", format!("{e}")))?;
+        if let Some(k) = table.keys().find(|k| *k != "study") {
+            return Err(err(
+                path,
+                k.as_str(),
+                "a study file that names its base scenario (study.scenario) holds only the \
+                 [study] table: put the model in the base scenario",
+            ));
+        }
+    }
+    let def = validate(&raw, path)?;
+    Ok((def, raw.scenario))
+}
+
+fn required<T: Copy>(path: &Path, field: &str, v: Option<T>) -> Result<T, Error> {
+    v.ok_or_else(|| err(path, field, "missing"))
+}
+
+fn validate(raw: &RawStudy, p: &Path) -> Result<StudyDef, Error> {
+    let duration = positive(
+        p,
+        "study.duration",
+        required(p, "study.duration", raw.duration)?,
+    )?;
+    let transient = non_negative(
+        p,
+        "study.transient",
+        required(p, "study.transient", raw.transient)?,
+    )?;
+    if transient >= duration {
+        return Err(err(
+            p,
+            "study.transient",
+            format!(
+                "the transient ({transient} s) must be shorter than the duration ({duration} s): \
+                 nothing of the record would be left"
+            ),
+        ));
+    }
+    let seeds = seeds(p, raw.seeds.as_ref())?;
+    let sea_states = match (&raw.sea_states, &raw.sea_states_file) {
+        (Some(_), Some(_)) => {
+            return Err(err(
+                p,
+                "study.sea_states_file",
+                "give either `sea_states` (rows) or `sea_states_file` (a CSV), not both",
+            ))
+        }
+        (None, None) => {
+            return Err(err(
+                p,
+                "study.sea_states",
+                "missing: give `sea_states` (rows) or `sea_states_file` (a CSV)",
+            ))
+        }
+        (Some(rows), None) => rows
+            .iter()
+            .enumerate()
+            .map(|(i, r)| sea_state(p, &|k| format!("study.sea_states[{i}].{k}"), r))
+            .collect::<Result<Vec<_>, _>>()?,
+        (None, Some(file)) => {
+            let csv_path = p.parent().unwrap_or(Path::new(".")).join(file);
+            read_sea_states_csv(&csv_path)?
+        }
+    };
+    if sea_states.is_empty() {
+        return Err(err(p, "study.sea_states", "no sea state given"));
+    }
+    let channels = raw
+        .channels
+        .clone()
+        .unwrap_or_else(|| vec!["default".to_string()]);
+    if channels.is_empty() {
+        return Err(err(p, "study.channels", "the list is empty"));
+    }
+    channels::check_entries(p, "study.channels", &channels)?;
+    let quantile = raw.quantile.unwrap_or(0.9);
+    finite(p, "study.quantile", quantile)?;
+    if !(quantile > 0.0 && quantile < 1.0) {
+        return Err(err(
+            p,
+            "study.quantile",
+            format!("must be a probability strictly between 0 and 1, got {quantile}"),
+        ));
+    }
+    let fit = match raw.fit.as_deref() {
+        None | Some("mle") => GumbelFit::Mle,
+        Some("moments") => GumbelFit::Moments,
+        Some(x) => {
+            return Err(err(
+                p,
+                "study.fit",
+                format!("must be mle or moments, got \"{x}\""),
+            ))
+        }
+    };
+    let design = match &raw.design {
+        None => None,
+        Some(d) => {
+            let mean_factor = positive(
+                p,
+                "study.design.mean_factor",
+                required(p, "study.design.mean_factor", d.mean_factor)?,
+            )?;
+            let dynamic_factor = positive(
+                p,
+                "study.design.dynamic_factor",
+                required(p, "study.design.dynamic_factor", d.dynamic_factor)?,
+            )?;
+            let capacities = d.capacities.clone().ok_or_else(|| {
+                err(
+                    p,
+                    "study.design.capacities",
+                    "missing: the capacity S_C of each line type, N",
+                )
+            })?;
+            if capacities.is_empty() {
+                return Err(err(p, "study.design.capacities", "the table is empty"));
+            }
+            for (name, c) in &capacities {
+                positive(p, &format!("study.design.capacities.{name}"), *c)?;
+            }
+            Some(DesignInputs {
+                mean_factor,
+                dynamic_factor,
+                capacities,
+            })
+        }
+    };
+    Ok(StudyDef {
+        seed: raw.seed.unwrap_or(0),
+        seeds,
+        duration,
+        transient,
+        sea_states,
+        channels,
+        quantile,
+        fit,
+        design,
+    })
+}
+
+/// `seeds = N` (the seed numbers 1 to N) or `seeds = [a, b, ...]` (distinct, >= 0).
+fn seeds(p: &Path, v: Option<&toml::Value>) -> Result<Vec<u64>, Error> {
+    let f = "study.seeds";
+    match v {
+        None => Err(err(
+            p,
+            f,
+            "missing: a count of seeds, or a list of seed numbers",
+        )),
+        Some(toml::Value::Integer(n)) => {
+            if *n <= 0 {
+                Err(err(
+                    p,
+                    f,
+                    format!("a study needs at least one seed, got {n}"),
+                ))
+            } else {
+                Ok((1..=*n as u64).collect())
+            }
+        }
+        Some(toml::Value::Array(a)) => {
+            if a.is_empty() {
+                return Err(err(
+                    p,
+                    f,
+                    "a study needs at least one seed, the list is empty",
+                ));
+            }
+            let mut seen = BTreeSet::new();
+            a.iter()
+                .enumerate()
+                .map(|(i, v)| match v {
+                    toml::Value::Integer(s) if *s >= 0 => {
+                        if seen.insert(*s) {
+                            Ok(*s as u64)
+                        } else {
+                            Err(err(
+                                p,
+                                format!("{f}[{i}]"),
+                                format!("seed {s} is listed twice"),
+                            ))
+                        }
+                    }
+                    other => Err(err(
+                        p,
+                        format!("{f}[{i}]"),
+                        format!("must be a seed number, an integer >= 0, got {other}"),
+                    )),
+                })
+                .collect()
+        }
+        Some(other) => Err(err(
+            p,
+            f,
+            format!(
+                "must be a count of seeds or a list of seed numbers, got {}",
+                other.type_str()
+            ),
+        )),
+    }
+}
+
+fn sea_state(p: &Path, f: &dyn Fn(&str) -> String, r: &RawSeaState) -> Result<SeaState, Error> {
+    let hs = positive(p, &f("hs"), required(p, &f("hs"), r.hs)?)?;
+    let tp = positive(p, &f("tp"), required(p, &f("tp"), r.tp)?)?;
+    let gamma = match r.gamma {
+        None => None,
+        Some(g) => {
+            finite(p, &f("gamma"), g)?;
+            if g < 1.0 {
+                return Err(err(
+                    p,
+                    f("gamma"),
+                    format!("a JONSWAP peak factor is at least 1 (1 = Pierson-Moskowitz), got {g}"),
+                ));
+            }
+            Some(g)
+        }
+    };
+    Ok(SeaState {
+        name: r.name.clone(),
+        hs,
+        tp,
+        gamma,
+        heading: finite(p, &f("heading"), r.heading.unwrap_or(0.0))?,
+        current_speed: non_negative(p, &f("current_speed"), r.current_speed.unwrap_or(0.0))?,
+        current_heading: finite(p, &f("current_heading"), r.current_heading.unwrap_or(0.0))?,
+    })
+}
+
+/// Reads sea states from a CSV file with a header row; columns `hs` and `tp` are
+/// required, `name`, `gamma`, `heading`, `current_speed`, `current_heading` optional
+/// (an empty cell takes the default).
+pub fn read_sea_states_csv(path: &Path) -> Result<Vec<SeaState>, Error> {
+    let mut rdr = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .map_err(|e| err(path, "(file)", format!("cannot read: {e}")))?;
+    let headers = rdr
+        .headers()
+        .map_err(|e| err(path, "(header)", e.to_string()))?
+        .clone();
+    for (i, h) in headers.iter().enumerate() {
+        if !SEA_STATE_COLUMNS.contains(&h) {
+            return Err(err(
+                path,
+                format!("column {} (\"{h}\")", i + 1),
+                format!("unknown column (known: {})", SEA_STATE_COLUMNS.join(", ")),
+            ));
+        }
+    }
+    for need in ["hs", "tp"] {
+        if !headers.iter().any(|h| h == need) {
+            return Err(err(path, "(header)", format!("no `{need}` column")));
+        }
+    }
+    let mut out = Vec::new();
+    for rec in rdr.records() {
+        let rec = rec.map_err(|e| err(path, "(rows)", e.to_string()))?;
+        let line = rec.position().map_or(0, |q| q.line());
+        let raw: RawSeaState = rec
+            .deserialize(Some(&headers))
+            .map_err(|e| err(path, format!("line {line}"), e.to_string()))?;
+        out.push(sea_state(path, &|k| format!("line {line}: {k}"), &raw)?);
+    }
+    Ok(out)
+}

@@ -1,0 +1,125 @@
+//! Monte Carlo sea-state studies: what to run, and how the members' records are reduced
+//! to extremes and a design check. The running of members is the runner's; this module
+//! holds everything around it, so that results are the same on any number of threads,
+//! shards and machines.
+//!
+//! The data flow, in order:
+//! 1. [`StudyFile::load`] reads the `[study]` table ([`definition`]) and the base scenario
+//!    text; [`StudyPlan::new`] resolves the channels against the base model
+//!    ([`channels`]), enumerates the members with their wave seeds ([`members`]) and takes
+//!    the study hash ([`hash`]).
+//! 2. The runner runs the members of its shard ([`ShardSpec`], `K/N`), each with its sea
+//!    state ([`StudyPlan::sea_state_of`]) and wave seed; at every output time a
+//!    [`Sampler`] pushes each channel's value into a [`ChannelStats`] from
+//!    [`StudyPlan::new_stats`] (fixed memory, [`channel_stats`]); each finished member becomes a [`MemberResult`], and the
+//!    shard a [`ShardResult`] written as `shard.json` ([`results`]).
+//! 3. [`merge`] checks that the shard files are the complete set of one study and puts the
+//!    members back in member order; [`summarise`] fits the seed maxima of each sea state
+//!    and channel ([`gumbel`]) and applies the design check ([`design`]); [`tables`] writes
+//!    `members.csv`, `study.csv` and `study.json`.
+//!
+//! Every reduction runs over members in member order, whatever order they were run or
+//! merged in, so a merged study equals a one-machine study bit for bit.
+
+pub mod channel_stats;
+pub mod channels;
+pub mod definition;
+pub mod design;
+pub mod extremes;
+pub mod gumbel;
+pub mod hash;
+pub mod members;
+pub mod results;
+pub mod sampling;
+pub mod tables;
+
+pub use channel_stats::{ChannelStats, Extreme};
+pub use channels::{BodyComponent, Channel, ModelChannels, Quantity};
+pub use definition::{DesignInputs, SeaState, StudyDef, StudyFile};
+pub use extremes::{summarise, ChannelSummary, SeaStateSummary, StudySummary};
+pub use gumbel::{Gumbel, GumbelFit};
+pub use members::{Member, ShardSpec};
+pub use results::{merge, MemberResult, MemberStatus, ShardResult, StudyResults};
+pub use sampling::{BodySnapshot, CableSnapshot, Sampler};
+
+use crate::error::Error;
+use crate::scenario::err;
+use std::path::Path;
+
+/// A study ready to run: the definition, its channels resolved against the base model,
+/// its members and its hash.
+#[derive(Clone, Debug)]
+pub struct StudyPlan {
+    /// The definition.
+    pub def: StudyDef,
+    /// The channels every member reduces, in table order.
+    pub channels: Vec<Channel>,
+    /// Every member, in member order.
+    pub members: Vec<Member>,
+    /// The study hash (hex SHA-256 of the canonical definition and the base scenario).
+    pub hash: String,
+}
+
+impl StudyPlan {
+    /// Plans a loaded study against its base model (the cables and bodies it offers).
+    pub fn new(file: &StudyFile, model: &ModelChannels) -> Result<StudyPlan, Error> {
+        Self::from_parts(file.def.clone(), &file.scenario_text, &file.path, model)
+    }
+
+    /// Plans a study from its parts; `path` names the study file in messages.
+    pub fn from_parts(
+        def: StudyDef,
+        scenario_text: &str,
+        path: &Path,
+        model: &ModelChannels,
+    ) -> Result<StudyPlan, Error> {
+        let channels = channels::resolve(path, "study.channels", &def.channels, model)?;
+        if let Some(d) = &def.design {
+            for name in d.capacities.keys() {
+                if !model.cables.iter().any(|c| &c.line_type == name) {
+                    return Err(err(
+                        path,
+                        format!("study.design.capacities.{name}"),
+                        format!("no cable of the base scenario has line type \"{name}\""),
+                    ));
+                }
+            }
+        }
+        Ok(StudyPlan {
+            members: members::members(&def),
+            hash: hash::study_hash(&def, scenario_text),
+            channels,
+            def,
+        })
+    }
+
+    /// The members a shard runs (checked against the study's size; `source` names where
+    /// the shard spec came from).
+    pub fn shard_members(&self, shard: ShardSpec, source: &Path) -> Result<&[Member], Error> {
+        shard.check(self.members.len(), source)?;
+        Ok(&self.members[shard.range(self.members.len())])
+    }
+
+    /// The sea state a member runs.
+    pub fn sea_state_of(&self, m: &Member) -> &SeaState {
+        &self.def.sea_states[m.sea_state]
+    }
+
+    /// Empty statistics for one member: one per channel, in channel order.
+    pub fn new_stats(&self) -> Vec<ChannelStats> {
+        vec![ChannelStats::new(self.def.transient); self.channels.len()]
+    }
+
+    /// A shard's result, from its finished members (in any order).
+    pub fn shard_result(&self, shard: ShardSpec, mut members: Vec<MemberResult>) -> ShardResult {
+        members.sort_by_key(|m| m.member.index);
+        ShardResult {
+            format: results::SHARD_FORMAT,
+            study_hash: self.hash.clone(),
+            shard,
+            study: self.def.clone(),
+            channels: self.channels.clone(),
+            members,
+        }
+    }
+}

@@ -1,0 +1,196 @@
+//! Feeding a member's channels at each output time.
+//!
+//! A runner holds, at an output time, each cable's element tensions and end forces and
+//! each body's load; [`Sampler`] picks every study channel's value out of that snapshot
+//! and pushes it into the member's statistics. Owners are looked up by name once, when
+//! the sampler is built, so sampling is a few indexed reads per channel.
+
+use super::channel_stats::ChannelStats;
+use super::channels::{BodyComponent, Channel, ModelChannels, Quantity};
+
+/// One cable at an output time.
+#[derive(Clone, Copy, Debug)]
+pub struct CableSnapshot<'a> {
+    /// Axial force of each element, start to end, N.
+    pub tensions: &'a [f64],
+    /// Force the cable exerts on its start support, N.
+    pub start_force: [f64; 3],
+    /// Force the cable exerts on its end support, N.
+    pub end_force: [f64; 3],
+}
+
+/// One body at an output time.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BodySnapshot {
+    /// Total force of the cables on the body, N.
+    pub force: [f64; 3],
+    /// Their moment about the body's reference point, N m.
+    pub moment: [f64; 3],
+}
+
+/// Where each channel's value comes from: its owner's index in the snapshot.
+#[derive(Clone, Debug)]
+pub struct Sampler {
+    sources: Vec<(usize, Quantity)>,
+}
+
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+impl Sampler {
+    /// A sampler for `channels` (resolved against `model`): snapshots then list cables
+    /// and bodies in `model`'s order.
+    pub fn new(channels: &[Channel], model: &ModelChannels) -> Sampler {
+        let sources = channels
+            .iter()
+            .map(|c| {
+                let owner = if c.quantity.of_cable() {
+                    model.cables.iter().position(|m| m.name == c.owner)
+                } else {
+                    model.bodies.iter().position(|b| *b == c.owner)
+                };
+                let owner = owner.unwrap_or_else(|| {
+                    panic!("channel {} was not resolved against this model", c.name())
+                });
+                (owner, c.quantity)
+            })
+            .collect();
+        Sampler { sources }
+    }
+
+    /// The value of channel `i` in a snapshot; `None` for an element a winch has
+    /// hauled in (the cable has fewer elements now than at the start).
+    pub fn value(
+        &self,
+        i: usize,
+        cables: &[CableSnapshot],
+        bodies: &[BodySnapshot],
+    ) -> Option<f64> {
+        let (owner, q) = self.sources[i];
+        Some(match q {
+            Quantity::TensionMax => cables[owner].tensions.iter().copied().reduce(f64::max)?,
+            Quantity::StartForce => norm(cables[owner].start_force),
+            Quantity::EndForce => norm(cables[owner].end_force),
+            Quantity::Tension(k) => *cables[owner].tensions.get(k)?,
+            Quantity::Body(c) => {
+                let b = &bodies[owner];
+                match c {
+                    BodyComponent::Fx => b.force[0],
+                    BodyComponent::Fy => b.force[1],
+                    BodyComponent::Fz => b.force[2],
+                    BodyComponent::Mx => b.moment[0],
+                    BodyComponent::My => b.moment[1],
+                    BodyComponent::Mz => b.moment[2],
+                }
+            }
+        })
+    }
+
+    /// Pushes every channel's value at simulated time `t` (s) into `stats` (one per
+    /// channel, in channel order).
+    pub fn record(
+        &self,
+        stats: &mut [ChannelStats],
+        t: f64,
+        cables: &[CableSnapshot],
+        bodies: &[BodySnapshot],
+    ) {
+        debug_assert_eq!(stats.len(), self.sources.len());
+        for (i, s) in stats.iter_mut().enumerate() {
+            if let Some(x) = self.value(i, cables, bodies) {
+                s.push(t, x);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::channels::{resolve, CableChannels};
+    use std::path::Path;
+
+    #[test]
+    fn each_channel_reads_its_own_owner_and_quantity() {
+        let model = ModelChannels {
+            cables: vec![
+                CableChannels {
+                    name: "a".into(),
+                    line_type: "chain".into(),
+                    elements: 3,
+                },
+                CableChannels {
+                    name: "b".into(),
+                    line_type: "chain".into(),
+                    elements: 2,
+                },
+            ],
+            bodies: vec!["hull".into(), "buoy".into()],
+        };
+        let entries: Vec<String> = [
+            "b.tension_max",
+            "a.start_force",
+            "b.end_force",
+            "a.tension[2]",
+            "buoy.fz",
+            "hull.my",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        let channels = resolve(Path::new("s"), "study.channels", &entries, &model).unwrap();
+        let sampler = Sampler::new(&channels, &model);
+        let ta = [10.0, 30.0, 20.0];
+        let tb = [5.0, 7.0];
+        let cables = [
+            CableSnapshot {
+                tensions: &ta,
+                start_force: [3.0, 0.0, 4.0],
+                end_force: [0.0; 3],
+            },
+            CableSnapshot {
+                tensions: &tb,
+                start_force: [0.0; 3],
+                end_force: [0.0, 6.0, 8.0],
+            },
+        ];
+        let bodies = [
+            BodySnapshot {
+                force: [0.0; 3],
+                moment: [1.0, 2.0, 3.0],
+            },
+            BodySnapshot {
+                force: [4.0, 5.0, -6.0],
+                moment: [0.0; 3],
+            },
+        ];
+        let got: Vec<Option<f64>> = (0..channels.len())
+            .map(|i| sampler.value(i, &cables, &bodies))
+            .collect();
+        assert_eq!(
+            got,
+            [
+                Some(7.0),
+                Some(5.0),
+                Some(10.0),
+                Some(20.0),
+                Some(-6.0),
+                Some(2.0)
+            ]
+        );
+        // A hauled-in element gives no sample instead of a wrong one.
+        let short = [
+            CableSnapshot {
+                tensions: &ta[..2],
+                ..cables[0]
+            },
+            cables[1],
+        ];
+        assert_eq!(sampler.value(3, &short, &bodies), None);
+        let mut stats = vec![ChannelStats::new(0.0); channels.len()];
+        sampler.record(&mut stats, 1.0, &short, &bodies);
+        assert_eq!(stats[3].count(), 0);
+        assert_eq!(stats[0].max().unwrap().value, 7.0);
+    }
+}
