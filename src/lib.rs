@@ -19,8 +19,12 @@ pub mod model;
 pub mod options;
 pub mod physics;
 pub mod statics;
+pub mod step;
 
 pub use error::{Error, Result};
+pub use options::Overrides;
+pub use output::{FileSink, MemorySink, OutputSink, Snapshot};
+pub use sim::Simulation;
 pub mod initial;
 pub mod output;
 pub mod scenario;

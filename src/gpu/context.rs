@@ -14,8 +14,8 @@
 //! When nothing is usable, [`GpuContext::new`] returns [`Error::NoAdapter`] with every
 //! adapter seen and why it was set aside.
 
-use super::Precision;
 use crate::error::Error;
+use crate::options::Precision;
 use std::sync::{Arc, Mutex};
 
 /// Storage buffers the solver binds in one stage (see the prelude's bindings).

@@ -19,20 +19,19 @@
 //! Winch cables: per submission the host also writes the `payout` rows (one [`Payout`]
 //! per winch and step), and an `advance` call stops its submissions at each step after
 //! which a winch cable must be remeshed, reads the state back, remeshes on the host
-//! (`cpu::ale::AleState::remesh`, the CPU path's code), rebuilds the layout's buffers
+//! (`ale::AleState::remesh_in_place`, the CPU path's code), rebuilds the layout's buffers
 //! and bind group (the pipelines stay) and uploads the state: see [`GpuSolver`].
 
 use super::context::GpuContext;
 use super::layout::*;
 use super::shaders::{self, Stage};
-use super::Precision;
-use crate::ale::Winch;
-use crate::cpu::ale::{AleElem, AleState};
-use crate::cpu::{diverged, Evaluation, StepFailure, WinchStatus};
+use crate::ale::{AleElem, AleState, Winch};
 use crate::error::Error;
 use crate::math::V3;
 use crate::model::{circle_basis, Layout, ModelDef, Route};
+use crate::options::Precision;
 use crate::options::{Formulation, Scheme, SolverOptions};
+use crate::step::{diverged, Evaluation, StepFailure, WinchStatus};
 use bytemuck::Zeroable;
 use std::f64::consts::PI;
 use std::marker::PhantomData;
@@ -812,7 +811,7 @@ impl<R: GpuReal> GpuEngine<R> {
 
     /// Writes the `payout` rows of steps `step0 .. step0 + n` (rows `0 .. n`): the
     /// variable element of each winch cable at each step's time, from its schedule, in
-    /// f64 exactly as the CPU path forms them (`cpu::ale::AleElem::l0`).
+    /// f64 exactly as the CPU path forms them (`ale::AleElem::l0`).
     fn write_payout(&self, host: &Host, step0: u64, n: u64) {
         if host.winches.is_empty() {
             return;
