@@ -38,13 +38,13 @@ struct Ctx<'a> {
 /// The f64 reference solver: layout, state, and scratch.
 pub struct CpuSolver {
     /// The packed model.
-    pub layout: Layout,
+    layout: Layout,
     /// Options.
-    pub opts: SolverOptions,
+    opts: SolverOptions,
     /// Simulated time, s.
-    pub t: f64,
+    t: f64,
     /// Number of steps taken.
-    pub steps: u64,
+    steps: u64,
     /// Node positions, m.
     pub r: Vec<V>,
     /// Node velocities, m/s.
@@ -64,10 +64,31 @@ pub struct CpuSolver {
     /// Winch cables (ALE-GLMF), if any.
     ale: Option<Box<AleState>>,
     /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
-    pub node_steps: u64,
+    node_steps: u64,
 }
 
 impl CpuSolver {
+    /// The packed model (the current mesh, with winches).
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+    /// The options it steps with.
+    pub fn opts(&self) -> &SolverOptions {
+        &self.opts
+    }
+    /// Simulated time, s.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
+    pub fn node_steps(&self) -> u64 {
+        self.node_steps
+    }
+
     /// A solver at rest at `positions` (packed order), `t = 0`.
     pub fn new(layout: Layout, positions: &[[f64; 3]], opts: SolverOptions) -> Self {
         let mut s = Self {

@@ -1170,19 +1170,19 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
 /// seconds, none per step.
 pub struct GpuSolver {
     /// The packed model (the current mesh, with winches).
-    pub layout: Layout,
+    layout: Layout,
     /// Options (GLMF, symplectic Euler; see [`unsupported`]).
-    pub opts: SolverOptions,
+    opts: SolverOptions,
     /// Shader precision.
-    pub precision: Precision,
+    precision: Precision,
     /// Simulated time, s.
-    pub t: f64,
+    t: f64,
     /// Number of steps taken.
-    pub steps: u64,
+    steps: u64,
     /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
-    pub node_steps: u64,
+    node_steps: u64,
     /// Remeshings of winch cables so far (each one state read-back and re-upload).
-    pub remeshes: u64,
+    remeshes: u64,
     device: String,
     host: Host,
     engine: Box<dyn Engine>,
@@ -1191,6 +1191,35 @@ pub struct GpuSolver {
 }
 
 impl GpuSolver {
+    /// The packed model (the current mesh, with winches).
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+    /// The options it steps with.
+    pub fn opts(&self) -> &SolverOptions {
+        &self.opts
+    }
+    /// Shader precision.
+    pub fn precision(&self) -> Precision {
+        self.precision
+    }
+    /// Simulated time, s.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
+    pub fn node_steps(&self) -> u64 {
+        self.node_steps
+    }
+    /// Remeshings of winch cables so far (each one state read-back and re-upload).
+    pub fn remeshes(&self) -> u64 {
+        self.remeshes
+    }
+
     /// Uploads the model, at rest at `positions` (packed order), `t = 0`.
     pub fn new(
         ctx: &GpuContext,

@@ -140,8 +140,8 @@ impl LumpedStepper {
     /// Node-steps taken (nodes times steps, counting the nodes each step had).
     pub fn node_steps(&self) -> u64 {
         match self {
-            LumpedStepper::Cpu(s) => s.node_steps,
-            LumpedStepper::Gpu(s) => s.node_steps,
+            LumpedStepper::Cpu(s) => s.node_steps(),
+            LumpedStepper::Gpu(s) => s.node_steps(),
         }
     }
     /// State of the winch cables.
@@ -154,15 +154,15 @@ impl LumpedStepper {
     /// Steps taken.
     pub fn steps(&self) -> u64 {
         match self {
-            LumpedStepper::Cpu(s) => s.steps,
-            LumpedStepper::Gpu(s) => s.steps,
+            LumpedStepper::Cpu(s) => s.steps(),
+            LumpedStepper::Gpu(s) => s.steps(),
         }
     }
     /// The packed model (the current mesh).
     pub fn layout(&self) -> &Layout {
         match self {
-            LumpedStepper::Cpu(s) => &s.layout,
-            LumpedStepper::Gpu(s) => &s.layout,
+            LumpedStepper::Cpu(s) => s.layout(),
+            LumpedStepper::Gpu(s) => s.layout(),
         }
     }
     /// Node positions and velocities (packed order; read back from the GPU), m, m/s.
@@ -186,7 +186,7 @@ impl LumpedStepper {
     pub fn describe(&self) -> (&'static str, String, &'static str) {
         match self {
             LumpedStepper::Cpu(_) => ("cpu", cpu_name(), "f64"),
-            LumpedStepper::Gpu(s) => ("gpu", s.device().to_string(), s.precision.name()),
+            LumpedStepper::Gpu(s) => ("gpu", s.device().to_string(), s.precision().name()),
         }
     }
 
