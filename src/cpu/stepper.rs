@@ -4,7 +4,7 @@ use super::chain::{advance_chain, ChainConsts, ChainScratch};
 use crate::ale::{mass_flow_forces, AleElem, AleState, Winch};
 use crate::error::Error;
 use crate::math::{Sym3, V3};
-use crate::model::{Block, Layout, ModelDef, NO_CONSTRAINT};
+use crate::model::{Block, Layout, ModelDef, Route, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{glmf_element, seabed_force, Coefs, ElementInput, ElementLoads, SeabedCoefs};
@@ -246,6 +246,25 @@ impl CpuSolver {
             }
         }
         l0
+    }
+
+    /// Replaces the route of held node `node` (packed index) from now on (a coupling
+    /// loop driving an end from outside). Errors when the node is not held.
+    pub fn set_route(&mut self, node: usize, route: Route) -> Result<(), Error> {
+        let k = self.layout.node_constraint[node];
+        if k == NO_CONSTRAINT {
+            return Err(Error::Model(format!(
+                "node {node} is free: only a held node (fixed or on a route) can be driven"
+            )));
+        }
+        if let Some(ale) = self.ale.as_mut() {
+            // Remeshing rebuilds from the description: it must carry the new route.
+            if let Some(d) = ale.packed_of_def.iter().position(|&p| p as usize == node) {
+                ale.def.nodes[d].route = Some(route.clone());
+            }
+        }
+        self.layout.routes[k as usize] = route;
+        Ok(())
     }
 
     /// Where each winch cable stands now (empty without winches).

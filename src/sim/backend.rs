@@ -4,9 +4,18 @@
 //! The ANCF reference model is the third backend ([`super::ancf`]).
 
 use crate::cpu::CpuSolver;
+
+/// One end of a cable.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CableEnd {
+    /// Its first node.
+    Start,
+    /// Its last node.
+    End,
+}
 use crate::error::Error;
 use crate::gpu::{GpuContext, GpuSolver};
-use crate::model::Layout;
+use crate::model::{Layout, Route};
 use crate::options::{Backend, Precision, SolverOptions};
 use crate::output::{end_forces, CableState, CableSummary, EndForces, WinchSummary};
 use crate::scenario::Scenario;
@@ -137,6 +146,38 @@ impl LumpedStepper {
             LumpedStepper::Gpu(s) => s.advance(n),
         }
     }
+    /// Drives end `end` of cable `cable` from now on: its target moves from `position`
+    /// (m) at `velocity` (m/s) in a straight line. CPU backend only.
+    pub fn set_end_motion(
+        &mut self,
+        cable: usize,
+        end: CableEnd,
+        position: [f64; 3],
+        velocity: [f64; 3],
+    ) -> Result<(), Error> {
+        let LumpedStepper::Cpu(s) = self else {
+            return Err(Error::GpuUnsupported(
+                "driving an end from outside (a coupling loop); use --backend cpu".into(),
+            ));
+        };
+        let c = s.layout().cables.get(cable).ok_or_else(|| {
+            Error::Model(format!(
+                "no cable {cable} (the run has {})",
+                s.layout().cables.len()
+            ))
+        })?;
+        let node = match end {
+            CableEnd::Start => c.nodes[0],
+            CableEnd::End => c.nodes[c.nodes.len() - 1],
+        } as usize;
+        let name = c.name.clone();
+        // r(t) = position + velocity (t - now), as a line route `start + velocity t`.
+        let t = s.t();
+        let start = [0, 1, 2].map(|i| position[i] - velocity[i] * t);
+        s.set_route(node, Route::Line { start, velocity })
+            .map_err(|e| Error::Model(format!("cable '{name}', {end:?} end: {e}")))
+    }
+
     /// Node-steps taken (nodes times steps, counting the nodes each step had).
     pub fn node_steps(&self) -> u64 {
         match self {

@@ -1,22 +1,6 @@
 //! The run pipeline and the library API: [`Simulation`].
 //!
-//! One pipeline, one driver. The stages, in order:
-//! 1. **Scenario** ([`crate::scenario::Scenario`]): a TOML file or string, validated,
-//!    with the caller's [`Overrides`] (backend, precision, scheme, formulation, step,
-//!    duration) applied over its `[simulation]` table ([`crate::options`]).
-//! 2. **Model**: the [`crate::model::ModelDef`] the scenario describes, packed into a
-//!    [`crate::model::Layout`] (flat arrays over every cable of the run).
-//! 3. **Initial state** ([`crate::initial`]): straight lines, or catenaries relaxed to
-//!    the discrete static equilibrium ([`crate::statics`]).
-//! 4. **Step plan** ([`plan`]): the time step from the stability bound
-//!    ([`crate::stability`]) and the output interval, steps per output, total steps;
-//!    winch schedules followed over it before anything runs.
-//! 5. **Backend** ([`backend`], [`ancf`]): the f64 CPU reference ([`crate::cpu`]), the
-//!    GPU path ([`crate::gpu`]), or the ANCF reference model ([`crate::ancf`]), stepped
-//!    behind one interface; step results and the blow-up check are [`crate::step`]'s.
-//! 6. **Output sink** ([`crate::output::OutputSink`]): at each output time a
-//!    [`Snapshot`] goes to the sink the caller chose (files: [`FileSink`], memory:
-//!    [`MemorySink`], or its own), and the [`Summary`] at the end.
+//! One pipeline, one driver: [`Simulation`] (its doc lists the stages in order).
 //!
 //! ```no_run
 //! use cablesim::{MemorySink, Overrides, Simulation};
@@ -40,7 +24,7 @@ pub mod plan;
 pub use crate::initial::prepare;
 pub use crate::options::Overrides;
 pub use crate::output::{FileSink, MemorySink, Snapshot, Summary};
-pub use backend::{choose_backend, cpu_name, BackendChoice};
+pub use backend::{choose_backend, cpu_name, BackendChoice, CableEnd};
 pub use plan::{fit_step, plan_steps, StepPlan};
 
 use crate::error::Error;
@@ -96,10 +80,31 @@ enum Engine {
     Ancf(AncfFleet),
 }
 
-/// A scenario being simulated: the library's entry point (see the module doc for the
-/// stages). Build it from a file, a TOML string or a [`Scenario`], advance it by steps
-/// or to a time, read its state ([`Simulation::snapshot`] and the getters), or run it
-/// to the end into an [`OutputSink`].
+/// A scenario being simulated: the library's entry point, and the run pipeline's one
+/// driver.
+///
+/// The stages of the pipeline, in order:
+/// 1. **Scenario** ([`crate::scenario::Scenario`]): a TOML file or string, validated,
+///    with the caller's [`Overrides`] (backend, precision, scheme, formulation, step,
+///    duration) applied over its `[simulation]` table ([`crate::options`]).
+/// 2. **Model**: the [`crate::model::ModelDef`] the scenario describes, packed into a
+///    [`crate::model::Layout`] (flat arrays over every cable of the run).
+/// 3. **Initial state** ([`crate::initial`]): straight lines, or catenaries relaxed to
+///    the discrete static equilibrium ([`crate::statics`]).
+/// 4. **Step plan** ([`plan`]): the time step from the stability bound
+///    ([`crate::stability`]) and the output interval, steps per output, total steps;
+///    winch schedules followed over it before anything runs.
+/// 5. **Backend** ([`backend`], [`ancf`]): the f64 CPU reference ([`crate::cpu`]), the
+///    GPU path ([`crate::gpu`]), or the ANCF reference model ([`crate::ancf`]), stepped
+///    behind one interface; step results and the blow-up check are [`crate::step`]'s.
+/// 6. **Output sink** ([`crate::output::OutputSink`]): at each output time a
+///    [`Snapshot`] goes to the sink the caller chose (files: [`FileSink`], memory:
+///    [`MemorySink`], or its own), and the [`Summary`] at the end.
+///
+/// Build it from a file, a TOML string or a [`Scenario`], advance it by steps
+/// or to a time, read its state ([`Simulation::snapshot`] and the getters), drive a
+/// held end from outside between steps ([`Simulation::set_end_motion`]), or run it to
+/// the end into an [`OutputSink`].
 pub struct Simulation {
     scenario: Scenario,
     engine: Engine,
@@ -294,6 +299,28 @@ impl Simulation {
                 self.stepping += t0.elapsed().as_secs_f64();
                 r
             }
+        }
+    }
+
+    /// Drives end `end` of cable `cable` (scenario order) from outside, as a coupling
+    /// loop does (MoorDyn's API: set the fairlead's target, step, read the force back):
+    /// from now until the next call its target moves from `position` (m) at `velocity`
+    /// (m/s) in a straight line, `r(t) = position + velocity (t - now)`, and the node
+    /// follows it through the same constraint as a scenario route. Read the force the
+    /// cable exerts on it from [`Simulation::snapshot`] (`end_forces`). The end must be
+    /// held in the scenario (fixed or on a route); lumped-mass model on the CPU backend.
+    pub fn set_end_motion(
+        &mut self,
+        cable: usize,
+        end: CableEnd,
+        position: [f64; 3],
+        velocity: [f64; 3],
+    ) -> Result<(), Error> {
+        match &mut self.engine {
+            Engine::Lumped(s, _) => s.set_end_motion(cable, end, position, velocity),
+            Engine::Ancf(_) => Err(Error::Model(
+                "driving an end from outside needs the lumped-mass model (formulation glmf)".into(),
+            )),
         }
     }
 
