@@ -265,7 +265,7 @@ fn compare_f64(
         );
         let df =
             max_of((0..cpu.layout().cables.len()).flat_map(|c| {
-                end_force_diffs(&gpu.layout(), &eg, &cpu.layout(), &ec, c).map(|x| x.0)
+                end_force_diffs(gpu.layout(), &eg, cpu.layout(), &ec, c).map(|x| x.0)
             }));
         let dreact = max_of(
             eg.reaction
@@ -294,8 +294,8 @@ fn compare_f64(
         );
         // Mass in the water from the GPU's own half masses: mbar L(t).
         for (w, st) in winches.iter().zip(&sg) {
-            let var = variable_element(&gpu.layout(), w.cable, w.end);
-            let (mass, len) = mass_and_length(&gpu.layout(), &eg, w.cable, var, st.variable_l0);
+            let var = variable_element(gpu.layout(), w.cable, w.end);
+            let (mass, len) = mass_and_length(gpu.layout(), &eg, w.cable, var, st.variable_l0);
             let l = st.deployed_length;
             assert!((len - l).abs() <= 1e-12 * l, "layout length {len} vs L {l}");
             worst_mass = worst_mass.max((mass - mbar * l).abs() / (mbar * l));
@@ -446,7 +446,7 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
         worst_pos = worst_pos.max(dpos / l);
         let ec = cpu.evaluate().unwrap();
         let eg = gpu.evaluate().unwrap();
-        for (k, (d, f)) in end_force_diffs(&gpu.layout(), &eg, &cpu.layout(), &ec, ci)
+        for (k, (d, f)) in end_force_diffs(gpu.layout(), &eg, cpu.layout(), &ec, ci)
             .into_iter()
             .enumerate()
         {
@@ -457,8 +457,8 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
             );
             worst_force = worst_force.max(d / f);
         }
-        let var = variable_element(&gpu.layout(), ci, end);
-        let (mass, len) = mass_and_length(&gpu.layout(), &eg, ci, var, sg.variable_l0);
+        let var = variable_element(gpu.layout(), ci, end);
+        let (mass, len) = mass_and_length(gpu.layout(), &eg, ci, var, sg.variable_l0);
         assert!((len - l).abs() <= 1e-12 * l, "layout length {len} vs L {l}");
         worst_mass = worst_mass.max((mass - mbar * l).abs() / (mbar * l));
     }

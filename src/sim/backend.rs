@@ -14,6 +14,7 @@ pub enum CableEnd {
     End,
 }
 use crate::error::Error;
+use crate::gpu::solver::NodeStates;
 use crate::gpu::{GpuContext, GpuSolver};
 use crate::model::{Layout, Route};
 use crate::options::{Backend, Precision, SolverOptions};
@@ -207,7 +208,7 @@ impl LumpedStepper {
         }
     }
     /// Node positions and velocities (packed order; read back from the GPU), m, m/s.
-    pub fn state(&mut self) -> Result<(Vec<[f64; 3]>, Vec<[f64; 3]>), Error> {
+    pub fn state(&mut self) -> Result<NodeStates, Error> {
         match self {
             LumpedStepper::Cpu(s) => Ok((
                 s.r.iter().map(|x| x.to_f64()).collect(),
