@@ -1,11 +1,20 @@
-//! Initial shapes: straight lines as laid out by the scenario, or catenaries relaxed to
-//! the discrete model's static equilibrium (docs/src/model/initial.md).
+//! Stage 3 of the run pipeline, the initial state: straight lines as laid out by the
+//! scenario, or catenaries relaxed to the discrete model's static equilibrium.
 
 use crate::error::Error;
 use crate::model::Layout;
 use crate::physics::catenary::catenary_positions;
 use crate::scenario::{InitialShape, Scenario};
 use crate::statics::{relax_blocks, RelaxOptions};
+
+/// Builds the layout and the initial state (catenary first guesses relaxed to the
+/// discrete static equilibrium). Returns the layout, positions and the largest
+/// residual force left by the relaxation.
+pub fn prepare(sc: &Scenario) -> Result<(Layout, Vec<[f64; 3]>, f64), Error> {
+    let (lay, mut pos) = Layout::build(&sc.model)?;
+    let residual = apply(sc, &lay, &mut pos)?;
+    Ok((lay, pos, residual))
+}
 
 /// Applies each cable's initial shape to `pos` (packed order): a `catenary` cable gets
 /// the analytic elastic catenary (with seabed contact) between its end positions as a

@@ -137,7 +137,7 @@ fn wet_mass_and_node_counts_follow_the_deployed_length() {
         for _ in 0..steps {
             s.advance(1).unwrap();
             let st = &s.winch_status()[0];
-            let l = l_init + out_and_back().eval(s.t).dl;
+            let l = l_init + out_and_back().eval(s.t()).dl;
             assert!((st.deployed_length - l).abs() < 1e-12 * l);
             // Mass and wet weight of the elements the step used, from the evaluation.
             let ev = s.evaluate().unwrap();
@@ -153,7 +153,7 @@ fn wet_mass_and_node_counts_follow_the_deployed_length() {
             // The rules: every element but the variable one is l_s exactly, the
             // variable one is within [0.5, 1.5] l_s, and the count is the only one
             // that allows that.
-            let c = &s.layout.cables[0];
+            let c = &s.layout().cables[0];
             let ne = c.elements.len();
             assert_eq!(ne, st.elements);
             assert_eq!(c.nodes.len(), ne + 1);
@@ -321,7 +321,7 @@ winch = { end = "start", schedule = "rates", rates = [[0.0, 0.0], [5.0, 0.5]], d
     let (speed, l_s) = (0.5, 5.0);
     let mut worst = (0.0f64, f64::INFINITY, 0.0f64);
     let mut checked = 0;
-    while s.t < 40.0 - 1e-9 {
+    while s.t() < 40.0 - 1e-9 {
         s.advance(plan.steps_per_output).unwrap();
         let ev = s.evaluate().unwrap();
         let st = &s.winch_status()[0];
@@ -332,22 +332,22 @@ winch = { end = "start", schedule = "rates", rates = [[0.0, 0.0], [5.0, 0.5]], d
         let d_max = (0.5 * rho * 0.3 + drag_t * l) * (speed * (1.0 + eps)).powi(2);
         let d_min = (0.5 * rho * 0.3 + drag_t * (l - 1.5 * l_s)) * speed * speed;
         // The variable element's axial force is elastic (no spurious damping).
-        let c = &s.layout.cables[0];
+        let c = &s.layout().cables[0];
         let e = c.elements[0] as usize;
         let (a, b) = (s.r[c.nodes[0] as usize], s.r[c.nodes[1] as usize]);
         let elastic = lt.ea * ((b - a).norm() / st.variable_l0 - 1.0);
-        if s.t >= 15.0 {
+        if s.t() >= 15.0 {
             let deficit = weight - top;
             let tol = 0.02 * d_max;
             assert!(
                 deficit >= d_min - tol && deficit <= d_max + tol,
                 "t = {}: W - T = {deficit} N outside [{d_min}, {d_max}] N",
-                s.t
+                s.t()
             );
             assert!(
                 (ev.tension[e] - elastic).abs() < 0.5,
                 "t = {}: variable element {} N vs elastic {elastic} N",
-                s.t,
+                s.t(),
                 ev.tension[e]
             );
             worst.0 = worst.0.max(deficit);
@@ -755,13 +755,13 @@ fn laying_on_the_seabed_from_a_moving_ship() {
     let seabed = -30.0;
     let mut grounded = Vec::new();
     let mut top = Vec::new();
-    while s.t < 60.0 - 1e-9 {
+    while s.t() < 60.0 - 1e-9 {
         s.advance(plan.steps_per_output).unwrap();
         let st = &s.winch_status()[0];
         let l0: f64 = s.element_l0().iter().sum();
         assert!((l0 - st.deployed_length).abs() < 1e-12 * l0);
-        assert!((st.deployed_length - (60.0 + s.t)).abs() < 1e-9);
-        let c = &s.layout.cables[0];
+        assert!((st.deployed_length - (60.0 + s.t())).abs() < 1e-9);
+        let c = &s.layout().cables[0];
         let on_bed: Vec<usize> = c
             .nodes
             .iter()
@@ -777,7 +777,7 @@ fn laying_on_the_seabed_from_a_moving_ship() {
         top.push(s.evaluate().unwrap().reaction[0]);
     }
     // Laid cable lies still on the seabed once the span travels steadily.
-    let c = &s.layout.cables[0];
+    let c = &s.layout().cables[0];
     let still = c
         .nodes
         .iter()

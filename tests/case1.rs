@@ -36,7 +36,7 @@ fn last_node_trajectory(formulation: Formulation, perturbation: f64) -> Vec<[f64
         s.advance(plan.steps_per_output).unwrap();
         traj.push(s.r[last].to_f64());
     }
-    assert!((s.t - 2000.0).abs() < 1e-6, "ran to {}", s.t);
+    assert!((s.t() - 2000.0).abs() < 1e-6, "ran to {}", s.t());
     traj
 }
 

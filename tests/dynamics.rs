@@ -48,12 +48,12 @@ fn axial_wave_travels_at_sqrt_ea_over_mbar() {
     let jump = lt.mass_per_length * c * 0.5;
     let probes = [750usize, 250]; // elements, counted from the fixed end
     let mut arrival = [f64::NAN; 2];
-    while s.t < 1.2 * length / c {
+    while s.t() < 1.2 * length / c {
         s.advance(1).unwrap();
         let ev = s.evaluate().unwrap();
         for (k, &e) in probes.iter().enumerate() {
             if arrival[k].is_nan() && ev.tension[e] > t0 + 0.5 * jump {
-                arrival[k] = s.t;
+                arrival[k] = s.t();
             }
         }
     }

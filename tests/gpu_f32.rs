@@ -190,12 +190,12 @@ fn compare(
         done = target;
         gpu_s += t0.elapsed().as_secs_f64();
         let t0 = std::time::Instant::now();
-        cpu.advance(target - cpu.steps).unwrap();
+        cpu.advance(target - cpu.steps()).unwrap();
         let ec = cpu.evaluate().unwrap();
         cpu_s += t0.elapsed().as_secs_f64();
-        twin.advance(target - twin.steps).unwrap();
+        twin.advance(target - twin.steps()).unwrap();
         let et = twin.evaluate().unwrap();
-        let t = cpu.t;
+        let t = cpu.t();
         let mut sens = 0.0f64;
         for cable in &lay.cables {
             let (a, b) = (end_forces(lay, &ec, cable), end_forces(lay, &et, cable));

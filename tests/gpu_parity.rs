@@ -267,7 +267,7 @@ fn compare_on(
         gpu.advance(n).unwrap();
         done += n;
     }
-    assert_eq!(gpu.steps, cpu.steps);
+    assert_eq!(gpu.steps(), cpu.steps());
     let (r, v) = gpu.state().unwrap();
     let ec = cpu.evaluate().unwrap();
     let eg = gpu.evaluate().unwrap();
@@ -280,7 +280,7 @@ fn compare_on(
     let origin_scale = {
         // Largest coordinate relative to a block's mean: what the GPU's origins leave.
         let mut s = 0.0f64;
-        for b in &cpu.layout.blocks {
+        for b in &cpu.layout().blocks {
             let (n0, n1) = (b.node_start as usize, b.node_end as usize);
             let mut m = [0.0; 3];
             for p in &cpu.r[n0..n1] {

@@ -217,16 +217,16 @@ fn compare_f64(
         cpu.advance(n).unwrap();
         gpu.advance(n).unwrap();
         done += n;
-        assert_eq!(gpu.steps, cpu.steps);
+        assert_eq!(gpu.steps(), cpu.steps());
         // The same mesh: the host remeshes both from the same schedules at the same
         // steps, so the mesh state is identical, not just close.
         let (sc, sg) = (cpu.winch_status(), gpu.winch_status());
-        assert_eq!(sc, sg, "{label}: winch status at t = {} s", cpu.t);
-        assert_eq!(gpu.layout.n_nodes(), cpu.layout.n_nodes());
-        for (a, b) in gpu.layout.cables.iter().zip(&cpu.layout.cables) {
+        assert_eq!(sc, sg, "{label}: winch status at t = {} s", cpu.t());
+        assert_eq!(gpu.layout().n_nodes(), cpu.layout().n_nodes());
+        for (a, b) in gpu.layout().cables.iter().zip(&cpu.layout().cables) {
             assert_eq!(a.nodes, b.nodes, "{label}: cable {}", a.name);
         }
-        assert_eq!(gpu.layout.elem_l0, cpu.layout.elem_l0);
+        assert_eq!(gpu.layout().elem_l0, cpu.layout().elem_l0);
         for (m, s) in meshes.iter_mut().zip(&sc) {
             if *m.last().unwrap() != s.elements {
                 m.push(s.elements);
@@ -236,7 +236,7 @@ fn compare_f64(
         // coordinate relative to its block's mean (what the GPU's origins leave).
         let nf = done as f64;
         let mut scale_l = 0.0f64;
-        for b in &cpu.layout.blocks {
+        for b in &cpu.layout().blocks {
             let (n0, n1) = (b.node_start as usize, b.node_end as usize);
             let k = (n1 - n0) as f64;
             let mean = cpu.r[n0..n1].iter().fold([0.0; 3], |m, p| {
@@ -263,17 +263,17 @@ fn compare_f64(
                 .zip(&ec.tension)
                 .map(|(a, b)| (a - b).abs()),
         );
-        let df = max_of(
-            (0..cpu.layout.cables.len())
-                .flat_map(|c| end_force_diffs(&gpu.layout, &eg, &cpu.layout, &ec, c).map(|x| x.0)),
-        );
+        let df =
+            max_of((0..cpu.layout().cables.len()).flat_map(|c| {
+                end_force_diffs(gpu.layout(), &eg, cpu.layout(), &ec, c).map(|x| x.0)
+            }));
         let dreact = max_of(
             eg.reaction
                 .iter()
                 .zip(&ec.reaction)
                 .map(|(a, b)| dist(*a, *b)),
         );
-        let t = cpu.t;
+        let t = cpu.t();
         assert!(dr <= tol_r, "{label} t = {t} s: |dr| {dr:e} > {tol_r:e}");
         assert!(dv <= tol_v, "{label} t = {t} s: |dv| {dv:e} > {tol_v:e}");
         assert!(dt_ <= tol_t, "{label} t = {t} s: |dT| {dt_:e} > {tol_t:e}");
@@ -294,8 +294,8 @@ fn compare_f64(
         );
         // Mass in the water from the GPU's own half masses: mbar L(t).
         for (w, st) in winches.iter().zip(&sg) {
-            let var = variable_element(&gpu.layout, w.cable, w.end);
-            let (mass, len) = mass_and_length(&gpu.layout, &eg, w.cable, var, st.variable_l0);
+            let var = variable_element(gpu.layout(), w.cable, w.end);
+            let (mass, len) = mass_and_length(gpu.layout(), &eg, w.cable, var, st.variable_l0);
             let l = st.deployed_length;
             assert!((len - l).abs() <= 1e-12 * l, "layout length {len} vs L {l}");
             worst_mass = worst_mass.max((mass - mbar * l).abs() / (mbar * l));
@@ -306,7 +306,7 @@ fn compare_f64(
          worst |dr| {worst_r:.2e} m, |dv| {worst_v:.2e} m/s, |dT| {worst_t:.2e} N, |dF_end|, |dReaction| {worst_f:.2e} N \
          (largest fraction of the round-off bound: r {ratio_r:.1e}, v {ratio_v:.1e}, T {ratio_t:.1e}); \
          GPU mass vs mbar L: {worst_mass:.1e}",
-        gpu.remeshes
+        gpu.remeshes()
     );
     assert!(
         worst_mass < 1e-13,
@@ -315,7 +315,7 @@ fn compare_f64(
     // The cables moved: the check is not of cables at rest.
     let moved = max_of(cpu.r.iter().zip(&pos).map(|(a, b)| dist(a.to_f64(), *b)));
     assert!(moved > 0.5, "{label}: moved {moved} m");
-    (meshes, gpu.winch_status(), gpu.remeshes)
+    (meshes, gpu.winch_status(), gpu.remeshes())
 }
 
 #[test]
@@ -427,38 +427,38 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
         gpu.advance(n).unwrap();
         done += n;
         let (sc_, sg) = (&cpu.winch_status()[0], &gpu.winch_status()[0]);
-        assert_eq!(sc_, sg, "{path}: winch status at t = {} s", cpu.t);
+        assert_eq!(sc_, sg, "{path}: winch status at t = {} s", cpu.t());
         let l = sg.deployed_length;
         let (r, _) = gpu.state().unwrap();
         let last = |nodes: &[u32]| nodes[nodes.len() - 1] as usize;
         let (ig, ic) = (
-            last(&gpu.layout.cables[ci].nodes),
-            last(&cpu.layout.cables[ci].nodes),
+            last(&gpu.layout().cables[ci].nodes),
+            last(&cpu.layout().cables[ci].nodes),
         );
         let dpos = dist(r[ig], cpu.r[ic].to_f64());
         assert!(
             dpos <= 1e-4 * l,
             "{path} t = {} s: last node {:?} vs CPU {:?} ({dpos:e} m, L = {l} m)",
-            cpu.t,
+            cpu.t(),
             r[ig],
             cpu.r[ic].to_f64()
         );
         worst_pos = worst_pos.max(dpos / l);
         let ec = cpu.evaluate().unwrap();
         let eg = gpu.evaluate().unwrap();
-        for (k, (d, f)) in end_force_diffs(&gpu.layout, &eg, &cpu.layout, &ec, ci)
+        for (k, (d, f)) in end_force_diffs(gpu.layout(), &eg, cpu.layout(), &ec, ci)
             .into_iter()
             .enumerate()
         {
             assert!(
                 d <= 0.01 * f,
                 "{path} t = {} s: end force {k} differs by {d} N of {f} N",
-                cpu.t
+                cpu.t()
             );
             worst_force = worst_force.max(d / f);
         }
-        let var = variable_element(&gpu.layout, ci, end);
-        let (mass, len) = mass_and_length(&gpu.layout, &eg, ci, var, sg.variable_l0);
+        let var = variable_element(gpu.layout(), ci, end);
+        let (mass, len) = mass_and_length(gpu.layout(), &eg, ci, var, sg.variable_l0);
         assert!((len - l).abs() <= 1e-12 * l, "layout length {len} vs L {l}");
         worst_mass = worst_mass.max((mass - mbar * l).abs() / (mbar * l));
     }
@@ -470,10 +470,10 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
         plan.dt,
         sc.model.cables[ci].l0.len(),
         st.elements,
-        gpu.remeshes
+        gpu.remeshes()
     );
     assert!(st.inserted >= 2, "{path}: the run should remesh ({st:?})");
-    assert_eq!(gpu.remeshes, st.inserted + st.deleted);
+    assert_eq!(gpu.remeshes(), st.inserted + st.deleted);
     // The masses are f32 sums of f32 half masses.
     assert!(
         worst_mass < 1e-5,
@@ -529,7 +529,7 @@ fn still_winch_is_bitwise_the_plain_gpu_path() {
             let (ea, eb) = (plain.evaluate().unwrap(), ale.evaluate().unwrap());
             assert_eq!(ea.tension, eb.tension);
             assert_eq!(ea.reaction, eb.reaction);
-            assert_eq!(ale.remeshes, 0);
+            assert_eq!(ale.remeshes(), 0);
         }
     }
 }

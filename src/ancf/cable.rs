@@ -11,7 +11,7 @@ use crate::ale::{MeshOp, Winch, WinchEnd, WinchTracker};
 use crate::error::Error;
 use crate::math::V3;
 use crate::model::{Current, Environment, LineCoefs, LineType, PointMass, Route};
-use crate::options::Scheme;
+use crate::options::{AddedMass, Scheme};
 use crate::physics::{Coefs, SeabedCoefs};
 use crate::stability::mode_step;
 use nalgebra::{DMatrix, DVector};
@@ -123,20 +123,6 @@ pub struct AncfConfig {
     /// A winch at one end (ALE-ANCF): that end must be on a route; its `element_length`
     /// is the standard element length of the remeshing rules (`cable` is ignored).
     pub winch: Option<Winch>,
-}
-
-/// How the added mass `Cm rho A` (per unit length) enters the consistent mass matrix.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum AddedMass {
-    /// Normal to the cable only, `Cm rho A (I - t t^T)` with the tangent at each Gauss
-    /// point (paper Eqs. 43-44, as the GLMF): the mass matrix depends on the state and is
-    /// re-assembled and re-factored at every evaluation.
-    #[default]
-    Normal,
-    /// `Cm rho A I`, also along the cable: the mass matrix is constant and factored once
-    /// (about twice as fast), at the price of a tangential added mass the physics does not
-    /// have, which matters when `Cm rho A` is not small next to `mbar`.
-    Isotropic,
 }
 
 impl AncfConfig {

@@ -4,8 +4,8 @@
 //! The paper validates the GLMF against the absolute nodal coordinate formulation
 //! (ANCF): a few long elements whose shape is a cubic curve, with bending stiffness.
 //! This module is that reference, for cables of fixed length and, with a winch, of
-//! varying length (ALE-ANCF, below); [`run`] runs a scenario with it
-//! (`formulation = "ancf"`).
+//! varying length (ALE-ANCF, below); the ANCF backend of the run pipeline
+//! ([`crate::sim`]) runs a scenario with it (`formulation = "ancf"`).
 //!
 //! # ALE-ANCF (winch cables)
 //! [`AncfConfig::winch`] makes the cable's length follow a payout schedule with the
@@ -157,9 +157,9 @@
 pub mod band;
 mod cable;
 pub mod element;
-pub mod run;
 pub mod shape;
 
+pub use crate::options::AddedMass;
 pub use cable::{
-    AddedMass, AncfCable, AncfConfig, AncfEnd, AncfEnergy, StaticOptions, StaticReport, AUTO_SAFETY,
+    AncfCable, AncfConfig, AncfEnd, AncfEnergy, StaticOptions, StaticReport, AUTO_SAFETY,
 };

@@ -1,10 +1,12 @@
 //! The `cablesim` command line: a thin layer over the library.
 
 use anyhow::{Context, Result};
-use cablesim::gpu::Precision;
-use cablesim::options::{parse_formulation, CableModel, Scheme, SolverOptions};
-use cablesim::scenario::{Backend, Scenario};
-use cablesim::sim::{self, Overrides, RunOptions};
+use cablesim::options::{
+    Backend, CableModel, FormulationChoice, Overrides, Precision, Scheme, SolverOptions,
+};
+use cablesim::output::FileSink;
+use cablesim::scenario::Scenario;
+use cablesim::sim::{self, Progress, Simulation};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -29,26 +31,26 @@ enum Cmd {
         /// Output directory (default: out/<scenario name>).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// auto | cpu | gpu (default: the scenario's, else auto). The GPU adapter can
-        /// be picked with WGPU_BACKEND (vulkan, gl, ...) and WGPU_ADAPTER_NAME.
-        #[arg(long)]
-        backend: Option<String>,
-        /// f32 | f64: GPU shader precision (default: the scenario's, else f32; f64
-        /// needs an adapter with SHADER_F64). The CPU path is always f64.
-        #[arg(long)]
-        precision: Option<String>,
-        /// symplectic | rk2 | rk4.
-        #[arg(long)]
-        scheme: Option<String>,
-        /// glmf | rvef | euler | frenet (lumped mass), or ancf (the ANCF reference
-        /// model, ALE-ANCF for winch cables; CPU only; see the scenario's `[ancf]`).
-        #[arg(long)]
-        formulation: Option<String>,
+        /// Backend (default: the scenario's, else auto). The GPU adapter can be picked
+        /// with WGPU_BACKEND (vulkan, gl, ...) and WGPU_ADAPTER_NAME.
+        #[arg(long, value_enum)]
+        backend: Option<Backend>,
+        /// GPU shader precision (default: the scenario's, else f32; f64 needs an
+        /// adapter with SHADER_F64). The CPU path is always f64.
+        #[arg(long, value_enum)]
+        precision: Option<Precision>,
+        /// Time scheme (default: the scenario's, else symplectic).
+        #[arg(long, value_enum)]
+        scheme: Option<Scheme>,
+        /// Cable model and load formulation: glmf, rvef, euler, frenet (lumped mass), or
+        /// ancf (the ANCF reference model; see the scenario's `[ancf]`).
+        #[arg(long, value_enum)]
+        formulation: Option<FormulationChoice>,
         /// Time step in seconds (overrides the scenario's `dt`).
-        #[arg(long)]
+        #[arg(long, value_parser = positive)]
         dt: Option<f64>,
         /// Simulated duration in seconds (overrides the scenario's).
-        #[arg(long)]
+        #[arg(long, value_parser = positive)]
         duration: Option<f64>,
         /// No progress bar.
         #[arg(long, short)]
@@ -61,16 +63,11 @@ enum Cmd {
     },
 }
 
-fn parse_opt<T>(
-    v: &Option<String>,
-    what: &str,
-    f: impl Fn(&str) -> Option<T>,
-) -> Result<Option<T>> {
-    match v {
-        None => Ok(None),
-        Some(s) => f(s)
-            .map(Some)
-            .ok_or_else(|| anyhow::anyhow!("--{what}: unknown value \"{s}\"")),
+/// A positive, finite number of seconds.
+fn positive(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x > 0.0 && x.is_finite() => Ok(x),
+        _ => Err("must be a positive number".into()),
     }
 }
 
@@ -90,40 +87,7 @@ fn main() -> ExitCode {
 fn real_main() -> Result<()> {
     let cli = Cli::parse();
     match cli.cmd {
-        Cmd::Check { scenario } => {
-            let sc = Scenario::load(&scenario)?;
-            let (lay, _) = cablesim::model::Layout::build(&sc.model)?;
-            let opts = SolverOptions {
-                scheme: sc.sim.scheme,
-                baumgarte: sc.sim.baumgarte,
-                ..Default::default()
-            };
-            if sc.sim.model == CableModel::Ancf {
-                for (name, n, dt, term) in cablesim::ancf::run::check(&sc, &sc.ancf)? {
-                    println!(
-                        "{}: ok: cable '{name}': ANCF, {n} elements, stable step {dt:.4e} s ({term})",
-                        scenario.display()
-                    );
-                }
-                return Ok(());
-            }
-            let plan = sim::plan_steps(&sc, &lay, &opts, sc.sim.duration, sc.sim.dt)?;
-            if let Some(w) = &plan.warning {
-                log::warn!("{w}");
-            }
-            println!(
-                "{}: ok: {} cables, {} nodes, {} elements; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps",
-                scenario.display(),
-                lay.cables.len(),
-                lay.n_nodes(),
-                lay.n_elements(),
-                plan.dt,
-                plan.bound.dt,
-                plan.bound.term,
-                plan.total_steps
-            );
-            Ok(())
-        }
+        Cmd::Check { scenario } => check(&scenario),
         Cmd::Run {
             scenario,
             out,
@@ -135,33 +99,17 @@ fn real_main() -> Result<()> {
             duration,
             quiet,
         } => {
-            let fm = parse_opt(&formulation, "formulation", parse_formulation)?;
-            let overrides = Overrides {
-                backend: parse_opt(&backend, "backend", Backend::parse)?,
-                precision: parse_opt(&precision, "precision", Precision::parse)?,
-                scheme: parse_opt(&scheme, "scheme", Scheme::parse)?,
-                formulation: fm.map(|x| x.1),
-                model: fm.map(|x| x.0),
-                dt: dt
-                    .map(|d| {
-                        if d > 0.0 && d.is_finite() {
-                            Ok(d)
-                        } else {
-                            Err(anyhow::anyhow!("--dt must be a positive number"))
-                        }
-                    })
-                    .transpose()?,
-                duration: duration
-                    .map(|d| {
-                        if d > 0.0 && d.is_finite() {
-                            Ok(d)
-                        } else {
-                            Err(anyhow::anyhow!("--duration must be a positive number"))
-                        }
-                    })
-                    .transpose()?,
+            let mut overrides = Overrides {
+                backend,
+                precision,
+                scheme,
+                dt,
+                duration,
+                ..Overrides::default()
             };
-            let sc = Scenario::load(&scenario)?;
+            if let Some(f) = formulation {
+                overrides = overrides.with_formulation(f);
+            }
             let out_dir = out.unwrap_or_else(|| {
                 PathBuf::from("out").join(
                     scenario
@@ -170,12 +118,7 @@ fn real_main() -> Result<()> {
                         .unwrap_or_else(|| "run".into()),
                 )
             });
-            let ro = RunOptions {
-                out_dir: out_dir.clone(),
-                overrides,
-                progress: !quiet,
-            };
-            let s = sim::run(&sc, &ro).with_context(|| {
+            let context = || {
                 // Name the output only when the run got as far as writing some.
                 if out_dir.join("end_forces.csv").exists() {
                     format!(
@@ -186,7 +129,31 @@ fn real_main() -> Result<()> {
                 } else {
                     format!("run of {}", scenario.display())
                 }
-            })?;
+            };
+            let mut simulation =
+                Simulation::from_file(&scenario, &overrides).with_context(context)?;
+            let bar = if quiet {
+                indicatif::ProgressBar::hidden()
+            } else {
+                let b = indicatif::ProgressBar::new(0);
+                b.set_style(
+                    indicatif::ProgressStyle::with_template(
+                        "{elapsed_precise} [{bar:40}] {percent}% t = {msg} (eta {eta})",
+                    )
+                    .expect("valid template")
+                    .progress_chars("=> "),
+                );
+                b
+            };
+            let s = simulation
+                .run(&mut FileSink::new(&out_dir), |p: Progress| {
+                    bar.set_length(p.total);
+                    bar.set_position(p.done);
+                    bar.set_message(format!("{:.2} s", p.time));
+                })
+                .with_context(context);
+            bar.finish_and_clear();
+            let s = s?;
             eprintln!(
                 "done: {} steps of {:.4e} s to t = {} s in {:.3} s of stepping ({:.3e} node-steps/s); output in {}",
                 s.steps,
@@ -199,4 +166,40 @@ fn real_main() -> Result<()> {
             Ok(())
         }
     }
+}
+
+/// `cablesim check`: validates the scenario and prints the mesh and the step plan.
+fn check(scenario: &std::path::Path) -> Result<()> {
+    let sc = Scenario::load(scenario)?;
+    let (lay, _) = cablesim::model::Layout::build(&sc.model)?;
+    let opts = SolverOptions {
+        scheme: sc.sim.scheme,
+        baumgarte: sc.sim.baumgarte,
+        ..Default::default()
+    };
+    if sc.sim.model == CableModel::Ancf {
+        for (name, n, dt, term) in sim::ancf::check(&sc, &sc.ancf, sc.sim.scheme)? {
+            println!(
+                "{}: ok: cable '{name}': ANCF, {n} elements, stable step {dt:.4e} s ({term})",
+                scenario.display()
+            );
+        }
+        return Ok(());
+    }
+    let plan = sim::plan_steps(&sc, &lay, &opts, sc.sim.duration, sc.sim.dt)?;
+    if let Some(w) = &plan.warning {
+        log::warn!("{w}");
+    }
+    println!(
+        "{}: ok: {} cables, {} nodes, {} elements; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps",
+        scenario.display(),
+        lay.cables.len(),
+        lay.n_nodes(),
+        lay.n_elements(),
+        plan.dt,
+        plan.bound.dt,
+        plan.bound.term,
+        plan.total_steps
+    );
+    Ok(())
 }

@@ -15,13 +15,12 @@
 //!
 //! A test checks it against the general path (`tests/chain_kernel.rs`).
 
-use super::ale::AleElem;
-use super::stepper::StepFailure;
-use crate::ale::mass_flow_forces;
+use crate::ale::{mass_flow_forces, AleElem};
 use crate::math::V3;
 use crate::model::{Block, Current, Layout, NO_CONSTRAINT};
 use crate::options::{Scheme, SolverOptions};
 use crate::physics::{glmf_element, Coefs, ElementInput};
+use crate::step::{diverged, StepFailure};
 
 /// Per-block constants of a chain, built once.
 #[derive(Clone, Debug, Default)]
@@ -846,5 +845,5 @@ fn advance_chain_scheme<const FRICTION: bool>(
         r[i] = crate::math::V3::new(x[0][i], x[1][i], x[2][i]);
         v[i] = crate::math::V3::new(x[3][i], x[4][i], x[5][i]);
     }
-    result.map_err(|(i, time)| super::stepper::diverged(opts, r[i], v[i], n0 + i, time))
+    result.map_err(|(i, time)| diverged(opts, r[i], v[i], n0 + i, time))
 }

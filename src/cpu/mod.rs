@@ -16,9 +16,8 @@
 //! element's length and mass-flow forces evaluated at each stage's time, and are
 //! remeshed between steps ([`CpuSolver::with_winches`]).
 
-pub(crate) mod ale;
 mod chain;
 mod stepper;
 
-pub(crate) use stepper::diverged;
-pub use stepper::{CpuSolver, Evaluation, StepFailure, WinchStatus};
+pub use crate::step::{Evaluation, StepFailure, WinchStatus};
+pub use stepper::CpuSolver;

@@ -1,78 +1,18 @@
 //! Passes and schemes of the CPU reference path (see the module doc of `cpu`).
 
-use super::ale::{AleElem, AleState};
 use super::chain::{advance_chain, ChainConsts, ChainScratch};
-use crate::ale::{mass_flow_forces, Winch};
+use crate::ale::{mass_flow_forces, AleElem, AleState, Winch};
 use crate::error::Error;
 use crate::math::{Sym3, V3};
-use crate::model::{Block, Layout, ModelDef, NO_CONSTRAINT};
+use crate::model::{Block, Layout, ModelDef, Route, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{glmf_element, seabed_force, Coefs, ElementInput, ElementLoads, SeabedCoefs};
+use crate::step::{blow_up, Evaluation, StepFailure, WinchStatus};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 type V = V3<f64>;
-
-/// Why a step could not complete (in packed indices; [`CpuSolver`] names them).
-#[derive(Clone, Debug, PartialEq)]
-pub enum StepFailure {
-    /// A node's state is non-finite or absurd.
-    Diverged {
-        /// Packed node index.
-        node: usize,
-        /// Simulated time, s.
-        time: f64,
-        /// What was found.
-        what: String,
-    },
-    /// An element frame is singular.
-    Singular {
-        /// Packed element index.
-        element: usize,
-        /// Simulated time, s.
-        time: f64,
-        /// The frame.
-        frame: &'static str,
-        /// Why.
-        reason: String,
-    },
-}
-
-/// Loads and reactions of one state, evaluated without stepping.
-#[derive(Clone, Debug, Default)]
-pub struct Evaluation {
-    /// Per node: acceleration, m/s^2.
-    pub acc: Vec<[f64; 3]>,
-    /// Per node: total force on the node, N.
-    pub force: Vec<[f64; 3]>,
-    /// Per element: axial force, N.
-    pub tension: Vec<f64>,
-    /// Per constraint: the force the cable exerts on its support, `F_k - M_k a_k`, N.
-    pub reaction: Vec<[f64; 3]>,
-    /// Per element: its loads (tangent, axial force, half external load, half masses).
-    pub elements: Vec<ElementLoads<f64>>,
-}
-
-/// Where a winch cable stands (ALE-GLMF, [`crate::ale`]).
-#[derive(Clone, Debug, PartialEq)]
-pub struct WinchStatus {
-    /// Cable index (into `Layout::cables`).
-    pub cable: usize,
-    /// Deployed unstretched length `L(t)`, m.
-    pub deployed_length: f64,
-    /// Unstretched length of the variable element (next to the winch) now, m.
-    pub variable_l0: f64,
-    /// Physical coordinate `p` of each node of the cable, in the cable's node order
-    /// (start to end), m: unstretched arc length from the far end.
-    pub physical_coordinates: Vec<f64>,
-    /// Elements of the cable now.
-    pub elements: usize,
-    /// Nodes inserted so far.
-    pub inserted: u64,
-    /// Nodes deleted so far.
-    pub deleted: u64,
-}
 
 /// Per-node scratch of the Runge-Kutta schemes.
 #[derive(Clone, Copy, Debug, Default)]
@@ -98,13 +38,13 @@ struct Ctx<'a> {
 /// The f64 reference solver: layout, state, and scratch.
 pub struct CpuSolver {
     /// The packed model.
-    pub layout: Layout,
+    layout: Layout,
     /// Options.
-    pub opts: SolverOptions,
+    opts: SolverOptions,
     /// Simulated time, s.
-    pub t: f64,
+    t: f64,
     /// Number of steps taken.
-    pub steps: u64,
+    steps: u64,
     /// Node positions, m.
     pub r: Vec<V>,
     /// Node velocities, m/s.
@@ -124,10 +64,31 @@ pub struct CpuSolver {
     /// Winch cables (ALE-GLMF), if any.
     ale: Option<Box<AleState>>,
     /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
-    pub node_steps: u64,
+    node_steps: u64,
 }
 
 impl CpuSolver {
+    /// The packed model (the current mesh, with winches).
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+    /// The options it steps with.
+    pub fn opts(&self) -> &SolverOptions {
+        &self.opts
+    }
+    /// Simulated time, s.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
+    pub fn node_steps(&self) -> u64 {
+        self.node_steps
+    }
+
     /// A solver at rest at `positions` (packed order), `t = 0`.
     pub fn new(layout: Layout, positions: &[[f64; 3]], opts: SolverOptions) -> Self {
         let mut s = Self {
@@ -285,6 +246,25 @@ impl CpuSolver {
             }
         }
         l0
+    }
+
+    /// Replaces the route of held node `node` (packed index) from now on (a coupling
+    /// loop driving an end from outside). Errors when the node is not held.
+    pub fn set_route(&mut self, node: usize, route: Route) -> Result<(), Error> {
+        let k = self.layout.node_constraint[node];
+        if k == NO_CONSTRAINT {
+            return Err(Error::Model(format!(
+                "node {node} is free: only a held node (fixed or on a route) can be driven"
+            )));
+        }
+        if let Some(ale) = self.ale.as_mut() {
+            // Remeshing rebuilds from the description: it must carry the new route.
+            if let Some(d) = ale.packed_of_def.iter().position(|&p| p as usize == node) {
+                ale.def.nodes[d].route = Some(route.clone());
+            }
+        }
+        self.layout.routes[k as usize] = route;
+        Ok(())
     }
 
     /// Where each winch cable stands now (empty without winches).
@@ -959,56 +939,10 @@ fn node_accel_of<T: Topo>(
     (a, f, m)
 }
 
-/// The failure for node `node` (packed index) found in state `r`, `v` at `time`.
-pub(crate) fn diverged(opts: &SolverOptions, r: V, v: V, node: usize, time: f64) -> StepFailure {
-    let what = if !r.is_finite() || !v.is_finite() {
-        format!(
-            "non-finite state (position {:?}, velocity {:?})",
-            r.to_f64(),
-            v.to_f64()
-        )
-    } else if v.max_abs() >= opts.max_speed {
-        format!(
-            "speed {:.3e} m/s over the limit {:.1e} m/s",
-            v.norm(),
-            opts.max_speed
-        )
-    } else {
-        format!(
-            "position {:?} farther than {:.1e} m from the origin",
-            r.to_f64(),
-            opts.max_distance
-        )
-    };
-    StepFailure::Diverged { node, time, what }
-}
-
-/// Checks a node's new state; `None` when sane.
+/// Checks a node's new state; `None` when sane ([`crate::step::blow_up`]).
 #[inline(always)]
 fn check(ctx: &Ctx, r: V, v: V) -> Option<String> {
-    // Written so NaN fails the comparisons.
-    if v.max_abs() < ctx.opts.max_speed && r.max_abs() < ctx.opts.max_distance {
-        return None;
-    }
-    Some(if !r.is_finite() || !v.is_finite() {
-        format!(
-            "non-finite state (position {:?}, velocity {:?})",
-            r.to_f64(),
-            v.to_f64()
-        )
-    } else if v.max_abs() >= ctx.opts.max_speed {
-        format!(
-            "speed {:.3e} m/s over the limit {:.1e} m/s",
-            v.norm(),
-            ctx.opts.max_speed
-        )
-    } else {
-        format!(
-            "position {:?} farther than {:.1e} m from the origin",
-            r.to_f64(),
-            ctx.opts.max_distance
-        )
-    })
+    blow_up(&ctx.opts, r, v)
 }
 
 /// Evaluates accelerations of every node of a block (block-local), handing each to `store`.

@@ -12,10 +12,11 @@
 //!   then other; ties go to Vulkan, Metal or DX12 over GL, then to `SHADER_F64`.
 //!
 //! When nothing is usable, [`GpuContext::new`] returns [`Error::NoAdapter`] with every
-//! adapter seen and why it was set aside.
+//! adapter seen and why it was set aside. The probe prints nothing (the adapters seen
+//! are logged at debug level; see also `quiet_device_select`).
 
-use super::Precision;
 use crate::error::Error;
+use crate::options::Precision;
 use std::sync::{Arc, Mutex};
 
 /// Storage buffers the solver binds in one stage (see the prelude's bindings).
@@ -55,6 +56,27 @@ fn unusable(adapter: &wgpu::Adapter, need_f64: bool) -> Option<String> {
         return Some("no SHADER_F64 (f64 was asked for)".into());
     }
     None
+}
+
+/// Keeps the adapter probe quiet without a desktop session.
+///
+/// Mesa's Vulkan device-select layer (an implicit layer, loaded into every Vulkan
+/// instance) opens a Wayland connection while listing devices, to put the one driving
+/// the display first; with no session (`XDG_RUNTIME_DIR` unset: servers, CI,
+/// containers) libwayland prints `error: XDG_RUNTIME_DIR is invalid or not set in the
+/// environment.` to stderr, twice, on a run that then goes well. The ranking here does
+/// not use the layer's order, so without a session the layer is switched off by its own
+/// switch, `NODEVICE_SELECT=1`, unless the user set that variable. It is set once,
+/// before the first instance, when no other thread of the library reads the
+/// environment.
+fn quiet_device_select() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let no_session = std::env::var_os("XDG_RUNTIME_DIR").is_none_or(|v| v.is_empty());
+        if no_session && std::env::var_os("NODEVICE_SELECT").is_none() {
+            std::env::set_var("NODEVICE_SELECT", "1");
+        }
+    });
 }
 
 /// Ranking key of a usable adapter: larger is better.
@@ -103,6 +125,7 @@ impl GpuContext {
     }
 
     async fn new_async(need_f64: bool) -> Result<Self, Error> {
+        quiet_device_select();
         let desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         let backends = desc.backends;
         let instance = wgpu::Instance::new(desc);
@@ -195,7 +218,7 @@ impl GpuContext {
             let mut g = sink.lock().unwrap_or_else(|p| p.into_inner());
             g.get_or_insert_with(|| e.to_string());
         }));
-        log::info!(
+        log::debug!(
             "GPU adapter: {}{}",
             describe(&info),
             if shader_f64 { ", SHADER_F64" } else { "" }

@@ -7,7 +7,7 @@
 //! then comes `shaders/shared/prelude.wgsl` (structs, bindings, physics), then the
 //! stage file.
 
-use super::Precision;
+use crate::options::Precision;
 
 /// The shared prelude: structs, bindings and force functions.
 pub const PRELUDE: &str = include_str!("../../shaders/shared/prelude.wgsl");

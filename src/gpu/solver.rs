@@ -19,20 +19,19 @@
 //! Winch cables: per submission the host also writes the `payout` rows (one [`Payout`]
 //! per winch and step), and an `advance` call stops its submissions at each step after
 //! which a winch cable must be remeshed, reads the state back, remeshes on the host
-//! (`cpu::ale::AleState::remesh`, the CPU path's code), rebuilds the layout's buffers
+//! (`ale::AleState::remesh_in_place`, the CPU path's code), rebuilds the layout's buffers
 //! and bind group (the pipelines stay) and uploads the state: see [`GpuSolver`].
 
 use super::context::GpuContext;
 use super::layout::*;
 use super::shaders::{self, Stage};
-use super::Precision;
-use crate::ale::Winch;
-use crate::cpu::ale::{AleElem, AleState};
-use crate::cpu::{diverged, Evaluation, StepFailure, WinchStatus};
+use crate::ale::{AleElem, AleState, Winch};
 use crate::error::Error;
 use crate::math::V3;
 use crate::model::{circle_basis, Layout, ModelDef, Route};
+use crate::options::Precision;
 use crate::options::{Formulation, Scheme, SolverOptions};
+use crate::step::{diverged, Evaluation, StepFailure, WinchStatus};
 use bytemuck::Zeroable;
 use std::f64::consts::PI;
 use std::marker::PhantomData;
@@ -812,7 +811,7 @@ impl<R: GpuReal> GpuEngine<R> {
 
     /// Writes the `payout` rows of steps `step0 .. step0 + n` (rows `0 .. n`): the
     /// variable element of each winch cable at each step's time, from its schedule, in
-    /// f64 exactly as the CPU path forms them (`cpu::ale::AleElem::l0`).
+    /// f64 exactly as the CPU path forms them (`ale::AleElem::l0`).
     fn write_payout(&self, host: &Host, step0: u64, n: u64) {
         if host.winches.is_empty() {
             return;
@@ -1171,19 +1170,19 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
 /// seconds, none per step.
 pub struct GpuSolver {
     /// The packed model (the current mesh, with winches).
-    pub layout: Layout,
+    layout: Layout,
     /// Options (GLMF, symplectic Euler; see [`unsupported`]).
-    pub opts: SolverOptions,
+    opts: SolverOptions,
     /// Shader precision.
-    pub precision: Precision,
+    precision: Precision,
     /// Simulated time, s.
-    pub t: f64,
+    t: f64,
     /// Number of steps taken.
-    pub steps: u64,
+    steps: u64,
     /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
-    pub node_steps: u64,
+    node_steps: u64,
     /// Remeshings of winch cables so far (each one state read-back and re-upload).
-    pub remeshes: u64,
+    remeshes: u64,
     device: String,
     host: Host,
     engine: Box<dyn Engine>,
@@ -1192,6 +1191,35 @@ pub struct GpuSolver {
 }
 
 impl GpuSolver {
+    /// The packed model (the current mesh, with winches).
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+    /// The options it steps with.
+    pub fn opts(&self) -> &SolverOptions {
+        &self.opts
+    }
+    /// Shader precision.
+    pub fn precision(&self) -> Precision {
+        self.precision
+    }
+    /// Simulated time, s.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
+    pub fn node_steps(&self) -> u64 {
+        self.node_steps
+    }
+    /// Remeshings of winch cables so far (each one state read-back and re-upload).
+    pub fn remeshes(&self) -> u64 {
+        self.remeshes
+    }
+
     /// Uploads the model, at rest at `positions` (packed order), `t = 0`.
     pub fn new(
         ctx: &GpuContext,

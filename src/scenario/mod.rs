@@ -9,39 +9,14 @@ mod route_file;
 mod winch;
 
 use crate::ale::Winch;
-use crate::ancf::run::AncfSettings;
-use crate::ancf::AddedMass;
 use crate::error::Error;
 use crate::model::{add_net, CableDef, Current, Environment, ModelDef, NodeDef, PointMass};
-use crate::options::{parse_formulation, Baumgarte, CableModel, Formulation, Scheme};
+pub use crate::options::Backend;
+use crate::options::{AncfSettings, Baumgarte, CableModel, Formulation, Precision, Scheme};
 pub use ends::EndKind;
 use raw::{RawDt, RawScenario};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-
-/// Which computing path runs the simulation.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum Backend {
-    /// The GPU when one is usable, else the CPU.
-    #[default]
-    Auto,
-    /// The f64 CPU reference path.
-    Cpu,
-    /// The GPU path (an error when no adapter is usable).
-    Gpu,
-}
-
-impl Backend {
-    /// Parses `auto | cpu | gpu`.
-    pub fn parse(s: &str) -> Option<Self> {
-        Some(match s {
-            "auto" => Backend::Auto,
-            "cpu" => Backend::Cpu,
-            "gpu" => Backend::Gpu,
-            _ => return None,
-        })
-    }
-}
 
 /// The time step as asked for.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -73,8 +48,8 @@ pub struct SimulationConfig {
     pub output_interval: f64,
     /// Backend.
     pub backend: Backend,
-    /// `f32` or `f64` on the GPU (the CPU path is always f64); `None` = the backend's default.
-    pub precision: Option<String>,
+    /// Precision on the GPU (the CPU path is always f64); `None` = the backend's default.
+    pub precision: Option<Precision>,
     /// Time scheme.
     pub scheme: Scheme,
     /// Load formulation (of the lumped-mass model).
@@ -237,45 +212,12 @@ impl Scenario {
             }
             Some(RawDt::Number(x)) => DtSpec::Fixed(positive(p, "simulation.dt", *x)?),
         };
-        let backend = match &s.backend {
-            None => Backend::Auto,
-            Some(b) => Backend::parse(b).ok_or_else(|| {
-                err(
-                    p,
-                    "simulation.backend",
-                    format!("must be auto, cpu or gpu, got \"{b}\""),
-                )
-            })?,
-        };
-        if let Some(pr) = &s.precision {
-            if pr != "f32" && pr != "f64" {
-                return Err(err(
-                    p,
-                    "simulation.precision",
-                    format!("must be f32 or f64, got \"{pr}\""),
-                ));
-            }
-        }
-        let scheme = match &s.scheme {
-            None => Scheme::default(),
-            Some(x) => Scheme::parse(x).ok_or_else(|| {
-                err(
-                    p,
-                    "simulation.scheme",
-                    format!("must be symplectic, rk2 or rk4, got \"{x}\""),
-                )
-            })?,
-        };
-        let (cable_model, formulation) = match &s.formulation {
-            None => (CableModel::LumpedMass, Formulation::Glmf),
-            Some(x) => parse_formulation(x).ok_or_else(|| {
-                err(
-                    p,
-                    "simulation.formulation",
-                    format!("must be glmf, rvef, euler, frenet or ancf, got \"{x}\""),
-                )
-            })?,
-        };
+        // The enums are parsed by serde (raw.rs): an unknown value is an error naming
+        // the field and the values allowed.
+        let backend = s.backend.unwrap_or_default();
+        let scheme = s.scheme.unwrap_or_default();
+        let choice = s.formulation.unwrap_or_default();
+        let (cable_model, formulation) = (choice.model(), choice.formulation());
         let mut baumgarte = Baumgarte::default();
         if let Some(a) = s.baumgarte_alpha {
             baumgarte.alpha = non_negative(p, "simulation.baumgarte_alpha", a)?;
@@ -292,7 +234,7 @@ impl Scenario {
             dt,
             output_interval,
             backend,
-            precision: s.precision.clone(),
+            precision: s.precision,
             scheme,
             formulation,
             model: cable_model,
@@ -616,18 +558,8 @@ fn ancf_settings(p: &Path, a: &raw::RawAncf) -> Result<AncfSettings, Error> {
         }
         s.gauss_points = n as usize;
     }
-    if let Some(m) = &a.added_mass {
-        s.added_mass = match m.as_str() {
-            "normal" => AddedMass::Normal,
-            "isotropic" => AddedMass::Isotropic,
-            other => {
-                return Err(err(
-                    p,
-                    "ancf.added_mass",
-                    format!("must be \"normal\" or \"isotropic\", got \"{other}\""),
-                ))
-            }
-        };
+    if let Some(m) = a.added_mass {
+        s.added_mass = m;
     }
     Ok(s)
 }

@@ -1,6 +1,7 @@
 //! The scenario file as written (serde), before validation.
 
 use crate::model::{LineType, Seabed};
+use crate::options::{AddedMass, Backend, FormulationChoice, Precision, Scheme};
 use serde::Deserialize;
 
 /// Top level of a scenario file.
@@ -58,7 +59,7 @@ pub struct RawSinker {
 pub struct RawAncf {
     pub element_length: Option<f64>,
     pub gauss_points: Option<i64>,
-    pub added_mass: Option<String>,
+    pub added_mass: Option<AddedMass>,
 }
 
 /// `dt = "auto"` or a number.
@@ -75,10 +76,10 @@ pub struct RawSimulation {
     pub duration: f64,
     pub dt: Option<RawDt>,
     pub output_interval: f64,
-    pub backend: Option<String>,
-    pub precision: Option<String>,
-    pub scheme: Option<String>,
-    pub formulation: Option<String>,
+    pub backend: Option<Backend>,
+    pub precision: Option<Precision>,
+    pub scheme: Option<Scheme>,
+    pub formulation: Option<FormulationChoice>,
     pub baumgarte_alpha: Option<f64>,
     pub baumgarte_beta: Option<f64>,
     pub max_speed: Option<f64>,

@@ -1,4 +1,5 @@
-//! ALE-GLMF on the CPU path: the stepper side of [`crate::ale`].
+//! ALE-GLMF in the lumped-mass solvers: the variable elements as the passes see them,
+//! and remeshing (both backends; the GPU path remeshes on the host with this code).
 //!
 //! A winch cable is stepped by the chain fast path (or the general passes when it is
 //! part of a network), with two additions at every stage, both evaluated at the stage's
@@ -11,11 +12,12 @@
 //! full rebuild, which is what a cable in a network and the GPU path get), the state
 //! carried over node by node.
 
-use super::WinchStatus;
-use crate::ale::{MeshOp, PayoutSchedule, Winch, WinchEnd, WinchTracker};
+use super::schedule::PayoutSchedule;
+use super::winch::{MeshOp, Winch, WinchEnd, WinchTracker};
 use crate::error::Error;
 use crate::math::V3;
 use crate::model::{CableDef, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};
+use crate::step::WinchStatus;
 use std::sync::Arc;
 
 type V = V3<f64>;
@@ -369,7 +371,9 @@ impl AleState {
                     MeshOp::Insert { xi, l0_before } => {
                         let (rm, rw, vm, vw) = (rd[dm], rd[dw], vd[dm], vd[dw]);
                         let rn = rm + (rw - rm) * xi;
-                        let vn = crate::ale::material_velocity(xi, l0_before, rate, rm, rw, vm, vw);
+                        let vn = super::mass_flow::material_velocity(
+                            xi, l0_before, rate, rm, rw, vm, vw,
+                        );
                         let d = self.def.nodes.len();
                         self.def.nodes.push(NodeDef {
                             position: rn.to_f64(),

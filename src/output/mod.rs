@@ -1,0 +1,50 @@
+//! Stage 6 of the run pipeline: what a run hands out. At each output time the
+//! simulation gives an [`OutputSink`] a [`Snapshot`] (every cable's node positions and
+//! velocities, element tensions, end forces, winch state), and at the end the
+//! [`Summary`]. [`FileSink`] writes the files users read (`end_forces.csv`,
+//! `tensions.csv`, `positions.csv`, `winches.csv`, `summary.json`); [`MemorySink`]
+//! keeps everything in memory; a caller may write its own.
+
+mod files;
+mod memory;
+mod sink;
+mod summary;
+
+pub use files::FileSink;
+pub use memory::MemorySink;
+pub use sink::{CableState, OutputSink, Snapshot};
+pub use summary::{write_summary, CableSummary, EndForces, Summary, WinchSummary};
+
+use crate::math::{Sym3, V3};
+use crate::model::{CableInfo, Layout, NO_CONSTRAINT};
+use crate::step::Evaluation;
+
+/// The forces a cable exerts at its two end nodes.
+///
+/// - An end node that only this cable's end element touches: if it is held, the
+///   constraint reaction `F_k - M_k a_k` (every force on the node, its point
+///   mass and seabed contact included); if it is free, `F_e - M_e a_k`, the end
+///   element's lumped force less its share of the node's inertia, which is the force the
+///   cable exerts on an attached point mass (zero when nothing is attached).
+/// - A node shared by several elements (a `[[points]]` knot): `F_e - M_e a_k` of this
+///   cable's end element, its own share; the shares of all cables at a held knot add up
+///   to the knot's reaction less the point's own weight and inertia.
+pub fn end_forces(lay: &Layout, ev: &Evaluation, cable: &CableInfo) -> EndForces {
+    let n = cable.nodes.len();
+    let one = |node: u32, elem: u32, sign: f64| -> [f64; 3] {
+        let i = node as usize;
+        let k = lay.node_constraint[i];
+        if k != NO_CONSTRAINT && lay.incidence(i).len() == 1 {
+            return ev.reaction[k as usize];
+        }
+        let el = &ev.elements[elem as usize];
+        let a = V3::from_f64(ev.acc[i]);
+        let mut m = Sym3::scalar(el.half_mass);
+        m.add_normal_projection(el.half_added, el.t);
+        (el.f_half + el.t * (sign * el.tension) - m.mul_vec(a)).to_f64()
+    };
+    EndForces {
+        start: one(cable.nodes[0], cable.elements[0], 1.0),
+        end: one(cable.nodes[n - 1], cable.elements[n - 2], -1.0),
+    }
+}

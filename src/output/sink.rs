@@ -1,0 +1,45 @@
+//! The sink interface and the state it receives.
+
+use super::summary::{EndForces, Summary, WinchSummary};
+use crate::error::Error;
+
+/// Where a run's output goes: a frame at each output time (`t = 0` first), then the
+/// summary once the run ends, completed or not.
+pub trait OutputSink {
+    /// Takes the state at one output time.
+    fn frame(&mut self, snapshot: &Snapshot) -> Result<(), Error>;
+    /// Takes the summary of the run (after its last frame; also when it diverged).
+    fn finish(&mut self, summary: &Summary) -> Result<(), Error>;
+}
+
+/// The state of every cable at one time: a read-only copy, in scenario order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Snapshot {
+    /// Simulated time, s.
+    pub time: f64,
+    /// Steps taken (the most of any cable for the ANCF model, whose cables each step at
+    /// their own `dt`).
+    pub steps: u64,
+    /// Per cable.
+    pub cables: Vec<CableState>,
+}
+
+/// One cable's state at one time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CableState {
+    /// Name.
+    pub name: String,
+    /// Whether the scenario asks for its node positions in the output files
+    /// (`output_positions`).
+    pub output_positions: bool,
+    /// Node positions, start to end, m.
+    pub positions: Vec<[f64; 3]>,
+    /// Node velocities, start to end, m/s.
+    pub velocities: Vec<[f64; 3]>,
+    /// Axial force per element, start to end, N.
+    pub tensions: Vec<f64>,
+    /// The forces the cable exerts on its end supports, N.
+    pub end_forces: EndForces,
+    /// The winch's state, for a cable with a winch.
+    pub winch: Option<WinchSummary>,
+}

@@ -1,0 +1,314 @@
+//! Stage 5 of the pipeline: the backend. [`choose_backend`] picks the CPU reference path
+//! or the GPU path for a lumped-mass run (probing adapters quietly and saying in one
+//! line what it chose and why); [`LumpedStepper`] steps either behind one interface.
+//! The ANCF reference model is the third backend ([`super::ancf`]).
+
+use crate::cpu::CpuSolver;
+
+/// One end of a cable.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CableEnd {
+    /// Its first node.
+    Start,
+    /// Its last node.
+    End,
+}
+use crate::error::Error;
+use crate::gpu::solver::NodeStates;
+use crate::gpu::{GpuContext, GpuSolver};
+use crate::model::{Layout, Route};
+use crate::options::{Backend, Precision, SolverOptions};
+use crate::output::{end_forces, CableState, CableSummary, EndForces, WinchSummary};
+use crate::scenario::Scenario;
+use crate::step::{Evaluation, WinchStatus};
+
+/// The backend a lumped-mass run uses.
+pub enum BackendChoice {
+    /// The f64 CPU reference path.
+    Cpu,
+    /// The GPU path on this device, at this precision.
+    Gpu(Box<GpuContext>, Precision),
+}
+
+/// Chooses the backend:
+/// - `cpu`: the CPU path (always f64; a precision of f32 is ignored with a warning);
+/// - `gpu`: the best adapter (see [`crate::gpu::context`]) at the asked precision
+///   (default f32); an error when there is no usable adapter (or none with
+///   `SHADER_F64` for f64), or when the model needs what the GPU path lacks;
+/// - `auto`: the GPU path where it applies, else the CPU path with a logged reason:
+///   no usable adapter, the model needs what the GPU path lacks, or the only adapter
+///   is a software one (lavapipe, llvmpipe, WARP: slower than the CPU path; use
+///   `--backend gpu` to run on it anyway).
+///
+/// One info line says what was chosen and why.
+pub fn choose_backend(
+    backend: Backend,
+    precision: Option<Precision>,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &Scenario,
+) -> Result<BackendChoice, Error> {
+    let unsupported = || {
+        crate::gpu::solver::unsupported(lay, opts)
+            .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
+    };
+    let need_f64 = precision == Some(Precision::F64);
+    let p = precision.unwrap_or_default();
+    match backend {
+        Backend::Cpu => {
+            if precision == Some(Precision::F32) {
+                log::warn!("the CPU path is always f64: precision f32 applies to the GPU only");
+            }
+            log::info!("backend cpu: the f64 CPU reference path");
+            Ok(BackendChoice::Cpu)
+        }
+        Backend::Gpu => {
+            if let Some(what) = unsupported() {
+                return Err(Error::GpuUnsupported(format!(
+                    "{what}; use --backend cpu (or auto)"
+                )));
+            }
+            let ctx = GpuContext::new(need_f64)?;
+            log::info!("backend gpu: {} at {}", ctx.describe(), p.name());
+            Ok(BackendChoice::Gpu(Box::new(ctx), p))
+        }
+        Backend::Auto => {
+            if let Some(what) = unsupported() {
+                log::info!(
+                    "backend auto: the GPU path does not do {what} yet; running the f64 CPU reference path"
+                );
+                return Ok(BackendChoice::Cpu);
+            }
+            match GpuContext::new(need_f64) {
+                Err(e) => {
+                    log::warn!("backend auto: {e}; running the f64 CPU reference path");
+                    Ok(BackendChoice::Cpu)
+                }
+                Ok(ctx) if ctx.info.device_type == wgpu::DeviceType::Cpu => {
+                    log::info!(
+                        "backend auto: the best adapter, {}, is a software one (slower than the CPU path); \
+                         running the f64 CPU reference path (--backend gpu runs on it anyway)",
+                        ctx.describe()
+                    );
+                    Ok(BackendChoice::Cpu)
+                }
+                Ok(ctx) => {
+                    log::info!("backend auto: {} at {}", ctx.describe(), p.name());
+                    Ok(BackendChoice::Gpu(Box::new(ctx), p))
+                }
+            }
+        }
+    }
+}
+
+/// The solver a lumped-mass run steps: the CPU reference or the GPU path, behind one
+/// interface.
+pub enum LumpedStepper {
+    /// The f64 CPU reference path.
+    Cpu(CpuSolver),
+    /// The GPU path.
+    Gpu(GpuSolver),
+}
+
+impl LumpedStepper {
+    /// Builds the chosen solver at rest at `pos` (packed order of `lay`).
+    pub fn new(
+        choice: BackendChoice,
+        sc: &Scenario,
+        lay: Layout,
+        pos: &[[f64; 3]],
+        opts: SolverOptions,
+    ) -> Result<Self, Error> {
+        let s = match choice {
+            BackendChoice::Cpu if !sc.winches.is_empty() => LumpedStepper::Cpu(
+                CpuSolver::with_winches(sc.model.clone(), sc.winches.clone(), pos, opts)?,
+            ),
+            BackendChoice::Cpu => LumpedStepper::Cpu(CpuSolver::new(lay, pos, opts)),
+            BackendChoice::Gpu(ctx, p) if !sc.winches.is_empty() => LumpedStepper::Gpu(
+                GpuSolver::with_winches(&ctx, sc.model.clone(), sc.winches.clone(), pos, opts, p)?,
+            ),
+            BackendChoice::Gpu(ctx, p) => {
+                LumpedStepper::Gpu(GpuSolver::new(&ctx, lay, pos, opts, p)?)
+            }
+        };
+        if let LumpedStepper::Gpu(g) = &s {
+            match g.fused_unavailable() {
+                Some(why) => log::info!("GPU kernel: {} (not fused: {why})", g.kernel().name()),
+                None => log::info!("GPU kernel: {}", g.kernel().name()),
+            }
+        }
+        Ok(s)
+    }
+
+    /// Advances `n` steps.
+    pub fn advance(&mut self, n: u64) -> Result<(), Error> {
+        match self {
+            LumpedStepper::Cpu(s) => s.advance(n),
+            LumpedStepper::Gpu(s) => s.advance(n),
+        }
+    }
+    /// Drives end `end` of cable `cable` from now on: its target moves from `position`
+    /// (m) at `velocity` (m/s) in a straight line. CPU backend only.
+    pub fn set_end_motion(
+        &mut self,
+        cable: usize,
+        end: CableEnd,
+        position: [f64; 3],
+        velocity: [f64; 3],
+    ) -> Result<(), Error> {
+        let LumpedStepper::Cpu(s) = self else {
+            return Err(Error::GpuUnsupported(
+                "driving an end from outside (a coupling loop); use --backend cpu".into(),
+            ));
+        };
+        let c = s.layout().cables.get(cable).ok_or_else(|| {
+            Error::Model(format!(
+                "no cable {cable} (the run has {})",
+                s.layout().cables.len()
+            ))
+        })?;
+        let node = match end {
+            CableEnd::Start => c.nodes[0],
+            CableEnd::End => c.nodes[c.nodes.len() - 1],
+        } as usize;
+        let name = c.name.clone();
+        // r(t) = position + velocity (t - now), as a line route `start + velocity t`.
+        let t = s.t();
+        let start = [0, 1, 2].map(|i| position[i] - velocity[i] * t);
+        s.set_route(node, Route::Line { start, velocity })
+            .map_err(|e| Error::Model(format!("cable '{name}', {end:?} end: {e}")))
+    }
+
+    /// Node-steps taken (nodes times steps, counting the nodes each step had).
+    pub fn node_steps(&self) -> u64 {
+        match self {
+            LumpedStepper::Cpu(s) => s.node_steps(),
+            LumpedStepper::Gpu(s) => s.node_steps(),
+        }
+    }
+    /// State of the winch cables.
+    pub fn winch_status(&self) -> Vec<WinchStatus> {
+        match self {
+            LumpedStepper::Cpu(s) => s.winch_status(),
+            LumpedStepper::Gpu(s) => s.winch_status(),
+        }
+    }
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        match self {
+            LumpedStepper::Cpu(s) => s.steps(),
+            LumpedStepper::Gpu(s) => s.steps(),
+        }
+    }
+    /// The packed model (the current mesh).
+    pub fn layout(&self) -> &Layout {
+        match self {
+            LumpedStepper::Cpu(s) => s.layout(),
+            LumpedStepper::Gpu(s) => s.layout(),
+        }
+    }
+    /// Node positions and velocities (packed order; read back from the GPU), m, m/s.
+    pub fn state(&mut self) -> Result<NodeStates, Error> {
+        match self {
+            LumpedStepper::Cpu(s) => Ok((
+                s.r.iter().map(|x| x.to_f64()).collect(),
+                s.v.iter().map(|x| x.to_f64()).collect(),
+            )),
+            LumpedStepper::Gpu(s) => s.state(),
+        }
+    }
+    /// Tensions, reactions and accelerations at the current state.
+    pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
+        match self {
+            LumpedStepper::Cpu(s) => s.evaluate(),
+            LumpedStepper::Gpu(s) => s.evaluate(),
+        }
+    }
+    /// `(backend, device, precision)` for the summary.
+    pub fn describe(&self) -> (&'static str, String, &'static str) {
+        match self {
+            LumpedStepper::Cpu(_) => ("cpu", cpu_name(), "f64"),
+            LumpedStepper::Gpu(s) => ("gpu", s.device().to_string(), s.precision().name()),
+        }
+    }
+
+    /// Every cable's state now, in layout order.
+    pub fn cables(&mut self) -> Result<Vec<CableState>, Error> {
+        let ev = self.evaluate()?;
+        let (r, v) = self.state()?;
+        let winches = self.winch_status();
+        let lay = self.layout();
+        Ok(lay
+            .cables
+            .iter()
+            .enumerate()
+            .map(|(ci, c)| CableState {
+                name: c.name.clone(),
+                output_positions: c.output_positions,
+                positions: c.nodes.iter().map(|&i| r[i as usize]).collect(),
+                velocities: c.nodes.iter().map(|&i| v[i as usize]).collect(),
+                tensions: c.elements.iter().map(|&e| ev.tension[e as usize]).collect(),
+                end_forces: end_forces(lay, &ev, c),
+                winch: winch_summary(&winches, ci),
+            })
+            .collect())
+    }
+
+    /// Every cable's final state for the summary: tensions and end forces are NaN when
+    /// the state cannot be evaluated (after a blow-up).
+    pub fn final_cables(&mut self) -> Result<Vec<CableSummary>, Error> {
+        let ev = self.evaluate().ok();
+        let (r, _) = self.state()?;
+        let winches = self.winch_status();
+        let lay = self.layout();
+        Ok(lay
+            .cables
+            .iter()
+            .enumerate()
+            .map(|(ci, c)| CableSummary {
+                winch: winch_summary(&winches, ci),
+                name: c.name.clone(),
+                final_positions: c.nodes.iter().map(|&i| r[i as usize]).collect(),
+                final_tensions: c
+                    .elements
+                    .iter()
+                    .map(|&e| ev.as_ref().map_or(f64::NAN, |ev| ev.tension[e as usize]))
+                    .collect(),
+                end_forces: ev.as_ref().map_or(
+                    EndForces {
+                        start: [f64::NAN; 3],
+                        end: [f64::NAN; 3],
+                    },
+                    |ev| end_forces(lay, ev, c),
+                ),
+            })
+            .collect())
+    }
+}
+
+fn winch_summary(winches: &[WinchStatus], cable: usize) -> Option<WinchSummary> {
+    winches
+        .iter()
+        .find(|w| w.cable == cable)
+        .map(|w| WinchSummary {
+            deployed_length: w.deployed_length,
+            variable_l0: w.variable_l0,
+            elements: w.elements,
+            nodes_inserted: w.inserted,
+            nodes_deleted: w.deleted,
+            physical_coordinates: w.physical_coordinates.clone(),
+        })
+}
+
+/// The CPU model name, from /proc/cpuinfo where there is one.
+pub fn cpu_name() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|x| x.trim().to_string())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string())
+}

@@ -1,0 +1,499 @@
+//! The run pipeline and the library API: [`Simulation`].
+//!
+//! One pipeline, one driver: [`Simulation`] (its doc lists the stages in order).
+//!
+//! ```no_run
+//! use cablesim::{MemorySink, Overrides, Simulation};
+//!
+//! let mut sim = Simulation::from_file("examples/catenary.toml", &Overrides::default())?;
+//! sim.advance_to(10.0)?; // s
+//! let now = sim.snapshot()?;
+//! println!("top tension {} N", now.cables[0].tensions.last().unwrap());
+//! let mut sink = MemorySink::new();
+//! let summary = sim.run(&mut sink, |_| {})?; // on to the scenario's duration
+//! # Ok::<(), cablesim::Error>(())
+//! ```
+//!
+//! The library prints nothing: it logs through the `log` crate, and progress goes to
+//! the callback of [`Simulation::run`].
+
+pub mod ancf;
+pub mod backend;
+pub mod plan;
+
+pub use crate::initial::prepare;
+pub use crate::options::Overrides;
+pub use crate::output::{FileSink, MemorySink, Snapshot, Summary};
+pub use backend::{choose_backend, cpu_name, BackendChoice, CableEnd};
+pub use plan::{fit_step, plan_steps, StepPlan};
+
+use crate::error::Error;
+use crate::options::{CableModel, Formulation, Scheme, SolverOptions};
+use crate::output::{CableSummary, OutputSink};
+use crate::scenario::{Backend, DtSpec, Scenario};
+use ancf::AncfFleet;
+use backend::LumpedStepper;
+use plan::output_time;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// How [`run`] carries out a run.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Output directory.
+    pub out_dir: PathBuf,
+    /// Overrides of scenario settings.
+    pub overrides: Overrides,
+    /// Log the simulated time reached at each output time (info level).
+    pub progress: bool,
+}
+
+/// Runs a scenario to the end, writing its files into `ro.out_dir` ([`FileSink`]).
+pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
+    let mut sim = Simulation::new(sc.clone(), &ro.overrides)?;
+    let log_progress = ro.progress;
+    sim.run(&mut FileSink::new(&ro.out_dir), |p: Progress| {
+        if log_progress && p.at_output {
+            log::info!("t = {:.2} s ({} of {} steps)", p.time, p.done, p.total);
+        }
+    })
+}
+
+/// Where a run stands, as [`Simulation::run`] reports it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    /// Simulated time, s.
+    pub time: f64,
+    /// Work done: steps (lumped mass) or output intervals (ANCF).
+    pub done: u64,
+    /// Work of the whole run, in the units of `done`.
+    pub total: u64,
+    /// Whether the run has just reached an output time.
+    pub at_output: bool,
+}
+
+/// The backend of a simulation.
+enum Engine {
+    /// Lumped mass on the CPU or the GPU, with its step plan.
+    Lumped(Box<LumpedStepper>, StepPlan),
+    /// The ANCF reference model, each cable at its own step.
+    Ancf(AncfFleet),
+}
+
+/// A scenario being simulated: the library's entry point, and the run pipeline's one
+/// driver.
+///
+/// The stages of the pipeline, in order:
+/// 1. **Scenario** ([`crate::scenario::Scenario`]): a TOML file or string, validated,
+///    with the caller's [`Overrides`] (backend, precision, scheme, formulation, step,
+///    duration) applied over its `[simulation]` table ([`crate::options`]).
+/// 2. **Model**: the [`crate::model::ModelDef`] the scenario describes, packed into a
+///    [`crate::model::Layout`] (flat arrays over every cable of the run).
+/// 3. **Initial state** ([`crate::initial`]): straight lines, or catenaries relaxed to
+///    the discrete static equilibrium ([`crate::statics`]).
+/// 4. **Step plan** ([`plan`]): the time step from the stability bound
+///    ([`crate::stability`]) and the output interval, steps per output, total steps;
+///    winch schedules followed over it before anything runs.
+/// 5. **Backend** ([`backend`], [`ancf`]): the f64 CPU reference ([`crate::cpu`]), the
+///    GPU path ([`crate::gpu`]), or the ANCF reference model ([`crate::ancf`]), stepped
+///    behind one interface; step results and the blow-up check are [`crate::step`]'s.
+/// 6. **Output sink** ([`crate::output::OutputSink`]): at each output time a
+///    [`Snapshot`] goes to the sink the caller chose (files: [`FileSink`], memory:
+///    [`MemorySink`], or its own), and the [`Summary`] at the end.
+///
+/// Build it from a file, a TOML string or a [`Scenario`], advance it by steps
+/// or to a time, read its state ([`Simulation::snapshot`] and the getters), drive a
+/// held end from outside between steps ([`Simulation::set_end_motion`]), or run it to
+/// the end into an [`OutputSink`].
+pub struct Simulation {
+    scenario: Scenario,
+    engine: Engine,
+    scheme: Scheme,
+    formulation: Formulation,
+    model: CableModel,
+    relax_residual: f64,
+    /// When the build began (the summary's total wall time).
+    started: Instant,
+    /// Wall time spent stepping, s.
+    stepping: f64,
+}
+
+impl Simulation {
+    /// Reads a scenario file and builds its simulation.
+    pub fn from_file(path: impl AsRef<Path>, overrides: &Overrides) -> Result<Self, Error> {
+        let started = Instant::now();
+        let sc = Scenario::load(path)?;
+        Self::build(sc, overrides, started)
+    }
+
+    /// Builds the simulation of scenario text `toml`; `path` names it in messages and
+    /// summaries, and relative route files are read beside it.
+    pub fn from_toml(
+        toml: &str,
+        path: impl AsRef<Path>,
+        overrides: &Overrides,
+    ) -> Result<Self, Error> {
+        let started = Instant::now();
+        let sc = Scenario::parse(toml, path.as_ref())?;
+        Self::build(sc, overrides, started)
+    }
+
+    /// Builds the simulation of a validated scenario.
+    pub fn new(scenario: Scenario, overrides: &Overrides) -> Result<Self, Error> {
+        Self::build(scenario, overrides, Instant::now())
+    }
+
+    fn build(sc: Scenario, ov: &Overrides, started: Instant) -> Result<Self, Error> {
+        let model = ov.model.unwrap_or(sc.sim.model);
+        let backend = ov.backend.unwrap_or(sc.sim.backend);
+        let precision = ov.precision.or(sc.sim.precision);
+        let scheme = ov.scheme.unwrap_or(sc.sim.scheme);
+        let formulation = ov.formulation.unwrap_or(sc.sim.formulation);
+        let duration = ov.duration.unwrap_or(sc.sim.duration);
+        let dt_spec = ov.dt.map(DtSpec::Fixed).unwrap_or(sc.sim.dt);
+        if model == CableModel::Ancf && backend == Backend::Gpu {
+            return Err(Error::GpuUnsupported(
+                "the ANCF model (CPU only); use --backend cpu (or auto)".into(),
+            ));
+        }
+        if model == CableModel::Ancf && precision.is_some() {
+            log::warn!("the ANCF model runs on the CPU in f64: precision is ignored");
+        }
+        let (lay, pos, relax_residual) = prepare(&sc)?;
+        let engine = match model {
+            CableModel::Ancf => {
+                log::info!("backend cpu: the ANCF model runs on the CPU in f64");
+                Engine::Ancf(AncfFleet::new(
+                    &sc, &sc.ancf, scheme, duration, dt_spec, &lay, &pos,
+                )?)
+            }
+            CableModel::LumpedMass => {
+                let mut opts = SolverOptions {
+                    formulation,
+                    scheme,
+                    baumgarte: sc.sim.baumgarte,
+                    max_speed: sc.sim.max_speed,
+                    ..SolverOptions::default()
+                };
+                let plan = plan_steps(&sc, &lay, &opts, duration, dt_spec)?;
+                if let Some(w) = &plan.warning {
+                    log::warn!("{w}");
+                }
+                log::info!(
+                    "{} nodes, {} elements, {} cables; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps",
+                    lay.n_nodes(),
+                    lay.n_elements(),
+                    lay.cables.len(),
+                    plan.dt,
+                    plan.bound.dt,
+                    plan.bound.term,
+                    plan.total_steps
+                );
+                opts.dt = plan.dt;
+                let choice = choose_backend(backend, precision, &lay, &opts, &sc)?;
+                let stepper = LumpedStepper::new(choice, &sc, lay, &pos, opts)?;
+                Engine::Lumped(Box::new(stepper), plan)
+            }
+        };
+        Ok(Self {
+            scenario: sc,
+            engine,
+            scheme,
+            formulation,
+            model,
+            relax_residual,
+            started,
+            stepping: 0.0,
+        })
+    }
+
+    /// The scenario (with its own settings; the overrides are not written into it).
+    pub fn scenario(&self) -> &Scenario {
+        &self.scenario
+    }
+
+    /// Simulated time, s: an exact multiple of the output interval at output times.
+    pub fn time(&self) -> f64 {
+        match &self.engine {
+            Engine::Lumped(s, plan) => {
+                output_time(plan, self.scenario.sim.output_interval, s.steps())
+            }
+            Engine::Ancf(f) => f.time(),
+        }
+    }
+
+    /// Steps taken (the most of any cable for the ANCF model, whose cables each step at
+    /// their own `dt`).
+    pub fn steps(&self) -> u64 {
+        match &self.engine {
+            Engine::Lumped(s, _) => s.steps(),
+            Engine::Ancf(f) => f.steps(),
+        }
+    }
+
+    /// The time step, s (the smallest of any cable for the ANCF model).
+    pub fn dt(&self) -> f64 {
+        match &self.engine {
+            Engine::Lumped(_, plan) => plan.dt,
+            Engine::Ancf(f) => f.dt(),
+        }
+    }
+
+    /// The step plan of a lumped-mass run (`None` for the ANCF model).
+    pub fn plan(&self) -> Option<&StepPlan> {
+        match &self.engine {
+            Engine::Lumped(_, plan) => Some(plan),
+            Engine::Ancf(_) => None,
+        }
+    }
+
+    /// The cable model that runs.
+    pub fn model(&self) -> CableModel {
+        self.model
+    }
+
+    /// The largest residual force the initial relaxation left, N (0 when none ran).
+    pub fn relax_residual(&self) -> f64 {
+        self.relax_residual
+    }
+
+    /// `(backend, device, precision)`: `cpu` or `gpu`, the CPU or adapter, `f64` or
+    /// `f32`.
+    pub fn describe(&self) -> (&'static str, String, &'static str) {
+        match &self.engine {
+            Engine::Lumped(s, _) => s.describe(),
+            Engine::Ancf(_) => ("cpu", cpu_name(), "f64"),
+        }
+    }
+
+    /// Advances `n` steps (for the ANCF model: to the time `n` of the smallest step
+    /// ahead, each cable to its step nearest that time).
+    pub fn advance(&mut self, n: u64) -> Result<(), Error> {
+        let t0 = Instant::now();
+        let r = match &mut self.engine {
+            Engine::Lumped(s, _) => s.advance(n),
+            Engine::Ancf(f) => {
+                let t = f.time() + n as f64 * f.dt();
+                f.advance_to(t)
+            }
+        };
+        self.stepping += t0.elapsed().as_secs_f64();
+        r
+    }
+
+    /// Advances to time `t` (s): to the step nearest it (each cable's, for the ANCF
+    /// model). A time already passed does nothing.
+    pub fn advance_to(&mut self, t: f64) -> Result<(), Error> {
+        match &mut self.engine {
+            Engine::Lumped(s, plan) => {
+                let target = (t / plan.dt).round().max(0.0) as u64;
+                let n = target.saturating_sub(s.steps());
+                self.advance(n)
+            }
+            Engine::Ancf(f) => {
+                if t <= f.time() {
+                    return Ok(());
+                }
+                let t0 = Instant::now();
+                let r = f.advance_to(t);
+                self.stepping += t0.elapsed().as_secs_f64();
+                r
+            }
+        }
+    }
+
+    /// Drives end `end` of cable `cable` (scenario order) from outside, as a coupling
+    /// loop does (MoorDyn's API: set the fairlead's target, step, read the force back):
+    /// from now until the next call its target moves from `position` (m) at `velocity`
+    /// (m/s) in a straight line, `r(t) = position + velocity (t - now)`, and the node
+    /// follows it through the same constraint as a scenario route. Read the force the
+    /// cable exerts on it from [`Simulation::snapshot`] (`end_forces`). The end must be
+    /// held in the scenario (fixed or on a route); lumped-mass model on the CPU backend.
+    pub fn set_end_motion(
+        &mut self,
+        cable: usize,
+        end: CableEnd,
+        position: [f64; 3],
+        velocity: [f64; 3],
+    ) -> Result<(), Error> {
+        match &mut self.engine {
+            Engine::Lumped(s, _) => s.set_end_motion(cable, end, position, velocity),
+            Engine::Ancf(_) => Err(Error::Model(
+                "driving an end from outside needs the lumped-mass model (formulation glmf)".into(),
+            )),
+        }
+    }
+
+    /// Every cable's state now (read back from the GPU on that backend).
+    pub fn snapshot(&mut self) -> Result<Snapshot, Error> {
+        let time = self.time();
+        let steps = self.steps();
+        let cables = match &mut self.engine {
+            Engine::Lumped(s, _) => s.cables()?,
+            Engine::Ancf(f) => f.cables()?,
+        };
+        Ok(Snapshot {
+            time,
+            steps,
+            cables,
+        })
+    }
+
+    /// Runs on to the end of the scenario's duration, handing the sink a snapshot now
+    /// and at each output time, then the summary; `progress` is called as the run goes
+    /// (about every tenth of a second of stepping on big runs, and at each output time).
+    /// A blow-up ends the run: the sink gets the summary (status `diverged`) and the
+    /// error is returned.
+    pub fn run(
+        &mut self,
+        sink: &mut dyn OutputSink,
+        mut progress: impl FnMut(Progress),
+    ) -> Result<Summary, Error> {
+        sink.frame(&self.snapshot()?)?;
+        let mut result = Ok(());
+        loop {
+            let r = match &mut self.engine {
+                Engine::Lumped(s, plan) => {
+                    let done = s.steps();
+                    if done >= plan.total_steps {
+                        break;
+                    }
+                    let next = ((done / plan.steps_per_output) + 1) * plan.steps_per_output;
+                    let target = next.min(plan.total_steps);
+                    let oi = self.scenario.sim.output_interval;
+                    advance_lumped(s, plan, oi, target, &mut self.stepping, &mut progress)
+                }
+                Engine::Ancf(f) => {
+                    let total = f.n_outputs();
+                    // The next output after the time reached.
+                    let k = (1..=total)
+                        .find(|&k| f.output_time(k) > f.time() + 1e-9 * f.output_time(k).abs());
+                    let Some(k) = k else { break };
+                    let t0 = Instant::now();
+                    let r = f.advance_to_output(k);
+                    self.stepping += t0.elapsed().as_secs_f64();
+                    progress(Progress {
+                        time: f.output_time(k),
+                        done: k,
+                        total,
+                        at_output: r.is_ok(),
+                    });
+                    r
+                }
+            };
+            if let Err(e) = r {
+                result = Err(e);
+                break;
+            }
+            sink.frame(&self.snapshot()?)?;
+        }
+        let summary = self.summary(result.as_ref().err())?;
+        sink.finish(&summary)?;
+        result.map(|_| summary)
+    }
+
+    /// The summary of the run so far; `error` is what stopped it, if anything.
+    pub fn summary(&mut self, error: Option<&Error>) -> Result<Summary, Error> {
+        let (backend, device, precision) = self.describe();
+        let sim_time = self.time();
+        let steps = self.steps();
+        let (cables, dt, dt_stable, limited_by, nodes, elements, node_steps, formulation): (
+            Vec<CableSummary>,
+            _,
+            _,
+            _,
+            _,
+            _,
+            _,
+            _,
+        ) = match &mut self.engine {
+            Engine::Lumped(s, plan) => {
+                let cables = s.final_cables()?;
+                let lay = s.layout();
+                (
+                    cables,
+                    plan.dt,
+                    plan.bound.dt,
+                    plan.bound.term.clone(),
+                    lay.n_nodes(),
+                    lay.n_elements(),
+                    s.node_steps() as f64,
+                    self.formulation.name(),
+                )
+            }
+            Engine::Ancf(f) => {
+                let (dt_stable, term) = f.stable_dt();
+                (
+                    f.final_cables(),
+                    f.dt(),
+                    dt_stable,
+                    term,
+                    f.n_nodes(),
+                    f.n_elements(),
+                    f.node_steps(),
+                    "ancf",
+                )
+            }
+        };
+        Ok(Summary {
+            status: if error.is_none() {
+                "completed".into()
+            } else {
+                "diverged".into()
+            },
+            error: error.map(|e| e.to_string()),
+            scenario: self.scenario.path.display().to_string(),
+            backend: backend.into(),
+            device,
+            precision: precision.into(),
+            scheme: self.scheme.name().into(),
+            formulation: formulation.into(),
+            steps,
+            dt,
+            dt_stable,
+            dt_limited_by: limited_by,
+            simulated_time: sim_time,
+            wall_seconds: self.stepping,
+            total_wall_seconds: self.started.elapsed().as_secs_f64(),
+            nodes,
+            elements,
+            node_steps_per_second: if self.stepping > 0.0 {
+                node_steps / self.stepping
+            } else {
+                0.0
+            },
+            threads: rayon::current_num_threads(),
+            relax_residual: self.relax_residual,
+            cables,
+        })
+    }
+}
+
+/// Advances a lumped-mass run to step `target`, in sub-chunks of about twenty million
+/// node-steps (a tenth of a second or so), which keep progress moving on big runs
+/// without cutting the blocks' long runs too short.
+fn advance_lumped(
+    s: &mut LumpedStepper,
+    plan: &StepPlan,
+    oi: f64,
+    target: u64,
+    stepping: &mut f64,
+    progress: &mut impl FnMut(Progress),
+) -> Result<(), Error> {
+    let chunk = (20_000_000 / s.layout().n_nodes().max(1) as u64).clamp(1, plan.steps_per_output);
+    while s.steps() < target {
+        let n = chunk.min(target - s.steps());
+        let t0 = Instant::now();
+        let r = s.advance(n);
+        *stepping += t0.elapsed().as_secs_f64();
+        let done = s.steps();
+        progress(Progress {
+            time: output_time(plan, oi, done),
+            done,
+            total: plan.total_steps,
+            at_output: r.is_ok() && done == target,
+        });
+        r?;
+    }
+    Ok(())
+}
