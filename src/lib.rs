@@ -16,6 +16,7 @@ pub mod error;
 pub mod gpu;
 pub mod math;
 pub mod model;
+pub mod moordyn;
 pub mod options;
 pub mod physics;
 pub mod statics;
