@@ -674,8 +674,8 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
                 file.line_types[main_type].name,
                 f(d_ref),
                 others.join(", "),
-                "stiffer or softer in proportion (static forces change only by the \
-                 penetration, millimetres)"
+                "stiffer or softer in proportion (static forces change only through \
+                 the penetration depth)"
             ),
         });
     }
@@ -1072,7 +1072,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         let _ = writeln!(
             w,
             "\n# OUTPUTS (line {}): {}. cablesim writes the end forces of every cable \
-             (FairTen/AnchTen are their magnitudes at end B/A) to end_forces.csv and element \
+             (FairTen/AnchTen correspond to the forces at end B/A) to end_forces.csv and element \
              tensions to tensions.csv; other channels have no separate file.",
             file.outputs[0].0,
             list.join(", ")
