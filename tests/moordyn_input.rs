@@ -174,7 +174,7 @@ fn v1_file_reads_v1_column_orders() {
     close(lt.cn, 1.6, "Cdn");
     close(lt.ct, 0.05, "Cdt");
     close(lt.damping, 1.0e4 / 2515288.0, "c = BA/EA");
-    // v1 default gravity; no WtrDpth: the fixed point at z = -70 sets the seabed.
+    // MoorDyn's default gravity; no WtrDpth: the fixed point at z = -70 sets the seabed.
     close(m.env.gravity, 9.80665, "g");
     close(m.env.depth, 70.0, "depth");
     close(m.env.seabed.stiffness, 3.0e6 * 0.124, "kb d");
@@ -358,10 +358,11 @@ fn converted_static_line_matches_the_analytic_catenary() {
     let f = end_forces(&lay, &ev, &lay.cables[0]).end;
     let lt = &sc.model.line_types[0];
     let w = lt.wet_weight_per_length(sc.model.env.gravity, sc.model.env.water_density);
-    // Hand value of the wet weight: (390 - 1025 pi 0.252^2 / 4) 9.81.
+    // Hand value of the wet weight, with MoorDyn-C's default g:
+    // (390 - 1025 pi 0.252^2 / 4) 9.80665.
     close(
         w,
-        (390.0 - 1025.0 * std::f64::consts::PI * 0.252 * 0.252 / 4.0) * 9.81,
+        (390.0 - 1025.0 * std::f64::consts::PI * 0.252 * 0.252 / 4.0) * 9.80665,
         "w",
     );
     let c = catenary(400.0, 200.0, 480.0, 1.674e9, w, true).unwrap();
@@ -439,4 +440,38 @@ fn cli_converts_checks_and_refuses_by_line() {
     let err = String::from_utf8_lossy(&out.stderr);
     let n = line_of(&bad, "3   Body1");
     assert!(err.contains(&format!("line {n}:")), "{err}");
+}
+
+#[test]
+fn steady_current_profile_is_read_from_current_profile_txt() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = v2_with("0.5     dtOut", "1       Currents");
+    let dat = dir.path().join("model.dat");
+    std::fs::write(&dat, &text).unwrap();
+    // MoorDyn's layout: three header lines, then `z ux [uy [uz]]`, any order.
+    std::fs::write(
+        dir.path().join("current_profile.txt"),
+        "--- MoorDyn steady currents File ---\nnotes\nz ux uy uz\n\
+         0.0 1.0 0.2\n-80 0.1 0 0\n-20.0 0.8 0.1 0.05\n",
+    )
+    .unwrap();
+    let sc = Scenario::load_any(&dat).unwrap();
+    assert_eq!(
+        sc.model.currents[0].table,
+        vec![
+            (-80.0, [0.1, 0.0, 0.0]),
+            (-20.0, [0.8, 0.1, 0.05]),
+            (0.0, [1.0, 0.2, 0.0]),
+        ]
+    );
+    // A missing profile names the option's line; dynamic grids are refused.
+    std::fs::remove_file(dir.path().join("current_profile.txt")).unwrap();
+    let e = Scenario::load_any(&dat).unwrap_err().to_string();
+    let n = line_of(&text, "1       Currents");
+    assert!(
+        e.contains(&format!("line {n}:")) && e.contains("current_profile.txt"),
+        "{e}"
+    );
+    let e = error_of(&v2_with("0.5     dtOut", "2       Currents"));
+    assert!(e.contains("dynamic"), "{e}");
 }

@@ -96,6 +96,8 @@ struct Opts {
     dt_out: Option<(f64, usize)>,
     dt_m: Option<(f64, usize)>,
     cfl: Option<(f64, usize)>,
+    /// `Currents` 1 or 3 (a steady profile in `current_profile.txt`), and its line.
+    currents: Option<(u8, usize)>,
     scheme: Option<(String, usize)>,
     ic: Vec<(String, String, usize)>,
     ignored: Vec<(String, usize)>,
@@ -127,11 +129,9 @@ fn opt_num(p: &Path, line: usize, name: &str, value: &str) -> Result<f64, Error>
 }
 
 fn read_options(file: &MoorDynFile, p: &Path, warn: &mut Vec<Warning>) -> Result<Opts, Error> {
-    // Defaults: MoorDyn's documentation, "Options" (v2); v1 documents g = 9.80665.
-    let g0 = match file.version {
-        Version::V1 => 9.80665,
-        Version::V2 => 9.81,
-    };
+    // Defaults: MoorDyn-C's (MoorDyn2.cpp sets g = 9.80665 and rho = 1025, although
+    // its v2 documentation says g = 9.81; v1 documents 9.80665).
+    let g0 = 9.80665;
     let mut o = Opts {
         g: (g0, 0),
         rho: (1025.0, 0),
@@ -144,6 +144,7 @@ fn read_options(file: &MoorDynFile, p: &Path, warn: &mut Vec<Warning>) -> Result
         dt_out: None,
         dt_m: None,
         cfl: None,
+        currents: None,
         scheme: None,
         ic: Vec::new(),
         ignored: Vec::new(),
@@ -210,15 +211,18 @@ fn read_options(file: &MoorDynFile, p: &Path, warn: &mut Vec<Warning>) -> Result
                 }
             }
             "currents" => {
-                if n()? != 0.0 {
+                let mode = n()?;
+                if mode == 1.0 || mode == 3.0 {
+                    o.currents = Some((mode as u8, l));
+                } else if mode != 0.0 {
                     return Err(err_at(
                         p,
                         l,
                         format!("option {}", r.name),
                         format!(
-                            "Currents = {val}: MoorDyn's current grid files are not read; \
-                             give the current in the converted scenario's `[environment]` \
-                             (`current` or `current_profile`) instead"
+                            "Currents = {val}: only steady profiles (1 or 3, read from \
+                             current_profile.txt) convert; MoorDyn's dynamic and 4D current \
+                             grids are not read"
                         ),
                     ));
                 }
@@ -252,6 +256,73 @@ fn read_options(file: &MoorDynFile, p: &Path, warn: &mut Vec<Warning>) -> Result
         }
     }
     Ok(o)
+}
+
+/// MoorDyn's steady current profile: `current_profile.txt` in the model file's folder,
+/// three header lines, then rows `z ux [uy [uz]]` (m, m/s; missing components are 0),
+/// interpolated linearly in z and held beyond the ends, as cablesim's
+/// `current_profile` is. Returns the rows sorted by z, and the file's path.
+fn read_current_profile(p: &Path, line: usize) -> Result<(Vec<[f64; 4]>, String), Error> {
+    let file = p
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join("current_profile.txt");
+    let text = std::fs::read_to_string(&file).map_err(|e| {
+        err_at(
+            p,
+            line,
+            "option Currents",
+            format!("cannot read {}: {e}", file.display()),
+        )
+    })?;
+    let mut rows: Vec<([f64; 4], usize)> = Vec::new();
+    for (i, l) in text.lines().enumerate().skip(3) {
+        let f: Vec<&str> = l.split_whitespace().collect();
+        if f.is_empty() {
+            continue;
+        }
+        let mut r = [0.0; 4];
+        if f.len() < 2 {
+            return Err(err_at(&file, i + 1, "row", "needs at least z and ux"));
+        }
+        for (k, x) in f.iter().take(4).enumerate() {
+            r[k] = match x.parse::<f64>() {
+                Ok(v) if v.is_finite() => v,
+                _ => {
+                    return Err(err_at(
+                        &file,
+                        i + 1,
+                        ["z", "ux", "uy", "uz"][k],
+                        format!("must be a number, got \"{x}\""),
+                    ))
+                }
+            };
+        }
+        rows.push((r, i + 1));
+    }
+    if rows.is_empty() {
+        return Err(err_at(
+            &file,
+            0,
+            "rows",
+            "no rows after the three header lines",
+        ));
+    }
+    rows.sort_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+    for w in rows.windows(2) {
+        if w[0].0[0] == w[1].0[0] {
+            return Err(err_at(
+                &file,
+                w[1].1,
+                "z",
+                format!("depth {} is given twice", w[1].0[0]),
+            ));
+        }
+    }
+    Ok((
+        rows.into_iter().map(|r| r.0).collect(),
+        file.display().to_string(),
+    ))
 }
 
 /// Splits `Body12` into (`BODY`, `12`).
@@ -475,6 +546,14 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             ));
         }
     }
+
+    let current = match o.currents {
+        Some((mode, l)) => {
+            let (rows, file) = read_current_profile(p, l)?;
+            Some((mode, l, rows, file))
+        }
+        None => None,
+    };
 
     // Line types.
     let mut types: HashMap<&str, (usize, f64, f64)> = HashMap::new();
@@ -856,10 +935,33 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         "depth = {}  # m, seabed at z = -depth ({depth_note})",
         f(depth)
     );
-    let _ = writeln!(
-        w,
-        "# Still water: MoorDyn's WaveKin and Currents are 0 (other values are refused)."
-    );
+    match &current {
+        None => {
+            let _ = writeln!(
+                w,
+                "# Still water: MoorDyn's WaveKin and Currents are 0 (other values are refused)."
+            );
+        }
+        Some((mode, l, rows, file)) => {
+            let _ = writeln!(
+                w,
+                "# Currents = {mode} (line {l}): MoorDyn's steady profile from {file}, \
+                 linear in z and held beyond its ends, as here. Rows [z, ux, uy, uz] (m, m/s)."
+            );
+            let _ = writeln!(w, "current_profile = [");
+            for r in rows {
+                let _ = writeln!(
+                    w,
+                    "    [{}, {}, {}, {}],",
+                    f(r[0]),
+                    f(r[1]),
+                    f(r[2]),
+                    f(r[3])
+                );
+            }
+            let _ = writeln!(w, "]");
+        }
+    }
     let _ = writeln!(w, "\n[environment.seabed]");
     let _ = writeln!(
         w,
