@@ -475,3 +475,18 @@ fn steady_current_profile_is_read_from_current_profile_txt() {
     let e = error_of(&v2_with("0.5     dtOut", "2       Currents"));
     assert!(e.contains("dynamic"), "{e}");
 }
+
+#[test]
+fn default_option_values_fall_back_with_a_warning() {
+    // MoorDyn-F's `DEFAULT` (OpenFAST's value): the depth falls back to the lowest
+    // point, as MoorDyn-C does without the option.
+    let text = v2_with("80      WtrDpth", "DEFAULT WtrDpth");
+    let c = convert_text(&text, Path::new("model.dat"), &ConvertOptions::default()).unwrap();
+    let n = line_of(&text, "DEFAULT WtrDpth");
+    assert!(c
+        .warnings
+        .iter()
+        .any(|w| w.line == n && w.message.contains("DEFAULT")));
+    let sc = Scenario::parse(&c.toml, Path::new("model.dat")).unwrap();
+    close(sc.model.env.depth, 80.0, "depth from the lowest point");
+}

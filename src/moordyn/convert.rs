@@ -154,6 +154,19 @@ fn read_options(file: &MoorDynFile, p: &Path, warn: &mut Vec<Warning>) -> Result
         let name = r.name.to_lowercase();
         let val = r.value.as_str();
         let n = || opt_num(p, l, &r.name, val);
+        // MoorDyn-F files may say DEFAULT (take OpenFAST's value); standalone, the
+        // default is MoorDyn-C's.
+        if val.eq_ignore_ascii_case("default") {
+            warn.push(Warning {
+                line: l,
+                message: format!(
+                    "{} = DEFAULT takes OpenFAST's value in MoorDyn-F; MoorDyn-C's default \
+                     is used",
+                    r.name
+                ),
+            });
+            continue;
+        }
         match name.as_str() {
             "dtm" | "dt" => o.dt_m = Some((n()?, l)),
             "cfl" => o.cfl = Some((n()?, l)),
