@@ -550,7 +550,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         ("kBot", o.kbot),
         ("cBot", o.cbot),
     ] {
-        if !(x >= 0.0) {
+        if x < 0.0 {
             return Err(err_at(
                 p,
                 l,
@@ -623,7 +623,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         }
         kinds.push(k);
     }
-    for (&id, _) in &opts.motions {
+    for &id in opts.motions.keys() {
         match kinds.get(id.wrapping_sub(1)) {
             Some(PointKind::Coupled) => {}
             _ => {
@@ -667,7 +667,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
                 ),
             ));
         }
-        if !(l.length > 0.0) {
+        if l.length <= 0.0 {
             return Err(err_at(
                 p,
                 l.line,
@@ -729,7 +729,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             "no WtrDpth option: MoorDyn puts the seabed at the lowest point".to_string(),
         ),
     };
-    if !(depth > 0.0) {
+    if depth <= 0.0 {
         return Err(err_at(
             p,
             o.depth.map(|x| x.1).unwrap_or(0),
@@ -1072,6 +1072,9 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
 
     // Points: free points, and fixed or coupled ones that several lines share, are
     // `[[points]]`; a fixed or coupled point of one line is written at that line's end.
+    // A coupled (vessel) point is a held end, still or following a motion file: the
+    // scenario format has no bodies yet (`[[bodies]]` is being added), so a vessel's
+    // fairleads cannot yet share one rigid body's motion; once it exists they could.
     let named: Vec<bool> = (0..file.points.len())
         .map(|i| kinds[i] == PointKind::Free || uses[i] > 1)
         .collect();
