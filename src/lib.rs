@@ -34,6 +34,7 @@ pub mod gpu;
 pub mod initial;
 pub mod math;
 pub mod model;
+pub mod moordyn;
 pub mod options;
 pub mod output;
 pub mod physics;

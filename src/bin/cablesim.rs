@@ -26,7 +26,7 @@ struct Cli {
 enum Cmd {
     /// Run a simulation.
     Run {
-        /// Scenario file (TOML).
+        /// Scenario file (TOML), or a MoorDyn input file (v1 or v2, told by its content).
         scenario: PathBuf,
         /// Output directory (default: out/<scenario name>).
         #[arg(long)]
@@ -58,8 +58,24 @@ enum Cmd {
     },
     /// Validate a scenario file without running it.
     Check {
-        /// Scenario file (TOML).
+        /// Scenario file (TOML), or a MoorDyn input file.
         scenario: PathBuf,
+    },
+    /// Convert a MoorDyn input file (v1 or v2) to a scenario file, with a comment on
+    /// every mapping choice.
+    Convert {
+        /// MoorDyn input file.
+        input: PathBuf,
+        /// Scenario file to write (default: standard output).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Simulated duration in seconds (a MoorDyn file has none).
+        #[arg(long, default_value_t = 60.0)]
+        duration: f64,
+        /// Drive a vessel/coupled point by a CSV motion file `t,x,y,z`: `ID=FILE`
+        /// (repeatable; a relative FILE is read from the scenario's folder).
+        #[arg(long, value_name = "ID=FILE")]
+        motion: Vec<String>,
     },
 }
 
@@ -87,6 +103,12 @@ fn main() -> ExitCode {
 fn real_main() -> Result<()> {
     let cli = Cli::parse();
     match cli.cmd {
+        Cmd::Convert {
+            input,
+            output,
+            duration,
+            motion,
+        } => convert(&input, output.as_deref(), duration, &motion),
         Cmd::Check { scenario } => check(&scenario),
         Cmd::Run {
             scenario,
@@ -170,7 +192,7 @@ fn real_main() -> Result<()> {
 
 /// `cablesim check`: validates the scenario and prints the mesh and the step plan.
 fn check(scenario: &std::path::Path) -> Result<()> {
-    let sc = Scenario::load(scenario)?;
+    let sc = Scenario::load_any(scenario)?;
     let (lay, _) = cablesim::model::Layout::build(&sc.model)?;
     let opts = SolverOptions {
         scheme: sc.sim.scheme,
@@ -201,5 +223,49 @@ fn check(scenario: &std::path::Path) -> Result<()> {
         plan.bound.term,
         plan.total_steps
     );
+    Ok(())
+}
+
+/// `cablesim convert`: a MoorDyn input file as a scenario file.
+fn convert(
+    input: &std::path::Path,
+    output: Option<&std::path::Path>,
+    duration: f64,
+    motion: &[String],
+) -> Result<()> {
+    if !(duration > 0.0 && duration.is_finite()) {
+        anyhow::bail!("--duration must be a positive number");
+    }
+    let mut opts = cablesim::moordyn::ConvertOptions {
+        duration,
+        ..Default::default()
+    };
+    for m in motion {
+        let (id, file) = m
+            .split_once('=')
+            .ok_or_else(|| anyhow::anyhow!("--motion {m}: expected ID=FILE"))?;
+        let id: usize = id
+            .trim()
+            .parse()
+            .map_err(|_| anyhow::anyhow!("--motion {m}: \"{id}\" is not a point ID"))?;
+        opts.motions.insert(id, file.to_string());
+    }
+    let text = std::fs::read_to_string(input)
+        .with_context(|| format!("cannot read {}", input.display()))?;
+    let conv = cablesim::moordyn::convert_text(&text, input, &opts)?;
+    for w in &conv.warnings {
+        log::warn!("{}: line {}: {}", input.display(), w.line, w.message);
+    }
+    // The result must load as a scenario; checked from where it will live, so that
+    // motion files resolve as they will.
+    let at = output
+        .map(|o| o.to_path_buf())
+        .unwrap_or_else(|| input.with_extension("toml"));
+    Scenario::parse(&conv.toml, &at).context("the converted scenario does not validate")?;
+    match output {
+        Some(o) => std::fs::write(o, &conv.toml)
+            .with_context(|| format!("cannot write {}", o.display()))?,
+        None => print!("{}", conv.toml),
+    }
     Ok(())
 }

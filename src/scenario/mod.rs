@@ -177,6 +177,27 @@ impl Scenario {
         Self::parse(&text, path)
     }
 
+    /// Reads a scenario file or a MoorDyn input file (v1 or v2), told apart by
+    /// [`crate::moordyn::is_moordyn`]: a `.toml` name is a scenario; any other file is
+    /// MoorDyn's when its section headers are. A MoorDyn file is converted with
+    /// [`crate::moordyn::ConvertOptions::default`] (60 s, vessel points held still),
+    /// each warning logged with its line, and the converted TOML validated as any
+    /// scenario is.
+    pub fn load_any(path: impl AsRef<Path>) -> Result<Scenario, Error> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| err(path, "(file)", format!("cannot read: {e}")))?;
+        if !crate::moordyn::is_moordyn(path, &text) {
+            return Self::parse(&text, path);
+        }
+        let conv =
+            crate::moordyn::convert_text(&text, path, &crate::moordyn::ConvertOptions::default())?;
+        for w in &conv.warnings {
+            log::warn!("{}: line {}: {}", path.display(), w.line, w.message);
+        }
+        Self::parse(&conv.toml, path)
+    }
+
     /// Parses and validates scenario text; `path` names the file in messages and is the
     /// base for relative route files.
     pub fn parse(text: &str, path: &Path) -> Result<Scenario, Error> {

@@ -119,10 +119,10 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    /// Reads a scenario file and builds its simulation.
+    /// Reads a scenario file (TOML, or a MoorDyn input file) and builds its simulation.
     pub fn from_file(path: impl AsRef<Path>, overrides: &Overrides) -> Result<Self, Error> {
         let started = Instant::now();
-        let sc = Scenario::load(path)?;
+        let sc = Scenario::load_any(path)?;
         Self::build(sc, overrides, started)
     }
 

@@ -1,0 +1,1204 @@
+//! A MoorDyn input file's tables mapped to a cablesim scenario, written as scenario
+//! TOML with a comment on each choice. What cannot be expressed is an error naming the
+//! file's line; what is dropped with little effect is a warning naming it.
+//!
+//! The definitions compared (MoorDyn's from its input-file documentation and
+//! `Line.cpp`/`Point.cpp` of MoorDyn-C v2; cablesim's from its line-type and seabed
+//! docs):
+//!
+//! - Normal drag: MoorDyn `1/2 rho Cd d l |vp| vp` (frontal area d l); cablesim
+//!   `1/2 rho cn d l |vn| vn`: `cn = Cd`.
+//! - Tangential drag: MoorDyn `1/2 rho CdAx pi d l |vq| vq` (surface area pi d l, v1
+//!   `Cdt` alike); cablesim `1/2 rho ct pi d l |vt| vt`: `ct = CdAx`.
+//! - Normal added mass: MoorDyn `Ca rho (pi d^2/4) l` across the line; cablesim
+//!   `cm rho A l` likewise: `cm = Ca`. cablesim has no tangential added mass: a
+//!   nonzero `CaAx` is dropped with a warning.
+//! - Internal damping: MoorDyn's segment force is `BA epsdot` (N s); cablesim's is
+//!   `EA c epsdot` with the time constant `c` (s): `c = BA / EA`. A negative entry is
+//!   a damping ratio `zeta = -BA`, for which MoorDyn sets
+//!   `BA = zeta (L/N) sqrt(EA m)` per line (segment length `L/N`, mass per length
+//!   `m`), so `c = zeta (L/N) sqrt(m / EA) = zeta (L/N) / sqrt(EA/m)`: the segment's
+//!   axial wave-crossing time times the ratio. It depends on the line's segment length,
+//!   so lines of one MoorDyn type may need cablesim types of their own.
+//! - Seabed: MoorDyn's kBot (Pa/m) and cBot (Pa s/m) are pressures per metre of
+//!   penetration (per m/s) on the area `d l` of each node, so the force per metre of
+//!   line is `kBot d` (N/m per m) and `cBot d` (N s/m per m), cablesim's `stiffness`
+//!   and `damping`, which are one value for the whole seabed: with line types of
+//!   different diameters, the diameter of the longest total length of line is used and
+//!   a warning names the others.
+//! - Points: MoorDyn's point mass, volume (buoyancy `rho V g`), `CdA`
+//!   (`1/2 rho CdA |v| v`) and `Ca` (added mass `Ca rho V`, isotropic) are cablesim's
+//!   `mass`, `volume`, `drag_area`, `added_mass` unchanged.
+
+use super::err_at;
+use super::parse::{LineRow, LineTypeRow, MoorDynFile, PointRow, Version};
+use crate::error::Error;
+use std::collections::{BTreeMap, HashMap};
+use std::fmt::Write;
+use std::path::Path;
+
+/// Choices a MoorDyn file does not make.
+#[derive(Clone, Debug)]
+pub struct ConvertOptions {
+    /// Simulated duration, s (a MoorDyn input file has none: its driver gives it).
+    pub duration: f64,
+    /// Motion files for vessel/coupled points: point ID -> CSV file `t,x,y,z` (as
+    /// cablesim's `route = "table"` reads it; a relative path is taken from the
+    /// scenario file's folder).
+    pub motions: BTreeMap<usize, String>,
+}
+
+impl Default for ConvertOptions {
+    fn default() -> Self {
+        Self {
+            duration: 60.0,
+            motions: BTreeMap::new(),
+        }
+    }
+}
+
+/// Something dropped or approximated, at a line of the file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Warning {
+    /// 1-based line number (0: the file as a whole).
+    pub line: usize,
+    /// What was dropped or approximated, and its effect.
+    pub message: String,
+}
+
+/// The conversion's result.
+#[derive(Clone, Debug)]
+pub struct Converted {
+    /// Scenario TOML, with comments.
+    pub toml: String,
+    /// Warnings, in file order.
+    pub warnings: Vec<Warning>,
+}
+
+/// What a point is in MoorDyn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum PointKind {
+    Fixed,
+    Coupled,
+    Free,
+}
+
+/// The options cablesim uses, with the line each came from (0: MoorDyn's default).
+struct Opts {
+    g: (f64, usize),
+    rho: (f64, usize),
+    depth: Option<(f64, usize)>,
+    kbot: (f64, usize),
+    cbot: (f64, usize),
+    mu: Option<(f64, usize)>,
+    mu_axial: Option<(f64, usize)>,
+    fric_damp: Option<(f64, usize)>,
+    dt_out: Option<(f64, usize)>,
+    dt_m: Option<(f64, usize)>,
+    cfl: Option<(f64, usize)>,
+    /// `Currents` 1 or 3 (a steady profile in `current_profile.txt`), and its line.
+    currents: Option<(u8, usize)>,
+    scheme: Option<(String, usize)>,
+    ic: Vec<(String, String, usize)>,
+    ignored: Vec<(String, usize)>,
+}
+
+/// `12.5` style: Rust's shortest round-trip form, which TOML reads as a float.
+fn f(x: f64) -> String {
+    format!("{x:?}")
+}
+
+fn quote(s: &str) -> String {
+    toml::Value::String(s.to_string()).to_string()
+}
+
+fn v3(x: [f64; 3]) -> String {
+    format!("[{}, {}, {}]", f(x[0]), f(x[1]), f(x[2]))
+}
+
+fn opt_num(p: &Path, line: usize, name: &str, value: &str) -> Result<f64, Error> {
+    match value.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(err_at(
+            p,
+            line,
+            format!("option {name}"),
+            format!("must be a number, got \"{value}\""),
+        )),
+    }
+}
+
+fn read_options(file: &MoorDynFile, p: &Path, warn: &mut Vec<Warning>) -> Result<Opts, Error> {
+    // Defaults: MoorDyn-C's (MoorDyn2.cpp sets g = 9.80665 and rho = 1025, although
+    // its v2 documentation says g = 9.81; v1 documents 9.80665).
+    let g0 = 9.80665;
+    let mut o = Opts {
+        g: (g0, 0),
+        rho: (1025.0, 0),
+        depth: None,
+        kbot: (3.0e6, 0),
+        cbot: (3.0e5, 0),
+        mu: None,
+        mu_axial: None,
+        fric_damp: None,
+        dt_out: None,
+        dt_m: None,
+        cfl: None,
+        currents: None,
+        scheme: None,
+        ic: Vec::new(),
+        ignored: Vec::new(),
+    };
+    for r in &file.options {
+        let l = r.line;
+        let name = r.name.to_lowercase();
+        let val = r.value.as_str();
+        let n = || opt_num(p, l, &r.name, val);
+        // MoorDyn-F files may say DEFAULT (take OpenFAST's value); standalone, the
+        // default is MoorDyn-C's.
+        if val.eq_ignore_ascii_case("default") {
+            warn.push(Warning {
+                line: l,
+                message: format!(
+                    "{} = DEFAULT takes OpenFAST's value in MoorDyn-F; MoorDyn-C's default \
+                     is used",
+                    r.name
+                ),
+            });
+            continue;
+        }
+        match name.as_str() {
+            "dtm" | "dt" => o.dt_m = Some((n()?, l)),
+            "cfl" => o.cfl = Some((n()?, l)),
+            "tscheme" => o.scheme = Some((val.to_string(), l)),
+            "g" | "gravity" => o.g = (n()?, l),
+            "rho" | "rhow" | "wtrdnsty" => o.rho = (n()?, l),
+            "wtrdpth" | "depth" => match val.parse::<f64>() {
+                Ok(x) if x.is_finite() => o.depth = Some((x, l)),
+                _ => {
+                    return Err(err_at(
+                        p,
+                        l,
+                        format!("option {}", r.name),
+                        format!(
+                            "\"{val}\" is a bathymetry file; cablesim's seabed is a flat plane \
+                             (give the depth in metres)"
+                        ),
+                    ))
+                }
+            },
+            "kbot" | "kb" => o.kbot = (n()?, l),
+            "cbot" | "cb" => o.cbot = (n()?, l),
+            "frictioncoefficient" | "mu_kt" => o.mu = Some((n()?, l)),
+            "mu_ka" => o.mu_axial = Some((n()?, l)),
+            "fricdamp" | "cv" => o.fric_damp = Some((n()?, l)),
+            "statdynfricscale" | "mc" => {
+                let x = n()?;
+                if x != 1.0 {
+                    warn.push(Warning {
+                        line: l,
+                        message: format!(
+                            "{} = {x}: cablesim has one friction coefficient for sliding \
+                             and sticking (ratio 1)",
+                            r.name
+                        ),
+                    });
+                }
+            }
+            "dtout" => o.dt_out = Some((n()?, l)),
+            "dtic" | "icdt" | "tmaxic" | "ictmax" | "cdscaleic" | "icdfac" | "threshic"
+            | "icthresh" | "icgendynamic" | "gendynamicic" | "fileic" | "icfile" => {
+                o.ic.push((r.name.clone(), val.to_string(), l))
+            }
+            "wavekin" => {
+                if n()? != 0.0 {
+                    return Err(err_at(
+                        p,
+                        l,
+                        format!("option {}", r.name),
+                        format!(
+                            "WaveKin = {val}: MoorDyn's wave kinematics (grids, FFT, \
+                             component files) are not read; only still water converts"
+                        ),
+                    ));
+                }
+            }
+            "currents" => {
+                let mode = n()?;
+                if mode == 1.0 || mode == 3.0 {
+                    o.currents = Some((mode as u8, l));
+                } else if mode != 0.0 {
+                    return Err(err_at(
+                        p,
+                        l,
+                        format!("option {}", r.name),
+                        format!(
+                            "Currents = {val}: only steady profiles (1 or 3, read from \
+                             current_profile.txt) convert; MoorDyn's dynamic and 4D current \
+                             grids are not read"
+                        ),
+                    ));
+                }
+            }
+            "waterkin" => {
+                if !val.eq_ignore_ascii_case("null") && !val.is_empty() && val != "\"\"" {
+                    return Err(err_at(
+                        p,
+                        l,
+                        format!("option {}", r.name),
+                        format!("water kinematics file \"{val}\" is not read; only still water converts"),
+                    ));
+                }
+            }
+            "seafloorfile" => {
+                return Err(err_at(
+                    p,
+                    l,
+                    format!("option {}", r.name),
+                    "a 3D seafloor file is not supported: cablesim's seabed is a flat plane",
+                ))
+            }
+            "dtwave" | "unifycurrentgrid" | "writelog" | "writeunits" | "disableoutput"
+            | "disableouttime" | "outswitch" | "echo" | "inertialf" | "inertialf_rampt" => {
+                o.ignored.push((r.name.clone(), l))
+            }
+            _ => warn.push(Warning {
+                line: l,
+                message: format!("unknown option \"{}\" ignored", r.name),
+            }),
+        }
+    }
+    Ok(o)
+}
+
+/// MoorDyn's steady current profile: `current_profile.txt` in the model file's folder,
+/// three header lines, then rows `z ux [uy [uz]]` (m, m/s; missing components are 0),
+/// interpolated linearly in z and held beyond the ends, as cablesim's
+/// `current_profile` is. Returns the rows sorted by z, and the file's path.
+fn read_current_profile(p: &Path, line: usize) -> Result<(Vec<[f64; 4]>, String), Error> {
+    let file = p
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join("current_profile.txt");
+    let text = std::fs::read_to_string(&file).map_err(|e| {
+        err_at(
+            p,
+            line,
+            "option Currents",
+            format!("cannot read {}: {e}", file.display()),
+        )
+    })?;
+    let mut rows: Vec<([f64; 4], usize)> = Vec::new();
+    for (i, l) in text.lines().enumerate().skip(3) {
+        let f: Vec<&str> = l.split_whitespace().collect();
+        if f.is_empty() {
+            continue;
+        }
+        let mut r = [0.0; 4];
+        if f.len() < 2 {
+            return Err(err_at(&file, i + 1, "row", "needs at least z and ux"));
+        }
+        for (k, x) in f.iter().take(4).enumerate() {
+            r[k] = match x.parse::<f64>() {
+                Ok(v) if v.is_finite() => v,
+                _ => {
+                    return Err(err_at(
+                        &file,
+                        i + 1,
+                        ["z", "ux", "uy", "uz"][k],
+                        format!("must be a number, got \"{x}\""),
+                    ))
+                }
+            };
+        }
+        rows.push((r, i + 1));
+    }
+    if rows.is_empty() {
+        return Err(err_at(
+            &file,
+            0,
+            "rows",
+            "no rows after the three header lines",
+        ));
+    }
+    rows.sort_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+    for w in rows.windows(2) {
+        if w[0].0[0] == w[1].0[0] {
+            return Err(err_at(
+                &file,
+                w[1].1,
+                "z",
+                format!("depth {} is given twice", w[1].0[0]),
+            ));
+        }
+    }
+    Ok((
+        rows.into_iter().map(|r| r.0).collect(),
+        file.display().to_string(),
+    ))
+}
+
+/// Splits `Body12` into (`BODY`, `12`).
+fn word_and_number(s: &str) -> (String, String) {
+    let letters: String = s.chars().take_while(|c| c.is_ascii_alphabetic()).collect();
+    let rest = &s[letters.len()..];
+    (letters.to_uppercase(), rest.to_string())
+}
+
+fn point_kind(p: &Path, r: &PointRow) -> Result<PointKind, Error> {
+    let (w, _) = word_and_number(&r.attachment);
+    Ok(match w.as_str() {
+        "FIXED" | "FIX" | "ANCHOR" => PointKind::Fixed,
+        "VESSEL" | "VES" | "FAIRLEAD" | "COUPLED" | "CPLD" => PointKind::Coupled,
+        "POINT" | "CONNECT" | "CON" | "FREE" => PointKind::Free,
+        "BODY" => {
+            return Err(err_at(
+                p,
+                r.line,
+                format!("point {} attachment", r.id),
+                format!(
+                    "\"{}\": points on bodies are not supported (cablesim has no MoorDyn \
+                     bodies); make it Fixed or Coupled",
+                    r.attachment
+                ),
+            ))
+        }
+        _ => {
+            return Err(err_at(
+                p,
+                r.line,
+                format!("point {} attachment", r.id),
+                format!(
+                    "unknown attachment \"{}\" (Fixed, Vessel/Coupled, Free/Connect)",
+                    r.attachment
+                ),
+            ))
+        }
+    })
+}
+
+/// The point ID a line end names (`3`, `C3`, `P3`, `Con3`, `Point3`).
+fn attach_point(
+    p: &Path,
+    l: &LineRow,
+    end: &str,
+    s: &str,
+    n_points: usize,
+) -> Result<usize, Error> {
+    let (w, num) = word_and_number(s);
+    let what = format!("line {} {end}", l.id);
+    if w == "R" || w == "ROD" {
+        return Err(err_at(
+            p,
+            l.line,
+            what,
+            format!("\"{s}\": lines on rod ends are not supported (cablesim has no rods)"),
+        ));
+    }
+    if !["", "C", "CON", "P", "POINT"].contains(&w.as_str()) {
+        return Err(err_at(
+            p,
+            l.line,
+            what,
+            format!("\"{s}\" is not a point ID"),
+        ));
+    }
+    match num.parse::<usize>() {
+        Ok(id) if id >= 1 && id <= n_points => Ok(id),
+        _ => Err(err_at(
+            p,
+            l.line,
+            what,
+            format!("\"{s}\": there is no point with that ID ({n_points} points)"),
+        )),
+    }
+}
+
+/// A line type checked for what cablesim can run: (EA, BA as written).
+fn check_type(p: &Path, t: &LineTypeRow, warn: &mut Vec<Warning>) -> Result<(f64, f64), Error> {
+    let l = t.line;
+    let name = |c: &str| format!("line type \"{}\" {c}", t.name);
+    let pos = |c: &str, x: f64| {
+        if x > 0.0 {
+            Ok(x)
+        } else {
+            Err(err_at(p, l, name(c), format!("must be positive, got {x}")))
+        }
+    };
+    pos("Diam", t.diam)?;
+    pos("Mass/m", t.mass)?;
+    let ea = match t.ea.parse::<f64>() {
+        Ok(x) if x.is_finite() => pos("EA", x)?,
+        _ => {
+            return Err(err_at(
+                p,
+                l,
+                name("EA"),
+                format!(
+                    "\"{}\": nonlinear, viscoelastic or Syrope stiffness is not supported \
+                     (cablesim's lines are linear elastic: give one EA in N)",
+                    t.ea
+                ),
+            ))
+        }
+    };
+    let ba = match t.ba.parse::<f64>() {
+        Ok(x) if x.is_finite() => x,
+        _ => {
+            return Err(err_at(
+                p,
+                l,
+                name("BA/-zeta"),
+                format!(
+                    "\"{}\": static/dynamic or tabulated damping is not supported (give one \
+                     BA in N s, or a negative damping ratio)",
+                    t.ba
+                ),
+            ))
+        }
+    };
+    for (c, x) in [("Cd", t.cd), ("Ca", t.ca), ("CdAx", t.cdax)] {
+        if x < 0.0 {
+            return Err(err_at(
+                p,
+                l,
+                name(c),
+                format!("must not be negative, got {x}"),
+            ));
+        }
+    }
+    if t.ei > 0.0 {
+        warn.push(Warning {
+            line: l,
+            message: format!(
+                "line type \"{}\": bending stiffness EI = {} N m^2 is ignored by the \
+                 lumped-mass model (kept as `ei` for the ANCF reference)",
+                t.name, t.ei
+            ),
+        });
+    }
+    if t.caax != 0.0 {
+        warn.push(Warning {
+            line: l,
+            message: format!(
+                "line type \"{}\": tangential added mass CaAx = {} is dropped (cablesim has \
+                 none; it only changes axial inertia by Ca rho A / m)",
+                t.name, t.caax
+            ),
+        });
+    }
+    if t.cl != 0.0 {
+        warn.push(Warning {
+            line: l,
+            message: format!(
+                "line type \"{}\": VIV lift coefficient Cl = {} is ignored (no vortex-induced \
+                 vibration model)",
+                t.name, t.cl
+            ),
+        });
+    }
+    Ok((ea, ba))
+}
+
+/// Maps a parsed MoorDyn file to scenario TOML. `path` names the file in messages.
+pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result<Converted, Error> {
+    let p = path;
+    let mut warn = Vec::new();
+
+    // Sections with no cablesim counterpart.
+    for s in &file.others {
+        let Some(&first) = s.rows.first() else {
+            continue;
+        };
+        match s.kind {
+            "ROD TYPES" => warn.push(Warning {
+                line: s.line,
+                message: "ROD TYPES ignored (no rods are converted)".into(),
+            }),
+            "RODS" => {
+                return Err(err_at(
+                    p,
+                    first,
+                    "RODS",
+                    "rods are not supported (cablesim has no rigid or pinned rod objects)",
+                ))
+            }
+            "BODIES" => {
+                return Err(err_at(
+                    p,
+                    first,
+                    "BODIES",
+                    "bodies with their own dynamics are not supported; a coupled body's \
+                     fairleads can be given as Coupled points instead",
+                ))
+            }
+            kind => {
+                return Err(err_at(
+                    p,
+                    first,
+                    kind,
+                    format!("the {kind} section (MoorDyn-F) is not supported"),
+                ))
+            }
+        }
+    }
+
+    let o = read_options(file, p, &mut warn)?;
+    for (what, (x, l)) in [
+        ("g", o.g),
+        ("rho", o.rho),
+        ("kBot", o.kbot),
+        ("cBot", o.cbot),
+    ] {
+        if x < 0.0 {
+            return Err(err_at(
+                p,
+                l,
+                format!("option {what}"),
+                format!("must not be negative, got {x}"),
+            ));
+        }
+    }
+
+    let current = match o.currents {
+        Some((mode, l)) => {
+            let (rows, file) = read_current_profile(p, l)?;
+            Some((mode, l, rows, file))
+        }
+        None => None,
+    };
+
+    // Line types.
+    let mut types: HashMap<&str, (usize, f64, f64)> = HashMap::new();
+    for (i, t) in file.line_types.iter().enumerate() {
+        let (ea, ba) = check_type(p, t, &mut warn)?;
+        if types.insert(t.name.as_str(), (i, ea, ba)).is_some() {
+            return Err(err_at(
+                p,
+                t.line,
+                format!("line type \"{}\"", t.name),
+                "duplicate line type name",
+            ));
+        }
+    }
+
+    // Points.
+    let mut kinds = Vec::with_capacity(file.points.len());
+    for (i, r) in file.points.iter().enumerate() {
+        if r.id != i + 1 {
+            return Err(err_at(
+                p,
+                r.line,
+                "point ID",
+                format!(
+                    "point IDs must run 1, 2, 3, ...: expected {}, got {}",
+                    i + 1,
+                    r.id
+                ),
+            ));
+        }
+        let k = point_kind(p, r)?;
+        if r.force != [0.0; 3] {
+            return Err(err_at(
+                p,
+                r.line,
+                format!("point {} FX FY FZ", r.id),
+                "steady external point forces are not supported",
+            ));
+        }
+        for (c, x) in [
+            ("Mass", r.mass),
+            ("Volume", r.volume),
+            ("CdA", r.cda),
+            ("Ca", r.ca),
+        ] {
+            if x < 0.0 {
+                return Err(err_at(
+                    p,
+                    r.line,
+                    format!("point {} {c}", r.id),
+                    format!("must not be negative, got {x}"),
+                ));
+            }
+        }
+        kinds.push(k);
+    }
+    for &id in opts.motions.keys() {
+        match kinds.get(id.wrapping_sub(1)) {
+            Some(PointKind::Coupled) => {}
+            _ => {
+                return Err(err_at(
+                    p,
+                    0,
+                    format!("motion for point {id}"),
+                    "a motion file needs a Vessel/Coupled point of that ID",
+                ))
+            }
+        }
+    }
+
+    // Lines, and how many line ends each point holds.
+    let mut uses = vec![0usize; file.points.len()];
+    let mut ends = Vec::with_capacity(file.lines.len());
+    for (i, l) in file.lines.iter().enumerate() {
+        if l.id != i + 1 {
+            return Err(err_at(
+                p,
+                l.line,
+                "line ID",
+                format!(
+                    "line IDs must run 1, 2, 3, ...: expected {}, got {}",
+                    i + 1,
+                    l.id
+                ),
+            ));
+        }
+        if !types.contains_key(l.line_type.as_str()) {
+            let mut known: Vec<_> = file.line_types.iter().map(|t| t.name.as_str()).collect();
+            known.sort();
+            return Err(err_at(
+                p,
+                l.line,
+                format!("line {} LineType", l.id),
+                format!(
+                    "unknown line type \"{}\" (defined: {})",
+                    l.line_type,
+                    known.join(", ")
+                ),
+            ));
+        }
+        if l.length <= 0.0 {
+            return Err(err_at(
+                p,
+                l.line,
+                format!("line {} UnstrLen", l.id),
+                format!("must be positive, got {}", l.length),
+            ));
+        }
+        if l.segments < 1 {
+            return Err(err_at(
+                p,
+                l.line,
+                format!("line {} NumSegs", l.id),
+                format!("must be at least 1, got {}", l.segments),
+            ));
+        }
+        let a = attach_point(p, l, "AttachA", &l.attach_a, file.points.len())?;
+        let b = attach_point(p, l, "AttachB", &l.attach_b, file.points.len())?;
+        if a == b {
+            return Err(err_at(
+                p,
+                l.line,
+                format!("line {}", l.id),
+                "both ends on the same point",
+            ));
+        }
+        uses[a - 1] += 1;
+        uses[b - 1] += 1;
+        ends.push((a, b));
+    }
+
+    for (i, r) in file.points.iter().enumerate() {
+        if uses[i] == 0 {
+            warn.push(Warning {
+                line: r.line,
+                message: format!("point {} has no lines and is left out", r.id),
+            });
+        }
+    }
+
+    // Water depth: MoorDyn-C takes WtrDpth (default 0) and lowers the seabed to any
+    // point below it, so an anchor given at the bottom sets the depth.
+    let lowest = file
+        .points
+        .iter()
+        .map(|r| -r.pos[2])
+        .fold(f64::NEG_INFINITY, f64::max);
+    let (depth, depth_note) = match o.depth {
+        Some((d, l)) if d >= lowest => (d, format!("WtrDpth, line {l}")),
+        Some((d, l)) => (
+            lowest,
+            format!(
+                "WtrDpth = {} at line {l} is above the lowest point; MoorDyn lowers the \
+                 seabed to that point",
+                f(d)
+            ),
+        ),
+        None => (
+            lowest,
+            "no WtrDpth option: MoorDyn puts the seabed at the lowest point".to_string(),
+        ),
+    };
+    if depth <= 0.0 {
+        return Err(err_at(
+            p,
+            o.depth.map(|x| x.1).unwrap_or(0),
+            "option WtrDpth",
+            format!("the water depth must be positive, got {depth}"),
+        ));
+    }
+
+    // The seabed's per-metre constants need one diameter: that of the most line length.
+    let mut len_by_type = vec![0.0; file.line_types.len()];
+    for l in &file.lines {
+        len_by_type[types[l.line_type.as_str()].0] += l.length;
+    }
+    let main_type = (0..len_by_type.len())
+        .max_by(|&a, &b| len_by_type[a].total_cmp(&len_by_type[b]))
+        .unwrap_or(0);
+    let d_ref = file.line_types[main_type].diam;
+    let others: Vec<String> = file
+        .lines
+        .iter()
+        .map(|l| &file.line_types[types[l.line_type.as_str()].0])
+        .filter(|t| t.diam != d_ref)
+        .map(|t| format!("\"{}\" (d = {} m)", t.name, f(t.diam)))
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    if !others.is_empty() {
+        warn.push(Warning {
+            line: o.kbot.1,
+            message: format!(
+                "kBot/cBot: the seabed's per-metre stiffness and damping use the diameter \
+                 of \"{}\" (d = {} m); MoorDyn scales them by each line's own diameter, so \
+                 the contact of {} is {}",
+                file.line_types[main_type].name,
+                f(d_ref),
+                others.join(", "),
+                "stiffer or softer in proportion (static forces change only through \
+                 the penetration depth)"
+            ),
+        });
+    }
+    let mu = o.mu.map(|x| x.0).unwrap_or(0.0);
+    if let (Some((ma, l)), Some((mt, _))) = (o.mu_axial, o.mu) {
+        if ma != mt {
+            warn.push(Warning {
+                line: l,
+                message: format!(
+                    "MU_KA = {ma} differs from MU_KT = {mt}: cablesim's friction is isotropic \
+                     on the seabed plane; MU_KT is used"
+                ),
+            });
+        }
+    }
+
+    // cablesim line types: one per MoorDyn type and damping time constant.
+    struct Lt {
+        name: String,
+        src: usize,
+        c: f64,
+        note: String,
+    }
+    let mut lts: Vec<Lt> = Vec::new();
+    let mut line_lt = Vec::with_capacity(file.lines.len());
+    for l in &file.lines {
+        let (ti, ea, ba) = types[l.line_type.as_str()];
+        let t = &file.line_types[ti];
+        let seg = l.length / l.segments as f64;
+        let (c, note) = if ba < 0.0 {
+            let zeta = -ba;
+            (
+                zeta * seg * (t.mass / ea).sqrt(),
+                format!(
+                    "BA/-zeta = {} (line {}): damping ratio zeta = {}; MoorDyn sets BA = zeta \
+                     (L/N) sqrt(EA m), so c = BA/EA = zeta (L/N) sqrt(m/EA) with L/N = {} m",
+                    t.ba,
+                    t.line,
+                    f(zeta),
+                    f(seg)
+                ),
+            )
+        } else {
+            (
+                ba / ea,
+                format!("BA = {} N s (line {}): c = BA/EA", t.ba, t.line),
+            )
+        };
+        let k = match lts.iter().position(|x| x.src == ti && x.c == c) {
+            Some(k) => k,
+            None => {
+                let taken = lts.iter().any(|x| x.src == ti);
+                lts.push(Lt {
+                    name: if taken {
+                        format!("{}_line{}", t.name, l.id)
+                    } else {
+                        t.name.clone()
+                    },
+                    src: ti,
+                    c,
+                    note,
+                });
+                lts.len() - 1
+            }
+        };
+        line_lt.push(k);
+    }
+
+    // The TOML.
+    let mut s = String::new();
+    let w = &mut s;
+    let fname = p.display();
+    let ver = match file.version {
+        Version::V1 => "v1",
+        Version::V2 => "v2",
+    };
+    let _ = writeln!(
+        w,
+        "# Converted from the MoorDyn {ver} input file {fname} by `cablesim convert`."
+    );
+    let _ = writeln!(
+        w,
+        "# Each value says where it came from; \"line N\" is a line of that file."
+    );
+    if !warn.is_empty() {
+        let _ = writeln!(w, "#\n# Warnings:");
+        let mut ws = warn.clone();
+        ws.sort_by_key(|x| x.line);
+        for x in &ws {
+            let _ = writeln!(w, "# - line {}: {}", x.line, x.message);
+        }
+    }
+    let _ = writeln!(w);
+    let _ = writeln!(w, "[simulation]");
+    let _ = writeln!(
+        w,
+        "# A MoorDyn input file has no duration (its driver gives one): {} s here.",
+        f(opts.duration)
+    );
+    let _ = writeln!(w, "duration = {}", f(opts.duration));
+    match o.dt_m {
+        Some((dt, l)) => {
+            let _ = writeln!(
+                w,
+                "# dtM = {} s (line {l}) was chosen for MoorDyn's scheme; cablesim picks the \
+                 largest stable step of its own.",
+                f(dt)
+            );
+        }
+        None => {
+            let _ = writeln!(
+                w,
+                "# No dtM: cablesim picks the largest stable step of its own."
+            );
+        }
+    }
+    if let Some((c, l)) = o.cfl {
+        let _ = writeln!(
+            w,
+            "# CFL = {} (line {l}) is MoorDyn's step rule; cablesim's `auto` step is its own \
+             stability bound times a safety factor.",
+            f(c)
+        );
+    }
+    let _ = writeln!(w, "dt = \"auto\"");
+    let out_int = match o.dt_out {
+        Some((x, l)) if x > 0.0 => {
+            let _ = writeln!(w, "# dtOut, line {l}.");
+            x.min(opts.duration)
+        }
+        _ => {
+            let _ = writeln!(w, "# No dtOut: outputs every second.");
+            1.0f64.min(opts.duration)
+        }
+    };
+    let _ = writeln!(w, "output_interval = {}", f(out_int));
+    match &o.scheme {
+        Some((sch, l)) => match sch.to_uppercase().as_str() {
+            "RK2" => {
+                let _ = writeln!(w, "scheme = \"rk2\"  # tScheme RK2, line {l}");
+            }
+            "RK4" => {
+                let _ = writeln!(w, "scheme = \"rk4\"  # tScheme RK4, line {l}");
+            }
+            _ => {
+                let _ = writeln!(
+                    w,
+                    "# tScheme {sch} (line {l}) has no counterpart: cablesim's default \
+                     (symplectic Euler) is used."
+                );
+            }
+        },
+        None => {
+            let _ = writeln!(
+                w,
+                "# No tScheme: cablesim's default scheme (symplectic Euler), not MoorDyn's RK2."
+            );
+        }
+    }
+
+    let _ = writeln!(w, "\n[environment]");
+    let src = |l: usize, what: &str| {
+        if l == 0 {
+            format!("MoorDyn's default {what}")
+        } else {
+            format!("{what}, line {l}")
+        }
+    };
+    let _ = writeln!(w, "gravity = {}  # m/s^2, {}", f(o.g.0), src(o.g.1, "g"));
+    let _ = writeln!(
+        w,
+        "water_density = {}  # kg/m^3, {}",
+        f(o.rho.0),
+        src(o.rho.1, "rho")
+    );
+    let _ = writeln!(
+        w,
+        "depth = {}  # m, seabed at z = -depth ({depth_note})",
+        f(depth)
+    );
+    match &current {
+        None => {
+            let _ = writeln!(
+                w,
+                "# Still water: MoorDyn's WaveKin and Currents are 0 (other values are refused)."
+            );
+        }
+        Some((mode, l, rows, file)) => {
+            let _ = writeln!(
+                w,
+                "# Currents = {mode} (line {l}): MoorDyn's steady profile from {file}, \
+                 linear in z and held beyond its ends, as here. Rows [z, ux, uy, uz] (m, m/s)."
+            );
+            let _ = writeln!(w, "current_profile = [");
+            for r in rows {
+                let _ = writeln!(
+                    w,
+                    "    [{}, {}, {}, {}],",
+                    f(r[0]),
+                    f(r[1]),
+                    f(r[2]),
+                    f(r[3])
+                );
+            }
+            let _ = writeln!(w, "]");
+        }
+    }
+    let _ = writeln!(w, "\n[environment.seabed]");
+    let _ = writeln!(
+        w,
+        "# MoorDyn's kBot and cBot are pressures on the area d l of each node: per metre of \
+         line that is kBot d and cBot d, with d = {} m (line type \"{}\").",
+        f(d_ref),
+        file.line_types[main_type].name
+    );
+    let _ = writeln!(
+        w,
+        "stiffness = {}  # N/m per m: kBot = {} Pa/m ({}) times d",
+        f(o.kbot.0 * d_ref),
+        f(o.kbot.0),
+        src(o.kbot.1, "kBot")
+    );
+    let _ = writeln!(
+        w,
+        "damping = {}  # N s/m per m: cBot = {} Pa s/m ({}) times d",
+        f(o.cbot.0 * d_ref),
+        f(o.cbot.0),
+        src(o.cbot.1, "cBot")
+    );
+    match o.mu {
+        Some((m, l)) => {
+            let _ = writeln!(w, "friction = {}  # line {l}", f(m));
+            let fd = o.fric_damp.map(|x| x.0).unwrap_or(200.0);
+            let _ = writeln!(
+                w,
+                "# MoorDyn's friction is a damping mu FricDamp v (FricDamp = {}) capped at mu \
+                 times the contact force; cablesim's is mu times the contact force, linear \
+                 below friction_velocity (its default). Both vanish at rest.",
+                f(fd)
+            );
+        }
+        None => {
+            let _ = writeln!(w, "friction = {}  # no FrictionCoefficient option", f(mu));
+        }
+    }
+    if !o.ic.is_empty() {
+        let list: Vec<String> =
+            o.ic.iter()
+                .map(|(n, v, l)| format!("{n} = {v} (line {l})"))
+                .collect();
+        let _ = writeln!(
+            w,
+            "\n# MoorDyn's initial-condition settings ({}) are not needed: each cable starts \
+             from the elastic catenary relaxed to the static equilibrium by Newton's method \
+             (initial = \"catenary\").",
+            list.join(", ")
+        );
+    }
+    if !o.ignored.is_empty() {
+        let list: Vec<String> = o
+            .ignored
+            .iter()
+            .map(|(n, l)| format!("{n} (line {l})"))
+            .collect();
+        let _ = writeln!(
+            w,
+            "# Options about MoorDyn's own logs and outputs, not used: {}.",
+            list.join(", ")
+        );
+    }
+
+    for lt in &lts {
+        let t = &file.line_types[lt.src];
+        let (_, ea, _) = types[t.name.as_str()];
+        let _ = writeln!(w, "\n[[line_types]]");
+        let _ = writeln!(w, "# MoorDyn line type \"{}\", line {}.", t.name, t.line);
+        let _ = writeln!(w, "name = {}", quote(&lt.name));
+        let _ = writeln!(w, "diameter = {}  # m, Diam (volume-equivalent)", f(t.diam));
+        let _ = writeln!(w, "mass_per_length = {}  # kg/m", f(t.mass));
+        let _ = writeln!(w, "ea = {}  # N", f(ea));
+        let _ = writeln!(w, "# {}", lt.note);
+        let _ = writeln!(w, "damping = {}  # s", f(lt.c));
+        let (cd, cdax, ca) = match file.version {
+            Version::V1 => ("Cdn", "Cdt", "Can"),
+            Version::V2 => ("Cd", "CdAx", "Ca"),
+        };
+        let _ = writeln!(w, "cn = {}  # {cd}, on the frontal area d l", f(t.cd));
+        let _ = writeln!(
+            w,
+            "ct = {}  # {cdax}, on the surface area pi d l (as cablesim's ct)",
+            f(t.cdax)
+        );
+        let _ = writeln!(w, "cm = {}  # {ca}, normal added mass", f(t.ca));
+        if t.ei > 0.0 {
+            let _ = writeln!(
+                w,
+                "ei = {}  # N m^2: used by the ANCF reference only, ignored by the lumped-mass model",
+                f(t.ei)
+            );
+        }
+    }
+
+    // Points: free points, and fixed or coupled ones that several lines share, are
+    // `[[points]]`; a fixed or coupled point of one line is written at that line's end.
+    // A coupled (vessel) point is a held end, still or following a motion file: the
+    // scenario format has no bodies yet (`[[bodies]]` is being added), so a vessel's
+    // fairleads cannot yet share one rigid body's motion; once it exists they could.
+    let named: Vec<bool> = (0..file.points.len())
+        .map(|i| kinds[i] == PointKind::Free || uses[i] > 1)
+        .collect();
+    let end_table = |i: usize| -> String {
+        let r = &file.points[i];
+        match kinds[i] {
+            PointKind::Fixed => format!("fixed = {}", v3(r.pos)),
+            PointKind::Coupled => match opts.motions.get(&r.id) {
+                Some(file) => format!("route = \"table\", file = {}", quote(file)),
+                None => format!("fixed = {}", v3(r.pos)),
+            },
+            PointKind::Free => format!("free = {}", v3(r.pos)),
+        }
+    };
+    let point_note = |i: usize| -> String {
+        let r = &file.points[i];
+        let mut n = match kinds[i] {
+            PointKind::Fixed => format!(
+                "point {} ({}, line {}): held in place",
+                r.id, r.attachment, r.line
+            ),
+            PointKind::Coupled => match opts.motions.get(&r.id) {
+                Some(_) => format!(
+                    "point {} ({}, line {}): driven by the motion file (t,x,y,z); a body \
+                     attachment once cablesim has bodies",
+                    r.id, r.attachment, r.line
+                ),
+                None => format!(
+                    "point {} ({}, line {}): the vessel's point, held still (no motion file \
+                     given; `cablesim convert --motion {}=FILE.csv` drives it); a body \
+                     attachment once cablesim has bodies",
+                    r.id, r.attachment, r.line, r.id
+                ),
+            },
+            PointKind::Free => format!(
+                "point {} ({}, line {}): free; its position is a first guess, relaxed to \
+                 equilibrium",
+                r.id, r.attachment, r.line
+            ),
+        };
+        if kinds[i] != PointKind::Free && (r.mass != 0.0 || r.volume != 0.0 || r.cda != 0.0) {
+            n.push_str("; its mass, volume and CdA do not act on a held point");
+        }
+        n
+    };
+    for (i, r) in file.points.iter().enumerate() {
+        if uses[i] == 0 {
+            let _ = writeln!(
+                w,
+                "\n# Point {} (line {}) has no lines: left out.",
+                r.id, r.line
+            );
+            continue;
+        }
+        if !named[i] {
+            continue;
+        }
+        let _ = writeln!(w, "\n[[points]]");
+        let _ = writeln!(w, "# {}", point_note(i));
+        let _ = writeln!(w, "name = \"point{}\"", r.id);
+        let _ = writeln!(w, "{}", end_table(i).replace(", file", "\nfile"));
+        if kinds[i] == PointKind::Free {
+            let _ = writeln!(w, "mass = {}  # kg", f(r.mass));
+            let _ = writeln!(w, "volume = {}  # m^3, buoyancy rho V g", f(r.volume));
+            let _ = writeln!(w, "drag_area = {}  # m^2, CdA", f(r.cda));
+            let _ = writeln!(w, "added_mass = {}  # Ca, on the volume", f(r.ca));
+        }
+    }
+
+    for (k, l) in file.lines.iter().enumerate() {
+        let (a, b) = ends[k];
+        let _ = writeln!(w, "\n[[cables]]");
+        let _ = writeln!(
+            w,
+            "# MoorDyn line {} (line {}): end A = point {a}, end B = point {b}.",
+            l.id, l.line
+        );
+        let _ = writeln!(w, "name = \"line{}\"", l.id);
+        let lt = &lts[line_lt[k]];
+        let _ = writeln!(w, "line_type = {}", quote(&lt.name));
+        let _ = writeln!(w, "length = {}  # m, UnstrLen", f(l.length));
+        let _ = writeln!(w, "segments = {}  # NumSegs", l.segments);
+        for (key, id) in [("start", a), ("end", b)] {
+            let i = id - 1;
+            if named[i] {
+                let _ = writeln!(w, "{key} = {{ point = \"point{id}\" }}");
+            } else {
+                let _ = writeln!(w, "# {}", point_note(i));
+                let _ = writeln!(w, "{key} = {{ {} }}", end_table(i));
+            }
+        }
+        let _ = writeln!(
+            w,
+            "initial = \"catenary\"  # MoorDyn also starts from its static equilibrium"
+        );
+        if l.flags.contains('p') {
+            let _ = writeln!(
+                w,
+                "output_positions = true  # LineOutputs \"{}\" asks for node positions",
+                l.flags
+            );
+        } else if l.flags != "-" {
+            let _ = writeln!(
+                w,
+                "# LineOutputs \"{}\": cablesim writes its own end forces and tensions for \
+                 every cable (end_forces.csv, tensions.csv).",
+                l.flags
+            );
+        }
+    }
+    if !file.outputs.is_empty() {
+        let list: Vec<&str> = file.outputs.iter().map(|(_, s)| s.as_str()).collect();
+        let _ = writeln!(
+            w,
+            "\n# OUTPUTS (line {}): {}. cablesim writes the end forces of every cable \
+             (FairTen/AnchTen correspond to the forces at end B/A) to end_forces.csv and element \
+             tensions to tensions.csv; other channels have no separate file.",
+            file.outputs[0].0,
+            list.join(", ")
+        );
+    }
+    warn.sort_by_key(|x| x.line);
+    Ok(Converted {
+        toml: s,
+        warnings: warn,
+    })
+}
