@@ -1,4 +1,5 @@
-//! The GPU path against the CPU reference: each WGSL function against its Rust twin,
+//! The GPU path against the CPU reference: each WGSL function (the force functions, and
+//! those of a step's element and node passes) against its Rust twin,
 //! the struct layouts and shader validation, and whole runs compared node by node
 //! (f64 and f32, the fused and the two-pass kernel, winch cables, the run driver's
 //! backend choice).
@@ -22,4 +23,5 @@ mod fused;
 mod layout;
 mod parity;
 mod shaders;
+mod step_functions;
 mod winch;
