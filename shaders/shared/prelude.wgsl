@@ -5,7 +5,7 @@
 // (pi/2 split into two `R` values), then appends one stage file.
 //
 // Structs use scalar members only (plus `vec4<R>` in all-vector structs), never
-// `vec3`: keep them in step with `src/gpu/layout.rs` (tests/gpu_layout.rs compares
+// `vec3`: keep them in step with `src/gpu/layout.rs` (tests/gpu/layout.rs compares
 // sizes and offsets through naga).
 //
 // Node positions are relative to their block's origin and stored as an unevaluated

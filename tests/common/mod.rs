@@ -1,9 +1,15 @@
-//! Model builders shared by the integration tests.
+//! Model builders and helpers shared by the integration-test binaries (`tests/cpu`,
+//! `tests/gpu`, `tests/cli`), each of which includes this file as `mod common`.
 #![allow(dead_code)]
 
 use cablesim::model::{
     CableDef, Current, Environment, LineType, ModelDef, NodeDef, PointMass, Route, Seabed,
 };
+
+/// Euclidean distance of two points.
+pub fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
 
 /// The catenary example's line type.
 pub fn wire() -> LineType {

@@ -2,8 +2,7 @@
 //! (Euler-Bernoulli cantilever, elastic catenary), against the GLMF on a driven
 //! dynamic case, and its integrator's energy behaviour and stable step.
 
-mod common;
-
+use crate::common::*;
 use cablesim::ancf::{AncfCable, AncfConfig, AncfEnd, StaticOptions};
 use cablesim::cpu::CpuSolver;
 use cablesim::math::V3;
@@ -12,12 +11,7 @@ use cablesim::options::{Baumgarte, Scheme, SolverOptions};
 use cablesim::physics::catenary::catenary;
 use cablesim::stability::stable_step;
 use cablesim::statics::{relax, RelaxOptions};
-use common::*;
 use std::time::Instant;
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
 
 /// Gravity `g`, no water, no seabed.
 fn dry(g: f64) -> Environment {

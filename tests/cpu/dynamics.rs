@@ -1,11 +1,9 @@
 //! Dynamics of the f64 reference stepper against closed-form physics.
 
-mod common;
-
+use crate::common::*;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{Layout, PointMass, Route};
 use cablesim::options::{Scheme, SolverOptions};
-use common::*;
 
 /// Axial waves travel at sqrt(EA / mbar): a step in end velocity sent down a taut
 /// line reaches two elements at times whose difference gives the speed.

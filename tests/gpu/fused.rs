@@ -6,24 +6,23 @@
 //! (`element_step`, `gather_*`, `node_advance`) in the same order, from the same
 //! values; only where they keep the state differs (workgroup memory and registers, or
 //! storage). So they may differ only where the compiler contracts or reorders
-//! operations differently in the two shaders, by a few ulps per step, and the bound
-//! of tests/gpu_parity.rs applies: after `N` steps positions within `10 N eps L`
+//! operations differently in the two shaders, by a few ulps per step, and the
+//! round-off bound of `compare` (as in `parity`) applies: after `N` steps positions within `10 N eps L`
 //! (`eps` of the precision, `L` the largest coordinate relative to a block origin),
 //! velocities within `omega_max` times that plus `10 N eps V`, tensions within
 //! `EA dr / l0_min + 100 eps (EA + T_max)`. In f64 on lavapipe they agree to the last
 //! bit (the tests print how many values differ). In f32 the f32 contract of
-//! tests/gpu_f32.rs is asserted (nodes within `1e-4` of the cable's length, tensions
+//! `f32_vs_f64` is asserted (nodes within `1e-4` of the cable's length, tensions
 //! within 1% plus 0.1% of the cable's largest), and the f64 bound with f32's `eps` as
 //! well.
 
-mod common;
-
+use crate::common::*;
+use crate::compare::{dist, nodes_within_length, Check, Place, RoundOff, Snapshot};
 use cablesim::gpu::{GpuKernel, GpuSolver, Precision};
 use cablesim::model::{
     CableDef, Current, Environment, Layout, LineType, ModelDef, NodeDef, PointMass, Route, Seabed,
 };
 use cablesim::options::SolverOptions;
-use common::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -194,18 +193,7 @@ fn fleet(n: usize, seed: u64) -> (Layout, Vec<[f64; 3]>) {
     (lay, pos)
 }
 
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-/// Both kernels' state and evaluation after the same `advance` calls.
-struct Run {
-    r: Vec<[f64; 3]>,
-    v: Vec<[f64; 3]>,
-    tension: Vec<f64>,
-    reaction: Vec<[f64; 3]>,
-}
-
+/// A kernel's state and evaluation after the same uneven `advance` calls.
 fn run(
     ctx: &cablesim::gpu::GpuContext,
     lay: &Layout,
@@ -214,7 +202,7 @@ fn run(
     p: Precision,
     kernel: GpuKernel,
     steps: u64,
-) -> Run {
+) -> Snapshot {
     let mut gpu = GpuSolver::new(ctx, lay.clone(), pos, opts, p).unwrap();
     if kernel == GpuKernel::Fused {
         // The fused kernel is the default where it applies.
@@ -242,14 +230,7 @@ fn run(
         GpuKernel::Fused => assert_eq!(t.dispatches, t.submissions),
         GpuKernel::TwoPass => assert_eq!(t.dispatches, 2 * steps),
     }
-    let (r, v) = gpu.state().unwrap();
-    let e = gpu.evaluate().unwrap();
-    Run {
-        r,
-        v,
-        tension: e.tension,
-        reaction: e.reaction,
-    }
+    Snapshot::gpu(format!("GPU {} {}", p.name(), kernel.name()), &mut gpu)
 }
 
 fn compare_kernels(p: Precision) {
@@ -287,94 +268,46 @@ fn compare_kernels(p: Precision) {
         Precision::F32 => f32::EPSILON as f64,
         Precision::F64 => f64::EPSILON,
     };
-    let max = |it: &mut dyn Iterator<Item = f64>| it.fold(0.0f64, f64::max);
-    let dr = max(&mut fused.r.iter().zip(&two.r).map(|(a, b)| dist(*a, *b)));
-    let dv = max(&mut fused.v.iter().zip(&two.v).map(|(a, b)| dist(*a, *b)));
-    let dt_ = max(&mut fused
-        .tension
-        .iter()
-        .zip(&two.tension)
-        .map(|(a, b)| (a - b).abs()));
-    let dre = max(&mut fused
-        .reaction
-        .iter()
-        .zip(&two.reaction)
-        .map(|(a, b)| dist(*a, *b)));
     let differ = fused.r.iter().zip(&two.r).filter(|(a, b)| a != b).count()
         + fused.v.iter().zip(&two.v).filter(|(a, b)| a != b).count();
 
-    // The bound of tests/gpu_parity.rs, with this precision's eps.
-    let n = steps as f64;
-    let scale_l = {
-        let mut s = 0.0f64;
-        for b in &lay.blocks {
-            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
-            let mut m = [0.0; 3];
-            for r in &two.r[n0..n1] {
-                for d in 0..3 {
-                    m[d] += r[d] / (n1 - n0) as f64;
-                }
-            }
-            for r in &two.r[n0..n1] {
-                s = s.max(dist(*r, m) + 1.0);
-            }
-        }
-        s
-    };
-    let scale_v = max(&mut two.v.iter().map(|v| dist(*v, [0.0; 3]))).max(1e-3);
-    let scale_t = max(&mut two.tension.iter().map(|t| t.abs()));
-    let omega = 2.0 / bound.dt;
+    // The round-off bound of `compare`, with this precision's eps.
     let l0_min = lay.elem_l0.iter().cloned().fold(f64::INFINITY, f64::min);
     let ea = lay.line_coefs.iter().map(|c| c.ea).fold(0.0, f64::max);
-    let tol_r = 10.0 * n * eps * scale_l;
-    let tol_v = omega * tol_r + 10.0 * n * eps * scale_v;
-    let tol_t = ea * (tol_r / l0_min + 100.0 * eps) + 100.0 * eps * scale_t;
+    let bounds = RoundOff::new(&lay, &two, steps, eps, ea, l0_min, 2.0 / bound.dt);
+    let d = bounds.check(&name, &lay, &fused, &two);
     eprintln!(
         "{name}: {} cables, {} nodes, {steps} steps, largest displacement {moved:.3} m, {on_bed} nodes on the seabed; \
-         fused vs two-pass: {differ} of {} position and velocity vectors differ at all; |dr| {dr:.3e} m (tol {tol_r:.1e}), \
-         |dv| {dv:.3e} m/s (tol {tol_v:.1e}), |dT| {dt_:.3e} N (tol {tol_t:.1e}, max T {scale_t:.3e} N), |dReaction| {dre:.3e} N",
+         fused vs two-pass: {differ} of {} position and velocity vectors differ at all; {} (max T {:.3e} N)",
         lay.cables.len(),
         lay.n_nodes(),
-        2 * lay.n_nodes()
-    );
-    assert!(
-        dr <= tol_r,
-        "{name}: positions differ by {dr:e} m > {tol_r:e}"
-    );
-    assert!(
-        dv <= tol_v,
-        "{name}: velocities differ by {dv:e} m/s > {tol_v:e}"
-    );
-    assert!(
-        dt_ <= tol_t,
-        "{name}: tensions differ by {dt_:e} N > {tol_t:e}"
-    );
-    assert!(
-        dre <= tol_t,
-        "{name}: reactions differ by {dre:e} N > {tol_t:e}"
+        2 * lay.n_nodes(),
+        d.report(&lay),
+        bounds.scale_t,
     );
     if p == Precision::F32 {
-        // The f32 contract of tests/gpu_f32.rs, per cable.
-        for c in &lay.cables {
-            let l: f64 = c.elements.iter().map(|&e| lay.elem_l0[e as usize]).sum();
-            for &i in &c.nodes {
-                let d = dist(fused.r[i as usize], two.r[i as usize]);
-                assert!(d <= 1e-4 * l, "{name}: cable {} node {i}: {d:e} m", c.name);
-            }
-            let tmax = c
-                .elements
-                .iter()
-                .map(|&e| two.tension[e as usize].abs())
-                .fold(0.0, f64::max);
-            for &e in &c.elements {
-                let (a, b) = (fused.tension[e as usize], two.tension[e as usize]);
-                assert!(
-                    (a - b).abs() <= 0.01 * b.abs() + 1e-3 * tmax,
-                    "{name}: cable {} element {e}: tension {a} vs {b}",
-                    c.name
-                );
-            }
-        }
+        // The f32 contract of tests/gpu/f32_vs_f64.rs, per cable: nodes within 1e-4 of
+        // the length, tensions within 1% plus 0.1% of the cable's largest.
+        let check = Check::new(&name, &lay, &fused, &two);
+        nodes_within_length(&check, &fused.r, &two.r, 1e-4);
+        let tmax: Vec<f64> = lay
+            .cables
+            .iter()
+            .map(|c| {
+                c.elements
+                    .iter()
+                    .map(|&e| two.eval.tension[e as usize].abs())
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        check.within(
+            "tensions",
+            "N",
+            Place::Element,
+            &fused.eval.tension,
+            &two.eval.tension,
+            |e| 0.01 * two.eval.tension[e].abs() + 1e-3 * tmax[lay.elem_cable[e] as usize],
+        );
     }
 }
 

@@ -6,7 +6,7 @@ use cablesim::scenario::Scenario;
 use std::path::Path;
 use std::process::Command;
 
-const EXAMPLE: &str = include_str!("../examples/catenary.toml");
+const EXAMPLE: &str = include_str!("../../examples/catenary.toml");
 
 fn parse(text: &str) -> Result<Scenario, Error> {
     Scenario::parse(text, Path::new("/tmp/case.toml"))
@@ -303,7 +303,7 @@ fn net_panel_shares_knots_between_cables_and_holds_still() {
 
 #[test]
 fn point_references_are_checked() {
-    let net = include_str!("../examples/net_panel.toml");
+    let net = include_str!("../../examples/net_panel.toml");
     fails(
         &net.replace("end = { point = \"k10\" }", "end = { point = \"k99\" }"),
         "end.point",
@@ -327,7 +327,7 @@ fn point_references_are_checked() {
 
 #[test]
 fn cable_arrays_expand_with_variations_and_placement() {
-    let text = include_str!("../examples/fleet.toml");
+    let text = include_str!("../../examples/fleet.toml");
     let a = parse(text).unwrap();
     let b = parse(text).unwrap();
     assert_eq!(a.model.cables.len(), 1000);
@@ -358,7 +358,7 @@ fn cable_arrays_expand_with_variations_and_placement() {
 
 #[test]
 fn cable_array_errors_are_named() {
-    let text = include_str!("../examples/fleet.toml");
+    let text = include_str!("../../examples/fleet.toml");
     fails(
         &text.replace("count = 1000", "count = 0"),
         "cable_arrays[0] (\"mooring\").count",

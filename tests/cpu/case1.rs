@@ -10,6 +10,7 @@
 //! difference in the loads (say 1e-6 relative in the drag) acts from the first step
 //! with a force, not a 1e-12 m offset, and lands far outside.
 
+use crate::common::dist;
 use cablesim::cpu::CpuSolver;
 use cablesim::options::{Formulation, SolverOptions};
 use cablesim::physics::frames::Frame;
@@ -38,10 +39,6 @@ fn last_node_trajectory(formulation: Formulation, perturbation: f64) -> Vec<[f64
     }
     assert!((s.t() - 2000.0).abs() < 1e-6, "ran to {}", s.t());
     traj
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 #[test]

@@ -4,6 +4,7 @@
 //! vertical deployment both must agree on, and clear errors for what the ANCF path
 //! does not take.
 
+use crate::common::dist;
 use cablesim::options::CableModel;
 use cablesim::output::Summary;
 use cablesim::scenario::Scenario;
@@ -12,10 +13,6 @@ use std::path::Path;
 use std::process::Command;
 
 const BIN: &str = env!("CARGO_BIN_EXE_cablesim");
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
 
 /// A scenario from an example with text replaced, written next to the example (so
 /// relative file paths in it still resolve).

@@ -2,15 +2,13 @@
 //! steps split across threads. The split changes nothing: the result equals the
 //! single-thread one bit for bit, and a blow-up names the same node and time.
 
-mod common;
-
+use crate::common::wire;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{
     add_net, Current, Environment, Layout, ModelDef, NetShape, NetSpec, PointMass, Route,
 };
 use cablesim::options::{Baumgarte, Scheme, SolverOptions};
 use cablesim::stability::stable_step;
-use common::wire;
 
 /// A vertical panel of `k x k` knots 2 m apart (`model::add_net`), twines of `seg`
 /// elements, the top row held with one corner towed, sinkers on the bottom row, a

@@ -3,8 +3,7 @@
 //! the top tension of a slow vertical deployment, the mass-flow force against the
 //! material acceleration it stands for, and the errors of impossible schedules.
 
-mod common;
-
+use crate::common::*;
 use cablesim::ale::{mass_flow_forces, PayoutSchedule, Winch, WinchEnd};
 use cablesim::cpu::CpuSolver;
 use cablesim::error::Error;
@@ -12,7 +11,6 @@ use cablesim::math::V3;
 use cablesim::model::{Layout, LineType, ModelDef, PointMass, Route};
 use cablesim::options::{Scheme, SolverOptions};
 use cablesim::scenario::Scenario;
-use common::*;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -459,7 +457,7 @@ fn retrieval_past_the_last_node_and_payout_past_the_drum_are_errors() {
     }
 }
 
-const EXAMPLE: &str = include_str!("../examples/winch_deploy.toml");
+const EXAMPLE: &str = include_str!("../../examples/winch_deploy.toml");
 const WINCH_LINE: &str = r#"winch = { end = "start", schedule = "rates", rates = [[0.0, 0.0], [10.0, 0.5], [110.0, 0.5], [120.0, 0.0]], drum_length = 300.0 }"#;
 
 /// The example with its winch line replaced, parsed as `dir/case.toml`.

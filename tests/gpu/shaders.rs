@@ -1,13 +1,11 @@
 //! Every WGSL stage parses and validates (naga, both precisions, no GPU needed), and
 //! builds into compute pipelines on the adapter when there is one.
 
-mod common;
-
+use crate::common::*;
 use cablesim::gpu::shaders::{self, Stage};
 use cablesim::gpu::{GpuSolver, Precision};
 use cablesim::model::{Layout, PointMass, Route};
 use cablesim::options::SolverOptions;
-use common::*;
 
 fn validate(stage: Stage, p: Precision) -> naga::Module {
     let src = shaders::source(stage, p);

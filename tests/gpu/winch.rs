@@ -4,7 +4,7 @@
 //!   deleted), winch at either end of the cable: the same mesh (node count, inserted
 //!   and deleted counts, physical coordinates) after every remeshing, positions,
 //!   velocities, tensions and the winch reaction to round-off, with the tolerances
-//!   derived as in tests/gpu_parity.rs (`N` steps of a damped model perturbed by a few
+//!   derived as in tests/gpu/parity.rs (`N` steps of a damped model perturbed by a few
 //!   ulps per step: `|dr| <= 10 N eps L`, and from it the velocity and tension bounds);
 //!   and the same with several cables in one packed layout, remeshing at different
 //!   steps.
@@ -18,16 +18,14 @@
 //! - `cablesim run examples/winch_deploy.toml --backend gpu` runs on the GPU and agrees
 //!   with `--backend cpu`; `--backend auto` still picks the CPU on a software adapter.
 
-mod common;
-
+use crate::common::*;
+use crate::compare::{dist, end_forces, norm, Check, Place, RoundOff, Snapshot};
 use cablesim::ale::{PayoutSchedule, Winch, WinchEnd};
 use cablesim::cpu::{CpuSolver, Evaluation};
 use cablesim::gpu::{GpuContext, GpuSolver, Precision};
 use cablesim::model::{Layout, ModelDef, PointMass, Route};
 use cablesim::options::SolverOptions;
-use cablesim::output::end_forces;
 use cablesim::scenario::Scenario;
-use common::*;
 use std::process::Command;
 use std::sync::Arc;
 
@@ -105,29 +103,8 @@ fn winch(end: WinchEnd, schedule: PayoutSchedule, l_s: f64) -> Winch {
     }
 }
 
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
 fn max_of(it: impl Iterator<Item = f64>) -> f64 {
     it.fold(0.0, f64::max)
-}
-
-/// `|F_gpu - F_cpu|` of both ends of cable `c`, and `|F_cpu|` of each.
-fn end_force_diffs(
-    lay_g: &Layout,
-    eg: &Evaluation,
-    lay_c: &Layout,
-    ec: &Evaluation,
-    c: usize,
-) -> [(f64, f64); 2] {
-    let fg = end_forces(lay_g, eg, &lay_g.cables[c]);
-    let fc = end_forces(lay_c, ec, &lay_c.cables[c]);
-    let n = |a: [f64; 3]| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    [
-        (dist(fg.start, fc.start), n(fc.start)),
-        (dist(fg.end, fc.end), n(fc.end)),
-    ]
 }
 
 /// Mass of cable `c` in the water from an evaluation (twice each element's half mass),
@@ -166,7 +143,7 @@ fn variable_element(lay: &Layout, c: usize, end: WinchEnd) -> usize {
 /// Runs `def` with `winches` on the CPU (f64, general path) and the GPU (f64) for
 /// `steps` steps of `dt`, comparing every 500 steps: the winch status of every winch
 /// and the layout are identical, positions, velocities, tensions, end forces and
-/// reactions within the round-off bounds of tests/gpu_parity.rs, and the mass in the
+/// reactions within the round-off bounds of tests/gpu/parity.rs, and the mass in the
 /// water of each winch cable from the GPU's half masses is `mbar L(t)`. Returns the
 /// element counts each winch cable went through, and the final winch status.
 fn compare_f64(
@@ -232,70 +209,38 @@ fn compare_f64(
                 m.push(s.elements);
             }
         }
-        // Round-off bounds after `done` steps (tests/gpu_parity.rs): the largest
-        // coordinate relative to its block's mean (what the GPU's origins leave).
-        let nf = done as f64;
-        let mut scale_l = 0.0f64;
-        for b in &cpu.layout().blocks {
-            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
-            let k = (n1 - n0) as f64;
-            let mean = cpu.r[n0..n1].iter().fold([0.0; 3], |m, p| {
-                let p = p.to_f64();
-                [m[0] + p[0] / k, m[1] + p[1] / k, m[2] + p[2] / k]
-            });
-            scale_l = scale_l.max(max_of(
-                cpu.r[n0..n1].iter().map(|p| dist(p.to_f64(), mean) + 1.0),
-            ));
-        }
-        let scale_v = max_of(cpu.v.iter().map(|v| v.norm())).max(1e-3);
-        let tol_r = 10.0 * nf * EPS * scale_l;
-        let tol_v = omega * tol_r + 10.0 * nf * EPS * scale_v;
-        let (r, v) = gpu.state().unwrap();
-        let dr = max_of(r.iter().zip(&cpu.r).map(|(a, b)| dist(*a, b.to_f64())));
-        let dv = max_of(v.iter().zip(&cpu.v).map(|(a, b)| dist(*a, b.to_f64())));
-        let ec = cpu.evaluate().unwrap();
-        let eg = gpu.evaluate().unwrap();
-        let scale_t = max_of(ec.tension.iter().map(|t| t.abs()));
-        let tol_t = rope().ea * (tol_r / l0_min + 100.0 * EPS) + 100.0 * EPS * scale_t;
-        let dt_ = max_of(
-            eg.tension
-                .iter()
-                .zip(&ec.tension)
-                .map(|(a, b)| (a - b).abs()),
-        );
-        let df =
-            max_of((0..cpu.layout().cables.len()).flat_map(|c| {
-                end_force_diffs(gpu.layout(), &eg, cpu.layout(), &ec, c).map(|x| x.0)
-            }));
-        let dreact = max_of(
-            eg.reaction
-                .iter()
-                .zip(&ec.reaction)
-                .map(|(a, b)| dist(*a, *b)),
-        );
-        let t = cpu.t();
-        assert!(dr <= tol_r, "{label} t = {t} s: |dr| {dr:e} > {tol_r:e}");
-        assert!(dv <= tol_v, "{label} t = {t} s: |dv| {dv:e} > {tol_v:e}");
-        assert!(dt_ <= tol_t, "{label} t = {t} s: |dT| {dt_:e} > {tol_t:e}");
-        assert!(
-            df <= tol_t && dreact <= tol_t,
-            "{label} t = {t} s: end forces differ by {df:e}, reactions by {dreact:e} > {tol_t:e}"
-        );
+        // Round-off bounds after `done` steps (`compare`).
+        let c = Snapshot::cpu("CPU f64", &cpu);
+        let g = Snapshot::gpu("GPU f64", &mut gpu);
+        let eg = &g.eval;
+        let bounds = RoundOff::new(&cpu.layout(), &c, done, EPS, rope().ea, l0_min, omega);
+        let name = format!("{label} t = {} s", cpu.t());
+        let d = bounds.check(&name, &cpu.layout(), &g, &c);
+        let df = Check::new(&name, &cpu.layout(), &g, &c)
+            .within(
+                "end forces",
+                "N",
+                Place::CableEnd,
+                &end_forces(&gpu.layout(), &g.eval),
+                &end_forces(&cpu.layout(), &c.eval),
+                |_| bounds.force,
+            )
+            .map_or(0.0, |w| w.diff);
         (worst_r, worst_v, worst_t, worst_f) = (
-            worst_r.max(dr),
-            worst_v.max(dv),
-            worst_t.max(dt_),
-            worst_f.max(df.max(dreact)),
+            worst_r.max(d.r.diff),
+            worst_v.max(d.v.diff),
+            worst_t.max(d.tension.diff),
+            worst_f.max(df.max(d.reaction.diff)),
         );
         (ratio_r, ratio_v, ratio_t) = (
-            ratio_r.max(dr / tol_r),
-            ratio_v.max(dv / tol_v),
-            ratio_t.max(dt_ / tol_t),
+            ratio_r.max(d.r.ratio()),
+            ratio_v.max(d.v.ratio()),
+            ratio_t.max(d.tension.ratio()),
         );
         // Mass in the water from the GPU's own half masses: mbar L(t).
         for (w, st) in winches.iter().zip(&sg) {
-            let var = variable_element(gpu.layout(), w.cable, w.end);
-            let (mass, len) = mass_and_length(gpu.layout(), &eg, w.cable, var, st.variable_l0);
+            let var = variable_element(&gpu.layout(), w.cable, w.end);
+            let (mass, len) = mass_and_length(&gpu.layout(), eg, w.cable, var, st.variable_l0);
             let l = st.deployed_length;
             assert!((len - l).abs() <= 1e-12 * l, "layout length {len} vs L {l}");
             worst_mass = worst_mass.max((mass - mbar * l).abs() / (mbar * l));
@@ -429,36 +374,45 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
         let (sc_, sg) = (&cpu.winch_status()[0], &gpu.winch_status()[0]);
         assert_eq!(sc_, sg, "{path}: winch status at t = {} s", cpu.t());
         let l = sg.deployed_length;
-        let (r, _) = gpu.state().unwrap();
+        let c = Snapshot::cpu("CPU f64", &cpu);
+        let g = Snapshot::gpu("GPU f32", &mut gpu);
+        let name = format!("{path} t = {} s (L = {l} m)", cpu.t());
+        let check = Check::new(&name, &cpu.layout(), &g, &c);
         let last = |nodes: &[u32]| nodes[nodes.len() - 1] as usize;
         let (ig, ic) = (
             last(&gpu.layout().cables[ci].nodes),
             last(&cpu.layout().cables[ci].nodes),
         );
-        let dpos = dist(r[ig], cpu.r[ic].to_f64());
-        assert!(
-            dpos <= 1e-4 * l,
-            "{path} t = {} s: last node {:?} vs CPU {:?} ({dpos:e} m, L = {l} m)",
-            cpu.t(),
-            r[ig],
-            cpu.r[ic].to_f64()
+        let w = check.one(
+            "last node positions",
+            "m",
+            Place::Node,
+            ic,
+            g.r[ig],
+            c.r[ic],
+            1e-4 * l,
         );
-        worst_pos = worst_pos.max(dpos / l);
-        let ec = cpu.evaluate().unwrap();
-        let eg = gpu.evaluate().unwrap();
-        for (k, (d, f)) in end_force_diffs(gpu.layout(), &eg, cpu.layout(), &ec, ci)
-            .into_iter()
-            .enumerate()
-        {
-            assert!(
-                d <= 0.01 * f,
-                "{path} t = {} s: end force {k} differs by {d} N of {f} N",
-                cpu.t()
+        worst_pos = worst_pos.max(w.diff / l);
+        let (fg, fc) = (
+            end_forces(&gpu.layout(), &g.eval),
+            end_forces(&cpu.layout(), &c.eval),
+        );
+        for k in [2 * ci, 2 * ci + 1] {
+            let f = norm(fc[k]);
+            let w = check.one(
+                "end forces",
+                "N",
+                Place::CableEnd,
+                k,
+                fg[k],
+                fc[k],
+                0.01 * f,
             );
-            worst_force = worst_force.max(d / f);
+            worst_force = worst_force.max(w.diff / f);
         }
-        let var = variable_element(gpu.layout(), ci, end);
-        let (mass, len) = mass_and_length(gpu.layout(), &eg, ci, var, sg.variable_l0);
+        let eg = g.eval;
+        let var = variable_element(&gpu.layout(), ci, end);
+        let (mass, len) = mass_and_length(&gpu.layout(), &eg, ci, var, sg.variable_l0);
         assert!((len - l).abs() <= 1e-12 * l, "layout length {len} vs L {l}");
         worst_mass = worst_mass.max((mass - mbar * l).abs() / (mbar * l));
     }

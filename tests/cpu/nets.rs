@@ -59,11 +59,12 @@ sinker = { mass = 3.0, volume = 1.0e-3 }
 "#;
 
 fn load(text: &str) -> Result<Scenario, Error> {
-    let path = std::env::temp_dir().join(format!("cablesim_nets_{}.toml", std::process::id()));
+    // A directory of its own per call: the tests of this binary run in parallel threads
+    // of one process, so a name made from the process id alone would be shared.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("nets.toml");
     std::fs::write(&path, text).unwrap();
-    let r = Scenario::load(&path);
-    let _ = std::fs::remove_file(&path);
-    r
+    Scenario::load(&path)
 }
 
 /// A panel of 9 x 7 knots in still water settles; its top row then carries the wet

@@ -1,4 +1,5 @@
-//! Each WGSL force function against its Rust twin, on random inputs, at f32 and f64.
+//! Each WGSL force function against its Rust twin, on random inputs, at f32 and f64
+//! (the functions of a step's element and node passes: `step_functions`).
 //!
 //! A test kernel (below) calls one prelude function per invocation; the Rust twin runs
 //! in f64 on the very same inputs (the values the GPU received, converted back), so
@@ -8,15 +9,13 @@
 //! cancellation is allowed for, and a missing or wrong term is not: it is of the size
 //! of `scale`).
 
-mod common;
-
+use crate::common::*;
 use cablesim::gpu::layout::*;
 use cablesim::gpu::solver::{rebased_route, route_samples};
 use cablesim::gpu::{shaders, GpuContext, Precision};
 use cablesim::math::{Sym3, V3};
 use cablesim::model::{Current, Route};
 use cablesim::physics::{glmf_element, seabed_force, Coefs, ElementInput, SeabedCoefs};
-use common::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -131,7 +130,8 @@ fn t_current(@builtin(global_invocation_id) gid: vec3<u32>) {
 }
 "#;
 
-/// Runs `entry` over `input` with `group0` bound at group 0 and returns `n_out` values.
+/// Runs `entry` of [`KERNELS`] over `input` with `group0` bound at group 0 and returns
+/// `n_out` values.
 fn run<R: GpuReal>(
     ctx: &GpuContext,
     p: Precision,
@@ -141,9 +141,27 @@ fn run<R: GpuReal>(
     n_threads: usize,
     n_out: usize,
 ) -> Vec<R> {
+    run_kernels(ctx, p, KERNELS, entry, group0, input, n_threads, n_out)
+}
+
+/// Runs `entry` of the test kernels `kernels` (WGSL appended to the prelude, reading
+/// `tin` and writing `tout` at group 1) over `input` with `group0` (binding, bytes) bound
+/// at group 0, on `n_threads` invocations, and returns the first `n_out` values of
+/// `tout`.
+#[allow(clippy::too_many_arguments)]
+pub fn run_kernels<R: GpuReal>(
+    ctx: &GpuContext,
+    p: Precision,
+    kernels: &str,
+    entry: &str,
+    group0: &[(u32, Vec<u8>)],
+    input: &[R],
+    n_threads: usize,
+    n_out: usize,
+) -> Vec<R> {
     use wgpu::util::DeviceExt;
     let dev = &ctx.device;
-    let src = format!("{}\n{KERNELS}", shaders::prelude(p));
+    let src = format!("{}\n{kernels}", shaders::prelude(p));
     let scope = dev.push_error_scope(wgpu::ErrorFilter::Validation);
     let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("function parity"),
@@ -225,21 +243,21 @@ fn run<R: GpuReal>(
 }
 
 /// Records the worst `|gpu - rust| / (eps scale)` of a function.
-struct Worst {
+pub struct Worst {
     name: &'static str,
     eps: f64,
     worst: f64,
 }
 
 impl Worst {
-    fn new<R: GpuReal>(name: &'static str) -> Self {
+    pub fn new<R: GpuReal>(name: &'static str) -> Self {
         Self {
             name,
             eps: R::epsilon().f64(),
             worst: 0.0,
         }
     }
-    fn check(&mut self, what: &str, case: usize, gpu: f64, rust: f64, scale: f64) {
+    pub fn check(&mut self, what: &str, case: usize, gpu: f64, rust: f64, scale: f64) {
         let e = (gpu - rust).abs() / (self.eps * scale.max(f64::MIN_POSITIVE));
         self.worst = self.worst.max(e);
         assert!(
@@ -248,12 +266,12 @@ impl Worst {
             self.name
         );
     }
-    fn v(&mut self, what: &str, case: usize, gpu: &[f64], rust: V3<f64>, scale: f64) {
+    pub fn v(&mut self, what: &str, case: usize, gpu: &[f64], rust: V3<f64>, scale: f64) {
         for (k, r) in [rust.x, rust.y, rust.z].into_iter().enumerate() {
             self.check(what, case, gpu[k], r, scale);
         }
     }
-    fn report(&self, p: Precision) {
+    pub fn report(&self, p: Precision) {
         eprintln!(
             "{} ({}): worst difference {:.2} eps x scale (limit 16)",
             self.name,
@@ -263,12 +281,12 @@ impl Worst {
     }
 }
 
-fn rv(rng: &mut ChaCha8Rng, a: f64) -> [f64; 3] {
+pub fn rv(rng: &mut ChaCha8Rng, a: f64) -> [f64; 3] {
     [0, 1, 2].map(|_| rng.gen_range(-a..a))
 }
 
 /// Inputs as `R`, and back as f64 (what the GPU actually got).
-fn to_r<R: GpuReal>(x: &[f64]) -> (Vec<R>, Vec<f64>) {
+pub fn to_r<R: GpuReal>(x: &[f64]) -> (Vec<R>, Vec<f64>) {
     let r: Vec<R> = x.iter().map(|&v| R::c(v)).collect();
     let back = r.iter().map(|v| v.f64()).collect();
     (r, back)

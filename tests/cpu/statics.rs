@@ -1,6 +1,7 @@
 //! Static equilibrium of the discrete model: relaxed lines stay still under the dynamic
 //! solver, and the relaxed mooring line converges to the analytic catenary.
 
+use crate::common::dist;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{
     CableDef, Current, Environment, Layout, LineType, ModelDef, NodeDef, PointMass, Route, Seabed,
@@ -90,10 +91,6 @@ fn relaxed(lay: &Layout, pos: &mut [[f64; 3]]) -> RelaxReport {
     let rep = relax(lay, pos, &RelaxOptions::default()).unwrap();
     assert!(rep.converged, "{rep:?}");
     rep
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 /// Time step of the dynamic checks. The symplectic scheme is stable for

@@ -1,6 +1,6 @@
 //! GPU f64 against the CPU f64 reference path, run for run.
 //!
-//! Contract: the same physics in the same order of passes; the arithmetic differs only
+//! Contract (the round-off bound of `compare`): the same physics in the same order of passes; the arithmetic differs only
 //! in round-off (positions relative to a block origin and kept as compensated pairs,
 //! routes rebased to each submission's start, the shaders' own sine and cosine, the
 //! strain formed as `(l - l0) / l0`, fused or reordered operations in the driver).
@@ -14,7 +14,7 @@
 //! about 2e-12 m after 1000 to 16000 steps of the line below, where the CPU's own two
 //! f64 paths, chain kernel and general, differ by about 5e-13 m. The bound does not
 //! hold for a model that amplifies round-off exponentially, such as the violently
-//! released line of tests/chain_kernel.rs past 3000 steps, where the two CPU paths
+//! released line of tests/cpu/chain_kernel.rs past 3000 steps, where the two CPU paths
 //! part just as fast.) A position difference `dr` in the fastest mode (the
 //! axial mode of the shortest element, `omega_max = 2 / dt_stable` from
 //! `stability::stable_step`) comes with a velocity difference `omega_max dr`, plus the
@@ -22,8 +22,8 @@
 //! `EA dr / l0_min`, plus the strain's own round-off `eps EA` and `eps T_max`.
 //! Reactions (`F - M a` at driven nodes) get the tension tolerance.
 
-mod common;
-
+use crate::common::*;
+use crate::compare::{dist, RoundOff, Snapshot};
 use cablesim::cpu::CpuSolver;
 use cablesim::gpu::{GpuKernel, GpuSolver, Precision};
 use cablesim::model::{
@@ -31,10 +31,9 @@ use cablesim::model::{
 };
 use cablesim::options::SolverOptions;
 use cablesim::scenario::Scenario;
-use common::*;
 use std::path::Path;
 
-const CATENARY: &str = include_str!("../examples/catenary.toml");
+const CATENARY: &str = include_str!("../../examples/catenary.toml");
 
 const EPS: f64 = f64::EPSILON;
 
@@ -191,67 +190,40 @@ fn net_model() -> (Layout, Vec<[f64; 3]>) {
     Layout::build(&def).unwrap()
 }
 
-struct Diff {
-    r: f64,
-    v: f64,
-    tension: f64,
-    reaction: f64,
-    scale_l: f64,
-    scale_v: f64,
-    scale_t: f64,
-    omega: f64,
-    l0_min: f64,
-    moved: f64,
-}
-
 /// Runs the CPU path and the GPU path on each kernel (the fused one, asserted to be
 /// what `GpuSolver` picks for these models, and the two-pass one) for `steps` steps
-/// and returns the largest differences over both kernels.
+/// and asserts the round-off contract of the module doc on each (`ea` the line's
+/// axial stiffness, N).
 fn compare(
     ctx: &cablesim::gpu::GpuContext,
+    name: &str,
     lay: Layout,
     pos: &[[f64; 3]],
     opts: SolverOptions,
     steps: u64,
-) -> Diff {
-    let mut worst: Option<Diff> = None;
+    ea: f64,
+) {
     for kernel in [GpuKernel::Fused, GpuKernel::TwoPass] {
-        let d = compare_on(ctx, lay.clone(), pos, opts, steps, kernel);
-        eprintln!(
-            "{}: |dr| {:.3e} m, |dv| {:.3e} m/s, |dT| {:.3e} N, |dReaction| {:.3e} N",
-            kernel.name(),
-            d.r,
-            d.v,
-            d.tension,
-            d.reaction
-        );
-        worst = Some(match worst {
-            None => d,
-            Some(w) => Diff {
-                r: w.r.max(d.r),
-                v: w.v.max(d.v),
-                tension: w.tension.max(d.tension),
-                reaction: w.reaction.max(d.reaction),
-                ..w
-            },
-        });
+        compare_on(ctx, name, lay.clone(), pos, opts, steps, ea, kernel);
     }
-    worst.expect("two kernels")
 }
 
+#[allow(clippy::too_many_arguments)]
 fn compare_on(
     ctx: &cablesim::gpu::GpuContext,
+    name: &str,
     lay: Layout,
     pos: &[[f64; 3]],
     opts: SolverOptions,
     steps: u64,
+    ea: f64,
     kernel: GpuKernel,
-) -> Diff {
+) {
     let omega = 2.0 / cablesim::stability::stable_step(&lay, opts.scheme, opts.baumgarte).dt;
     let l0_min = lay.elem_l0.iter().cloned().fold(f64::INFINITY, f64::min);
     let mut cpu = CpuSolver::new(lay.clone(), pos, opts);
     cpu.use_chain_kernel = false;
-    let mut gpu = GpuSolver::new(ctx, lay, pos, opts, Precision::F64).unwrap();
+    let mut gpu = GpuSolver::new(ctx, lay.clone(), pos, opts, Precision::F64).unwrap();
     if kernel == GpuKernel::Fused {
         assert_eq!(gpu.kernel(), kernel, "{:?}", gpu.fused_unavailable());
     }
@@ -268,83 +240,21 @@ fn compare_on(
         done += n;
     }
     assert_eq!(gpu.steps(), cpu.steps());
-    let (r, v) = gpu.state().unwrap();
-    let ec = cpu.evaluate().unwrap();
-    let eg = gpu.evaluate().unwrap();
-    let max = |it: &mut dyn Iterator<Item = f64>| it.fold(0.0f64, f64::max);
-    let dist = |a: [f64; 3], b: [f64; 3]| {
-        ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-    };
-    let moved = max(&mut cpu.r.iter().zip(pos).map(|(a, b)| dist(a.to_f64(), *b)));
+    let c = Snapshot::cpu("CPU f64", &cpu);
+    let g = Snapshot::gpu(format!("GPU f64 {}", kernel.name()), &mut gpu);
+    let moved =
+        c.r.iter()
+            .zip(pos)
+            .map(|(a, b)| dist(*a, *b))
+            .fold(0.0f64, f64::max);
     assert!(moved > 0.01, "the model should move: {moved} m");
-    let origin_scale = {
-        // Largest coordinate relative to a block's mean: what the GPU's origins leave.
-        let mut s = 0.0f64;
-        for b in &cpu.layout().blocks {
-            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
-            let mut m = [0.0; 3];
-            for p in &cpu.r[n0..n1] {
-                for (md, pd) in m.iter_mut().zip(p.to_f64()) {
-                    *md += pd / (n1 - n0) as f64;
-                }
-            }
-            for p in &cpu.r[n0..n1] {
-                s = s.max(dist(p.to_f64(), m) + 1.0);
-            }
-        }
-        s
-    };
-    Diff {
-        r: max(&mut r.iter().zip(&cpu.r).map(|(a, b)| dist(*a, b.to_f64()))),
-        v: max(&mut v.iter().zip(&cpu.v).map(|(a, b)| dist(*a, b.to_f64()))),
-        tension: max(&mut eg
-            .tension
-            .iter()
-            .zip(&ec.tension)
-            .map(|(a, b)| (a - b).abs())),
-        reaction: max(&mut eg
-            .reaction
-            .iter()
-            .zip(&ec.reaction)
-            .map(|(a, b)| dist(*a, *b))),
-        scale_l: origin_scale,
-        scale_v: max(&mut cpu.v.iter().map(|x| x.norm())).max(1e-3),
-        scale_t: max(&mut ec.tension.iter().map(|x| x.abs())),
-        omega,
-        l0_min,
-        moved,
-    }
-}
-
-fn check(name: &str, d: &Diff, steps: u64, ea: f64) {
-    let n = steps as f64;
-    let tol_r = 10.0 * n * EPS * d.scale_l;
-    let tol_v = d.omega * tol_r + 10.0 * n * EPS * d.scale_v;
-    let tol_t = ea * (tol_r / d.l0_min + 100.0 * EPS) + 100.0 * EPS * d.scale_t;
+    let bounds = RoundOff::new(&lay, &c, steps, EPS, ea, l0_min, omega);
+    let name = format!("{name} ({})", kernel.name());
+    let d = bounds.check(&name, &lay, &g, &c);
     eprintln!(
-        "{name}: {steps} steps, largest displacement {:.3} m: |dr| {:.3e} m (tol {tol_r:.1e}), |dv| {:.3e} m/s (tol {tol_v:.1e}, omega_max {:.0} rad/s), \
-         |dT| {:.3e} N (tol {tol_t:.1e}, max T {:.3e} N), |dReaction| {:.3e} N",
-        d.moved, d.r, d.v, d.omega, d.tension, d.scale_t, d.reaction
-    );
-    assert!(
-        d.r <= tol_r,
-        "{name}: positions differ by {:e} m > {tol_r:e}",
-        d.r
-    );
-    assert!(
-        d.v <= tol_v,
-        "{name}: velocities differ by {:e} m/s > {tol_v:e}",
-        d.v
-    );
-    assert!(
-        d.tension <= tol_t,
-        "{name}: tensions differ by {:e} N > {tol_t:e}",
-        d.tension
-    );
-    assert!(
-        d.reaction <= tol_t,
-        "{name}: reactions differ by {:e} N > {tol_t:e}",
-        d.reaction
+        "{name}: {steps} steps, largest displacement {moved:.3} m, omega_max {omega:.0} rad/s, max T {:.3e} N: {}",
+        bounds.scale_t,
+        d.report(&lay)
     );
 }
 
@@ -360,8 +270,7 @@ fn gpu_f64_matches_cpu_f64_on_a_line() {
         ..Default::default()
     };
     let steps = 4000;
-    let d = compare(&ctx, lay, &pos, opts, steps);
-    check("line", &d, steps, wire().ea);
+    compare(&ctx, "line", lay, &pos, opts, steps, wire().ea);
 }
 
 #[test]
@@ -376,8 +285,7 @@ fn gpu_f64_matches_cpu_f64_on_a_net() {
         ..Default::default()
     };
     let steps = 3000;
-    let d = compare(&ctx, lay, &pos, opts, steps);
-    check("net", &d, steps, 2.0e6);
+    compare(&ctx, "net", lay, &pos, opts, steps, 2.0e6);
 }
 
 /// The line of [`gpu_f64_matches_cpu_f64_on_a_line`] with its fairlead on a table
@@ -417,8 +325,7 @@ fn gpu_f64_matches_cpu_f64_with_a_table_route() {
     }
     lay.routes[c] = Route::Table { t, p: pts };
     let steps = 4000;
-    let d = compare(&ctx, lay, &pos, opts, steps);
-    check("table route", &d, steps, wire().ea);
+    compare(&ctx, "table route", lay, &pos, opts, steps, wire().ea);
 }
 
 /// A step far above the stable one blows up on the GPU as on the CPU: the error names

@@ -7,12 +7,10 @@
 //! path fixes up (route-driven node, point mass with drag, seabed friction, a current
 //! profile).
 
-mod common;
-
+use crate::common::*;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{Current, Environment, Layout, PointMass, Route, Seabed};
 use cablesim::options::{Scheme, SolverOptions};
-use common::*;
 
 fn model() -> (Layout, Vec<[f64; 3]>) {
     let env = Environment {

@@ -1,0 +1,15 @@
+//! Scenario files and the command line: parsing and its errors, every example,
+//! end-to-end runs of the `cablesim` binary, and the ANCF model chosen from a scenario.
+//!
+//! One test binary (see `tests/cpu/main.rs` for why); shared helpers are in
+//! `tests/common`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod ancf_scenario;
+mod end_to_end;
+mod examples;
+mod moordyn_input;
+mod scenario;
+mod simulation_api;

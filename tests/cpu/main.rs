@@ -1,0 +1,20 @@
+//! The CPU reference path: closed-form physics, the element frames, statics, ALE
+//! winches, the ANCF reference model, nets and the threaded network step.
+//!
+//! One test binary for all of them (each module was once its own binary, and each
+//! binary linked the whole crate with wgpu and naga: most of a fresh test build was
+//! linking). Shared model builders are in `tests/common`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod ale;
+mod ancf;
+mod case1;
+mod chain_kernel;
+mod dynamics;
+mod frames;
+mod nets;
+mod parallel;
+mod statics;
+mod study;

@@ -1,0 +1,848 @@
+//! The WGSL functions of a step's element and node passes against their Rust twins, on
+//! random inputs, at f32 and f64: the variable element of a winch cable
+//! (`variable_element`), the node's gather over its incidence list (`gather_node`:
+//! `gather_begin`, `gather_add`, `gather_end`), the symplectic Euler update
+//! (`node_advance`, through `node_accel`) and the blow-up check (`node_check`).
+//!
+//! As in `functions`, a test kernel calls one prelude function per invocation and the
+//! Rust side runs in f64 on the very inputs the GPU received. The Rust twins are the
+//! CPU stepper's: `ale::mass_flow_forces`, `physics::seabed_force`, `Sym3`,
+//! `Current::at`, `Route::eval`, and the few lines of the stepper that compose them
+//! (`cpu::stepper` `element_pass`, `node_accel_of`, `check` and the symplectic arm of
+//! `advance_block_in`, which are private), written out below as the stepper has them.
+//! Contract: every output within `16 eps_R * scale`, `scale` the sum of the magnitudes
+//! of the terms that make the output (plus, where stated, what rounding an input that
+//! the shader forms itself costs), so a missing, doubled or wrong-signed term, of the
+//! size of its own magnitude, fails.
+
+use crate::common::*;
+use crate::functions::{run_kernels, rv, to_r, Worst};
+use cablesim::gpu::layout::*;
+use cablesim::gpu::solver::rebased_route;
+use cablesim::gpu::{GpuContext, Precision};
+use cablesim::math::{Sym3, V3};
+use cablesim::model::{Current, Route};
+use cablesim::physics::{seabed_force, SeabedCoefs};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+const KERNELS: &str = r#"
+@group(1) @binding(0) var<storage, read> tin: array<R>;
+@group(1) @binding(1) var<storage, read_write> tout: array<R>;
+
+fn v3in(k: u32) -> vec3<R> {
+    return vec3<R>(tin[k], tin[k + 1u], tin[k + 2u]);
+}
+
+fn v3out(k: u32, v: vec3<R>) {
+    tout[k] = v.x;
+    tout[k + 1u] = v.y;
+    tout[k + 2u] = v.z;
+}
+
+fn state_in(k: u32) -> NodeState {
+    return NodeState(vec4<R>(v3in(k), R(0.0)), vec4<R>(v3in(k + 3u), R(0.0)), vec4<R>(v3in(k + 6u), R(0.0)));
+}
+
+// Element 2i + 0 of nodes 2i (a) and 2i + 1 (b); the winch node is b when the flag is 1.
+@compute @workgroup_size(64)
+fn t_variable(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 23u {
+        return;
+    }
+    let b = i * 23u;
+    let lp = LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
+        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u]);
+    let ep = ElemParams(2u * i, 2u * i + 1u, 0u, 0u, 0u, u32(tin[b + 22u]), tin[b + 18u], R(0.0));
+    let py = Payout(tin[b + 18u], R(0.0), tin[b + 19u], tin[b + 20u], R(0.0));
+    let ten = variable_element(ep, lp, py, v3in(b + 9u), v3in(b + 12u), v3in(b + 15u), tin[b + 21u]);
+    let o = i * 7u;
+    tout[o] = ten;
+    v3out(o + 1u, node_out[2u * i].force.xyz);
+    v3out(o + 4u, node_out[2u * i + 1u].force.xyz);
+}
+
+@compute @workgroup_size(64)
+fn t_gather(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= params.n_nodes {
+        return;
+    }
+    let b = i * 10u;
+    let nf = gather_node(i, nodes[i], state_in(b), u32(tin[b + 9u]));
+    let o = i * 9u;
+    v3out(o, nf.f);
+    tout[o + 3u] = nf.m.xx;
+    tout[o + 4u] = nf.m.yy;
+    tout[o + 5u] = nf.m.zz;
+    tout[o + 6u] = nf.m.xy;
+    tout[o + 7u] = nf.m.xz;
+    tout[o + 8u] = nf.m.yz;
+}
+
+@compute @workgroup_size(64)
+fn t_advance(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= params.n_nodes {
+        return;
+    }
+    let b = i * 19u;
+    let m = Sym3(tin[b + 12u], tin[b + 13u], tin[b + 14u], tin[b + 15u], tin[b + 16u], tin[b + 17u]);
+    let sn = node_advance(nodes[i], state_in(b), NodeForce(v3in(b + 9u), m), tin[b + 18u]);
+    let o = i * 9u;
+    v3out(o, sn.r_hi.xyz);
+    v3out(o + 3u, sn.r_lo.xyz);
+    v3out(o + 6u, sn.v.xyz);
+}
+
+@compute @workgroup_size(64)
+fn t_check(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 12u {
+        return;
+    }
+    let b = i * 12u;
+    let blk = BlockParams(tin[b], tin[b + 1u], tin[b + 2u], R(0.0), 0u, 0u, 0u, 0u);
+    tout[i] = R(node_check(blk, state_in(b + 3u)));
+}
+"#;
+
+fn run<R: GpuReal>(
+    ctx: &GpuContext,
+    p: Precision,
+    entry: &str,
+    group0: &[(u32, Vec<u8>)],
+    input: &[R],
+    n_threads: usize,
+    n_out: usize,
+) -> Vec<f64> {
+    run_kernels(ctx, p, KERNELS, entry, group0, input, n_threads, n_out)
+        .iter()
+        .map(|x| x.f64())
+        .collect()
+}
+
+fn bytes<T: bytemuck::Pod>(x: &[T]) -> Vec<u8> {
+    bytemuck::cast_slice(x).to_vec()
+}
+
+fn v3(a: &[f64]) -> V3<f64> {
+    V3::new(a[0], a[1], a[2])
+}
+
+/// A random unit vector.
+fn unit(rng: &mut ChaCha8Rng) -> V3<f64> {
+    loop {
+        let v = v3(&rv(rng, 1.0));
+        if v.norm() > 0.1 && v.norm() <= 1.0 {
+            return v / v.norm();
+        }
+    }
+}
+
+/// `x` as a compensated pair of `R` (hi, lo) and their exact sum in f64.
+fn pair<R: GpuReal>(x: f64) -> (R, R, f64) {
+    let hi = R::c(x);
+    let lo = R::c(x - hi.f64());
+    (hi, lo, hi.f64() + lo.f64())
+}
+
+/// A node state relative to its block origin: `r` split into compensated pairs, `v`;
+/// the row as `R` and, in f64, what the GPU got (`r_hi + r_lo` exact, `v`).
+fn state_row<R: GpuReal>(r: V3<f64>, v: V3<f64>) -> (Vec<R>, V3<f64>, V3<f64>) {
+    let (mut hi, mut lo, mut sum) = (Vec::new(), Vec::new(), [0.0; 3]);
+    for (k, x) in [r.x, r.y, r.z].into_iter().enumerate() {
+        let (h, l, s) = pair::<R>(x);
+        hi.push(h);
+        lo.push(l);
+        sum[k] = s;
+    }
+    let vr: Vec<R> = [v.x, v.y, v.z].iter().map(|&x| R::c(x)).collect();
+    let vb = v3(&vr.iter().map(|x| x.f64()).collect::<Vec<_>>());
+    let mut row = hi;
+    row.extend(lo);
+    row.extend(vr);
+    (row, v3(&sum), vb)
+}
+
+/// `variable_element`: the variable element's tension loses `EA c l Ldot / l0^2` while
+/// paying out or hauling in (the internal damping acts on the material strain rate),
+/// and its two nodes get the mass-flow forces of Eq. 39 (`ale::mass_flow_forces`),
+/// winch node at either end, with the payout rate and acceleration each zero or not.
+fn check_variable<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 800;
+    let mut x = Vec::new();
+    for i in 0..n {
+        let ea = 10f64.powf(rng.gen_range(5.0..9.0));
+        x.extend([
+            ea,
+            ea * rng.gen_range(0.0..1e-2),
+            rng.gen_range(0.0..30.0),
+            rng.gen_range(0.0..3.0),
+            rng.gen_range(0.0..5.0),
+            rng.gen_range(0.1..100.0),
+            rng.gen_range(0.0..5.0),
+            rng.gen_range(-500.0..50.0),
+            0.0,
+        ]);
+        // A variable element between half and one and a half nominal lengths.
+        let l0 = rng.gen_range(0.2..6.0);
+        let d = unit(rng) * (l0 * (1.0 + rng.gen_range(-0.01..0.01)));
+        x.extend(d.to_f64());
+        x.extend(rv(rng, 2.0));
+        x.extend(rv(rng, 2.0));
+        x.push(l0);
+        let (rate, accel) = match i % 4 {
+            0 => (0.0, 0.0),
+            1 => (rng.gen_range(-3.0..3.0), 0.0),
+            2 => (0.0, rng.gen_range(-2.0..2.0)),
+            _ => (rng.gen_range(-3.0..3.0), rng.gen_range(-2.0..2.0)),
+        };
+        x.extend([rate, accel, rng.gen_range(0.0..1e5), ((i / 4) % 2) as f64]);
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let node_out = vec![NodeOut::<R>::default(); 2 * n];
+    let out = run(
+        ctx,
+        p,
+        "t_variable",
+        &[(12, bytes(&node_out))],
+        &xr,
+        n,
+        7 * n,
+    );
+    let mut w = Worst::new::<R>("variable_element");
+    let mut moving = 0;
+    for i in 0..n {
+        let a = &x[23 * i..23 * (i + 1)];
+        let (ea_c, mbar) = (a[1], a[5]);
+        let (d, va, vb) = (v3(&a[9..12]), v3(&a[12..15]), v3(&a[15..18]));
+        let (l0, rate, accel, tension) = (a[18], a[19], a[20], a[21]);
+        let w_is_b = a[22] == 1.0;
+        let l = d.norm();
+        // cpu::stepper element_pass.
+        let damping = if rate != 0.0 {
+            ea_c * l * rate / (l0 * l0)
+        } else {
+            0.0
+        };
+        w.check(
+            "tension",
+            i,
+            out[7 * i],
+            tension - damping,
+            tension + damping.abs(),
+        );
+        // cpu::stepper node_accel: r_w - r_m and v_w - v_m from the element's ends.
+        let zero = V3::zero();
+        let (rm, rw, vm, vw) = if w_is_b {
+            (zero, d, va, vb)
+        } else {
+            (d, zero, vb, va)
+        };
+        let (fm, fw) = if rate != 0.0 || accel != 0.0 {
+            moving += 1;
+            cablesim::ale::mass_flow_forces(mbar, l0, rate, accel, rm, rw, vm, vw)
+        } else {
+            (zero, zero)
+        };
+        let g = 2.0 * rate.abs() / l0 * (vw - vm).norm()
+            + (2.0 * rate * rate / l0 + accel.abs()) / l0 * d.norm();
+        let (fa, fb, sa, sb) = if w_is_b {
+            (fm, fw, mbar * l0 * g / 6.0, mbar * l0 * g / 3.0)
+        } else {
+            (fw, fm, mbar * l0 * g / 3.0, mbar * l0 * g / 6.0)
+        };
+        w.v(
+            "force on a",
+            i,
+            &out[7 * i + 1..7 * i + 4],
+            fa,
+            sa.max(f64::MIN_POSITIVE),
+        );
+        w.v(
+            "force on b",
+            i,
+            &out[7 * i + 4..7 * i + 7],
+            fb,
+            sb.max(f64::MIN_POSITIVE),
+        );
+    }
+    assert!(moving >= 3 * n / 4 - 1);
+    w.report(p);
+}
+
+/// The run constants the node kernels read.
+fn run_params<R: GpuReal>(
+    n_nodes: usize,
+    n_winch: usize,
+    dt: f64,
+    sb: &SeabedCoefs<f64>,
+) -> Vec<u8> {
+    let q = Params::<R> {
+        n_nodes: n_nodes as u32,
+        seabed: 1,
+        n_winch: n_winch as u32,
+        dt: R::c(dt),
+        alpha: R::c(400.0),
+        beta: R::c(40.0),
+        max_speed: R::c(100.0),
+        max_distance: R::c(1e4),
+        seabed_k: R::c(sb.k),
+        seabed_c: R::c(sb.c),
+        seabed_mu: R::c(sb.mu),
+        seabed_v_eps: R::c(sb.v_eps),
+        one: R::c(1.0),
+        ..Default::default()
+    };
+    bytes(std::slice::from_ref(&q))
+}
+
+/// The current profiles of the gather test and their buffers (values exact in `R`).
+fn currents<R: GpuReal>() -> (Vec<Current>, Vec<CurrentPoint<R>>, Vec<CurrentRange>) {
+    let r = |x: f64| R::c(x).f64();
+    let profiles = vec![
+        Current::uniform([r(0.3), r(-0.2), r(0.05)]),
+        Current {
+            table: vec![
+                (r(-100.0), [r(0.1), r(0.0), r(0.0)]),
+                (r(-50.0), [r(0.4), r(0.2), r(0.0)]),
+                (r(0.0), [r(0.8), r(0.3), r(0.0)]),
+            ],
+        },
+    ];
+    let (mut pts, mut ranges) = (Vec::new(), Vec::new());
+    for c in &profiles {
+        ranges.push(CurrentRange {
+            start: pts.len() as u32,
+            len: c.table.len() as u32,
+        });
+        for (z, u) in &c.table {
+            pts.push(CurrentPoint::<R> {
+                z: R::c(*z),
+                ux: R::c(u[0]),
+                uy: R::c(u[1]),
+                uz: R::c(u[2]),
+            });
+        }
+    }
+    (profiles, pts, ranges)
+}
+
+/// `gather_node`: a node's force and mass block gathered over its incidence list (the
+/// layout's CSR `inc[inc_start..inc_end]`, entries `element * 2 + side`, the tension
+/// pulling side a towards b), point weight, mass and drag in the current, a winch
+/// node's tributary change and mass-flow force, seabed contact with friction. Random
+/// nodes of 0 to 6 entries into a shared pool of element loads, in three blocks of
+/// different origins, about half of them touching the seabed.
+fn check_gather<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 600;
+    let n_loads = 400;
+    let (n_winch, rows) = (5usize, 3usize);
+    let r = |x: f64| R::c(x).f64();
+    let sb = SeabedCoefs {
+        z: 0.0,
+        k: r(3e6),
+        c: r(3e4),
+        mu: r(0.6),
+        v_eps: r(0.01),
+    };
+    let (profiles, pts, ranges) = currents::<R>();
+    // Block origins (whole metres) and seabed heights relative to them (depth 60 m).
+    let origin = [
+        [0.0, 0.0, -20.0],
+        [500.0, -300.0, -55.0],
+        [-80.0, 40.0, 0.0],
+    ];
+    let blocks: Vec<BlockParams<R>> = origin
+        .iter()
+        .map(|o| BlockParams::<R> {
+            ox: R::c(o[0]),
+            oy: R::c(o[1]),
+            oz: R::c(o[2]),
+            zb: R::c(-60.0 - o[2]),
+            ..Default::default()
+        })
+        .collect();
+    let loads: Vec<ElemLoads<R>> = (0..n_loads)
+        .map(|_| {
+            let t = unit(rng);
+            let f = rv(rng, 100.0);
+            ElemLoads::<R> {
+                tx: R::c(t.x),
+                ty: R::c(t.y),
+                tz: R::c(t.z),
+                tension: R::c(rng.gen_range(-1e3..1e5)),
+                fx: R::c(f[0]),
+                fy: R::c(f[1]),
+                fz: R::c(f[2]),
+                half_mass: R::c(rng.gen_range(0.5..50.0)),
+                half_added: R::c(rng.gen_range(0.0..50.0)),
+            }
+        })
+        .collect();
+    let payout: Vec<Payout<R>> = (0..rows * n_winch)
+        .map(|j| {
+            // Every third row still (no mass-flow force, only the tributary change).
+            let still = j % 3 == 0;
+            Payout::<R> {
+                trib: R::c(rng.gen_range(-0.5..0.5)),
+                rate: R::c(if still { 0.0 } else { rng.gen_range(-3.0..3.0) }),
+                accel: R::c(if still || j % 3 == 1 {
+                    0.0
+                } else {
+                    rng.gen_range(-2.0..2.0)
+                }),
+                ..Default::default()
+            }
+        })
+        .collect();
+    let node_out: Vec<NodeOut<R>> = (0..n)
+        .map(|_| {
+            let f = rv(rng, 50.0);
+            NodeOut::<R> {
+                force: [R::c(f[0]), R::c(f[1]), R::c(f[2]), R::c(0.0)],
+                ..Default::default()
+            }
+        })
+        .collect();
+    let (mut nodes, mut inc, mut x) = (Vec::new(), Vec::new(), Vec::new());
+    let mut states = Vec::new();
+    for i in 0..n {
+        let start = inc.len() as u32;
+        for _ in 0..i % 7 {
+            inc.push(rng.gen_range(0..n_loads as u32) * 2 + rng.gen_range(0..2u32));
+        }
+        let block = i % 3;
+        let nd = NodeParams::<R> {
+            inc_start: start,
+            inc_end: inc.len() as u32,
+            constraint: u32::MAX,
+            block: block as u32,
+            current: (i % 2) as u32,
+            winch: if i % 4 == 1 {
+                rng.gen_range(0..n_winch as u32)
+            } else {
+                u32::MAX
+            },
+            point_mass: R::c(if i % 3 == 0 {
+                rng.gen_range(0.0..500.0)
+            } else {
+                0.0
+            }),
+            point_weight_z: R::c(if i % 5 < 2 {
+                rng.gen_range(-2000.0..500.0)
+            } else {
+                0.0
+            }),
+            point_drag: R::c(if i % 5 == 1 || i % 5 == 2 {
+                rng.gen_range(0.0..300.0)
+            } else {
+                0.0
+            }),
+            tributary: R::c(rng.gen_range(0.5..5.0)),
+        };
+        nodes.push(nd);
+        // Half the nodes (the winch nodes among them) within 0.1 m of the seabed (into
+        // it or just above), the rest anywhere in the water column; creeping (below
+        // v_eps) or sliding.
+        let zb = -60.0 - origin[block][2];
+        let z = if i % 4 < 2 {
+            zb + rng.gen_range(-0.1..0.1)
+        } else {
+            rng.gen_range(zb..-origin[block][2])
+        };
+        let rr = V3::new(rng.gen_range(-50.0..50.0), rng.gen_range(-50.0..50.0), z);
+        let v = v3(&rv(rng, if i % 6 < 2 { 0.005 } else { 1.0 }));
+        let (row, rg, vg) = state_row::<R>(rr, v);
+        x.extend(row);
+        let k = rng.gen_range(0..rows);
+        x.push(R::c(k as f64));
+        states.push((rg, vg, k));
+    }
+    let group0 = [
+        (0, run_params::<R>(n, n_winch, 1e-3, &sb)),
+        (4, bytes(&nodes)),
+        (5, bytes(&inc)),
+        (7, bytes(&blocks)),
+        (8, bytes(&pts)),
+        (9, bytes(&ranges)),
+        (11, bytes(&loads)),
+        (12, bytes(&node_out)),
+        (16, bytes(&payout)),
+    ];
+    let out = run(ctx, p, "t_gather", &group0, &x, n, 9 * n);
+    let mut w = Worst::new::<R>("gather_node (gather_begin, gather_add, gather_end)");
+    let v3r = |a: [R; 4]| V3::new(a[0].f64(), a[1].f64(), a[2].f64());
+    let (mut contact, mut drag, mut flow) = (0, 0, 0);
+    for (i, (nd, &(ri, vi, k))) in nodes.iter().zip(&states).enumerate() {
+        // cpu::stepper node_accel_of and node_accel, in the same order.
+        let mut f = V3::new(0.0, 0.0, nd.point_weight_z.f64());
+        let mut m = Sym3::scalar(nd.point_mass.f64());
+        let mut f_scale = nd.point_weight_z.f64().abs();
+        let mut m_scale = nd.point_mass.f64();
+        for &entry in &inc[nd.inc_start as usize..nd.inc_end as usize] {
+            let el = &loads[(entry >> 1) as usize];
+            let sign = if entry & 1 == 0 { 1.0 } else { -1.0 };
+            let t = V3::new(el.tx.f64(), el.ty.f64(), el.tz.f64());
+            let fh = V3::new(el.fx.f64(), el.fy.f64(), el.fz.f64());
+            f += fh + t * (sign * el.tension.f64());
+            let (hm, ha) = (el.half_mass.f64(), el.half_added.f64());
+            m.xx += hm;
+            m.yy += hm;
+            m.zz += hm;
+            m.add_normal_projection(ha, t);
+            f_scale += fh.norm() + el.tension.f64().abs();
+            m_scale += hm + ha;
+        }
+        let blk = &blocks[nd.block as usize];
+        let pd = nd.point_drag.f64();
+        if pd > 0.0 {
+            drag += 1;
+            let z = blk.oz.f64() + ri.z;
+            let u = profiles[nd.current as usize].at::<f64>(z);
+            let vr = u - vi;
+            f += vr * (pd * vr.norm());
+            // The current's own rounding (`functions`: 1 + 0.01 |z|), doubled by the
+            // quadratic law.
+            let s = u.norm() + vi.norm();
+            f_scale += pd * s * (s + 2.0 * (1.0 + 0.01 * z.abs()));
+        }
+        let mut trib = nd.tributary.f64();
+        if nd.winch != u32::MAX {
+            let py = &payout[k * n_winch + nd.winch as usize];
+            trib += py.trib.f64();
+            if py.rate.f64() != 0.0 || py.accel.f64() != 0.0 {
+                flow += 1;
+                let fo = v3r(node_out[i].force);
+                f += fo;
+                f_scale += fo.norm();
+            }
+        }
+        // Contact relative to the block origin, as the shader forms it: near the
+        // seabed `zb - r_hi` is exact (Sterbenz), so `pen` rounds only with itself.
+        let zb = blk.zb.f64();
+        let sbi = SeabedCoefs { z: zb, ..sb };
+        let fs = seabed_force(&sbi, trib, ri, vi);
+        if fs.norm() > 0.0 {
+            contact += 1;
+        }
+        f += fs;
+        f_scale += sb.k * trib * (zb - ri.z).abs() * (1.0 + sb.mu) + sb.c * trib * vi.z.abs();
+        let o = &out[9 * i..9 * i + 9];
+        w.v("force", i, &o[0..3], f, f_scale.max(f64::MIN_POSITIVE));
+        for (q, r) in [m.xx, m.yy, m.zz, m.xy, m.xz, m.yz].into_iter().enumerate() {
+            w.check("mass", i, o[3 + q], r, m_scale.max(f64::MIN_POSITIVE));
+        }
+    }
+    // The cases the test is for happened.
+    assert!(
+        contact > n / 5 && drag > n / 5 && flow > n / 40,
+        "{contact} {drag} {flow}"
+    );
+    w.report(p);
+}
+
+/// `node_advance` (and `node_accel`): symplectic Euler `v += a dt; r += v dt`, `r` kept
+/// as a compensated pair, with `a` the mass block's solve for free nodes and the
+/// Baumgarte law `a = a_d - beta (v - v_d) - alpha (r - r_d)` onto a fixed, line or
+/// circle route for driven ones.
+fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 600;
+    let dt = 5e-4;
+    let eps = R::epsilon().f64();
+    let sb = SeabedCoefs {
+        z: 0.0,
+        k: 0.0,
+        c: 0.0,
+        mu: 0.0,
+        v_eps: 1.0,
+    };
+    let (mut nodes, mut routes, mut x, mut cases) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for i in 0..n {
+        let driven = i % 2 == 1;
+        let origin = rv(rng, 500.0).map(|c: f64| c.round());
+        let route = match i % 6 {
+            1 => Route::Fixed {
+                position: rv(rng, 500.0),
+            },
+            3 => Route::Line {
+                start: rv(rng, 500.0),
+                velocity: rv(rng, 3.0),
+            },
+            _ => Route::Circle {
+                center: rv(rng, 500.0),
+                radius: rng.gen_range(1.0..30.0),
+                period: rng.gen_range(5.0..100.0),
+                axis: (unit(rng)).to_f64(),
+                phase: rng.gen_range(-3.0..3.0),
+                advance: rng.gen_range(-70.0..70.0),
+            },
+        };
+        let t0 = rng.gen_range(0.0..2000.0);
+        let tau = R::c(rng.gen_range(0.0..0.5)).f64();
+        // A driven node near its target (Baumgarte pulls it back), a free one anywhere.
+        let target = route.eval(t0 + tau);
+        let rel = V3::from_f64(target.r) - V3::from_f64(origin);
+        let r = if driven {
+            rel + v3(&rv(rng, 0.5))
+        } else {
+            v3(&rv(rng, 100.0))
+        };
+        let v = if driven {
+            V3::from_f64(target.v) + v3(&rv(rng, 0.5))
+        } else {
+            v3(&rv(rng, 3.0))
+        };
+        let (row, rg, vg) = state_row::<R>(r, v);
+        x.extend(row);
+        // The mass block as a node gathers it: scalar masses and normal added masses.
+        let s = rng.gen_range(1.0..100.0);
+        let mut m = Sym3::scalar(s);
+        let mut a_tot = 0.0;
+        for _ in 0..2 {
+            let a = rng.gen_range(0.0..50.0);
+            m.add_normal_projection(a, unit(rng));
+            a_tot += a;
+        }
+        let f = rv(rng, 1e4);
+        let (mr, mg) = to_r::<R>(&[m.xx, m.yy, m.zz, m.xy, m.xz, m.yz]);
+        let (fr, fg) = to_r::<R>(&f);
+        x.extend(fr);
+        x.extend(mr);
+        x.push(R::c(tau));
+        nodes.push(NodeParams::<R> {
+            constraint: if driven {
+                routes.len() as u32
+            } else {
+                u32::MAX
+            },
+            ..Default::default()
+        });
+        if driven {
+            routes.push(rebased_route::<R>(&route, i as u32, t0, origin, 0));
+        }
+        let mg = Sym3 {
+            xx: mg[0],
+            yy: mg[1],
+            zz: mg[2],
+            xy: mg[3],
+            xz: mg[4],
+            yz: mg[5],
+        };
+        cases.push((
+            driven,
+            route,
+            t0,
+            tau,
+            origin,
+            rg,
+            vg,
+            v3(&fg),
+            mg,
+            s,
+            a_tot,
+        ));
+    }
+    let samples = vec![RouteSample::<R>::default()];
+    let group0 = [
+        (0, run_params::<R>(n, 0, dt, &sb)),
+        (4, bytes(&nodes)),
+        (6, bytes(&routes)),
+        (15, bytes(&samples)),
+    ];
+    let out = run(ctx, p, "t_advance", &group0, &x, n, 9 * n);
+    let mut w = Worst::new::<R>("node_advance (node_accel: mass solve, Baumgarte)");
+    let (alpha, beta, dt) = (R::c(400.0).f64(), R::c(40.0).f64(), R::c(dt).f64());
+    for (i, (driven, route, t0, tau, origin, r, v, f, m, s, a_tot)) in cases.into_iter().enumerate()
+    {
+        // cpu::stepper node_accel_of, then the symplectic arm of advance_block_in.
+        let (a, a_scale) = if driven {
+            let d = route.eval(t0 + tau);
+            let rd = V3::from_f64(d.r) - V3::from_f64(origin);
+            let (vd, ad) = (V3::from_f64(d.v), V3::from_f64(d.a));
+            let a = ad - (v - vd) * beta - (r - rd) * alpha;
+            // The target's own rounding (`functions`, route_eval): the displacement
+            // since the rebase in f32, the absolute angle and coordinates in f64.
+            let (rad, w_ang, speed) = match route {
+                Route::Circle {
+                    radius,
+                    period,
+                    advance,
+                    ..
+                } => (
+                    radius,
+                    std::f64::consts::TAU / period,
+                    (advance / period).abs(),
+                ),
+                Route::Line { velocity, .. } => (0.0, 0.0, V3::from_f64(velocity).norm()),
+                _ => (0.0, 0.0, 0.0),
+            };
+            let mut r_err = rad * w_ang * tau + speed * tau + 1e-3 * rd.norm();
+            let mut v_err = rad * w_ang * (1.0 + w_ang * (t0 + tau) + 7.0) + speed;
+            if p == Precision::F64 {
+                r_err += rad * w_ang * (t0 + tau) + rd.norm() + speed * (t0 + tau);
+                v_err += rad * w_ang * w_ang * (t0 + tau);
+            }
+            let a_err = rad * w_ang * w_ang * (1.0 + w_ang * (t0 + tau) + 7.0);
+            let scale = a_err
+                + ad.norm()
+                + beta * (v.norm() + vd.norm() + v_err)
+                + alpha * ((r - rd).norm() + r_err);
+            (a, scale)
+        } else {
+            // Eigenvalues in [s, s + a_tot]: the solve's error is the condition number
+            // squared times eps times |f| / s (`functions`, mass block).
+            let cond = (s + a_tot) / s;
+            (m.solve(f), cond * cond * f.norm() / s)
+        };
+        let vn = v + a * dt;
+        let rn = r + vn * dt;
+        let v_scale = v.norm() + a_scale * dt;
+        // f32: the compensated pair keeps r to about eps^2 |r|; in f64 the twin itself
+        // rounds r + v dt at eps |r|.
+        let r_scale = v_scale * dt
+            + if p == Precision::F64 {
+                r.norm()
+            } else {
+                eps * eps * r.norm()
+            };
+        let o = &out[9 * i..9 * i + 9];
+        let r_gpu = [o[0] + o[3], o[1] + o[4], o[2] + o[5]];
+        w.v("r", i, &r_gpu, rn, r_scale);
+        w.v("v", i, &o[6..9], vn, v_scale);
+    }
+    w.report(p);
+}
+
+/// `node_check`: `FAIL_SPEED` (1) when a velocity component's magnitude is not below
+/// the limit, else `FAIL_DISTANCE` (2) when an absolute coordinate's (block origin plus
+/// the compensated pair) is not, else 0; NaN and infinity fail. Exact agreement, but
+/// where an absolute coordinate lies within the rounding of `origin + (r_hi + r_lo)`
+/// (`4 eps (|origin| + |r|)`) of the limit, where either answer is right (unless every
+/// sum is exact).
+fn check_node_check<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1000;
+    let (max_speed, max_distance) = (100.0, 1e4);
+    let eps = R::epsilon().f64();
+    let mut x: Vec<R> = Vec::new();
+    let mut cases = Vec::new();
+    for i in 0..n {
+        let mut origin = rv(rng, 5000.0).map(|c: f64| c.round());
+        let mut r = rv(rng, 100.0);
+        let mut v = rv(rng, 10.0);
+        let k = rng.gen_range(0..3);
+        let sign = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+        match i % 8 {
+            0 => {}
+            // Exactly at the speed limit (fails: not below), or just either side.
+            1 => v[k] = sign * max_speed,
+            2 => v[k] = sign * max_speed * (1.0 + rng.gen_range(-1e-3..1e-3)),
+            // A coordinate near the distance limit, or exactly at it (fails: not below;
+            // every sum exact, so no rounding band).
+            3 => {
+                origin[k] = sign * (max_distance - 50.0);
+                r[k] = sign * 50.0;
+                if i % 16 != 3 {
+                    r[k] += rng.gen_range(-1.0..1.0);
+                }
+            }
+            4 => v[k] = f64::NAN,
+            5 => r[k] = f64::NAN,
+            6 => r[k] = sign * f64::INFINITY,
+            // Too fast and too far: the speed is reported.
+            _ => {
+                v[k] = sign * 2.0 * max_speed;
+                origin[k] = sign * 2.0 * max_distance;
+            }
+        }
+        let (o, _) = to_r::<R>(&origin);
+        let (row, rg, vg) = state_row::<R>(v3(&r), v3(&v));
+        x.extend(o.iter().copied());
+        x.extend(row);
+        let og: Vec<f64> = o.iter().map(|c| c.f64()).collect();
+        cases.push((v3(&og), rg, vg, i % 16 == 3));
+    }
+    let sb = SeabedCoefs {
+        z: 0.0,
+        k: 0.0,
+        c: 0.0,
+        mu: 0.0,
+        v_eps: 1.0,
+    };
+    let out = run(
+        ctx,
+        p,
+        "t_check",
+        &[(0, run_params::<R>(n, 0, 1e-3, &sb))],
+        &x,
+        n,
+        n,
+    );
+    let (mut counts, mut band) = ([0usize; 3], 0);
+    for (i, (o, r, v, exact)) in cases.into_iter().enumerate() {
+        let ra = o + r;
+        let all_below = |c: V3<f64>, lim: f64| [c.x, c.y, c.z].iter().all(|c| c.abs() < lim);
+        let expected = if !all_below(v, max_speed) {
+            1.0
+        } else if !all_below(ra, max_distance) {
+            2.0
+        } else {
+            0.0
+        };
+        let near = [0, 1, 2].iter().any(|&k| {
+            let (c, oc, rc) = (
+                [ra.x, ra.y, ra.z][k],
+                [o.x, o.y, o.z][k],
+                [r.x, r.y, r.z][k],
+            );
+            (c.abs() - max_distance).abs() <= 4.0 * eps * (oc.abs() + rc.abs())
+        });
+        if expected != 1.0 && near && !exact {
+            band += 1;
+            assert!(out[i] == 0.0 || out[i] == 2.0, "case {i}: {}", out[i]);
+            continue;
+        }
+        assert_eq!(
+            out[i],
+            expected,
+            "node_check ({}) case {i}: origin {o:?}, r {r:?}, v {v:?}",
+            p.name()
+        );
+        counts[expected as usize] += 1;
+    }
+    eprintln!(
+        "node_check ({}): {} sane, {} too fast, {} too far, {band} within rounding of the limit",
+        p.name(),
+        counts[0],
+        counts[1],
+        counts[2]
+    );
+    assert!(counts.iter().all(|&c| c > n / 10));
+}
+
+fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
+    let mut rng = ChaCha8Rng::seed_from_u64(20261201);
+    check_variable::<R>(ctx, p, &mut rng);
+    check_gather::<R>(ctx, p, &mut rng);
+    check_advance::<R>(ctx, p, &mut rng);
+    check_node_check::<R>(ctx, p, &mut rng);
+}
+
+#[test]
+fn wgsl_step_functions_match_their_rust_twins_in_f32() {
+    let Some(ctx) = gpu_context("wgsl_step_functions_match_their_rust_twins_in_f32", false) else {
+        return;
+    };
+    check_all::<f32>(&ctx, Precision::F32);
+}
+
+#[test]
+fn wgsl_step_functions_match_their_rust_twins_in_f64() {
+    let Some(ctx) = gpu_context("wgsl_step_functions_match_their_rust_twins_in_f64", true) else {
+        return;
+    };
+    check_all::<f64>(&ctx, Precision::F64);
+}
