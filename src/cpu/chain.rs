@@ -13,7 +13,7 @@
 //! - the rare per-node extras (constrained nodes, point-mass drag) are fixed up after
 //!   the vectorised loop, from short index lists.
 //!
-//! A test checks it against the general path (`tests/chain_kernel.rs`).
+//! A test checks it against the general path (`tests/cpu/chain_kernel.rs`).
 
 use crate::ale::{mass_flow_forces, AleElem};
 use crate::math::V3;

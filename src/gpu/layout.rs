@@ -5,7 +5,7 @@
 //! `[R; 4]` (WGSL `vec4<R>`, only in structs made entirely of them): no `vec3`, whose
 //! 16-byte alignment would open gaps that `#[repr(C)]` does not have. A compile-time
 //! assertion per precision shows each struct has no padding (so `Pod` is sound), and
-//! `tests/gpu_layout.rs` parses the WGSL with naga and checks every size and member
+//! `tests/gpu/layout.rs` parses the WGSL with naga and checks every size and member
 //! offset against [`GpuStruct::fields`]. Keep both sides in step when editing either.
 
 use crate::math::Real;

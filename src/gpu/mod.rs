@@ -3,7 +3,7 @@
 //! Two kernels step the same physics with the same WGSL functions (the prelude's
 //! `element_step`, `gather_begin` / `gather_add` / `gather_end`, `node_advance`,
 //! `node_check`; one implementation each), so their results agree to round-off (bit
-//! for bit on lavapipe, `tests/gpu_fused.rs`):
+//! for bit on lavapipe, `tests/gpu/fused.rs`):
 //!
 //! - **Fused** ([`GpuKernel::Fused`], `shaders/fused_chain.wgsl`), used wherever it
 //!   applies: one workgroup per block (a cable, or a small network of cables sharing
@@ -59,7 +59,7 @@
 //! to each submission's start (a circle from its point and angle there). Compilers may
 //! contract and reassociate floating-point operations in shaders (Mesa's NIR does), so
 //! the compensated arithmetic passes products through an opaque select and multiplies
-//! by a run-time 1.0 (see the prelude). `tests/gpu_f32.rs` and `tests/gpu_parity.rs`
+//! by a run-time 1.0 (see the prelude). `tests/gpu/f32_vs_f64.rs` and `tests/gpu/parity.rs`
 //! hold the evidence.
 //!
 //! Speed: on a datacenter GPU the two-pass step is bound by memory bandwidth (about 300
