@@ -1,4 +1,5 @@
-//! What a run writes: `summary.json`, `end_forces.csv`, `tensions.csv`, `positions.csv`.
+//! What a run writes: `summary.json`, `end_forces.csv`, `tensions.csv`, `positions.csv`,
+//! and `bodies.csv` (`crate::body::output`) when cable ends are attached to bodies.
 
 use crate::cpu::Evaluation;
 use crate::error::Error;
@@ -107,6 +108,8 @@ pub struct OutputWriter {
     tensions: BufWriter<File>,
     positions: Option<BufWriter<File>>,
     winches: Option<BufWriter<File>>,
+    /// `bodies.csv`, when ends are attached to bodies.
+    bodies: Option<crate::body::output::BodiesCsv>,
 }
 
 fn create(dir: &Path, name: &str) -> Result<BufWriter<File>, Error> {
@@ -163,6 +166,7 @@ impl OutputWriter {
                 None
             },
             winches: None,
+            bodies: crate::body::output::BodiesCsv::create(dir, lay)?,
         };
         w.io("end_forces.csv", |w| {
             writeln!(w.end_forces, "time,cable,end,fx,fy,fz")
@@ -234,6 +238,9 @@ impl OutputWriter {
                 Ok(())
             })?;
         }
+        if let Some(b) = self.bodies.as_mut() {
+            b.frame(t, lay, r, ev)?;
+        }
         Ok(())
     }
 
@@ -277,6 +284,9 @@ impl OutputWriter {
             self.io("winches.csv", |w| {
                 w.winches.as_mut().expect("checked").flush()
             })?;
+        }
+        if let Some(b) = self.bodies.as_mut() {
+            b.flush()?;
         }
         self.io("end_forces.csv", |w| w.end_forces.flush())?;
         self.io("tensions.csv", |w| w.tensions.flush())?;

@@ -2,6 +2,7 @@
 //! they describe. The keys are documented in README.md ("Scenario files").
 
 mod arrays;
+mod bodies;
 mod ends;
 mod nets;
 mod raw;
@@ -366,6 +367,9 @@ impl Scenario {
             ..Default::default()
         };
 
+        // [[bodies]]: bodies with prescribed motion that ends attach to.
+        let bodies = bodies::parse(p, &raw.bodies, &[], 0.0)?;
+
         // [[points]]: named shared nodes.
         let mut point_index: HashMap<String, usize> = HashMap::new();
         for (i, t) in raw.points.iter().enumerate() {
@@ -381,7 +385,7 @@ impl Scenario {
                 }
             };
             let field = format!("points[{i}] (\"{name}\")");
-            let spec = ends::parse_end(p, &field, t, &["name"], &HashMap::new())?;
+            let spec = ends::parse_end(p, &field, t, &["name"], &HashMap::new(), &bodies)?;
             let (position, route, point) = match spec.kind {
                 EndKind::Point(_) => {
                     return Err(err(p, field, "a point cannot refer to another point"))
@@ -469,8 +473,8 @@ impl Scenario {
                 }
                 None => 0,
             };
-            let start = ends::parse_end(p, &f("start"), &c.start, &[], &point_index)?;
-            let end = ends::parse_end(p, &f("end"), &c.end, &[], &point_index)?;
+            let start = ends::parse_end(p, &f("start"), &c.start, &[], &point_index, &bodies)?;
+            let end = ends::parse_end(p, &f("end"), &c.end, &[], &point_index, &bodies)?;
             if let Some(w) = &c.winch {
                 winches.push(winch::parse(
                     p,

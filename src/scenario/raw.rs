@@ -12,6 +12,8 @@ pub struct RawScenario {
     pub environment: RawEnvironment,
     pub line_types: Vec<LineType>,
     #[serde(default)]
+    pub bodies: Vec<toml::Table>,
+    #[serde(default)]
     pub points: Vec<toml::Table>,
     #[serde(default)]
     pub cables: Vec<RawCable>,
