@@ -26,6 +26,7 @@ impl WaveComponent {
     /// The phase angle `theta` at horizontal position `(x, y)` and time `t`.
     #[inline]
     pub fn theta(&self, x: f64, y: f64, t: f64) -> f64 {
-        self.k * (x * self.direction.cos() + y * self.direction.sin()) - self.omega * t + self.phase
+        self.k * (x * self.direction.cos() + y * self.direction.sin()) - self.omega * t
+            + self.phase
     }
 }
