@@ -110,7 +110,7 @@ fn run_kernel<R: GpuReal>(
                 resource: rb.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
-                binding: 17,
+                binding: 18,
                 resource: bb.as_entire_binding(),
             },
         ],

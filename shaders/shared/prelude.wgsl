@@ -292,7 +292,7 @@ struct Status {
 @group(0) @binding(14) var<storage, read_write> status: Status;
 @group(0) @binding(15) var<storage, read> route_samples: array<RouteSample>;
 @group(0) @binding(16) var<storage, read> payout: array<Payout>;
-@group(0) @binding(17) var<storage, read> body_rows: array<BodyRow>;
+@group(0) @binding(18) var<storage, read> body_rows: array<BodyRow>;
 
 // ---- Small math ----
 

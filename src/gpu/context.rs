@@ -18,8 +18,8 @@ use super::Precision;
 use crate::error::Error;
 use std::sync::{Arc, Mutex};
 
-/// Storage buffers the solver binds in one stage (see the prelude's bindings: 0 and
-/// 2 to 17; binding 1 is a uniform).
+/// Storage buffers the solver binds in one stage (see the prelude's bindings: 0, 2 to
+/// 16 and 18; binding 1 is a uniform).
 pub const STORAGE_BUFFERS_PER_STAGE: u32 = 17;
 
 /// An open device, its queue, and what the adapter is.

@@ -595,7 +595,9 @@ impl<R: GpuReal> GpuEngine<R> {
         });
         entries.extend((2..=9).map(|b| storage(b, true)));
         entries.extend((10..=14).map(|b| storage(b, false)));
-        entries.extend((15..=17).map(|b| storage(b, true)));
+        entries.extend((15..=16).map(|b| storage(b, true)));
+        // Binding 17 is left to the wave components (shaders/shared/waves.wgsl).
+        entries.push(storage(18, true));
         let bgl = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("cablesim"),
             entries: &entries,
@@ -882,7 +884,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 whole(14, &buf.status),
                 whole(15, &samples_b),
                 whole(16, &buf.payout),
-                whole(17, &buf.body_rows),
+                whole(18, &buf.body_rows),
             ],
         });
         Installed {
