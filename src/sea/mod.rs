@@ -39,7 +39,9 @@
 
 pub mod cache;
 pub mod dispersion;
+pub mod irregular;
 pub mod kinematics;
+pub mod spectrum;
 
 /// The depth, m, that stands for infinite depth on the GPU (finite in f32; the
 /// decay `e^{-2 k h}` is 0 there for any wave).
