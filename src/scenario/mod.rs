@@ -7,6 +7,7 @@ mod ends;
 mod nets;
 mod raw;
 mod route_file;
+pub mod waves;
 mod winch;
 
 use crate::ale::Winch;
@@ -103,6 +104,8 @@ pub struct Scenario {
     pub winches: Vec<Winch>,
     /// The `[ancf]` table (used when the ANCF model runs).
     pub ancf: AncfSettings,
+    /// The sea state of `[environment.waves]` (still water without it).
+    pub sea: crate::sea::SeaState,
 }
 
 /// Builds `Error::Scenario` for `path`.
@@ -324,6 +327,8 @@ impl Scenario {
         };
         let global_current =
             current(p, "environment.", e.current, &e.current_profile)?.unwrap_or_default();
+        let (sea, sea_warnings) = waves::sea_state(p, e.waves.as_ref(), depth, env.gravity)?;
+        sea_warnings.iter().for_each(|w| log::warn!("{w}"));
 
         // [[line_types]]
         let mut lt_index = HashMap::new();
@@ -367,8 +372,9 @@ impl Scenario {
             ..Default::default()
         };
 
-        // [[bodies]]: bodies with prescribed motion that ends attach to.
-        let bodies = bodies::parse(p, &raw.bodies, &[], 0.0)?;
+        // [[bodies]]: bodies with prescribed motion that ends attach to (RAO bodies move
+        // in the sea state's wave components, ramped in with them).
+        let bodies = bodies::parse(p, &raw.bodies, &sea.components, sea.ramp_duration)?;
 
         // [[points]]: named shared nodes.
         let mut point_index: HashMap<String, usize> = HashMap::new();
@@ -600,6 +606,7 @@ impl Scenario {
             initial,
             winches,
             ancf: ancf_settings(p, &raw.ancf)?,
+            sea,
         })
     }
 }

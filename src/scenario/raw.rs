@@ -98,6 +98,7 @@ pub struct RawEnvironment {
     pub current_profile: Option<Vec<[f64; 4]>>,
     #[serde(default)]
     pub seabed: Seabed,
+    pub waves: Option<super::waves::RawWaves>,
 }
 
 impl Default for RawEnvironment {
@@ -109,6 +110,7 @@ impl Default for RawEnvironment {
             current: None,
             current_profile: None,
             seabed: Seabed::default(),
+            waves: None,
         }
     }
 }
