@@ -552,3 +552,86 @@ fn bad_body_input_names_the_file_the_field_and_the_problem() {
     );
     Scenario::load(dir.path().join("s.toml")).unwrap();
 }
+
+#[test]
+fn an_rao_body_heaves_with_the_scenarios_regular_wave() {
+    // Heave RAO 0.9 m/m with a 25 deg lead at every heading and frequency; a regular
+    // wave of amplitude 1 m, period 10 s, travelling towards 30 deg, phase 40 deg,
+    // ramped in over 5 s. Past the ramp, bodies.csv's z must be
+    // z_ref + 0.9 cos(theta(x_ref, t) - 25 deg) at every output time.
+    let dir = tempfile::tempdir().unwrap();
+    let mut rao = String::from(RAO_HEAD);
+    for w in [0.3, 0.9] {
+        for h in [0.0, 120.0, 240.0] {
+            rao += &format!("{w},{h},0,0,0,0,0.9,25,0,0,0,0,0,0\n");
+        }
+    }
+    write(dir.path(), "r.csv", &rao);
+    let text = format!(
+        r#"{HEAD}
+[environment.waves]
+ramp = 5.0
+
+[[environment.waves.trains]]
+type = "regular"
+amplitude = 1.0
+period = 10.0
+direction = 30.0
+phase = 40.0
+
+[[bodies]]
+name = "buoy"
+reference = [30.0, -20.0, 0.0]
+offset = [2.0, 1.0, -1.0]
+heading = 70.0
+rao_file = "r.csv"
+
+[[cables]]
+name = "hang"
+line_type = "rope"
+length = 10.0
+segments = 5
+start = {{ body = "buoy", at = [0.0, 0.0, -1.0] }}
+end = {{ free = [32.0, -19.0, -12.0] }}
+"#
+    );
+    write(dir.path(), "s.toml", &text);
+    let sc = Scenario::load(dir.path().join("s.toml")).unwrap();
+    let out = dir.path().join("out");
+    cablesim::sim::run(
+        &sc,
+        &cablesim::sim::RunOptions {
+            out_dir: out.clone(),
+            overrides: Default::default(),
+            progress: false,
+        },
+    )
+    .unwrap();
+    let bodies = std::fs::read_to_string(out.join("bodies.csv")).unwrap();
+    let w = TAU / 10.0;
+    let k = w * w / 9.81;
+    let b = 30f64.to_radians();
+    let (x, y) = (32.0, -19.0);
+    let mut checked = 0;
+    for line in bodies.lines().skip(1) {
+        let v: Vec<f64> = line
+            .split(',')
+            .map(|s| s.parse().unwrap_or(f64::NAN))
+            .collect();
+        let t = v[0];
+        let theta = k * (x * b.cos() + y * b.sin()) - w * t + 40f64.to_radians();
+        // The ramp 0.5 (1 - cos(pi t / 5)) before 5 s, 1 after.
+        let ramp = if t < 5.0 {
+            0.5 * (1.0 - (PI * t / 5.0).cos())
+        } else {
+            1.0
+        };
+        let want = -1.0 + ramp * 0.9 * (theta - 25f64.to_radians()).cos();
+        assert!((v[4] - want).abs() < 1e-9, "t {t}: z {} vs {want}", v[4]);
+        // No other motion.
+        assert!((v[2] - x).abs() < 1e-12 && (v[3] - y).abs() < 1e-12);
+        assert!(v[5].abs() < 1e-12 && v[6].abs() < 1e-12 && (v[7] - 70.0).abs() < 1e-9);
+        checked += 1;
+    }
+    assert_eq!(checked, 41);
+}
