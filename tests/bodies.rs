@@ -635,3 +635,38 @@ end = {{ free = [32.0, -19.0, -12.0] }}
     }
     assert_eq!(checked, 41);
 }
+
+#[test]
+fn the_docs_example_parses() {
+    // docs/bodies.md's example scenario, with a motion file beside it.
+    let doc =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/bodies.md")).unwrap();
+    let example = doc.split("## Example").nth(1).expect("an Example section");
+    let toml = example
+        .split("```toml")
+        .nth(1)
+        .unwrap()
+        .split("```")
+        .next()
+        .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let mut csv = String::from("t,x,y,z,roll,pitch,yaw\n");
+    for k in 0..=120 {
+        let t = 0.5 * k as f64;
+        let r = motion_row(t);
+        csv += &format!(
+            "{t},{},{},{},{},{},{}\n",
+            r[0], r[1], r[2], r[3], r[4], r[5]
+        );
+    }
+    write(dir.path(), "barge_motion.csv", &csv);
+    write(dir.path(), "s.toml", toml);
+    let sc = Scenario::load(dir.path().join("s.toml")).unwrap();
+    let on_body = sc
+        .model
+        .nodes
+        .iter()
+        .filter(|n| matches!(n.route, Some(Route::Body { .. })))
+        .count();
+    assert_eq!(on_body, 2);
+}
