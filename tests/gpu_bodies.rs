@@ -581,3 +581,123 @@ fn gpu_runs_bodies_like_cpu_in_f64() {
 fn gpu_runs_bodies_like_cpu_in_f32() {
     parity(Precision::F32);
 }
+
+/// `bodies.csv` of a scenario run on `backend` (f64 on the GPU).
+fn bodies_csv(dir: &std::path::Path, backend: cablesim::scenario::Backend) -> Vec<Vec<f64>> {
+    let sc = cablesim::scenario::Scenario::load(dir.join("s.toml")).unwrap();
+    let out = dir.join(format!("out_{backend:?}"));
+    cablesim::sim::run(
+        &sc,
+        &cablesim::sim::RunOptions {
+            out_dir: out.clone(),
+            overrides: cablesim::sim::Overrides {
+                backend: Some(backend),
+                precision: Some(Precision::F64),
+                ..Default::default()
+            },
+            progress: false,
+        },
+    )
+    .unwrap();
+    std::fs::read_to_string(out.join("bodies.csv"))
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| {
+            l.split(',')
+                .map(|x| x.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn a_scenario_with_bodies_writes_the_same_bodies_csv_on_the_gpu() {
+    let Some(_ctx) = gpu_context(
+        "a_scenario_with_bodies_writes_the_same_bodies_csv_on_the_gpu",
+        true,
+    ) else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let mut csv = String::from("t,x,y,z,roll,pitch,yaw\n");
+    for k in 0..=40 {
+        let t = 0.25 * k as f64;
+        csv += &format!(
+            "{t},{},{},{},{},{},{}\n",
+            0.5 * (0.6 * t).sin(),
+            0.3 * (0.5 * t).sin(),
+            0.8 * (0.7 * t).cos(),
+            3.0 * (0.6 * t).sin(),
+            2.0 * (0.4 * t).sin(),
+            4.0 * (0.3 * t).sin()
+        );
+    }
+    std::fs::write(dir.path().join("m.csv"), csv).unwrap();
+    let text = r#"
+[simulation]
+duration = 10.0
+output_interval = 0.5
+
+[[line_types]]
+name = "rope"
+diameter = 0.02
+mass_per_length = 1.0
+ea = 2.0e6
+damping = 1.0e-4
+cn = 1.2
+ct = 0.01
+cm = 1.0
+
+[[bodies]]
+name = "ship"
+reference = [5.0, 2.0, 0.0]
+heading = 30.0
+motion_file = "m.csv"
+
+[[cables]]
+name = "a"
+line_type = "rope"
+length = 10.0
+segments = 10
+start = { body = "ship", at = [8.0, -3.0, -2.0] }
+end = { free = [14.0, -1.0, -12.0], mass = 20.0, volume = 0.005 }
+
+[[cables]]
+name = "b"
+line_type = "rope"
+length = 12.0
+segments = 12
+start = { body = "ship", at = [-8.0, 3.0, -2.0] }
+end = { fixed = [-12.0, 4.0, -12.0] }
+"#;
+    std::fs::write(dir.path().join("s.toml"), text).unwrap();
+    let cpu = bodies_csv(dir.path(), cablesim::scenario::Backend::Cpu);
+    let gpu = bodies_csv(dir.path(), cablesim::scenario::Backend::Gpu);
+    assert_eq!(cpu.len(), 21);
+    assert_eq!(cpu.len(), gpu.len());
+    let fmax = cpu
+        .iter()
+        .map(|r| (r[8].powi(2) + r[9].powi(2) + r[10].powi(2)).sqrt())
+        .fold(0.0, f64::max);
+    assert!(fmax > 50.0, "the lines load the body: {fmax} N");
+    for (c, g) in cpu.iter().zip(&gpu) {
+        // The pose is the host's on both paths; the loads agree to f64 round-off
+        // (amplified by the run's stiffness: 1e-9 of the largest force).
+        for k in 0..8 {
+            if k != 1 {
+                assert_eq!(c[k], g[k], "column {k} at t = {}", c[0]);
+            }
+        }
+        for k in 8..14 {
+            let scale = if k < 11 { fmax } else { 20.0 * fmax };
+            assert!(
+                (c[k] - g[k]).abs() < 1e-9 * scale,
+                "column {k} at t = {}: CPU {} GPU {}",
+                c[0],
+                c[k],
+                g[k]
+            );
+        }
+    }
+}
