@@ -274,8 +274,8 @@ fn check_body_point<R: GpuReal>(ctx: &GpuContext, p: Precision) {
         let dx = (s.x - s0.x).norm();
         let mut dq = 0.0;
         for r in 0..3 {
-            for c in 0..3 {
-                dq += ((s.rot[r][c] - s0.rot[r][c]) * at[c]).abs();
+            for (c, a) in at.iter().enumerate() {
+                dq += ((s.rot[r][c] - s0.rot[r][c]) * a).abs();
             }
         }
         let q = (0..3).map(|k| at[k] * at[k]).sum::<f64>().sqrt();

@@ -236,6 +236,7 @@ mod tests {
     }
 
     #[test]
+    #[allow(clippy::needless_range_loop)] // matrix products written out
     fn angular_velocity_is_the_rotation_rate() {
         // dR/dt R^T = [w]x, and its derivative gives alpha.
         let h = 1e-5;

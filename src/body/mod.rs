@@ -27,6 +27,7 @@ use std::sync::Mutex;
 
 /// How a body moves about its mean pose.
 #[derive(Clone, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)] // one per body, evaluated in place each step
 pub enum Motion {
     /// At rest in its mean pose.
     Still,

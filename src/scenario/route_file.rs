@@ -14,19 +14,22 @@ pub(crate) fn read_numbers(
     field: &str,
     what: &str,
     header: &[&str],
-) -> Result<Vec<(usize, Vec<f64>)>, Error> {
+) -> Result<Rows, Error> {
     read_numbers_one_of(file, scenario, field, what, &[header]).map(|(_, rows)| rows)
 }
 
-/// As [`read_numbers`], for a file whose header may be any of `headers` (all of the
-/// same length): returns which one it has, and the rows.
+/// Rows of a numeric table: each row's file line and values.
+pub(crate) type Rows = Vec<(usize, Vec<f64>)>;
+
+/// As [`read_numbers`], for a file whose header may be any of `headers`: returns which
+/// one it has, and the rows.
 pub(crate) fn read_numbers_one_of(
     file: &Path,
     scenario: &Path,
     field: &str,
     what: &str,
     headers: &[&[&str]],
-) -> Result<(usize, Vec<(usize, Vec<f64>)>), Error> {
+) -> Result<(usize, Rows), Error> {
     let shown = file.display();
     let mut rdr = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
