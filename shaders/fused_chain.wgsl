@@ -13,8 +13,8 @@
 // (shared/prelude.wgsl: element_step, gather_begin/gather_add/gather_end,
 // node_advance, node_check), so the two paths agree to the last bit unless the
 // compiler contracts differently. Global memory is read once per dispatch (state,
-// parameters) and written once (state), except current tables and routes, read per
-// step. A blow-up stops the block at the failing step (its state stays there) and
+// parameters) and written once (state), except current tables, routes and body rows,
+// read per step. A blow-up stops the block at the failing step (its state stays there) and
 // raises `status.failed` (see Status), after which later dispatches do nothing.
 // FUSED_WG comes from the generated header.
 
@@ -105,7 +105,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
                 nf = gather_add(nf, wg_loads[(entry >> 1u) - blk.elem_start], entry);
             }
             nf = gather_end(i, nd, s, nf, blk, k);
-            s = node_advance(nd, s, nf, R(k) * params.dt);
+            s = node_advance(nd, s, nf, R(k) * params.dt, k);
             wg_state[j] = wg_pack(s);
             let what = node_check(blk, s);
             if what != 0u && atomicExchange(&wg_fail, 1u) == 0u {

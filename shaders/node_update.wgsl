@@ -18,7 +18,7 @@ fn node_update(@builtin(global_invocation_id) gid: vec3<u32>) {
     let s = state[i];
     let tau = R(step.k) * params.dt;
     let nf = gather_node(i, nd, s, step.k);
-    let sn = node_advance(nd, s, nf, tau);
+    let sn = node_advance(nd, s, nf, tau, step.k);
     state[i] = sn;
     let what = node_check(blocks[nd.block], sn);
     if what != 0u {
@@ -42,7 +42,7 @@ fn node_evaluate(@builtin(global_invocation_id) gid: vec3<u32>) {
     let s = state[i];
     let tau = R(step.k) * params.dt;
     let nf = gather_node(i, nd, s, step.k);
-    let a = node_accel(nd, s, nf, tau);
+    let a = node_accel(nd, s, nf, tau, step.k);
     node_out[i] = NodeOut(vec4<R>(nf.f, R(0.0)), vec4<R>(a, R(0.0)));
     if nd.constraint != NO_CONSTRAINT {
         reactions[nd.constraint] = vec4<R>(nf.f - sym3_mul(nf.m, a), R(0.0));

@@ -28,6 +28,7 @@
 
 pub mod ale;
 pub mod ancf;
+pub mod body;
 pub mod cpu;
 pub mod error;
 pub mod gpu;

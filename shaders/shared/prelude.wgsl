@@ -20,6 +20,7 @@ const ROUTE_FIXED: u32 = 0u;
 const ROUTE_LINE: u32 = 1u;
 const ROUTE_CIRCLE: u32 = 2u;
 const ROUTE_TABLE: u32 = 3u;
+const ROUTE_BODY: u32 = 4u;
 const FAIL_SPEED: u32 = 1u;
 const FAIL_DISTANCE: u32 = 2u;
 // Status.failed of a blow-up found by the fused kernel (see Status).
@@ -38,7 +39,8 @@ struct Params {
     n_winch: u32,
     // Steps of the current submission (the fused kernel's loop count).
     n_steps: u32,
-    pad: u32,
+    // Bodies: rows of `body_rows` per step.
+    n_bodies: u32,
     dt: R,
     alpha: R,
     beta: R,
@@ -124,8 +126,9 @@ struct Payout {
 // so only the displacement since then rounds in the shader). `p` is a
 // compensated pair (p_hi + p_lo). table: samples route_samples[table_start ..
 // table_start + table_len] interpolated at t = (t0_hi + t0_lo) + tau, the search
-// starting at sample `cursor` (the number of samples at or before t0). Rust:
-// RouteParams.
+// starting at sample `cursor` (the number of samples at or before t0). body: a point
+// fixed on body `body` (see body_point): `p` is the point at the rebase time, e1 =
+// R(t0) at and e2 = at (its body coordinates). Rust: RouteParams.
 struct RouteParams {
     p_hi_x: R,
     p_hi_y: R,
@@ -153,7 +156,39 @@ struct RouteParams {
     table_start: u32,
     table_len: u32,
     cursor: u32,
-    pad: u32,
+    body: u32,
+}
+
+// One body at step k of the submission, relative to its state at the rebase time t0
+// (the host forms the differences in f64, so they are small and keep their precision):
+// reference point displacement X(t) - X(t0), rotation change R(t) - R(t0) (rows),
+// reference point velocity and acceleration, angular velocity and acceleration (global
+// axes). Row `k * params.n_bodies + body` of `body_rows`. Rust: BodyRow.
+struct BodyRow {
+    dx: R,
+    dy: R,
+    dz: R,
+    dr00: R,
+    dr01: R,
+    dr02: R,
+    dr10: R,
+    dr11: R,
+    dr12: R,
+    dr20: R,
+    dr21: R,
+    dr22: R,
+    vx: R,
+    vy: R,
+    vz: R,
+    ax: R,
+    ay: R,
+    az: R,
+    wx: R,
+    wy: R,
+    wz: R,
+    alx: R,
+    aly: R,
+    alz: R,
 }
 
 // One sample of a table route: time (absolute, s) and position (relative to the
@@ -257,6 +292,7 @@ struct Status {
 @group(0) @binding(14) var<storage, read_write> status: Status;
 @group(0) @binding(15) var<storage, read> route_samples: array<RouteSample>;
 @group(0) @binding(16) var<storage, read> payout: array<Payout>;
+@group(0) @binding(18) var<storage, read> body_rows: array<BodyRow>;
 
 // ---- Small math ----
 
@@ -587,6 +623,39 @@ fn route_eval(q: RouteParams, tau: R) -> RouteState {
     );
 }
 
+// A point fixed on a body (route kind ROUTE_BODY) from the route `q` rebased to t0 and
+// the body's row `b` of this step: with q_at = R(t) at = e1 + dR at,
+// r = p + dX + dR at, v = V + w x q_at, a = A + alpha x q_at + w x (w x q_at)
+// (rigid-body kinematics; only the small displacement since t0 rounds in the shader).
+// Rust twin: body::kinematics::attachment.
+fn body_point(q: RouteParams, b: BodyRow) -> RouteState {
+    let at = vec3<R>(q.e2_x, q.e2_y, q.e2_z);
+    let dq = vec3<R>(
+        b.dr00 * at.x + b.dr01 * at.y + b.dr02 * at.z,
+        b.dr10 * at.x + b.dr11 * at.y + b.dr12 * at.z,
+        b.dr20 * at.x + b.dr21 * at.y + b.dr22 * at.z,
+    );
+    let qa = vec3<R>(q.e1_x, q.e1_y, q.e1_z) + dq;
+    let w = vec3<R>(b.wx, b.wy, b.wz);
+    let al = vec3<R>(b.alx, b.aly, b.alz);
+    return RouteState(
+        vec3<R>(q.p_hi_x, q.p_hi_y, q.p_hi_z),
+        vec3<R>(q.p_lo_x, q.p_lo_y, q.p_lo_z) + (vec3<R>(b.dx, b.dy, b.dz) + dq),
+        vec3<R>(b.vx, b.vy, b.vz) + cross(w, qa),
+        vec3<R>(b.ax, b.ay, b.az) + cross(al, qa) + cross(w, cross(w, qa)),
+    );
+}
+
+// The target of constraint `c` at `tau` into the submission, step `k` of it (a body's
+// row is per step).
+fn constraint_target(c: u32, tau: R, k: u32) -> RouteState {
+    let q = routes[c];
+    if q.kind == ROUTE_BODY {
+        return body_point(q, body_rows[k * params.n_bodies + q.body]);
+    }
+    return route_eval(q, tau);
+}
+
 // ---- One element and one node of a step, shared by the two-pass stages and the
 // fused kernel (each computes exactly this, only from different memory) ----
 
@@ -728,20 +797,21 @@ fn gather_node(i: u32, nd: NodeParams, s: NodeState, k: u32) -> NodeForce {
 }
 
 // Acceleration of node `i`: free (mass block solve) or driven onto its route with
-// Baumgarte stabilisation `a = a_d - beta (v - v_d) - alpha (r - r_d)`.
-fn node_accel(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R) -> vec3<R> {
+// Baumgarte stabilisation `a = a_d - beta (v - v_d) - alpha (r - r_d)`, at `tau`
+// into the submission, its step `k`.
+fn node_accel(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R, k: u32) -> vec3<R> {
     if nd.constraint == NO_CONSTRAINT {
         return sym3_solve(nf.m, nf.f);
     }
-    let d = route_eval(routes[nd.constraint], tau);
+    let d = constraint_target(nd.constraint, tau, k);
     let dr = (s.r_hi.xyz - d.r_hi) + (s.r_lo.xyz - d.r_lo);
     return d.a - (s.v.xyz - d.v) * params.beta - dr * params.alpha;
 }
 
-// Symplectic Euler from state `s` under `nf` at `tau` into the step:
-// v += a dt; r += v dt (r kept as a compensated pair).
-fn node_advance(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R) -> NodeState {
-    let a = node_accel(nd, s, nf, tau);
+// Symplectic Euler from state `s` under `nf` at `tau` into the submission (its step
+// `k`): v += a dt; r += v dt (r kept as a compensated pair).
+fn node_advance(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R, k: u32) -> NodeState {
+    let a = node_accel(nd, s, nf, tau, k);
     let vn = s.v.xyz + a * params.dt;
     let r = add_compensated(s.r_hi.xyz, s.r_lo.xyz, opaque3(vn * params.dt));
     return NodeState(vec4<R>(r[0], R(0.0)), vec4<R>(r[1], R(0.0)), vec4<R>(vn, R(0.0)));

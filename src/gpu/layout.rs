@@ -126,8 +126,8 @@ gpu_struct! {
         n_winch: u32,
         /// Steps of the current submission (the fused kernel's loop count).
         n_steps: u32,
-        /// Padding.
-        pad: u32,
+        /// Number of bodies (rows of the `body_rows` buffer per step).
+        n_bodies: u32,
         /// Time step, s.
         dt: R,
         /// Baumgarte position gain, s^-2.
@@ -301,7 +301,8 @@ gpu_struct! {
         t0_hi: R,
         /// Table: low part of the rebase time (`t0 = t0_hi + t0_lo`), s.
         t0_lo: R,
-        /// 0 fixed, 1 line, 2 circle or screw, 3 table.
+        /// 0 fixed, 1 line, 2 circle or screw, 3 table, 4 a point on a body (then
+        /// `p` is the point at the rebase time, `e1` is `R(t0) at`, `e2` is `at`).
         kind: u32,
         /// The node it drives.
         node: u32,
@@ -311,8 +312,64 @@ gpu_struct! {
         table_len: u32,
         /// Table: samples at or before the rebase time (where the search starts).
         cursor: u32,
-        /// Padding.
-        pad: u32,
+        /// Body: its body's index (its column of the `body_rows` buffer).
+        body: u32,
+    }
+}
+
+gpu_struct! {
+    /// One body at one step (WGSL `BodyRow`), relative to its state at the routes'
+    /// rebase time `t0` (formed in f64 on the host, so the differences are small and
+    /// keep their precision in f32): see `gpu::solver::body_rows`.
+    BodyRow {
+        /// Reference point displacement since `t0`, x, m.
+        dx: R,
+        /// See `dx`.
+        dy: R,
+        /// See `dx`.
+        dz: R,
+        /// `R(t) - R(t0)`, row 0, column 0.
+        dr00: R,
+        /// See `dr00`.
+        dr01: R,
+        /// See `dr00`.
+        dr02: R,
+        /// See `dr00`.
+        dr10: R,
+        /// See `dr00`.
+        dr11: R,
+        /// See `dr00`.
+        dr12: R,
+        /// See `dr00`.
+        dr20: R,
+        /// See `dr00`.
+        dr21: R,
+        /// See `dr00`.
+        dr22: R,
+        /// Reference point velocity x, m/s.
+        vx: R,
+        /// See `vx`.
+        vy: R,
+        /// See `vx`.
+        vz: R,
+        /// Reference point acceleration x, m/s^2.
+        ax: R,
+        /// See `ax`.
+        ay: R,
+        /// See `ax`.
+        az: R,
+        /// Angular velocity x, rad/s.
+        wx: R,
+        /// See `wx`.
+        wy: R,
+        /// See `wx`.
+        wz: R,
+        /// Angular acceleration x, rad/s^2.
+        alx: R,
+        /// See `alx`.
+        aly: R,
+        /// See `alx`.
+        alz: R,
     }
 }
 
@@ -452,6 +509,51 @@ gpu_struct_u32! {
     }
 }
 
+gpu_struct! {
+    /// One wave component (WGSL `WaveComp` in `shaders/shared/waves.wgsl`), as
+    /// `sea::kinematics::PackedComponent`.
+    WaveComp {
+        /// `k cos b`, rad/m.
+        kx: R,
+        /// `k sin b`, rad/m.
+        ky: R,
+        /// Wave number `k`, rad/m.
+        k: R,
+        /// Angular frequency `w`, rad/s.
+        omega: R,
+        /// Phase at the host's reference time, rad.
+        phase_ref: R,
+        /// Amplitude `A`, m.
+        amp: R,
+        /// `A w / (1 - e^{-2 k h})`, m/s.
+        amp_u: R,
+        /// `A w^2 / (1 - e^{-2 k h})`, m/s^2.
+        amp_a: R,
+        /// `cos b`.
+        cos_b: R,
+        /// `sin b`.
+        sin_b: R,
+    }
+}
+
+impl<R: GpuReal> WaveComp<R> {
+    /// The component at precision `R`.
+    pub fn from_packed(c: &crate::sea::kinematics::PackedComponent) -> Self {
+        Self {
+            kx: R::c(c.kx),
+            ky: R::c(c.ky),
+            k: R::c(c.k),
+            omega: R::c(c.omega),
+            phase_ref: R::c(c.phase_ref),
+            amp: R::c(c.amp),
+            amp_u: R::c(c.amp_u),
+            amp_a: R::c(c.amp_a),
+            cos_b: R::c(c.cos_b),
+            sin_b: R::c(c.sin_b),
+        }
+    }
+}
+
 /// Every shared struct's name and fields at precision `R` (for the layout test).
 pub fn all_structs<R: GpuReal>() -> Vec<(&'static str, usize, Vec<Field>)> {
     fn one<S: GpuStruct>() -> (&'static str, usize, Vec<Field>) {
@@ -473,5 +575,7 @@ pub fn all_structs<R: GpuReal>() -> Vec<(&'static str, usize, Vec<Field>)> {
         one::<NodeOut<R>>(),
         one::<Status>(),
         one::<Payout<R>>(),
+        one::<BodyRow<R>>(),
+        one::<WaveComp<R>>(),
     ]
 }

@@ -26,6 +26,7 @@ use super::context::GpuContext;
 use super::layout::*;
 use super::shaders::{self, Stage};
 use crate::ale::{AleElem, AleState, Winch};
+use crate::body::{attachment, kinematics::mat_vec, Body};
 use crate::error::Error;
 use crate::math::V3;
 use crate::model::{circle_basis, Layout, ModelDef, Route};
@@ -35,6 +36,7 @@ use crate::step::{diverged, Evaluation, StepFailure, WinchStatus};
 use bytemuck::Zeroable;
 use std::f64::consts::PI;
 use std::marker::PhantomData;
+use std::sync::Arc;
 use std::time::Instant;
 use wgpu::util::DeviceExt;
 
@@ -169,6 +171,10 @@ struct Host {
     /// The variable elements of the winch cables, in winch index order (the rows of
     /// the `payout` buffer).
     winches: Vec<AleElem>,
+    /// The bodies that ends are attached to (the columns of the `body_rows` buffer).
+    bodies: Vec<Arc<Body>>,
+    /// Per route: its body's index in `bodies` (routes on bodies only; else 0).
+    route_body: Vec<u32>,
 }
 
 /// `ElemParams::winch` and `NodeParams::winch` of what is not a variable element.
@@ -198,6 +204,19 @@ impl Host {
                 next += t.len() as u32;
             }
         }
+        let mut bodies: Vec<Arc<Body>> = Vec::new();
+        let mut route_body = vec![0u32; lay.routes.len()];
+        for (c, r) in lay.routes.iter().enumerate() {
+            if let Route::Body { body, .. } = r {
+                route_body[c] = match bodies.iter().position(|b| Arc::ptr_eq(b, body)) {
+                    Some(i) => i,
+                    None => {
+                        bodies.push(body.clone());
+                        bodies.len() - 1
+                    }
+                } as u32;
+            }
+        }
         let mut elem_winch = vec![NO_WINCH; lay.n_elements()];
         let mut node_winch = vec![NO_WINCH; lay.n_nodes()];
         let mut winches = Vec::new();
@@ -223,6 +242,8 @@ impl Host {
             elem_winch,
             node_winch,
             winches,
+            bodies,
+            route_body,
         })
     }
 
@@ -266,6 +287,9 @@ pub fn route_samples<R: GpuReal>(route: &Route, o: [f64; 3]) -> Vec<RouteSample<
 /// Route `route` of node `node` rebased to time `t0` and origin `o`: what the shaders'
 /// `route_eval(q, tau)` turns into the target at `t0 + tau`, relative to `o`. A table
 /// route's samples ([`route_samples`]) start at `table_start` in the samples buffer.
+/// A point on a body holds the point at `t0`, `R(t0) at` and `at` (`body` is left 0
+/// for the caller to set); the shaders' `body_point` adds the motion since `t0` from
+/// the body's row of the step ([`body_rows`]).
 pub fn rebased_route<R: GpuReal>(
     route: &Route,
     node: u32,
@@ -283,6 +307,18 @@ pub fn rebased_route<R: GpuReal>(
         q.table_len = t.len() as u32;
         q.cursor = t.partition_point(|&x| x <= t0) as u32;
         (q.t0_hi, q.t0_lo) = split(t0);
+        return q;
+    }
+    if let Route::Body { body, at } = route {
+        q.kind = 4;
+        let s = body.state(t0);
+        let p = sub(attachment(&s, *at).r, o);
+        (q.p_hi_x, q.p_lo_x) = split(p[0]);
+        (q.p_hi_y, q.p_lo_y) = split(p[1]);
+        (q.p_hi_z, q.p_lo_z) = split(p[2]);
+        let q0 = mat_vec(&s.rot, *at);
+        (q.e1_x, q.e1_y, q.e1_z) = (R::c(q0.x), R::c(q0.y), R::c(q0.z));
+        (q.e2_x, q.e2_y, q.e2_z) = (R::c(at[0]), R::c(at[1]), R::c(at[2]));
         return q;
     }
     let (p, vel) = match route {
@@ -323,7 +359,7 @@ pub fn rebased_route<R: GpuReal>(
                 .map(|d| center[d] + axis[d] * adv * t0 + radius * (c0 * e1[d] + s0 * e2[d]));
             (sub(p, o), axis.map(|a| a * adv))
         }
-        Route::Table { .. } => unreachable!("handled above"),
+        Route::Table { .. } | Route::Body { .. } => unreachable!("handled above"),
     };
     (q.p_hi_x, q.p_lo_x) = split(p[0]);
     (q.p_hi_y, q.p_lo_y) = split(p[1]);
@@ -332,6 +368,51 @@ pub fn rebased_route<R: GpuReal>(
     q.vel_y = R::c(vel[1]);
     q.vel_z = R::c(vel[2]);
     q
+}
+
+/// The rows of `body` at times `times` (s) relative to its state at the rebase time
+/// `t0` (what the shaders' `body_point` reads): the reference point's displacement
+/// and the change of the rotation since `t0`, formed in f64 so that only small
+/// numbers are rounded to `R`, and the velocities and accelerations at each time.
+pub fn body_rows<R: GpuReal>(
+    body: &Body,
+    t0: f64,
+    times: impl Iterator<Item = f64>,
+) -> Vec<BodyRow<R>> {
+    let s0 = body.state(t0);
+    times
+        .map(|t| {
+            let s = body.state(t);
+            let d = s.x - s0.x;
+            let dr = |i: usize, j: usize| R::c(s.rot[i][j] - s0.rot[i][j]);
+            BodyRow {
+                dx: R::c(d.x),
+                dy: R::c(d.y),
+                dz: R::c(d.z),
+                dr00: dr(0, 0),
+                dr01: dr(0, 1),
+                dr02: dr(0, 2),
+                dr10: dr(1, 0),
+                dr11: dr(1, 1),
+                dr12: dr(1, 2),
+                dr20: dr(2, 0),
+                dr21: dr(2, 1),
+                dr22: dr(2, 2),
+                vx: R::c(s.v.x),
+                vy: R::c(s.v.y),
+                vz: R::c(s.v.z),
+                ax: R::c(s.a.x),
+                ay: R::c(s.a.y),
+                az: R::c(s.a.z),
+                wx: R::c(s.omega.x),
+                wy: R::c(s.omega.y),
+                wz: R::c(s.omega.z),
+                alx: R::c(s.alpha.x),
+                aly: R::c(s.alpha.y),
+                alz: R::c(s.alpha.z),
+            }
+        })
+        .collect()
 }
 
 /// What the GPU solver does not do yet, or `None`.
@@ -427,6 +508,7 @@ struct Buffers {
     reactions: wgpu::Buffer,
     status: wgpu::Buffer,
     payout: wgpu::Buffer,
+    body_rows: wgpu::Buffer,
     staging: wgpu::Buffer,
 }
 
@@ -513,6 +595,8 @@ impl<R: GpuReal> GpuEngine<R> {
         entries.extend((2..=9).map(|b| storage(b, true)));
         entries.extend((10..=14).map(|b| storage(b, false)));
         entries.extend((15..=16).map(|b| storage(b, true)));
+        // Binding 17 is left to the wave components (shaders/shared/waves.wgsl).
+        entries.push(storage(18, true));
         let bgl = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("cablesim"),
             entries: &entries,
@@ -607,7 +691,7 @@ impl<R: GpuReal> GpuEngine<R> {
             step_base: 0,
             n_winch: n_winch as u32,
             n_steps: 0,
-            pad: 0,
+            n_bodies: host.bodies.len() as u32,
             dt: R::c(opts.dt),
             alpha: R::c(opts.baumgarte.alpha),
             beta: R::c(opts.baumgarte.beta),
@@ -722,6 +806,8 @@ impl<R: GpuReal> GpuEngine<R> {
         let react_bytes = (n_routes.max(1) * std::mem::size_of::<[R; 4]>()) as u64;
         let payout_bytes = ((STEPS_PER_SUBMISSION as usize * n_winch).max(1)
             * std::mem::size_of::<Payout<R>>()) as u64;
+        let body_bytes = ((STEPS_PER_SUBMISSION as usize * host.bodies.len()).max(1)
+            * std::mem::size_of::<BodyRow<R>>()) as u64;
         let staging_bytes = [state_bytes, loads_bytes, out_bytes, react_bytes, 16]
             .iter()
             .map(|&b| align_up(b, 256))
@@ -741,6 +827,7 @@ impl<R: GpuReal> GpuEngine<R> {
             reactions: init("reactions", &zeros(react_bytes), rw),
             status: init("status", &zeros(16), rw),
             payout: init("payout", &zeros(payout_bytes), ro | U::COPY_DST),
+            body_rows: init("body_rows", &zeros(body_bytes), ro | U::COPY_DST),
             staging: dev.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("staging"),
                 size: staging_bytes,
@@ -796,6 +883,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 whole(14, &buf.status),
                 whole(15, &samples_b),
                 whole(16, &buf.payout),
+                whole(18, &buf.body_rows),
             ],
         });
         Installed {
@@ -838,6 +926,32 @@ impl<R: GpuReal> GpuEngine<R> {
             .write_buffer(&self.inst.buf.payout, 0, bytemuck::cast_slice(&rows));
     }
 
+    /// Writes the `body_rows` of steps `step0 .. step0 + n` (rows `0 .. n`, one per
+    /// body each), relative to each body's state at `step0` (the routes' rebase time).
+    fn write_bodies(&self, host: &Host, step0: u64, n: u64) {
+        if host.bodies.is_empty() {
+            return;
+        }
+        let dt = self.dt64;
+        let per_body: Vec<Vec<BodyRow<R>>> = host
+            .bodies
+            .iter()
+            .map(|b| {
+                body_rows(
+                    b,
+                    step0 as f64 * dt,
+                    (0..n).map(|k| (step0 + k) as f64 * dt),
+                )
+            })
+            .collect();
+        let rows: Vec<BodyRow<R>> = (0..n as usize)
+            .flat_map(|k| per_body.iter().map(move |b| b[k]))
+            .collect();
+        self.ctx
+            .queue
+            .write_buffer(&self.inst.buf.body_rows, 0, bytemuck::cast_slice(&rows));
+    }
+
     fn write_routes(&self, lay: &Layout, host: &Host, t0: f64) {
         if lay.routes.is_empty() {
             return;
@@ -847,13 +961,15 @@ impl<R: GpuReal> GpuEngine<R> {
             .iter()
             .enumerate()
             .map(|(c, r)| {
-                rebased_route(
+                let mut q = rebased_route(
                     r,
                     lay.constraint_node[c],
                     t0,
                     host.route_origin(lay, c),
                     host.table_start[c],
-                )
+                );
+                q.body = host.route_body[c];
+                q
             })
             .collect();
         self.ctx
@@ -943,6 +1059,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             let t_enc = Instant::now();
             self.write_routes(lay, host, (step0 + done) as f64 * dt64);
             self.write_payout(host, step0 + done, chunk);
+            self.write_bodies(host, step0 + done, chunk);
             self.inst.params.step_base = done as u32;
             self.inst.params.n_steps = chunk as u32;
             ctx.queue.write_buffer(
@@ -1102,6 +1219,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         let ctx = &self.ctx;
         self.write_routes(lay, host, step as f64 * self.dt64);
         self.write_payout(host, step, 1);
+        self.write_bodies(host, step, 1);
         self.inst.params.step_base = 0;
         ctx.queue.write_buffer(
             &self.inst.buf.params,

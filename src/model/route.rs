@@ -4,7 +4,9 @@
 //! time `t`; the constraint drives the node onto it with Baumgarte stabilisation
 //! (docs/src/model/constraints.md, paper Eq. 6).
 
+use crate::body::{attachment, Body};
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// A prescribed path `r_d(t)`.
 #[derive(Clone, Debug, PartialEq)]
@@ -43,6 +45,14 @@ pub enum Route {
         t: Vec<f64>,
         /// Positions, m.
         p: Vec<[f64; 3]>,
+    },
+    /// A point fixed on a body with prescribed motion: rigid-body kinematics of the
+    /// body's state (`crate::body`).
+    Body {
+        /// The body (shared by every end attached to it).
+        body: Arc<Body>,
+        /// The point in body coordinates, relative to the body's reference point, m.
+        at: [f64; 3],
     },
 }
 
@@ -152,6 +162,7 @@ impl Route {
                 }
                 st
             }
+            Route::Body { body, at } => attachment(&body.state(t), *at),
         }
     }
 
@@ -185,6 +196,15 @@ impl Route {
                 t: t.clone(),
                 p: p.iter().map(|x| add(*x)).collect(),
             },
+            // The whole body moved by `d`: its point at `at` moves by `d` at all times.
+            Route::Body { body, at } => {
+                let mut b = Body::clone(body);
+                b.pose.offset = add(b.pose.offset);
+                Route::Body {
+                    body: Arc::new(b),
+                    at: *at,
+                }
+            }
         }
     }
 

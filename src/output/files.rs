@@ -16,6 +16,8 @@ use std::path::{Path, PathBuf};
 ///   output (the file only when there is one);
 /// - `winches.csv`: `time,cable,deployed_length,variable_l0,elements` (the file only
 ///   with winches);
+/// - `bodies.csv`: `time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz` (m, degrees, N,
+///   N m about the reference point; the file only when cable ends are on bodies);
 /// - `summary.json`: the [`Summary`].
 ///
 /// The directory and the files are created at the first frame.
@@ -29,6 +31,7 @@ struct Files {
     tensions: BufWriter<File>,
     positions: Option<BufWriter<File>>,
     winches: Option<BufWriter<File>>,
+    bodies: Option<BufWriter<File>>,
 }
 
 /// The error of an I/O failure on file `name` in `dir`.
@@ -68,6 +71,7 @@ impl FileSink {
         })?;
         let positions = first.cables.iter().any(|c| c.output_positions);
         let winches = first.cables.iter().any(|c| c.winch.is_some());
+        let bodies = !first.bodies.is_empty();
         Ok(Files {
             end_forces: self.open("end_forces.csv", "time,cable,end,fx,fy,fz")?,
             tensions: self.open("tensions.csv", "time,cable,element,tension")?,
@@ -80,6 +84,14 @@ impl FileSink {
                 Some(self.open(
                     "winches.csv",
                     "time,cable,deployed_length,variable_l0,elements",
+                )?)
+            } else {
+                None
+            },
+            bodies: if bodies {
+                Some(self.open(
+                    "bodies.csv",
+                    "time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz",
                 )?)
             } else {
                 None
@@ -132,6 +144,18 @@ impl OutputSink for FileSink {
                 }
             }
         }
+        if let Some(w) = f.bodies.as_mut() {
+            let e_b = err(&self.dir, "bodies.csv");
+            for b in &s.bodies {
+                let (x, a, f, m) = (b.position, b.angles, b.force, b.moment);
+                writeln!(
+                    w,
+                    "{t},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                    b.name, x[0], x[1], x[2], a[0], a[1], a[2], f[0], f[1], f[2], m[0], m[1], m[2]
+                )
+                .map_err(&e_b)?;
+            }
+        }
         Ok(())
     }
 
@@ -145,6 +169,9 @@ impl OutputSink for FileSink {
             }
             if let Some(w) = f.winches.as_mut() {
                 w.flush().map_err(err(dir, "winches.csv"))?;
+            }
+            if let Some(w) = f.bodies.as_mut() {
+                w.flush().map_err(err(dir, "bodies.csv"))?;
             }
         } else {
             std::fs::create_dir_all(&self.dir).map_err(|source| Error::Output {

@@ -12,7 +12,7 @@ mod summary;
 
 pub use files::FileSink;
 pub use memory::MemorySink;
-pub use sink::{CableState, OutputSink, Snapshot};
+pub use sink::{BodyState, CableState, OutputSink, Snapshot};
 pub use summary::{write_summary, CableSummary, EndForces, Summary, WinchSummary};
 
 use crate::math::{Sym3, V3};

@@ -22,6 +22,23 @@ pub struct Snapshot {
     pub steps: u64,
     /// Per cable.
     pub cables: Vec<CableState>,
+    /// Per vessel body that cable ends are attached to (empty without bodies).
+    pub bodies: Vec<BodyState>,
+}
+
+/// A vessel body's pose and the load its cables exert on it, at one time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyState {
+    /// Name.
+    pub name: String,
+    /// Reference point, m.
+    pub position: [f64; 3],
+    /// Roll, pitch and yaw (the yaw includes the mean heading), degrees.
+    pub angles: [f64; 3],
+    /// Total force of the cables on the body, N.
+    pub force: [f64; 3],
+    /// Their moment about the reference point, N m.
+    pub moment: [f64; 3],
 }
 
 /// One cable's state at one time.

@@ -1,8 +1,8 @@
 //! Cable ends and named points: `{ fixed = [...] }`, `{ free = [...] }`,
 //! `{ route = "line" | "circle" | "screw" | "table", ... }`, `{ point = "name" }`,
-//! each optionally with a point mass (`mass`, `volume`, `drag_area`, `added_mass`).
+//! `{ body = "name", at = [x, y, z] }` (`super::bodies`), each optionally with a point mass (`mass`, `volume`, `drag_area`, `added_mass`).
 
-use super::{err, finite, non_negative, positive, route_file};
+use super::{bodies, err, finite, non_negative, positive, route_file};
 use crate::error::Error;
 use crate::model::{PointMass, Route};
 use std::collections::HashMap;
@@ -15,7 +15,7 @@ pub enum EndKind {
     Fixed([f64; 3]),
     /// Free, starting at a point.
     Free([f64; 3]),
-    /// Driven along a route.
+    /// Driven along a route (a point on a body included).
     Route,
     /// Attached to a named point (index into the model's nodes).
     Point(usize),
@@ -99,8 +99,9 @@ pub fn parse_end(
     t: &toml::Table,
     extra: &[&str],
     points: &HashMap<String, usize>,
+    bodies: &bodies::Bodies,
 ) -> Result<EndSpec, Error> {
-    let kinds: Vec<&str> = ["fixed", "free", "route", "point"]
+    let kinds: Vec<&str> = ["fixed", "free", "route", "point", "body"]
         .into_iter()
         .filter(|k| t.contains_key(*k))
         .collect();
@@ -109,7 +110,7 @@ pub fn parse_end(
             p,
             field,
             if kinds.is_empty() {
-                "needs one of `fixed = [x, y, z]`, `free = [x, y, z]`, `route = \"...\"` or `point = \"name\"`".to_string()
+                "needs one of `fixed = [x, y, z]`, `free = [x, y, z]`, `route = \"...\"`, `point = \"name\"` or `body = \"name\"`".to_string()
             } else {
                 format!("give only one of {}", kinds.join(", "))
             },
@@ -144,6 +145,13 @@ pub fn parse_end(
                 )
             })?;
             (EndKind::Point(idx), None)
+        }
+        "body" => {
+            allowed.push("at");
+            (
+                EndKind::Route,
+                Some(bodies::end_route(p, field, t, bodies)?),
+            )
         }
         _ => {
             let kind = t["route"]
@@ -227,6 +235,8 @@ pub fn parse_end(
     // `offset` moves the whole end (position or route): patterns of cables use it.
     let (kind, route) = match get_vec3(p, field, t, "offset")? {
         None => (kind, route),
+        // Checked by bodies::end_route: zero.
+        Some(_) if kinds[0] == "body" => (kind, route),
         Some(d) => {
             let add = |a: [f64; 3]| [a[0] + d[0], a[1] + d[1], a[2] + d[2]];
             let kind = match kind {

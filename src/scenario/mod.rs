@@ -2,10 +2,12 @@
 //! they describe. The keys are documented in docs/src/scenario.md.
 
 mod arrays;
+mod bodies;
 mod ends;
 mod nets;
 mod raw;
 mod route_file;
+pub mod waves;
 mod winch;
 
 use crate::ale::Winch;
@@ -77,6 +79,8 @@ pub struct Scenario {
     pub winches: Vec<Winch>,
     /// The `[ancf]` table (used when the ANCF model runs).
     pub ancf: AncfSettings,
+    /// The sea state of `[environment.waves]` (still water without it).
+    pub sea: crate::sea::SeaState,
 }
 
 /// Builds `Error::Scenario` for `path`.
@@ -286,6 +290,8 @@ impl Scenario {
         };
         let global_current =
             current(p, "environment.", e.current, &e.current_profile)?.unwrap_or_default();
+        let (sea, sea_warnings) = waves::sea_state(p, e.waves.as_ref(), depth, env.gravity)?;
+        sea_warnings.iter().for_each(|w| log::warn!("{w}"));
 
         // [[line_types]]
         let mut lt_index = HashMap::new();
@@ -329,6 +335,10 @@ impl Scenario {
             ..Default::default()
         };
 
+        // [[bodies]]: bodies with prescribed motion that ends attach to (RAO bodies move
+        // in the sea state's wave components, ramped in with them).
+        let bodies = bodies::parse(p, &raw.bodies, &sea.components, sea.ramp_duration)?;
+
         // [[points]]: named shared nodes.
         let mut point_index: HashMap<String, usize> = HashMap::new();
         for (i, t) in raw.points.iter().enumerate() {
@@ -344,7 +354,7 @@ impl Scenario {
                 }
             };
             let field = format!("points[{i}] (\"{name}\")");
-            let spec = ends::parse_end(p, &field, t, &["name"], &HashMap::new())?;
+            let spec = ends::parse_end(p, &field, t, &["name"], &HashMap::new(), &bodies)?;
             let (position, route, point) = match spec.kind {
                 EndKind::Point(_) => {
                     return Err(err(p, field, "a point cannot refer to another point"))
@@ -432,8 +442,8 @@ impl Scenario {
                 }
                 None => 0,
             };
-            let start = ends::parse_end(p, &f("start"), &c.start, &[], &point_index)?;
-            let end = ends::parse_end(p, &f("end"), &c.end, &[], &point_index)?;
+            let start = ends::parse_end(p, &f("start"), &c.start, &[], &point_index, &bodies)?;
+            let end = ends::parse_end(p, &f("end"), &c.end, &[], &point_index, &bodies)?;
             if let Some(w) = &c.winch {
                 winches.push(winch::parse(
                     p,
@@ -559,6 +569,7 @@ impl Scenario {
             initial,
             winches,
             ancf: ancf_settings(p, &raw.ancf)?,
+            sea,
         })
     }
 }

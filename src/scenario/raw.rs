@@ -13,6 +13,8 @@ pub struct RawScenario {
     pub environment: RawEnvironment,
     pub line_types: Vec<LineType>,
     #[serde(default)]
+    pub bodies: Vec<toml::Table>,
+    #[serde(default)]
     pub points: Vec<toml::Table>,
     #[serde(default)]
     pub cables: Vec<RawCable>,
@@ -97,6 +99,7 @@ pub struct RawEnvironment {
     pub current_profile: Option<Vec<[f64; 4]>>,
     #[serde(default)]
     pub seabed: Seabed,
+    pub waves: Option<super::waves::RawWaves>,
 }
 
 impl Default for RawEnvironment {
@@ -108,6 +111,7 @@ impl Default for RawEnvironment {
             current: None,
             current_profile: None,
             seabed: Seabed::default(),
+            waves: None,
         }
     }
 }

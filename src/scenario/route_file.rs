@@ -7,16 +7,30 @@ use std::path::Path;
 
 /// Reads a CSV table of finite numbers with exactly the columns `header` (`what` names
 /// the kind of file in messages). Returns each row's file line and values; every
-/// problem is an error naming the file, the line and what is wrong.
+/// problem is an error naming the file, the line, the column and what is wrong.
 pub(crate) fn read_numbers(
     file: &Path,
     scenario: &Path,
     field: &str,
     what: &str,
     header: &[&str],
-) -> Result<Vec<(usize, Vec<f64>)>, Error> {
+) -> Result<Rows, Error> {
+    read_numbers_one_of(file, scenario, field, what, &[header]).map(|(_, rows)| rows)
+}
+
+/// Rows of a numeric table: each row's file line and values.
+pub(crate) type Rows = Vec<(usize, Vec<f64>)>;
+
+/// As [`read_numbers`], for a file whose header may be any of `headers`: returns which
+/// one it has, and the rows.
+pub(crate) fn read_numbers_one_of(
+    file: &Path,
+    scenario: &Path,
+    field: &str,
+    what: &str,
+    headers: &[&[&str]],
+) -> Result<(usize, Rows), Error> {
     let shown = file.display();
-    let names = header.join(",");
     let mut rdr = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
@@ -34,16 +48,23 @@ pub(crate) fn read_numbers(
         .map_err(|e| err(scenario, field, format!("{shown}: {e}")))?
         .clone();
     let h: Vec<&str> = found.iter().collect();
-    if h != header {
+    let Some(which) = headers.iter().position(|x| *x == h.as_slice()) else {
+        let names: Vec<String> = headers
+            .iter()
+            .map(|x| format!("`{}`", x.join(",")))
+            .collect();
         return Err(err(
             scenario,
             field,
             format!(
-                "{shown}: the header must be `{names}`, found `{}`",
+                "{shown}: the header must be {}, found `{}`",
+                names.join(" or "),
                 h.join(",")
             ),
         ));
-    }
+    };
+    let header = headers[which];
+    let names = header.join(",");
     let mut rows = Vec::new();
     for rec in rdr.records() {
         let rec = rec.map_err(|e| err(scenario, field, format!("{shown}: {e}")))?;
@@ -61,7 +82,8 @@ pub(crate) fn read_numbers(
         }
         let v = rec
             .iter()
-            .map(|s| {
+            .zip(header)
+            .map(|(s, col)| {
                 s.parse::<f64>()
                     .ok()
                     .filter(|x| x.is_finite())
@@ -69,7 +91,9 @@ pub(crate) fn read_numbers(
                         err(
                             scenario,
                             field,
-                            format!("{shown} line {line}: `{s}` is not a finite number"),
+                            format!(
+                                "{shown} line {line}, column {col}: `{s}` is not a finite number"
+                            ),
                         )
                     })
             })
@@ -83,7 +107,7 @@ pub(crate) fn read_numbers(
             format!("{shown}: no rows after the header"),
         ));
     }
-    Ok(rows)
+    Ok((which, rows))
 }
 
 /// Reads a route table. `scenario` and `field` name where it was referred from.

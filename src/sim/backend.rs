@@ -18,7 +18,7 @@ use crate::gpu::solver::NodeStates;
 use crate::gpu::{GpuContext, GpuSolver};
 use crate::model::{Layout, Route};
 use crate::options::{Backend, Precision, SolverOptions};
-use crate::output::{end_forces, CableState, CableSummary, EndForces, WinchSummary};
+use crate::output::{end_forces, BodyState, CableState, CableSummary, EndForces, WinchSummary};
 use crate::scenario::Scenario;
 use crate::step::{Evaluation, WinchStatus};
 
@@ -252,6 +252,16 @@ impl LumpedStepper {
                 winch: winch_summary(&winches, ci),
             })
             .collect())
+    }
+
+    /// Every vessel body's pose and load at time `t` (now).
+    pub fn bodies(&mut self, t: f64) -> Result<Vec<BodyState>, Error> {
+        if !self.layout().routes.iter().any(|r| matches!(r, Route::Body { .. })) {
+            return Ok(Vec::new());
+        }
+        let ev = self.evaluate()?;
+        let (r, _) = self.state()?;
+        Ok(crate::body::output::body_states(self.layout(), t, &r, &ev))
     }
 
     /// Every cable's final state for the summary: tensions and end forces are NaN when

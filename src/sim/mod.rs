@@ -328,14 +328,16 @@ impl Simulation {
     pub fn snapshot(&mut self) -> Result<Snapshot, Error> {
         let time = self.time();
         let steps = self.steps();
-        let cables = match &mut self.engine {
-            Engine::Lumped(s, _) => s.cables()?,
-            Engine::Ancf(f) => f.cables()?,
+        let (cables, bodies) = match &mut self.engine {
+            Engine::Lumped(s, _) => (s.cables()?, s.bodies(time)?),
+            // The ANCF backend follows body ends but does not report body loads.
+            Engine::Ancf(f) => (f.cables()?, Vec::new()),
         };
         Ok(Snapshot {
             time,
             steps,
             cables,
+            bodies,
         })
     }
 

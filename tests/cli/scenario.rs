@@ -188,7 +188,7 @@ fn route_file_errors_name_the_line() {
     for (rows, msg) in [
         (
             "t,x,y,z\n0,0,0,-10\n1,abc,0,-10\n",
-            "line 3: `abc` is not a finite number",
+            "line 3, column x: `abc` is not a finite number",
         ),
         ("t,x,y,z\n0,0,0,-10\n1,0,0\n", "line 3: expected 4 values"),
         (

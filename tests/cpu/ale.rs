@@ -576,7 +576,7 @@ fn bad_winch_keys_and_schedule_files_are_named() {
         ("t,length\n", "no rows after the header"),
         (
             "t,length\n0,20\n10,abc\n",
-            "line 3: `abc` is not a finite number",
+            "line 3, column length: `abc` is not a finite number",
         ),
         (
             "t,length\n0,20\n10,30\n10,40\n",

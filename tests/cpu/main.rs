@@ -9,6 +9,7 @@
 mod common;
 
 mod ale;
+mod bodies;
 mod ancf;
 mod case1;
 mod chain_kernel;

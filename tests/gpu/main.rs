@@ -16,6 +16,7 @@
 mod common;
 
 mod backend;
+mod bodies;
 mod compare;
 mod f32_vs_f64;
 mod functions;
@@ -25,3 +26,4 @@ mod parity;
 mod shaders;
 mod step_functions;
 mod winch;
+mod waves;

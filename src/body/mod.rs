@@ -1,0 +1,98 @@
+//! Bodies with prescribed motion (vessels, buoys, towing ships) that cable ends attach
+//! to.
+//!
+//! A body has a reference point, a mean pose ([`MeanPose`]: the reference point at
+//! rest, a mean offset and a mean heading) and a motion about it, from a 6-DOF time
+//! series ([`motion`]) or from RAOs in the sea state's wave components ([`rao`]). Its
+//! state at a time ([`kinematics::BodyState`]) gives every attached point's position,
+//! velocity and acceleration by rigid-body kinematics ([`kinematics::attachment`]),
+//! which drive the end constraint exactly as a route's target does: an attachment is
+//! a [`crate::model::Route::Body`]. [`output`] writes the force and moment the cables
+//! exert on each body (`bodies.csv`).
+//!
+//! On the GPU path the host evaluates each body's state once per step (per body, not
+//! per node) into rows uploaded with each submission, and the shaders apply the
+//! attachment kinematics per end node (`gpu::solver::body_rows`, WGSL `body_point`).
+
+pub mod kinematics;
+pub mod motion;
+pub mod output;
+pub mod rao;
+
+pub use kinematics::{attachment, BodyState, Dofs, MeanPose};
+pub use motion::MotionTable;
+pub use rao::{RaoMotion, RaoTable};
+
+use std::sync::Mutex;
+
+/// How a body moves about its mean pose.
+#[derive(Clone, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)] // one per body, evaluated in place each step
+pub enum Motion {
+    /// At rest in its mean pose.
+    Still,
+    /// A 6-DOF time series.
+    Table(MotionTable),
+    /// RAOs driven by wave components.
+    Rao(RaoMotion),
+}
+
+/// A body with prescribed motion.
+#[derive(Debug)]
+pub struct Body {
+    /// Name (what ends refer to, and the `body` column of `bodies.csv`).
+    pub name: String,
+    /// Mean pose.
+    pub pose: MeanPose,
+    /// Motion about the mean pose.
+    pub motion: Motion,
+    /// The last state evaluated: every end on the body asks for the same time, and an
+    /// RAO motion costs a sine and cosine per wave component.
+    last: Mutex<Option<(f64, BodyState)>>,
+}
+
+impl Clone for Body {
+    fn clone(&self) -> Self {
+        Self::new(self.name.clone(), self.pose, self.motion.clone())
+    }
+}
+
+impl PartialEq for Body {
+    fn eq(&self, o: &Self) -> bool {
+        self.name == o.name && self.pose == o.pose && self.motion == o.motion
+    }
+}
+
+impl Body {
+    /// A body named `name` in mean pose `pose`, moving by `motion`.
+    pub fn new(name: String, pose: MeanPose, motion: Motion) -> Self {
+        Self {
+            name,
+            pose,
+            motion,
+            last: Mutex::new(None),
+        }
+    }
+
+    /// The motion about the mean pose at time `t`, s.
+    pub fn dofs(&self, t: f64) -> Dofs {
+        match &self.motion {
+            Motion::Still => Dofs::default(),
+            Motion::Table(m) => m.eval(t),
+            Motion::Rao(m) => m.eval(t),
+        }
+    }
+
+    /// The body's state at time `t`, s.
+    pub fn state(&self, t: f64) -> BodyState {
+        let mut last = self.last.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((t0, s)) = *last {
+            if t0.to_bits() == t.to_bits() {
+                return s;
+            }
+        }
+        let s = kinematics::body_state(&self.pose, &self.dofs(t));
+        *last = Some((t, s));
+        s
+    }
+}
