@@ -223,8 +223,16 @@ def serde_keys(text):
     """Field names of the structs deriving Deserialize in `text`."""
     keys = set()
     for m in re.finditer(r"#\[derive\([^)]*Deserialize[^)]*\)\][^{]*?struct\s+\w+\s*\{(.*?)\n\}", text, re.S):
-        for f in re.finditer(r"^\s*pub\s+(" + KEY + r")\s*:", m.group(1), re.M):
-            keys.add(f.group(1))
+        rename = None
+        for line in m.group(1).splitlines():
+            r = re.search(r'#\[serde\([^]]*\brename\s*=\s*"(' + KEY + r')"', line)
+            if r:
+                rename = r.group(1)
+            f = re.match(r"\s*pub\s+(" + KEY + r")\s*:", line)
+            if f:
+                # A `#[serde(rename = "...")]` before the field names its key.
+                keys.add(rename or f.group(1))
+                rename = None
     return keys
 
 
