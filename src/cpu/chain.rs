@@ -21,7 +21,9 @@ use crate::ale::mass_flow_forces;
 use crate::math::V3;
 use crate::model::{Block, Current, Layout, NO_CONSTRAINT};
 use crate::options::{Scheme, SolverOptions};
-use crate::physics::{glmf_element, Coefs, ElementInput};
+use crate::physics::{
+    glmf_element_wet, point_wetted_fraction, wetted_fraction, Coefs, ElementInput,
+};
 
 /// Per-block constants of a chain, built once.
 #[derive(Clone, Debug, Default)]
@@ -37,6 +39,8 @@ pub(crate) struct ChainConsts {
     drag_t: Vec<f64>,
     /// Half the element's weight less buoyancy (z), N.
     half_wz: Vec<f64>,
+    /// Half the element's buoyancy `rho A g l0 / 2` (z), N, which its dry part loses.
+    half_bz: Vec<f64>,
     /// Current profile per element.
     current: Vec<u32>,
     /// Line type per element (for the ALE variable element, evaluated apart).
@@ -55,8 +59,11 @@ pub(crate) struct ChainConsts {
     mukl: Vec<f64>,
     /// `(node, route index)` of constrained nodes.
     constrained: Vec<(usize, usize)>,
-    /// `(node, 1/2 rho Cd A, current index)` of nodes with point drag.
-    point_drag: Vec<(usize, f64, usize)>,
+    /// `(node, 1/2 rho Cd A, current index, sphere radius)` of nodes with point drag.
+    point_drag: Vec<(usize, f64, usize, f64)>,
+    /// `(node, sphere radius, added mass, buoyancy)` of nodes whose point mass has a
+    /// volume (what it loses out of the water).
+    point_volume: Vec<(usize, f64, f64, f64)>,
     /// Tributary length per node (seabed contact), m.
     trib: Vec<f64>,
     /// Seabed `K`, `C`, `mu` (zero without a seabed).
@@ -93,6 +100,8 @@ impl ChainConsts {
             c.drag_n.push(lc.drag_n);
             c.drag_t.push(lc.drag_t);
             c.half_wz.push(0.5 * lc.wet_weight_z * l0);
+            c.half_bz
+                .push(0.5 * (lc.wet_weight_z + lc.mass * env.gravity) * l0);
             c.current.push(lay.elem_current[e]);
             c.line.push(lay.elem_line[e]);
             c.hm[k + 1] = 0.5 * lc.mass * l0;
@@ -121,8 +130,20 @@ impl ChainConsts {
                 c.constrained.push((li, k as usize));
             }
             if lay.node_point_drag[i] > 0.0 {
-                c.point_drag
-                    .push((li, lay.node_point_drag[i], lay.node_current[i] as usize));
+                c.point_drag.push((
+                    li,
+                    lay.node_point_drag[i],
+                    lay.node_current[i] as usize,
+                    lay.node_point_radius[i],
+                ));
+            }
+            if lay.node_point_radius[i] > 0.0 {
+                c.point_volume.push((
+                    li,
+                    lay.node_point_radius[i],
+                    lay.node_point_added[i],
+                    lay.node_point_displaced[i] * env.gravity,
+                ));
             }
         }
         if has_seabed {
@@ -175,14 +196,21 @@ pub(crate) struct ChainScratch {
 struct Work {
     // Per-element current when not uniform.
     u: [Vec<f64>; 3],
-    // Padded element results.
+    // Surface elevation over each node, m (zero in still water).
+    eta: Vec<f64>,
+    // Padded element results; `haw` the half normal added masses times the elements'
+    // wetted fractions.
     t: [Vec<f64>; 3],
     ten: Vec<f64>,
     f: [Vec<f64>; 3],
+    haw: Vec<f64>,
+    // Per node: point mass and point weight less buoyancy, less what a point mass
+    // partly out of the water loses.
+    pm: Vec<f64>,
+    pwz: Vec<f64>,
     // Working copies of the half masses (padded) and seabed constants per node, which
     // the ALE variable element changes every stage.
     hm: Vec<f64>,
-    ha: Vec<f64>,
     kl: Vec<f64>,
     cl: Vec<f64>,
     mukl: Vec<f64>,
@@ -197,13 +225,16 @@ fn resize(v: &mut [Vec<f64>], n: usize) {
 
 /// Element pass over SoA positions and velocities `p`, currents `u`.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn elements(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
+    eta: &[f64],
     t: &mut [Vec<f64>; 3],
     ten: &mut [f64],
     f: &mut [Vec<f64>; 3],
+    haw: &mut [f64],
 ) {
     let ne = c.l0.len();
     let [tx, ty, tz] = t;
@@ -218,6 +249,7 @@ fn elements(
         &u[0][..ne],
         &u[1][..ne],
         &u[2][..ne],
+        &eta[..ne + 1],
         c,
         &mut tx[1..ne + 1],
         &mut ty[1..ne + 1],
@@ -226,6 +258,7 @@ fn elements(
         &mut fx[1..ne + 1],
         &mut fy[1..ne + 1],
         &mut fz[1..ne + 1],
+        &mut haw[1..ne + 1],
     );
 }
 
@@ -244,6 +277,7 @@ fn element_kernel(
     ux: &[f64],
     uy: &[f64],
     uz: &[f64],
+    eta: &[f64],
     c: &ChainConsts,
     tx: &mut [f64],
     ty: &mut [f64],
@@ -252,6 +286,7 @@ fn element_kernel(
     fx: &mut [f64],
     fy: &mut [f64],
     fz: &mut [f64],
+    haw: &mut [f64],
 ) {
     let ne = tx.len();
     let (x, y, z, vx, vy, vz) = (
@@ -262,7 +297,9 @@ fn element_kernel(
         &vy[..ne + 1],
         &vz[..ne + 1],
     );
-    let (ux, uy, uz) = (&ux[..ne], &uy[..ne], &uz[..ne]);
+    let (ux, uy, uz, eta) = (&ux[..ne], &uy[..ne], &uz[..ne], &eta[..ne + 1]);
+    let haw = &mut haw[..ne];
+    let (hb, ha) = (&c.half_bz[..ne], &c.ha[1..ne + 1]);
     let (ty, tz, ten, fx, fy, fz) = (
         &mut ty[..ne],
         &mut tz[..ne],
@@ -290,12 +327,15 @@ fn element_kernel(
         let rz = uz[k] - 0.5 * (vz[k] + vz[k + 1]);
         let vt = ex * rx + ey * ry + ez * rz;
         let (nx, ny, nz) = (rx - ex * vt, ry - ey * vt, rz - ez * vt);
-        let kn = dn[k] * l * (nx * nx + ny * ny + nz * nz).sqrt();
-        let kt = dt[k] * l * vt.abs() * vt;
+        // Water terms times the wetted fraction; the dry part loses its buoyancy.
+        let wet = wetted_fraction(eta[k] - z[k], eta[k + 1] - z[k + 1]);
+        let kn = dn[k] * l * (nx * nx + ny * ny + nz * nz).sqrt() * wet;
+        let kt = dt[k] * l * vt.abs() * vt * wet;
         // Half of drag, plus half the weight less buoyancy (no water acceleration yet).
         fx[k] = 0.5 * (nx * kn + ex * kt);
         fy[k] = 0.5 * (ny * kn + ey * kt);
-        fz[k] = 0.5 * (nz * kn + ez * kt) + hw[k];
+        fz[k] = 0.5 * (nz * kn + ez * kt) + (hw[k] - (1.0 - wet) * hb[k]);
+        haw[k] = ha[k] * wet;
         tx[k] = ex;
         ty[k] = ey;
         tz[k] = ez;
@@ -341,12 +381,12 @@ fn nodes<const FRICTION: bool>(
 ) {
     let [ax, ay, az] = a;
     node_kernel::<FRICTION>(
-        c, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2], m.hm,
-        m.ha, m.kl, m.cl, m.mukl, ax, ay, az,
+        c, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2], m.pm,
+        m.pwz, m.hm, m.ha, m.kl, m.cl, m.mukl, ax, ay, az,
     );
     // The solve is linear: a node's extra force F adds M^-1 F to its acceleration.
     let add = |a: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
-        let s = c.pm[i] + m.hm[i] + m.hm[i + 1] + m.ha[i] + m.ha[i + 1];
+        let s = m.pm[i] + m.hm[i] + m.hm[i + 1] + m.ha[i] + m.ha[i + 1];
         let d = solve_mass(
             s,
             m.ha[i],
@@ -377,12 +417,13 @@ fn nodes<const FRICTION: bool>(
             add(a, ae.w, fw.to_f64());
         }
     }
-    // Point-mass drag.
-    for &(i, pd, ci) in &c.point_drag {
+    // Point-mass drag, on the wet share of the point.
+    for &(i, pd, ci, radius) in &c.point_drag {
         let zi = p[2][i];
+        let wet = point_wetted_fraction(m.eta[i] - zi, radius);
         let u = lay.currents[ci].at::<f64>(zi).to_f64();
         let r = [u[0] - p[3][i], u[1] - p[4][i], u[2] - p[5][i]];
-        let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+        let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt() * wet;
         add(a, i, [r[0] * k, r[1] * k, r[2] * k]);
     }
     // Constrained nodes take the Baumgarte acceleration of their route.
@@ -411,6 +452,8 @@ fn node_kernel<const FRICTION: bool>(
     fx: &[f64],
     fy: &[f64],
     fz: &[f64],
+    pm: &[f64],
+    pwz: &[f64],
     hm: &[f64],
     ha: &[f64],
     kl: &[f64],
@@ -425,7 +468,7 @@ fn node_kernel<const FRICTION: bool>(
     let (tx, ty, tz, tn) = (&tx[..n + 1], &ty[..n + 1], &tz[..n + 1], &tn[..n + 1]);
     let (fx, fy, fz) = (&fx[..n + 1], &fy[..n + 1], &fz[..n + 1]);
     let (hm, ha) = (&hm[..n + 1], &ha[..n + 1]);
-    let (pm, pwz, kl, cl, mukl) = (&c.pm[..n], &c.pwz[..n], &kl[..n], &cl[..n], &mukl[..n]);
+    let (pm, pwz, kl, cl, mukl) = (&pm[..n], &pwz[..n], &kl[..n], &cl[..n], &mukl[..n]);
     let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
     let (zb, v_eps) = (c.zb, c.v_eps);
     for i in 0..n {
@@ -480,9 +523,14 @@ fn xpvh(out: &mut [f64], x: &[f64], v: &[f64], h: f64) {
     }
 }
 
-/// The per-stage half masses and seabed constants (the ALE variable element changes
-/// them; otherwise they are the block's constants).
+/// The per-stage masses and seabed constants: the point masses and weights and the
+/// added masses follow the water surface, the ALE variable element changes its half
+/// masses and its nodes' seabed constants; otherwise they are the block's constants.
 struct Masses<'a> {
+    /// Surface elevation over each node, m.
+    eta: &'a [f64],
+    pm: &'a [f64],
+    pwz: &'a [f64],
     hm: &'a [f64],
     ha: &'a [f64],
     kl: &'a [f64],
@@ -505,6 +553,7 @@ fn ale_patch(
     time: f64,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
+    eta: &[f64],
     t: &mut [Vec<f64>; 3],
     ten: &mut [f64],
     f: &mut [Vec<f64>; 3],
@@ -536,7 +585,8 @@ fn ale_patch(
                 current: V3::new(u[0][k], u[1][k], u[2][k]),
                 water_accel: V3::zero(),
             };
-            let mut el = glmf_element(&lc, &input);
+            let wet = wetted_fraction(eta[k] - ra.z, eta[k + 1] - rb.z);
+            let mut el = glmf_element_wet(&lc, &input, wet, lay.env.gravity);
             if pay.rate != 0.0 {
                 // epsdot = (t . dv - (l / l0) Ldot) / l0 (crate::ale).
                 let l = (rb - ra).norm();
@@ -556,6 +606,18 @@ fn ale_patch(
             cl[i] = c.sb_c * lt;
             mukl[i] = c.sb_mu * c.sb_k * lt;
         }
+    }
+}
+
+/// The point masses and weights of the nodes whose point has a volume, less what the
+/// share of it out of the water loses (its added mass and buoyancy). Under water
+/// `dry` is 0 and the block's constants stand bit for bit.
+#[inline(always)]
+fn point_surface(c: &ChainConsts, p: &[Vec<f64>; 6], eta: &[f64], pm: &mut [f64], pwz: &mut [f64]) {
+    for &(i, radius, added, buoyancy) in &c.point_volume {
+        let dry = 1.0 - point_wetted_fraction(eta[i] - p[2][i], radius);
+        pm[i] = c.pm[i] - dry * added;
+        pwz[i] = c.pwz[i] - dry * buoyancy;
     }
 }
 
@@ -697,6 +759,12 @@ fn advance_chain_scheme<const FRICTION: bool>(
     sc.w.ten.clear();
     sc.w.ten.resize(ne + 2, 0.0);
     resize(&mut sc.w.u, ne);
+    sc.w.eta.clear();
+    sc.w.eta.resize(n, 0.0);
+    sc.w.haw.clear();
+    sc.w.haw.resize(ne + 2, 0.0);
+    sc.w.pm.clone_from(&c.pm);
+    sc.w.pwz.clone_from(&c.pwz);
     if opts.scheme != Scheme::Symplectic {
         resize(&mut sc.xs, n);
         resize(&mut sc.x0, n);
@@ -712,7 +780,6 @@ fn advance_chain_scheme<const FRICTION: bool>(
     }
     if !ale.is_empty() {
         sc.w.hm.clone_from(&c.hm);
-        sc.w.ha.clone_from(&c.ha);
         sc.w.kl.clone_from(&c.kl);
         sc.w.cl.clone_from(&c.cl);
         sc.w.mukl.clone_from(&c.mukl);
@@ -741,31 +808,43 @@ fn advance_chain_scheme<const FRICTION: bool>(
     ) {
         let Work {
             u,
+            eta,
             t,
             ten,
             f,
+            haw,
+            pm,
+            pwz,
             hm,
-            ha,
             kl,
             cl,
             mukl,
         } = sc;
         currents(c, &lay.currents, state, u);
-        elements(c, state, u, t, ten, f);
+        elements(c, state, u, eta, t, ten, f, haw);
+        point_surface(c, state, eta, pm, pwz);
         if ale.is_empty() {
             let m = Masses {
+                eta,
+                pm,
+                pwz,
                 hm: &c.hm,
-                ha: &c.ha,
+                ha: haw,
                 kl: &c.kl,
                 cl: &c.cl,
                 mukl: &c.mukl,
             };
             nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, a);
         } else {
-            ale_patch(c, lay, ale, time, state, u, t, ten, f, hm, ha, kl, cl, mukl);
+            ale_patch(
+                c, lay, ale, time, state, u, eta, t, ten, f, hm, haw, kl, cl, mukl,
+            );
             let m = Masses {
+                eta,
+                pm,
+                pwz,
                 hm,
-                ha,
+                ha: haw,
                 kl,
                 cl,
                 mukl,

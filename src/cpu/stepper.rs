@@ -8,7 +8,10 @@ use crate::math::{Sym3, V3};
 use crate::model::{Block, Layout, ModelDef, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
-use crate::physics::{glmf_element, seabed_force, Coefs, ElementInput, ElementLoads, SeabedCoefs};
+use crate::physics::{
+    glmf_element_wet, point_wetted_fraction, seabed_force, wetted_fraction, Coefs, ElementInput,
+    ElementLoads, SeabedCoefs,
+};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
@@ -93,6 +96,8 @@ struct Ctx<'a> {
     elem_in_cable: &'a [u32],
     /// Per current profile: its value when uniform (looked up without a table walk).
     uniform_current: &'a [Option<V>],
+    /// Gravity, m/s^2 (the dry weight of what is above the water surface).
+    gravity: f64,
 }
 
 /// The f64 reference solver: layout, state, and scratch.
@@ -344,6 +349,7 @@ impl CpuSolver {
             opts: self.opts,
             elem_in_cable: &self.elem_in_cable,
             uniform_current: &self.uniform_current,
+            gravity: self.layout.env.gravity,
         }
     }
 
@@ -361,6 +367,7 @@ impl CpuSolver {
             opts: self.opts,
             elem_in_cable: &self.elem_in_cable,
             uniform_current: &self.uniform_current,
+            gravity: self.layout.env.gravity,
         };
         let blocks = &self.layout.blocks;
         let chain_consts = &self.chain_consts;
@@ -590,7 +597,7 @@ impl CpuSolver {
                 &mut elems[e0..e1],
             );
             for i in n0..n1 {
-                let m = node_mass(&ctx, &topo, b, i - n0, &elems[e0..e1]);
+                let m = node_mass(&ctx, &topo, b, i - n0, self.r[i], &elems[e0..e1]);
                 let v = self.v[i];
                 ke += 0.5 * v.dot(m.mul_vec(v));
             }
@@ -756,7 +763,7 @@ impl<'l> Topo for GeneralTopo<'l> {
     }
 }
 
-/// Block-local input of element `k`.
+/// Block-local input of element `k`, and the fraction of it under water.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn element_input<T: Topo>(
@@ -767,7 +774,7 @@ fn element_input<T: Topo>(
     k: usize,
     l0: f64,
     current: u32,
-) -> ElementInput<f64> {
+) -> (ElementInput<f64>, f64) {
     let (a, bn) = topo.ends(k);
     let (ra, rb) = (r[a], r[bn]);
     let ci = current as usize;
@@ -775,8 +782,9 @@ fn element_input<T: Topo>(
         Some(u) => u,
         None => ctx.lay.currents[ci].at(0.5 * (ra.z + rb.z)),
     };
-    // No waves yet: the water-acceleration load waits for a wave model.
-    ElementInput {
+    // Still water: the surface is z = 0 and the water does not accelerate.
+    let wet = wetted_fraction(-ra.z, -rb.z);
+    let inp = ElementInput {
         ra,
         rb,
         va: v[a],
@@ -784,7 +792,8 @@ fn element_input<T: Topo>(
         l0,
         current,
         water_accel: V::zero(),
-    }
+    };
+    (inp, wet)
 }
 
 /// Pass 1 over one block: element loads. `r`, `v`, `out` are block-local slices.
@@ -809,10 +818,8 @@ fn element_pass<T: Topo>(
     match ctx.opts.formulation {
         Formulation::Glmf => {
             for (k, o) in out.iter_mut().enumerate() {
-                *o = glmf_element(
-                    &ctx.coefs[lines[k] as usize],
-                    &element_input(ctx, topo, r, v, k, l0s[k], curs[k]),
-                );
+                let (inp, wet) = element_input(ctx, topo, r, v, k, l0s[k], curs[k]);
+                *o = glmf_element_wet(&ctx.coefs[lines[k] as usize], &inp, wet, ctx.gravity);
             }
             // Winch cables: the variable element at this stage's time.
             for ae in ale {
@@ -820,7 +827,8 @@ fn element_pass<T: Topo>(
                 let pay = ae.sched.eval(t);
                 let l0 = ae.l0(pay.dl);
                 let c = &ctx.coefs[lines[k] as usize];
-                out[k] = glmf_element(c, &element_input(ctx, topo, r, v, k, l0, curs[k]));
+                let (inp, wet) = element_input(ctx, topo, r, v, k, l0, curs[k]);
+                out[k] = glmf_element_wet(c, &inp, wet, ctx.gravity);
                 if pay.rate != 0.0 {
                     // Internal damping acts on the material strain rate, and l0 changes:
                     // epsdot = (t . dv - (l / l0) Ldot) / l0 (crate::ale).
@@ -834,7 +842,9 @@ fn element_pass<T: Topo>(
             let n0 = b.node_start as usize;
             for (k, o) in out.iter_mut().enumerate() {
                 let e = e0 + k;
-                let inp = element_input(ctx, topo, r, v, k, l0s[k], curs[k]);
+                // The element frames are the older formulations, compared in still
+                // water: they take the element wholly submerged.
+                let (inp, _) = element_input(ctx, topo, r, v, k, l0s[k], curs[k]);
                 let cable = &lay.cables[lay.elem_cable[e] as usize];
                 let j = ctx.elem_in_cable[e] as usize;
                 let prev = (j > 0).then(|| r[cable.nodes[j - 1] as usize - n0]);
@@ -854,17 +864,21 @@ fn element_pass<T: Topo>(
     Ok(())
 }
 
-/// The node's mass block: point mass, half masses and half normal added masses.
+/// The node's mass block at position `r`: point mass, half masses and half normal
+/// added masses.
 #[inline(always)]
 fn node_mass<T: Topo>(
     ctx: &Ctx,
     topo: &T,
     b: &Block,
     li: usize,
+    r: V,
     elems: &[ElementLoads<f64>],
 ) -> Sym3<f64> {
     let i = b.node_start as usize + li;
-    let mut m = Sym3::scalar(ctx.lay.node_point_mass[i]);
+    let lay = ctx.lay;
+    let dry = 1.0 - point_wetted_fraction(-r.z, lay.node_point_radius[i]);
+    let mut m = Sym3::scalar(lay.node_point_mass[i] - dry * lay.node_point_added[i]);
     for (e, _) in topo.incident(li) {
         let el = &elems[e];
         let s = el.half_mass;
@@ -927,8 +941,13 @@ fn node_accel_of<T: Topo>(
 ) -> (V, V, Sym3<f64>) {
     let lay = ctx.lay;
     let i = b.node_start as usize + li;
-    let mut f = V::new(0.0, 0.0, lay.node_point_weight_z[i]);
-    let mut m = Sym3::scalar(lay.node_point_mass[i]);
+    // A point mass loses in air the buoyancy and added mass of its dry share (still
+    // water: the surface is z = 0). Fully under water `dry` is 0 and nothing changes.
+    let wet = point_wetted_fraction(-ri.z, lay.node_point_radius[i]);
+    let dry = 1.0 - wet;
+    let buoyancy = lay.node_point_displaced[i] * ctx.gravity;
+    let mut f = V::new(0.0, 0.0, lay.node_point_weight_z[i] - dry * buoyancy);
+    let mut m = Sym3::scalar(lay.node_point_mass[i] - dry * lay.node_point_added[i]);
     for (e, sign) in topo.incident(li) {
         let el = &elems[e];
         f += el.f_half + el.t * (sign * el.tension);
@@ -942,7 +961,7 @@ fn node_accel_of<T: Topo>(
     if pd > 0.0 {
         let u = lay.currents[lay.node_current[i] as usize].at(ri.z);
         let vr = u - vi;
-        f += vr * (pd * vr.norm());
+        f += vr * (pd * vr.norm() * wet);
     }
     let mut trib = lay.node_tributary[i];
     extra(&mut trib, &mut f);
@@ -1286,10 +1305,8 @@ fn advance_block_threaded(
                 };
                 let out = unsafe { std::slice::from_raw_parts_mut(sh.el.add(er.start), er.len()) };
                 for (o, k) in out.iter_mut().zip(er.clone()) {
-                    *o = glmf_element(
-                        &ctx.coefs[lines[k] as usize],
-                        &element_input(ctx, &topo, r, v, k, l0s[k], curs[k]),
-                    );
+                    let (inp, wet) = element_input(ctx, &topo, r, v, k, l0s[k], curs[k]);
+                    *o = glmf_element_wet(&ctx.coefs[lines[k] as usize], &inp, wet, ctx.gravity);
                 }
             }
             barrier.wait(&mut sense);
