@@ -6,6 +6,7 @@ mod ends;
 mod nets;
 mod raw;
 mod route_file;
+pub mod waves;
 mod winch;
 
 use crate::ale::Winch;
@@ -102,6 +103,8 @@ pub struct Scenario {
     pub winches: Vec<Winch>,
     /// The `[ancf]` table (used when the ANCF model runs).
     pub ancf: AncfSettings,
+    /// The sea state of `[environment.waves]` (still water without it).
+    pub sea: crate::sea::SeaState,
 }
 
 /// Builds `Error::Scenario` for `path`.
@@ -323,6 +326,8 @@ impl Scenario {
         };
         let global_current =
             current(p, "environment.", e.current, &e.current_profile)?.unwrap_or_default();
+        let (sea, sea_warnings) = waves::sea_state(p, e.waves.as_ref(), depth, env.gravity)?;
+        sea_warnings.iter().for_each(|w| log::warn!("{w}"));
 
         // [[line_types]]
         let mut lt_index = HashMap::new();
@@ -596,6 +601,7 @@ impl Scenario {
             initial,
             winches,
             ancf: ancf_settings(p, &raw.ancf)?,
+            sea,
         })
     }
 }

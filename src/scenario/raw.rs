@@ -96,6 +96,7 @@ pub struct RawEnvironment {
     pub current_profile: Option<Vec<[f64; 4]>>,
     #[serde(default)]
     pub seabed: Seabed,
+    pub waves: Option<super::waves::RawWaves>,
 }
 
 impl Default for RawEnvironment {
@@ -107,6 +108,7 @@ impl Default for RawEnvironment {
             current: None,
             current_profile: None,
             seabed: Seabed::default(),
+            waves: None,
         }
     }
 }

@@ -1,0 +1,659 @@
+//! The `[environment.waves]` table: wave trains and kinematics options, validated into
+//! a [`SeaState`]. The keys are documented in docs/sea_states.md.
+//!
+//! ```toml
+//! [environment.waves]
+//! stretching = "wheeler"   # or "constant" (profile held at z = 0 above it)
+//! ramp = 20.0              # start-up ramp, s (default 0: none)
+//! seed = 1                 # random phases (default 0)
+//! cache_tolerance = 1e-3   # kinematics cache interpolation tolerance (default 1e-3)
+//!
+//! [[environment.waves.trains]]
+//! type = "jonswap"         # "jonswap" | "pierson_moskowitz" | "table" | "regular"
+//! hs = 6.0
+//! tp = 11.0
+//! direction = 30.0         # degrees, direction of travel from +x towards +y
+//! ```
+
+use super::{err, finite, positive};
+use crate::error::Error;
+use crate::sea::dispersion::wave_number;
+use crate::sea::irregular::{discretise, Discretisation, DEFAULT_COMPONENTS};
+use crate::sea::spectrum::{dnv_peak_factor, Spectrum};
+use crate::sea::{SeaState, Stretching, WaveComponent};
+use serde::Deserialize;
+use std::f64::consts::TAU;
+use std::path::Path;
+
+/// Fewest components an irregular train may have.
+pub const MIN_COMPONENTS: i64 = 10;
+
+/// The steepest wave `H / L` linear theory is asked for before a warning (the
+/// breaking limit).
+pub const BREAKING_STEEPNESS: f64 = 1.0 / 7.0;
+
+/// `[environment.waves]` as written.
+#[derive(Debug, Deserialize, Default, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawWaves {
+    /// `"wheeler"` (default) or `"constant"`.
+    pub stretching: Option<String>,
+    /// Start-up ramp duration, s.
+    pub ramp: Option<f64>,
+    /// Seed of the random phases (and directions).
+    pub seed: Option<i64>,
+    /// Relative tolerance of the kinematics cache.
+    pub cache_tolerance: Option<f64>,
+    #[serde(default)]
+    /// The wave trains, summed.
+    pub trains: Vec<RawTrain>,
+}
+
+/// One `[[environment.waves.trains]]` entry as written.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawTrain {
+    #[serde(rename = "type")]
+    /// `"regular"`, `"jonswap"`, `"pierson_moskowitz"` or `"table"`.
+    pub kind: String,
+    /// Significant wave height, m.
+    pub hs: Option<f64>,
+    /// Peak period, s.
+    pub tp: Option<f64>,
+    /// JONSWAP peak factor (default: DNV-RP-C205's).
+    pub gamma: Option<f64>,
+    /// Spectrum table rows `[w, S]`, rad/s and m^2 s/rad.
+    pub spectrum: Option<Vec<[f64; 2]>>,
+    /// Number of components of an irregular train.
+    pub components: Option<i64>,
+    /// Exponent `n` of the `cos^n` directional spreading (none: long-crested).
+    pub spreading: Option<f64>,
+    /// Amplitude of a regular wave, m.
+    pub amplitude: Option<f64>,
+    /// Height (twice the amplitude) of a regular wave, m.
+    pub height: Option<f64>,
+    /// Period of a regular wave, s.
+    pub period: Option<f64>,
+    /// Phase of a regular wave, degrees.
+    pub phase: Option<f64>,
+    /// Direction of travel, degrees from +x towards +y.
+    pub direction: Option<f64>,
+}
+
+/// The validated sea state and the warnings it raised (each names the field).
+pub fn sea_state(
+    path: &Path,
+    raw: Option<&RawWaves>,
+    depth: f64,
+    gravity: f64,
+) -> Result<(SeaState, Vec<String>), Error> {
+    let mut sea = SeaState::still(depth);
+    let mut warnings = Vec::new();
+    let Some(w) = raw else {
+        return Ok((sea, warnings));
+    };
+    let p = path;
+    const F: &str = "environment.waves";
+    sea.stretching = match w.stretching.as_deref() {
+        None | Some("wheeler") => Stretching::Wheeler,
+        Some("constant") => Stretching::Constant,
+        Some(o) => {
+            return Err(err(
+                p,
+                format!("{F}.stretching"),
+                format!("must be \"wheeler\" or \"constant\", got \"{o}\""),
+            ))
+        }
+    };
+    if let Some(r) = w.ramp {
+        finite(p, &format!("{F}.ramp"), r)?;
+        if r < 0.0 {
+            return Err(err(
+                p,
+                format!("{F}.ramp"),
+                format!("must not be negative, got {r}"),
+            ));
+        }
+        sea.ramp_duration = r;
+    }
+    if let Some(t) = w.cache_tolerance {
+        let t = positive(p, &format!("{F}.cache_tolerance"), t)?;
+        if t >= 1.0 {
+            return Err(err(
+                p,
+                format!("{F}.cache_tolerance"),
+                format!("is a relative error, must be below 1, got {t}"),
+            ));
+        }
+        sea.cache_tolerance = t;
+    }
+    let seed = match w.seed {
+        None => 0,
+        Some(s) if s >= 0 => s as u64,
+        Some(s) => {
+            return Err(err(
+                p,
+                format!("{F}.seed"),
+                format!("must not be negative, got {s}"),
+            ))
+        }
+    };
+    for (i, t) in w.trains.iter().enumerate() {
+        let f = |k: &str| format!("{F}.trains[{i}].{k}");
+        let direction = match t.direction {
+            Some(d) => finite(p, &f("direction"), d)?.to_radians(),
+            None => 0.0,
+        };
+        let allowed: &[&str] = match t.kind.as_str() {
+            "regular" => &["amplitude", "height", "period", "phase", "direction"],
+            "jonswap" => &["hs", "tp", "gamma", "components", "spreading", "direction"],
+            "pierson_moskowitz" => &["hs", "tp", "components", "spreading", "direction"],
+            "table" => &["spectrum", "components", "spreading", "direction"],
+            o => {
+                return Err(err(
+                    p,
+                    f("type"),
+                    format!(
+                        "unknown wave train type \"{o}\": one of \"regular\", \"jonswap\", \
+                         \"pierson_moskowitz\", \"table\""
+                    ),
+                ))
+            }
+        };
+        for (key, given) in [
+            ("hs", t.hs.is_some()),
+            ("tp", t.tp.is_some()),
+            ("gamma", t.gamma.is_some()),
+            ("spectrum", t.spectrum.is_some()),
+            ("components", t.components.is_some()),
+            ("spreading", t.spreading.is_some()),
+            ("amplitude", t.amplitude.is_some()),
+            ("height", t.height.is_some()),
+            ("period", t.period.is_some()),
+            ("phase", t.phase.is_some()),
+        ] {
+            if given && !allowed.contains(&key) {
+                return Err(err(
+                    p,
+                    f(key),
+                    format!("is not a key of a \"{}\" train", t.kind),
+                ));
+            }
+        }
+        let required = |key: &str, v: Option<f64>| -> Result<f64, Error> {
+            match v {
+                Some(x) => positive(p, &f(key), x),
+                None => Err(err(
+                    p,
+                    f(key),
+                    format!("is required for a \"{}\" train", t.kind),
+                )),
+            }
+        };
+        if t.kind == "regular" {
+            let amplitude = match (t.amplitude, t.height) {
+                (Some(a), None) => positive(p, &f("amplitude"), a)?,
+                (None, Some(h)) => positive(p, &f("height"), h)? / 2.0,
+                (Some(_), Some(_)) => {
+                    return Err(err(p, f("height"), "give amplitude or height, not both"))
+                }
+                (None, None) => {
+                    return Err(err(
+                        p,
+                        f("amplitude"),
+                        "a regular train needs amplitude or height",
+                    ))
+                }
+            };
+            let period = required("period", t.period)?;
+            let phase = match t.phase {
+                Some(x) => finite(p, &f("phase"), x)?.to_radians(),
+                None => 0.0,
+            };
+            let omega = TAU / period;
+            let k = wave_number(omega, depth, gravity);
+            let steep = 2.0 * amplitude * k / TAU;
+            if steep > BREAKING_STEEPNESS {
+                warnings.push(format!(
+                    "{}: {}: H/L = {steep:.3} is steeper than the breaking limit 1/7; linear \
+                     theory does not describe such a wave",
+                    p.display(),
+                    f("height")
+                ));
+            }
+            sea.components.push(WaveComponent {
+                amplitude,
+                omega,
+                k,
+                direction,
+                phase,
+            });
+            continue;
+        }
+        let spectrum = match t.kind.as_str() {
+            "table" => table(p, &f("spectrum"), t.spectrum.as_deref())?,
+            kind => {
+                let hs = required("hs", t.hs)?;
+                let tp = required("tp", t.tp)?;
+                let steep = hs * wave_number(TAU / tp, depth, gravity) / TAU;
+                if steep > BREAKING_STEEPNESS {
+                    warnings.push(format!(
+                        "{}: {}: Hs/L at the peak period = {steep:.3} is steeper than the \
+                         breaking limit 1/7",
+                        p.display(),
+                        f("hs")
+                    ));
+                }
+                if kind == "jonswap" {
+                    let gamma = match t.gamma {
+                        Some(g) => {
+                            let g = positive(p, &f("gamma"), g)?;
+                            if g < 1.0 {
+                                return Err(err(
+                                    p,
+                                    f("gamma"),
+                                    format!("the peak factor must be at least 1, got {g}"),
+                                ));
+                            }
+                            g
+                        }
+                        None => dnv_peak_factor(hs, tp),
+                    };
+                    Spectrum::Jonswap { hs, tp, gamma }
+                } else {
+                    Spectrum::PiersonMoskowitz { hs, tp }
+                }
+            }
+        };
+        let components = match t.components {
+            None => DEFAULT_COMPONENTS,
+            Some(n) if n >= MIN_COMPONENTS => n as usize,
+            Some(n) => {
+                return Err(err(
+                    p,
+                    f("components"),
+                    format!(
+                        "an irregular train needs at least {MIN_COMPONENTS} components (default \
+                         {DEFAULT_COMPONENTS}), got {n}"
+                    ),
+                ))
+            }
+        };
+        let spreading = match t.spreading {
+            Some(s) => Some(positive(p, &f("spreading"), s)?),
+            None => None,
+        };
+        let d = Discretisation {
+            components,
+            direction,
+            spreading,
+            seed,
+            stream: i as u64,
+        };
+        sea.components
+            .extend(discretise(&spectrum, &d, depth, gravity));
+    }
+    Ok((sea, warnings))
+}
+
+/// Validates a spectrum table: at least three points, finite, frequencies positive and
+/// strictly increasing, densities non-negative and not all zero, and no gap: no
+/// interval wider than ten times the table's median interval (the spectrum would be a
+/// straight line across it).
+fn table(p: &Path, field: &str, rows: Option<&[[f64; 2]]>) -> Result<Spectrum, Error> {
+    let Some(rows) = rows else {
+        return Err(err(
+            p,
+            field,
+            "a \"table\" train needs spectrum = [[w, S], ...] (rad/s, m^2 s/rad)",
+        ));
+    };
+    if rows.len() < 3 {
+        return Err(err(
+            p,
+            field,
+            format!("needs at least 3 points, got {}", rows.len()),
+        ));
+    }
+    for (j, r) in rows.iter().enumerate() {
+        finite(p, &format!("{field}[{j}][0]"), r[0])?;
+        finite(p, &format!("{field}[{j}][1]"), r[1])?;
+        if r[0] <= 0.0 {
+            return Err(err(
+                p,
+                format!("{field}[{j}][0]"),
+                format!("frequency must be positive, got {}", r[0]),
+            ));
+        }
+        if r[1] < 0.0 {
+            return Err(err(
+                p,
+                format!("{field}[{j}][1]"),
+                format!("spectral density must not be negative, got {}", r[1]),
+            ));
+        }
+        if j > 0 && r[0] <= rows[j - 1][0] {
+            return Err(err(
+                p,
+                format!("{field}[{j}][0]"),
+                format!(
+                    "frequencies must increase: {} follows {} (sort the table, remove duplicates)",
+                    r[0],
+                    rows[j - 1][0]
+                ),
+            ));
+        }
+    }
+    let mut gaps: Vec<f64> = rows.windows(2).map(|w| w[1][0] - w[0][0]).collect();
+    let widths = gaps.clone();
+    gaps.sort_by(f64::total_cmp);
+    let median = gaps[gaps.len() / 2];
+    if let Some(j) = widths.iter().position(|&g| g > 10.0 * median) {
+        return Err(err(
+            p,
+            format!("{field}[{}]", j + 1),
+            format!(
+                "gap in the table: {} to {} rad/s is more than ten times the median spacing \
+                 {median} rad/s; add points (the spectrum would be a straight line across it)",
+                rows[j][0],
+                rows[j + 1][0]
+            ),
+        ));
+    }
+    if rows.iter().all(|r| r[1] == 0.0) {
+        return Err(err(p, field, "every spectral density is zero"));
+    }
+    Ok(Spectrum::Table {
+        omega: rows.iter().map(|r| r[0]).collect(),
+        density: rows.iter().map(|r| r[1]).collect(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::Scenario;
+    use super::*;
+
+    const BASE: &str = r#"
+[simulation]
+duration = 10.0
+output_interval = 1.0
+
+[environment]
+depth = 120.0
+
+[[line_types]]
+name = "chain"
+diameter = 0.1
+mass_per_length = 100.0
+ea = 1e9
+
+[[cables]]
+name = "a"
+line_type = "chain"
+length = 150.0
+segments = 10
+start = { fixed = [0.0, 0.0, -120.0] }
+end = { fixed = [140.0, 0.0, 0.0] }
+"#;
+
+    fn parse(waves: &str) -> Result<Scenario, Error> {
+        Scenario::parse(&format!("{BASE}\n{waves}"), Path::new("/tmp/sea.toml"))
+    }
+
+    fn fails(waves: &str, field: &str, msg: &str) {
+        match parse(waves) {
+            Ok(_) => panic!("expected an error naming {field}"),
+            Err(Error::Scenario {
+                path,
+                field: f,
+                message,
+            }) => {
+                assert_eq!(path, Path::new("/tmp/sea.toml"));
+                assert!(
+                    f.contains(field),
+                    "field `{f}` should name `{field}` ({message})"
+                );
+                assert!(
+                    message.contains(msg),
+                    "message `{message}` should say `{msg}`"
+                );
+            }
+            Err(e) => panic!("wrong error kind: {e}"),
+        }
+    }
+
+    #[test]
+    fn no_waves_is_still_water() {
+        let s = parse("").unwrap();
+        assert!(s.sea.is_still());
+        assert_eq!(s.sea.depth, 120.0);
+    }
+
+    /// Several trains combine: a regular wave (height, degrees) and a JONSWAP sea with
+    /// the DNV peak factor; options reach the sea state.
+    #[test]
+    fn trains_combine() {
+        let s = parse(
+            r#"
+[environment.waves]
+stretching = "constant"
+ramp = 15.0
+seed = 4
+[[environment.waves.trains]]
+type = "regular"
+height = 2.0
+period = 9.0
+direction = 90.0
+phase = 180.0
+[[environment.waves.trains]]
+type = "jonswap"
+hs = 4.0
+tp = 10.0
+components = 50
+"#,
+        )
+        .unwrap();
+        let sea = &s.sea;
+        assert_eq!(sea.components.len(), 51);
+        assert_eq!(sea.stretching, Stretching::Constant);
+        assert_eq!(sea.ramp_duration, 15.0);
+        let r = sea.components[0];
+        assert_eq!(r.amplitude, 1.0);
+        assert!((r.direction - TAU / 4.0).abs() < 1e-15);
+        assert!((r.phase - TAU / 2.0).abs() < 1e-15);
+        assert_eq!(r.k, wave_number(TAU / 9.0, 120.0, 9.81));
+        let expected = discretise(
+            &Spectrum::Jonswap {
+                hs: 4.0,
+                tp: 10.0,
+                gamma: dnv_peak_factor(4.0, 10.0),
+            },
+            &Discretisation {
+                components: 50,
+                direction: 0.0,
+                spreading: None,
+                seed: 4,
+                stream: 1,
+            },
+            120.0,
+            9.81,
+        );
+        assert_eq!(&sea.components[1..], &expected[..]);
+    }
+
+    #[test]
+    fn bad_values_are_named() {
+        let t = "[[environment.waves.trains]]\n";
+        fails(
+            &format!("{t}type = \"jonswap\"\nhs = 0.0\ntp = 10.0"),
+            "trains[0].hs",
+            "positive",
+        );
+        fails(
+            &format!("{t}type = \"jonswap\"\nhs = -2.0\ntp = 10.0"),
+            "trains[0].hs",
+            "positive",
+        );
+        fails(
+            &format!("{t}type = \"pierson_moskowitz\"\nhs = 2.0\ntp = 0.0"),
+            "trains[0].tp",
+            "positive",
+        );
+        fails(
+            &format!("{t}type = \"regular\"\namplitude = 1.0\nperiod = -3.0"),
+            "trains[0].period",
+            "positive",
+        );
+        fails(
+            &format!("{t}type = \"regular\"\namplitude = 1.0"),
+            "trains[0].period",
+            "required",
+        );
+        fails(
+            &format!("{t}type = \"regular\"\namplitude = 1.0\nheight = 2.0\nperiod = 8.0"),
+            "height",
+            "not both",
+        );
+        fails(
+            &format!("{t}type = \"jonswap\"\nhs = 2.0\ntp = 8.0\ncomponents = 3"),
+            "trains[0].components",
+            "at least 10",
+        );
+        fails(
+            &format!("{t}type = \"regular\"\namplitude = 1.0\nperiod = 8.0\ndirection = nan"),
+            "trains[0].direction",
+            "finite",
+        );
+        fails(
+            &format!("{t}type = \"regular\"\namplitude = 1.0\nperiod = 8.0\nphase = inf"),
+            "trains[0].phase",
+            "finite",
+        );
+        fails(
+            &format!("{t}type = \"jonswp\"\nhs = 2.0\ntp = 8.0"),
+            "trains[0].type",
+            "unknown wave train type",
+        );
+        fails(
+            &format!("{t}type = \"regular\"\namplitude = 1.0\nperiod = 8.0\nhs = 2.0"),
+            "trains[0].hs",
+            "not a key",
+        );
+        fails(
+            &format!("{t}type = \"jonswap\"\nhs = 2.0\ntp = 8.0\ngamma = 0.5"),
+            "trains[0].gamma",
+            "at least 1",
+        );
+        fails(
+            "[environment.waves]\nstretching = \"linear\"",
+            "environment.waves.stretching",
+            "wheeler",
+        );
+        fails(
+            "[environment.waves]\nramp = -1.0",
+            "environment.waves.ramp",
+            "negative",
+        );
+        fails(
+            "[environment.waves]\nswell = 1.0",
+            "environment.waves",
+            "swell",
+        );
+    }
+
+    #[test]
+    fn bad_tables_are_named() {
+        let t = "[[environment.waves.trains]]\ntype = \"table\"\n";
+        fails(
+            &format!("{t}spectrum = [[0.3, 0.0], [0.5, 1.0], [0.4, 0.5]]"),
+            "spectrum[2][0]",
+            "must increase",
+        );
+        fails(
+            &format!("{t}spectrum = [[0.3, 0.0], [0.5, 1.0], [0.5, 0.5]]"),
+            "spectrum[2][0]",
+            "must increase",
+        );
+        fails(
+            &format!("{t}spectrum = [[0.3, 0.0], [0.35, 1.0], [0.4, 2.0], [0.45, 1.0], [1.5, 0.2], [1.55, 0.0]]"),
+            "spectrum[4]",
+            "gap",
+        );
+        fails(
+            &format!("{t}spectrum = [[0.3, 0.0], [0.5, -1.0], [0.6, 0.0]]"),
+            "spectrum[1][1]",
+            "negative",
+        );
+        fails(
+            &format!("{t}spectrum = [[0.3, 0.0], [0.5, 1.0]]"),
+            "spectrum",
+            "at least 3",
+        );
+        fails(&format!("{t}components = 50"), "spectrum", "needs spectrum");
+        // A good table parses, and its components hold the table's m0 (less the 0.7%
+        // left in the tails).
+        let (mut w, mut d) = (Vec::new(), Vec::new());
+        let js = Spectrum::Jonswap {
+            hs: 3.0,
+            tp: 9.0,
+            gamma: 2.0,
+        };
+        for j in 0..40 {
+            w.push(0.3 + 0.03 * j as f64);
+            d.push(js.density(w[j]));
+        }
+        let rows: Vec<String> = w
+            .iter()
+            .zip(&d)
+            .map(|(a, b)| format!("[{a}, {b}]"))
+            .collect();
+        let s = parse(&format!("{t}spectrum = [{}]", rows.join(", "))).unwrap();
+        let m0: f64 = s
+            .sea
+            .components
+            .iter()
+            .map(|c| c.amplitude.powi(2) / 2.0)
+            .sum();
+        let table = Spectrum::Table {
+            omega: w,
+            density: d,
+        }
+        .moment(0);
+        assert!((m0 / table - 0.993).abs() < 0.01, "m0 {m0}, table {table}");
+    }
+
+    /// A wave steeper than H/L = 1/7 parses with a warning naming the field; a gentle
+    /// one without.
+    #[test]
+    fn steep_waves_warn() {
+        let raw = |h: f64| RawWaves {
+            trains: vec![RawTrain {
+                kind: "regular".into(),
+                height: Some(h),
+                period: Some(6.0),
+                hs: None,
+                tp: None,
+                gamma: None,
+                spectrum: None,
+                components: None,
+                spreading: None,
+                amplitude: None,
+                phase: None,
+                direction: None,
+            }],
+            ..Default::default()
+        };
+        // L = 56.2 m at 6 s in deep water: the limit is H = 8.0 m.
+        let p = Path::new("/tmp/sea.toml");
+        let (_, w) = sea_state(p, Some(&raw(9.0)), f64::INFINITY, 9.81).unwrap();
+        assert_eq!(w.len(), 1);
+        assert!(
+            w[0].contains("trains[0].height") && w[0].contains("breaking"),
+            "{}",
+            w[0]
+        );
+        let (_, w) = sea_state(p, Some(&raw(7.0)), f64::INFINITY, 9.81).unwrap();
+        assert!(w.is_empty());
+    }
+}

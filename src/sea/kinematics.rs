@@ -1,0 +1,422 @@
+//! Airy (linear) kinematics of a sum of wave components: elevation, water velocity and
+//! acceleration at a point, with Wheeler stretching (or the profile held at `z = 0`)
+//! and the start-up ramp. Each function here has a WGSL twin of the same name in
+//! `shaders/shared/waves.wgsl`.
+
+use super::{SeaState, Stretching, WaveComponent};
+use std::f64::consts::{PI, TAU};
+
+/// Elevation, velocity and acceleration of the water at one point and time.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Kinematics {
+    /// Surface elevation `eta` above the mean level at the point's `(x, y)`, m.
+    pub eta: f64,
+    /// Water velocity `u`, m/s.
+    pub u: [f64; 3],
+    /// Water acceleration `a = du/dt` (local, linear theory), m/s^2.
+    pub a: [f64; 3],
+}
+
+/// One component prepared for evaluation (the layout of the WGSL `WaveComp`).
+///
+/// The depth decay of the velocity is `cosh(k (z + h)) / sinh(k h)` horizontally and
+/// `sinh(k (z + h)) / sinh(k h)` vertically. Written with exponentials,
+/// `(e^{k z} +- e^{-k (z + 2 h)}) / (1 - e^{-2 k h})`: for `-h <= z <= 0` both
+/// exponents are `<= 0`, so nothing overflows however deep the water (the hyperbolic
+/// form overflows once `k h > 710`), and infinite depth is the limit
+/// `e^{-k (z + 2 h)} = 0`. The constant `1 / (1 - e^{-2 k h})` is folded into
+/// `amp_u` and `amp_a` here, on the host, with `expm1` (exact in shallow water too).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PackedComponent {
+    /// `k cos b`, rad/m.
+    pub kx: f64,
+    /// `k sin b`, rad/m.
+    pub ky: f64,
+    /// Wave number `k`, rad/m.
+    pub k: f64,
+    /// Angular frequency `w`, rad/s.
+    pub omega: f64,
+    /// Phase at the reference time, `(phi - w t_ref) mod 2 pi`, rad.
+    pub phase_ref: f64,
+    /// Amplitude `A`, m.
+    pub amp: f64,
+    /// `A w / (1 - e^{-2 k h})`, m/s.
+    pub amp_u: f64,
+    /// `A w^2 / (1 - e^{-2 k h})`, m/s^2.
+    pub amp_a: f64,
+    /// `cos b`.
+    pub cos_b: f64,
+    /// `sin b`.
+    pub sin_b: f64,
+}
+
+/// A sea state ready for evaluation: components packed, phases referred to `t_ref`.
+///
+/// Phases are stored relative to a reference time so that the phase `w (t - t_ref)`
+/// stays small: in f32 on the GPU, `w t` at `t` = 3 hours would carry 1e-3 rad of
+/// rounding. The host moves `t_ref` forward ([`WaveField::rebase`]) as time goes on.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WaveField {
+    /// The components.
+    pub comps: Vec<PackedComponent>,
+    /// Water depth `h`, m (`f64::INFINITY` for deep water).
+    pub depth: f64,
+    /// How the profile is evaluated above the mean level.
+    pub stretching: Stretching,
+    /// Start-up ramp duration `T_r`, s (0: none).
+    pub ramp_duration: f64,
+    /// Reference time of the packed phases, s.
+    pub t_ref: f64,
+    /// The components as given (for rebasing).
+    source: Vec<WaveComponent>,
+}
+
+impl WaveField {
+    /// Packs `sea` with phases referred to `t_ref = 0`.
+    pub fn new(sea: &SeaState) -> Self {
+        let mut f = Self {
+            comps: Vec::new(),
+            depth: sea.depth,
+            stretching: sea.stretching,
+            ramp_duration: sea.ramp_duration,
+            t_ref: 0.0,
+            source: sea.components.clone(),
+        };
+        f.rebase(0.0);
+        f
+    }
+
+    /// Refers the packed phases to `t_ref` (does not change any result beyond
+    /// round-off).
+    pub fn rebase(&mut self, t_ref: f64) {
+        self.t_ref = t_ref;
+        let h = self.depth;
+        self.comps = self
+            .source
+            .iter()
+            .map(|c| {
+                // 1 - e^{-2 k h}, exact for small k h; 1 in deep water.
+                let den = -(-2.0 * c.k * h).exp_m1();
+                let (sin_b, cos_b) = c.direction.sin_cos();
+                PackedComponent {
+                    kx: c.k * cos_b,
+                    ky: c.k * sin_b,
+                    k: c.k,
+                    omega: c.omega,
+                    phase_ref: (c.phase - c.omega * t_ref).rem_euclid(TAU),
+                    amp: c.amplitude,
+                    amp_u: c.amplitude * c.omega / den,
+                    amp_a: c.amplitude * c.omega * c.omega / den,
+                    cos_b,
+                    sin_b,
+                }
+            })
+            .collect();
+    }
+
+    /// Elevation `eta` at `(x, y)` and time `t`, ramp included, m.
+    pub fn elevation(&self, x: f64, y: f64, t: f64) -> f64 {
+        wave_ramp(t, self.ramp_duration) * wave_elevation_sum(&self.comps, x, y, t - self.t_ref)
+    }
+
+    /// Elevation, velocity and acceleration at `p` and time `t`, ramp included.
+    pub fn kinematics(&self, p: [f64; 3], t: f64) -> Kinematics {
+        wave_kinematics_at(
+            &self.comps,
+            self.depth,
+            self.stretching,
+            self.ramp_duration,
+            p,
+            t,
+            self.t_ref,
+        )
+    }
+}
+
+/// The start-up ramp `0.5 (1 - cos(pi t / T_r))` for `0 <= t < T_r`, 0 before, 1
+/// after (and always 1 when `T_r <= 0`).
+pub fn wave_ramp(t: f64, ramp_duration: f64) -> f64 {
+    if ramp_duration <= 0.0 || t >= ramp_duration {
+        1.0
+    } else if t <= 0.0 {
+        0.0
+    } else {
+        0.5 * (1.0 - (PI * t / ramp_duration).cos())
+    }
+}
+
+/// Phase `theta` of a packed component at `(x, y)`, `tau = t - t_ref` after its
+/// reference time.
+#[inline]
+pub fn wave_theta(c: &PackedComponent, x: f64, y: f64, tau: f64) -> f64 {
+    c.kx * x + c.ky * y + c.phase_ref - c.omega * tau
+}
+
+/// `sum A cos(theta)`, no ramp.
+pub fn wave_elevation_sum(comps: &[PackedComponent], x: f64, y: f64, tau: f64) -> f64 {
+    comps
+        .iter()
+        .map(|c| c.amp * wave_theta(c, x, y, tau).cos())
+        .sum()
+}
+
+/// The depth at which the linear profile is evaluated for a point at height `z` under
+/// the elevation `eta`, in `[-h, 0]`.
+///
+/// Wheeler: `z_s = h (z - eta) / (h + eta)` maps the water column `[-h, eta]` onto
+/// `[-h, 0]`, so the surface gets the mean-level value; written `(z - eta) / (1 + eta /
+/// h)` it is also right for infinite depth. Constant: the profile at `z` below the
+/// mean level and held at its `z = 0` value above. Either way a point above the
+/// surface (in air) gets the surface value (its water loads are scaled by its wetted
+/// fraction, which is 0 there), and a point below the seabed the seabed value.
+pub fn wave_eval_depth(z: f64, eta: f64, depth: f64, stretching: Stretching) -> f64 {
+    let zs = match stretching {
+        Stretching::Wheeler => (z - eta) / (1.0 + eta / depth),
+        Stretching::Constant => z,
+    };
+    zs.min(0.0).max(-depth)
+}
+
+/// The numerators of the depth decay at evaluation depth `zs` (`-h <= zs <= 0`):
+/// `(e^{k zs} + e^{-k (zs + 2 h)}, e^{k zs} - e^{-k (zs + 2 h)})`, i.e.
+/// `(cosh, sinh)(k (zs + h)) / sinh(k h)` times `1 - e^{-2 k h}`.
+#[inline]
+pub fn wave_depth_decay(k: f64, zs: f64, depth: f64) -> (f64, f64) {
+    let e1 = (k * zs).exp();
+    let e2 = (-k * (zs + 2.0 * depth)).exp();
+    (e1 + e2, e1 - e2)
+}
+
+/// Elevation, velocity and acceleration of the sum of `comps` at `p` and time `t`
+/// (phases referred to `t_ref`), with the ramp of duration `ramp_duration`.
+pub fn wave_kinematics_at(
+    comps: &[PackedComponent],
+    depth: f64,
+    stretching: Stretching,
+    ramp_duration: f64,
+    p: [f64; 3],
+    t: f64,
+    t_ref: f64,
+) -> Kinematics {
+    let r = wave_ramp(t, ramp_duration);
+    let tau = t - t_ref;
+    let eta = r * wave_elevation_sum(comps, p[0], p[1], tau);
+    let zs = wave_eval_depth(p[2], eta, depth, stretching);
+    let mut u = [0.0; 3];
+    let mut a = [0.0; 3];
+    for c in comps {
+        let (s, co) = wave_theta(c, p[0], p[1], tau).sin_cos();
+        let (ch, sh) = wave_depth_decay(c.k, zs, depth);
+        let uh = c.amp_u * ch * co;
+        let ah = c.amp_a * ch * s;
+        u[0] += uh * c.cos_b;
+        u[1] += uh * c.sin_b;
+        u[2] += c.amp_u * sh * s;
+        a[0] += ah * c.cos_b;
+        a[1] += ah * c.sin_b;
+        a[2] -= c.amp_a * sh * co;
+    }
+    Kinematics {
+        eta,
+        u: u.map(|v| r * v),
+        a: a.map(|v| r * v),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sea::dispersion::wave_number;
+
+    const G: f64 = 9.81;
+
+    fn comp(amplitude: f64, period: f64, depth: f64, direction: f64, phase: f64) -> WaveComponent {
+        let omega = TAU / period;
+        WaveComponent {
+            amplitude,
+            omega,
+            k: wave_number(omega, depth, G),
+            direction,
+            phase,
+        }
+    }
+
+    fn sea(components: Vec<WaveComponent>, depth: f64, stretching: Stretching) -> SeaState {
+        SeaState {
+            components,
+            depth,
+            stretching,
+            ramp_duration: 0.0,
+            ..SeaState::still(depth)
+        }
+    }
+
+    /// One component against the textbook closed form with hyperbolic functions, at
+    /// points below the mean level in finite depth, and the sum of two components is
+    /// the sum of each.
+    #[test]
+    fn matches_the_closed_form_below_the_mean_level() {
+        let h = 60.0;
+        let c1 = comp(1.5, 9.0, h, 0.4, 0.7);
+        let c2 = comp(0.6, 5.0, h, -1.1, 2.0);
+        let both = WaveField::new(&sea(vec![c1, c2], h, Stretching::Constant));
+        let closed = |c: &WaveComponent, p: [f64; 3], t: f64| {
+            let th = c.theta(p[0], p[1], t);
+            let ch = (c.k * (p[2] + h)).cosh() / (c.k * h).sinh();
+            let sh = (c.k * (p[2] + h)).sinh() / (c.k * h).sinh();
+            let (cb, sb) = (c.direction.cos(), c.direction.sin());
+            let uh = c.amplitude * c.omega * ch * th.cos();
+            let ah = c.amplitude * c.omega * c.omega * ch * th.sin();
+            let w2 = c.omega * c.omega;
+            (
+                c.amplitude * th.cos(),
+                [uh * cb, uh * sb, c.amplitude * c.omega * sh * th.sin()],
+                [ah * cb, ah * sb, -c.amplitude * w2 * sh * th.cos()],
+            )
+        };
+        for (i, &p) in [[0.0, 0.0, -1.0], [13.0, -40.0, -20.0], [-7.0, 3.0, -59.0]]
+            .iter()
+            .enumerate()
+        {
+            let t = 3.7 * i as f64 + 0.3;
+            let k = both.kinematics(p, t);
+            let (e1, u1, a1) = closed(&c1, p, t);
+            let (e2, u2, a2) = closed(&c2, p, t);
+            assert!((k.eta - (e1 + e2)).abs() < 1e-12, "{} {}", k.eta, e1 + e2);
+            for d in 0..3 {
+                assert!((k.u[d] - (u1[d] + u2[d])).abs() < 1e-12, "u[{d}] at {p:?}");
+                assert!((k.a[d] - (a1[d] + a2[d])).abs() < 1e-12, "a[{d}] at {p:?}");
+            }
+        }
+    }
+
+    /// Deep water: the decay is `e^{k z}` and nothing overflows at `k h` of thousands
+    /// (where `cosh(k h)` is infinite in f64); finite but very deep water gives the
+    /// same as infinite depth.
+    #[test]
+    fn deep_water_does_not_overflow() {
+        let c = comp(2.0, 4.0, 5000.0, 0.0, 0.0);
+        assert!(c.k * 5000.0 > 1000.0);
+        let deep = WaveField::new(&sea(vec![c], f64::INFINITY, Stretching::Constant));
+        let finite = WaveField::new(&sea(vec![c], 5000.0, Stretching::Constant));
+        for &z in &[0.0, -3.0, -30.0, -4999.0] {
+            let p = [1.0, 2.0, z];
+            let (kd, kf) = (deep.kinematics(p, 1.3), finite.kinematics(p, 1.3));
+            let th = c.theta(1.0, 2.0, 1.3);
+            let decay = (c.k * z).exp();
+            let ux = c.amplitude * c.omega * decay * th.cos();
+            let uz = c.amplitude * c.omega * decay * th.sin();
+            assert!(
+                (kd.u[0] - ux).abs() <= 1e-14 * c.amplitude * c.omega,
+                "z = {z}"
+            );
+            assert!(
+                (kd.u[2] - uz).abs() <= 1e-14 * c.amplitude * c.omega,
+                "z = {z}"
+            );
+            for d in 0..3 {
+                assert!(kf.u[d].is_finite() && kf.a[d].is_finite());
+                assert!((kf.u[d] - kd.u[d]).abs() <= 1e-14 * c.amplitude * c.omega);
+            }
+        }
+    }
+
+    /// Wheeler stretching: at the instantaneous surface `z = eta` the kinematics are
+    /// the mean-level values of the unstretched profile, above the mean level
+    /// (crest) and below it (trough); at the seabed they are the seabed values.
+    #[test]
+    fn wheeler_gives_the_surface_value_at_the_surface() {
+        let h = 30.0;
+        let comps = vec![comp(1.2, 8.0, h, 0.3, 0.0), comp(0.5, 6.0, h, 1.0, 1.0)];
+        let wheeler = WaveField::new(&sea(comps.clone(), h, Stretching::Wheeler));
+        let held = WaveField::new(&sea(comps, h, Stretching::Constant));
+        let mut crest = false;
+        let mut trough = false;
+        for i in 0..40 {
+            let (x, y, t) = (3.0 * i as f64, -2.0 * i as f64, 0.7 * i as f64);
+            let eta = wheeler.elevation(x, y, t);
+            crest |= eta > 0.3;
+            trough |= eta < -0.3;
+            let at_surface = wheeler.kinematics([x, y, eta], t);
+            let mean_level = held.kinematics([x, y, 0.0], t);
+            for d in 0..3 {
+                assert!((at_surface.u[d] - mean_level.u[d]).abs() < 1e-12);
+                assert!((at_surface.a[d] - mean_level.a[d]).abs() < 1e-12);
+            }
+            let bed_w = wheeler.kinematics([x, y, -h], t);
+            let bed = held.kinematics([x, y, -h], t);
+            assert!(bed.u[2].abs() < 1e-12, "no flow through the seabed");
+            assert!((bed_w.u[0] - bed.u[0]).abs() < 1e-12);
+            // Half-way down the stretched column is the unstretched mid-depth value.
+            let mid_w = wheeler.kinematics([x, y, (eta - h) / 2.0], t);
+            let mid = held.kinematics([x, y, -h / 2.0], t);
+            assert!((mid_w.u[0] - mid.u[0]).abs() < 1e-12);
+            // In air: the surface value.
+            let air = wheeler.kinematics([x, y, eta + 5.0], t);
+            assert!((air.u[0] - at_surface.u[0]).abs() < 1e-12);
+        }
+        assert!(crest && trough, "the test must visit crests and troughs");
+    }
+
+    /// The profile held at `z = 0`: above the mean level the value at `z = 0`, below it
+    /// the unstretched profile (different from Wheeler's below a crest).
+    #[test]
+    fn constant_option_holds_the_mean_level_profile() {
+        let h = 30.0;
+        let c = comp(1.0, 7.0, h, 0.0, 0.0);
+        let held = WaveField::new(&sea(vec![c], h, Stretching::Constant));
+        let wheeler = WaveField::new(&sea(vec![c], h, Stretching::Wheeler));
+        // Under a crest (theta = 0 at x = 0, t = 0).
+        let k0 = held.kinematics([0.0, 0.0, 0.0], 0.0);
+        let k_up = held.kinematics([0.0, 0.0, 0.8], 0.0);
+        assert_eq!(k0.u, k_up.u);
+        let below = held.kinematics([0.0, 0.0, -5.0], 0.0);
+        let below_w = wheeler.kinematics([0.0, 0.0, -5.0], 0.0);
+        assert!(
+            below_w.u[0] < below.u[0],
+            "Wheeler evaluates lower under a crest"
+        );
+    }
+
+    /// The ramp: zero at the start, half at `T_r / 2`, full from `T_r` on, and it
+    /// scales elevation, velocity and acceleration alike; `T_r = 0` is no ramp.
+    #[test]
+    fn ramp_scales_everything() {
+        assert_eq!(wave_ramp(0.0, 20.0), 0.0);
+        assert_eq!(wave_ramp(-1.0, 20.0), 0.0);
+        assert!((wave_ramp(10.0, 20.0) - 0.5).abs() < 1e-15);
+        assert!((wave_ramp(5.0, 20.0) - 0.5 * (1.0 - (PI / 4.0).cos())).abs() < 1e-15);
+        assert_eq!(wave_ramp(20.0, 20.0), 1.0);
+        assert_eq!(wave_ramp(0.0, 0.0), 1.0);
+        let h = 50.0;
+        let c = comp(1.0, 8.0, h, 0.2, 0.4);
+        let mut s = sea(vec![c], h, Stretching::Constant);
+        let full = WaveField::new(&s);
+        s.ramp_duration = 20.0;
+        let ramped = WaveField::new(&s);
+        let p = [4.0, 1.0, -3.0];
+        for &t in &[0.0, 2.0, 7.5, 19.0, 25.0] {
+            let (a, b) = (full.kinematics(p, t), ramped.kinematics(p, t));
+            let r = wave_ramp(t, 20.0);
+            assert!((b.eta - r * a.eta).abs() < 1e-14);
+            for d in 0..3 {
+                assert!((b.u[d] - r * a.u[d]).abs() < 1e-14);
+                assert!((b.a[d] - r * a.a[d]).abs() < 1e-14);
+            }
+        }
+    }
+
+    /// Rebasing the phases to another reference time changes nothing beyond round-off.
+    #[test]
+    fn rebasing_keeps_the_field() {
+        let h = 80.0;
+        let comps = vec![comp(1.0, 8.0, h, 0.2, 0.4), comp(0.3, 3.0, h, 2.0, 5.0)];
+        let f0 = WaveField::new(&sea(comps, h, Stretching::Wheeler));
+        let mut f1 = f0.clone();
+        f1.rebase(10_000.0);
+        let p = [12.0, -4.0, -2.0];
+        let (a, b) = (f0.kinematics(p, 10_003.0), f1.kinematics(p, 10_003.0));
+        assert!((a.eta - b.eta).abs() < 1e-10);
+        assert!((a.u[0] - b.u[0]).abs() < 1e-10);
+    }
+}
