@@ -17,6 +17,7 @@
 
 use super::ale::AleElem;
 use super::stepper::StepFailure;
+use super::water::{node_water, BlockWaves, Water};
 use crate::ale::mass_flow_forces;
 use crate::math::V3;
 use crate::model::{Block, Current, Layout, NO_CONSTRAINT};
@@ -41,6 +42,8 @@ pub(crate) struct ChainConsts {
     half_wz: Vec<f64>,
     /// Half the element's buoyancy `rho A g l0 / 2` (z), N, which its dry part loses.
     half_bz: Vec<f64>,
+    /// Half the element's water-acceleration coefficient `(1 + Cm) rho A l0 / 2`, kg.
+    half_fk: Vec<f64>,
     /// Current profile per element.
     current: Vec<u32>,
     /// Line type per element (for the ALE variable element, evaluated apart).
@@ -61,9 +64,10 @@ pub(crate) struct ChainConsts {
     constrained: Vec<(usize, usize)>,
     /// `(node, 1/2 rho Cd A, current index, sphere radius)` of nodes with point drag.
     point_drag: Vec<(usize, f64, usize, f64)>,
-    /// `(node, sphere radius, added mass, buoyancy)` of nodes whose point mass has a
-    /// volume (what it loses out of the water).
-    point_volume: Vec<(usize, f64, f64, f64)>,
+    /// `(node, sphere radius, added mass, buoyancy, displaced mass)` of nodes whose
+    /// point mass has a volume (what it loses out of the water, and its
+    /// water-acceleration load `(1 + Ca) rho V a` in waves).
+    point_volume: Vec<(usize, f64, f64, f64, f64)>,
     /// Tributary length per node (seabed contact), m.
     trib: Vec<f64>,
     /// Seabed `K`, `C`, `mu` (zero without a seabed).
@@ -102,6 +106,7 @@ impl ChainConsts {
             c.half_wz.push(0.5 * lc.wet_weight_z * l0);
             c.half_bz
                 .push(0.5 * (lc.wet_weight_z + lc.mass * env.gravity) * l0);
+            c.half_fk.push(0.5 * lc.froude_krylov * l0);
             c.current.push(lay.elem_current[e]);
             c.line.push(lay.elem_line[e]);
             c.hm[k + 1] = 0.5 * lc.mass * l0;
@@ -143,6 +148,7 @@ impl ChainConsts {
                     lay.node_point_radius[i],
                     lay.node_point_added[i],
                     lay.node_point_displaced[i] * env.gravity,
+                    lay.node_point_displaced[i],
                 ));
             }
         }
@@ -194,8 +200,9 @@ pub(crate) struct ChainScratch {
 /// What one evaluation writes.
 #[derive(Default)]
 struct Work {
-    // Per-element current when not uniform.
+    // Per-element water velocity (current, plus waves) and wave acceleration.
     u: [Vec<f64>; 3],
+    aw: [Vec<f64>; 3],
     // Surface elevation over each node, m (zero in still water).
     eta: Vec<f64>,
     // Padded element results; `haw` the half normal added masses times the elements'
@@ -226,10 +233,11 @@ fn resize(v: &mut [Vec<f64>], n: usize) {
 /// Element pass over SoA positions and velocities `p`, currents `u`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn elements(
+fn elements<const WAVES: bool>(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
+    aw: &[Vec<f64>; 3],
     eta: &[f64],
     t: &mut [Vec<f64>; 3],
     ten: &mut [f64],
@@ -239,7 +247,7 @@ fn elements(
     let ne = c.l0.len();
     let [tx, ty, tz] = t;
     let [fx, fy, fz] = f;
-    element_kernel(
+    element_kernel::<WAVES>(
         &p[0][..ne + 1],
         &p[1][..ne + 1],
         &p[2][..ne + 1],
@@ -249,6 +257,9 @@ fn elements(
         &u[0][..ne],
         &u[1][..ne],
         &u[2][..ne],
+        &aw[0][..ne],
+        &aw[1][..ne],
+        &aw[2][..ne],
         &eta[..ne + 1],
         c,
         &mut tx[1..ne + 1],
@@ -267,7 +278,7 @@ fn elements(
 /// reached through one `&mut [Vec<f64>; 3]` would need run-time overlap checks).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn element_kernel(
+fn element_kernel<const WAVES: bool>(
     x: &[f64],
     y: &[f64],
     z: &[f64],
@@ -277,6 +288,9 @@ fn element_kernel(
     ux: &[f64],
     uy: &[f64],
     uz: &[f64],
+    awx: &[f64],
+    awy: &[f64],
+    awz: &[f64],
     eta: &[f64],
     c: &ChainConsts,
     tx: &mut [f64],
@@ -300,6 +314,7 @@ fn element_kernel(
     let (ux, uy, uz, eta) = (&ux[..ne], &uy[..ne], &uz[..ne], &eta[..ne + 1]);
     let haw = &mut haw[..ne];
     let (hb, ha) = (&c.half_bz[..ne], &c.ha[1..ne + 1]);
+    let (awx, awy, awz, hfk) = (&awx[..ne], &awy[..ne], &awz[..ne], &c.half_fk[..ne]);
     let (ty, tz, ten, fx, fy, fz) = (
         &mut ty[..ne],
         &mut tz[..ne],
@@ -335,6 +350,14 @@ fn element_kernel(
         fx[k] = 0.5 * (nx * kn + ex * kt);
         fy[k] = 0.5 * (ny * kn + ey * kt);
         fz[k] = 0.5 * (nz * kn + ez * kt) + (hw[k] - (1.0 - wet) * hb[k]);
+        if WAVES {
+            // Froude-Krylov and added mass on the normal wave acceleration P a_w.
+            let an = ex * awx[k] + ey * awy[k] + ez * awz[k];
+            let kf = hfk[k] * wet;
+            fx[k] += kf * (awx[k] - ex * an);
+            fy[k] += kf * (awy[k] - ey * an);
+            fz[k] += kf * (awz[k] - ez * an);
+        }
         haw[k] = ha[k] * wet;
         tx[k] = ex;
         ty[k] = ey;
@@ -421,10 +444,22 @@ fn nodes<const FRICTION: bool>(
     for &(i, pd, ci, radius) in &c.point_drag {
         let zi = p[2][i];
         let wet = point_wetted_fraction(m.eta[i] - zi, radius);
-        let u = lay.currents[ci].at::<f64>(zi).to_f64();
+        let mut u = lay.currents[ci].at::<f64>(zi).to_f64();
+        if !m.w.is_empty() {
+            let (_, uw, _) = node_water(m.w, i);
+            u = [u[0] + uw[0], u[1] + uw[1], u[2] + uw[2]];
+        }
         let r = [u[0] - p[3][i], u[1] - p[4][i], u[2] - p[5][i]];
         let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt() * wet;
         add(a, i, [r[0] * k, r[1] * k, r[2] * k]);
+    }
+    // Waves: the water-acceleration load (1 + Ca) rho V a of the wet share of points.
+    if !m.w.is_empty() {
+        for &(i, radius, added, _, displaced) in &c.point_volume {
+            let (_, _, aw) = node_water(m.w, i);
+            let k = (displaced + added) * point_wetted_fraction(m.eta[i] - p[2][i], radius);
+            add(a, i, [aw[0] * k, aw[1] * k, aw[2] * k]);
+        }
     }
     // Constrained nodes take the Baumgarte acceleration of their route.
     let bg = opts.baumgarte;
@@ -529,6 +564,8 @@ fn xpvh(out: &mut [f64], x: &[f64], v: &[f64], h: f64) {
 struct Masses<'a> {
     /// Surface elevation over each node, m.
     eta: &'a [f64],
+    /// Per-node water values in waves (`cpu::water`), empty in still water.
+    w: &'a [f64],
     pm: &'a [f64],
     pwz: &'a [f64],
     hm: &'a [f64],
@@ -553,6 +590,7 @@ fn ale_patch(
     time: f64,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
+    aw: &[Vec<f64>; 3],
     eta: &[f64],
     t: &mut [Vec<f64>; 3],
     ten: &mut [f64],
@@ -583,7 +621,7 @@ fn ale_patch(
                 vb,
                 l0,
                 current: V3::new(u[0][k], u[1][k], u[2][k]),
-                water_accel: V3::zero(),
+                water_accel: V3::new(aw[0][k], aw[1][k], aw[2][k]),
             };
             let wet = wetted_fraction(eta[k] - ra.z, eta[k + 1] - rb.z);
             let mut el = glmf_element_wet(&lc, &input, wet, lay.env.gravity);
@@ -614,7 +652,7 @@ fn ale_patch(
 /// `dry` is 0 and the block's constants stand bit for bit.
 #[inline(always)]
 fn point_surface(c: &ChainConsts, p: &[Vec<f64>; 6], eta: &[f64], pm: &mut [f64], pwz: &mut [f64]) {
-    for &(i, radius, added, buoyancy) in &c.point_volume {
+    for &(i, radius, added, buoyancy, _) in &c.point_volume {
         let dry = 1.0 - point_wetted_fraction(eta[i] - p[2][i], radius);
         pm[i] = c.pm[i] - dry * added;
         pwz[i] = c.pwz[i] - dry * buoyancy;
@@ -637,6 +675,24 @@ fn currents(c: &ChainConsts, currents: &[Current], p: &[Vec<f64>; 6], u: &mut [V
             .to_f64();
         for q in 0..3 {
             u[q][k] = v[q];
+        }
+    }
+}
+
+/// Waves: adds the mean of each element's two nodes' wave velocities to its water
+/// velocity `u`, writes the mean of their wave accelerations to `aw`, and each node's
+/// surface elevation to `eta`, from the per-node water values `w`.
+#[inline(always)]
+fn add_waves(ne: usize, w: &[f64], u: &mut [Vec<f64>; 3], aw: &mut [Vec<f64>; 3], eta: &mut [f64]) {
+    for (i, e) in eta.iter_mut().enumerate() {
+        *e = node_water(w, i).0;
+    }
+    for k in 0..ne {
+        let (_, ua, aa) = node_water(w, k);
+        let (_, ub, ab) = node_water(w, k + 1);
+        for q in 0..3 {
+            u[q][k] += 0.5 * (ua[q] + ub[q]);
+            aw[q][k] = 0.5 * (aa[q] + ab[q]);
         }
     }
 }
@@ -678,6 +734,8 @@ pub(crate) fn advance_chain(
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
     step0: u64,
     dt: f64,
     nsteps: u64,
@@ -687,11 +745,11 @@ pub(crate) fn advance_chain(
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above.
             return unsafe {
-                advance_chain_avx2(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+                advance_chain_avx2(c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps)
             };
         }
     }
-    advance_chain_body(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+    advance_chain_body(c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -706,11 +764,13 @@ unsafe fn advance_chain_avx2(
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
     step0: u64,
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
-    advance_chain_body(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+    advance_chain_body(c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps)
 }
 
 #[inline(always)]
@@ -724,14 +784,16 @@ fn advance_chain_body(
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
     step0: u64,
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
     if c.friction {
-        advance_chain_scheme::<true>(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+        advance_chain_scheme::<true>(c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps)
     } else {
-        advance_chain_scheme::<false>(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+        advance_chain_scheme::<false>(c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps)
     }
 }
 
@@ -746,12 +808,18 @@ fn advance_chain_scheme<const FRICTION: bool>(
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
     step0: u64,
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
     let n = c.n;
     let ne = c.l0.len();
+    let mut waves = waves;
+    if waves.is_none() {
+        wbuf.clear();
+    }
     resize(&mut sc.x, n);
     resize(&mut sc.a, n);
     resize(&mut sc.w.t, ne + 2);
@@ -759,6 +827,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
     sc.w.ten.clear();
     sc.w.ten.resize(ne + 2, 0.0);
     resize(&mut sc.w.u, ne);
+    resize(&mut sc.w.aw, ne);
     sc.w.eta.clear();
     sc.w.eta.resize(n, 0.0);
     sc.w.haw.clear();
@@ -803,11 +872,14 @@ fn advance_chain_scheme<const FRICTION: bool>(
         ale: &[AleElem],
         state: &[Vec<f64>; 6],
         time: f64,
+        waves: &mut Option<&mut BlockWaves>,
+        wbuf: &mut Water,
         sc: &mut Work,
         a: &mut [Vec<f64>; 3],
     ) {
         let Work {
             u,
+            aw,
             eta,
             t,
             ten,
@@ -821,11 +893,24 @@ fn advance_chain_scheme<const FRICTION: bool>(
             mukl,
         } = sc;
         currents(c, &lay.currents, state, u);
-        elements(c, state, u, eta, t, ten, f, haw);
+        if let Some(wb) = waves.as_deref_mut() {
+            let st = |i: usize| {
+                (
+                    [state[0][i], state[1][i], state[2][i]],
+                    [state[3][i], state[4][i], state[5][i]],
+                )
+            };
+            wb.fill(time, c.n, st, wbuf);
+            add_waves(c.l0.len(), wbuf, u, aw, eta);
+            elements::<true>(c, state, u, aw, eta, t, ten, f, haw);
+        } else {
+            elements::<false>(c, state, u, aw, eta, t, ten, f, haw);
+        }
         point_surface(c, state, eta, pm, pwz);
         if ale.is_empty() {
             let m = Masses {
                 eta,
+                w: wbuf,
                 pm,
                 pwz,
                 hm: &c.hm,
@@ -836,11 +921,10 @@ fn advance_chain_scheme<const FRICTION: bool>(
             };
             nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, a);
         } else {
-            ale_patch(
-                c, lay, ale, time, state, u, eta, t, ten, f, hm, haw, kl, cl, mukl,
-            );
+            ale_patch(c, lay, ale, time, state, u, aw, eta, t, ten, f, hm, haw, kl, cl, mukl);
             let m = Masses {
                 eta,
+                w: wbuf,
                 pm,
                 pwz,
                 hm,
@@ -857,7 +941,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
         let time = (step0 + k) as f64 * dt;
         match opts.scheme {
             Scheme::Symplectic => {
-                eval::<FRICTION>(c, lay, opts, ale, x, time, wk, a);
+                eval::<FRICTION>(c, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
                 let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
                     axpy(&mut vel[q][..n], &a[q], dt);
@@ -866,12 +950,12 @@ fn advance_chain_scheme<const FRICTION: bool>(
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
-                eval::<FRICTION>(c, lay, opts, ale, x, time, wk, a);
+                eval::<FRICTION>(c, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
                 for q in 0..3 {
                     xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
                     xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
                 }
-                eval::<FRICTION>(c, lay, opts, ale, xs, time + h, wk, a);
+                eval::<FRICTION>(c, lay, opts, ale, xs, time + h, &mut waves, wbuf, wk, a);
                 let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
                     axpy(&mut pos[q][..n], &xs[3 + q], dt);
@@ -890,7 +974,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
                         .into_iter()
                         .enumerate()
                 {
-                    eval::<FRICTION>(c, lay, opts, ale, xs, time + tau, wk, a);
+                    eval::<FRICTION>(c, lay, opts, ale, xs, time + tau, &mut waves, wbuf, wk, a);
                     let (spos, svel) = xs.split_at_mut(3);
                     for q in 0..3 {
                         axpy(&mut sum[q][..n], &svel[q], w);

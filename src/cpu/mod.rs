@@ -18,6 +18,7 @@
 
 pub(crate) mod ale;
 mod chain;
+mod water;
 mod stepper;
 
 pub(crate) use stepper::diverged;
