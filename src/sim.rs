@@ -261,6 +261,9 @@ pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
         ),
         BackendChoice::Gpu(ctx, p) => Stepper::Gpu(GpuSolver::new(&ctx, lay, &pos, opts, p)?),
     };
+    if let Stepper::Cpu(c) = &mut solver {
+        c.set_sea(&sc.sea, false);
+    }
     if let Stepper::Gpu(g) = &solver {
         match g.fused_unavailable() {
             Some(why) => log::info!("GPU kernel: {} (not fused: {why})", g.kernel().name()),
@@ -425,6 +428,7 @@ pub fn choose_backend(
     let unsupported = || {
         crate::gpu::solver::unsupported(lay, opts)
             .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
+            .or_else(|| (!sc.sea.is_still()).then(|| "waves ([environment.waves])".to_string()))
     };
     let need_f64 = precision == Some(Precision::F64);
     let p = precision.unwrap_or_default();

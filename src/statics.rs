@@ -391,8 +391,9 @@ impl<'a> Sys<'a> {
             water_accel: V::zero(),
         };
         // Still water at the mean level: the part above z = 0 is in air.
-        let wet = wetted_fraction(-ra.z, -rb.z);
-        let c = &self.coefs[lay.elem_line[e] as usize];
+        let line = lay.elem_line[e] as usize;
+        let wet = wetted_fraction(-ra.z, -rb.z, lay.line_types[line].diameter);
+        let c = &self.coefs[line];
         let el = glmf_element_wet(c, &input, wet, lay.env.gravity);
         (el.f_half + el.t * el.tension, el.f_half - el.t * el.tension)
     }

@@ -52,8 +52,9 @@ fn support_force(lay: &Layout, pos: &[[f64; 3]]) -> [f64; 3] {
 }
 
 /// A line hung from 12 m above the water, 30 m long, carries its dry weight for the
-/// 12 m above the surface and its wet weight for the 18 m below: the surface falls
-/// inside an element (12 / 2.5 = 4.8 elements) and, in a second line, on a node.
+/// 12 m above the surface and its wet weight for the 18 m below (less half a diameter
+/// above, more below: the section's band): the surface falls inside an element
+/// (12 / 2.5 = 4.8 elements) and, in a second line, on a node.
 /// Tolerance 1e-6 relative: the strain (~1e-7) and the static solve's round-off floor
 /// (`8 eps r k` per node, ~3e-5 N with `k = EA / l0 = 4e8 N/m`) are below it; a line
 /// with its buoyancy kept in air (the old model) is 15% off, one that lost it under
@@ -67,8 +68,10 @@ fn hung_line_carries_dry_weight_above_and_wet_weight_below() {
         let f = support_force(&lay, &pos);
         let dry = lt.mass_per_length * G;
         let wet = (lt.mass_per_length - RHO * area) * G;
-        // The support pulls up; the line pulls the support down.
-        let expected = -(12.0 * dry + 18.0 * wet);
+        // The support pulls up; the line pulls the support down. The section's band
+        // (docs/water_surface.md) counts half a diameter more wet length.
+        let d = lt.diameter;
+        let expected = -((12.0 - 0.5 * d) * dry + (18.0 + 0.5 * d) * wet);
         let rel = (f[2] - expected).abs() / expected.abs();
         println!(
             "{label}: support force {:.6} N, hand {expected:.6} N, rel {rel:.2e}",
@@ -236,13 +239,15 @@ fn buoy_pushed_under_floats_at_its_equilibrium_draft() {
     let radius = (3.0 * volume / (4.0 * std::f64::consts::PI)).cbrt();
     // Hand computation: submerged volume share f with rho V f g = m g + the rope's
     // weight less the buoyancy of its part under water (the rope's top, up to the
-    // buoy's centre, is in air when the centre is); the sphere's cap share is
+    // buoy's centre, is in air when the centre is, less half a diameter: the
+    // section's band); the sphere's cap share is
     // x^2 (3 - 2x), x = (s + R) / (2R), s the centre's depth. A fixed point in the
     // centre's height.
     let rope_wet = 10.0 * (lt.mass_per_length - RHO * lt.area()) * G;
     let mut z_eq = 0.0f64;
     for _ in 0..20 {
-        let need = (mass * G + rope_wet + RHO * lt.area() * G * z_eq.max(0.0)) / (RHO * volume * G);
+        let in_air = (z_eq - 0.5 * lt.diameter).max(0.0);
+        let need = (mass * G + rope_wet + RHO * lt.area() * G * in_air) / (RHO * volume * G);
         assert!(need > 0.0 && need < 1.0);
         let (mut lo, mut hi) = (0.0f64, 1.0f64);
         for _ in 0..200 {

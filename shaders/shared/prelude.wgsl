@@ -88,6 +88,8 @@ struct ElemParams {
     winch: u32,
     l0: R,
     l0_lo: R,
+    // The line's diameter, m (wetted_fraction).
+    diameter: R,
 }
 
 // One node; its incidence entries are inc[inc_start..inc_end]. `winch` is the winch
@@ -446,16 +448,36 @@ fn current_at(ci: u32, z: R) -> vec3<R> {
 
 // ---- Physics (twins of src/physics) ----
 
-// Fraction of a straight element under water from the submergences (surface
-// elevation minus height, m) of its two nodes (physics::wetted_fraction).
-fn wetted_fraction(sa: R, sb: R) -> R {
+// Fraction of a straight element of diameter `d` under water from the submergences
+// (surface elevation minus height, m) of its two nodes (physics::wetted_fraction):
+// the section's share `clamp(1 + s / d, 0, 1)` averaged along the element.
+fn wetted_fraction(sa: R, sb: R, d: R) -> R {
     if sa >= R(0.0) && sb >= R(0.0) {
         return R(1.0);
     }
-    if sa <= R(0.0) && sb <= R(0.0) {
+    if sa <= -d && sb <= -d {
         return R(0.0);
     }
-    return (max(sa, R(0.0)) + max(sb, R(0.0))) / (abs(sa) + abs(sb));
+    if d <= R(0.0) {
+        return (max(sa, R(0.0)) + max(sb, R(0.0))) / (abs(sa) + abs(sb));
+    }
+    let ua = R(1.0) + sa / d;
+    let ub = R(1.0) + sb / d;
+    if abs(ub - ua) < CBRT_EPS {
+        return clamp(R(0.5) * (ua + ub), R(0.0), R(1.0));
+    }
+    return (band_integral(ub) - band_integral(ua)) / (ub - ua);
+}
+
+// The antiderivative of clamp(u, 0, 1) that is 0 at 0 (physics::surface).
+fn band_integral(u: R) -> R {
+    if u <= R(0.0) {
+        return R(0.0);
+    }
+    if u < R(1.0) {
+        return R(0.5) * u * u;
+    }
+    return u - R(0.5);
 }
 
 // Fraction of a point mass's volume under water, the point taken as a sphere of
@@ -669,7 +691,7 @@ fn element_step(ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeSt
     let u = current_at(ep.current, zmid);
     // Still water: the surface is z = 0 and the water does not accelerate.
     let aw = vec3<R>(R(0.0), R(0.0), R(0.0));
-    let wet = wetted_fraction(submergence(oz, sa), submergence(oz, sb));
+    let wet = wetted_fraction(submergence(oz, sa), submergence(oz, sb), ep.diameter);
     let el = glmf_element_wet(lp, d, stretch, sa.v.xyz, sb.v.xyz, l0, u, aw, wet, params.gravity);
     var tension = el.tension;
     if var_elem {

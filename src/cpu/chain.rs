@@ -44,6 +44,8 @@ pub(crate) struct ChainConsts {
     half_bz: Vec<f64>,
     /// Half the element's water-acceleration coefficient `(1 + Cm) rho A l0 / 2`, kg.
     half_fk: Vec<f64>,
+    /// The element's diameter, m (its wetted fraction).
+    diameter: Vec<f64>,
     /// Current profile per element.
     current: Vec<u32>,
     /// Line type per element (for the ALE variable element, evaluated apart).
@@ -107,6 +109,8 @@ impl ChainConsts {
             c.half_bz
                 .push(0.5 * (lc.wet_weight_z + lc.mass * env.gravity) * l0);
             c.half_fk.push(0.5 * lc.froude_krylov * l0);
+            c.diameter
+                .push(lay.line_types[lay.elem_line[e] as usize].diameter);
             c.current.push(lay.elem_current[e]);
             c.line.push(lay.elem_line[e]);
             c.hm[k + 1] = 0.5 * lc.mass * l0;
@@ -315,6 +319,7 @@ fn element_kernel<const WAVES: bool>(
     let haw = &mut haw[..ne];
     let (hb, ha) = (&c.half_bz[..ne], &c.ha[1..ne + 1]);
     let (awx, awy, awz, hfk) = (&awx[..ne], &awy[..ne], &awz[..ne], &c.half_fk[..ne]);
+    let diam = &c.diameter[..ne];
     let (ty, tz, ten, fx, fy, fz) = (
         &mut ty[..ne],
         &mut tz[..ne],
@@ -343,7 +348,7 @@ fn element_kernel<const WAVES: bool>(
         let vt = ex * rx + ey * ry + ez * rz;
         let (nx, ny, nz) = (rx - ex * vt, ry - ey * vt, rz - ez * vt);
         // Water terms times the wetted fraction; the dry part loses its buoyancy.
-        let wet = wetted_fraction(eta[k] - z[k], eta[k + 1] - z[k + 1]);
+        let wet = wetted_fraction(eta[k] - z[k], eta[k + 1] - z[k + 1], diam[k]);
         let kn = dn[k] * l * (nx * nx + ny * ny + nz * nz).sqrt() * wet;
         let kt = dt[k] * l * vt.abs() * vt * wet;
         // Half of drag, plus half the weight less buoyancy (no water acceleration yet).
@@ -623,7 +628,7 @@ fn ale_patch(
                 current: V3::new(u[0][k], u[1][k], u[2][k]),
                 water_accel: V3::new(aw[0][k], aw[1][k], aw[2][k]),
             };
-            let wet = wetted_fraction(eta[k] - ra.z, eta[k + 1] - rb.z);
+            let wet = wetted_fraction(eta[k] - ra.z, eta[k + 1] - rb.z, c.diameter[k]);
             let mut el = glmf_element_wet(&lc, &input, wet, lay.env.gravity);
             if pay.rate != 0.0 {
                 // epsdot = (t . dv - (l / l0) Ldot) / l0 (crate::ale).

@@ -853,6 +853,7 @@ fn element_input<T: Topo>(
     k: usize,
     l0: f64,
     current: u32,
+    diameter: f64,
 ) -> (ElementInput<f64>, f64) {
     let (a, bn) = topo.ends(k);
     let (ra, rb) = (r[a], r[bn]);
@@ -863,7 +864,7 @@ fn element_input<T: Topo>(
     };
     if w.is_empty() {
         // Still water: the surface is z = 0 and the water does not accelerate.
-        let wet = wetted_fraction(-ra.z, -rb.z);
+        let wet = wetted_fraction(-ra.z, -rb.z, diameter);
         let inp = ElementInput {
             ra,
             rb,
@@ -880,7 +881,7 @@ fn element_input<T: Topo>(
     let (eta_a, ua, aa) = node_water(w, a);
     let (eta_b, ub, ab) = node_water(w, bn);
     let mid = |p: [f64; 3], q: [f64; 3]| V::new(0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2]));
-    let wet = wetted_fraction(eta_a - ra.z, eta_b - rb.z);
+    let wet = wetted_fraction(eta_a - ra.z, eta_b - rb.z, diameter);
     let inp = ElementInput {
         ra,
         rb,
@@ -913,10 +914,11 @@ fn element_pass<T: Topo>(
     let l0s = &lay.elem_l0[e0..e0 + n_el];
     let lines = &lay.elem_line[e0..e0 + n_el];
     let curs = &lay.elem_current[e0..e0 + n_el];
+    let diam = |k: usize| lay.line_types[lines[k] as usize].diameter;
     match ctx.opts.formulation {
         Formulation::Glmf => {
             for (k, o) in out.iter_mut().enumerate() {
-                let (inp, wet) = element_input(ctx, topo, r, v, w, k, l0s[k], curs[k]);
+                let (inp, wet) = element_input(ctx, topo, r, v, w, k, l0s[k], curs[k], diam(k));
                 *o = glmf_element_wet(&ctx.coefs[lines[k] as usize], &inp, wet, ctx.gravity);
             }
             // Winch cables: the variable element at this stage's time.
@@ -925,7 +927,7 @@ fn element_pass<T: Topo>(
                 let pay = ae.sched.eval(t);
                 let l0 = ae.l0(pay.dl);
                 let c = &ctx.coefs[lines[k] as usize];
-                let (inp, wet) = element_input(ctx, topo, r, v, w, k, l0, curs[k]);
+                let (inp, wet) = element_input(ctx, topo, r, v, w, k, l0, curs[k], diam(k));
                 out[k] = glmf_element_wet(c, &inp, wet, ctx.gravity);
                 if pay.rate != 0.0 {
                     // Internal damping acts on the material strain rate, and l0 changes:
@@ -942,7 +944,7 @@ fn element_pass<T: Topo>(
                 let e = e0 + k;
                 // The element frames are the older formulations, compared in still
                 // water: they take the element wholly submerged.
-                let (inp, _) = element_input(ctx, topo, r, v, w, k, l0s[k], curs[k]);
+                let (inp, _) = element_input(ctx, topo, r, v, w, k, l0s[k], curs[k], diam(k));
                 let cable = &lay.cables[lay.elem_cable[e] as usize];
                 let j = ctx.elem_in_cable[e] as usize;
                 let prev = (j > 0).then(|| r[cable.nodes[j - 1] as usize - n0]);
@@ -1441,7 +1443,8 @@ fn advance_block_threaded(
                 };
                 let out = unsafe { std::slice::from_raw_parts_mut(sh.el.add(er.start), er.len()) };
                 for (o, k) in out.iter_mut().zip(er.clone()) {
-                    let (inp, wet) = element_input(ctx, &topo, r, v, &[], k, l0s[k], curs[k]);
+                    let d = ctx.lay.line_types[lines[k] as usize].diameter;
+                    let (inp, wet) = element_input(ctx, &topo, r, v, &[], k, l0s[k], curs[k], d);
                     *o = glmf_element_wet(&ctx.coefs[lines[k] as usize], &inp, wet, ctx.gravity);
                 }
             }

@@ -211,6 +211,8 @@ gpu_struct! {
         l0: R,
         /// Unstretched length, low part (`l0 + l0_lo`; zero in f64), m.
         l0_lo: R,
+        /// The line's diameter, m (the element's wetted fraction).
+        diameter: R,
     }
 }
 

@@ -646,6 +646,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 winch: host.elem_winch[e],
                 l0: split::<R>(lay.elem_l0[e]).0,
                 l0_lo: split::<R>(lay.elem_l0[e]).1,
+                diameter: R::c(lay.line_types[lay.elem_line[e] as usize].diameter),
             })
             .collect();
         let nodes: Vec<NodeParams<R>> = (0..lay.n_nodes())

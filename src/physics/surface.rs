@@ -7,21 +7,52 @@
 
 use crate::math::Real;
 
-/// Fraction of a straight element under water, from the submergences `sa`, `sb` of its
-/// two nodes: 1 when neither node is in air, 0 when neither is under water, else the
-/// submerged share of the straight segment between them, `s+ / (|sa| + |sb|)` with
-/// `s+` the positive one. It tends to 0 as the submerged node reaches the surface and
-/// to 1 as the node in air does, so it is continuous except when both nodes reach the
-/// surface at once (an element lying on it).
+/// Fraction of a straight element of diameter `diameter` (m) under water, from the
+/// submergences `sa`, `sb` of its two nodes.
+///
+/// The element's section is taken as a band of height `diameter` reaching up from its
+/// node line: a point of the element at submergence `s` is wet for the share
+/// `clamp(1 + s / d, 0, 1)` of its section, and `f` is that share averaged along the
+/// straight element, `(G(ub) - G(ua)) / (ub - ua)` with `u = 1 + s / d` and `G` the
+/// antiderivative of `clamp(u, 0, 1)`. So `f = 1` exactly when neither node is above
+/// the surface (a submerged line's loads are untouched) and `f = 0` when both are at
+/// least a diameter above it; `f` and its slope are continuous, also for an element
+/// lying along the surface (a floating line), where a sharp waterline would make the
+/// buoyancy jump from none to all over a vanishing height. Crossing the surface, the
+/// element counts half a diameter more wet length than its straight segment has below
+/// the surface. A diameter of zero gives the sharp segment share.
 #[inline(always)]
-pub fn wetted_fraction<T: Real>(sa: T, sb: T) -> T {
+pub fn wetted_fraction<T: Real>(sa: T, sb: T, diameter: T) -> T {
     let zero = T::zero();
+    let one = T::one();
     if sa >= zero && sb >= zero {
-        T::one()
-    } else if sa <= zero && sb <= zero {
-        zero
+        return one;
+    }
+    if sa <= -diameter && sb <= -diameter {
+        return zero;
+    }
+    if diameter <= zero {
+        return (sa.max(zero) + sb.max(zero)) / (sa.abs() + sb.abs());
+    }
+    let (ua, ub) = (one + sa / diameter, one + sb / diameter);
+    if (ub - ua).abs() < T::epsilon().cbrt() {
+        // Nearly level: the midpoint value, within (ub - ua)^2 / 24 of the average
+        // (the quotient below would lose digits to cancellation).
+        return (T::c(0.5) * (ua + ub)).max(zero).min(one);
+    }
+    (band_integral(ub) - band_integral(ua)) / (ub - ua)
+}
+
+/// `G(u)`, the antiderivative of `clamp(u, 0, 1)` with `G(0) = 0`.
+#[inline(always)]
+fn band_integral<T: Real>(u: T) -> T {
+    let half = T::c(0.5);
+    if u <= T::zero() {
+        T::zero()
+    } else if u < T::one() {
+        half * u * u
     } else {
-        (sa.max(zero) + sb.max(zero)) / (sa.abs() + sb.abs())
+        u - half
     }
 }
 
@@ -53,16 +84,27 @@ mod tests {
 
     #[test]
     fn element_fraction_is_the_submerged_share_and_continuous() {
-        assert_eq!(wetted_fraction(1.0, 2.0), 1.0);
-        assert_eq!(wetted_fraction(0.0, 2.0), 1.0);
-        assert_eq!(wetted_fraction(-1.0, -2.0), 0.0);
-        assert_eq!(wetted_fraction(0.0, -2.0), 0.0);
+        // Sharp (no diameter).
+        assert_eq!(wetted_fraction(1.0, 2.0, 0.0), 1.0);
+        assert_eq!(wetted_fraction(0.0, 2.0, 0.0), 1.0);
+        assert_eq!(wetted_fraction(-1.0, -2.0, 0.0), 0.0);
+        assert_eq!(wetted_fraction(0.0, -2.0, 0.0), 0.0);
         // Node a 1 m under, node b 3 m above: a quarter of the segment is wet.
-        assert_eq!(wetted_fraction(1.0, -3.0), 0.25);
-        assert_eq!(wetted_fraction(-3.0, 1.0), 0.25);
-        // Approaching the ends of the mixed case from inside meets the pure cases.
-        assert!(wetted_fraction(1e-12, -1.0) < 1e-11);
-        assert!(wetted_fraction(1.0, -1e-12) > 1.0 - 1e-11);
+        assert_eq!(wetted_fraction(1.0, -3.0, 0.0), 0.25);
+        assert_eq!(wetted_fraction(-3.0, 1.0, 0.0), 0.25);
+        // With a diameter: half a diameter more wet length, crossing.
+        let d = 0.1;
+        assert!((wetted_fraction(1.0, -3.0, d) - (1.0 + 0.5 * d) / 4.0).abs() < 1e-15);
+        assert_eq!(wetted_fraction(0.0, 0.0, d), 1.0);
+        assert_eq!(wetted_fraction(-d, -2.0, d), 0.0);
+        // Level and floating: the band share of the section.
+        assert!((wetted_fraction(-0.25 * d, -0.25 * d, d) - 0.75).abs() < 1e-15);
+        // Continuous through the nearly level switch and at the ends.
+        let f = |sa: f64| wetted_fraction(sa, -0.3 * d, d);
+        let step = 6.1e-6 * d;
+        assert!((f(-0.3 * d + 0.99 * step) - f(-0.3 * d + 1.01 * step)).abs() < 1e-9);
+        assert!(wetted_fraction(1e-12, -1.0, d) < 1.0);
+        assert!((wetted_fraction(-1e-12, 1.0, d) - 1.0).abs() < 1e-11);
     }
 
     #[test]
