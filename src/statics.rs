@@ -621,6 +621,19 @@ impl<'a> Sys<'a> {
         }
     }
 
+    /// True when some node at `r` (block-local) is close enough to the mean water
+    /// level for the surface to change a load: within a diameter of its lines or the
+    /// radius of its point mass below it, or above it.
+    fn near_surface(&self, r: &[V]) -> bool {
+        let lay = self.lay;
+        let band = (self.e0..self.e1)
+            .map(|e| lay.line_types[lay.elem_line[e] as usize].diameter)
+            .fold(0.0f64, f64::max);
+        r.iter()
+            .enumerate()
+            .any(|(li, p)| p.z > -band.max(lay.node_point_radius[self.n0 + li]) - 1e-9)
+    }
+
     /// Mean unstretched element length (1 m without elements).
     fn mean_l0(&self) -> f64 {
         if self.e1 > self.e0 {
@@ -804,7 +817,21 @@ impl<'a> Sys<'a> {
                 self.residual(&trial, &mut ft);
                 let (tmax, _, tmerit) = self.measure(&ft);
                 let ok = if pred > 0.0 && g0 > 0.0 {
-                    let rho = -self.energy_change(r, &dx, &ext, &own) / pred;
+                    // The external loads averaged over the step's two ends (trapezoid):
+                    // the buoyancy of what crosses the water surface changes along the
+                    // step, and its work must be counted to second order like the
+                    // elastic energy's, or steps near the surface are wrongly refused.
+                    // Blocks wholly under water keep the loads at `r`.
+                    let rho = if self.near_surface(r) || self.near_surface(&trial) {
+                        let (ext1, own1) = self.frozen_loads(&trial);
+                        let avg = |a: &[V], b: &[V]| -> Vec<V> {
+                            a.iter().zip(b).map(|(x, y)| (*x + *y) * 0.5).collect()
+                        };
+                        let (ext_m, own_m) = (avg(&ext, &ext1), avg(&own, &own1));
+                        -self.energy_change(r, &dx, &ext_m, &own_m) / pred
+                    } else {
+                        -self.energy_change(r, &dx, &ext, &own) / pred
+                    };
                     if rho > 1e-4 {
                         lambda *= (1.0 / 3.0f64).max(1.0 - (2.0 * rho - 1.0).powi(3));
                         lambda = lambda.max(LAMBDA_MIN);

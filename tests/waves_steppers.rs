@@ -121,8 +121,14 @@ fn cached_kinematics_give_the_exact_end_force() {
          relative); still water against waves {d_still:.1} N",
         d_cache / fmax
     );
-    assert!(d_cache < 1e-3 * fmax, "cache off by {d_cache} N of {fmax} N");
-    assert!(d_still > 0.05 * fmax, "the waves change the force by only {d_still} N");
+    assert!(
+        d_cache < 1e-3 * fmax,
+        "cache off by {d_cache} N of {fmax} N"
+    );
+    assert!(
+        d_still > 0.05 * fmax,
+        "the waves change the force by only {d_still} N"
+    );
 }
 
 /// In waves the chain fast path and the general path agree, for every scheme.
@@ -156,18 +162,26 @@ fn chain_kernel_matches_the_general_path_in_waves() {
             .map(|(a, b)| (a.to_f64()[2] - b[2]).abs())
             .fold(0.0f64, f64::max);
         println!("{scheme:?}: |dr| {dr:.2e} m, largest heave from rest {moved:.3} m");
-        assert!(moved > 0.05, "{scheme:?}: the waves moved the line {moved} m");
-        assert!(dr < 1e-8, "{scheme:?}: fast and general paths differ by {dr} m");
+        assert!(
+            moved > 0.05,
+            "{scheme:?}: the waves moved the line {moved} m"
+        );
+        assert!(
+            dr < 1e-8,
+            "{scheme:?}: fast and general paths differ by {dr} m"
+        );
     }
 }
 
 /// A neutrally buoyant sphere (mass `rho V`) deep under a regular wave, on a short
 /// slack thread, moves with the water: its equation is
-/// `(1 + Ca) rho V a = (1 + Ca) rho V a_w` plus drag on the relative velocity, so
-/// started with the water's velocity it follows the water particle's path (integrated
-/// here from the same field). The two differ by the convective part of the particle's
-/// acceleration, which the linear loads leave out: of order `k r` (`r` the orbit
-/// radius, 1% here) of the acceleration, so the paths agree to a few percent of `r`.
+/// `(1 + Ca) rho V a = (1 + Ca) rho V a_w` plus drag on the relative velocity. So its
+/// acceleration is the water's (to the thread's share of the mass, 5e-5), and started
+/// with the water's velocity it follows the water particle's path (integrated here
+/// from the same field) at first. Not for long: the linear loads leave out the
+/// convective part of the particle's acceleration, `k |u|^2` (here 1e-3 m/s^2, 0.8%
+/// of `a_w`), whose effect grows as `t^2` with nothing to restore it; over a second it
+/// is 4e-4 m, 0.3% of the orbit radius.
 #[test]
 fn neutrally_buoyant_sphere_follows_the_water() {
     let rho = 1025.0;
@@ -237,9 +251,19 @@ fn neutrally_buoyant_sphere_follows_the_water() {
     }
     // The water particle from the sphere's start, by RK4 on dx/dt = u(x, t).
     let u = |p: [f64; 3], t: f64| field.kinematics(p, t).u;
-    let add = |p: [f64; 3], d: [f64; 3], h: f64| [p[0] + h * d[0], p[1] + h * d[1], p[2] + h * d[2]];
+    let add =
+        |p: [f64; 3], d: [f64; 3], h: f64| [p[0] + h * d[0], p[1] + h * d[1], p[2] + h * d[2]];
     let mut particle = pos[sphere];
-    let steps = (2.0 * period / opts.dt) as u64;
+    // The acceleration at the start, from the general path's evaluation.
+    let a0 = s.evaluate().unwrap().acc[sphere];
+    let aw0 = field.kinematics(pos[sphere], 0.0).a;
+    let da = norm([a0[0] - aw0[0], a0[1] - aw0[1], a0[2] - aw0[2]]);
+    println!("sphere: acceleration {a0:?}, water's {aw0:?}");
+    assert!(
+        da < 1e-4 * norm(aw0),
+        "acceleration {a0:?} against the water's {aw0:?}"
+    );
+    let steps = (1.0 / opts.dt) as u64;
     let radius = amp * (k * z0).exp();
     let (mut worst, mut xmax) = (0.0f64, f64::NEG_INFINITY);
     for n in 0..steps {
@@ -254,11 +278,18 @@ fn neutrally_buoyant_sphere_follows_the_water() {
         s.advance(1).unwrap();
         let r = s.r[sphere].to_f64();
         xmax = xmax.max(r[0]);
-        worst = worst.max(norm([r[0] - particle[0], r[1] - particle[1], r[2] - particle[2]]));
+        worst = worst.max(norm([
+            r[0] - particle[0],
+            r[1] - particle[1],
+            r[2] - particle[2],
+        ]));
     }
     println!(
         "sphere: orbit radius {radius:.4} m, largest distance from the particle {worst:.2e} m"
     );
-    assert!(xmax > 0.9 * radius, "the sphere moved only {xmax} m along the wave");
-    assert!(worst < 0.05 * radius, "{worst} m off the particle's path");
+    assert!(
+        xmax > 0.5 * radius,
+        "the sphere moved only {xmax} m along the wave"
+    );
+    assert!(worst < 0.01 * radius, "{worst} m off the particle's path");
 }

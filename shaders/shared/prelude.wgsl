@@ -463,21 +463,16 @@ fn wetted_fraction(sa: R, sb: R, d: R) -> R {
     }
     let ua = R(1.0) + sa / d;
     let ub = R(1.0) + sb / d;
-    if abs(ub - ua) < CBRT_EPS {
-        return clamp(R(0.5) * (ua + ub), R(0.0), R(1.0));
+    let lo = min(ua, ub);
+    let hi = max(ua, ub);
+    if hi <= lo {
+        return clamp(lo, R(0.0), R(1.0));
     }
-    return (band_integral(ub) - band_integral(ua)) / (ub - ua);
-}
-
-// The antiderivative of clamp(u, 0, 1) that is 0 at 0 (physics::surface).
-fn band_integral(u: R) -> R {
-    if u <= R(0.0) {
-        return R(0.0);
-    }
-    if u < R(1.0) {
-        return R(0.5) * u * u;
-    }
-    return u - R(0.5);
+    let a = max(lo, R(0.0));
+    let b = min(hi, R(1.0));
+    let w0 = max(b - a, R(0.0));
+    let w1 = max(hi - max(lo, R(1.0)), R(0.0));
+    return (w0 * (R(0.5) * (a + b)) + w1) / (hi - lo);
 }
 
 // Fraction of a point mass's volume under water, the point taken as a sphere of

@@ -750,11 +750,15 @@ pub(crate) fn advance_chain(
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above.
             return unsafe {
-                advance_chain_avx2(c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps)
+                advance_chain_avx2(
+                    c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+                )
             };
         }
     }
-    advance_chain_body(c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps)
+    advance_chain_body(
+        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+    )
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -775,7 +779,9 @@ unsafe fn advance_chain_avx2(
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
-    advance_chain_body(c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps)
+    advance_chain_body(
+        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+    )
 }
 
 #[inline(always)]
@@ -796,9 +802,13 @@ fn advance_chain_body(
     nsteps: u64,
 ) -> Result<(), StepFailure> {
     if c.friction {
-        advance_chain_scheme::<true>(c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps)
+        advance_chain_scheme::<true>(
+            c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+        )
     } else {
-        advance_chain_scheme::<false>(c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps)
+        advance_chain_scheme::<false>(
+            c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+        )
     }
 }
 
@@ -926,7 +936,9 @@ fn advance_chain_scheme<const FRICTION: bool>(
             };
             nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, a);
         } else {
-            ale_patch(c, lay, ale, time, state, u, aw, eta, t, ten, f, hm, haw, kl, cl, mukl);
+            ale_patch(
+                c, lay, ale, time, state, u, aw, eta, t, ten, f, hm, haw, kl, cl, mukl,
+            );
             let m = Masses {
                 eta,
                 w: wbuf,

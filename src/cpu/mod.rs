@@ -18,8 +18,8 @@
 
 pub(crate) mod ale;
 mod chain;
-mod water;
 mod stepper;
+mod water;
 
 pub(crate) use stepper::diverged;
 pub use stepper::{CpuSolver, Evaluation, StepFailure, WinchStatus};

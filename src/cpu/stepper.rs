@@ -9,13 +9,13 @@ use crate::math::{Sym3, V3};
 use crate::model::{Block, Layout, ModelDef, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
-use crate::sea::cache::{evaluate_nodes, CACHE_STRIDE};
-use crate::sea::kinematics::WaveField;
-use crate::sea::SeaState;
 use crate::physics::{
     glmf_element_wet, point_wetted_fraction, seabed_force, wetted_fraction, Coefs, ElementInput,
     ElementLoads, SeabedCoefs,
 };
+use crate::sea::cache::{evaluate_nodes, CACHE_STRIDE};
+use crate::sea::kinematics::WaveField;
+use crate::sea::SeaState;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
@@ -243,7 +243,9 @@ impl CpuSolver {
                 .layout
                 .blocks
                 .iter()
-                .map(|b| BlockWaves::new(sea, (b.node_end - b.node_start) as usize, self.exact_waves))
+                .map(|b| {
+                    BlockWaves::new(sea, (b.node_end - b.node_start) as usize, self.exact_waves)
+                })
                 .collect(),
         };
     }
@@ -674,7 +676,11 @@ impl CpuSolver {
                 &mut elems[e0..e1],
             );
             for i in n0..n1 {
-                let eta = if w.is_empty() { 0.0 } else { node_water(&w, i - n0).0 };
+                let eta = if w.is_empty() {
+                    0.0
+                } else {
+                    node_water(&w, i - n0).0
+                };
                 let m = node_mass(&ctx, &topo, b, i - n0, self.r[i], eta, &elems[e0..e1]);
                 let v = self.v[i];
                 ke += 0.5 * v.dot(m.mul_vec(v));
@@ -880,7 +886,13 @@ fn element_input<T: Topo>(
     // midpoint, the surface over each node for the wetted fraction.
     let (eta_a, ua, aa) = node_water(w, a);
     let (eta_b, ub, ab) = node_water(w, bn);
-    let mid = |p: [f64; 3], q: [f64; 3]| V::new(0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2]));
+    let mid = |p: [f64; 3], q: [f64; 3]| {
+        V::new(
+            0.5 * (p[0] + q[0]),
+            0.5 * (p[1] + q[1]),
+            0.5 * (p[2] + q[2]),
+        )
+    };
     let wet = wetted_fraction(eta_a - ra.z, eta_b - rb.z, diameter);
     let inp = ElementInput {
         ra,

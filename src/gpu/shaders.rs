@@ -83,10 +83,6 @@ pub fn header_with(p: Precision, fused_wg: u32) -> String {
         }
         Precision::F64 => ("f64", pio2, 6.123233995736766e-17, 134217729.0, false),
     };
-    let cbrt_eps = match p {
-        Precision::F32 => (f32::EPSILON as f64).cbrt() as f32 as f64,
-        Precision::F64 => f64::EPSILON.cbrt(),
-    };
     // `{:e}` prints the shortest string that reads back to the same f64; the
     // abstract-float literal then converts exactly (f64) or to the same f32.
     format!(
@@ -99,9 +95,7 @@ pub fn header_with(p: Precision, fused_wg: u32) -> String {
          // Element stretches from compensated pairs (f32; f64 needs no help).\n\
          const COMPENSATED: bool = {compensated};\n\
          // Invocations per workgroup of the fused kernel (nodes per block at most).\n\
-         const FUSED_WG: u32 = {fused_wg}u;\n\
-         // The cube root of the machine epsilon (physics::wetted_fraction).\n\
-         const CBRT_EPS: R = {cbrt_eps:e};\n\n"
+         const FUSED_WG: u32 = {fused_wg}u;\n\n"
     )
 }
 

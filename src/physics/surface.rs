@@ -13,8 +13,10 @@ use crate::math::Real;
 /// The element's section is taken as a band of height `diameter` reaching up from its
 /// node line: a point of the element at submergence `s` is wet for the share
 /// `clamp(1 + s / d, 0, 1)` of its section, and `f` is that share averaged along the
-/// straight element, `(G(ub) - G(ua)) / (ub - ua)` with `u = 1 + s / d` and `G` the
-/// antiderivative of `clamp(u, 0, 1)`. So `f = 1` exactly when neither node is above
+/// straight element: with `u = 1 + s / d` running linearly from `ua` to `ub`, the
+/// mean of `clamp(u, 0, 1)` over `[lo, hi] = [min, max](ua, ub)`, formed from the
+/// lengths of its parts in `[0, 1]` and above 1 (no cancellation, however close `ua`
+/// and `ub`). So `f = 1` exactly when neither node is above
 /// the surface (a submerged line's loads are untouched) and `f = 0` when both are at
 /// least a diameter above it; `f` and its slope are continuous, also for an element
 /// lying along the surface (a floating line), where a sharp waterline would make the
@@ -35,25 +37,15 @@ pub fn wetted_fraction<T: Real>(sa: T, sb: T, diameter: T) -> T {
         return (sa.max(zero) + sb.max(zero)) / (sa.abs() + sb.abs());
     }
     let (ua, ub) = (one + sa / diameter, one + sb / diameter);
-    if (ub - ua).abs() < T::epsilon().cbrt() {
-        // Nearly level: the midpoint value, within (ub - ua)^2 / 24 of the average
-        // (the quotient below would lose digits to cancellation).
-        return (T::c(0.5) * (ua + ub)).max(zero).min(one);
+    let (lo, hi) = (ua.min(ub), ua.max(ub));
+    if hi <= lo {
+        return lo.max(zero).min(one);
     }
-    (band_integral(ub) - band_integral(ua)) / (ub - ua)
-}
-
-/// `G(u)`, the antiderivative of `clamp(u, 0, 1)` with `G(0) = 0`.
-#[inline(always)]
-fn band_integral<T: Real>(u: T) -> T {
-    let half = T::c(0.5);
-    if u <= T::zero() {
-        T::zero()
-    } else if u < T::one() {
-        half * u * u
-    } else {
-        u - half
-    }
+    // The part in [0, 1] (length w0, mean value its midpoint) and the part above 1.
+    let (a, b) = (lo.max(zero), hi.min(one));
+    let w0 = (b - a).max(zero);
+    let w1 = (hi - lo.max(one)).max(zero);
+    (w0 * (T::c(0.5) * (a + b)) + w1) / (hi - lo)
 }
 
 /// Fraction of a point mass's volume under water, the point taken as a sphere of
@@ -93,16 +85,20 @@ mod tests {
         assert_eq!(wetted_fraction(1.0, -3.0, 0.0), 0.25);
         assert_eq!(wetted_fraction(-3.0, 1.0, 0.0), 0.25);
         // With a diameter: half a diameter more wet length, crossing.
-        let d = 0.1;
+        let d: f64 = 0.1;
         assert!((wetted_fraction(1.0, -3.0, d) - (1.0 + 0.5 * d) / 4.0).abs() < 1e-15);
         assert_eq!(wetted_fraction(0.0, 0.0, d), 1.0);
         assert_eq!(wetted_fraction(-d, -2.0, d), 0.0);
         // Level and floating: the band share of the section.
         assert!((wetted_fraction(-0.25 * d, -0.25 * d, d) - 0.75).abs() < 1e-15);
-        // Continuous through the nearly level switch and at the ends.
+        // Nearly level, also across a kink of the section's share: no cancellation.
         let f = |sa: f64| wetted_fraction(sa, -0.3 * d, d);
-        let step = 6.1e-6 * d;
-        assert!((f(-0.3 * d + 0.99 * step) - f(-0.3 * d + 1.01 * step)).abs() < 1e-9);
+        // u runs from 0.7 + 1e-11 to 0.7: the mean is its midpoint.
+        assert!((f(-0.3 * d + 1e-12) - (0.7f64 + 5e-12)).abs() < 1e-14);
+        // Across u = 1 over 2e-9: 1.5e-9 of it above the kink (share 1), 0.5e-9 below
+        // (mean share 1 - 0.25e-9): the mean is 1 - 6.25e-11.
+        let g: f64 = wetted_fraction(-0.5e-9 * d, 1.5e-9 * d, d);
+        assert!((g - (1.0 - 6.25e-11)).abs() < 1e-15, "{g}");
         assert!(wetted_fraction(1e-12, -1.0, d) < 1.0);
         assert!((wetted_fraction(-1e-12, 1.0, d) - 1.0).abs() < 1e-11);
     }
