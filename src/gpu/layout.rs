@@ -462,6 +462,51 @@ gpu_struct_u32! {
     }
 }
 
+gpu_struct! {
+    /// One wave component (WGSL `WaveComp` in `shaders/shared/waves.wgsl`), as
+    /// `sea::kinematics::PackedComponent`.
+    WaveComp {
+        /// `k cos b`, rad/m.
+        kx: R,
+        /// `k sin b`, rad/m.
+        ky: R,
+        /// Wave number `k`, rad/m.
+        k: R,
+        /// Angular frequency `w`, rad/s.
+        omega: R,
+        /// Phase at the host's reference time, rad.
+        phase_ref: R,
+        /// Amplitude `A`, m.
+        amp: R,
+        /// `A w / (1 - e^{-2 k h})`, m/s.
+        amp_u: R,
+        /// `A w^2 / (1 - e^{-2 k h})`, m/s^2.
+        amp_a: R,
+        /// `cos b`.
+        cos_b: R,
+        /// `sin b`.
+        sin_b: R,
+    }
+}
+
+impl<R: GpuReal> WaveComp<R> {
+    /// The component at precision `R`.
+    pub fn from_packed(c: &crate::sea::kinematics::PackedComponent) -> Self {
+        Self {
+            kx: R::c(c.kx),
+            ky: R::c(c.ky),
+            k: R::c(c.k),
+            omega: R::c(c.omega),
+            phase_ref: R::c(c.phase_ref),
+            amp: R::c(c.amp),
+            amp_u: R::c(c.amp_u),
+            amp_a: R::c(c.amp_a),
+            cos_b: R::c(c.cos_b),
+            sin_b: R::c(c.sin_b),
+        }
+    }
+}
+
 /// Every shared struct's name and fields at precision `R` (for the layout test).
 pub fn all_structs<R: GpuReal>() -> Vec<(&'static str, usize, Vec<Field>)> {
     fn one<S: GpuStruct>() -> (&'static str, usize, Vec<Field>) {
@@ -483,5 +528,6 @@ pub fn all_structs<R: GpuReal>() -> Vec<(&'static str, usize, Vec<Field>)> {
         one::<NodeOut<R>>(),
         one::<Status>(),
         one::<Payout<R>>(),
+        one::<WaveComp<R>>(),
     ]
 }

@@ -4,13 +4,16 @@
 //! alias `R` (`f32` or `f64`), the two-part `pi/2` used by the shaders' own sine
 //! and cosine, Veltkamp's splitting constant and whether element stretches are formed
 //! from compensated pairs (f32 only) and the fused kernel's workgroup size `FUSED_WG`,
-//! then comes `shaders/shared/prelude.wgsl` (structs, bindings, physics), then the
-//! stage file.
+//! then comes `shaders/shared/prelude.wgsl` (structs, bindings, physics) and
+//! `shaders/shared/waves.wgsl` (wave kinematics), then the stage file.
 
 use super::Precision;
 
 /// The shared prelude: structs, bindings and force functions.
 pub const PRELUDE: &str = include_str!("../../shaders/shared/prelude.wgsl");
+
+/// The wave kinematics (`shaders/shared/waves.wgsl`), appended after the prelude.
+pub const WAVES: &str = include_str!("../../shaders/shared/waves.wgsl");
 
 /// A compute stage: one WGSL file in `shaders/`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -110,14 +113,18 @@ pub fn source_with(stage: Stage, p: Precision, fused_wg: u32) -> String {
     let mut s = header_with(p, fused_wg);
     s.push_str(PRELUDE);
     s.push('\n');
+    s.push_str(WAVES);
+    s.push('\n');
     s.push_str(stage.body());
     s
 }
 
-/// The prelude alone at precision `p` (header and prelude), for tests that add their
-/// own entry points.
+/// The prelude alone at precision `p` (header, prelude and wave kinematics), for
+/// tests that add their own entry points.
 pub fn prelude(p: Precision) -> String {
     let mut s = header(p);
     s.push_str(PRELUDE);
+    s.push('\n');
+    s.push_str(WAVES);
     s
 }

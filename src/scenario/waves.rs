@@ -623,6 +623,23 @@ components = 50
         assert!((m0 / table - 0.993).abs() < 0.01, "m0 {m0}, table {table}");
     }
 
+    /// The example in docs/sea_states.md parses into the sea it describes.
+    #[test]
+    fn documented_example_parses() {
+        let doc = include_str!("../../docs/sea_states.md");
+        let start = doc.find("```toml\n").expect("a toml block") + 8;
+        let block = &doc[start..start + doc[start..].find("```").unwrap()];
+        let base = BASE.replace("[environment]\ndepth = 120.0\n", "");
+        let s = Scenario::parse(&format!("{base}\n{block}"), Path::new("/tmp/doc.toml"))
+            .unwrap_or_else(|e| panic!("docs/sea_states.md example: {e}"));
+        assert_eq!(s.sea.components.len(), 201);
+        assert_eq!(s.sea.depth, 150.0);
+        assert_eq!(s.sea.ramp_duration, 30.0);
+        assert_eq!(s.sea.components[0].amplitude, 0.75);
+        assert!((s.sea.components[0].direction - 45f64.to_radians()).abs() < 1e-15);
+        assert!(s.sea.components[1..].iter().any(|c| c.direction != 0.0));
+    }
+
     /// A wave steeper than H/L = 1/7 parses with a warning naming the field; a gentle
     /// one without.
     #[test]

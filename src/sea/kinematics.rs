@@ -134,14 +134,15 @@ impl WaveField {
 }
 
 /// The start-up ramp `0.5 (1 - cos(pi t / T_r))` for `0 <= t < T_r`, 0 before, 1
-/// after (and always 1 when `T_r <= 0`).
+/// after (and always 1 when `T_r <= 0`), computed as `sin^2(pi t / (2 T_r))`.
 pub fn wave_ramp(t: f64, ramp_duration: f64) -> f64 {
     if ramp_duration <= 0.0 || t >= ramp_duration {
         1.0
     } else if t <= 0.0 {
         0.0
     } else {
-        0.5 * (1.0 - (PI * t / ramp_duration).cos())
+        // 0.5 (1 - cos x) = sin^2(x / 2), without the cancellation near t = 0.
+        (0.5 * PI * t / ramp_duration).sin().powi(2)
     }
 }
 

@@ -1,0 +1,516 @@
+//! Each WGSL wave function (`shaders/shared/waves.wgsl`) against its Rust twin
+//! (`cablesim::sea`), on random inputs, at f32 and f64.
+//!
+//! As in tests/gpu_functions.rs: a test kernel calls one function per invocation, the
+//! Rust twin runs in f64 on the values the GPU received (converted back), and every
+//! output must be within `16 eps_R * scale`, `scale` the sum of the magnitudes of the
+//! terms that make the output times the size of the rounding each term inherits from
+//! its arguments (a phase `theta` carries `eps |theta|`, an exponent `eps |x|`), so a
+//! missing or wrong term, of the size of `scale`, is caught.
+
+mod common;
+
+use cablesim::gpu::layout::{GpuReal, WaveComp};
+use cablesim::gpu::{shaders, GpuContext, Precision};
+use cablesim::math::V3;
+use cablesim::sea::cache::wave_cache_lerp;
+use cablesim::sea::irregular::{discretise, Discretisation};
+use cablesim::sea::kinematics::{
+    wave_depth_decay, wave_eval_depth, wave_kinematics_at, wave_ramp, PackedComponent, WaveField,
+};
+use cablesim::sea::spectrum::Spectrum;
+use cablesim::sea::{SeaState, Stretching, WaveComponent, GPU_DEEP};
+use common::*;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::f64::consts::{PI, TAU};
+
+const KERNELS: &str = r#"
+@group(1) @binding(0) var<storage, read> tin: array<R>;
+@group(1) @binding(1) var<storage, read_write> tout: array<R>;
+
+@compute @workgroup_size(64)
+fn t_exp(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) {
+        return;
+    }
+    tout[i] = wave_exp(tin[i]);
+}
+
+@compute @workgroup_size(64)
+fn t_ramp(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 2u {
+        return;
+    }
+    tout[i] = wave_ramp(tin[2u * i], tin[2u * i + 1u]);
+}
+
+@compute @workgroup_size(64)
+fn t_decay(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 3u {
+        return;
+    }
+    let d = wave_depth_decay(tin[3u * i], tin[3u * i + 1u], tin[3u * i + 2u]);
+    tout[2u * i] = d.x;
+    tout[2u * i + 1u] = d.y;
+}
+
+@compute @workgroup_size(64)
+fn t_eval_depth(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 4u {
+        return;
+    }
+    let b = 4u * i;
+    tout[i] = wave_eval_depth(tin[b], tin[b + 1u], tin[b + 2u], u32(tin[b + 3u]));
+}
+
+fn kin_out(o: u32, k: WaveKin) {
+    tout[o] = k.eta;
+    tout[o + 1u] = k.u.x;
+    tout[o + 2u] = k.u.y;
+    tout[o + 3u] = k.u.z;
+    tout[o + 4u] = k.a.x;
+    tout[o + 5u] = k.a.y;
+    tout[o + 6u] = k.a.z;
+}
+
+fn kin_in(b: u32) -> WaveKin {
+    return WaveKin(tin[b], vec3<R>(tin[b + 1u], tin[b + 2u], tin[b + 3u]),
+        vec3<R>(tin[b + 4u], tin[b + 5u], tin[b + 6u]));
+}
+
+// tin: n, depth, stretching, ramp duration, t_ref, then x, y, z, t per point.
+@compute @workgroup_size(64)
+fn t_kin(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= (arrayLength(&tin) - 5u) / 4u {
+        return;
+    }
+    let b = 5u + 4u * i;
+    let k = wave_kinematics_at(u32(tin[0]), tin[1], u32(tin[2]), tin[3],
+        vec3<R>(tin[b], tin[b + 1u], tin[b + 2u]), tin[b + 3u], tin[4]);
+    kin_out(7u * i, k);
+}
+
+@compute @workgroup_size(64)
+fn t_lerp(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 15u {
+        return;
+    }
+    let b = 15u * i;
+    kin_out(7u * i, wave_cache_lerp(kin_in(b), kin_in(b + 7u), tin[b + 14u]));
+}
+"#;
+
+/// Runs `entry` over `input` with `group0` bound at group 0 and returns `n_out` values.
+fn run<R: GpuReal>(
+    ctx: &GpuContext,
+    p: Precision,
+    entry: &str,
+    group0: &[(u32, Vec<u8>)],
+    input: &[R],
+    n_threads: usize,
+    n_out: usize,
+) -> Vec<R> {
+    use wgpu::util::DeviceExt;
+    let dev = &ctx.device;
+    let src = format!("{}\n{KERNELS}", shaders::prelude(p));
+    let scope = dev.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("wave function parity"),
+        source: wgpu::ShaderSource::Wgsl(src.into()),
+    });
+    let pipe = dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry),
+        layout: None,
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
+    let buf = |label: &str, bytes: &[u8]| {
+        dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytes,
+            usage,
+        })
+    };
+    let g0: Vec<wgpu::Buffer> = group0.iter().map(|(_, b)| buf("group0", b)).collect();
+    let tin = buf("tin", bytemuck::cast_slice(input));
+    let out_bytes = (n_out * std::mem::size_of::<R>()) as u64;
+    let tout = buf("tout", &vec![0u8; out_bytes as usize]);
+    let staging = dev.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("staging"),
+        size: out_bytes,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let bg0 = dev.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipe.get_bind_group_layout(0),
+        entries: &group0
+            .iter()
+            .zip(&g0)
+            .map(|((binding, _), b)| wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: b.as_entire_binding(),
+            })
+            .collect::<Vec<_>>(),
+    });
+    let bg1 = dev.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipe.get_bind_group_layout(1),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: tin.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: tout.as_entire_binding(),
+            },
+        ],
+    });
+    let mut enc = dev.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipe);
+        pass.set_bind_group(0, &bg0, &[]);
+        pass.set_bind_group(1, &bg1, &[]);
+        pass.dispatch_workgroups((n_threads as u32).div_ceil(64), 1, 1);
+    }
+    enc.copy_buffer_to_buffer(&tout, 0, &staging, 0, out_bytes);
+    ctx.queue.submit([enc.finish()]);
+    if let Some(e) = pollster::block_on(scope.pop()) {
+        panic!("{entry} ({}): {e}", p.name());
+    }
+    staging
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, |r| r.unwrap());
+    dev.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+    let view = staging.slice(..).get_mapped_range().unwrap();
+    view.chunks_exact(std::mem::size_of::<R>())
+        .map(bytemuck::pod_read_unaligned)
+        .collect()
+}
+
+/// Records the worst `|gpu - rust| / (eps scale)` of a function.
+struct Worst {
+    name: &'static str,
+    eps: f64,
+    worst: f64,
+}
+
+impl Worst {
+    fn new<R: GpuReal>(name: &'static str) -> Self {
+        Self {
+            name,
+            eps: R::epsilon().f64(),
+            worst: 0.0,
+        }
+    }
+    fn check(&mut self, what: &str, case: usize, gpu: f64, rust: f64, scale: f64) {
+        let e = (gpu - rust).abs() / (self.eps * scale.max(f64::MIN_POSITIVE));
+        self.worst = self.worst.max(e);
+        assert!(
+            e <= 16.0,
+            "{} case {case} {what}: GPU {gpu:e}, Rust {rust:e}: {e:.1} eps x scale {scale:e}",
+            self.name
+        );
+    }
+    fn v(&mut self, what: &str, case: usize, gpu: &[f64], rust: V3<f64>, scale: f64) {
+        for (k, r) in [rust.x, rust.y, rust.z].into_iter().enumerate() {
+            self.check(what, case, gpu[k], r, scale);
+        }
+    }
+    fn report(&self, p: Precision) {
+        eprintln!(
+            "{} ({}): worst difference {:.2} eps x scale (limit 16)",
+            self.name,
+            p.name(),
+            self.worst
+        );
+    }
+}
+
+/// Inputs as `R`, and back as f64 (what the GPU actually got).
+fn to_r<R: GpuReal>(x: &[f64]) -> (Vec<R>, Vec<f64>) {
+    let r: Vec<R> = x.iter().map(|&v| R::c(v)).collect();
+    let back = r.iter().map(|v| v.f64()).collect();
+    (r, back)
+}
+
+fn check_exp<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    // Down to where f32 results are still normal numbers.
+    let low = if R::epsilon().f64() > 1e-10 {
+        -85.0
+    } else {
+        -740.0
+    };
+    let n = 2000;
+    let x: Vec<f64> = (0..n)
+        .map(|i| match i % 3 {
+            0 => rng.gen_range(-1.0..0.0),
+            1 => rng.gen_range(-30.0..0.0),
+            _ => rng.gen_range(low..0.0),
+        })
+        .collect();
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_exp", &[], &xr, n, n);
+    let mut w = Worst::new::<R>("wave_exp");
+    for i in 0..n {
+        // Relative accuracy: the argument's own rounding is not counted.
+        w.check("exp", i, out[i].f64(), x[i].exp(), x[i].exp());
+    }
+    w.report(p);
+}
+
+fn check_ramp<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1000;
+    let mut x = Vec::new();
+    for i in 0..n {
+        x.push(rng.gen_range(-5.0..30.0));
+        x.push([0.0, 20.0, 7.3][i % 3]);
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_ramp", &[], &xr, n, n);
+    let mut w = Worst::new::<R>("wave_ramp");
+    for i in 0..n {
+        let (t, tr) = (x[2 * i], x[2 * i + 1]);
+        let scale = 1.0 + if tr > 0.0 { PI * t.abs() / tr } else { 0.0 };
+        w.check("ramp", i, out[i].f64(), wave_ramp(t, tr), scale);
+    }
+    w.report(p);
+}
+
+fn check_decay<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1500;
+    let mut x = Vec::new();
+    for i in 0..n {
+        let h = [5.0, 80.0, GPU_DEEP][i % 3];
+        x.push(10f64.powf(rng.gen_range(-4.0..0.5)));
+        x.push(-rng.gen_range(0.0..h.min(300.0)));
+        x.push(h);
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_decay", &[], &xr, n, 2 * n);
+    let mut w = Worst::new::<R>("wave_depth_decay");
+    let floor = R::min_positive_value().f64() / R::epsilon().f64();
+    for i in 0..n {
+        let (k, zs, h) = (x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+        let (c, s) = wave_depth_decay(k, zs, h);
+        let e1 = (k * zs).exp();
+        let e2 = (-k * (zs + 2.0 * h)).exp();
+        // Plus the underflow floor: below the smallest normal number the GPU may flush
+        // to zero (f32 reaches it at e^-87).
+        let scale = e1 * (1.0 + (k * zs).abs()) + e2 * (1.0 + (k * (zs + 2.0 * h)).abs()) + floor;
+        w.check("cosh part", i, out[2 * i].f64(), c, scale);
+        w.check("sinh part", i, out[2 * i + 1].f64(), s, scale);
+    }
+    w.report(p);
+}
+
+fn check_eval_depth<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1000;
+    let mut x = Vec::new();
+    for i in 0..n {
+        let h = [6.0, 80.0, GPU_DEEP][i % 3];
+        x.push(rng.gen_range(-h.min(300.0)..5.0));
+        x.push(rng.gen_range(-3.0..3.0));
+        x.push(h);
+        x.push((i / 3 % 2) as f64);
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_eval_depth", &[], &xr, n, n);
+    let mut w = Worst::new::<R>("wave_eval_depth");
+    for i in 0..n {
+        let (z, eta, h) = (x[4 * i], x[4 * i + 1], x[4 * i + 2]);
+        let s = [Stretching::Wheeler, Stretching::Constant][x[4 * i + 3] as usize];
+        let scale = (z.abs() + eta.abs()) / (1.0 + eta / h);
+        w.check("zs", i, out[i].f64(), wave_eval_depth(z, eta, h, s), scale);
+    }
+    w.report(p);
+}
+
+/// Components at precision `R` (as bytes for binding 17) and back as f64.
+fn gpu_comps<R: GpuReal>(field: &WaveField) -> (Vec<u8>, Vec<PackedComponent>) {
+    let comps: Vec<WaveComp<R>> = field.comps.iter().map(WaveComp::from_packed).collect();
+    let back = comps
+        .iter()
+        .map(|c| PackedComponent {
+            kx: c.kx.f64(),
+            ky: c.ky.f64(),
+            k: c.k.f64(),
+            omega: c.omega.f64(),
+            phase_ref: c.phase_ref.f64(),
+            amp: c.amp.f64(),
+            amp_u: c.amp_u.f64(),
+            amp_a: c.amp_a.f64(),
+            cos_b: c.cos_b.f64(),
+            sin_b: c.sin_b.f64(),
+        })
+        .collect();
+    (bytemuck::cast_slice(&comps).to_vec(), back)
+}
+
+/// A JONSWAP train of 40 components spread `cos^4` about 20 degrees plus a regular
+/// wave across it.
+fn sea(depth: f64, stretching: Stretching, ramp: f64) -> SeaState {
+    let g = 9.81;
+    let mut comps = discretise(
+        &Spectrum::Jonswap {
+            hs: 4.0,
+            tp: 9.0,
+            gamma: 3.3,
+        },
+        &Discretisation {
+            components: 40,
+            direction: 20f64.to_radians(),
+            spreading: Some(4.0),
+            seed: 11,
+            stream: 0,
+        },
+        depth,
+        g,
+    );
+    let w = TAU / 12.0;
+    comps.push(WaveComponent {
+        amplitude: 0.8,
+        omega: w,
+        k: cablesim::sea::dispersion::wave_number(w, depth, g),
+        direction: -1.2,
+        phase: 0.4,
+    });
+    SeaState {
+        components: comps,
+        stretching,
+        ramp_duration: ramp,
+        ..SeaState::still(depth)
+    }
+}
+
+fn check_kinematics<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    for (case, (depth, stretching, ramp, t_ref, t_range)) in [
+        (60.0, Stretching::Wheeler, 20.0, 100.0, (95.0, 125.0)),
+        (f64::INFINITY, Stretching::Constant, 20.0, 0.0, (0.0, 30.0)),
+        (15.0, Stretching::Wheeler, 0.0, 3.0, (0.0, 10.0)),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let s = sea(depth, stretching, ramp);
+        let mut field = WaveField::new(&s);
+        field.rebase(t_ref);
+        let (bytes, comps) = gpu_comps::<R>(&field);
+        let gpu_depth = depth.min(GPU_DEEP);
+        let code = match stretching {
+            Stretching::Wheeler => 0.0,
+            Stretching::Constant => 1.0,
+        };
+        let n = 500;
+        let mut x = vec![comps.len() as f64, gpu_depth, code, ramp, t_ref];
+        for _ in 0..n {
+            x.push(rng.gen_range(-150.0..150.0));
+            x.push(rng.gen_range(-150.0..150.0));
+            x.push(rng.gen_range(-depth.min(200.0)..3.0));
+            x.push(rng.gen_range(t_range.0..t_range.1));
+        }
+        let (xr, x) = to_r::<R>(&x);
+        let out = run::<R>(ctx, p, "t_kin", &[(17, bytes)], &xr, n, 7 * n);
+        let (h, ramp, t_ref) = (x[1], x[3], x[4]);
+        let mut w = Worst::new::<R>("wave_kinematics_at");
+        for i in 0..n {
+            let q = &x[5 + 4 * i..9 + 4 * i];
+            let (pt, t) = ([q[0], q[1], q[2]], q[3]);
+            let k = wave_kinematics_at(&comps, h, stretching, ramp, pt, t, t_ref);
+            let r = wave_ramp(t, ramp);
+            let tau = t - t_ref;
+            let ramp_err = if ramp > 0.0 && t < ramp {
+                PI * t / ramp
+            } else {
+                0.0
+            };
+            // The phase of each term carries the rounding of its pieces.
+            let theta = |c: &PackedComponent| {
+                1.0 + ramp_err
+                    + (c.kx * pt[0]).abs()
+                    + (c.ky * pt[1]).abs()
+                    + c.phase_ref.abs()
+                    + (c.omega * tau).abs()
+            };
+            let s_eta: f64 = comps.iter().map(|c| c.amp * theta(c)).sum();
+            let zs = wave_eval_depth(pt[2], k.eta, h, stretching);
+            let depth_term = |c: &PackedComponent| {
+                let e1 = (c.k * zs).exp();
+                let e2 = (-c.k * (zs + 2.0 * h)).exp();
+                let shift = c.k * (s_eta + pt[2].abs() + zs.abs());
+                e1 * (theta(c) + shift) + e2 * (theta(c) + shift + (c.k * (zs + 2.0 * h)).abs())
+            };
+            let s_u: f64 = comps.iter().map(|c| c.amp_u * depth_term(c)).sum();
+            let s_a: f64 = comps.iter().map(|c| c.amp_a * depth_term(c)).sum();
+            let o: Vec<f64> = out[7 * i..7 * i + 7].iter().map(|v| v.f64()).collect();
+            let what = format!("case {case} eta");
+            w.check(&what, i, o[0], k.eta, r * s_eta);
+            let v = |a: [f64; 3]| V3::new(a[0], a[1], a[2]);
+            w.v("u", i, &o[1..4], v(k.u), r * s_u);
+            w.v("a", i, &o[4..7], v(k.a), r * s_a);
+        }
+        w.report(p);
+    }
+}
+
+fn check_lerp<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1000;
+    let mut x = Vec::new();
+    for _ in 0..n {
+        for _ in 0..14 {
+            x.push(rng.gen_range(-5.0..5.0));
+        }
+        x.push(rng.gen_range(0.0..1.0));
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_lerp", &[], &xr, n, 7 * n);
+    let mut w = Worst::new::<R>("wave_cache_lerp");
+    for i in 0..n {
+        let b = &x[15 * i..15 * i + 15];
+        let mut o = [0.0; 7];
+        wave_cache_lerp(&b[0..7], &b[7..14], b[14], &mut o);
+        for d in 0..7 {
+            let scale = b[d].abs() + b[7 + d].abs();
+            w.check("value", i, out[7 * i + d].f64(), o[d], scale);
+        }
+    }
+    w.report(p);
+}
+
+fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
+    let mut rng = ChaCha8Rng::seed_from_u64(8);
+    check_exp::<R>(ctx, p, &mut rng);
+    check_ramp::<R>(ctx, p, &mut rng);
+    check_decay::<R>(ctx, p, &mut rng);
+    check_eval_depth::<R>(ctx, p, &mut rng);
+    check_kinematics::<R>(ctx, p, &mut rng);
+    check_lerp::<R>(ctx, p, &mut rng);
+}
+
+#[test]
+fn wgsl_wave_functions_match_their_rust_twins_in_f32() {
+    let Some(ctx) = gpu_context("wgsl_wave_functions_match_their_rust_twins_in_f32", false) else {
+        return;
+    };
+    check_all::<f32>(&ctx, Precision::F32);
+}
+
+#[test]
+fn wgsl_wave_functions_match_their_rust_twins_in_f64() {
+    let Some(ctx) = gpu_context("wgsl_wave_functions_match_their_rust_twins_in_f64", true) else {
+        return;
+    };
+    check_all::<f64>(&ctx, Precision::F64);
+}
