@@ -416,6 +416,11 @@ fn check_gather<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
         }
         let block = i % 3;
         let nd = NodeParams::<R> {
+            // No displaced volume: the point's share above the water changes nothing here
+            // (tests/gpu/surface.rs covers the surface terms).
+            point_added: R::c(0.0),
+            point_displaced: R::c(0.0),
+            point_radius: R::c(0.0),
             inc_start: start,
             inc_end: inc.len() as u32,
             constraint: u32::MAX,
