@@ -297,7 +297,7 @@ end = {{ free = [14.0, -1.0, -12.0], mass = 20.0, volume = 0.005 }}
         .map(|l| l.split(',').filter_map(|x| x.parse().ok()).collect())
         .collect();
     let (sh, ch) = 30f64.to_radians().sin_cos();
-    let mut rows = 0;
+    let (mut rows, mut sum_f) = (0, 0.0);
     for (line, end) in lines.zip(&starts) {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f[1], "ship");
@@ -347,10 +347,15 @@ end = {{ free = [14.0, -1.0, -12.0], mass = 20.0, volume = 0.005 }}
                 v[11 + k]
             );
         }
-        assert!(fnorm > 10.0, "the line hangs from the body: |F| {fnorm}");
+        sum_f += fnorm;
         rows += 1;
     }
     assert_eq!(rows, 41);
+    // The line and its clump hang from the body: a load near their wet weight (about
+    // 210 N) on average. It starts stretched, so the clump bounces and the force passes
+    // near zero at some output times; the mean is the steady measure.
+    let mean_f = sum_f / rows as f64;
+    assert!(mean_f > 100.0, "the line hangs from the body: mean |F| {mean_f} N");
 }
 
 /// The error of loading scenario `text` (with `files` written beside it).
