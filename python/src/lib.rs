@@ -2,8 +2,12 @@
 //!
 //! The pure-Python package `cablesim` (python/cablesim/) re-exports what this module
 //! defines; its stubs (`_cablesim.pyi`) state the Python signatures. One Rust module per
-//! Python class or concern, each with a `register` function called below, so that a new
-//! part (studies, for one) is a new module and one more line here.
+//! Python class or concern, each with a `register` function called below. A new part
+//! (studies, for one) is: a module here with its `register`, one line below, its names
+//! in `cablesim/__init__.py`, its stubs in `cablesim/_cablesim.pyi`, its tests in
+//! `tests/`. Library errors go through `errors::to_py` (or `.py(py)` on a result), and
+//! arrays through `arrays`; long work runs under `py.detach` in chunks with
+//! `py.check_signals()` between them, as `simulation::advance_chunked` does.
 
 mod arrays;
 mod errors;
