@@ -4,21 +4,33 @@ Units are SI: m, s, N, kg. Arrays are float64 numpy arrays the caller owns.
 """
 
 import os
-from typing import Any, Dict, List, Literal, Optional, Sequence, Union, overload
+from typing import Any, Dict, List, Literal, Optional, Sequence, Union, final, overload
 
 import numpy as np
 import numpy.typing as npt
 
 __version__: str
+__all__ = [
+    "__version__",
+    "CablesimError",
+    "ScenarioError",
+    "DivergedError",
+    "GpuError",
+    "OutputError",
+    "Simulation",
+    "Snapshot",
+    "BodyState",
+    "RunOutput",
+]
 
-Cable = Union[int, str]
+_Cable = Union[int, str]
 """A cable by index (scenario order; negative from the last) or name."""
-Body = Union[int, str]
+_Body = Union[int, str]
 """A vessel body by index or name."""
-End = Literal["start", "end"]
+_End = Literal["start", "end"]
 """A cable end: its first node ("start") or its last ("end")."""
-Vec3 = Union[Sequence[float], npt.NDArray[np.float64]]
-FloatArray = npt.NDArray[np.float64]
+_Vec3 = Union[Sequence[float], npt.NDArray[np.float64]]
+_FloatArray = npt.NDArray[np.float64]
 
 class CablesimError(Exception):
     """Base class of every error cablesim raises (besides ValueError, KeyError and
@@ -53,6 +65,7 @@ class OutputError(CablesimError):
     path: str
     """The file."""
 
+@final
 class Simulation:
     """A scenario being simulated.
 
@@ -121,7 +134,7 @@ class Simulation:
         """The arithmetic."""
     @property
     def cable_names(self) -> List[str]:
-        """Cable names, in scenario order."""
+        """_Cable names, in scenario order."""
     @property
     def body_names(self) -> List[str]:
         """Names of the vessel bodies that cable ends are attached to."""
@@ -139,34 +152,35 @@ class Simulation:
         ``out_dir`` (as the command line does); returns the summary."""
     def snapshot(self) -> "Snapshot":
         """Every cable's (and body's) state now (a copy)."""
-    def positions(self, cable: Cable) -> FloatArray:
+    def positions(self, cable: _Cable) -> _FloatArray:
         """Node positions of a cable now: ``(nodes, 3)``, m."""
-    def velocities(self, cable: Cable) -> FloatArray:
+    def velocities(self, cable: _Cable) -> _FloatArray:
         """Node velocities of a cable now: ``(nodes, 3)``, m/s."""
-    def tensions(self, cable: Cable) -> FloatArray:
+    def tensions(self, cable: _Cable) -> _FloatArray:
         """Axial force per element of a cable now: ``(nodes - 1,)``, N."""
-    def end_forces(self, cable: Cable) -> FloatArray:
+    def end_forces(self, cable: _Cable) -> _FloatArray:
         """The forces a cable exerts on its end supports now: ``(2, 3)``, row 0 the
         start, row 1 the end, N."""
-    def end_force(self, cable: Cable, end: End = "end") -> FloatArray:
+    def end_force(self, cable: _Cable, end: _End = "end") -> _FloatArray:
         """The force a cable exerts now on the support at one end: ``(3,)``, N."""
-    def body(self, body: Body) -> "BodyState":
+    def body(self, body: _Body) -> "BodyState":
         """A vessel body's pose and cable load now."""
     def set_end_motion(
         self,
-        cable: Cable,
-        end: End,
-        position: Vec3,
-        velocity: Vec3 = (0.0, 0.0, 0.0),
+        cable: _Cable,
+        end: _End,
+        position: _Vec3,
+        velocity: Optional[_Vec3] = None,
     ) -> None:
         """Drives one end of a cable from outside (a coupling loop): from now until the
-        next call its target moves from ``position`` (m) at ``velocity`` (m/s) in a
-        straight line and the end node follows it. The end must be held in the
+        next call its target moves from ``position`` (m) at ``velocity`` (m/s; None:
+        at rest) in a straight line and the end node follows it. The end must be held in the
         scenario (fixed or on a route); lumped-mass model on the CPU backend (the GPU
         path raises GpuError)."""
     def summary(self) -> Dict[str, Any]:
         """The summary of the run so far (the content of ``summary.json``)."""
 
+@final
 class Snapshot:
     """The state of every cable (and vessel body) at one time: a copy."""
 
@@ -178,70 +192,72 @@ class Snapshot:
         """Steps taken."""
     @property
     def cable_names(self) -> List[str]:
-        """Cable names, in scenario order."""
+        """_Cable names, in scenario order."""
     @property
     def body_names(self) -> List[str]:
         """Names of the vessel bodies."""
-    def positions(self, cable: Cable) -> FloatArray:
+    def positions(self, cable: _Cable) -> _FloatArray:
         """Node positions: ``(nodes, 3)``, m."""
-    def velocities(self, cable: Cable) -> FloatArray:
+    def velocities(self, cable: _Cable) -> _FloatArray:
         """Node velocities: ``(nodes, 3)``, m/s."""
-    def tensions(self, cable: Cable) -> FloatArray:
+    def tensions(self, cable: _Cable) -> _FloatArray:
         """Axial force per element: ``(nodes - 1,)``, N."""
-    def end_forces(self, cable: Cable) -> FloatArray:
+    def end_forces(self, cable: _Cable) -> _FloatArray:
         """Forces on the end supports: ``(2, 3)``, row 0 the start, row 1 the end, N."""
-    def end_force(self, cable: Cable, end: End = "end") -> FloatArray:
+    def end_force(self, cable: _Cable, end: _End = "end") -> _FloatArray:
         """Force on the support at one end: ``(3,)``, N."""
-    def winch(self, cable: Cable) -> Optional[Dict[str, Any]]:
+    def winch(self, cable: _Cable) -> Optional[Dict[str, Any]]:
         """A winch cable's state (``deployed_length``, ``variable_l0`` in m,
         ``elements``, ``nodes_inserted``, ``nodes_deleted``,
         ``physical_coordinates`` in m), or None without a winch."""
-    def body(self, body: Body) -> "BodyState":
+    def body(self, body: _Body) -> "BodyState":
         """A vessel body's pose and cable load."""
 
+@final
 class BodyState:
     """A vessel body's pose and the load its cables exert on it, at one time."""
 
     @property
     def name(self) -> str: ...
     @property
-    def position(self) -> FloatArray:
+    def position(self) -> _FloatArray:
         """Reference point: ``(3,)``, m."""
     @property
-    def angles(self) -> FloatArray:
+    def angles(self) -> _FloatArray:
         """Roll, pitch, yaw (the yaw includes the mean heading): ``(3,)``, degrees."""
     @property
-    def force(self) -> FloatArray:
+    def force(self) -> _FloatArray:
         """Total force of the cables on the body: ``(3,)``, N."""
     @property
-    def moment(self) -> FloatArray:
+    def moment(self) -> _FloatArray:
         """Their moment about the reference point: ``(3,)``, N m."""
 
+@final
 class RunOutput:
     """Every output time of a run (t = 0 first) and its summary; series come with the
     output time first."""
 
     @property
-    def times(self) -> FloatArray:
+    def times(self) -> _FloatArray:
         """Output times: ``(frames,)``, s."""
     @property
     def summary(self) -> Dict[str, Any]:
         """The run's summary (the content of ``summary.json``)."""
     @property
     def cable_names(self) -> List[str]:
-        """Cable names, in scenario order."""
+        """_Cable names, in scenario order."""
     def __len__(self) -> int: ...
     def frame(self, i: int) -> Snapshot:
         """The state at output time ``i`` (negative from the last)."""
-    def positions(self, cable: Cable) -> FloatArray:
+    def positions(self, cable: _Cable) -> _FloatArray:
         """``(frames, nodes, 3)``, m. ValueError for a winch cable whose node count
         changes: read each time with ``frame(i)``."""
-    def velocities(self, cable: Cable) -> FloatArray:
+    def velocities(self, cable: _Cable) -> _FloatArray:
         """``(frames, nodes, 3)``, m/s."""
-    def tensions(self, cable: Cable) -> FloatArray:
+    def tensions(self, cable: _Cable) -> _FloatArray:
         """``(frames, nodes - 1)``, N."""
-    def end_forces(self, cable: Cable) -> FloatArray:
+    def end_forces(self, cable: _Cable) -> _FloatArray:
         """``(frames, 2, 3)``, ``[:, 0]`` the start, ``[:, 1]`` the end, N."""
-    def body(self, body: Body) -> Dict[str, FloatArray]:
+    def body(self, body: _Body) -> Dict[str, _FloatArray]:
         """A body's series, each ``(frames, 3)``: ``position`` (m), ``angles``
         (degrees), ``force`` (N), ``moment`` (N m)."""

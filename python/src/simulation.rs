@@ -407,22 +407,23 @@ impl PySimulation {
 
     /// Drives one end (`"start"` or `"end"`) of a cable from outside, as a coupling
     /// loop does (MoorDyn's API: set the fairlead, step, read the force back): from now
-    /// until the next call its target moves from `position` (m) at `velocity` (m/s) in
-    /// a straight line, and the end node follows it. The end must be held in the
+    /// until the next call its target moves from `position` (m) at `velocity` (m/s;
+    /// None: at rest) in a straight line, and the end node follows it. The end must be held in the
     /// scenario (`fixed` or on a route); lumped-mass model on the CPU backend
     /// (`backend="cpu"`; the GPU path raises GpuError).
-    #[pyo3(signature = (cable, end, position, velocity=[0.0, 0.0, 0.0]))]
+    #[pyo3(signature = (cable, end, position, velocity=None))]
     fn set_end_motion(
         &mut self,
         py: Python<'_>,
         cable: Which,
         end: &str,
         position: [f64; 3],
-        velocity: [f64; 3],
+        velocity: Option<[f64; 3]>,
     ) -> PyResult<()> {
         let c = self.cable(&cable)?;
         let e = select::end(end)?;
-        self.sim().set_end_motion(c, e, position, velocity).py(py)
+        let v = velocity.unwrap_or([0.0; 3]);
+        self.sim().set_end_motion(c, e, position, v).py(py)
     }
 
     /// The summary of the run so far (the content of `summary.json`) as a dict.
