@@ -88,3 +88,18 @@ def test_overrides_apply(catenary_path):
     out = sim.run()
     assert out.times[-1] == pytest.approx(0.5)
     assert sim.steps == round(0.5 / 1e-3)
+
+
+def test_ancf_model_through_the_same_calls(catenary_path):
+    """The ANCF reference model (stepped in one piece, not in chunks) answers the same
+    calls, and its fairlead load agrees with the lumped-mass model's on the relaxed
+    catenary."""
+    ancf = cablesim.Simulation.from_file(catenary_path, formulation="ancf", duration=1.0)
+    lumped = cablesim.Simulation.from_file(catenary_path, backend="cpu", duration=1.0)
+    a, b = ancf.run(), lumped.run()
+    np.testing.assert_allclose(a.times, b.times)
+    assert ancf.time == pytest.approx(1.0)
+    np.testing.assert_allclose(a.end_forces("line1")[-1, 1], b.end_forces("line1")[-1, 1],
+                               rtol=2e-3)
+    with pytest.raises(cablesim.CablesimError, match="lumped-mass"):
+        ancf.set_end_motion("line1", "end", [0.0, 0.0, -10.0])
