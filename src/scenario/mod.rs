@@ -3,6 +3,7 @@
 
 mod arrays;
 mod bodies;
+pub mod materials;
 mod ends;
 mod nets;
 mod raw;
@@ -295,7 +296,13 @@ impl Scenario {
 
         // [[line_types]]
         let mut lt_index = HashMap::new();
-        for (i, lt) in raw.line_types.iter().enumerate() {
+        let line_types = raw
+            .line_types
+            .iter()
+            .enumerate()
+            .map(|(i, lt)| lt.resolve(p, i))
+            .collect::<Result<Vec<_>, _>>()?;
+        for (i, lt) in line_types.iter().enumerate() {
             let f = |k: &str| format!("line_types[{i}] (\"{}\").{k}", lt.name);
             positive(p, &f("diameter"), lt.diameter)?;
             positive(p, &f("mass_per_length"), lt.mass_per_length)?;
@@ -330,7 +337,7 @@ impl Scenario {
 
         let mut model = ModelDef {
             env,
-            line_types: raw.line_types.clone(),
+            line_types,
             currents: vec![global_current],
             ..Default::default()
         };
