@@ -45,8 +45,113 @@ fn bounds(points: impl Iterator<Item = (f64, f64)>) -> ((f64, f64), (f64, f64)) 
     )
 }
 
+/// An axis label in at most about five significant digits: `2.014e6` rather than
+/// `2014000.0`.
+fn tick(v: &f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && !(1e-3..1e5).contains(&a) {
+        format!("{v:.3e}")
+    } else {
+        let s = format!("{v:.4}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        if s == "-0" {
+            "0".into()
+        } else {
+            s.to_string()
+        }
+    }
+}
+
 fn colour(k: usize) -> RGBAColor {
     Palette99::pick(k).to_rgba()
+}
+
+/// How a chart's axes are ranged.
+#[derive(Clone, Copy, PartialEq)]
+enum Axes {
+    /// The y axis starts at 0 (magnitudes), with room above the data for the legend.
+    FromZero,
+    /// Same metres per pixel on both axes, so that shapes are not distorted.
+    Equal,
+}
+
+/// The legend corner holding the fewest points of `series` (a corner is the outer 35%
+/// of both axes' ranges), so that the legend hides as little as it can.
+fn legend_corner(
+    series: &[Series],
+    x: &std::ops::Range<f64>,
+    y: &std::ops::Range<f64>,
+) -> SeriesLabelPosition {
+    let (wx, wy) = (0.35 * (x.end - x.start), 0.35 * (y.end - y.start));
+    let count = |right: bool, top: bool| {
+        series
+            .iter()
+            .flat_map(|s| s.points.iter())
+            .filter(|(px, py)| {
+                (if right {
+                    *px > x.end - wx
+                } else {
+                    *px < x.start + wx
+                }) && (if top {
+                    *py > y.end - wy
+                } else {
+                    *py < y.start + wy
+                })
+            })
+            .count()
+    };
+    [
+        (SeriesLabelPosition::UpperRight, count(true, true)),
+        (SeriesLabelPosition::UpperLeft, count(false, true)),
+        (SeriesLabelPosition::LowerRight, count(true, false)),
+        (SeriesLabelPosition::LowerLeft, count(false, false)),
+    ]
+    .into_iter()
+    .min_by_key(|c| c.1)
+    .map(|c| c.0)
+    .expect("four corners")
+}
+
+/// The plotting area of a panel of `dim` pixels (less the caption and label areas).
+fn plot_pixels(dim: (u32, u32)) -> (f64, f64) {
+    (
+        dim.0.saturating_sub(120) as f64,
+        dim.1.saturating_sub(110) as f64,
+    )
+}
+
+/// Ranges of `x` and `y` padded, and widened to equal scales for `Axes::Equal` in a
+/// panel of `dim` pixels.
+fn ranges(
+    series: &[Series],
+    axes: Axes,
+    dim: (u32, u32),
+) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
+    let ((x0, x1), (y0, y1)) = bounds(series.iter().flat_map(|s| s.points.iter().copied()));
+    let (mut xr, mut yr) = (padded(x0, x1), padded(y0, y1));
+    match axes {
+        Axes::FromZero => {
+            let top = if y1.is_finite() && y1 > 0.0 { y1 } else { 1.0 };
+            let extra = if series.len() > 1 {
+                0.04 * series.len() as f64
+            } else {
+                0.0
+            };
+            yr = 0.0..top * (1.1 + extra);
+        }
+        Axes::Equal => {
+            let (pw, ph) = plot_pixels(dim);
+            let (sx, sy) = ((xr.end - xr.start) / pw, (yr.end - yr.start) / ph);
+            if sx > sy {
+                let c = 0.5 * (yr.start + yr.end);
+                yr = (c - 0.5 * sx * ph)..(c + 0.5 * sx * ph);
+            } else {
+                let c = 0.5 * (xr.start + xr.end);
+                xr = (c - 0.5 * sy * pw)..(c + 0.5 * sy * pw);
+            }
+        }
+    }
+    (xr, yr)
 }
 
 /// Lines of `series` on labelled axes in `area`.
@@ -56,23 +161,14 @@ fn lines(
     x_label: &str,
     y_label: &str,
     series: &[Series],
-    equal: bool,
+    axes: Axes,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let ((x0, x1), (y0, y1)) = bounds(series.iter().flat_map(|s| s.points.iter().copied()));
-    let (mut xr, mut yr) = (padded(x0, x1), padded(y0, y1));
-    if equal {
-        // Same metres per pixel on both axes, so that shapes are not distorted.
-        let (w, h) = area.dim_in_pixel();
-        let (pw, ph) = (w.saturating_sub(110) as f64, h.saturating_sub(110) as f64);
-        let (sx, sy) = ((xr.end - xr.start) / pw, (yr.end - yr.start) / ph);
-        if sx > sy {
-            let c = 0.5 * (yr.start + yr.end);
-            yr = (c - 0.5 * sx * ph)..(c + 0.5 * sx * ph);
-        } else {
-            let c = 0.5 * (xr.start + xr.end);
-            xr = (c - 0.5 * sy * pw)..(c + 0.5 * sy * pw);
-        }
-    }
+    let (xr, yr) = ranges(series, axes, area.dim_in_pixel());
+    let corner = if axes == Axes::FromZero {
+        SeriesLabelPosition::UpperRight
+    } else {
+        legend_corner(series, &xr, &yr)
+    };
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 26))
         .margin(15)
@@ -83,6 +179,8 @@ fn lines(
         .configure_mesh()
         .x_desc(x_label)
         .y_desc(y_label)
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
         .label_style(("sans-serif", 16))
         .axis_desc_style(("sans-serif", 18))
         .draw()?;
@@ -99,7 +197,7 @@ fn lines(
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .label_font(("sans-serif", 16))
-            .position(SeriesLabelPosition::UpperRight)
+            .position(corner)
             .draw()?;
     }
     Ok(())
@@ -124,7 +222,7 @@ pub fn end_forces(path: &Path, series: &[Series]) -> Result<(), Error> {
             "time (s)",
             "force magnitude (kN)",
             &kn,
-            false,
+            Axes::FromZero,
         )?;
         root.present()?;
         Ok(())
@@ -137,7 +235,6 @@ pub fn profiles(path: &Path, profiles: &[Profile]) -> Result<(), Error> {
     let draw = || -> Result<(), Box<dyn std::error::Error>> {
         let root = BitMapBackend::new(path, SIZE).into_drawing_area();
         root.fill(&WHITE)?;
-        let (side, plan) = root.split_horizontally(SIZE.0 / 2);
         let view = |a: usize, b: usize| -> Vec<Series> {
             profiles
                 .iter()
@@ -147,8 +244,22 @@ pub fn profiles(path: &Path, profiles: &[Profile]) -> Result<(), Error> {
                 })
                 .collect()
         };
-        lines(&side, "Side view", "x (m)", "z (m)", &view(0, 2), true)?;
-        lines(&plan, "Plan view", "x (m)", "y (m)", &view(0, 1), true)?;
+        let (xz, xy) = (view(0, 2), view(0, 1));
+        // Side by side or one above the other: whichever draws the metres larger.
+        let scale = |s: &[Series], dim: (u32, u32)| {
+            let (x, _) = ranges(s, Axes::Equal, dim);
+            plot_pixels(dim).0 / (x.end - x.start)
+        };
+        let (w, h) = SIZE;
+        let beside = scale(&xz, (w / 2, h)).min(scale(&xy, (w / 2, h)));
+        let stacked = scale(&xz, (w, h / 2)).min(scale(&xy, (w, h / 2)));
+        let (side, plan) = if stacked > beside {
+            root.split_vertically(h / 2)
+        } else {
+            root.split_horizontally(w / 2)
+        };
+        lines(&side, "Side view", "x (m)", "z (m)", &xz, Axes::Equal)?;
+        lines(&plan, "Plan view", "x (m)", "y (m)", &xy, Axes::Equal)?;
         root.present()?;
         Ok(())
     };
@@ -177,6 +288,8 @@ pub fn gumbel(path: &Path, g: &GumbelData) -> Result<(), Error> {
         chart
             .configure_mesh()
             .x_desc(format!("seed maximum ({})", g.channel.1))
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .y_desc("reduced variate -ln(-ln p)")
             .label_style(("sans-serif", 16))
             .axis_desc_style(("sans-serif", 18))
@@ -214,7 +327,8 @@ pub fn utilisation(path: &Path, rows: &[(String, String, f64)]) -> Result<(), Er
     let draw = || -> Result<(), Box<dyn std::error::Error>> {
         let root = BitMapBackend::new(path, SIZE).into_drawing_area();
         root.fill(&WHITE)?;
-        let top = rows.iter().map(|r| r.2).fold(1.0f64, f64::max) * 1.1;
+        // Room above the tallest bar for the legend.
+        let top = rows.iter().map(|r| r.2).fold(1.0f64, f64::max) * 1.3;
         let n = rows.len();
         let mut chart = ChartBuilder::on(&root)
             .caption("Utilisation (design value / capacity)", ("sans-serif", 26))
@@ -237,11 +351,16 @@ pub fn utilisation(path: &Path, rows: &[(String, String, f64)]) -> Result<(), Er
             })
             .x_desc("sea state, channel")
             .y_desc("utilisation (-)")
+            .y_label_formatter(&tick)
             .label_style(("sans-serif", 14))
             .axis_desc_style(("sans-serif", 18))
             .draw()?;
         chart.draw_series(rows.iter().enumerate().map(|(k, r)| {
-            let c = if r.2 > 1.0 { RED.to_rgba() } else { colour(0) };
+            let c = if r.2 > 1.0 {
+                RED.to_rgba()
+            } else {
+                RGBColor(0, 110, 190).to_rgba()
+            };
             Rectangle::new([(k as f64 - 0.35, 0.0), (k as f64 + 0.35, r.2)], c.filled())
         }))?;
         chart
@@ -256,6 +375,7 @@ pub fn utilisation(path: &Path, rows: &[(String, String, f64)]) -> Result<(), Er
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .label_font(("sans-serif", 16))
+            .position(SeriesLabelPosition::UpperLeft)
             .draw()?;
         root.present()?;
         Ok(())
