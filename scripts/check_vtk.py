@@ -70,7 +70,7 @@ def check(out):
             cable, node, x = rows[k]
             want = 0.5 * (ten[(t, cable, node - 1)] + ten[(t, cable, node)])
             if not all(close(a, b) for a, b in zip(xyz[k], x)) or not close(tension[k], want):
-                sys.exit(f"check_vtk: {name}: point {k} ({cable} node {node}) at {list(xyz[k])} "
+                sys.exit(f"check_vtk: {name}: point {k} ({cable} node {node}) at {[float(v) for v in xyz[k]]} "
                          f"tension {tension[k]}; the CSV files say {x}, {want}")
         else:
             force = vtk_to_numpy(poly.GetPointData().GetArray("force"))
@@ -79,7 +79,7 @@ def check(out):
                 sys.exit(f"check_vtk: {name}: {poly.GetNumberOfPoints()} points, "
                          f"points.csv has {len(want)} at t = {t}")
             for k, w in enumerate(want):
-                got = list(xyz[k]) + list(force[k])
+                got = [float(v) for v in list(xyz[k]) + list(force[k])]
                 if not all(close(a, b) for a, b in zip(got, w)):
                     sys.exit(f"check_vtk: {name}: point {k} is {got}, points.csv says {w}")
         n += 1
