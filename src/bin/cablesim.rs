@@ -4,7 +4,7 @@ use anyhow::{Context, Result};
 use cablesim::options::{
     Backend, CableModel, FormulationChoice, Overrides, Precision, Scheme, SolverOptions,
 };
-use cablesim::output::FileSink;
+use cablesim::output::{FanOut, FileSink, VtkSink};
 use cablesim::scenario::Scenario;
 use cablesim::sim::{self, Progress, Simulation};
 use clap::{Parser, Subcommand};
@@ -52,9 +52,25 @@ enum Cmd {
         /// Simulated duration in seconds (overrides the scenario's).
         #[arg(long, value_parser = positive)]
         duration: Option<f64>,
+        /// Also write ParaView files into OUT/vtk (as `[output] vtk = true` does).
+        #[arg(long)]
+        vtk: bool,
         /// No progress bar.
         #[arg(long, short)]
         quiet: bool,
+    },
+    /// Draw PNG charts of a run's output directory (end forces, cable profiles) or a
+    /// study's (Gumbel plots of the seed maxima, utilisation).
+    Plot {
+        /// The output directory of `cablesim run` or `cablesim study`.
+        dir: PathBuf,
+        /// Where to write the images (default: DIR/plots).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Output times for the profiles, s, comma separated (default: the first and
+        /// the last).
+        #[arg(long, value_delimiter = ',')]
+        times: Vec<f64>,
     },
     /// Validate a scenario file without running it.
     Check {
@@ -110,6 +126,13 @@ fn real_main() -> Result<()> {
             motion,
         } => convert(&input, output.as_deref(), duration, &motion),
         Cmd::Check { scenario } => check(&scenario),
+        Cmd::Plot { dir, out, times } => {
+            let out = out.unwrap_or_else(|| dir.join("plots"));
+            for p in cablesim::plot::plot_dir(&dir, &out, &times)? {
+                println!("{}", p.display());
+            }
+            Ok(())
+        }
         Cmd::Run {
             scenario,
             out,
@@ -119,6 +142,7 @@ fn real_main() -> Result<()> {
             formulation,
             dt,
             duration,
+            vtk,
             quiet,
         } => {
             let mut overrides = Overrides {
@@ -167,8 +191,14 @@ fn real_main() -> Result<()> {
                 );
                 b
             };
+            let mut files = FileSink::new(&out_dir);
+            let mut vtk_sink = VtkSink::new(out_dir.join("vtk"));
+            let mut sinks = FanOut::new().with(&mut files);
+            if vtk || simulation.scenario().vtk {
+                sinks = sinks.with(&mut vtk_sink);
+            }
             let s = simulation
-                .run(&mut FileSink::new(&out_dir), |p: Progress| {
+                .run(&mut sinks, |p: Progress| {
                     bar.set_length(p.total);
                     bar.set_position(p.done);
                     bar.set_message(format!("{:.2} s", p.time));

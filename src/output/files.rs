@@ -18,6 +18,9 @@ use std::path::{Path, PathBuf};
 ///   with winches);
 /// - `bodies.csv`: `time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz` (m, degrees, N,
 ///   N m about the reference point; the file only when cable ends are on bodies);
+/// - `points.csv`: `time,point,x,y,z,fx,fy,fz` (m, N), per shared point
+///   (`[[points]]`) its position and the net force of its cables on it, or the reaction
+///   for a held point ([`super::PointState`]; the file only with such points);
 /// - `summary.json`: the [`Summary`].
 ///
 /// The directory and the files are created at the first frame.
@@ -32,6 +35,7 @@ struct Files {
     positions: Option<BufWriter<File>>,
     winches: Option<BufWriter<File>>,
     bodies: Option<BufWriter<File>>,
+    points: Option<BufWriter<File>>,
 }
 
 /// The error of an I/O failure on file `name` in `dir`.
@@ -72,6 +76,7 @@ impl FileSink {
         let positions = first.cables.iter().any(|c| c.output_positions);
         let winches = first.cables.iter().any(|c| c.winch.is_some());
         let bodies = !first.bodies.is_empty();
+        let points = !first.points.is_empty();
         Ok(Files {
             end_forces: self.open("end_forces.csv", "time,cable,end,fx,fy,fz")?,
             tensions: self.open("tensions.csv", "time,cable,element,tension")?,
@@ -93,6 +98,11 @@ impl FileSink {
                     "bodies.csv",
                     "time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz",
                 )?)
+            } else {
+                None
+            },
+            points: if points {
+                Some(self.open("points.csv", "time,point,x,y,z,fx,fy,fz")?)
             } else {
                 None
             },
@@ -156,6 +166,18 @@ impl OutputSink for FileSink {
                 .map_err(&e_b)?;
             }
         }
+        if let Some(w) = f.points.as_mut() {
+            let e_p = err(&self.dir, "points.csv");
+            for p in &s.points {
+                let (x, f) = (p.position, p.force);
+                writeln!(
+                    w,
+                    "{t},{},{},{},{},{},{},{}",
+                    p.name, x[0], x[1], x[2], f[0], f[1], f[2]
+                )
+                .map_err(&e_p)?;
+            }
+        }
         Ok(())
     }
 
@@ -172,6 +194,9 @@ impl OutputSink for FileSink {
             }
             if let Some(w) = f.bodies.as_mut() {
                 w.flush().map_err(err(dir, "bodies.csv"))?;
+            }
+            if let Some(w) = f.points.as_mut() {
+                w.flush().map_err(err(dir, "points.csv"))?;
             }
         } else {
             std::fs::create_dir_all(&self.dir).map_err(|source| Error::Output {

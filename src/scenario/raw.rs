@@ -143,4 +143,5 @@ pub struct RawCable {
 #[serde(deny_unknown_fields)]
 pub struct RawOutput {
     pub positions: Option<toml::Value>,
+    pub vtk: Option<bool>,
 }

@@ -16,9 +16,11 @@ pub enum CableEnd {
 use crate::error::Error;
 use crate::gpu::solver::NodeStates;
 use crate::gpu::{GpuContext, GpuSolver};
-use crate::model::{Layout, Route};
+use crate::model::{Layout, Route, NO_CONSTRAINT};
 use crate::options::{Backend, Precision, SolverOptions};
-use crate::output::{end_forces, BodyState, CableState, CableSummary, EndForces, WinchSummary};
+use crate::output::{
+    end_forces, BodyState, CableState, CableSummary, EndForces, PointState, WinchSummary,
+};
 use crate::scenario::Scenario;
 use crate::step::{Evaluation, WinchStatus};
 
@@ -260,12 +262,61 @@ impl LumpedStepper {
 
     /// Every vessel body's pose and load at time `t` (now).
     pub fn bodies(&mut self, t: f64) -> Result<Vec<BodyState>, Error> {
-        if !self.layout().routes.iter().any(|r| matches!(r, Route::Body { .. })) {
+        if !self
+            .layout()
+            .routes
+            .iter()
+            .any(|r| matches!(r, Route::Body { .. }))
+        {
             return Ok(Vec::new());
         }
         let ev = self.evaluate()?;
         let (r, _) = self.state()?;
         Ok(crate::body::output::body_states(self.layout(), t, &r, &ev))
+    }
+
+    /// The shared points' states now. `points` names each point and where it is found:
+    /// `(name, cable, at_start)`, the end of a cable (scenario order) attached to it.
+    pub fn points(&mut self, points: &[(String, usize, bool)]) -> Result<Vec<PointState>, Error> {
+        if points.is_empty() {
+            return Ok(Vec::new());
+        }
+        let ev = self.evaluate()?;
+        let (r, _) = self.state()?;
+        let lay = self.layout();
+        let forces: Vec<EndForces> = lay.cables.iter().map(|c| end_forces(lay, &ev, c)).collect();
+        Ok(points
+            .iter()
+            .map(|(name, ci, at_start)| {
+                let c = &lay.cables[*ci];
+                let node = if *at_start {
+                    c.nodes[0]
+                } else {
+                    c.nodes[c.nodes.len() - 1]
+                };
+                let k = lay.node_constraint[node as usize];
+                let force = if k != NO_CONSTRAINT {
+                    ev.reaction[k as usize]
+                } else {
+                    // Each cable's share at the node, summed over every end on it.
+                    let mut f = [0.0; 3];
+                    for (c, fc) in lay.cables.iter().zip(&forces) {
+                        let ends = [(c.nodes[0], fc.start), (c.nodes[c.nodes.len() - 1], fc.end)];
+                        for (n, fe) in ends {
+                            if n == node {
+                                (0..3).for_each(|d| f[d] += fe[d]);
+                            }
+                        }
+                    }
+                    f
+                };
+                PointState {
+                    name: name.clone(),
+                    position: r[node as usize],
+                    force,
+                }
+            })
+            .collect())
     }
 
     /// Every cable's final state for the summary: tensions and end forces are NaN when

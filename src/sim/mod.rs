@@ -116,6 +116,9 @@ pub struct Simulation {
     started: Instant,
     /// Wall time spent stepping, s.
     stepping: f64,
+    /// The `[[points]]` that cables attach to: `(name, cable, at its start)`, a cable
+    /// end on each (cable ends keep their place when a winch remeshes).
+    points: Vec<(String, usize, bool)>,
 }
 
 impl Simulation {
@@ -195,7 +198,9 @@ impl Simulation {
                 Engine::Lumped(Box::new(stepper), plan)
             }
         };
+        let points = point_ends(&sc);
         Ok(Self {
+            points,
             scenario: sc,
             engine,
             scheme,
@@ -328,16 +333,17 @@ impl Simulation {
     pub fn snapshot(&mut self) -> Result<Snapshot, Error> {
         let time = self.time();
         let steps = self.steps();
-        let (cables, bodies) = match &mut self.engine {
-            Engine::Lumped(s, _) => (s.cables()?, s.bodies(time)?),
-            // The ANCF backend follows body ends but does not report body loads.
-            Engine::Ancf(f) => (f.cables()?, Vec::new()),
+        let (cables, bodies, points) = match &mut self.engine {
+            Engine::Lumped(s, _) => (s.cables()?, s.bodies(time)?, s.points(&self.points)?),
+            // The ANCF backend follows body ends but does not report body or point loads.
+            Engine::Ancf(f) => (f.cables()?, Vec::new(), Vec::new()),
         };
         Ok(Snapshot {
             time,
             steps,
             cables,
             bodies,
+            points,
         })
     }
 
@@ -498,4 +504,23 @@ fn advance_lumped(
         r?;
     }
     Ok(())
+}
+
+/// Where each `[[points]]` entry is found in the layout: `(name, cable, at its start)`,
+/// the first cable end attached to it; points no cable attaches to are left out.
+fn point_ends(sc: &Scenario) -> Vec<(String, usize, bool)> {
+    sc.points
+        .iter()
+        .filter_map(|p| {
+            sc.model.cables.iter().enumerate().find_map(|(ci, c)| {
+                if c.nodes.first() == Some(&p.node) {
+                    Some((p.name.clone(), ci, true))
+                } else if c.nodes.last() == Some(&p.node) {
+                    Some((p.name.clone(), ci, false))
+                } else {
+                    None
+                }
+            })
+        })
+        .collect()
 }

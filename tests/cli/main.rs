@@ -13,3 +13,4 @@ mod examples;
 mod moordyn_input;
 mod scenario;
 mod simulation_api;
+mod viz_output;

@@ -26,5 +26,5 @@ mod parity;
 mod shaders;
 mod step_functions;
 mod surface;
-mod winch;
 mod waves;
+mod winch;
