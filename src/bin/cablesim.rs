@@ -10,6 +10,8 @@ use cablesim::sim::{self, Progress, Simulation};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 #[derive(Parser)]
 #[command(
@@ -92,7 +94,8 @@ fn main() -> ExitCode {
         .format_timestamp(None)
         .init();
     match real_main() {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(RunOutcome::Done) => ExitCode::SUCCESS,
+        Ok(RunOutcome::Interrupted) => ExitCode::from(130),
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
@@ -100,7 +103,7 @@ fn main() -> ExitCode {
     }
 }
 
-fn real_main() -> Result<()> {
+fn real_main() -> Result<RunOutcome> {
     let cli = Cli::parse();
     match cli.cmd {
         Cmd::Convert {
@@ -108,8 +111,8 @@ fn real_main() -> Result<()> {
             output,
             duration,
             motion,
-        } => convert(&input, output.as_deref(), duration, &motion),
-        Cmd::Check { scenario } => check(&scenario),
+        } => convert(&input, output.as_deref(), duration, &motion).map(|_| RunOutcome::Done),
+        Cmd::Check { scenario } => check(&scenario).map(|_| RunOutcome::Done),
         Cmd::Run {
             scenario,
             out,
@@ -167,15 +170,36 @@ fn real_main() -> Result<()> {
                 );
                 b
             };
+            // Ctrl-C and SIGTERM ask the run to stop at the next step boundary; it then
+            // writes its last frame and an `interrupted` summary.
+            let stop = Arc::new(AtomicBool::new(false));
+            {
+                let stop = stop.clone();
+                ctrlc::set_handler(move || stop.store(true, Ordering::Relaxed))
+                    .context("cannot install the Ctrl-C/SIGTERM handler")?;
+            }
             let s = simulation
-                .run(&mut FileSink::new(&out_dir), |p: Progress| {
-                    bar.set_length(p.total);
-                    bar.set_position(p.done);
-                    bar.set_message(format!("{:.2} s", p.time));
-                })
+                .run_until(
+                    &mut FileSink::new(&out_dir),
+                    |p: Progress| {
+                        bar.set_length(p.total);
+                        bar.set_position(p.done);
+                        bar.set_message(format!("{:.2} s", p.time));
+                    },
+                    || stop.load(Ordering::Relaxed),
+                )
                 .with_context(context);
             bar.finish_and_clear();
             let s = s?;
+            if s.status == "interrupted" {
+                eprintln!(
+                    "interrupted at t = {} s after {} steps; output so far in {}",
+                    s.simulated_time,
+                    s.steps,
+                    out_dir.display()
+                );
+                return Ok(RunOutcome::Interrupted);
+            }
             eprintln!(
                 "done: {} steps of {:.4e} s to t = {} s in {:.3} s of stepping ({:.3e} node-steps/s); output in {}",
                 s.steps,
@@ -185,9 +209,16 @@ fn real_main() -> Result<()> {
                 s.node_steps_per_second,
                 out_dir.display()
             );
-            Ok(())
+            Ok(RunOutcome::Done)
         }
     }
+}
+
+/// How a command ended, when it did not fail.
+enum RunOutcome {
+    Done,
+    /// A run stopped by Ctrl-C or SIGTERM (exit status 130, as a shell reports SIGINT).
+    Interrupted,
 }
 
 /// `cablesim check`: validates the scenario and prints the mesh and the step plan.

@@ -20,4 +20,4 @@ mod chain;
 mod stepper;
 
 pub use crate::step::{Evaluation, StepFailure, WinchStatus};
-pub use stepper::CpuSolver;
+pub use stepper::{CpuCheckpoint, CpuSolver};

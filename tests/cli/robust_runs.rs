@@ -1,0 +1,167 @@
+//! Runs that end early keep honest output: Ctrl-C and SIGTERM stop a run cleanly, a
+//! blow-up leaves every cable's state at the failure, output directories belong to one
+//! run.
+
+use std::path::Path;
+use std::process::{Child, Command};
+use std::time::{Duration, Instant};
+
+const BIN: &str = env!("CARGO_BIN_EXE_cablesim");
+
+/// `examples/catenary.toml` made long (`duration` s) with a dense output interval.
+fn long_catenary(dir: &Path, duration: f64) -> std::path::PathBuf {
+    let text = std::fs::read_to_string("examples/catenary.toml").unwrap();
+    let text = text
+        .replace("duration = 60.0 ", &format!("duration = {duration:e} "))
+        .replace("output_interval = 1.0 ", "output_interval = 0.05 ");
+    assert!(
+        text.contains("output_interval = 0.05"),
+        "the example changed"
+    );
+    let path = dir.join("long.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Waits for `child` at most `limit`; kills it and fails if it runs on.
+fn wait_at_most(child: &mut Child, limit: Duration) -> std::process::ExitStatus {
+    let t0 = Instant::now();
+    loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            return s;
+        }
+        if t0.elapsed() > limit {
+            child.kill().ok();
+            panic!("the run did not stop within {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// Every line of a CSV file has the header's number of fields and the file ends with
+/// a newline (no row cut in half).
+fn assert_whole_rows(path: &Path) -> Vec<csv::StringRecord> {
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(text.ends_with('\n'), "{} ends mid-row", path.display());
+    let mut r = csv::ReaderBuilder::new()
+        .flexible(true)
+        .from_path(path)
+        .unwrap();
+    let width = r.headers().unwrap().len();
+    let rows: Vec<_> = r.records().map(|x| x.unwrap()).collect();
+    for (i, row) in rows.iter().enumerate() {
+        assert_eq!(
+            row.len(),
+            width,
+            "{} row {}: {:?}",
+            path.display(),
+            i + 2,
+            row
+        );
+    }
+    rows
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn sigint_and_sigterm_stop_a_run_with_whole_rows_and_a_summary() {
+    for signal in ["-INT", "-TERM"] {
+        let dir = tempfile::tempdir().unwrap();
+        let duration = 1e5; // s: hours of stepping; only a signal ends it
+        let scenario = long_catenary(dir.path(), duration);
+        let out = dir.path().join("out");
+        let mut child = Command::new(BIN)
+            .args(["run", "-q", "--out"])
+            .arg(&out)
+            .arg(&scenario)
+            .spawn()
+            .unwrap();
+        // Signal once the run has written past the first buffer of rows.
+        let t0 = Instant::now();
+        let forces = out.join("end_forces.csv");
+        while std::fs::metadata(&forces).map_or(0, |m| m.len()) < 20_000 {
+            assert!(t0.elapsed() < Duration::from_secs(120), "no output written");
+            assert!(
+                child.try_wait().unwrap().is_none(),
+                "the run ended by itself"
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        let killed = Command::new("kill")
+            .args([signal, &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(killed.success());
+        let status = wait_at_most(&mut child, Duration::from_secs(30));
+        assert_eq!(status.code(), Some(130), "{signal}: {status:?}");
+
+        let s = summary(&out);
+        assert_eq!(s["status"], "interrupted", "{signal}");
+        let t = s["simulated_time"].as_f64().unwrap();
+        let dt = s["dt"].as_f64().unwrap();
+        let steps = s["steps"].as_u64().unwrap();
+        assert!(t > 0.0 && t < duration, "{signal}: t = {t}");
+        assert!(
+            (t - steps as f64 * dt).abs() < 1e-6 * t,
+            "{signal}: {t} vs {steps} steps"
+        );
+        // The summary's state is that of the time reached: finite, not the start's.
+        let fin = &s["cables"][0]["final_tensions"];
+        assert!(fin
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|x| x.as_f64().unwrap().is_finite()));
+
+        for name in ["end_forces.csv", "tensions.csv", "positions.csv"] {
+            let path = out.join(name);
+            if !path.exists() {
+                continue;
+            }
+            let rows = assert_whole_rows(&path);
+            // The last frame is at the time reached.
+            let last: f64 = rows.last().unwrap()[0].parse().unwrap();
+            assert!(
+                (last - t).abs() <= 1e-9 * t,
+                "{name}: last row at {last}, summary {t}"
+            );
+        }
+        // Two rows per cable and time: the last time's rows are all there.
+        let rows = assert_whole_rows(&forces);
+        let last = &rows[rows.len() - 1][0];
+        assert_eq!(rows.iter().filter(|r| &r[0] == last).count(), 2);
+    }
+}
+
+#[test]
+fn a_stop_request_ends_a_library_run_with_its_last_frame() {
+    use cablesim::{MemorySink, Overrides, Simulation};
+    let mut sim = Simulation::from_file("examples/catenary.toml", &Overrides::default()).unwrap();
+    let total = sim.plan().unwrap().total_steps;
+    let mut sink = MemorySink::new();
+    let mut asked = 0;
+    let s = sim
+        .run_until(
+            &mut sink,
+            |_| {},
+            || {
+                asked += 1;
+                asked > 3
+            },
+        )
+        .unwrap();
+    assert_eq!(s.status, "interrupted");
+    assert!(s.steps > 0 && s.steps < total, "{} of {total}", s.steps);
+    let last = sink.frames.last().unwrap();
+    assert_eq!((last.steps, last.time), (s.steps, s.simulated_time));
+    assert_eq!(sink.summary.unwrap().status, "interrupted");
+    // Not stopped: the same run completes.
+    let mut sim = Simulation::from_file("examples/catenary.toml", &Overrides::default()).unwrap();
+    let s = sim
+        .run_until(&mut MemorySink::new(), |_| {}, || false)
+        .unwrap();
+    assert_eq!((s.status.as_str(), s.steps), ("completed", total));
+}
