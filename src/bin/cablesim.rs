@@ -243,8 +243,13 @@ fn check(scenario: &std::path::Path) -> Result<()> {
     if let Some(w) = &plan.warning {
         log::warn!("{w}");
     }
+    let above = if plan.dt > plan.bound.dt {
+        " (dt is above the stable step: expect a blow-up or wrong results)"
+    } else {
+        ""
+    };
     println!(
-        "{}: ok: {} cables, {} nodes, {} elements; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps",
+        "{}: ok: {} cables, {} nodes, {} elements; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps{above}",
         scenario.display(),
         lay.cables.len(),
         lay.n_nodes(),

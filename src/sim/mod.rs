@@ -525,6 +525,7 @@ impl Simulation {
             steps,
             dt,
             dt_stable,
+            dt_above_stable: dt > dt_stable,
             dt_limited_by: limited_by,
             simulated_time: sim_time,
             wall_seconds: self.stepping,

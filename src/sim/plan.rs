@@ -146,7 +146,7 @@ fn plan_with(
     let (dt, spo) = fit_step(sc, dt_spec, bound.dt)?;
     let warning = (matches!(dt_spec, DtSpec::Fixed(_)) && dt > bound.dt).then(|| {
         format!(
-            "dt = {dt} s is above the stable step {:.4e} s of the {} scheme, set by {}; expect a blow-up",
+            "dt = {dt} s is above the stable step {:.4e} s of the {} scheme, set by {}; expect a blow-up or wrong results",
             bound.dt,
             opts.scheme.name(),
             bound.term

@@ -165,3 +165,112 @@ fn a_stop_request_ends_a_library_run_with_its_last_frame() {
         .unwrap();
     assert_eq!((s.status.as_str(), s.steps), ("completed", total));
 }
+
+/// `examples/catenary.toml` at a step that blows up its seabed contact, with a second,
+/// mid-water cable that the step keeps stable and that sags from its straight start.
+fn catenary_and_midwater(dir: &Path) -> std::path::PathBuf {
+    let mut text = std::fs::read_to_string("examples/catenary.toml").unwrap();
+    text = text.replace("dt = \"auto\" ", "dt = 0.01 ");
+    assert!(text.contains("dt = 0.01"), "the example changed");
+    text.push_str(
+        r#"
+[[line_types]]
+name = "soft"
+diameter = 0.02
+mass_per_length = 2.0
+ea = 1.0e5
+damping = 0.0
+cn = 1.0
+ct = 0.01
+cm = 0.2
+
+[[cables]]
+name = "midwater"
+line_type = "soft"
+length = 100.0
+segments = 10
+start = { fixed = [0.0, 50.0, -30.0] }
+end = { fixed = [99.0, 50.0, -30.0] }
+initial = "straight"
+output_positions = true
+"#,
+    );
+    let path = dir.join("two.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_blow_up_leaves_every_cable_at_the_failure_and_says_the_step_was_too_big() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = catenary_and_midwater(dir.path());
+    let check = Command::new(BIN)
+        .arg("check")
+        .arg(&scenario)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&check.stdout);
+    assert!(said.contains("dt is above the stable step"), "{said}");
+
+    let out = dir.path().join("out");
+    let run = Command::new(BIN)
+        .args(["run", "-q", "--duration", "20", "--out"])
+        .arg(&out)
+        .arg(&scenario)
+        .output()
+        .unwrap();
+    assert!(!run.status.success());
+    let s = summary(&out);
+    assert_eq!(s["status"], "diverged");
+    assert_eq!(s["dt_above_stable"], true);
+    let (t, dt, steps) = (
+        s["simulated_time"].as_f64().unwrap(),
+        s["dt"].as_f64().unwrap(),
+        s["steps"].as_u64().unwrap(),
+    );
+    // The time and steps are the failure's: the step before the time in the error.
+    let err = s["error"].as_str().unwrap();
+    let t_fail: f64 = err
+        .split("diverged at t = ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("no failure time in {err}"));
+    assert!(
+        t < 20.0 && (t - steps as f64 * dt).abs() < 1e-9,
+        "t = {t}, {steps} steps"
+    );
+    assert!(
+        (t_fail - t - dt).abs() < 1e-6,
+        "failure at {t_fail}, state at {t}"
+    );
+    // Every cable's final state is that of the failure: finite, and the mid-water
+    // cable has moved from its straight start.
+    let cables = s["cables"].as_array().unwrap();
+    for c in cables {
+        for x in c["final_positions"].as_array().unwrap() {
+            assert!(x
+                .as_array()
+                .unwrap()
+                .iter()
+                .all(|v| v.as_f64().is_some_and(f64::is_finite)));
+        }
+    }
+    let mid = &cables[1]["final_positions"][5];
+    let sag = -30.0 - mid[2].as_f64().unwrap();
+    // It has sagged since t = 0, no faster than a free fall over the time reached.
+    assert!(
+        sag > 1e-6 && sag < 0.5 * 9.81 * t * t,
+        "the mid-water cable's middle at t = {t}: {mid}"
+    );
+    // A frame was written at the failure, and matches the summary.
+    let rows = assert_whole_rows(&out.join("positions.csv"));
+    let last: Vec<_> = rows
+        .iter()
+        .filter(|r| &r[1] == "midwater" && &r[2] == "5")
+        .collect();
+    let last = last.last().unwrap();
+    let tl: f64 = last[0].parse().unwrap();
+    assert!((tl - t).abs() < 1e-9, "last frame at {tl}, summary at {t}");
+    assert_eq!(last[5].parse::<f64>().unwrap(), mid[2].as_f64().unwrap());
+}
