@@ -97,7 +97,19 @@ fn main() -> ExitCode {
         Ok(RunOutcome::Done) => ExitCode::SUCCESS,
         Ok(RunOutcome::Interrupted) => ExitCode::from(130),
         Err(e) => {
-            eprintln!("error: {e:#}");
+            // The chain of causes, each once: the library's errors already name their
+            // cause in their own message.
+            let mut text = String::new();
+            for cause in e.chain() {
+                let c = cause.to_string();
+                if !text.contains(&c) {
+                    if !text.is_empty() {
+                        text.push_str(": ");
+                    }
+                    text.push_str(&c);
+                }
+            }
+            eprintln!("error: {text}");
             ExitCode::FAILURE
         }
     }
@@ -155,8 +167,12 @@ fn real_main() -> Result<RunOutcome> {
                     format!("run of {}", scenario.display())
                 }
             };
-            let mut simulation =
-                Simulation::from_file(&scenario, &overrides).with_context(context)?;
+            // A scenario that does not validate writes nothing. Then the output
+            // directory: an earlier run's files go before the build can fail, and a
+            // directory in use or not ours is refused before any work.
+            let sc = Scenario::load_any(&scenario).with_context(context)?;
+            let mut sink = FileSink::claim(&out_dir)?;
+            let mut simulation = Simulation::new(sc, &overrides).with_context(context)?;
             let bar = if quiet {
                 indicatif::ProgressBar::hidden()
             } else {
@@ -180,7 +196,7 @@ fn real_main() -> Result<RunOutcome> {
             }
             let s = simulation
                 .run_until(
-                    &mut FileSink::new(&out_dir),
+                    &mut sink,
                     |p: Progress| {
                         bar.set_length(p.total);
                         bar.set_position(p.done);

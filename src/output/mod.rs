@@ -10,7 +10,7 @@ mod memory;
 mod sink;
 mod summary;
 
-pub use files::FileSink;
+pub use files::{FileSink, LOCK_FILE, MARKER_FILE, OWN_FILES};
 pub use memory::MemorySink;
 pub use sink::{BodyState, CableState, OutputSink, Snapshot};
 pub use summary::{write_summary, CableSummary, EndForces, Summary, WinchSummary};

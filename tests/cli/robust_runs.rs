@@ -274,3 +274,146 @@ fn a_blow_up_leaves_every_cable_at_the_failure_and_says_the_step_was_too_big() {
     assert!((tl - t).abs() < 1e-9, "last frame at {tl}, summary at {t}");
     assert_eq!(last[5].parse::<f64>().unwrap(), mid[2].as_f64().unwrap());
 }
+
+#[test]
+fn an_output_directory_belongs_to_one_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    // An earlier run's files, a stale `completed` summary among them, are cleared even
+    // when the new run fails before writing anything (the ANCF model has no GPU path).
+    std::fs::create_dir(&out).unwrap();
+    for f in ["winches.csv", "summary.json", "end_forces.csv"] {
+        std::fs::write(out.join(f), "stale").unwrap();
+    }
+    let r = Command::new(BIN)
+        .args([
+            "run",
+            "-q",
+            "examples/catenary.toml",
+            "--formulation",
+            "ancf",
+        ])
+        .args(["--backend", "gpu", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(!r.status.success());
+    for f in ["winches.csv", "summary.json", "end_forces.csv"] {
+        assert!(!out.join(f).exists(), "{f} of the earlier run is left");
+    }
+    assert!(out.join(cablesim::output::MARKER_FILE).exists());
+
+    // A folder holding anything else is refused, and nothing in it is touched.
+    let foreign = dir.path().join("foreign");
+    std::fs::create_dir(&foreign).unwrap();
+    std::fs::write(foreign.join("notes.txt"), "mine").unwrap();
+    std::fs::write(foreign.join("tensions.csv"), "stale").unwrap();
+    let r = Command::new(BIN)
+        .args(["run", "-q", "examples/catenary.toml", "--out"])
+        .arg(&foreign)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(!r.status.success() && err.contains("notes.txt"), "{err}");
+    assert_eq!(
+        std::fs::read_to_string(foreign.join("tensions.csv")).unwrap(),
+        "stale"
+    );
+    assert_eq!(
+        std::fs::read_to_string(foreign.join("notes.txt")).unwrap(),
+        "mine"
+    );
+
+    // `--out` naming a file: one clear error.
+    let file = dir.path().join("a_file");
+    std::fs::write(&file, "x").unwrap();
+    let r = Command::new(BIN)
+        .args(["run", "-q", "examples/catenary.toml", "--out"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(!r.status.success(), "{err}");
+    assert_eq!(err.matches("not a directory").count(), 1, "{err}");
+
+    // While a run holds the folder, a second one is refused with a clear error.
+    let held = cablesim::output::FileSink::claim(&out).unwrap();
+    let r = Command::new(BIN)
+        .args([
+            "run",
+            "-q",
+            "examples/catenary.toml",
+            "--duration",
+            "1",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(
+        !r.status.success() && err.contains("another cablesim run"),
+        "{err}"
+    );
+    assert!(!out.join("summary.json").exists());
+    drop(held);
+    let r = Command::new(BIN)
+        .args([
+            "run",
+            "-q",
+            "examples/catenary.toml",
+            "--duration",
+            "1",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+}
+
+#[test]
+fn cable_names_with_commas_quotes_and_newlines_are_quoted() {
+    use cablesim::output::{CableState, EndForces, FileSink, OutputSink, Snapshot};
+    let dir = tempfile::tempdir().unwrap();
+    let names = ["plain", "a,b", "say \"hi\"", "two\nlines"];
+    let snap = Snapshot {
+        time: 0.5,
+        steps: 2,
+        cables: names
+            .iter()
+            .map(|n| CableState {
+                name: n.to_string(),
+                output_positions: true,
+                positions: vec![[0.0, 1.0, 2.0], [3.0, 4.0, 5.0]],
+                velocities: vec![[0.0; 3]; 2],
+                tensions: vec![7.0],
+                end_forces: EndForces {
+                    start: [1.0, 2.0, 3.0],
+                    end: [4.0, 5.0, 6.0],
+                },
+                winch: None,
+            })
+            .collect(),
+        bodies: Vec::new(),
+    };
+    let mut sink = FileSink::new(dir.path());
+    sink.frame(&snap).unwrap();
+    let mut sim =
+        cablesim::Simulation::from_file("examples/catenary.toml", &cablesim::Overrides::default())
+            .unwrap();
+    sink.finish(&sim.summary(None).unwrap()).unwrap();
+    for (file, per_cable) in [
+        ("end_forces.csv", 2),
+        ("tensions.csv", 1),
+        ("positions.csv", 2),
+    ] {
+        let rows = assert_whole_rows(&dir.path().join(file));
+        let got: Vec<&str> = rows.iter().map(|r| &r[1]).collect();
+        let want: Vec<&str> = names
+            .iter()
+            .flat_map(|n| std::iter::repeat_n(*n, per_cable))
+            .collect();
+        assert_eq!(got, want, "{file}");
+    }
+}
