@@ -417,3 +417,44 @@ fn cable_names_with_commas_quotes_and_newlines_are_quoted() {
         assert_eq!(got, want, "{file}");
     }
 }
+
+#[test]
+fn a_zero_stable_step_or_absurd_work_is_refused_by_check_and_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string("examples/catenary.toml").unwrap();
+    let cases = [
+        // Internal damping so strong the stable step is nothing.
+        (
+            "damping = 1.0e-5 ",
+            "damping = 1.0e6 ",
+            "simulation.dt",
+            "stable step",
+        ),
+        // Far more node-steps than any machine runs.
+        (
+            "duration = 60.0 ",
+            "duration = 1e20 ",
+            "simulation.duration",
+            "node-steps",
+        ),
+    ];
+    for (from, to, field, what) in cases {
+        assert!(text.contains(from), "the example changed");
+        let path = dir.path().join("absurd.toml");
+        std::fs::write(&path, text.replace(from, to)).unwrap();
+        for cmd in ["check", "run"] {
+            let mut c = Command::new(BIN);
+            c.arg(cmd).arg(&path);
+            if cmd == "run" {
+                c.args(["-q", "--out"]).arg(dir.path().join("out"));
+            }
+            let r = c.output().unwrap();
+            let err = String::from_utf8_lossy(&r.stderr);
+            assert!(!r.status.success(), "{cmd} {to}: {err}");
+            assert!(
+                err.contains(field) && err.contains(what),
+                "{cmd} {to}: {err}"
+            );
+        }
+    }
+}
