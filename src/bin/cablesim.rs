@@ -10,6 +10,8 @@ use cablesim::sim::{self, Progress, Simulation};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 #[derive(Parser)]
 #[command(
@@ -108,15 +110,28 @@ fn main() -> ExitCode {
         .format_timestamp(None)
         .init();
     match real_main() {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(RunOutcome::Done) => ExitCode::SUCCESS,
+        Ok(RunOutcome::Interrupted) => ExitCode::from(130),
         Err(e) => {
-            eprintln!("error: {e:#}");
+            // The chain of causes, each once: the library's errors already name their
+            // cause in their own message.
+            let mut text = String::new();
+            for cause in e.chain() {
+                let c = cause.to_string();
+                if !text.contains(&c) {
+                    if !text.is_empty() {
+                        text.push_str(": ");
+                    }
+                    text.push_str(&c);
+                }
+            }
+            eprintln!("error: {text}");
             ExitCode::FAILURE
         }
     }
 }
 
-fn real_main() -> Result<()> {
+fn real_main() -> Result<RunOutcome> {
     let cli = Cli::parse();
     match cli.cmd {
         Cmd::Convert {
@@ -124,14 +139,14 @@ fn real_main() -> Result<()> {
             output,
             duration,
             motion,
-        } => convert(&input, output.as_deref(), duration, &motion),
-        Cmd::Check { scenario } => check(&scenario),
+        } => convert(&input, output.as_deref(), duration, &motion).map(|_| RunOutcome::Done),
+        Cmd::Check { scenario } => check(&scenario).map(|_| RunOutcome::Done),
         Cmd::Plot { dir, out, times } => {
             let out = out.unwrap_or_else(|| dir.join("plots"));
             for p in cablesim::plot::plot_dir(&dir, &out, &times)? {
                 println!("{}", p.display());
             }
-            Ok(())
+            Ok(RunOutcome::Done)
         }
         Cmd::Run {
             scenario,
@@ -176,8 +191,12 @@ fn real_main() -> Result<()> {
                     format!("run of {}", scenario.display())
                 }
             };
-            let mut simulation =
-                Simulation::from_file(&scenario, &overrides).with_context(context)?;
+            // A scenario that does not validate writes nothing. Then the output
+            // directory: an earlier run's files go before the build can fail, and a
+            // directory in use or not ours is refused before any work.
+            let sc = Scenario::load_any(&scenario).with_context(context)?;
+            let mut sink = FileSink::claim(&out_dir)?;
+            let mut simulation = Simulation::new(sc, &overrides).with_context(context)?;
             let bar = if quiet {
                 indicatif::ProgressBar::hidden()
             } else {
@@ -191,21 +210,41 @@ fn real_main() -> Result<()> {
                 );
                 b
             };
-            let mut files = FileSink::new(&out_dir);
             let mut vtk_sink = VtkSink::new(out_dir.join("vtk"));
-            let mut sinks = FanOut::new().with(&mut files);
+            let mut sinks = FanOut::new().with(&mut sink);
             if vtk || simulation.scenario().vtk {
                 sinks = sinks.with(&mut vtk_sink);
             }
+            // Ctrl-C and SIGTERM ask the run to stop at the next step boundary; it then
+            // writes its last frame and an `interrupted` summary.
+            let stop = Arc::new(AtomicBool::new(false));
+            {
+                let stop = stop.clone();
+                ctrlc::set_handler(move || stop.store(true, Ordering::Relaxed))
+                    .context("cannot install the Ctrl-C/SIGTERM handler")?;
+            }
             let s = simulation
-                .run(&mut sinks, |p: Progress| {
-                    bar.set_length(p.total);
-                    bar.set_position(p.done);
-                    bar.set_message(format!("{:.2} s", p.time));
-                })
+                .run_until(
+                    &mut sinks,
+                    |p: Progress| {
+                        bar.set_length(p.total);
+                        bar.set_position(p.done);
+                        bar.set_message(format!("{:.2} s", p.time));
+                    },
+                    || stop.load(Ordering::Relaxed),
+                )
                 .with_context(context);
             bar.finish_and_clear();
             let s = s?;
+            if s.status == "interrupted" {
+                eprintln!(
+                    "interrupted at t = {} s after {} steps; output so far in {}",
+                    s.simulated_time,
+                    s.steps,
+                    out_dir.display()
+                );
+                return Ok(RunOutcome::Interrupted);
+            }
             eprintln!(
                 "done: {} steps of {:.4e} s to t = {} s in {:.3} s of stepping ({:.3e} node-steps/s); output in {}",
                 s.steps,
@@ -215,9 +254,16 @@ fn real_main() -> Result<()> {
                 s.node_steps_per_second,
                 out_dir.display()
             );
-            Ok(())
+            Ok(RunOutcome::Done)
         }
     }
+}
+
+/// How a command ended, when it did not fail.
+enum RunOutcome {
+    Done,
+    /// A run stopped by Ctrl-C or SIGTERM (exit status 130, as a shell reports SIGINT).
+    Interrupted,
 }
 
 /// `cablesim check`: validates the scenario and prints the mesh and the step plan.
@@ -242,8 +288,13 @@ fn check(scenario: &std::path::Path) -> Result<()> {
     if let Some(w) = &plan.warning {
         log::warn!("{w}");
     }
+    let above = if plan.dt > plan.bound.dt {
+        " (dt is above the stable step: expect a blow-up or wrong results)"
+    } else {
+        ""
+    };
     println!(
-        "{}: ok: {} cables, {} nodes, {} elements; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps",
+        "{}: ok: {} cables, {} nodes, {} elements; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps{above}",
         scenario.display(),
         lay.cables.len(),
         lay.n_nodes(),

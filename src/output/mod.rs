@@ -14,7 +14,7 @@ mod summary;
 mod vtk;
 
 pub use fanout::FanOut;
-pub use files::FileSink;
+pub use files::{FileSink, LOCK_FILE, MARKER_FILE, OWN_DIRS, OWN_FILES};
 pub use memory::MemorySink;
 pub use sink::{BodyState, CableState, OutputSink, PointState, Snapshot};
 pub use summary::{write_summary, CableSummary, EndForces, Summary, WinchSummary};

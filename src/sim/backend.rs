@@ -104,6 +104,16 @@ pub fn choose_backend(
     }
 }
 
+/// A lumped-mass stepper's state at one step, to go back to.
+pub struct Checkpoint(crate::cpu::CpuCheckpoint);
+
+impl Checkpoint {
+    /// Steps taken when it was made.
+    pub fn steps(&self) -> u64 {
+        self.0.steps
+    }
+}
+
 /// The solver a lumped-mass run steps: the CPU reference or the GPU path, behind one
 /// interface.
 pub enum LumpedStepper {
@@ -144,6 +154,22 @@ impl LumpedStepper {
             }
         }
         Ok(s)
+    }
+
+    /// A copy of the state to go back to ([`LumpedStepper::restore`]): on the CPU path
+    /// without winches (whose mesh does not change), else `None`.
+    pub fn checkpoint(&self) -> Option<Checkpoint> {
+        match self {
+            LumpedStepper::Cpu(s) => s.checkpoint().map(Checkpoint),
+            LumpedStepper::Gpu(_) => None,
+        }
+    }
+
+    /// Puts the state back to `cp`, taken from this stepper.
+    pub fn restore(&mut self, cp: &Checkpoint) {
+        if let LumpedStepper::Cpu(s) = self {
+            s.restore(&cp.0);
+        }
     }
 
     /// Advances `n` steps.
