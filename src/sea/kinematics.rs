@@ -199,8 +199,26 @@ pub fn wave_kinematics_at(
     t: f64,
     t_ref: f64,
 ) -> Kinematics {
-    let r = wave_ramp(t, ramp_duration);
-    let tau = t - t_ref;
+    wave_kinematics_tau(
+        comps,
+        depth,
+        stretching,
+        wave_ramp(t, ramp_duration),
+        p,
+        t - t_ref,
+    )
+}
+
+/// [`wave_kinematics_at`] at `tau = t - t_ref` after the reference time, with the
+/// ramp factor `r` given (the GPU solver forms both on the host in f64).
+pub fn wave_kinematics_tau(
+    comps: &[PackedComponent],
+    depth: f64,
+    stretching: Stretching,
+    r: f64,
+    p: [f64; 3],
+    tau: f64,
+) -> Kinematics {
     let eta = r * wave_elevation_sum(comps, p[0], p[1], tau);
     let zs = wave_eval_depth(p[2], eta, depth, stretching);
     let mut u = [0.0; 3];

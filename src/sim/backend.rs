@@ -51,7 +51,6 @@ pub fn choose_backend(
     let unsupported = || {
         crate::gpu::solver::unsupported(lay, opts)
             .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
-            .or_else(|| (!sc.sea.is_still()).then(|| "waves ([environment.waves])".to_string()))
     };
     let need_f64 = precision == Some(Precision::F64);
     let p = precision.unwrap_or_default();
@@ -132,8 +131,9 @@ impl LumpedStepper {
                 LumpedStepper::Gpu(GpuSolver::new(&ctx, lay, pos, opts, p)?)
             }
         };
-        if let LumpedStepper::Cpu(c) = &mut s {
-            c.set_sea(&sc.sea, false);
+        match &mut s {
+            LumpedStepper::Cpu(c) => c.set_sea(&sc.sea, false),
+            LumpedStepper::Gpu(g) => g.set_sea(&sc.sea)?,
         }
         if let LumpedStepper::Gpu(g) = &s {
             match g.fused_unavailable() {
@@ -260,7 +260,12 @@ impl LumpedStepper {
 
     /// Every vessel body's pose and load at time `t` (now).
     pub fn bodies(&mut self, t: f64) -> Result<Vec<BodyState>, Error> {
-        if !self.layout().routes.iter().any(|r| matches!(r, Route::Body { .. })) {
+        if !self
+            .layout()
+            .routes
+            .iter()
+            .any(|r| matches!(r, Route::Body { .. }))
+        {
             return Ok(Vec::new());
         }
         let ev = self.evaluate()?;
