@@ -123,3 +123,79 @@ fn gpu_matches_cpu_in_waves_in_f64() {
 fn gpu_matches_cpu_in_waves_in_f32() {
     parity(Precision::F32);
 }
+
+/// A scenario in a JONSWAP sea runs with `--backend gpu` (it used to be refused
+/// there), and its end forces at the last output time match `--backend cpu` to
+/// round-off in f64 (the same cache, the same refresh steps).
+#[test]
+fn wave_scenario_runs_on_the_gpu() {
+    let Some(ctx) = gpu_context("wave_scenario_runs_on_the_gpu", true) else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string("examples/catenary.toml")
+        .unwrap()
+        .replace(
+            "[environment.seabed]",
+            "[environment.waves]\n\n[[environment.waves.trains]]\ntype = \"jonswap\"\n\
+             hs = 4.0\ntp = 10.0\ndirection = 20.0\n\n[environment.seabed]",
+        );
+    assert!(text.contains("jonswap"));
+    let scen = dir.path().join("waves.toml");
+    std::fs::write(&scen, text).unwrap();
+    let env = format!("{:?}", ctx.info.backend).to_lowercase();
+    let run = |backend: &str| {
+        let out = dir.path().join(format!("out-{backend}"));
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_cablesim"))
+            .arg("run")
+            .arg(&scen)
+            .args(["--out", out.to_str().unwrap(), "-q", "--duration", "2"])
+            .args(["--backend", backend, "--precision", "f64"])
+            .env("WGPU_BACKEND", &env)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(o.status.success(), "{backend}: {err}");
+        let csv = std::fs::read_to_string(out.join("end_forces.csv")).unwrap();
+        let last: Vec<Vec<f64>> = csv
+            .lines()
+            .rev()
+            .take(2)
+            .map(|l| l.split(',').filter_map(|x| x.parse().ok()).collect())
+            .collect();
+        last
+    };
+    let gpu = run("gpu");
+    let cpu = run("cpu");
+    let still = {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_cablesim"))
+            .arg("run")
+            .arg("examples/catenary.toml")
+            .args(["--out", dir.path().join("still").to_str().unwrap(), "-q"])
+            .args(["--duration", "2", "--backend", "cpu"])
+            .output()
+            .unwrap();
+        assert!(o.status.success());
+        std::fs::read_to_string(dir.path().join("still/end_forces.csv")).unwrap()
+    };
+    let still_end: Vec<f64> = still
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    println!("waves: gpu {gpu:?}\n       cpu {cpu:?}\nstill water {still_end:?}");
+    for (g, c) in gpu.iter().zip(&cpu) {
+        let n = c.iter().map(|x| x * x).sum::<f64>().sqrt();
+        for (a, b) in g.iter().zip(c) {
+            assert!((a - b).abs() < 1e-8 * n, "GPU {g:?} against CPU {c:?}");
+        }
+    }
+    // The waves changed the fairlead force (the comparison is not of still water).
+    let dz = (cpu[0].last().unwrap() - still_end.last().unwrap()).abs();
+    assert!(
+        dz > 1.0,
+        "the waves changed the fairlead force by {dz} N only"
+    );
+}
