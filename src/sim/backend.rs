@@ -53,7 +53,6 @@ pub fn choose_backend(
     let unsupported = || {
         crate::gpu::solver::unsupported(lay, opts)
             .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
-            .or_else(|| (!sc.sea.is_still()).then(|| "waves ([environment.waves])".to_string()))
     };
     let need_f64 = precision == Some(Precision::F64);
     let p = precision.unwrap_or_default();
@@ -144,8 +143,9 @@ impl LumpedStepper {
                 LumpedStepper::Gpu(GpuSolver::new(&ctx, lay, pos, opts, p)?)
             }
         };
-        if let LumpedStepper::Cpu(c) = &mut s {
-            c.set_sea(&sc.sea, false);
+        match &mut s {
+            LumpedStepper::Cpu(c) => c.set_sea(&sc.sea, false),
+            LumpedStepper::Gpu(g) => g.set_sea(&sc.sea)?,
         }
         if let LumpedStepper::Gpu(g) = &s {
             match g.fused_unavailable() {

@@ -476,6 +476,9 @@ fn check_gather<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
         (11, bytes(&loads)),
         (12, bytes(&node_out)),
         (16, bytes(&payout)),
+        // Still water: the waves' rows say no components (the cache is not read).
+        (19, bytes(&[R::c(0.0)])),
+        (20, bytes(&vec![WaveStep::<R>::default(); rows])),
     ];
     let out = run(ctx, p, "t_gather", &group0, &x, n, 9 * n);
     let mut w = Worst::new::<R>("gather_node (gather_begin, gather_add, gather_end)");
