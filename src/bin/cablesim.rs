@@ -11,6 +11,9 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+#[path = "cablesim/study.rs"]
+mod study;
+
 #[derive(Parser)]
 #[command(
     name = "cablesim",
@@ -77,6 +80,12 @@ enum Cmd {
         #[arg(long, value_name = "ID=FILE")]
         motion: Vec<String>,
     },
+    /// Monte Carlo sea-state studies: run members (or one shard of them), merge shards,
+    /// write a Slurm submission script.
+    Study {
+        #[command(subcommand)]
+        cmd: study::StudyCmd,
+    },
 }
 
 /// A positive, finite number of seconds.
@@ -88,10 +97,17 @@ fn positive(s: &str) -> Result<f64, String> {
 }
 
 fn main() -> ExitCode {
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("info"))
+    let cli = Cli::parse();
+    // A study builds one simulation per member, each of which would log its mesh and
+    // step plan: a study shows warnings only, and its own progress.
+    let level = match cli.cmd {
+        Cmd::Study { .. } => "warn",
+        _ => "info",
+    };
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level))
         .format_timestamp(None)
         .init();
-    match real_main() {
+    match real_main(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
@@ -100,9 +116,9 @@ fn main() -> ExitCode {
     }
 }
 
-fn real_main() -> Result<()> {
-    let cli = Cli::parse();
+fn real_main(cli: Cli) -> Result<()> {
     match cli.cmd {
+        Cmd::Study { cmd } => study::main(cmd),
         Cmd::Convert {
             input,
             output,

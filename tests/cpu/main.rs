@@ -9,8 +9,8 @@
 mod common;
 
 mod ale;
-mod bodies;
 mod ancf;
+mod bodies;
 mod case1;
 mod chain_kernel;
 mod dynamics;
