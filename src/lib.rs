@@ -44,8 +44,8 @@ pub mod sea;
 pub mod sim;
 pub mod stability;
 pub mod statics;
-pub mod step;
 pub mod study;
+pub mod step;
 
 pub use error::{Error, Result};
 pub use options::Overrides;

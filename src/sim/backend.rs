@@ -256,12 +256,7 @@ impl LumpedStepper {
 
     /// Every vessel body's pose and load at time `t` (now).
     pub fn bodies(&mut self, t: f64) -> Result<Vec<BodyState>, Error> {
-        if !self
-            .layout()
-            .routes
-            .iter()
-            .any(|r| matches!(r, Route::Body { .. }))
-        {
+        if !self.layout().routes.iter().any(|r| matches!(r, Route::Body { .. })) {
             return Ok(Vec::new());
         }
         let ev = self.evaluate()?;

@@ -3,13 +3,14 @@
 //! `bodies.csv` (with the body's load against the cable's end force), and the errors
 //! of bad input.
 
-use crate::common::*;
+
 use cablesim::body::{Body, MeanPose, Motion, RaoMotion, RaoTable};
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{CableDef, Current, Layout, ModelDef, NodeDef, PointMass, Route};
 use cablesim::options::SolverOptions;
 use cablesim::scenario::Scenario;
 use cablesim::sea::WaveComponent;
+use crate::common::*;
 use std::f64::consts::{PI, TAU};
 use std::path::Path;
 use std::sync::Arc;
@@ -637,8 +638,8 @@ end = {{ free = [32.0, -19.0, -12.0] }}
 #[test]
 fn the_docs_example_parses() {
     // docs/src/bodies.md's example scenario, with a motion file beside it.
-    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/src/bodies.md"))
-        .unwrap();
+    let doc =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/src/bodies.md")).unwrap();
     let example = doc.split("## Example").nth(1).expect("an Example section");
     let toml = example
         .split("```toml")

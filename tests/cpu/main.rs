@@ -9,8 +9,8 @@
 mod common;
 
 mod ale;
-mod ancf;
 mod bodies;
+mod ancf;
 mod case1;
 mod chain_kernel;
 mod dynamics;

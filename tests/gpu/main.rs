@@ -25,5 +25,5 @@ mod layout;
 mod parity;
 mod shaders;
 mod step_functions;
-mod waves;
 mod winch;
+mod waves;
