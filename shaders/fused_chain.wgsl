@@ -99,7 +99,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
             break;
         }
         if has_node {
-            var nf = gather_begin(nd);
+            var nf = gather_begin(nd, s, blk);
             for (var q = nd.inc_start; q < nd.inc_end; q += 1u) {
                 let entry = inc[q];
                 nf = gather_add(nf, wg_loads[(entry >> 1u) - blk.elem_start], entry);

@@ -6,7 +6,8 @@
 //! `gamma = C lt / m`) and, for constrained nodes, the Baumgarte gains
 //! (`omega^2 = alpha`, `gamma = beta`); regularised seabed friction is a damper of
 //! rate `mu F_N / (v_eps m)` with `F_N` the node's wet weight. `m` is the node's scalar mass without added
-//! mass (the axial direction has none), so the estimate errs on the safe side. The
+//! mass (the axial direction has none, and neither has anything above the water
+//! surface), so the estimate errs on the safe side. The
 //! modes of a node are summed for the symplectic scheme (damping only shrinks its step);
 //! RK2 and RK4 steps grow with damping, so there each mode counts only the damping acting
 //! on it (axial waves with internal damping, seabed stiffness with seabed damping). The
@@ -132,7 +133,9 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                 3,
             ));
         } else {
-            let mut m = lay.node_point_mass[i];
+            // A point mass out of the water loses its added mass: bound with its dry
+            // mass (the elements' masses below have no added mass either).
+            let mut m = lay.node_point_mass[i] - lay.node_point_added[i];
             let (mut k, mut kc, mut lt) = (0.0, 0.0, 0.0);
             // Weight the node would rest on the seabed with, for the friction term.
             let mut wet = (-lay.node_point_weight_z[i]).max(0.0);

@@ -8,11 +8,13 @@
 //! # The static force
 //! The residual on a free node is exactly the force of the CPU stepper with every
 //! velocity zero and `t = 0`, built from the same physics functions:
-//! [`glmf_element`] with zero node velocities (elastic axial force with the slack rule,
-//! no internal damping since the strain rate is zero; half the element's wet weight;
-//! normal and tangential drag of the current at the element's midpoint; no water
-//! acceleration), the point mass's weight less buoyancy and its drag in the current at
-//! the node, and [`seabed_force`] with zero velocity (the elastic normal force; the
+//! [`glmf_element_wet`] with zero node velocities (elastic axial force with the slack
+//! rule, no internal damping since the strain rate is zero; half the element's weight
+//! less the buoyancy of its share under the mean water level `z = 0`; normal and
+//! tangential drag of the current at the element's midpoint on that share; no water
+//! acceleration), the point mass's weight less the buoyancy of its share under water
+//! and its drag in the current at the node on that share (docs/src/water_surface.md: a line
+//! hung above the water starts from its true equilibrium, in air), and [`seabed_force`] with zero velocity (the elastic normal force; the
 //! damping and the regularised friction vanish at rest). Nodes held by a route are
 //! placed at `route.eval(0.0).r` and are not unknowns. Only the GLMF loads are used:
 //! at rest in still water the older element frames are singular or equal to them.
@@ -72,7 +74,10 @@
 use crate::error::Error;
 use crate::math::V3;
 use crate::model::{Block, Layout, NO_CONSTRAINT};
-use crate::physics::{glmf_element, seabed_force, Coefs, ElementInput, SeabedCoefs};
+use crate::physics::{
+    glmf_element_wet, point_wetted_fraction, seabed_force, wetted_fraction, Coefs, ElementInput,
+    SeabedCoefs,
+};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 use rayon::prelude::*;
 use std::borrow::Cow;
@@ -385,19 +390,30 @@ impl<'a> Sys<'a> {
             current,
             water_accel: V::zero(),
         };
-        let el = glmf_element(&self.coefs[lay.elem_line[e] as usize], &input);
+        // Still water at the mean level: the part above z = 0 is in air.
+        let line = lay.elem_line[e] as usize;
+        let wet = wetted_fraction(-ra.z, -rb.z, lay.line_types[line].diameter);
+        let c = &self.coefs[line];
+        let el = glmf_element_wet(c, &input, wet, lay.env.gravity);
         (el.f_half + el.t * el.tension, el.f_half - el.t * el.tension)
     }
 
-    /// The point loads of packed node `i`: weight less buoyancy, drag in the current.
+    /// The point loads of packed node `i`: weight less the buoyancy of the share of
+    /// the point under the mean water level, drag in the current on that share.
     #[inline]
     fn point(&self, i: usize, r: V) -> V {
         let lay = self.lay;
-        let mut f = V::new(0.0, 0.0, lay.node_point_weight_z[i]);
+        let wet = point_wetted_fraction(-r.z, lay.node_point_radius[i]);
+        let buoyancy = lay.node_point_displaced[i] * lay.env.gravity;
+        let mut f = V::new(
+            0.0,
+            0.0,
+            lay.node_point_weight_z[i] - (1.0 - wet) * buoyancy,
+        );
         let pd = lay.node_point_drag[i];
         if pd > 0.0 {
             let u = lay.currents[lay.node_current[i] as usize].at(r.z);
-            f += u * (pd * u.norm());
+            f += u * (pd * u.norm() * wet);
         }
         f
     }
@@ -580,11 +596,14 @@ impl<'a> Sys<'a> {
             }
             let i = self.n0 + li;
             let lay = self.lay;
-            // Only the seabed and a current profile make a node's own loads vary.
+            // Only the seabed, a current profile and the water surface (a point mass
+            // crossing it) make a node's own loads vary.
             let near_seabed = ri.z < self.seabed.z + 1.0;
             let profile = lay.node_point_drag[i] > 0.0
                 && lay.currents[lay.node_current[i] as usize].table.len() > 1;
-            if !(near_seabed || profile) {
+            let has_point = lay.node_point_displaced[i] > 0.0 || lay.node_point_drag[i] > 0.0;
+            let near_surface = has_point && ri.z.abs() < lay.node_point_radius[i] + 1.0;
+            if !(near_seabed || profile || near_surface) {
                 continue;
             }
             let h = 1e-6 * lay.node_tributary[i].max(1e-3);
@@ -600,6 +619,19 @@ impl<'a> Sys<'a> {
             }
             add(li, li, &kn);
         }
+    }
+
+    /// True when some node at `r` (block-local) is close enough to the mean water
+    /// level for the surface to change a load: within a diameter of its lines or the
+    /// radius of its point mass below it, or above it.
+    fn near_surface(&self, r: &[V]) -> bool {
+        let lay = self.lay;
+        let band = (self.e0..self.e1)
+            .map(|e| lay.line_types[lay.elem_line[e] as usize].diameter)
+            .fold(0.0f64, f64::max);
+        r.iter()
+            .enumerate()
+            .any(|(li, p)| p.z > -band.max(lay.node_point_radius[self.n0 + li]) - 1e-9)
     }
 
     /// Mean unstretched element length (1 m without elements).
@@ -785,7 +817,21 @@ impl<'a> Sys<'a> {
                 self.residual(&trial, &mut ft);
                 let (tmax, _, tmerit) = self.measure(&ft);
                 let ok = if pred > 0.0 && g0 > 0.0 {
-                    let rho = -self.energy_change(r, &dx, &ext, &own) / pred;
+                    // The external loads averaged over the step's two ends (trapezoid):
+                    // the buoyancy of what crosses the water surface changes along the
+                    // step, and its work must be counted to second order like the
+                    // elastic energy's, or steps near the surface are wrongly refused.
+                    // Blocks wholly under water keep the loads at `r`.
+                    let rho = if self.near_surface(r) || self.near_surface(&trial) {
+                        let (ext1, own1) = self.frozen_loads(&trial);
+                        let avg = |a: &[V], b: &[V]| -> Vec<V> {
+                            a.iter().zip(b).map(|(x, y)| (*x + *y) * 0.5).collect()
+                        };
+                        let (ext_m, own_m) = (avg(&ext, &ext1), avg(&own, &own1));
+                        -self.energy_change(r, &dx, &ext_m, &own_m) / pred
+                    } else {
+                        -self.energy_change(r, &dx, &ext, &own) / pred
+                    };
                     if rho > 1e-4 {
                         lambda *= (1.0 / 3.0f64).max(1.0 - (2.0 * rho - 1.0).powi(3));
                         lambda = lambda.max(LAMBDA_MIN);

@@ -52,6 +52,8 @@ struct Params {
     seabed_v_eps: R,
     // 1.0, read at run time: keeps the compiler from folding compensated sums.
     one: R,
+    // Gravity, m/s^2 (the dry weight of what is above the water surface).
+    gravity: R,
 }
 
 // The step within the current submission (a dynamic-offset uniform). Rust: StepInfo.
@@ -88,6 +90,8 @@ struct ElemParams {
     winch: u32,
     l0: R,
     l0_lo: R,
+    // The line's diameter, m (wetted_fraction).
+    diameter: R,
 }
 
 // One node; its incidence entries are inc[inc_start..inc_end]. `winch` is the winch
@@ -104,6 +108,12 @@ struct NodeParams {
     point_weight_z: R,
     point_drag: R,
     tributary: R,
+    // What a point mass loses out of the water: its added mass Ca rho V (kg), the
+    // mass of water it displaces rho V (kg), and how: the radius of the sphere of its
+    // volume (m, point_wetted_fraction).
+    point_added: R,
+    point_displaced: R,
+    point_radius: R,
 }
 
 // The variable element of one winch cable at one step (ALE-GLMF, crate::ale),
@@ -474,6 +484,43 @@ fn current_at(ci: u32, z: R) -> vec3<R> {
 
 // ---- Physics (twins of src/physics) ----
 
+// Fraction of a straight element of diameter `d` under water from the submergences
+// (surface elevation minus height, m) of its two nodes (physics::wetted_fraction):
+// the section's share `clamp(1 + s / d, 0, 1)` averaged along the element.
+fn wetted_fraction(sa: R, sb: R, d: R) -> R {
+    if sa >= R(0.0) && sb >= R(0.0) {
+        return R(1.0);
+    }
+    if sa <= -d && sb <= -d {
+        return R(0.0);
+    }
+    if d <= R(0.0) {
+        return (max(sa, R(0.0)) + max(sb, R(0.0))) / (abs(sa) + abs(sb));
+    }
+    let ua = R(1.0) + sa / d;
+    let ub = R(1.0) + sb / d;
+    let lo = min(ua, ub);
+    let hi = max(ua, ub);
+    if hi <= lo {
+        return clamp(lo, R(0.0), R(1.0));
+    }
+    let a = max(lo, R(0.0));
+    let b = min(hi, R(1.0));
+    let w0 = max(b - a, R(0.0));
+    let w1 = max(hi - max(lo, R(1.0)), R(0.0));
+    return (w0 * (R(0.5) * (a + b)) + w1) / (hi - lo);
+}
+
+// Fraction of a point mass's volume under water, the point taken as a sphere of
+// radius `radius` whose centre is submerged by `s` (physics::point_wetted_fraction).
+fn point_wetted_fraction(s: R, radius: R) -> R {
+    if radius <= R(0.0) {
+        return select(R(0.0), R(1.0), s >= R(0.0));
+    }
+    let x = clamp((s + radius) / (radius + radius), R(0.0), R(1.0));
+    return x * x * (R(3.0) - x - x);
+}
+
 // What an element contributes to its two nodes (physics::ElementLoads).
 struct Element {
     t: vec3<R>,
@@ -491,11 +538,19 @@ fn axial_force(c: LineParams, stretch: R, l0: R, t: vec3<R>, dv: vec3<R>) -> R {
     return c.ea * eps * k + c.ea_c * epsdot;
 }
 
-// The GLMF loads of an element with node-a-to-b vector `d` and stretch `|d| - l0`
-// (physics::glmf_element): tension with slack and damping, normal and tangential drag
-// on the relative current `u - (va + vb) / 2`, the water-acceleration load of `aw`,
-// weight less buoyancy.
+// The GLMF loads of an element with node-a-to-b vector `d` and stretch `|d| - l0`,
+// wholly under water (physics::glmf_element).
 fn glmf_element(c: LineParams, d: vec3<R>, stretch: R, va: vec3<R>, vb: vec3<R>, l0: R, u: vec3<R>, aw: vec3<R>) -> Element {
+    return glmf_element_wet(c, d, stretch, va, vb, l0, u, aw, R(1.0), R(0.0));
+}
+
+// The GLMF loads of an element of which the fraction `wet` is under water, in gravity
+// `g` (physics::glmf_element_wet): tension with slack and damping; normal and
+// tangential drag on the relative current `u - (va + vb) / 2`, the water-acceleration
+// load of `aw` and the normal added mass, each times `wet`; the weight less the
+// buoyancy of the wet share, `wet_weight_z - (1 - wet) rho A g` per length with
+// `rho A g = wet_weight_z + mass g`.
+fn glmf_element_wet(c: LineParams, d: vec3<R>, stretch: R, va: vec3<R>, vb: vec3<R>, l0: R, u: vec3<R>, aw: vec3<R>, wet: R, g: R) -> Element {
     let l = norm3(d);
     let t = d / l;
     let tension = axial_force(c, stretch, l0, t, vb - va);
@@ -503,12 +558,13 @@ fn glmf_element(c: LineParams, d: vec3<R>, stretch: R, va: vec3<R>, vb: vec3<R>,
     let vt = dot(t, vrel);
     let vn = vrel - t * vt;
     let awn = aw - t * dot(t, aw);
-    let drag_n = vn * (c.drag_n * l * norm3(vn));
-    let drag_t = t * (c.drag_t * l * abs(vt) * vt);
-    let fk = awn * (c.froude_krylov * l0);
-    let w = vec3<R>(R(0.0), R(0.0), c.wet_weight_z * l0);
+    let drag_n = vn * (c.drag_n * l * norm3(vn) * wet);
+    let drag_t = t * (c.drag_t * l * abs(vt) * vt * wet);
+    let fk = awn * (c.froude_krylov * l0 * wet);
+    let buoyancy_z = c.wet_weight_z + c.mass * g;
+    let w = vec3<R>(R(0.0), R(0.0), (c.wet_weight_z - (R(1.0) - wet) * buoyancy_z) * l0);
     let total = drag_n + drag_t + fk + w;
-    return Element(t, tension, total * R(0.5), c.mass * l0 * R(0.5), c.added_mass * l0 * R(0.5));
+    return Element(t, tension, total * R(0.5), c.mass * l0 * R(0.5), c.added_mass * l0 * R(0.5) * wet);
 }
 
 // Seabed contact on a node penetrating by `pen` (seabed z minus node z, m) with
@@ -659,6 +715,12 @@ fn constraint_target(c: u32, tau: R, k: u32) -> RouteState {
 // ---- One element and one node of a step, shared by the two-pass stages and the
 // fused kernel (each computes exactly this, only from different memory) ----
 
+// Depth of node state `s` (block origin height `oz`) under the water surface, m:
+// negative in air. Still water: the surface is z = 0.
+fn submergence(oz: R, s: NodeState) -> R {
+    return -(oz + (s.r_hi.z + s.r_lo.z));
+}
+
 // The GLMF loads of element `ep` (line `lp`, its block's origin height `oz`) from the
 // states `sa`, `sb` of its nodes a and b at step `k` of the submission (the row of
 // `payout` of a winch cable's variable element). CPU twin: cpu::stepper element_pass.
@@ -691,9 +753,10 @@ fn element_step(ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeSt
     }
     let zmid = oz + ((sa.r_hi.z + sb.r_hi.z) + (sa.r_lo.z + sb.r_lo.z)) * R(0.5);
     let u = current_at(ep.current, zmid);
-    // No waves yet: the water-acceleration load waits for a wave model.
+    // Still water: the surface is z = 0 and the water does not accelerate.
     let aw = vec3<R>(R(0.0), R(0.0), R(0.0));
-    let el = glmf_element(lp, d, stretch, sa.v.xyz, sb.v.xyz, l0, u, aw);
+    let wet = wetted_fraction(submergence(oz, sa), submergence(oz, sb), ep.diameter);
+    let el = glmf_element_wet(lp, d, stretch, sa.v.xyz, sb.v.xyz, l0, u, aw, wet, params.gravity);
     var tension = el.tension;
     if var_elem {
         tension = variable_element(ep, lp, py, d, sa.v.xyz, sb.v.xyz, tension);
@@ -743,9 +806,13 @@ struct NodeForce {
     m: Sym3,
 }
 
-// The start of node `nd`'s gather: its point mass and the point's weight.
-fn gather_begin(nd: NodeParams) -> NodeForce {
-    return NodeForce(vec3<R>(R(0.0), R(0.0), nd.point_weight_z), sym3_scalar(nd.point_mass));
+// The start of node `nd`'s gather (state `s`, block `blk`): its point mass and the
+// point's weight less buoyancy, less the added mass and buoyancy of the share of the
+// point out of the water (nothing under water: dry = 0).
+fn gather_begin(nd: NodeParams, s: NodeState, blk: BlockParams) -> NodeForce {
+    let dry = R(1.0) - point_wetted_fraction(submergence(blk.oz, s), nd.point_radius);
+    let wz = nd.point_weight_z - dry * (nd.point_displaced * params.gravity);
+    return NodeForce(vec3<R>(R(0.0), R(0.0), wz), sym3_scalar(nd.point_mass - dry * nd.point_added));
 }
 
 // Adds the loads `el` of the element of incidence entry `entry` (element * 2 + side).
@@ -764,8 +831,9 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
     let v = s.v.xyz;
     if nd.point_drag > R(0.0) {
         let z = blk.oz + (s.r_hi.z + s.r_lo.z);
+        let wet = point_wetted_fraction(submergence(blk.oz, s), nd.point_radius);
         let vr = current_at(nd.current, z) - v;
-        f += vr * (nd.point_drag * norm3(vr));
+        f += vr * (nd.point_drag * norm3(vr) * wet);
     }
     var trib = nd.tributary;
     if nd.winch != NO_WINCH {
@@ -788,12 +856,13 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
 // the incidence list from `elem_loads` (no atomics), point-mass weight and drag,
 // seabed contact.
 fn gather_node(i: u32, nd: NodeParams, s: NodeState, k: u32) -> NodeForce {
-    var nf = gather_begin(nd);
+    let blk = blocks[nd.block];
+    var nf = gather_begin(nd, s, blk);
     for (var j = nd.inc_start; j < nd.inc_end; j += 1u) {
         let entry = inc[j];
         nf = gather_add(nf, elem_loads[entry >> 1u], entry);
     }
-    return gather_end(i, nd, s, nf, blocks[nd.block], k);
+    return gather_end(i, nd, s, nf, blk, k);
 }
 
 // Acceleration of node `i`: free (mass block solve) or driven onto its route with

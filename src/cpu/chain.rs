@@ -15,11 +15,14 @@
 //!
 //! A test checks it against the general path (`tests/cpu/chain_kernel.rs`).
 
+use super::water::{node_water, BlockWaves, Water};
 use crate::ale::{mass_flow_forces, AleElem};
 use crate::math::V3;
 use crate::model::{Block, Current, Layout, NO_CONSTRAINT};
 use crate::options::{Scheme, SolverOptions};
-use crate::physics::{glmf_element, Coefs, ElementInput};
+use crate::physics::{
+    glmf_element_wet, point_wetted_fraction, wetted_fraction, Coefs, ElementInput,
+};
 use crate::step::{diverged, StepFailure};
 
 /// Per-block constants of a chain, built once.
@@ -36,6 +39,12 @@ pub(crate) struct ChainConsts {
     drag_t: Vec<f64>,
     /// Half the element's weight less buoyancy (z), N.
     half_wz: Vec<f64>,
+    /// Half the element's buoyancy `rho A g l0 / 2` (z), N, which its dry part loses.
+    half_bz: Vec<f64>,
+    /// Half the element's water-acceleration coefficient `(1 + Cm) rho A l0 / 2`, kg.
+    half_fk: Vec<f64>,
+    /// The element's diameter, m (its wetted fraction).
+    diameter: Vec<f64>,
     /// Current profile per element.
     current: Vec<u32>,
     /// Line type per element (for the ALE variable element, evaluated apart).
@@ -54,8 +63,12 @@ pub(crate) struct ChainConsts {
     mukl: Vec<f64>,
     /// `(node, route index)` of constrained nodes.
     constrained: Vec<(usize, usize)>,
-    /// `(node, 1/2 rho Cd A, current index)` of nodes with point drag.
-    point_drag: Vec<(usize, f64, usize)>,
+    /// `(node, 1/2 rho Cd A, current index, sphere radius)` of nodes with point drag.
+    point_drag: Vec<(usize, f64, usize, f64)>,
+    /// `(node, sphere radius, added mass, buoyancy, displaced mass)` of nodes whose
+    /// point mass has a volume (what it loses out of the water, and its
+    /// water-acceleration load `(1 + Ca) rho V a` in waves).
+    point_volume: Vec<(usize, f64, f64, f64, f64)>,
     /// Tributary length per node (seabed contact), m.
     trib: Vec<f64>,
     /// Seabed `K`, `C`, `mu` (zero without a seabed).
@@ -92,6 +105,11 @@ impl ChainConsts {
             c.drag_n.push(lc.drag_n);
             c.drag_t.push(lc.drag_t);
             c.half_wz.push(0.5 * lc.wet_weight_z * l0);
+            c.half_bz
+                .push(0.5 * (lc.wet_weight_z + lc.mass * env.gravity) * l0);
+            c.half_fk.push(0.5 * lc.froude_krylov * l0);
+            c.diameter
+                .push(lay.line_types[lay.elem_line[e] as usize].diameter);
             c.current.push(lay.elem_current[e]);
             c.line.push(lay.elem_line[e]);
             c.hm[k + 1] = 0.5 * lc.mass * l0;
@@ -120,8 +138,21 @@ impl ChainConsts {
                 c.constrained.push((li, k as usize));
             }
             if lay.node_point_drag[i] > 0.0 {
-                c.point_drag
-                    .push((li, lay.node_point_drag[i], lay.node_current[i] as usize));
+                c.point_drag.push((
+                    li,
+                    lay.node_point_drag[i],
+                    lay.node_current[i] as usize,
+                    lay.node_point_radius[i],
+                ));
+            }
+            if lay.node_point_radius[i] > 0.0 {
+                c.point_volume.push((
+                    li,
+                    lay.node_point_radius[i],
+                    lay.node_point_added[i],
+                    lay.node_point_displaced[i] * env.gravity,
+                    lay.node_point_displaced[i],
+                ));
             }
         }
         if has_seabed {
@@ -172,16 +203,24 @@ pub(crate) struct ChainScratch {
 /// What one evaluation writes.
 #[derive(Default)]
 struct Work {
-    // Per-element current when not uniform.
+    // Per-element water velocity (current, plus waves) and wave acceleration.
     u: [Vec<f64>; 3],
-    // Padded element results.
+    aw: [Vec<f64>; 3],
+    // Surface elevation over each node, m (zero in still water).
+    eta: Vec<f64>,
+    // Padded element results; `haw` the half normal added masses times the elements'
+    // wetted fractions.
     t: [Vec<f64>; 3],
     ten: Vec<f64>,
     f: [Vec<f64>; 3],
+    haw: Vec<f64>,
+    // Per node: point mass and point weight less buoyancy, less what a point mass
+    // partly out of the water loses.
+    pm: Vec<f64>,
+    pwz: Vec<f64>,
     // Working copies of the half masses (padded) and seabed constants per node, which
     // the ALE variable element changes every stage.
     hm: Vec<f64>,
-    ha: Vec<f64>,
     kl: Vec<f64>,
     cl: Vec<f64>,
     mukl: Vec<f64>,
@@ -196,18 +235,22 @@ fn resize(v: &mut [Vec<f64>], n: usize) {
 
 /// Element pass over SoA positions and velocities `p`, currents `u`.
 #[inline(always)]
-fn elements(
+#[allow(clippy::too_many_arguments)]
+fn elements<const WAVES: bool>(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
+    aw: &[Vec<f64>; 3],
+    eta: &[f64],
     t: &mut [Vec<f64>; 3],
     ten: &mut [f64],
     f: &mut [Vec<f64>; 3],
+    haw: &mut [f64],
 ) {
     let ne = c.l0.len();
     let [tx, ty, tz] = t;
     let [fx, fy, fz] = f;
-    element_kernel(
+    element_kernel::<WAVES>(
         &p[0][..ne + 1],
         &p[1][..ne + 1],
         &p[2][..ne + 1],
@@ -217,6 +260,10 @@ fn elements(
         &u[0][..ne],
         &u[1][..ne],
         &u[2][..ne],
+        &aw[0][..ne],
+        &aw[1][..ne],
+        &aw[2][..ne],
+        &eta[..ne + 1],
         c,
         &mut tx[1..ne + 1],
         &mut ty[1..ne + 1],
@@ -225,6 +272,7 @@ fn elements(
         &mut fx[1..ne + 1],
         &mut fy[1..ne + 1],
         &mut fz[1..ne + 1],
+        &mut haw[1..ne + 1],
     );
 }
 
@@ -233,7 +281,7 @@ fn elements(
 /// reached through one `&mut [Vec<f64>; 3]` would need run-time overlap checks).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn element_kernel(
+fn element_kernel<const WAVES: bool>(
     x: &[f64],
     y: &[f64],
     z: &[f64],
@@ -243,6 +291,10 @@ fn element_kernel(
     ux: &[f64],
     uy: &[f64],
     uz: &[f64],
+    awx: &[f64],
+    awy: &[f64],
+    awz: &[f64],
+    eta: &[f64],
     c: &ChainConsts,
     tx: &mut [f64],
     ty: &mut [f64],
@@ -251,6 +303,7 @@ fn element_kernel(
     fx: &mut [f64],
     fy: &mut [f64],
     fz: &mut [f64],
+    haw: &mut [f64],
 ) {
     let ne = tx.len();
     let (x, y, z, vx, vy, vz) = (
@@ -261,7 +314,11 @@ fn element_kernel(
         &vy[..ne + 1],
         &vz[..ne + 1],
     );
-    let (ux, uy, uz) = (&ux[..ne], &uy[..ne], &uz[..ne]);
+    let (ux, uy, uz, eta) = (&ux[..ne], &uy[..ne], &uz[..ne], &eta[..ne + 1]);
+    let haw = &mut haw[..ne];
+    let (hb, ha) = (&c.half_bz[..ne], &c.ha[1..ne + 1]);
+    let (awx, awy, awz, hfk) = (&awx[..ne], &awy[..ne], &awz[..ne], &c.half_fk[..ne]);
+    let diam = &c.diameter[..ne];
     let (ty, tz, ten, fx, fy, fz) = (
         &mut ty[..ne],
         &mut tz[..ne],
@@ -289,12 +346,23 @@ fn element_kernel(
         let rz = uz[k] - 0.5 * (vz[k] + vz[k + 1]);
         let vt = ex * rx + ey * ry + ez * rz;
         let (nx, ny, nz) = (rx - ex * vt, ry - ey * vt, rz - ez * vt);
-        let kn = dn[k] * l * (nx * nx + ny * ny + nz * nz).sqrt();
-        let kt = dt[k] * l * vt.abs() * vt;
+        // Water terms times the wetted fraction; the dry part loses its buoyancy.
+        let wet = wetted_fraction(eta[k] - z[k], eta[k + 1] - z[k + 1], diam[k]);
+        let kn = dn[k] * l * (nx * nx + ny * ny + nz * nz).sqrt() * wet;
+        let kt = dt[k] * l * vt.abs() * vt * wet;
         // Half of drag, plus half the weight less buoyancy (no water acceleration yet).
         fx[k] = 0.5 * (nx * kn + ex * kt);
         fy[k] = 0.5 * (ny * kn + ey * kt);
-        fz[k] = 0.5 * (nz * kn + ez * kt) + hw[k];
+        fz[k] = 0.5 * (nz * kn + ez * kt) + (hw[k] - (1.0 - wet) * hb[k]);
+        if WAVES {
+            // Froude-Krylov and added mass on the normal wave acceleration P a_w.
+            let an = ex * awx[k] + ey * awy[k] + ez * awz[k];
+            let kf = hfk[k] * wet;
+            fx[k] += kf * (awx[k] - ex * an);
+            fy[k] += kf * (awy[k] - ey * an);
+            fz[k] += kf * (awz[k] - ez * an);
+        }
+        haw[k] = ha[k] * wet;
         tx[k] = ex;
         ty[k] = ey;
         tz[k] = ez;
@@ -340,12 +408,12 @@ fn nodes<const FRICTION: bool>(
 ) {
     let [ax, ay, az] = a;
     node_kernel::<FRICTION>(
-        c, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2], m.hm,
-        m.ha, m.kl, m.cl, m.mukl, ax, ay, az,
+        c, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2], m.pm,
+        m.pwz, m.hm, m.ha, m.kl, m.cl, m.mukl, ax, ay, az,
     );
     // The solve is linear: a node's extra force F adds M^-1 F to its acceleration.
     let add = |a: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
-        let s = c.pm[i] + m.hm[i] + m.hm[i + 1] + m.ha[i] + m.ha[i + 1];
+        let s = m.pm[i] + m.hm[i] + m.hm[i + 1] + m.ha[i] + m.ha[i + 1];
         let d = solve_mass(
             s,
             m.ha[i],
@@ -376,13 +444,26 @@ fn nodes<const FRICTION: bool>(
             add(a, ae.w, fw.to_f64());
         }
     }
-    // Point-mass drag.
-    for &(i, pd, ci) in &c.point_drag {
+    // Point-mass drag, on the wet share of the point.
+    for &(i, pd, ci, radius) in &c.point_drag {
         let zi = p[2][i];
-        let u = lay.currents[ci].at::<f64>(zi).to_f64();
+        let wet = point_wetted_fraction(m.eta[i] - zi, radius);
+        let mut u = lay.currents[ci].at::<f64>(zi).to_f64();
+        if !m.w.is_empty() {
+            let (_, uw, _) = node_water(m.w, i);
+            u = [u[0] + uw[0], u[1] + uw[1], u[2] + uw[2]];
+        }
         let r = [u[0] - p[3][i], u[1] - p[4][i], u[2] - p[5][i]];
-        let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+        let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt() * wet;
         add(a, i, [r[0] * k, r[1] * k, r[2] * k]);
+    }
+    // Waves: the water-acceleration load (1 + Ca) rho V a of the wet share of points.
+    if !m.w.is_empty() {
+        for &(i, radius, added, _, displaced) in &c.point_volume {
+            let (_, _, aw) = node_water(m.w, i);
+            let k = (displaced + added) * point_wetted_fraction(m.eta[i] - p[2][i], radius);
+            add(a, i, [aw[0] * k, aw[1] * k, aw[2] * k]);
+        }
     }
     // Constrained nodes take the Baumgarte acceleration of their route.
     let bg = opts.baumgarte;
@@ -410,6 +491,8 @@ fn node_kernel<const FRICTION: bool>(
     fx: &[f64],
     fy: &[f64],
     fz: &[f64],
+    pm: &[f64],
+    pwz: &[f64],
     hm: &[f64],
     ha: &[f64],
     kl: &[f64],
@@ -424,7 +507,7 @@ fn node_kernel<const FRICTION: bool>(
     let (tx, ty, tz, tn) = (&tx[..n + 1], &ty[..n + 1], &tz[..n + 1], &tn[..n + 1]);
     let (fx, fy, fz) = (&fx[..n + 1], &fy[..n + 1], &fz[..n + 1]);
     let (hm, ha) = (&hm[..n + 1], &ha[..n + 1]);
-    let (pm, pwz, kl, cl, mukl) = (&c.pm[..n], &c.pwz[..n], &kl[..n], &cl[..n], &mukl[..n]);
+    let (pm, pwz, kl, cl, mukl) = (&pm[..n], &pwz[..n], &kl[..n], &cl[..n], &mukl[..n]);
     let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
     let (zb, v_eps) = (c.zb, c.v_eps);
     for i in 0..n {
@@ -479,9 +562,16 @@ fn xpvh(out: &mut [f64], x: &[f64], v: &[f64], h: f64) {
     }
 }
 
-/// The per-stage half masses and seabed constants (the ALE variable element changes
-/// them; otherwise they are the block's constants).
+/// The per-stage masses and seabed constants: the point masses and weights and the
+/// added masses follow the water surface, the ALE variable element changes its half
+/// masses and its nodes' seabed constants; otherwise they are the block's constants.
 struct Masses<'a> {
+    /// Surface elevation over each node, m.
+    eta: &'a [f64],
+    /// Per-node water values in waves (`cpu::water`), empty in still water.
+    w: &'a [f64],
+    pm: &'a [f64],
+    pwz: &'a [f64],
     hm: &'a [f64],
     ha: &'a [f64],
     kl: &'a [f64],
@@ -504,6 +594,8 @@ fn ale_patch(
     time: f64,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
+    aw: &[Vec<f64>; 3],
+    eta: &[f64],
     t: &mut [Vec<f64>; 3],
     ten: &mut [f64],
     f: &mut [Vec<f64>; 3],
@@ -533,9 +625,10 @@ fn ale_patch(
                 vb,
                 l0,
                 current: V3::new(u[0][k], u[1][k], u[2][k]),
-                water_accel: V3::zero(),
+                water_accel: V3::new(aw[0][k], aw[1][k], aw[2][k]),
             };
-            let mut el = glmf_element(&lc, &input);
+            let wet = wetted_fraction(eta[k] - ra.z, eta[k + 1] - rb.z, c.diameter[k]);
+            let mut el = glmf_element_wet(&lc, &input, wet, lay.env.gravity);
             if pay.rate != 0.0 {
                 // epsdot = (t . dv - (l / l0) Ldot) / l0 (crate::ale).
                 let l = (rb - ra).norm();
@@ -558,6 +651,18 @@ fn ale_patch(
     }
 }
 
+/// The point masses and weights of the nodes whose point has a volume, less what the
+/// share of it out of the water loses (its added mass and buoyancy). Under water
+/// `dry` is 0 and the block's constants stand bit for bit.
+#[inline(always)]
+fn point_surface(c: &ChainConsts, p: &[Vec<f64>; 6], eta: &[f64], pm: &mut [f64], pwz: &mut [f64]) {
+    for &(i, radius, added, buoyancy, _) in &c.point_volume {
+        let dry = 1.0 - point_wetted_fraction(eta[i] - p[2][i], radius);
+        pm[i] = c.pm[i] - dry * added;
+        pwz[i] = c.pwz[i] - dry * buoyancy;
+    }
+}
+
 /// Fills the per-element current (midpoint height) when the block's is not uniform.
 #[inline(always)]
 fn currents(c: &ChainConsts, currents: &[Current], p: &[Vec<f64>; 6], u: &mut [Vec<f64>; 3]) {
@@ -574,6 +679,24 @@ fn currents(c: &ChainConsts, currents: &[Current], p: &[Vec<f64>; 6], u: &mut [V
             .to_f64();
         for q in 0..3 {
             u[q][k] = v[q];
+        }
+    }
+}
+
+/// Waves: adds the mean of each element's two nodes' wave velocities to its water
+/// velocity `u`, writes the mean of their wave accelerations to `aw`, and each node's
+/// surface elevation to `eta`, from the per-node water values `w`.
+#[inline(always)]
+fn add_waves(ne: usize, w: &[f64], u: &mut [Vec<f64>; 3], aw: &mut [Vec<f64>; 3], eta: &mut [f64]) {
+    for (i, e) in eta.iter_mut().enumerate() {
+        *e = node_water(w, i).0;
+    }
+    for k in 0..ne {
+        let (_, ua, aa) = node_water(w, k);
+        let (_, ub, ab) = node_water(w, k + 1);
+        for q in 0..3 {
+            u[q][k] += 0.5 * (ua[q] + ub[q]);
+            aw[q][k] = 0.5 * (aa[q] + ab[q]);
         }
     }
 }
@@ -615,6 +738,8 @@ pub(crate) fn advance_chain(
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
     step0: u64,
     dt: f64,
     nsteps: u64,
@@ -624,11 +749,15 @@ pub(crate) fn advance_chain(
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above.
             return unsafe {
-                advance_chain_avx2(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+                advance_chain_avx2(
+                    c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+                )
             };
         }
     }
-    advance_chain_body(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+    advance_chain_body(
+        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+    )
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -643,11 +772,15 @@ unsafe fn advance_chain_avx2(
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
     step0: u64,
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
-    advance_chain_body(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+    advance_chain_body(
+        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+    )
 }
 
 #[inline(always)]
@@ -661,14 +794,20 @@ fn advance_chain_body(
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
     step0: u64,
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
     if c.friction {
-        advance_chain_scheme::<true>(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+        advance_chain_scheme::<true>(
+            c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+        )
     } else {
-        advance_chain_scheme::<false>(c, lay, opts, sc, ale, r, v, n0, step0, dt, nsteps)
+        advance_chain_scheme::<false>(
+            c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+        )
     }
 }
 
@@ -683,12 +822,18 @@ fn advance_chain_scheme<const FRICTION: bool>(
     r: &mut [crate::math::V3<f64>],
     v: &mut [crate::math::V3<f64>],
     n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
     step0: u64,
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
     let n = c.n;
     let ne = c.l0.len();
+    let mut waves = waves;
+    if waves.is_none() {
+        wbuf.clear();
+    }
     resize(&mut sc.x, n);
     resize(&mut sc.a, n);
     resize(&mut sc.w.t, ne + 2);
@@ -696,6 +841,13 @@ fn advance_chain_scheme<const FRICTION: bool>(
     sc.w.ten.clear();
     sc.w.ten.resize(ne + 2, 0.0);
     resize(&mut sc.w.u, ne);
+    resize(&mut sc.w.aw, ne);
+    sc.w.eta.clear();
+    sc.w.eta.resize(n, 0.0);
+    sc.w.haw.clear();
+    sc.w.haw.resize(ne + 2, 0.0);
+    sc.w.pm.clone_from(&c.pm);
+    sc.w.pwz.clone_from(&c.pwz);
     if opts.scheme != Scheme::Symplectic {
         resize(&mut sc.xs, n);
         resize(&mut sc.x0, n);
@@ -711,7 +863,6 @@ fn advance_chain_scheme<const FRICTION: bool>(
     }
     if !ale.is_empty() {
         sc.w.hm.clone_from(&c.hm);
-        sc.w.ha.clone_from(&c.ha);
         sc.w.kl.clone_from(&c.kl);
         sc.w.cl.clone_from(&c.cl);
         sc.w.mukl.clone_from(&c.mukl);
@@ -735,36 +886,65 @@ fn advance_chain_scheme<const FRICTION: bool>(
         ale: &[AleElem],
         state: &[Vec<f64>; 6],
         time: f64,
+        waves: &mut Option<&mut BlockWaves>,
+        wbuf: &mut Water,
         sc: &mut Work,
         a: &mut [Vec<f64>; 3],
     ) {
         let Work {
             u,
+            aw,
+            eta,
             t,
             ten,
             f,
+            haw,
+            pm,
+            pwz,
             hm,
-            ha,
             kl,
             cl,
             mukl,
         } = sc;
         currents(c, &lay.currents, state, u);
-        elements(c, state, u, t, ten, f);
+        if let Some(wb) = waves.as_deref_mut() {
+            let st = |i: usize| {
+                (
+                    [state[0][i], state[1][i], state[2][i]],
+                    [state[3][i], state[4][i], state[5][i]],
+                )
+            };
+            wb.fill(time, c.n, st, wbuf);
+            add_waves(c.l0.len(), wbuf, u, aw, eta);
+            elements::<true>(c, state, u, aw, eta, t, ten, f, haw);
+        } else {
+            elements::<false>(c, state, u, aw, eta, t, ten, f, haw);
+        }
+        point_surface(c, state, eta, pm, pwz);
         if ale.is_empty() {
             let m = Masses {
+                eta,
+                w: wbuf,
+                pm,
+                pwz,
                 hm: &c.hm,
-                ha: &c.ha,
+                ha: haw,
                 kl: &c.kl,
                 cl: &c.cl,
                 mukl: &c.mukl,
             };
             nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, a);
         } else {
-            ale_patch(c, lay, ale, time, state, u, t, ten, f, hm, ha, kl, cl, mukl);
+            ale_patch(
+                c, lay, ale, time, state, u, aw, eta, t, ten, f, hm, haw, kl, cl, mukl,
+            );
             let m = Masses {
+                eta,
+                w: wbuf,
+                pm,
+                pwz,
                 hm,
-                ha,
+                ha: haw,
                 kl,
                 cl,
                 mukl,
@@ -777,7 +957,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
         let time = (step0 + k) as f64 * dt;
         match opts.scheme {
             Scheme::Symplectic => {
-                eval::<FRICTION>(c, lay, opts, ale, x, time, wk, a);
+                eval::<FRICTION>(c, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
                 let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
                     axpy(&mut vel[q][..n], &a[q], dt);
@@ -786,12 +966,12 @@ fn advance_chain_scheme<const FRICTION: bool>(
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
-                eval::<FRICTION>(c, lay, opts, ale, x, time, wk, a);
+                eval::<FRICTION>(c, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
                 for q in 0..3 {
                     xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
                     xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
                 }
-                eval::<FRICTION>(c, lay, opts, ale, xs, time + h, wk, a);
+                eval::<FRICTION>(c, lay, opts, ale, xs, time + h, &mut waves, wbuf, wk, a);
                 let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
                     axpy(&mut pos[q][..n], &xs[3 + q], dt);
@@ -810,7 +990,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
                         .into_iter()
                         .enumerate()
                 {
-                    eval::<FRICTION>(c, lay, opts, ale, xs, time + tau, wk, a);
+                    eval::<FRICTION>(c, lay, opts, ale, xs, time + tau, &mut waves, wbuf, wk, a);
                     let (spos, svel) = xs.split_at_mut(3);
                     for q in 0..3 {
                         axpy(&mut sum[q][..n], &svel[q], w);

@@ -18,6 +18,7 @@
 
 mod chain;
 mod stepper;
+mod water;
 
 pub use crate::step::{Evaluation, StepFailure, WinchStatus};
 pub use stepper::CpuSolver;

@@ -1,13 +1,20 @@
 //! Passes and schemes of the CPU reference path (see the module doc of `cpu`).
 
 use super::chain::{advance_chain, ChainConsts, ChainScratch};
+use super::water::{node_water, BlockWaves, Water};
 use crate::ale::{mass_flow_forces, AleElem, AleState, Winch};
 use crate::error::Error;
 use crate::math::{Sym3, V3};
 use crate::model::{Block, Layout, ModelDef, Route, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
-use crate::physics::{glmf_element, seabed_force, Coefs, ElementInput, ElementLoads, SeabedCoefs};
+use crate::physics::{
+    glmf_element_wet, point_wetted_fraction, seabed_force, wetted_fraction, Coefs, ElementInput,
+    ElementLoads, SeabedCoefs,
+};
+use crate::sea::cache::{evaluate_nodes, CACHE_STRIDE};
+use crate::sea::kinematics::WaveField;
+use crate::sea::SeaState;
 use crate::step::{blow_up, Evaluation, StepFailure, WinchStatus};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -33,6 +40,8 @@ struct Ctx<'a> {
     elem_in_cable: &'a [u32],
     /// Per current profile: its value when uniform (looked up without a table walk).
     uniform_current: &'a [Option<V>],
+    /// Gravity, m/s^2 (the dry weight of what is above the water surface).
+    gravity: f64,
 }
 
 /// The f64 reference solver: layout, state, and scratch.
@@ -65,6 +74,15 @@ pub struct CpuSolver {
     ale: Option<Box<AleState>>,
     /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
     node_steps: u64,
+    /// The sea state (`None`: still water).
+    sea: Option<SeaState>,
+    /// Its field, for exact evaluation at output times.
+    wave_field: Option<WaveField>,
+    /// Per block: its wave kinematics cache (empty in still water).
+    wave_blocks: Vec<BlockWaves>,
+    /// Evaluate the waves' component sum at every stage instead of interpolating the
+    /// kinematics cache (the reference the cache is tested against; slow).
+    exact_waves: bool,
 }
 
 impl CpuSolver {
@@ -110,6 +128,10 @@ impl CpuSolver {
                 .0,
             ale: None,
             node_steps: 0,
+            sea: None,
+            wave_field: None,
+            wave_blocks: Vec::new(),
+            exact_waves: false,
         };
         let r = positions.iter().map(|p| V::from_f64(*p)).collect();
         let v = vec![V::zero(); positions.len()];
@@ -157,6 +179,50 @@ impl CpuSolver {
         Ok(s)
     }
 
+    /// Runs in the sea state `sea` from now on (still water when it has no
+    /// components): water velocity = current + wave velocity, the wave acceleration in
+    /// the water-acceleration loads, the surface elevation in the wetted fractions.
+    /// With `exact`, the component sum is evaluated at every node at every stage
+    /// instead of through the kinematics cache (`sea::cache`).
+    pub fn set_sea(&mut self, sea: &SeaState, exact: bool) {
+        self.exact_waves = exact;
+        if sea.is_still() {
+            self.sea = None;
+            self.wave_field = None;
+        } else {
+            self.sea = Some(sea.clone());
+            self.wave_field = Some(WaveField::new(sea));
+        }
+        self.install_waves();
+    }
+
+    /// One wave cache per block (none in still water).
+    fn install_waves(&mut self) {
+        self.wave_blocks = match &self.sea {
+            None => Vec::new(),
+            Some(sea) => self
+                .layout
+                .blocks
+                .iter()
+                .map(|b| {
+                    BlockWaves::new(sea, (b.node_end - b.node_start) as usize, self.exact_waves)
+                })
+                .collect(),
+        };
+    }
+
+    /// The exact water values of nodes `n0..n1` at the current time (empty in still
+    /// water), for evaluations at output times.
+    fn water_now(&self, n0: usize, n1: usize) -> Water {
+        let Some(field) = &self.wave_field else {
+            return Water::new();
+        };
+        let pos: Vec<f64> = self.r[n0..n1].iter().flat_map(|r| r.to_f64()).collect();
+        let mut out = vec![0.0; (n1 - n0) * CACHE_STRIDE];
+        evaluate_nodes(field, &pos, self.t, &mut out);
+        out
+    }
+
     /// Takes `layout` with state `r`, `v` (packed order) and rebuilds what depends on it.
     fn install(&mut self, layout: Layout, r: Vec<V>, v: Vec<V>) {
         self.install_state(layout, r, v);
@@ -184,6 +250,8 @@ impl CpuSolver {
         self.r = r;
         self.v = v;
         self.layout = layout;
+        // A remesh changes node counts: the caches restart (evaluated afresh).
+        self.install_waves();
     }
 
     /// [`Self::install`] after a remesh that changed the meshes of `changed` cables
@@ -324,6 +392,7 @@ impl CpuSolver {
             opts: self.opts,
             elem_in_cable: &self.elem_in_cable,
             uniform_current: &self.uniform_current,
+            gravity: self.layout.env.gravity,
         }
     }
 
@@ -341,6 +410,7 @@ impl CpuSolver {
             opts: self.opts,
             elem_in_cable: &self.elem_in_cable,
             uniform_current: &self.uniform_current,
+            gravity: self.layout.env.gravity,
         };
         let blocks = &self.layout.blocks;
         let chain_consts = &self.chain_consts;
@@ -358,6 +428,7 @@ impl CpuSolver {
                     && self.opts.scheme == Scheme::Symplectic
                     && self.opts.formulation == Formulation::Glmf
                     && ale_of(ale_state, bi).is_empty()
+                    && self.sea.is_none()
             })
             .collect();
         // Split the state into disjoint per-chunk slices.
@@ -369,6 +440,7 @@ impl CpuSolver {
                 &mut self.scratch[..],
                 &mut self.elems[..],
             );
+            let mut wb = &mut self.wave_blocks[..];
             for ch in &self.chunks {
                 let (b0, b1) = (blocks[ch.start], blocks[ch.end - 1]);
                 let nn = (b1.node_end - b0.node_start) as usize;
@@ -377,7 +449,9 @@ impl CpuSolver {
                 let (v1, v2) = v.split_at_mut(nn);
                 let (s1, s2) = s.split_at_mut(nn);
                 let (e1, e2) = el.split_at_mut(ne);
-                parts.push((ch.clone(), r1, v1, s1, e1));
+                let (w1, w2) = wb.split_at_mut(if wb.is_empty() { 0 } else { ch.len() });
+                parts.push((ch.clone(), r1, v1, s1, e1, w1));
+                wb = w2;
                 r = r2;
                 v = v2;
                 s = s2;
@@ -385,12 +459,15 @@ impl CpuSolver {
             }
         }
         let result: Result<(), StepFailure> =
-            parts.into_par_iter().try_for_each(|(ch, r, v, s, el)| {
+            parts.into_par_iter().try_for_each(|(ch, r, v, s, el, wb)| {
                 let base = blocks[ch.start];
                 // Stage buffers of the Runge-Kutta schemes, reused across the chunk's blocks.
                 let (mut rs, mut vs) = (Vec::new(), Vec::new());
+                let mut wbuf = Water::new();
+                let mut wb = wb.iter_mut();
                 let mut chain_scratch = ChainScratch::default();
                 for (bi, b) in blocks[ch.clone()].iter().enumerate() {
+                    let waves = wb.next();
                     if threaded[ch.start + bi] {
                         continue;
                     }
@@ -409,6 +486,8 @@ impl CpuSolver {
                             &mut r[n0..n1],
                             &mut v[n0..n1],
                             b.node_start as usize,
+                            waves,
+                            &mut wbuf,
                             step0,
                             dt,
                             nsteps,
@@ -423,6 +502,8 @@ impl CpuSolver {
                             &mut el[e0..e1],
                             &mut rs,
                             &mut vs,
+                            waves,
+                            &mut wbuf,
                             step0,
                             dt,
                             nsteps,
@@ -502,6 +583,7 @@ impl CpuSolver {
             let (n0, n1) = (b.node_start as usize, b.node_end as usize);
             let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
             let topo = GeneralTopo { lay, n0, e0 };
+            let w = self.water_now(n0, n1);
             element_pass(
                 &ctx,
                 &topo,
@@ -510,6 +592,7 @@ impl CpuSolver {
                 &self.r[n0..n1],
                 &self.v[n0..n1],
                 self.t,
+                &w,
                 &mut elems[e0..e1],
             )
             .map_err(|f| self.name_failure(f))?;
@@ -523,6 +606,7 @@ impl CpuSolver {
                     &self.r[n0..n1],
                     &self.v[n0..n1],
                     self.t,
+                    &w,
                     &elems[e0..e1],
                 );
                 ev.acc[i] = a.to_f64();
@@ -559,6 +643,7 @@ impl CpuSolver {
                 ..ctx
             };
             let topo = GeneralTopo { lay, n0, e0 };
+            let w = self.water_now(n0, n1);
             let _ = element_pass(
                 &ctx,
                 &topo,
@@ -567,10 +652,16 @@ impl CpuSolver {
                 &self.r[n0..n1],
                 &self.v[n0..n1],
                 self.t,
+                &w,
                 &mut elems[e0..e1],
             );
             for i in n0..n1 {
-                let m = node_mass(&ctx, &topo, b, i - n0, &elems[e0..e1]);
+                let eta = if w.is_empty() {
+                    0.0
+                } else {
+                    node_water(&w, i - n0).0
+                };
+                let m = node_mass(&ctx, &topo, b, i - n0, self.r[i], eta, &elems[e0..e1]);
                 let v = self.v[i];
                 ke += 0.5 * v.dot(m.mul_vec(v));
             }
@@ -736,7 +827,7 @@ impl<'l> Topo for GeneralTopo<'l> {
     }
 }
 
-/// Block-local input of element `k`.
+/// Block-local input of element `k`, and the fraction of it under water.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn element_input<T: Topo>(
@@ -744,10 +835,12 @@ fn element_input<T: Topo>(
     topo: &T,
     r: &[V],
     v: &[V],
+    w: &[f64],
     k: usize,
     l0: f64,
     current: u32,
-) -> ElementInput<f64> {
+    diameter: f64,
+) -> (ElementInput<f64>, f64) {
     let (a, bn) = topo.ends(k);
     let (ra, rb) = (r[a], r[bn]);
     let ci = current as usize;
@@ -755,16 +848,42 @@ fn element_input<T: Topo>(
         Some(u) => u,
         None => ctx.lay.currents[ci].at(0.5 * (ra.z + rb.z)),
     };
-    // No waves yet: the water-acceleration load waits for a wave model.
-    ElementInput {
+    if w.is_empty() {
+        // Still water: the surface is z = 0 and the water does not accelerate.
+        let wet = wetted_fraction(-ra.z, -rb.z, diameter);
+        let inp = ElementInput {
+            ra,
+            rb,
+            va: v[a],
+            vb: v[bn],
+            l0,
+            current,
+            water_accel: V::zero(),
+        };
+        return (inp, wet);
+    }
+    // Waves: the mean of the two nodes' wave velocity and acceleration at the
+    // midpoint, the surface over each node for the wetted fraction.
+    let (eta_a, ua, aa) = node_water(w, a);
+    let (eta_b, ub, ab) = node_water(w, bn);
+    let mid = |p: [f64; 3], q: [f64; 3]| {
+        V::new(
+            0.5 * (p[0] + q[0]),
+            0.5 * (p[1] + q[1]),
+            0.5 * (p[2] + q[2]),
+        )
+    };
+    let wet = wetted_fraction(eta_a - ra.z, eta_b - rb.z, diameter);
+    let inp = ElementInput {
         ra,
         rb,
         va: v[a],
         vb: v[bn],
         l0,
-        current,
-        water_accel: V::zero(),
-    }
+        current: current + mid(ua, ub),
+        water_accel: mid(aa, ab),
+    };
+    (inp, wet)
 }
 
 /// Pass 1 over one block: element loads. `r`, `v`, `out` are block-local slices.
@@ -778,6 +897,7 @@ fn element_pass<T: Topo>(
     r: &[V],
     v: &[V],
     t: f64,
+    w: &[f64],
     out: &mut [ElementLoads<f64>],
 ) -> Result<(), StepFailure> {
     let lay = ctx.lay;
@@ -786,13 +906,12 @@ fn element_pass<T: Topo>(
     let l0s = &lay.elem_l0[e0..e0 + n_el];
     let lines = &lay.elem_line[e0..e0 + n_el];
     let curs = &lay.elem_current[e0..e0 + n_el];
+    let diam = |k: usize| lay.line_types[lines[k] as usize].diameter;
     match ctx.opts.formulation {
         Formulation::Glmf => {
             for (k, o) in out.iter_mut().enumerate() {
-                *o = glmf_element(
-                    &ctx.coefs[lines[k] as usize],
-                    &element_input(ctx, topo, r, v, k, l0s[k], curs[k]),
-                );
+                let (inp, wet) = element_input(ctx, topo, r, v, w, k, l0s[k], curs[k], diam(k));
+                *o = glmf_element_wet(&ctx.coefs[lines[k] as usize], &inp, wet, ctx.gravity);
             }
             // Winch cables: the variable element at this stage's time.
             for ae in ale {
@@ -800,7 +919,8 @@ fn element_pass<T: Topo>(
                 let pay = ae.sched.eval(t);
                 let l0 = ae.l0(pay.dl);
                 let c = &ctx.coefs[lines[k] as usize];
-                out[k] = glmf_element(c, &element_input(ctx, topo, r, v, k, l0, curs[k]));
+                let (inp, wet) = element_input(ctx, topo, r, v, w, k, l0, curs[k], diam(k));
+                out[k] = glmf_element_wet(c, &inp, wet, ctx.gravity);
                 if pay.rate != 0.0 {
                     // Internal damping acts on the material strain rate, and l0 changes:
                     // epsdot = (t . dv - (l / l0) Ldot) / l0 (crate::ale).
@@ -814,7 +934,9 @@ fn element_pass<T: Topo>(
             let n0 = b.node_start as usize;
             for (k, o) in out.iter_mut().enumerate() {
                 let e = e0 + k;
-                let inp = element_input(ctx, topo, r, v, k, l0s[k], curs[k]);
+                // The element frames are the older formulations, compared in still
+                // water: they take the element wholly submerged.
+                let (inp, _) = element_input(ctx, topo, r, v, w, k, l0s[k], curs[k], diam(k));
                 let cable = &lay.cables[lay.elem_cable[e] as usize];
                 let j = ctx.elem_in_cable[e] as usize;
                 let prev = (j > 0).then(|| r[cable.nodes[j - 1] as usize - n0]);
@@ -834,17 +956,22 @@ fn element_pass<T: Topo>(
     Ok(())
 }
 
-/// The node's mass block: point mass, half masses and half normal added masses.
+/// The node's mass block at position `r` under surface elevation `eta`: point mass,
+/// half masses and half normal added masses.
 #[inline(always)]
 fn node_mass<T: Topo>(
     ctx: &Ctx,
     topo: &T,
     b: &Block,
     li: usize,
+    r: V,
+    eta: f64,
     elems: &[ElementLoads<f64>],
 ) -> Sym3<f64> {
     let i = b.node_start as usize + li;
-    let mut m = Sym3::scalar(ctx.lay.node_point_mass[i]);
+    let lay = ctx.lay;
+    let dry = 1.0 - point_wetted_fraction(eta - r.z, lay.node_point_radius[i]);
+    let mut m = Sym3::scalar(lay.node_point_mass[i] - dry * lay.node_point_added[i]);
     for (e, _) in topo.incident(li) {
         let el = &elems[e];
         let s = el.half_mass;
@@ -869,9 +996,11 @@ fn node_accel<T: Topo>(
     r: &[V],
     v: &[V],
     t: f64,
+    w: &[f64],
     elems: &[ElementLoads<f64>],
 ) -> (V, V, Sym3<f64>) {
-    node_accel_of(ctx, topo, b, li, r[li], v[li], t, elems, |trib, f| {
+    let wn = (!w.is_empty()).then(|| node_water(w, li));
+    node_accel_of(ctx, topo, b, li, r[li], v[li], t, wn, elems, |trib, f| {
         // Winch cables: the variable element's share of the tributary length, and the
         // mass-flow forces of Eq. 39 on its two nodes (crate::ale).
         for ae in ale {
@@ -902,13 +1031,20 @@ fn node_accel_of<T: Topo>(
     ri: V,
     vi: V,
     t: f64,
+    wn: Option<(f64, [f64; 3], [f64; 3])>,
     elems: &[ElementLoads<f64>],
     extra: impl FnOnce(&mut f64, &mut V),
 ) -> (V, V, Sym3<f64>) {
     let lay = ctx.lay;
     let i = b.node_start as usize + li;
-    let mut f = V::new(0.0, 0.0, lay.node_point_weight_z[i]);
-    let mut m = Sym3::scalar(lay.node_point_mass[i]);
+    // A point mass loses in air the buoyancy and added mass of its dry share. Fully
+    // under water `dry` is 0 and nothing changes.
+    let eta = wn.map_or(0.0, |w| w.0);
+    let wet = point_wetted_fraction(eta - ri.z, lay.node_point_radius[i]);
+    let dry = 1.0 - wet;
+    let buoyancy = lay.node_point_displaced[i] * ctx.gravity;
+    let mut f = V::new(0.0, 0.0, lay.node_point_weight_z[i] - dry * buoyancy);
+    let mut m = Sym3::scalar(lay.node_point_mass[i] - dry * lay.node_point_added[i]);
     for (e, sign) in topo.incident(li) {
         let el = &elems[e];
         f += el.f_half + el.t * (sign * el.tension);
@@ -920,9 +1056,19 @@ fn node_accel_of<T: Topo>(
     }
     let pd = lay.node_point_drag[i];
     if pd > 0.0 {
-        let u = lay.currents[lay.node_current[i] as usize].at(ri.z);
+        let mut u = lay.currents[lay.node_current[i] as usize].at(ri.z);
+        if let Some((_, uw, _)) = wn {
+            u += V::from_f64(uw);
+        }
         let vr = u - vi;
-        f += vr * (pd * vr.norm());
+        f += vr * (pd * vr.norm() * wet);
+    }
+    if let Some((_, _, aw)) = wn {
+        // Froude-Krylov and added mass of the wet share: (1 + Ca) rho V a.
+        let m_fk = lay.node_point_displaced[i] + lay.node_point_added[i];
+        if m_fk > 0.0 {
+            f += V::from_f64(aw) * (m_fk * wet);
+        }
     }
     let mut trib = lay.node_tributary[i];
     extra(&mut trib, &mut f);
@@ -956,12 +1102,13 @@ fn accelerations<T: Topo>(
     r: &[V],
     v: &[V],
     t: f64,
+    w: &[f64],
     elems: &mut [ElementLoads<f64>],
     mut store: impl FnMut(usize, V),
 ) -> Result<(), StepFailure> {
-    element_pass(ctx, topo, b, ale, r, v, t, elems)?;
+    element_pass(ctx, topo, b, ale, r, v, t, w, elems)?;
     for li in 0..r.len() {
-        let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, elems);
+        let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, w, elems);
         store(li, a);
     }
     Ok(())
@@ -980,6 +1127,8 @@ fn advance_block(
     elems: &mut [ElementLoads<f64>],
     rs: &mut Vec<V>,
     vs: &mut Vec<V>,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
     step0: u64,
     dt: f64,
     nsteps: u64,
@@ -987,7 +1136,7 @@ fn advance_block(
     if b.is_chain {
         let topo = ChainTopo { n_nodes: r.len() };
         advance_block_in(
-            ctx, &topo, b, ale, r, v, s, elems, rs, vs, step0, dt, nsteps,
+            ctx, &topo, b, ale, r, v, s, elems, rs, vs, waves, wbuf, step0, dt, nsteps,
         )
     } else {
         let topo = GeneralTopo {
@@ -996,8 +1145,17 @@ fn advance_block(
             e0: b.elem_start as usize,
         };
         advance_block_in(
-            ctx, &topo, b, ale, r, v, s, elems, rs, vs, step0, dt, nsteps,
+            ctx, &topo, b, ale, r, v, s, elems, rs, vs, waves, wbuf, step0, dt, nsteps,
         )
+    }
+}
+
+/// Fills `buf` with the block's water values at `t` for nodes at `r`, `v` (left empty
+/// in still water).
+#[inline(always)]
+fn fill_water(waves: &mut Option<&mut BlockWaves>, t: f64, r: &[V], v: &[V], buf: &mut Water) {
+    if let Some(wb) = waves.as_deref_mut() {
+        wb.fill(t, r.len(), |i| (r[i].to_f64(), v[i].to_f64()), buf);
     }
 }
 
@@ -1013,11 +1171,16 @@ fn advance_block_in<T: Topo>(
     elems: &mut [ElementLoads<f64>],
     rs: &mut Vec<V>,
     vs: &mut Vec<V>,
+    mut waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
     step0: u64,
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
     let n0 = b.node_start as usize;
+    if waves.is_none() {
+        wbuf.clear();
+    }
     let n = r.len();
     rs.resize(n, V::zero());
     vs.resize(n, V::zero());
@@ -1031,11 +1194,12 @@ fn advance_block_in<T: Topo>(
         let t = (step0 + k) as f64 * dt;
         match ctx.opts.scheme {
             Scheme::Symplectic => {
-                element_pass(ctx, topo, b, ale, r, v, t, elems)?;
+                fill_water(&mut waves, t, r, v, wbuf);
+                element_pass(ctx, topo, b, ale, r, v, t, wbuf, elems)?;
                 // The element pass has read every position and velocity of this step,
                 // so each node can be updated as soon as its acceleration is known.
                 for li in 0..n {
-                    let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, elems);
+                    let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, wbuf, elems);
                     let vn = v[li] + a * dt;
                     let rn = r[li] + vn * dt;
                     v[li] = vn;
@@ -1047,12 +1211,16 @@ fn advance_block_in<T: Topo>(
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
-                accelerations(ctx, topo, b, ale, r, v, t, elems, |li, a| s[li].acc = a)?;
+                fill_water(&mut waves, t, r, v, wbuf);
+                accelerations(ctx, topo, b, ale, r, v, t, wbuf, elems, |li, a| {
+                    s[li].acc = a
+                })?;
                 for li in 0..n {
                     rs[li] = r[li] + v[li] * h;
                     vs[li] = v[li] + s[li].acc * h;
                 }
-                accelerations(ctx, topo, b, ale, rs, vs, t + h, elems, |li, a| {
+                fill_water(&mut waves, t + h, rs, vs, wbuf);
+                accelerations(ctx, topo, b, ale, rs, vs, t + h, wbuf, elems, |li, a| {
                     s[li].acc = a
                 })?;
                 for li in 0..n {
@@ -1078,7 +1246,8 @@ fn advance_block_in<T: Topo>(
                         .into_iter()
                         .enumerate()
                 {
-                    accelerations(ctx, topo, b, ale, rs, vs, t + tau, elems, |li, a| {
+                    fill_water(&mut waves, t + tau, rs, vs, wbuf);
+                    accelerations(ctx, topo, b, ale, rs, vs, t + tau, wbuf, elems, |li, a| {
                         s[li].acc = a
                     })?;
                     for li in 0..n {
@@ -1220,10 +1389,9 @@ fn advance_block_threaded(
                 };
                 let out = unsafe { std::slice::from_raw_parts_mut(sh.el.add(er.start), er.len()) };
                 for (o, k) in out.iter_mut().zip(er.clone()) {
-                    *o = glmf_element(
-                        &ctx.coefs[lines[k] as usize],
-                        &element_input(ctx, &topo, r, v, k, l0s[k], curs[k]),
-                    );
+                    let d = ctx.lay.line_types[lines[k] as usize].diameter;
+                    let (inp, wet) = element_input(ctx, &topo, r, v, &[], k, l0s[k], curs[k], d);
+                    *o = glmf_element_wet(&ctx.coefs[lines[k] as usize], &inp, wet, ctx.gravity);
                 }
             }
             barrier.wait(&mut sense);
@@ -1235,7 +1403,8 @@ fn advance_block_threaded(
                 let vs = unsafe { std::slice::from_raw_parts_mut(sh.v.add(nr.start), nr.len()) };
                 for (j, (ri, vi)) in rs.iter_mut().zip(vs.iter_mut()).enumerate() {
                     let li = nr.start + j;
-                    let (a, _, _) = node_accel_of(ctx, &topo, b, li, *ri, *vi, t, el, |_, _| {});
+                    let (a, _, _) =
+                        node_accel_of(ctx, &topo, b, li, *ri, *vi, t, None, el, |_, _| {});
                     let vn = *vi + a * dt;
                     let rn = *ri + vn * dt;
                     *vi = vn;

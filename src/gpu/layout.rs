@@ -148,6 +148,8 @@ gpu_struct! {
         seabed_v_eps: R,
         /// Always 1.0 (read at run time, so compensated sums are not folded away).
         one: R,
+        /// Gravity, m/s^2 (the dry weight of what is above the water surface).
+        gravity: R,
     }
 }
 
@@ -209,6 +211,8 @@ gpu_struct! {
         l0: R,
         /// Unstretched length, low part (`l0 + l0_lo`; zero in f64), m.
         l0_lo: R,
+        /// The line's diameter, m (the element's wetted fraction).
+        diameter: R,
     }
 }
 
@@ -236,6 +240,12 @@ gpu_struct! {
         point_drag: R,
         /// Tributary length for seabed contact, m.
         tributary: R,
+        /// The point's added mass `Ca rho V` (part of `point_mass`), kg.
+        point_added: R,
+        /// The mass of water the point displaces, `rho V`, kg.
+        point_displaced: R,
+        /// Radius of the sphere of the point's volume, m.
+        point_radius: R,
     }
 }
 

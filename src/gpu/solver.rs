@@ -702,6 +702,7 @@ impl<R: GpuReal> GpuEngine<R> {
             seabed_mu: R::c(env.seabed.friction),
             seabed_v_eps: R::c(env.seabed.friction_velocity),
             one: R::c(1.0),
+            gravity: R::c(env.gravity),
         };
         let lines: Vec<LineParams<R>> = lay
             .line_coefs
@@ -728,6 +729,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 winch: host.elem_winch[e],
                 l0: split::<R>(lay.elem_l0[e]).0,
                 l0_lo: split::<R>(lay.elem_l0[e]).1,
+                diameter: R::c(lay.line_types[lay.elem_line[e] as usize].diameter),
             })
             .collect();
         let nodes: Vec<NodeParams<R>> = (0..lay.n_nodes())
@@ -742,6 +744,9 @@ impl<R: GpuReal> GpuEngine<R> {
                 point_weight_z: R::c(lay.node_point_weight_z[i]),
                 point_drag: R::c(lay.node_point_drag[i]),
                 tributary: R::c(lay.node_tributary[i]),
+                point_added: R::c(lay.node_point_added[i]),
+                point_displaced: R::c(lay.node_point_displaced[i]),
+                point_radius: R::c(lay.node_point_radius[i]),
             })
             .collect();
         let blocks: Vec<BlockParams<R>> = host

@@ -136,6 +136,15 @@ pub struct Layout {
     pub node_point_weight_z: Vec<f64>,
     /// Per node: `1/2 rho Cd A` of the point, kg/m.
     pub node_point_drag: Vec<f64>,
+    /// Per node: the point's added mass `Ca rho V` (part of `node_point_mass`), kg,
+    /// which it loses in air.
+    pub node_point_added: Vec<f64>,
+    /// Per node: the mass of water the point displaces, `rho V`, kg (its buoyancy
+    /// `rho V g`, part of `node_point_weight_z`, is lost in air).
+    pub node_point_displaced: Vec<f64>,
+    /// Per node: radius of the sphere of the point's volume, m (how its volume
+    /// crosses the water surface, `physics::point_wetted_fraction`).
+    pub node_point_radius: Vec<f64>,
     /// Per node: tributary length for seabed contact, m.
     pub node_tributary: Vec<f64>,
     /// Per node: current profile index (its cable's).
@@ -258,6 +267,21 @@ impl Layout {
             &mut self.node_point_drag,
             ns..ne_old,
             one.node_point_drag.iter().copied(),
+        );
+        splice(
+            &mut self.node_point_added,
+            ns..ne_old,
+            one.node_point_added.iter().copied(),
+        );
+        splice(
+            &mut self.node_point_displaced,
+            ns..ne_old,
+            one.node_point_displaced.iter().copied(),
+        );
+        splice(
+            &mut self.node_point_radius,
+            ns..ne_old,
+            one.node_point_radius.iter().copied(),
         );
         splice(
             &mut self.node_tributary,
@@ -503,6 +527,9 @@ impl Layout {
             node_point_mass: vec![0.0; nn],
             node_point_weight_z: vec![0.0; nn],
             node_point_drag: vec![0.0; nn],
+            node_point_added: vec![0.0; nn],
+            node_point_displaced: vec![0.0; nn],
+            node_point_radius: vec![0.0; nn],
             node_tributary: vec![0.0; nn],
             node_current: vec![0; nn],
             node_constraint: vec![NO_CONSTRAINT; nn],
@@ -526,6 +553,9 @@ impl Layout {
             lay.node_point_mass[i] = p.mass + p.added_mass_coef * rho * p.volume;
             lay.node_point_weight_z[i] = -(p.mass - rho * p.volume) * env.gravity;
             lay.node_point_drag[i] = 0.5 * rho * p.drag_area;
+            lay.node_point_added[i] = p.added_mass_coef * rho * p.volume;
+            lay.node_point_displaced[i] = rho * p.volume;
+            lay.node_point_radius[i] = crate::physics::sphere_radius(p.volume);
         }
         let mut block_elem_start = vec![0usize; n_comp + 1];
         for bi in 0..n_comp {

@@ -2,7 +2,7 @@
 //! cablesim scenario ([`convert`]), written as scenario TOML with a comment on every
 //! mapping choice. `cablesim run model.dat` runs one through
 //! [`crate::scenario::load_any`]; `cablesim convert model.dat -o model.toml` writes the
-//! TOML. docs/moordyn.md lists what is read, how each field maps and what is refused.
+//! TOML. docs/src/moordyn.md lists what is read, how each field maps and what is refused.
 
 pub mod convert;
 pub mod parse;

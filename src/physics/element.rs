@@ -121,7 +121,8 @@ pub fn axial_force<T: Real>(c: &Coefs<T>, l: T, l0: T, t: V3<T>, dv: V3<T>) -> T
     elastic + c.ea_c * epsdot
 }
 
-/// GLMF external loads of an element with tangent `t` and current length `l`.
+/// GLMF external loads of an element with tangent `t` and current length `l`, wholly
+/// under water.
 #[inline(always)]
 pub fn glmf_external<T: Real>(
     c: &Coefs<T>,
@@ -129,34 +130,70 @@ pub fn glmf_external<T: Real>(
     t: V3<T>,
     l: T,
 ) -> ExternalLoads<T> {
+    glmf_external_wet(c, e, t, l, T::one(), T::zero())
+}
+
+/// GLMF external loads of an element with tangent `t` and current length `l` of which
+/// the fraction `wet` (see [`super::surface::wetted_fraction`]) is under water, in
+/// gravity `gravity` (m/s^2). Every water term (drag, the water-acceleration load,
+/// buoyancy) is taken times `wet`; the weight is `(mbar - wet rho A) l0 g`, written as
+/// the wet weight less the buoyancy `(1 - wet) rho A g l0` of the dry part, with
+/// `rho A g = wet_weight_z + mbar g`. At `wet = 1` every product is by one and the
+/// subtraction is of zero, so a submerged element's loads are bit for bit those of
+/// [`glmf_external`].
+#[inline(always)]
+pub fn glmf_external_wet<T: Real>(
+    c: &Coefs<T>,
+    e: &ElementInput<T>,
+    t: V3<T>,
+    l: T,
+    wet: T,
+    gravity: T,
+) -> ExternalLoads<T> {
     let half = T::c(0.5);
     let vrel = e.current - (e.va + e.vb) * half;
     let vt = t.dot(vrel);
     let vn = vrel - t * vt; // P v_rel
     let aw_n = e.water_accel - t * t.dot(e.water_accel); // P a_w
+    let buoyancy_z = c.wet_weight_z + c.mass * gravity;
+    let weight_z = c.wet_weight_z - (T::one() - wet) * buoyancy_z;
     ExternalLoads {
-        drag_n: vn * (c.drag_n * l * vn.norm()),
-        drag_t: t * (c.drag_t * l * vt.abs() * vt),
-        froude_krylov: aw_n * (c.froude_krylov * e.l0),
-        wet_weight: V3::new(T::zero(), T::zero(), c.wet_weight_z * e.l0),
+        drag_n: vn * (c.drag_n * l * vn.norm() * wet),
+        drag_t: t * (c.drag_t * l * vt.abs() * vt * wet),
+        froude_krylov: aw_n * (c.froude_krylov * e.l0 * wet),
+        wet_weight: V3::new(T::zero(), T::zero(), weight_z * e.l0),
     }
 }
 
-/// The GLMF loads of one element. A zero-length element gives non-finite output,
-/// which the steppers' blow-up check reports with the element's cable and time.
+/// The GLMF loads of one element wholly under water. A zero-length element gives
+/// non-finite output, which the steppers' blow-up check reports with the element's
+/// cable and time.
 #[inline(always)]
 pub fn glmf_element<T: Real>(c: &Coefs<T>, e: &ElementInput<T>) -> ElementLoads<T> {
+    glmf_element_wet(c, e, T::one(), T::zero())
+}
+
+/// The GLMF loads of one element of which the fraction `wet` is under water (see
+/// [`glmf_external_wet`]); its normal added mass is taken times `wet` too. At
+/// `wet = 1` this is [`glmf_element`] bit for bit.
+#[inline(always)]
+pub fn glmf_element_wet<T: Real>(
+    c: &Coefs<T>,
+    e: &ElementInput<T>,
+    wet: T,
+    gravity: T,
+) -> ElementLoads<T> {
     let d = e.rb - e.ra;
     let l = d.norm();
     let t = d / l;
     let tension = axial_force(c, l, e.l0, t, e.vb - e.va);
-    let ext = glmf_external(c, e, t, l);
+    let ext = glmf_external_wet(c, e, t, l, wet, gravity);
     let half = T::c(0.5);
     ElementLoads {
         t,
         tension,
         f_half: ext.total() * half,
         half_mass: c.mass * e.l0 * half,
-        half_added: c.added_mass * e.l0 * half,
+        half_added: c.added_mass * e.l0 * half * wet,
     }
 }

@@ -3,7 +3,7 @@
 //! and the start-up ramp. Each function here has a WGSL twin of the same name in
 //! `shaders/shared/waves.wgsl`.
 
-use super::{SeaState, Stretching, WaveComponent};
+use super::{poly, SeaState, Stretching, WaveComponent};
 use std::f64::consts::{PI, TAU};
 
 /// Elevation, velocity and acceleration of the water at one point and time.
@@ -157,7 +157,7 @@ pub fn wave_theta(c: &PackedComponent, x: f64, y: f64, tau: f64) -> f64 {
 pub fn wave_elevation_sum(comps: &[PackedComponent], x: f64, y: f64, tau: f64) -> f64 {
     comps
         .iter()
-        .map(|c| c.amp * wave_theta(c, x, y, tau).cos())
+        .map(|c| c.amp * poly::sin_cos(wave_theta(c, x, y, tau)).1)
         .sum()
 }
 
@@ -183,13 +183,22 @@ pub fn wave_eval_depth(z: f64, eta: f64, depth: f64, stretching: Stretching) -> 
 /// `(cosh, sinh)(k (zs + h)) / sinh(k h)` times `1 - e^{-2 k h}`.
 #[inline]
 pub fn wave_depth_decay(k: f64, zs: f64, depth: f64) -> (f64, f64) {
-    let e1 = (k * zs).exp();
-    let e2 = (-k * (zs + 2.0 * depth)).exp();
+    let e1 = poly::exp_neg(k * zs);
+    let e2 = poly::exp_neg(-k * (zs + 2.0 * depth));
     (e1 + e2, e1 - e2)
 }
 
 /// Elevation, velocity and acceleration of the sum of `comps` at `p` and time `t`
 /// (phases referred to `t_ref`), with the ramp of duration `ramp_duration`.
+///
+/// The same sums as the WGSL twin, arranged for the CPU: one sine and cosine per
+/// component serve both the elevation and the kinematics (kept on the stack for up to
+/// [`PHASE_BUFFER`] components, recomputed beyond), and exponentials whose terms are
+/// below round-off are not computed: `e^{-k (zs + 2 h)}` when it is under `1e-17` of
+/// `e^{k zs}` (deep water: `2 k (zs + h) > 39`), and a component whose decay
+/// `e^{k zs}` is under `1e-30` (then so is the other term: short waves deep down).
+/// Sines, cosines and exponentials are the inlined polynomials of [`poly`] (the
+/// WGSL's own).
 pub fn wave_kinematics_at(
     comps: &[PackedComponent],
     depth: f64,
@@ -201,13 +210,37 @@ pub fn wave_kinematics_at(
 ) -> Kinematics {
     let r = wave_ramp(t, ramp_duration);
     let tau = t - t_ref;
-    let eta = r * wave_elevation_sum(comps, p[0], p[1], tau);
+    let mut phases = [(0.0, 0.0); PHASE_BUFFER];
+    let mut eta = 0.0;
+    for (j, c) in comps.iter().enumerate() {
+        let sc = poly::sin_cos(wave_theta(c, p[0], p[1], tau));
+        if j < PHASE_BUFFER {
+            phases[j] = sc;
+        }
+        eta += c.amp * sc.1;
+    }
+    let eta = r * eta;
     let zs = wave_eval_depth(p[2], eta, depth, stretching);
+    // Height above the seabed of the evaluation point (infinite in deep water).
+    let above_bed = zs + depth;
     let mut u = [0.0; 3];
     let mut a = [0.0; 3];
-    for c in comps {
-        let (s, co) = wave_theta(c, p[0], p[1], tau).sin_cos();
-        let (ch, sh) = wave_depth_decay(c.k, zs, depth);
+    for (j, c) in comps.iter().enumerate() {
+        let e1 = poly::exp_neg(c.k * zs);
+        if e1 < 1e-30 {
+            continue;
+        }
+        let e2 = if 2.0 * c.k * above_bed > 39.0 {
+            0.0
+        } else {
+            poly::exp_neg(-c.k * (zs + 2.0 * depth))
+        };
+        let (ch, sh) = (e1 + e2, e1 - e2);
+        let (s, co) = if j < PHASE_BUFFER {
+            phases[j]
+        } else {
+            poly::sin_cos(wave_theta(c, p[0], p[1], tau))
+        };
         let uh = c.amp_u * ch * co;
         let ah = c.amp_a * ch * s;
         u[0] += uh * c.cos_b;
@@ -223,6 +256,9 @@ pub fn wave_kinematics_at(
         a: a.map(|v| r * v),
     }
 }
+
+/// Components whose sine and cosine [`wave_kinematics_at`] keeps on the stack.
+pub const PHASE_BUFFER: usize = 512;
 
 #[cfg(test)]
 mod tests {

@@ -41,6 +41,7 @@ pub mod cache;
 pub mod dispersion;
 pub mod irregular;
 pub mod kinematics;
+pub mod poly;
 pub mod spectrum;
 
 /// The depth, m, that stands for infinite depth on the GPU (finite in f32; the

@@ -51,6 +51,7 @@ pub fn choose_backend(
     let unsupported = || {
         crate::gpu::solver::unsupported(lay, opts)
             .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
+            .or_else(|| (!sc.sea.is_still()).then(|| "waves ([environment.waves])".to_string()))
     };
     let need_f64 = precision == Some(Precision::F64);
     let p = precision.unwrap_or_default();
@@ -119,7 +120,7 @@ impl LumpedStepper {
         pos: &[[f64; 3]],
         opts: SolverOptions,
     ) -> Result<Self, Error> {
-        let s = match choice {
+        let mut s = match choice {
             BackendChoice::Cpu if !sc.winches.is_empty() => LumpedStepper::Cpu(
                 CpuSolver::with_winches(sc.model.clone(), sc.winches.clone(), pos, opts)?,
             ),
@@ -131,6 +132,9 @@ impl LumpedStepper {
                 LumpedStepper::Gpu(GpuSolver::new(&ctx, lay, pos, opts, p)?)
             }
         };
+        if let LumpedStepper::Cpu(c) = &mut s {
+            c.set_sea(&sc.sea, false);
+        }
         if let LumpedStepper::Gpu(g) = &s {
             match g.fused_unavailable() {
                 Some(why) => log::info!("GPU kernel: {} (not fused: {why})", g.kernel().name()),

@@ -3,7 +3,7 @@
 //! A study is either a `[study]` table inside a scenario file (the base model is that
 //! file), or a study file whose `[study]` table names the base scenario with
 //! `scenario = "PATH"` (relative to the study file) and holds nothing else. The keys are
-//! documented in `docs/studies.md`.
+//! documented in `docs/src/studies.md`.
 
 use super::channels;
 use super::gumbel::GumbelFit;

@@ -1,6 +1,6 @@
 //! The study's output files: `members.csv` (member x channel), `study.csv`
 //! (sea state x channel) and `study.json` (the whole summary). The columns are listed in
-//! `docs/studies.md`. Both CSVs are long ("tidy") tables, one row per pair, which
+//! `docs/src/studies.md`. Both CSVs are long ("tidy") tables, one row per pair, which
 //! spreadsheets pivot and data-frame libraries read as they are; text fields are quoted
 //! where they need it (a name holding a comma), empty cells mean "not defined" (a fit of
 //! fewer than two seeds, a channel without a capacity). Numbers are written in the

@@ -18,4 +18,6 @@ mod frames;
 mod nets;
 mod parallel;
 mod statics;
+mod water_surface;
+mod waves_steppers;
 mod study;

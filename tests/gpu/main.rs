@@ -25,5 +25,6 @@ mod layout;
 mod parity;
 mod shaders;
 mod step_functions;
+mod surface;
 mod winch;
 mod waves;

@@ -89,7 +89,7 @@ fn t_advance(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let b = i * 19u;
     let m = Sym3(tin[b + 12u], tin[b + 13u], tin[b + 14u], tin[b + 15u], tin[b + 16u], tin[b + 17u]);
-    let sn = node_advance(nodes[i], state_in(b), NodeForce(v3in(b + 9u), m), tin[b + 18u]);
+    let sn = node_advance(nodes[i], state_in(b), NodeForce(v3in(b + 9u), m), tin[b + 18u], 0u); // step 0 of a submission: no body rows here
     let o = i * 9u;
     v3out(o, sn.r_hi.xyz);
     v3out(o + 3u, sn.r_lo.xyz);
@@ -416,6 +416,11 @@ fn check_gather<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
         }
         let block = i % 3;
         let nd = NodeParams::<R> {
+            // No displaced volume: the point's share above the water changes nothing here
+            // (tests/gpu/surface.rs covers the surface terms).
+            point_added: R::c(0.0),
+            point_displaced: R::c(0.0),
+            point_radius: R::c(0.0),
             inc_start: start,
             inc_end: inc.len() as u32,
             constraint: u32::MAX,
@@ -652,6 +657,8 @@ fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
         (4, bytes(&nodes)),
         (6, bytes(&routes)),
         (15, bytes(&samples)),
+        // The body rows `constraint_target` reads (none of these routes is on a body).
+        (18, bytes(&[<BodyRow<R> as bytemuck::Zeroable>::zeroed()])),
     ];
     let out = run(ctx, p, "t_advance", &group0, &x, n, 9 * n);
     let mut w = Worst::new::<R>("node_advance (node_accel: mass solve, Baumgarte)");

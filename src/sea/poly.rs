@@ -1,0 +1,139 @@
+//! Sine, cosine and exponential by range reduction and polynomials, as the WGSL twins
+//! compute them (`sin_cos` of the prelude, `wave_exp` of waves.wgsl), inlined.
+//!
+//! Why not `f64::sin_cos` and `f64::exp`: the per-node sum over 200 components is the
+//! whole cost of a wave kinematics refresh, and the library calls cost several times
+//! these inlined, branch-free forms, whose independent iterations the processor
+//! overlaps. Accuracy: within a few units in the last place (the tests compare with
+//! the library functions over the ranges the kinematics use).
+
+use std::f64::consts::{FRAC_2_PI, FRAC_PI_2, LOG2_E};
+
+/// `1.5 * 2^52`: adding and subtracting it rounds an f64 of magnitude below 2^51 to
+/// the nearest integer without a library call.
+const ROUND: f64 = 6755399441055744.0;
+const PIO2_LO: f64 = 6.123233995736766e-17;
+/// ln 2 split so that `n * LN2_HI` is exact for `|n| < 2^37` (16 significant bits).
+const LN2_HI: f64 = 0.693145751953125;
+const LN2_LO: f64 = 1.4286068203094172321e-06;
+
+/// Taylor coefficients of `sin(y) / y` in `y^2` (to `y^14`; the next term is below
+/// 5e-17 for `|y| <= pi / 4`).
+const SIN: [f64; 8] = [
+    1.0,
+    -1.0 / 6.0,
+    1.0 / 120.0,
+    -1.0 / 5040.0,
+    1.0 / 362880.0,
+    -1.0 / 39916800.0,
+    1.0 / 6227020800.0,
+    -1.0 / 1307674368000.0,
+];
+/// Taylor coefficients of `cos(y)` in `y^2` (to `y^16`).
+const COS: [f64; 9] = [
+    1.0,
+    -0.5,
+    1.0 / 24.0,
+    -1.0 / 720.0,
+    1.0 / 40320.0,
+    -1.0 / 3628800.0,
+    1.0 / 479001600.0,
+    -1.0 / 87178291200.0,
+    1.0 / 20922789888000.0,
+];
+/// Taylor coefficients of `e^r` (to `r^13`; the next term is below 1e-17 for
+/// `|r| <= ln 2 / 2`).
+const EXP: [f64; 14] = [
+    1.0,
+    1.0,
+    1.0 / 2.0,
+    1.0 / 6.0,
+    1.0 / 24.0,
+    1.0 / 120.0,
+    1.0 / 720.0,
+    1.0 / 5040.0,
+    1.0 / 40320.0,
+    1.0 / 362880.0,
+    1.0 / 3628800.0,
+    1.0 / 39916800.0,
+    1.0 / 479001600.0,
+    1.0 / 6227020800.0,
+];
+
+/// `sum c[i] x^i` by Horner's rule (unrolled by the compiler: the length is fixed).
+#[inline(always)]
+fn horner<const N: usize>(c: &[f64; N], x: f64) -> f64 {
+    let mut p = c[N - 1];
+    for i in (0..N - 1).rev() {
+        p = p * x + c[i];
+    }
+    p
+}
+
+/// `(sin x, cos x)` for `|x| < 2^50`.
+#[inline(always)]
+pub fn sin_cos(x: f64) -> (f64, f64) {
+    let q = (x * FRAC_2_PI + ROUND) - ROUND;
+    let y = (x - q * FRAC_PI_2) - q * PIO2_LO;
+    let y2 = y * y;
+    let s = y * horner(&SIN, y2);
+    let c = horner(&COS, y2);
+    match (q as i64) & 3 {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
+}
+
+/// `e^x` for `x <= 0` (0 below -708, where `e^x` leaves the normal numbers).
+#[inline(always)]
+pub fn exp_neg(x: f64) -> f64 {
+    if x < -708.0 {
+        return 0.0;
+    }
+    let n = (x * LOG2_E + ROUND) - ROUND;
+    let r = (x - n * LN2_HI) - n * LN2_LO;
+    let p = horner(&EXP, r);
+    p * f64::from_bits(((n as i64 + 1023) as u64) << 52)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Against the library functions: `sin_cos` within `4 eps (1 + |x|)` (the
+    /// argument's own rounding is `eps |x|`), `exp_neg` within `4 eps` relative.
+    #[test]
+    fn agree_with_the_library_functions() {
+        let mut rng = ChaCha8Rng::seed_from_u64(2);
+        let eps = f64::EPSILON;
+        for i in 0..200_000 {
+            let x = match i % 3 {
+                0 => rng.gen_range(-7.0..7.0),
+                1 => rng.gen_range(-300.0..300.0),
+                _ => rng.gen_range(-3e4..3e4),
+            };
+            let (s, c) = sin_cos(x);
+            assert!(
+                (s - x.sin()).abs() <= 4.0 * eps * (1.0 + x.abs()),
+                "sin {x}"
+            );
+            assert!(
+                (c - x.cos()).abs() <= 4.0 * eps * (1.0 + x.abs()),
+                "cos {x}"
+            );
+            let z = match i % 3 {
+                0 => rng.gen_range(-1.0..0.0),
+                1 => rng.gen_range(-40.0..0.0),
+                _ => rng.gen_range(-708.0..0.0),
+            };
+            assert!((exp_neg(z) / z.exp() - 1.0).abs() <= 4.0 * eps, "exp {z}");
+        }
+        assert_eq!(exp_neg(0.0), 1.0);
+        assert_eq!(exp_neg(-1000.0), 0.0);
+        assert_eq!(exp_neg(f64::NEG_INFINITY), 0.0);
+    }
+}

@@ -1,0 +1,294 @@
+//! Waves in the CPU stepper: the kinematics cache against exact evaluation, the chain
+//! fast path against the general path, and a point mass moving with the water.
+
+
+use cablesim::cpu::CpuSolver;
+use cablesim::model::{Environment, Layout, LineType, ModelDef, PointMass, Route, Seabed};
+use cablesim::options::{Scheme, SolverOptions};
+use cablesim::sea::irregular::{discretise, Discretisation};
+use cablesim::sea::spectrum::Spectrum;
+use cablesim::sea::{SeaState, Stretching, WaveComponent};
+use cablesim::statics::{relax, RelaxOptions};
+use crate::common::*;
+
+const DEPTH: f64 = 50.0;
+
+/// A 200-component JONSWAP sea (Hs 4 m, Tp 9 s) in 50 m of water, ramped in over 4 s.
+fn jonswap() -> SeaState {
+    let spectrum = Spectrum::Jonswap {
+        hs: 4.0,
+        tp: 9.0,
+        gamma: 3.3,
+    };
+    let d = Discretisation {
+        components: 200,
+        direction: 0.3,
+        spreading: None,
+        seed: 7,
+        stream: 0,
+    };
+    SeaState {
+        components: discretise(&spectrum, &d, DEPTH, 9.81),
+        depth: DEPTH,
+        stretching: Stretching::Wheeler,
+        ramp_duration: 4.0,
+        cache_tolerance: 1e-3,
+    }
+}
+
+/// A rope moored on the seabed at 50 m, its fairlead held 1 m under the mean level
+/// (its top elements go through the surface in the troughs), in static equilibrium.
+fn moored_rope() -> (Layout, Vec<[f64; 3]>) {
+    let env = Environment {
+        depth: DEPTH,
+        seabed: Seabed::default(),
+        ..water()
+    };
+    let lt = LineType {
+        diameter: 0.05,
+        ..rope()
+    };
+    let def: ModelDef = straight_cable(
+        env,
+        lt,
+        [-60.0, 0.0, -DEPTH],
+        [0.0, 0.0, -1.0],
+        80.0,
+        20,
+        Some(Route::Fixed {
+            position: [-60.0, 0.0, -DEPTH],
+        }),
+        Some(Route::Fixed {
+            position: [0.0, 0.0, -1.0],
+        }),
+        PointMass::default(),
+        [0.2, 0.0, 0.0],
+    );
+    let (lay, mut pos) = Layout::build(&def).unwrap();
+    relax(&lay, &mut pos, &RelaxOptions::default()).unwrap();
+    (lay, pos)
+}
+
+/// The fairlead force every `every` steps over `steps` steps.
+fn fairlead_history(s: &mut CpuSolver, steps: u64, every: u64) -> Vec<[f64; 3]> {
+    let mut out = Vec::new();
+    let mut done = 0;
+    while done < steps {
+        s.advance(every).unwrap();
+        done += every;
+        out.push(s.evaluate().unwrap().reaction[1]);
+    }
+    out
+}
+
+fn norm(f: [f64; 3]) -> f64 {
+    (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt()
+}
+
+/// The cached, interpolated kinematics against exact evaluation of the 200-component
+/// sum at every node and stage: the fairlead force over 20 s agrees within 1e-3 of its
+/// largest value, while the waves change it by far more than that.
+#[test]
+fn cached_kinematics_give_the_exact_end_force() {
+    let (lay, pos) = moored_rope();
+    let sea = jonswap();
+    let opts = SolverOptions {
+        dt: 2e-4,
+        ..SolverOptions::default()
+    };
+    let (steps, every) = (100_000u64, 500u64);
+    let run = |exact: Option<bool>| {
+        let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+        if let Some(exact) = exact {
+            s.set_sea(&sea, exact);
+        }
+        fairlead_history(&mut s, steps, every)
+    };
+    let cached = run(Some(false));
+    let exact = run(Some(true));
+    let still = run(None);
+    let fmax = exact.iter().map(|f| norm(*f)).fold(0.0f64, f64::max);
+    let diff = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| norm([x[0] - y[0], x[1] - y[1], x[2] - y[2]]))
+            .fold(0.0f64, f64::max)
+    };
+    let (d_cache, d_still) = (diff(&cached, &exact), diff(&still, &exact));
+    println!(
+        "fairlead force: largest {fmax:.1} N; cache against exact {d_cache:.3e} N ({:.2e} \
+         relative); still water against waves {d_still:.1} N",
+        d_cache / fmax
+    );
+    assert!(
+        d_cache < 1e-3 * fmax,
+        "cache off by {d_cache} N of {fmax} N"
+    );
+    assert!(
+        d_still > 0.05 * fmax,
+        "the waves change the force by only {d_still} N"
+    );
+}
+
+/// In waves the chain fast path and the general path agree, for every scheme.
+#[test]
+fn chain_kernel_matches_the_general_path_in_waves() {
+    let (lay, pos) = moored_rope();
+    let sea = jonswap();
+    for scheme in [Scheme::Symplectic, Scheme::Rk2, Scheme::Rk4] {
+        let opts = SolverOptions {
+            dt: 2e-4,
+            scheme,
+            ..SolverOptions::default()
+        };
+        let mut fast = CpuSolver::new(lay.clone(), &pos, opts);
+        let mut general = CpuSolver::new(lay.clone(), &pos, opts);
+        fast.set_sea(&sea, false);
+        general.set_sea(&sea, false);
+        general.use_chain_kernel = false;
+        fast.advance(30_000).unwrap();
+        general.advance(30_000).unwrap();
+        let dr = fast
+            .r
+            .iter()
+            .zip(&general.r)
+            .map(|(a, b)| (*a - *b).norm())
+            .fold(0.0f64, f64::max);
+        let moved = fast
+            .r
+            .iter()
+            .zip(&pos)
+            .map(|(a, b)| (a.to_f64()[2] - b[2]).abs())
+            .fold(0.0f64, f64::max);
+        println!("{scheme:?}: |dr| {dr:.2e} m, largest heave from rest {moved:.3} m");
+        assert!(
+            moved > 0.05,
+            "{scheme:?}: the waves moved the line {moved} m"
+        );
+        assert!(
+            dr < 1e-8,
+            "{scheme:?}: fast and general paths differ by {dr} m"
+        );
+    }
+}
+
+/// A neutrally buoyant sphere (mass `rho V`) deep under a regular wave, on a short
+/// slack thread, moves with the water: its equation is
+/// `(1 + Ca) rho V a = (1 + Ca) rho V a_w` plus drag on the relative velocity. So its
+/// acceleration is the water's (to the thread's share of the mass, 5e-5), and started
+/// with the water's velocity it follows the water particle's path (integrated here
+/// from the same field) at first. Not for long: the linear loads leave out the
+/// convective part of the particle's acceleration, `k |u|^2` (here 1e-3 m/s^2, 0.8%
+/// of `a_w`), whose effect grows as `t^2` with nothing to restore it; over a second it
+/// is 4e-4 m, 0.3% of the orbit radius.
+#[test]
+fn neutrally_buoyant_sphere_follows_the_water() {
+    let rho = 1025.0;
+    let (period, amp) = (8.0, 1.0);
+    let omega = 2.0 * std::f64::consts::PI / period;
+    let k = omega * omega / 9.81;
+    let sea = SeaState {
+        components: vec![WaveComponent {
+            amplitude: amp,
+            omega,
+            k,
+            direction: 0.0,
+            phase: 0.0,
+        }],
+        depth: f64::INFINITY,
+        stretching: Stretching::Wheeler,
+        ramp_duration: 0.0,
+        cache_tolerance: 1e-3,
+    };
+    let volume = 0.5;
+    // A neutrally buoyant thread, soft, without drag or added mass: the sphere
+    // dominates.
+    let thread = LineType {
+        name: "thread".into(),
+        diameter: 0.01,
+        mass_per_length: rho * std::f64::consts::PI * 0.01 * 0.01 / 4.0,
+        ea: 1.0,
+        damping: 0.0,
+        cn: 0.0,
+        ct: 0.0,
+        cm: 0.0,
+        ei: 0.0,
+        allow_compression: false,
+    };
+    let z0 = -30.0;
+    let mut def = straight_cable(
+        water(),
+        thread,
+        [0.0, 0.0, z0],
+        [0.0, 0.0, z0 - 1.0],
+        1.0,
+        1,
+        None,
+        None,
+        PointMass::default(),
+        [0.0; 3],
+    );
+    def.nodes[0].point = PointMass {
+        mass: rho * volume,
+        volume,
+        drag_area: 0.5,
+        added_mass_coef: 0.5,
+    };
+    let (lay, pos) = Layout::build(&def).unwrap();
+    let sphere = lay.cables[0].nodes[0] as usize;
+    let opts = SolverOptions {
+        dt: 1e-3,
+        scheme: Scheme::Rk4,
+        ..SolverOptions::default()
+    };
+    let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+    s.set_sea(&sea, true);
+    // Start every node with the water's velocity at its place.
+    let field = cablesim::sea::kinematics::WaveField::new(&sea);
+    for (i, p) in pos.iter().enumerate() {
+        s.v[i] = cablesim::math::V3::from_f64(field.kinematics(*p, 0.0).u);
+    }
+    // The water particle from the sphere's start, by RK4 on dx/dt = u(x, t).
+    let u = |p: [f64; 3], t: f64| field.kinematics(p, t).u;
+    let add =
+        |p: [f64; 3], d: [f64; 3], h: f64| [p[0] + h * d[0], p[1] + h * d[1], p[2] + h * d[2]];
+    let mut particle = pos[sphere];
+    // The acceleration at the start, from the general path's evaluation.
+    let a0 = s.evaluate().unwrap().acc[sphere];
+    let aw0 = field.kinematics(pos[sphere], 0.0).a;
+    let da = norm([a0[0] - aw0[0], a0[1] - aw0[1], a0[2] - aw0[2]]);
+    println!("sphere: acceleration {a0:?}, water's {aw0:?}");
+    assert!(
+        da < 1e-4 * norm(aw0),
+        "acceleration {a0:?} against the water's {aw0:?}"
+    );
+    let steps = (1.0 / opts.dt) as u64;
+    let radius = amp * (k * z0).exp();
+    let (mut worst, mut xmax) = (0.0f64, f64::NEG_INFINITY);
+    for n in 0..steps {
+        let (t, h) = (n as f64 * opts.dt, opts.dt);
+        let k1 = u(particle, t);
+        let k2 = u(add(particle, k1, 0.5 * h), t + 0.5 * h);
+        let k3 = u(add(particle, k2, 0.5 * h), t + 0.5 * h);
+        let k4 = u(add(particle, k3, h), t + h);
+        for q in 0..3 {
+            particle[q] += h / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q]);
+        }
+        s.advance(1).unwrap();
+        let r = s.r[sphere].to_f64();
+        xmax = xmax.max(r[0]);
+        worst = worst.max(norm([
+            r[0] - particle[0],
+            r[1] - particle[1],
+            r[2] - particle[2],
+        ]));
+    }
+    println!(
+        "sphere: orbit radius {radius:.4} m, largest distance from the particle {worst:.2e} m"
+    );
+    assert!(
+        xmax > 0.5 * radius,
+        "the sphere moved only {xmax} m along the wave"
+    );
+    assert!(worst < 0.01 * radius, "{worst} m off the particle's path");
+}
