@@ -1,5 +1,5 @@
 //! Scenario files and the command line: parsing and its errors, every example,
-//! end-to-end runs of the `cablesim` binary, and the ANCF model chosen from a scenario.
+//! end-to-end runs of the `cablesim` binary (studies among them), and the ANCF model chosen from a scenario.
 //!
 //! One test binary (see `tests/cpu/main.rs` for why); shared helpers are in
 //! `tests/common`.
@@ -13,3 +13,4 @@ mod examples;
 mod moordyn_input;
 mod scenario;
 mod simulation_api;
+mod study_run;
