@@ -202,3 +202,64 @@ fn bad_shards_and_foreign_directories_are_refused_by_name() {
         "{m}"
     );
 }
+
+/// A stand-in for Slurm's `sbatch` that runs a submitted script at once: each task of a
+/// job array (`--array=1-N`) with its `SLURM_ARRAY_TASK_ID`, and prints a job id as
+/// `--parsable` does. It checks the submission script's logic (shard arguments, output
+/// folders, the merge job and its dependency); a real cluster is not needed for that.
+const FAKE_SBATCH: &str = r#"#!/bin/bash
+set -euo pipefail
+array=""; dep=""
+for a in "$@"; do
+  case "$a" in
+    --array=*) array="${a#--array=}" ;;
+    --dependency=*) dep="${a#--dependency=}" ;;
+  esac
+done
+script=$(mktemp); cat > "$script"
+if [ -n "$array" ]; then
+  for k in $(seq "${array%-*}" "${array#*-}"); do SLURM_ARRAY_TASK_ID=$k bash "$script"; done
+  echo 4242
+else
+  [ "$dep" = "afterok:4242" ] || { echo "merge job depends on '$dep'" >&2; exit 1; }
+  bash "$script"; echo 4243
+fi
+"#;
+
+#[test]
+fn slurm_script_runs_shards_and_merges_to_the_one_machine_files() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bin = tmp.path().join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    let sbatch = bin.join("sbatch");
+    std::fs::write(&sbatch, FAKE_SBATCH).unwrap();
+    ok(Command::new("chmod")
+        .arg("+x")
+        .arg(&sbatch)
+        .output()
+        .unwrap());
+    let runs = tmp.path().join("runs");
+    ok(
+        cablesim(2, &["study", "slurm", STUDY, "--shards", "4", "--out"])
+            .arg(&runs)
+            .output()
+            .unwrap(),
+    );
+    let script = runs.join("submit.sh");
+    let text = std::fs::read_to_string(&script).unwrap();
+    assert!(text.contains("--array=1-4"), "{text}");
+    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
+    ok(Command::new("bash")
+        .arg(&script)
+        .arg("--wait")
+        .env("PATH", path)
+        .env("RAYON_NUM_THREADS", "1")
+        .output()
+        .unwrap());
+    for k in 1..=4 {
+        assert!(runs.join(format!("shard-{k}-of-4/shard.json")).exists());
+    }
+    let whole = tmp.path().join("whole");
+    run(2, &["study", "run", STUDY, "-q"], &whole);
+    same_tables(&whole, &runs);
+}
