@@ -17,7 +17,9 @@
 //! ones the two-pass kernel), `--gpu-max-nodes N` (skip GPU sizes above it, default
 //! unlimited), `--dt S` (default 1e-4 s, as `benches/lib.rs`), `--steps N` (exactly `N`
 //! steps per path, once, no warm-up: for instruction counts under callgrind, taken as
-//! the difference of two step counts).
+//! the difference of two step counts), `--waves` (every path in a 200-component
+//! JONSWAP sea, Hs 4 m, Tp 9 s, in 100 m of water, as `benches/waves.rs`: through each
+//! path's kinematics cache at its default tolerance).
 //!
 //! The model is `benches/common`'s fleet: copies of the catenary example's line, each
 //! between its anchor and fairlead, starting straight in a 0.5 m/s current, so tension,
@@ -32,6 +34,9 @@ mod common;
 use cablesim::cpu::CpuSolver;
 use cablesim::gpu::{GpuContext, GpuKernel, GpuSolver, GpuTimings, Precision};
 use cablesim::options::SolverOptions;
+use cablesim::sea::irregular::{discretise, Discretisation};
+use cablesim::sea::spectrum::Spectrum;
+use cablesim::sea::SeaState;
 use std::time::Instant;
 
 struct Args {
@@ -44,6 +49,28 @@ struct Args {
     dt: f64,
     /// Exactly this many steps per path, timed once (for instruction counts).
     steps: Option<u64>,
+    /// Run in a 200-component JONSWAP sea.
+    waves: bool,
+}
+
+/// The sea of `--waves` (the one of `benches/waves.rs`).
+fn jonswap(depth: f64) -> SeaState {
+    let spectrum = Spectrum::Jonswap {
+        hs: 4.0,
+        tp: 9.0,
+        gamma: 3.3,
+    };
+    let d = Discretisation {
+        components: 200,
+        direction: 0.0,
+        spreading: None,
+        seed: 1,
+        stream: 0,
+    };
+    SeaState {
+        components: discretise(&spectrum, &d, depth, 9.81),
+        ..SeaState::still(depth)
+    }
 }
 
 fn args() -> Args {
@@ -58,6 +85,7 @@ fn args() -> Args {
         gpu_max_nodes: usize::MAX,
         dt: 1e-4,
         steps: None,
+        waves: false,
     };
     let argv: Vec<String> = std::env::args().skip(1).collect();
     let mut i = 0;
@@ -72,6 +100,11 @@ fn args() -> Args {
             "--gpu-max-nodes" => a.gpu_max_nodes = val().parse().unwrap(),
             "--dt" => a.dt = val().parse().unwrap(),
             "--steps" => a.steps = Some(val().parse().unwrap()),
+            "--waves" => {
+                a.waves = true;
+                i += 1;
+                continue;
+            }
             // `cargo bench` passes `--bench`; ignore it and anything unknown.
             _ => {
                 i += 1;
@@ -173,8 +206,14 @@ fn main() {
             ..Default::default()
         };
         let nan = (f64::NAN, f64::NAN);
+        let sea = if a.waves {
+            jonswap(lay.env.depth)
+        } else {
+            SeaState::still(lay.env.depth)
+        };
         let cpu1 = if want("cpu1") {
             let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+            s.set_sea(&sea, false);
             one.install(|| {
                 measure(nodes, a.seconds, a.repeats, a.steps, |n| {
                     s.advance(n).unwrap()
@@ -185,6 +224,7 @@ fn main() {
         };
         let cpu = if want("cpu") {
             let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+            s.set_sea(&sea, false);
             measure(nodes, a.seconds, a.repeats, a.steps, |n| {
                 s.advance(n).unwrap()
             })
@@ -204,6 +244,7 @@ fn main() {
                         eprintln!("{nc} cables, {}: {e}", p.name());
                         return nan;
                     }
+                    s.set_sea(&sea).unwrap();
                     s.advance(1).unwrap();
                     let t0 = s.timings();
                     let m = measure(nodes, a.seconds, a.repeats, a.steps, |n| {

@@ -41,6 +41,7 @@ TEXT_ROOTS = [
     "benches",
     "examples",
     "scripts",
+    "python",
 ]
 TEXT_SUFFIXES = {".md", ".rs", ".wgsl", ".toml", ".py", ".txt", ".csv", ""}
 

@@ -88,6 +88,14 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
         return;
     }
     for (var k = 0u; k < params.n_steps; k += 1u) {
+        // Waves: a refresh step refreshes the block's own nodes (the elements read
+        // only those), made visible to the workgroup before the element loads.
+        if wave_steps[k].refresh != 0u {
+            if has_node {
+                wave_refresh_node(i, k, vec3<R>(blk.ox, blk.oy, blk.oz) + (s.r_hi.xyz + s.r_lo.xyz), s.v.xyz);
+            }
+            storageBarrier();
+        }
         if has_elem {
             wg_loads[j] = element_step(ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k);
         }
@@ -99,12 +107,13 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
             break;
         }
         if has_node {
-            var nf = gather_begin(nd, s, blk);
+            let w = node_waves(i, k);
+            var nf = gather_begin(nd, s, blk, w);
             for (var q = nd.inc_start; q < nd.inc_end; q += 1u) {
                 let entry = inc[q];
                 nf = gather_add(nf, wg_loads[(entry >> 1u) - blk.elem_start], entry);
             }
-            nf = gather_end(i, nd, s, nf, blk, k);
+            nf = gather_end(i, nd, s, nf, blk, k, w);
             s = node_advance(nd, s, nf, R(k) * params.dt, k);
             wg_state[j] = wg_pack(s);
             let what = node_check(blk, s);

@@ -48,3 +48,17 @@ fn node_evaluate(@builtin(global_invocation_id) gid: vec3<u32>) {
         reactions[nd.constraint] = vec4<R>(nf.f - sym3_mul(nf.m, a), R(0.0));
     }
 }
+
+// The waves' refresh, dispatched by the host before the element pass of a step whose
+// WaveStep row has `refresh` set: per node, the cache's new values (shared/waves.wgsl:
+// wave_refresh_node) at the node's absolute position.
+@compute @workgroup_size(64)
+fn wave_refresh(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= params.n_nodes {
+        return;
+    }
+    let s = state[i];
+    let blk = blocks[nodes[i].block];
+    wave_refresh_node(i, step.k, vec3<R>(blk.ox, blk.oy, blk.oz) + (s.r_hi.xyz + s.r_lo.xyz), s.v.xyz);
+}

@@ -74,6 +74,14 @@ pub enum Error {
     /// The GPU device failed (validation error, out of memory, device lost).
     #[error("GPU: {0}")]
     Gpu(String),
+    /// A file to plot could not be read, or a plot could not be drawn.
+    #[error("plot: {path}: {message}")]
+    Plot {
+        /// The file read or written.
+        path: PathBuf,
+        /// The problem (the column and the value, where one is at fault).
+        message: String,
+    },
     /// The model or options use something the GPU path does not do yet.
     #[error("not supported on the GPU path yet: {0}")]
     GpuUnsupported(String),

@@ -39,13 +39,14 @@ pub mod moordyn;
 pub mod options;
 pub mod output;
 pub mod physics;
+pub mod plot;
 pub mod scenario;
 pub mod sea;
 pub mod sim;
 pub mod stability;
 pub mod statics;
-pub mod study;
 pub mod step;
+pub mod study;
 
 pub use error::{Error, Result};
 pub use options::Overrides;

@@ -752,10 +752,21 @@ fn element_step(ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeSt
         stretch = norm3(d) - l0;
     }
     let zmid = oz + ((sa.r_hi.z + sb.r_hi.z) + (sa.r_lo.z + sb.r_lo.z)) * R(0.5);
-    let u = current_at(ep.current, zmid);
-    // Still water: the surface is z = 0 and the water does not accelerate.
-    let aw = vec3<R>(R(0.0), R(0.0), R(0.0));
-    let wet = wetted_fraction(submergence(oz, sa), submergence(oz, sb), ep.diameter);
+    var u = current_at(ep.current, zmid);
+    // Still water: the surface is z = 0 and the water does not accelerate. Waves: the
+    // mean of the two nodes' wave velocity and acceleration at the midpoint, the
+    // surface over each node for the wetted fraction (cpu::stepper element_input).
+    var aw = vec3<R>(R(0.0), R(0.0), R(0.0));
+    var wet: R;
+    if wave_steps[k].n == 0u {
+        wet = wetted_fraction(submergence(oz, sa), submergence(oz, sb), ep.diameter);
+    } else {
+        let wa = node_waves(ep.a, k);
+        let wb = node_waves(ep.b, k);
+        u += R(0.5) * (wa.u + wb.u);
+        aw = R(0.5) * (wa.a + wb.a);
+        wet = wetted_fraction(wa.eta + submergence(oz, sa), wb.eta + submergence(oz, sb), ep.diameter);
+    }
     let el = glmf_element_wet(lp, d, stretch, sa.v.xyz, sb.v.xyz, l0, u, aw, wet, params.gravity);
     var tension = el.tension;
     if var_elem {
@@ -806,11 +817,12 @@ struct NodeForce {
     m: Sym3,
 }
 
-// The start of node `nd`'s gather (state `s`, block `blk`): its point mass and the
-// point's weight less buoyancy, less the added mass and buoyancy of the share of the
-// point out of the water (nothing under water: dry = 0).
-fn gather_begin(nd: NodeParams, s: NodeState, blk: BlockParams) -> NodeForce {
-    let dry = R(1.0) - point_wetted_fraction(submergence(blk.oz, s), nd.point_radius);
+// The start of node `nd`'s gather (state `s`, block `blk`, waves `w` over it: see
+// node_waves): its point mass and the point's weight less buoyancy, less the added
+// mass and buoyancy of the share of the point out of the water (nothing under water:
+// dry = 0).
+fn gather_begin(nd: NodeParams, s: NodeState, blk: BlockParams, w: WaveKin) -> NodeForce {
+    let dry = R(1.0) - point_wetted_fraction(w.eta + submergence(blk.oz, s), nd.point_radius);
     let wz = nd.point_weight_z - dry * (nd.point_displaced * params.gravity);
     return NodeForce(vec3<R>(R(0.0), R(0.0), wz), sym3_scalar(nd.point_mass - dry * nd.point_added));
 }
@@ -824,16 +836,22 @@ fn gather_add(nf: NodeForce, el: ElemLoads, entry: u32) -> NodeForce {
     return NodeForce(f, sym3_add_element(nf.m, el.half_mass, el.half_added, t));
 }
 
-// The end of node `i`'s gather (block `blk`, state `s`, step `k` of the submission):
-// point drag, a winch node's mass-flow force and tributary change, seabed contact.
-fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockParams, k: u32) -> NodeForce {
+// The end of node `i`'s gather (block `blk`, state `s`, step `k` of the submission,
+// waves `w` over it): point drag on the relative water velocity, the water-
+// acceleration load (1 + Ca) rho V a of the point's wet share in waves, a winch
+// node's mass-flow force and tributary change, seabed contact.
+fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockParams, k: u32, w: WaveKin) -> NodeForce {
     var f = nf.f;
     let v = s.v.xyz;
+    let wet = point_wetted_fraction(w.eta + submergence(blk.oz, s), nd.point_radius);
     if nd.point_drag > R(0.0) {
         let z = blk.oz + (s.r_hi.z + s.r_lo.z);
-        let wet = point_wetted_fraction(submergence(blk.oz, s), nd.point_radius);
-        let vr = current_at(nd.current, z) - v;
+        let vr = (current_at(nd.current, z) + w.u) - v;
         f += vr * (nd.point_drag * norm3(vr) * wet);
+    }
+    let m_fk = nd.point_displaced + nd.point_added;
+    if wave_steps[k].n != 0u && m_fk > R(0.0) {
+        f += w.a * (m_fk * wet);
     }
     var trib = nd.tributary;
     if nd.winch != NO_WINCH {
@@ -857,12 +875,13 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
 // seabed contact.
 fn gather_node(i: u32, nd: NodeParams, s: NodeState, k: u32) -> NodeForce {
     let blk = blocks[nd.block];
-    var nf = gather_begin(nd, s, blk);
+    let w = node_waves(i, k);
+    var nf = gather_begin(nd, s, blk, w);
     for (var j = nd.inc_start; j < nd.inc_end; j += 1u) {
         let entry = inc[j];
         nf = gather_add(nf, elem_loads[entry >> 1u], entry);
     }
-    return gather_end(i, nd, s, nf, blk, k);
+    return gather_end(i, nd, s, nf, blk, k, w);
 }
 
 // Acceleration of node `i`: free (mass block solve) or driven onto its route with

@@ -1,12 +1,12 @@
 // Wave kinematics: the WGSL twins of src/sea/kinematics.rs and src/sea/cache.rs (same
 // names, same formulas; tests/gpu_waves.rs compares each with its Rust twin).
 //
-// Appended after the prelude (it uses `R`, `PIO2_HI`, `PIO2_LO` and `sin_cos`).
-// Buffers: the components, `WaveComp` per component (`sea::kinematics::PackedComponent`,
-// ten scalars, phases referred to a reference time `t_ref` chosen by the host), at
-// group 0, binding 17. Nothing else is bound here: a stage that uses the waves passes
-// the number of components, depth, stretching and ramp as arguments, and owns the
-// cache's storage (seven scalars per node and time: eta, u, a).
+// Appended after the prelude (it uses `R`, `PIO2_HI`, `PIO2_LO`, `sin_cos` and
+// `params`). Buffers: the components, `WaveComp` per component
+// (`sea::kinematics::PackedComponent`, ten scalars, phases referred to a reference
+// time `t_ref` chosen by the host: the solver rebases them at each submission), at
+// group 0, binding 17; the solver's per-node cache at binding 19 and its per-step rows
+// at binding 20 (see the end of this file).
 //
 // Conventions: mean level z = 0, z up; eta = A cos(theta), theta = k (x cos b + y sin b)
 // - w t + phi, b the direction of travel from +x towards +y. Infinite depth comes as
@@ -119,8 +119,13 @@ fn wave_depth_decay(k: R, zs: R, depth: R) -> vec2<R> {
 // Elevation, velocity and acceleration of the first n components at p and time t
 // (phases referred to t_ref), ramp included.
 fn wave_kinematics_at(n: u32, depth: R, stretching: u32, ramp_duration: R, p: vec3<R>, t: R, t_ref: R) -> WaveKin {
-    let r = wave_ramp(t, ramp_duration);
-    let tau = t - t_ref;
+    return wave_kinematics_tau(n, depth, stretching, wave_ramp(t, ramp_duration), p, t - t_ref);
+}
+
+// The same at tau = t - t_ref after the reference time, with the ramp factor r given
+// (the solver forms both on the host in f64: an absolute time in f32 would carry
+// 1e-3 s of rounding after three hours).
+fn wave_kinematics_tau(n: u32, depth: R, stretching: u32, r: R, p: vec3<R>, tau: R) -> WaveKin {
     let eta = r * wave_elevation_sum(n, p.x, p.y, tau);
     let zs = wave_eval_depth(p.z, eta, depth, stretching);
     var u = vec3<R>(R(0.0));
@@ -141,4 +146,83 @@ fn wave_kinematics_at(n: u32, depth: R, stretching: u32, ramp_duration: R, p: ve
 fn wave_cache_lerp(v0: WaveKin, v1: WaveKin, s: R) -> WaveKin {
     let q = R(1.0) - s;
     return WaveKin(q * v0.eta + s * v1.eta, q * v0.u + s * v1.u, q * v0.a + s * v1.a);
+}
+
+// ---- The solver's per-node kinematics cache (sea::cache::WaveCache, the CPU path's
+// cpu::water::BlockWaves): values at two refresh times t0, t1 per node, interpolated
+// between them at every step. The host decides when a refresh is due, exactly as the
+// CPU path does, and writes one WaveStep row per step of a submission. ----
+
+// One step of a submission. Rust: gpu::layout::WaveStep.
+struct WaveStep {
+    // Cache slots of the t0 values and of the t1 values (0 or 1; 2: the evaluation's
+    // own slot, so that an output-time evaluation leaves the run's cache alone).
+    slot0: u32,
+    slot1: u32,
+    // 1 when the t0 values are evaluated afresh at this step (first step, or a jump
+    // in time), else 0.
+    restart: u32,
+    // 1 when this step refreshes the cache before its element pass.
+    refresh: u32,
+    // Number of components (0: still water, nothing read).
+    n: u32,
+    // WAVE_WHEELER or WAVE_CONSTANT.
+    stretching: u32,
+    // Interpolation weight of this step's time, (t - t0) / (t1 - t0) in [0, 1].
+    s: R,
+    // Refresh: t - t_ref (s) and the ramp factor at the step's time t (restart only).
+    tau0: R,
+    ramp0: R,
+    // Refresh: t1 - t_ref (s) and the ramp factor at t1.
+    tau1: R,
+    ramp1: R,
+    // Refresh: t1 - t, s (the t1 values are evaluated at x + v (t1 - t)).
+    ahead: R,
+    // Water depth, m (sea::GPU_DEEP for deep water).
+    depth: R,
+}
+
+// Seven scalars per node and slot: eta, u, a (m, m/s, m/s^2); three slots.
+@group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
+@group(0) @binding(20) var<storage, read> wave_steps: array<WaveStep>;
+
+fn wave_cache_load(slot: u32, i: u32) -> WaveKin {
+    let o = (slot * params.n_nodes + i) * 7u;
+    return WaveKin(
+        wave_cache[o],
+        vec3<R>(wave_cache[o + 1u], wave_cache[o + 2u], wave_cache[o + 3u]),
+        vec3<R>(wave_cache[o + 4u], wave_cache[o + 5u], wave_cache[o + 6u]),
+    );
+}
+
+fn wave_cache_store(slot: u32, i: u32, w: WaveKin) {
+    let o = (slot * params.n_nodes + i) * 7u;
+    wave_cache[o] = w.eta;
+    wave_cache[o + 1u] = w.u.x;
+    wave_cache[o + 2u] = w.u.y;
+    wave_cache[o + 3u] = w.u.z;
+    wave_cache[o + 4u] = w.a.x;
+    wave_cache[o + 5u] = w.a.y;
+    wave_cache[o + 6u] = w.a.z;
+}
+
+// Node i's elevation, wave velocity and wave acceleration at step k of the
+// submission (all zero in still water). CPU twin: cpu::water::BlockWaves::fill.
+fn node_waves(i: u32, k: u32) -> WaveKin {
+    let ws = wave_steps[k];
+    if ws.n == 0u {
+        return WaveKin(R(0.0), vec3<R>(R(0.0)), vec3<R>(R(0.0)));
+    }
+    return wave_cache_lerp(wave_cache_load(ws.slot0, i), wave_cache_load(ws.slot1, i), ws.s);
+}
+
+// The refresh of node i at step k, at absolute position p (m) with velocity v (m/s):
+// on a restart the t0 values at p, then the t1 values at the predicted position
+// p + v (t1 - t). CPU twin: sea::cache::WaveCache::refresh_if_due.
+fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
+    let ws = wave_steps[k];
+    if ws.restart != 0u {
+        wave_cache_store(ws.slot0, i, wave_kinematics_tau(ws.n, ws.depth, ws.stretching, ws.ramp0, p, ws.tau0));
+    }
+    wave_cache_store(ws.slot1, i, wave_kinematics_tau(ws.n, ws.depth, ws.stretching, ws.ramp1, p + v * ws.ahead, ws.tau1));
 }

@@ -4,12 +4,14 @@ use anyhow::{Context, Result};
 use cablesim::options::{
     Backend, CableModel, FormulationChoice, Overrides, Precision, Scheme, SolverOptions,
 };
-use cablesim::output::FileSink;
+use cablesim::output::{FanOut, FileSink, VtkSink};
 use cablesim::scenario::Scenario;
 use cablesim::sim::{self, Progress, Simulation};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 #[path = "cablesim/study.rs"]
 mod study;
@@ -55,9 +57,25 @@ enum Cmd {
         /// Simulated duration in seconds (overrides the scenario's).
         #[arg(long, value_parser = positive)]
         duration: Option<f64>,
+        /// Also write ParaView files into OUT/vtk (as `[output] vtk = true` does).
+        #[arg(long)]
+        vtk: bool,
         /// No progress bar.
         #[arg(long, short)]
         quiet: bool,
+    },
+    /// Draw PNG charts of a run's output directory (end forces, cable profiles) or a
+    /// study's (Gumbel plots of the seed maxima, utilisation).
+    Plot {
+        /// The output directory of `cablesim run` or `cablesim study`.
+        dir: PathBuf,
+        /// Where to write the images (default: DIR/plots).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Output times for the profiles, s, comma separated (default: the first and
+        /// the last).
+        #[arg(long, value_delimiter = ',')]
+        times: Vec<f64>,
     },
     /// Validate a scenario file without running it.
     Check {
@@ -108,24 +126,44 @@ fn main() -> ExitCode {
         .format_timestamp(None)
         .init();
     match real_main(cli) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(RunOutcome::Done) => ExitCode::SUCCESS,
+        Ok(RunOutcome::Interrupted) => ExitCode::from(130),
         Err(e) => {
-            eprintln!("error: {e:#}");
+            // The chain of causes, each once: the library's errors already name their
+            // cause in their own message.
+            let mut text = String::new();
+            for cause in e.chain() {
+                let c = cause.to_string();
+                if !text.contains(&c) {
+                    if !text.is_empty() {
+                        text.push_str(": ");
+                    }
+                    text.push_str(&c);
+                }
+            }
+            eprintln!("error: {text}");
             ExitCode::FAILURE
         }
     }
 }
 
-fn real_main(cli: Cli) -> Result<()> {
+fn real_main(cli: Cli) -> Result<RunOutcome> {
     match cli.cmd {
-        Cmd::Study { cmd } => study::main(cmd),
+        Cmd::Study { cmd } => study::main(cmd).map(|()| RunOutcome::Done),
         Cmd::Convert {
             input,
             output,
             duration,
             motion,
-        } => convert(&input, output.as_deref(), duration, &motion),
-        Cmd::Check { scenario } => check(&scenario),
+        } => convert(&input, output.as_deref(), duration, &motion).map(|_| RunOutcome::Done),
+        Cmd::Check { scenario } => check(&scenario).map(|_| RunOutcome::Done),
+        Cmd::Plot { dir, out, times } => {
+            let out = out.unwrap_or_else(|| dir.join("plots"));
+            for p in cablesim::plot::plot_dir(&dir, &out, &times)? {
+                println!("{}", p.display());
+            }
+            Ok(RunOutcome::Done)
+        }
         Cmd::Run {
             scenario,
             out,
@@ -135,6 +173,7 @@ fn real_main(cli: Cli) -> Result<()> {
             formulation,
             dt,
             duration,
+            vtk,
             quiet,
         } => {
             let mut overrides = Overrides {
@@ -168,8 +207,12 @@ fn real_main(cli: Cli) -> Result<()> {
                     format!("run of {}", scenario.display())
                 }
             };
-            let mut simulation =
-                Simulation::from_file(&scenario, &overrides).with_context(context)?;
+            // A scenario that does not validate writes nothing. Then the output
+            // directory: an earlier run's files go before the build can fail, and a
+            // directory in use or not ours is refused before any work.
+            let sc = Scenario::load_any(&scenario).with_context(context)?;
+            let mut sink = FileSink::claim(&out_dir)?;
+            let mut simulation = Simulation::new(sc, &overrides).with_context(context)?;
             let bar = if quiet {
                 indicatif::ProgressBar::hidden()
             } else {
@@ -183,15 +226,41 @@ fn real_main(cli: Cli) -> Result<()> {
                 );
                 b
             };
+            let mut vtk_sink = VtkSink::new(out_dir.join("vtk"));
+            let mut sinks = FanOut::new().with(&mut sink);
+            if vtk || simulation.scenario().vtk {
+                sinks = sinks.with(&mut vtk_sink);
+            }
+            // Ctrl-C and SIGTERM ask the run to stop at the next step boundary; it then
+            // writes its last frame and an `interrupted` summary.
+            let stop = Arc::new(AtomicBool::new(false));
+            {
+                let stop = stop.clone();
+                ctrlc::set_handler(move || stop.store(true, Ordering::Relaxed))
+                    .context("cannot install the Ctrl-C/SIGTERM handler")?;
+            }
             let s = simulation
-                .run(&mut FileSink::new(&out_dir), |p: Progress| {
-                    bar.set_length(p.total);
-                    bar.set_position(p.done);
-                    bar.set_message(format!("{:.2} s", p.time));
-                })
+                .run_until(
+                    &mut sinks,
+                    |p: Progress| {
+                        bar.set_length(p.total);
+                        bar.set_position(p.done);
+                        bar.set_message(format!("{:.2} s", p.time));
+                    },
+                    || stop.load(Ordering::Relaxed),
+                )
                 .with_context(context);
             bar.finish_and_clear();
             let s = s?;
+            if s.status == "interrupted" {
+                eprintln!(
+                    "interrupted at t = {} s after {} steps; output so far in {}",
+                    s.simulated_time,
+                    s.steps,
+                    out_dir.display()
+                );
+                return Ok(RunOutcome::Interrupted);
+            }
             eprintln!(
                 "done: {} steps of {:.4e} s to t = {} s in {:.3} s of stepping ({:.3e} node-steps/s); output in {}",
                 s.steps,
@@ -201,9 +270,16 @@ fn real_main(cli: Cli) -> Result<()> {
                 s.node_steps_per_second,
                 out_dir.display()
             );
-            Ok(())
+            Ok(RunOutcome::Done)
         }
     }
+}
+
+/// How a command ended, when it did not fail.
+enum RunOutcome {
+    Done,
+    /// A run stopped by Ctrl-C or SIGTERM (exit status 130, as a shell reports SIGINT).
+    Interrupted,
 }
 
 /// `cablesim check`: validates the scenario and prints the mesh and the step plan.
@@ -228,8 +304,13 @@ fn check(scenario: &std::path::Path) -> Result<()> {
     if let Some(w) = &plan.warning {
         log::warn!("{w}");
     }
+    let above = if plan.dt > plan.bound.dt {
+        " (dt is above the stable step: expect a blow-up or wrong results)"
+    } else {
+        ""
+    };
     println!(
-        "{}: ok: {} cables, {} nodes, {} elements; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps",
+        "{}: ok: {} cables, {} nodes, {} elements; dt = {:.4e} s (stable {:.4e} s, set by {}); {} steps{above}",
         scenario.display(),
         lay.cables.len(),
         lay.n_nodes(),

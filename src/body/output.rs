@@ -9,10 +9,10 @@
 //! position.
 
 use super::Body;
-use crate::step::Evaluation;
-use crate::output::BodyState;
 use crate::math::V3;
 use crate::model::{Layout, Route};
+use crate::output::BodyState;
+use crate::step::Evaluation;
 use std::sync::Arc;
 
 /// The bodies of a layout and the constraints (route indices) held on each.

@@ -21,4 +21,4 @@ mod stepper;
 mod water;
 
 pub use crate::step::{Evaluation, StepFailure, WinchStatus};
-pub use stepper::CpuSolver;
+pub use stepper::{CpuCheckpoint, CpuSolver};

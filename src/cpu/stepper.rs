@@ -85,7 +85,40 @@ pub struct CpuSolver {
     exact_waves: bool,
 }
 
+/// The state of a [`CpuSolver`] at one step: all it carries from step to step when its
+/// mesh is fixed (element loads and scratch are recomputed each step).
+#[derive(Clone, Debug)]
+pub struct CpuCheckpoint {
+    /// Steps taken.
+    pub steps: u64,
+    t: f64,
+    node_steps: u64,
+    r: Vec<V>,
+    v: Vec<V>,
+}
+
 impl CpuSolver {
+    /// The state now, to go back to with [`CpuSolver::restore`]; `None` with winches
+    /// (their mesh and payout change as the run goes).
+    pub fn checkpoint(&self) -> Option<CpuCheckpoint> {
+        self.ale.is_none().then(|| CpuCheckpoint {
+            steps: self.steps,
+            t: self.t,
+            node_steps: self.node_steps,
+            r: self.r.clone(),
+            v: self.v.clone(),
+        })
+    }
+
+    /// Goes back to the state `cp`, taken from this solver.
+    pub fn restore(&mut self, cp: &CpuCheckpoint) {
+        self.steps = cp.steps;
+        self.t = cp.t;
+        self.node_steps = cp.node_steps;
+        self.r.clone_from(&cp.r);
+        self.v.clone_from(&cp.v);
+    }
+
     /// The packed model (the current mesh, with winches).
     pub fn layout(&self) -> &Layout {
         &self.layout

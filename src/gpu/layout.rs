@@ -546,6 +546,41 @@ gpu_struct! {
     }
 }
 
+gpu_struct! {
+    /// The waves at one step of a submission (WGSL `WaveStep` in
+    /// `shaders/shared/waves.wgsl`): where the kinematics cache's two times are, the
+    /// interpolation weight, and what a refresh at this step evaluates. Times are
+    /// relative to the components' reference time `t_ref`, formed in f64 on the host.
+    WaveStep {
+        /// Cache slot of the values at `t0` (0 or 1; 2 for an output-time evaluation).
+        slot0: u32,
+        /// Cache slot of the values at `t1`.
+        slot1: u32,
+        /// 1 when a refresh at this step evaluates the `t0` values afresh.
+        restart: u32,
+        /// 1 when this step refreshes the cache before its element pass.
+        refresh: u32,
+        /// Number of wave components (0: still water).
+        n: u32,
+        /// 0: Wheeler stretching, 1: the profile held at `z = 0`.
+        stretching: u32,
+        /// Interpolation weight `(t - t0) / (t1 - t0)` of the step's time.
+        s: R,
+        /// `t - t_ref` of the step, s (refresh with restart).
+        tau0: R,
+        /// Start-up ramp factor at the step's time (refresh with restart).
+        ramp0: R,
+        /// `t1 - t_ref`, s (refresh).
+        tau1: R,
+        /// Start-up ramp factor at `t1` (refresh).
+        ramp1: R,
+        /// `t1 - t`, s: the `t1` values are evaluated at `x + v (t1 - t)` (refresh).
+        ahead: R,
+        /// Water depth, m (`sea::GPU_DEEP` for deep water).
+        depth: R,
+    }
+}
+
 impl<R: GpuReal> WaveComp<R> {
     /// The component at precision `R`.
     pub fn from_packed(c: &crate::sea::kinematics::PackedComponent) -> Self {
@@ -587,5 +622,6 @@ pub fn all_structs<R: GpuReal>() -> Vec<(&'static str, usize, Vec<Field>)> {
         one::<Payout<R>>(),
         one::<BodyRow<R>>(),
         one::<WaveComp<R>>(),
+        one::<WaveStep<R>>(),
     ]
 }

@@ -32,6 +32,9 @@ use crate::math::V3;
 use crate::model::{circle_basis, Layout, ModelDef, Route};
 use crate::options::Precision;
 use crate::options::{Formulation, Scheme, SolverOptions};
+use crate::sea::cache::{refresh_interval, CACHE_STRIDE};
+use crate::sea::kinematics::{wave_ramp, WaveField};
+use crate::sea::{SeaState, Stretching, GPU_DEEP};
 use crate::step::{diverged, Evaluation, StepFailure, WinchStatus};
 use bytemuck::Zeroable;
 use std::f64::consts::PI;
@@ -464,6 +467,8 @@ trait Engine: Send {
     fn fused_unavailable(&self) -> Option<&str>;
     /// Chooses the kernel (`Fused` only when available).
     fn set_kernel(&mut self, k: GpuKernel) -> Result<(), Error>;
+    /// Runs in `sea` from now on (still water without components), keeping the state.
+    fn set_sea(&mut self, lay: &Layout, host: &Host, sea: &SeaState) -> Result<(), Error>;
     /// Replaces the layout (after a remeshing) with state `r`, `v`.
     fn install(
         &mut self,
@@ -509,7 +514,101 @@ struct Buffers {
     status: wgpu::Buffer,
     payout: wgpu::Buffer,
     body_rows: wgpu::Buffer,
+    wave_comps: wgpu::Buffer,
+    wave_steps: wgpu::Buffer,
     staging: wgpu::Buffer,
+}
+
+/// The host's side of the waves' kinematics cache: the components (rebased at each
+/// submission) and when the cache's two times are, kept exactly as the CPU path's
+/// `sea::cache::WaveCache::refresh_if_due` keeps them, so that both refresh at the
+/// same steps and interpolate with the same weights.
+struct WaveSchedule {
+    field: WaveField,
+    /// Refresh interval, s.
+    interval: f64,
+    started: bool,
+    /// Times of the older and newer values, s.
+    t0: f64,
+    t1: f64,
+    /// Cache slot of the older values (0 or 1).
+    slot0: u32,
+}
+
+impl WaveSchedule {
+    fn new(sea: &SeaState) -> Self {
+        Self {
+            field: WaveField::new(sea),
+            interval: refresh_interval(&sea.components, sea.cache_tolerance),
+            started: false,
+            t0: 0.0,
+            t1: 0.0,
+            slot0: 0,
+        }
+    }
+
+    /// The row of constants every step shares.
+    fn base<R: GpuReal>(&self) -> WaveStep<R> {
+        WaveStep {
+            n: self.field.comps.len() as u32,
+            stretching: match self.field.stretching {
+                Stretching::Wheeler => 0,
+                Stretching::Constant => 1,
+            },
+            depth: R::c(if self.field.depth.is_finite() {
+                self.field.depth
+            } else {
+                GPU_DEEP
+            }),
+            ..Default::default()
+        }
+    }
+
+    /// The row of the step at time `t` (s; phases referred to `t_ref`), refreshing
+    /// when the CPU path's cache would.
+    fn step<R: GpuReal>(&mut self, t: f64, t_ref: f64) -> WaveStep<R> {
+        let mut row = self.base::<R>();
+        let ramp = self.field.ramp_duration;
+        let covered = self.t1 > self.t0 && t >= self.t0 && t <= self.t1;
+        if !covered {
+            row.refresh = 1;
+            if !self.started || t < self.t0 || t > self.t1 + self.interval {
+                self.t0 = t;
+                self.started = true;
+                row.restart = 1;
+                row.tau0 = R::c(t - t_ref);
+                row.ramp0 = R::c(wave_ramp(t, ramp));
+            } else {
+                self.slot0 = 1 - self.slot0;
+                self.t0 = self.t1;
+            }
+            self.t1 = self.t0 + self.interval;
+            row.ahead = R::c(self.t1 - t);
+            row.tau1 = R::c(self.t1 - t_ref);
+            row.ramp1 = R::c(wave_ramp(self.t1, ramp));
+        }
+        row.slot0 = self.slot0;
+        row.slot1 = 1 - self.slot0;
+        row.s = R::c(((t - self.t0) / (self.t1 - self.t0)).clamp(0.0, 1.0));
+        row
+    }
+
+    /// The row of an output-time evaluation at `t`: exact values at the nodes, in
+    /// the evaluation's own slot 2 (the CPU path evaluates exactly there too).
+    fn exact<R: GpuReal>(&self, t: f64, t_ref: f64) -> WaveStep<R> {
+        let ramp = R::c(wave_ramp(t, self.field.ramp_duration));
+        WaveStep {
+            slot0: 2,
+            slot1: 2,
+            restart: 1,
+            refresh: 1,
+            tau0: R::c(t - t_ref),
+            ramp0: ramp,
+            tau1: R::c(t - t_ref),
+            ramp1: ramp,
+            ..self.base::<R>()
+        }
+    }
 }
 
 struct GpuEngine<R: GpuReal> {
@@ -521,6 +620,9 @@ struct GpuEngine<R: GpuReal> {
     pipe_elem: wgpu::ComputePipeline,
     pipe_node: wgpu::ComputePipeline,
     pipe_eval: wgpu::ComputePipeline,
+    pipe_refresh: wgpu::ComputePipeline,
+    /// The waves (`None`: still water).
+    waves: Option<WaveSchedule>,
     /// The fused kernel's pipeline and workgroup size, or why there is none.
     pipe_fused: Result<(wgpu::ComputePipeline, u32), String>,
     /// Whether `advance` uses the fused kernel.
@@ -595,8 +697,11 @@ impl<R: GpuReal> GpuEngine<R> {
         entries.extend((2..=9).map(|b| storage(b, true)));
         entries.extend((10..=14).map(|b| storage(b, false)));
         entries.extend((15..=16).map(|b| storage(b, true)));
-        // Binding 17 is left to the wave components (shaders/shared/waves.wgsl).
+        // The wave components, bodies, the waves' cache and per-step rows.
+        entries.push(storage(17, true));
         entries.push(storage(18, true));
+        entries.push(storage(19, false));
+        entries.push(storage(20, true));
         let bgl = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("cablesim"),
             entries: &entries,
@@ -632,6 +737,7 @@ impl<R: GpuReal> GpuEngine<R> {
         let pipe_elem = pipeline(&m_elem, "element_forces");
         let pipe_node = pipeline(&m_node, "node_update");
         let pipe_eval = pipeline(&m_node, "node_evaluate");
+        let pipe_refresh = pipeline(&m_node, "wave_refresh");
         let pipe_fused = fused_workgroup(lay, precision, &ctx.limits, !host.winches.is_empty())
             .map(|wg| {
                 let m = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -643,7 +749,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 (pipeline(&m, "fused_steps"), wg)
             });
         let use_fused = pipe_fused.is_ok();
-        let inst = Self::build(ctx, &bgl, step_stride, lay, host, opts);
+        let inst = Self::build(ctx, &bgl, step_stride, lay, host, opts, 0);
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(Error::Gpu(format!(
                 "building the {} pipelines: {e}",
@@ -658,6 +764,8 @@ impl<R: GpuReal> GpuEngine<R> {
             pipe_elem,
             pipe_node,
             pipe_eval,
+            pipe_refresh,
+            waves: None,
             pipe_fused,
             use_fused,
             step_stride,
@@ -678,6 +786,7 @@ impl<R: GpuReal> GpuEngine<R> {
         lay: &Layout,
         host: &Host,
         opts: &SolverOptions,
+        n_comps: usize,
     ) -> Installed<R> {
         let dev = &ctx.device;
         let env = &lay.env;
@@ -833,6 +942,17 @@ impl<R: GpuReal> GpuEngine<R> {
             status: init("status", &zeros(16), rw),
             payout: init("payout", &zeros(payout_bytes), ro | U::COPY_DST),
             body_rows: init("body_rows", &zeros(body_bytes), ro | U::COPY_DST),
+            wave_comps: init(
+                "wave_comps",
+                &zeros((n_comps.max(1) * std::mem::size_of::<WaveComp<R>>()) as u64),
+                ro | U::COPY_DST,
+            ),
+            // Still water: rows of zeros (no components) are never rewritten.
+            wave_steps: init(
+                "wave_steps",
+                &zeros(STEPS_PER_SUBMISSION as u64 * std::mem::size_of::<WaveStep<R>>() as u64),
+                ro | U::COPY_DST,
+            ),
             staging: dev.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("staging"),
                 size: staging_bytes,
@@ -854,6 +974,18 @@ impl<R: GpuReal> GpuEngine<R> {
             .flat_map(|(c, r)| route_samples::<R>(r, host.route_origin(lay, c)))
             .collect();
         let samples_b = init("route_samples", &bytes_or_one(&samples), ro);
+        // Three slots (t0, t1, output-time evaluation) of CACHE_STRIDE values per node;
+        // one value in still water.
+        let cache_len = if n_comps == 0 {
+            1
+        } else {
+            3 * n_nodes * CACHE_STRIDE
+        };
+        let cache_b = init(
+            "wave_cache",
+            &zeros((cache_len * std::mem::size_of::<R>()) as u64),
+            U::STORAGE,
+        );
         fn whole(binding: u32, b: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
             wgpu::BindGroupEntry {
                 binding,
@@ -888,7 +1020,10 @@ impl<R: GpuReal> GpuEngine<R> {
                 whole(14, &buf.status),
                 whole(15, &samples_b),
                 whole(16, &buf.payout),
+                whole(17, &buf.wave_comps),
                 whole(18, &buf.body_rows),
+                whole(19, &cache_b),
+                whole(20, &buf.wave_steps),
             ],
         });
         Installed {
@@ -982,6 +1117,38 @@ impl<R: GpuReal> GpuEngine<R> {
             .write_buffer(&self.inst.buf.routes, 0, bytemuck::cast_slice(&q));
     }
 
+    /// Rebases the wave components to `t_ref` and writes them (waves only).
+    fn write_wave_comps(&mut self, t_ref: f64) {
+        let Some(w) = self.waves.as_mut() else {
+            return;
+        };
+        w.field.rebase(t_ref);
+        let comps: Vec<WaveComp<R>> = w.field.comps.iter().map(WaveComp::from_packed).collect();
+        self.ctx
+            .queue
+            .write_buffer(&self.inst.buf.wave_comps, 0, bytemuck::cast_slice(&comps));
+    }
+
+    /// Writes the `wave_steps` rows of steps `step0 .. step0 + n`, components referred
+    /// to the time of `step0`; returns which steps refresh the cache (none in still
+    /// water).
+    fn write_waves(&mut self, step0: u64, n: u64) -> Vec<bool> {
+        if self.waves.is_none() {
+            return vec![false; n as usize];
+        }
+        let dt = self.dt64;
+        let t_ref = step0 as f64 * dt;
+        self.write_wave_comps(t_ref);
+        let w = self.waves.as_mut().expect("waves");
+        let rows: Vec<WaveStep<R>> = (0..n)
+            .map(|k| w.step::<R>((step0 + k) as f64 * dt, t_ref))
+            .collect();
+        self.ctx
+            .queue
+            .write_buffer(&self.inst.buf.wave_steps, 0, bytemuck::cast_slice(&rows));
+        rows.iter().map(|r| r.refresh != 0).collect()
+    }
+
     fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>, pipe: &wgpu::ComputePipeline, n: usize) {
         pass.set_pipeline(pipe);
         pass.dispatch_workgroups((n as u32).div_ceil(WORKGROUP).max(1), 1, 1);
@@ -1050,7 +1217,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         step0: u64,
         n: u64,
     ) -> Result<Option<(u64, u32)>, Error> {
-        let ctx = &self.ctx;
+        let ctx = &self.ctx.clone();
         ctx.queue.write_buffer(
             &self.inst.buf.status,
             0,
@@ -1065,6 +1232,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             self.write_routes(lay, host, (step0 + done) as f64 * dt64);
             self.write_payout(host, step0 + done, chunk);
             self.write_bodies(host, step0 + done, chunk);
+            let refresh = self.write_waves(step0 + done, chunk);
             self.inst.params.step_base = done as u32;
             self.inst.params.n_steps = chunk as u32;
             ctx.queue.write_buffer(
@@ -1094,6 +1262,10 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                         for k in 0..chunk {
                             let off = (k * self.step_stride) as u32;
                             pass.set_bind_group(0, &self.inst.bind_group, &[off]);
+                            if refresh[k as usize] {
+                                self.dispatch(&mut pass, &self.pipe_refresh, self.inst.n_nodes);
+                                self.timings.dispatches += 1;
+                            }
                             self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
                             self.dispatch(&mut pass, &self.pipe_node, self.inst.n_nodes);
                         }
@@ -1171,6 +1343,16 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             .ctx
             .device
             .push_error_scope(wgpu::ErrorFilter::Validation);
+        // A new mesh starts the waves' cache afresh (as the CPU path's does).
+        let n_comps = match self.waves.as_mut() {
+            Some(w) => {
+                w.started = false;
+                w.t0 = 0.0;
+                w.t1 = 0.0;
+                w.field.comps.len()
+            }
+            None => 0,
+        };
         self.inst = Self::build(
             &self.ctx,
             &self.bgl,
@@ -1178,11 +1360,46 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             lay,
             host,
             &self.opts,
+            n_comps,
         );
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(Error::Gpu(format!("rebuilding the buffers: {e}")));
         }
         self.upload(host, r, v);
+        Ok(())
+    }
+
+    fn set_sea(&mut self, lay: &Layout, host: &Host, sea: &SeaState) -> Result<(), Error> {
+        self.waves = (!sea.is_still()).then(|| WaveSchedule::new(sea));
+        let n_comps = self.waves.as_ref().map_or(0, |w| w.field.comps.len());
+        let scope = self
+            .ctx
+            .device
+            .push_error_scope(wgpu::ErrorFilter::Validation);
+        let new = Self::build(
+            &self.ctx,
+            &self.bgl,
+            self.step_stride,
+            lay,
+            host,
+            &self.opts,
+            n_comps,
+        );
+        let old = std::mem::replace(&mut self.inst, new);
+        // The state moves over bit for bit (no round trip through f64 positions).
+        let bytes = (self.inst.n_nodes.max(1) * std::mem::size_of::<NodeState<R>>()) as u64;
+        let mut enc = self
+            .ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("set_sea"),
+            });
+        enc.copy_buffer_to_buffer(&old.buf.state, 0, &self.inst.buf.state, 0, bytes);
+        self.ctx.queue.submit([enc.finish()]);
+        self.write_routes(lay, host, 0.0);
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(Error::Gpu(format!("installing the waves: {e}")));
+        }
         Ok(())
     }
 
@@ -1221,10 +1438,17 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
     }
 
     fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error> {
-        let ctx = &self.ctx;
+        let ctx = &self.ctx.clone();
         self.write_routes(lay, host, step as f64 * self.dt64);
         self.write_payout(host, step, 1);
         self.write_bodies(host, step, 1);
+        let t = step as f64 * self.dt64;
+        self.write_wave_comps(t);
+        if let Some(w) = &self.waves {
+            let row = w.exact::<R>(t, t);
+            ctx.queue
+                .write_buffer(&self.inst.buf.wave_steps, 0, bytemuck::bytes_of(&row));
+        }
         self.inst.params.step_base = 0;
         ctx.queue.write_buffer(
             &self.inst.buf.params,
@@ -1242,6 +1466,9 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                 timestamp_writes: None,
             });
             pass.set_bind_group(0, &self.inst.bind_group, &[0]);
+            if self.waves.is_some() {
+                self.dispatch(&mut pass, &self.pipe_refresh, self.inst.n_nodes);
+            }
             self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
             self.dispatch(&mut pass, &self.pipe_eval, self.inst.n_nodes);
         }
@@ -1538,6 +1765,13 @@ impl GpuSolver {
             }
         }
         Ok(())
+    }
+
+    /// Runs in the sea state `sea` from now on (still water when it has no
+    /// components), as [`crate::cpu::CpuSolver`]'s stepper does with its kinematics
+    /// cache: the same refresh times, the same interpolation, the same loads.
+    pub fn set_sea(&mut self, sea: &SeaState) -> Result<(), Error> {
+        self.engine.set_sea(&self.layout, &self.host, sea)
     }
 
     /// Reads back node positions (absolute, m) and velocities (m/s), packed order.

@@ -18,12 +18,81 @@ use std::path::{Path, PathBuf};
 ///   with winches);
 /// - `bodies.csv`: `time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz` (m, degrees, N,
 ///   N m about the reference point; the file only when cable ends are on bodies);
+/// - `points.csv`: `time,point,x,y,z,fx,fy,fz` (m, N), per shared point
+///   (`[[points]]`) its position and the net force of its cables on it, or the reaction
+///   for a held point ([`super::PointState`]; the file only with such points);
 /// - `summary.json`: the [`Summary`].
 ///
-/// The directory and the files are created at the first frame.
+/// Cable and body names are quoted where CSV needs it (a comma, a quote, a line break).
+///
+/// A run owns its directory ([`FileSink::claim`], done at the first frame unless the
+/// caller claimed it before): the directory is created if needed, and locked for as
+/// long as the sink lives (a lock file, [`LOCK_FILE`]), so that a second run into it
+/// is refused; a marker file ([`MARKER_FILE`]) says it is a cablesim output folder. A
+/// directory already holding cablesim's files ([`OWN_FILES`], from an earlier run) is
+/// cleared of them; one holding any other file is refused, and nothing else is ever
+/// deleted.
 pub struct FileSink {
     dir: PathBuf,
     files: Option<Files>,
+    /// The held lock, once the directory is claimed.
+    lock: Option<File>,
+}
+
+/// The marker file of a cablesim output folder.
+pub const MARKER_FILE: &str = ".cablesim-output";
+/// The lock file a run holds while it writes into its folder.
+pub const LOCK_FILE: &str = ".cablesim.lock";
+/// The files a run may write: cleared from a folder before a new run writes into it.
+pub const OWN_FILES: &[&str] = &[
+    MARKER_FILE,
+    LOCK_FILE,
+    "summary.json",
+    "end_forces.csv",
+    "tensions.csv",
+    "positions.csv",
+    "winches.csv",
+    "bodies.csv",
+    "points.csv",
+];
+
+/// Folders cablesim writes into an output directory, with the extensions of the files it
+/// puts there: the ParaView files (`--vtk`) and `cablesim plot`'s images. A folder of
+/// that name holding only such files is cablesim's own, and is cleared of them.
+pub const OWN_DIRS: &[(&str, &[&str])] = &[("vtk", &["vtp", "pvd"]), ("plots", &["png"])];
+
+/// The files of own folder `dir` (see [`OWN_DIRS`]), or `None` when it holds anything else.
+fn own_dir_files(dir: &Path, exts: &[&str]) -> Option<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir).ok()? {
+        let entry = entry.ok()?;
+        let path = entry.path();
+        let ext = path.extension().and_then(|e| e.to_str());
+        if !entry.file_type().ok()?.is_file() || !ext.is_some_and(|e| exts.contains(&e)) {
+            return None;
+        }
+        files.push(path);
+    }
+    Some(files)
+}
+
+/// `name` as one CSV field: quoted where it holds a comma, a quote or a line break.
+fn csv_field(name: &str) -> String {
+    let mut w = csv::WriterBuilder::new()
+        .terminator(csv::Terminator::Any(b'\n'))
+        .from_writer(Vec::new());
+    w.write_record([name]).expect("writes to memory");
+    let mut bytes = w.into_inner().expect("writes to memory");
+    bytes.pop(); // the record's terminator
+    String::from_utf8(bytes).expect("a field of a UTF-8 string is UTF-8")
+}
+
+/// An output error on `path` with message `what`.
+fn output_error(path: &Path, what: String) -> Error {
+    Error::Output {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(what),
+    }
 }
 
 struct Files {
@@ -32,6 +101,7 @@ struct Files {
     positions: Option<BufWriter<File>>,
     winches: Option<BufWriter<File>>,
     bodies: Option<BufWriter<File>>,
+    points: Option<BufWriter<File>>,
 }
 
 /// The error of an I/O failure on file `name` in `dir`.
@@ -49,7 +119,109 @@ impl FileSink {
         Self {
             dir: dir.into(),
             files: None,
+            lock: None,
         }
+    }
+
+    /// A sink that claims `dir` now: creates it if needed, locks it, clears an earlier
+    /// run's files, and writes the marker. Fails, writing nothing, when `dir` is a file,
+    /// another run holds it, or it holds files that are not cablesim's.
+    pub fn claim(dir: impl Into<PathBuf>) -> Result<Self, Error> {
+        let mut s = Self::new(dir);
+        s.claim_dir()?;
+        Ok(s)
+    }
+
+    fn claim_dir(&mut self) -> Result<(), Error> {
+        if self.lock.is_some() {
+            return Ok(());
+        }
+        let dir = &self.dir;
+        if dir.exists() && !dir.is_dir() {
+            return Err(output_error(
+                dir,
+                "is a file, not a directory: give --out a directory (new or empty)".into(),
+            ));
+        }
+        std::fs::create_dir_all(dir).map_err(|source| Error::Output {
+            path: dir.clone(),
+            source,
+        })?;
+        let lock_path = dir.join(LOCK_FILE);
+        let lock = File::options()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .map_err(|source| Error::Output {
+                path: lock_path.clone(),
+                source,
+            })?;
+        match lock.try_lock() {
+            Ok(()) => {}
+            Err(std::fs::TryLockError::WouldBlock) => {
+                return Err(output_error(
+                    dir,
+                    "another cablesim run is writing into this directory; wait for it or choose another --out".into(),
+                ))
+            }
+            Err(std::fs::TryLockError::Error(source)) => {
+                return Err(Error::Output {
+                    path: lock_path,
+                    source,
+                })
+            }
+        }
+        let read = |source| Error::Output {
+            path: dir.clone(),
+            source,
+        };
+        let mut foreign = Vec::new();
+        let mut own = Vec::new();
+        let mut own_in_dirs = Vec::new();
+        for entry in std::fs::read_dir(dir).map_err(read)? {
+            let entry = entry.map_err(read)?;
+            let name = entry.file_name();
+            let kind = entry.file_type().map_err(read)?;
+            let own_dir = OWN_DIRS
+                .iter()
+                .find(|(d, _)| kind.is_dir() && name.to_str() == Some(*d))
+                .and_then(|(_, exts)| own_dir_files(&entry.path(), exts));
+            match (name.to_str(), own_dir) {
+                (_, Some(files)) => own_in_dirs.extend(files),
+                (Some(n), None) if kind.is_file() && OWN_FILES.contains(&n) => {
+                    own.push(n.to_string())
+                }
+                _ => foreign.push(name.to_string_lossy().into_owned()),
+            }
+        }
+        if !foreign.is_empty() {
+            foreign.sort();
+            foreign.truncate(3);
+            return Err(output_error(
+                dir,
+                format!(
+                    "holds files that are not cablesim output ({}); choose a new or empty directory, or one an earlier run wrote",
+                    foreign.join(", ")
+                ),
+            ));
+        }
+        for n in own.iter().filter(|n| *n != LOCK_FILE && *n != MARKER_FILE) {
+            std::fs::remove_file(dir.join(n)).map_err(err(dir, n))?;
+        }
+        for f in &own_in_dirs {
+            std::fs::remove_file(f).map_err(|source| Error::Output {
+                path: f.clone(),
+                source,
+            })?;
+        }
+        std::fs::write(
+            dir.join(MARKER_FILE),
+            "cablesim output folder: the next run into it replaces its files\n",
+        )
+        .map_err(err(dir, MARKER_FILE))?;
+        self.lock = Some(lock);
+        Ok(())
     }
 
     /// The output directory.
@@ -64,14 +236,12 @@ impl FileSink {
         Ok(f)
     }
 
-    fn create(&self, first: &Snapshot) -> Result<Files, Error> {
-        std::fs::create_dir_all(&self.dir).map_err(|source| Error::Output {
-            path: self.dir.clone(),
-            source,
-        })?;
+    fn create(&mut self, first: &Snapshot) -> Result<Files, Error> {
+        self.claim_dir()?;
         let positions = first.cables.iter().any(|c| c.output_positions);
         let winches = first.cables.iter().any(|c| c.winch.is_some());
         let bodies = !first.bodies.is_empty();
+        let points = !first.points.is_empty();
         Ok(Files {
             end_forces: self.open("end_forces.csv", "time,cable,end,fx,fy,fz")?,
             tensions: self.open("tensions.csv", "time,cable,element,tension")?,
@@ -96,6 +266,11 @@ impl FileSink {
             } else {
                 None
             },
+            points: if points {
+                Some(self.open("points.csv", "time,point,x,y,z,fx,fy,fz")?)
+            } else {
+                None
+            },
         })
     }
 }
@@ -114,21 +289,23 @@ impl OutputSink for FileSink {
         );
         let f = self.files.as_mut().expect("created above");
         for c in &s.cables {
-            let name = &c.name;
+            let name = csv_field(&c.name);
             let (a, b) = (c.end_forces.start, c.end_forces.end);
             writeln!(f.end_forces, "{t},{name},start,{},{},{}", a[0], a[1], a[2])
                 .and_then(|_| writeln!(f.end_forces, "{t},{name},end,{},{},{}", b[0], b[1], b[2]))
                 .map_err(&e_ef)?;
         }
         for c in &s.cables {
+            let name = csv_field(&c.name);
             for (k, x) in c.tensions.iter().enumerate() {
-                writeln!(f.tensions, "{t},{},{k},{x}", c.name).map_err(&e_tn)?;
+                writeln!(f.tensions, "{t},{name},{k},{x}").map_err(&e_tn)?;
             }
         }
         if let Some(p) = f.positions.as_mut() {
             for c in s.cables.iter().filter(|c| c.output_positions) {
+                let name = csv_field(&c.name);
                 for (k, x) in c.positions.iter().enumerate() {
-                    writeln!(p, "{t},{},{k},{},{},{}", c.name, x[0], x[1], x[2]).map_err(&e_pos)?;
+                    writeln!(p, "{t},{name},{k},{},{},{}", x[0], x[1], x[2]).map_err(&e_pos)?;
                 }
             }
         }
@@ -138,7 +315,10 @@ impl OutputSink for FileSink {
                     writeln!(
                         w,
                         "{t},{},{},{},{}",
-                        c.name, ws.deployed_length, ws.variable_l0, ws.elements
+                        csv_field(&c.name),
+                        ws.deployed_length,
+                        ws.variable_l0,
+                        ws.elements
                     )
                     .map_err(&e_w)?;
                 }
@@ -151,9 +331,33 @@ impl OutputSink for FileSink {
                 writeln!(
                     w,
                     "{t},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                    b.name, x[0], x[1], x[2], a[0], a[1], a[2], f[0], f[1], f[2], m[0], m[1], m[2]
+                    csv_field(&b.name),
+                    x[0],
+                    x[1],
+                    x[2],
+                    a[0],
+                    a[1],
+                    a[2],
+                    f[0],
+                    f[1],
+                    f[2],
+                    m[0],
+                    m[1],
+                    m[2]
                 )
                 .map_err(&e_b)?;
+            }
+        }
+        if let Some(w) = f.points.as_mut() {
+            let e_p = err(&self.dir, "points.csv");
+            for p in &s.points {
+                let (x, f) = (p.position, p.force);
+                writeln!(
+                    w,
+                    "{t},{},{},{},{},{},{},{}",
+                    p.name, x[0], x[1], x[2], f[0], f[1], f[2]
+                )
+                .map_err(&e_p)?;
             }
         }
         Ok(())
@@ -173,11 +377,11 @@ impl OutputSink for FileSink {
             if let Some(w) = f.bodies.as_mut() {
                 w.flush().map_err(err(dir, "bodies.csv"))?;
             }
+            if let Some(w) = f.points.as_mut() {
+                w.flush().map_err(err(dir, "points.csv"))?;
+            }
         } else {
-            std::fs::create_dir_all(&self.dir).map_err(|source| Error::Output {
-                path: self.dir.clone(),
-                source,
-            })?;
+            self.claim_dir()?;
         }
         write_summary(&self.dir, summary)
     }

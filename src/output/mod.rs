@@ -2,18 +2,23 @@
 //! simulation gives an [`OutputSink`] a [`Snapshot`] (every cable's node positions and
 //! velocities, element tensions, end forces, winch state), and at the end the
 //! [`Summary`]. [`FileSink`] writes the files users read (`end_forces.csv`,
-//! `tensions.csv`, `positions.csv`, `winches.csv`, `summary.json`); [`MemorySink`]
-//! keeps everything in memory; a caller may write its own.
+//! `tensions.csv`, `positions.csv`, `winches.csv`, `bodies.csv`, `points.csv`,
+//! `summary.json`); [`VtkSink`] writes ParaView files; [`MemorySink`] keeps everything
+//! in memory; [`FanOut`] hands the output to several; a caller may write its own.
 
+mod fanout;
 mod files;
 mod memory;
 mod sink;
 mod summary;
+mod vtk;
 
-pub use files::FileSink;
+pub use fanout::FanOut;
+pub use files::{FileSink, LOCK_FILE, MARKER_FILE, OWN_DIRS, OWN_FILES};
 pub use memory::MemorySink;
-pub use sink::{BodyState, CableState, OutputSink, Snapshot};
+pub use sink::{BodyState, CableState, OutputSink, PointState, Snapshot};
 pub use summary::{write_summary, CableSummary, EndForces, Summary, WinchSummary};
+pub use vtk::{cables_vtp, points_vtp, VtkSink};
 
 use crate::math::{Sym3, V3};
 use crate::model::{CableInfo, Layout, NO_CONSTRAINT};

@@ -24,6 +24,23 @@ pub struct Snapshot {
     pub cables: Vec<CableState>,
     /// Per vessel body that cable ends are attached to (empty without bodies).
     pub bodies: Vec<BodyState>,
+    /// Per shared point (`[[points]]` that cables attach to), in scenario order; empty
+    /// for the ANCF model.
+    pub points: Vec<PointState>,
+}
+
+/// A shared point's (`[[points]]`: buoy, knot) position and the load on it, at one time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointState {
+    /// Name.
+    pub name: String,
+    /// Position, m.
+    pub position: [f64; 3],
+    /// For a free point, the net force of the cables attached to it (the sum of their
+    /// `end_forces` there, each less its share of the node's inertia: at rest it
+    /// balances the point's weight less buoyancy); for a held point, the reaction on
+    /// its support (every force on the node but the constraint's, less its inertia), N.
+    pub force: [f64; 3],
 }
 
 /// A vessel body's pose and the load its cables exert on it, at one time.

@@ -75,6 +75,9 @@ pub struct Summary {
     pub dt_stable: f64,
     /// What sets the stable step.
     pub dt_limited_by: String,
+    /// Whether `dt` (a given step) is above `dt_stable`: the run may blow up, or
+    /// complete with results the step has spoiled.
+    pub dt_above_stable: bool,
     /// Simulated time reached, s.
     pub simulated_time: f64,
     /// Wall time of the time stepping, s (no set-up, no relaxation, no output).

@@ -3,6 +3,7 @@
 
 mod arrays;
 mod bodies;
+pub mod materials;
 mod ends;
 mod nets;
 mod raw;
@@ -81,6 +82,20 @@ pub struct Scenario {
     pub ancf: AncfSettings,
     /// The sea state of `[environment.waves]` (still water without it).
     pub sea: crate::sea::SeaState,
+    /// The `[[points]]`, in scenario order: each name and its node (index into
+    /// `model.nodes`), for `points.csv`.
+    pub points: Vec<NamedPoint>,
+    /// `[output] vtk`: also write ParaView files (`vtk/`).
+    pub vtk: bool,
+}
+
+/// A named shared point (`[[points]]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NamedPoint {
+    /// Name.
+    pub name: String,
+    /// Its node: index into `ModelDef::nodes`.
+    pub node: usize,
 }
 
 /// Builds `Error::Scenario` for `path`.
@@ -295,7 +310,13 @@ impl Scenario {
 
         // [[line_types]]
         let mut lt_index = HashMap::new();
-        for (i, lt) in raw.line_types.iter().enumerate() {
+        let line_types = raw
+            .line_types
+            .iter()
+            .enumerate()
+            .map(|(i, lt)| lt.resolve(p, i))
+            .collect::<Result<Vec<_>, _>>()?;
+        for (i, lt) in line_types.iter().enumerate() {
             let f = |k: &str| format!("line_types[{i}] (\"{}\").{k}", lt.name);
             positive(p, &f("diameter"), lt.diameter)?;
             positive(p, &f("mass_per_length"), lt.mass_per_length)?;
@@ -330,7 +351,7 @@ impl Scenario {
 
         let mut model = ModelDef {
             env,
-            line_types: raw.line_types.clone(),
+            line_types,
             currents: vec![global_current],
             ..Default::default()
         };
@@ -341,6 +362,7 @@ impl Scenario {
 
         // [[points]]: named shared nodes.
         let mut point_index: HashMap<String, usize> = HashMap::new();
+        let mut named_points = Vec::with_capacity(raw.points.len());
         for (i, t) in raw.points.iter().enumerate() {
             let field = format!("points[{i}]");
             let name = match t.get("name") {
@@ -369,6 +391,10 @@ impl Scenario {
                     spec.mass,
                 ),
             };
+            named_points.push(NamedPoint {
+                name: name.clone(),
+                node: model.nodes.len(),
+            });
             if point_index
                 .insert(name.clone(), model.nodes.len())
                 .is_some()
@@ -570,6 +596,8 @@ impl Scenario {
             winches,
             ancf: ancf_settings(p, &raw.ancf)?,
             sea,
+            points: named_points,
+            vtk: raw.output.vtk.unwrap_or(false),
         })
     }
 }

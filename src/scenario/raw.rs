@@ -1,6 +1,6 @@
 //! The scenario file as written (serde), before validation.
 
-use crate::model::{LineType, Seabed};
+use crate::model::Seabed;
 use crate::options::{AddedMass, Backend, FormulationChoice, Precision, Scheme};
 use serde::Deserialize;
 
@@ -11,7 +11,7 @@ pub struct RawScenario {
     pub simulation: RawSimulation,
     #[serde(default)]
     pub environment: RawEnvironment,
-    pub line_types: Vec<LineType>,
+    pub line_types: Vec<super::materials::RawLineType>,
     #[serde(default)]
     pub bodies: Vec<toml::Table>,
     #[serde(default)]
@@ -147,4 +147,5 @@ pub struct RawCable {
 #[serde(deny_unknown_fields)]
 pub struct RawOutput {
     pub positions: Option<toml::Value>,
+    pub vtk: Option<bool>,
 }

@@ -208,8 +208,26 @@ pub fn wave_kinematics_at(
     t: f64,
     t_ref: f64,
 ) -> Kinematics {
-    let r = wave_ramp(t, ramp_duration);
-    let tau = t - t_ref;
+    wave_kinematics_tau(
+        comps,
+        depth,
+        stretching,
+        wave_ramp(t, ramp_duration),
+        p,
+        t - t_ref,
+    )
+}
+
+/// [`wave_kinematics_at`] at `tau = t - t_ref` after the reference time, with the
+/// ramp factor `r` given (the GPU solver forms both on the host in f64).
+pub fn wave_kinematics_tau(
+    comps: &[PackedComponent],
+    depth: f64,
+    stretching: Stretching,
+    r: f64,
+    p: [f64; 3],
+    tau: f64,
+) -> Kinematics {
     let mut phases = [(0.0, 0.0); PHASE_BUFFER];
     let mut eta = 0.0;
     for (j, c) in comps.iter().enumerate() {

@@ -16,9 +16,11 @@ pub enum CableEnd {
 use crate::error::Error;
 use crate::gpu::solver::NodeStates;
 use crate::gpu::{GpuContext, GpuSolver};
-use crate::model::{Layout, Route};
+use crate::model::{Layout, Route, NO_CONSTRAINT};
 use crate::options::{Backend, Precision, SolverOptions};
-use crate::output::{end_forces, BodyState, CableState, CableSummary, EndForces, WinchSummary};
+use crate::output::{
+    end_forces, BodyState, CableState, CableSummary, EndForces, PointState, WinchSummary,
+};
 use crate::scenario::Scenario;
 use crate::step::{Evaluation, WinchStatus};
 
@@ -51,7 +53,6 @@ pub fn choose_backend(
     let unsupported = || {
         crate::gpu::solver::unsupported(lay, opts)
             .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
-            .or_else(|| (!sc.sea.is_still()).then(|| "waves ([environment.waves])".to_string()))
     };
     let need_f64 = precision == Some(Precision::F64);
     let p = precision.unwrap_or_default();
@@ -102,6 +103,16 @@ pub fn choose_backend(
     }
 }
 
+/// A lumped-mass stepper's state at one step, to go back to.
+pub struct Checkpoint(crate::cpu::CpuCheckpoint);
+
+impl Checkpoint {
+    /// Steps taken when it was made.
+    pub fn steps(&self) -> u64 {
+        self.0.steps
+    }
+}
+
 /// The solver a lumped-mass run steps: the CPU reference or the GPU path, behind one
 /// interface.
 pub enum LumpedStepper {
@@ -132,8 +143,9 @@ impl LumpedStepper {
                 LumpedStepper::Gpu(GpuSolver::new(&ctx, lay, pos, opts, p)?)
             }
         };
-        if let LumpedStepper::Cpu(c) = &mut s {
-            c.set_sea(&sc.sea, false);
+        match &mut s {
+            LumpedStepper::Cpu(c) => c.set_sea(&sc.sea, false),
+            LumpedStepper::Gpu(g) => g.set_sea(&sc.sea)?,
         }
         if let LumpedStepper::Gpu(g) = &s {
             match g.fused_unavailable() {
@@ -142,6 +154,22 @@ impl LumpedStepper {
             }
         }
         Ok(s)
+    }
+
+    /// A copy of the state to go back to ([`LumpedStepper::restore`]): on the CPU path
+    /// without winches (whose mesh does not change), else `None`.
+    pub fn checkpoint(&self) -> Option<Checkpoint> {
+        match self {
+            LumpedStepper::Cpu(s) => s.checkpoint().map(Checkpoint),
+            LumpedStepper::Gpu(_) => None,
+        }
+    }
+
+    /// Puts the state back to `cp`, taken from this stepper.
+    pub fn restore(&mut self, cp: &Checkpoint) {
+        if let LumpedStepper::Cpu(s) = self {
+            s.restore(&cp.0);
+        }
     }
 
     /// Advances `n` steps.
@@ -260,12 +288,61 @@ impl LumpedStepper {
 
     /// Every vessel body's pose and load at time `t` (now).
     pub fn bodies(&mut self, t: f64) -> Result<Vec<BodyState>, Error> {
-        if !self.layout().routes.iter().any(|r| matches!(r, Route::Body { .. })) {
+        if !self
+            .layout()
+            .routes
+            .iter()
+            .any(|r| matches!(r, Route::Body { .. }))
+        {
             return Ok(Vec::new());
         }
         let ev = self.evaluate()?;
         let (r, _) = self.state()?;
         Ok(crate::body::output::body_states(self.layout(), t, &r, &ev))
+    }
+
+    /// The shared points' states now. `points` names each point and where it is found:
+    /// `(name, cable, at_start)`, the end of a cable (scenario order) attached to it.
+    pub fn points(&mut self, points: &[(String, usize, bool)]) -> Result<Vec<PointState>, Error> {
+        if points.is_empty() {
+            return Ok(Vec::new());
+        }
+        let ev = self.evaluate()?;
+        let (r, _) = self.state()?;
+        let lay = self.layout();
+        let forces: Vec<EndForces> = lay.cables.iter().map(|c| end_forces(lay, &ev, c)).collect();
+        Ok(points
+            .iter()
+            .map(|(name, ci, at_start)| {
+                let c = &lay.cables[*ci];
+                let node = if *at_start {
+                    c.nodes[0]
+                } else {
+                    c.nodes[c.nodes.len() - 1]
+                };
+                let k = lay.node_constraint[node as usize];
+                let force = if k != NO_CONSTRAINT {
+                    ev.reaction[k as usize]
+                } else {
+                    // Each cable's share at the node, summed over every end on it.
+                    let mut f = [0.0; 3];
+                    for (c, fc) in lay.cables.iter().zip(&forces) {
+                        let ends = [(c.nodes[0], fc.start), (c.nodes[c.nodes.len() - 1], fc.end)];
+                        for (n, fe) in ends {
+                            if n == node {
+                                (0..3).for_each(|d| f[d] += fe[d]);
+                            }
+                        }
+                    }
+                    f
+                };
+                PointState {
+                    name: name.clone(),
+                    position: r[node as usize],
+                    force,
+                }
+            })
+            .collect())
     }
 
     /// Every cable's final state for the summary: tensions and end forces are NaN when

@@ -116,6 +116,9 @@ pub struct Simulation {
     started: Instant,
     /// Wall time spent stepping, s.
     stepping: f64,
+    /// The `[[points]]` that cables attach to: `(name, cable, at its start)`, a cable
+    /// end on each (cable ends keep their place when a winch remeshes).
+    points: Vec<(String, usize, bool)>,
 }
 
 impl Simulation {
@@ -195,7 +198,9 @@ impl Simulation {
                 Engine::Lumped(Box::new(stepper), plan)
             }
         };
+        let points = point_ends(&sc);
         Ok(Self {
+            points,
             scenario: sc,
             engine,
             scheme,
@@ -328,32 +333,68 @@ impl Simulation {
     pub fn snapshot(&mut self) -> Result<Snapshot, Error> {
         let time = self.time();
         let steps = self.steps();
-        let (cables, bodies) = match &mut self.engine {
-            Engine::Lumped(s, _) => (s.cables()?, s.bodies(time)?),
-            // The ANCF backend follows body ends but does not report body loads.
-            Engine::Ancf(f) => (f.cables()?, Vec::new()),
+        let (cables, bodies, points) = match &mut self.engine {
+            Engine::Lumped(s, _) => (s.cables()?, s.bodies(time)?, s.points(&self.points)?),
+            // The ANCF backend follows body ends but does not report body or point loads.
+            Engine::Ancf(f) => (f.cables()?, Vec::new(), Vec::new()),
         };
         Ok(Snapshot {
             time,
             steps,
             cables,
             bodies,
+            points,
         })
     }
 
     /// Runs on to the end of the scenario's duration, handing the sink a snapshot now
     /// and at each output time, then the summary; `progress` is called as the run goes
     /// (about every tenth of a second of stepping on big runs, and at each output time).
-    /// A blow-up ends the run: the sink gets the summary (status `diverged`) and the
-    /// error is returned.
+    /// A blow-up ends the run: the sink gets a last frame and the summary (status
+    /// `diverged`), and the error is returned. [`Simulation::run_until`] can also be
+    /// stopped from outside.
     pub fn run(
         &mut self,
         sink: &mut dyn OutputSink,
+        progress: impl FnMut(Progress),
+    ) -> Result<Summary, Error> {
+        self.run_until(sink, progress, || false)
+    }
+
+    /// [`Simulation::run`], stopped early when `stop` returns true: it is asked between
+    /// chunks of stepping (about every tenth of a second on big runs, and at each output
+    /// time), so a stop takes effect at the next step boundary. A stopped run hands the
+    /// sink a last frame at the time reached and a summary with status `interrupted`,
+    /// and returns that summary (`Ok`): what was done is kept, not an error.
+    ///
+    /// A signal handler that sets an `AtomicBool` makes a clean Ctrl-C:
+    ///
+    /// ```no_run
+    /// use cablesim::{MemorySink, Overrides, Simulation};
+    /// use std::sync::atomic::{AtomicBool, Ordering};
+    ///
+    /// static STOP: AtomicBool = AtomicBool::new(false);
+    /// let mut sim = Simulation::from_file("examples/catenary.toml", &Overrides::default())?;
+    /// let summary = sim.run_until(&mut MemorySink::new(), |_| {}, || STOP.load(Ordering::Relaxed))?;
+    /// assert!(summary.status == "completed" || summary.status == "interrupted");
+    /// # Ok::<(), cablesim::Error>(())
+    /// ```
+    pub fn run_until(
+        &mut self,
+        sink: &mut dyn OutputSink,
         mut progress: impl FnMut(Progress),
+        mut stop: impl FnMut() -> bool,
     ) -> Result<Summary, Error> {
         sink.frame(&self.snapshot()?)?;
-        let mut result = Ok(());
+        // Steps at the last frame handed out: a stop right at an output time does not
+        // repeat it.
+        let mut framed = self.steps();
+        let mut end = RunEnd::Completed;
         loop {
+            if stop() {
+                end = RunEnd::Interrupted;
+                break;
+            }
             let r = match &mut self.engine {
                 Engine::Lumped(s, plan) => {
                     let done = s.steps();
@@ -363,7 +404,15 @@ impl Simulation {
                     let next = ((done / plan.steps_per_output) + 1) * plan.steps_per_output;
                     let target = next.min(plan.total_steps);
                     let oi = self.scenario.sim.output_interval;
-                    advance_lumped(s, plan, oi, target, &mut self.stepping, &mut progress)
+                    advance_lumped(
+                        s,
+                        plan,
+                        oi,
+                        target,
+                        &mut self.stepping,
+                        &mut progress,
+                        &mut stop,
+                    )
                 }
                 Engine::Ancf(f) => {
                     let total = f.n_outputs();
@@ -380,22 +429,55 @@ impl Simulation {
                         total,
                         at_output: r.is_ok(),
                     });
-                    r
+                    r.map(|_| Chunked::Done)
                 }
             };
-            if let Err(e) = r {
-                result = Err(e);
-                break;
+            match r {
+                Ok(Chunked::Done) => {
+                    sink.frame(&self.snapshot()?)?;
+                    framed = self.steps();
+                }
+                Ok(Chunked::Stopped) => {
+                    end = RunEnd::Interrupted;
+                    break;
+                }
+                Err(e) => {
+                    end = RunEnd::Failed(e);
+                    break;
+                }
             }
-            sink.frame(&self.snapshot()?)?;
         }
-        let summary = self.summary(result.as_ref().err())?;
+        if !matches!(end, RunEnd::Completed) && self.steps() != framed {
+            // The last frame: where the run stopped. After a blow-up the state may not
+            // evaluate; then the summary alone tells.
+            match self.snapshot() {
+                Ok(s) => sink.frame(&s)?,
+                Err(e) => log::warn!("no frame at the failure: {e}"),
+            }
+        }
+        let summary = match &end {
+            RunEnd::Completed => self.summary_as("completed", None)?,
+            RunEnd::Interrupted => self.summary_as("interrupted", None)?,
+            RunEnd::Failed(e) => self.summary_as("diverged", Some(e))?,
+        };
         sink.finish(&summary)?;
-        result.map(|_| summary)
+        match end {
+            RunEnd::Failed(e) => Err(e),
+            _ => Ok(summary),
+        }
     }
 
     /// The summary of the run so far; `error` is what stopped it, if anything.
     pub fn summary(&mut self, error: Option<&Error>) -> Result<Summary, Error> {
+        let status = if error.is_none() {
+            "completed"
+        } else {
+            "diverged"
+        };
+        self.summary_as(status, error)
+    }
+
+    fn summary_as(&mut self, status: &str, error: Option<&Error>) -> Result<Summary, Error> {
         let (backend, device, precision) = self.describe();
         let sim_time = self.time();
         let steps = self.steps();
@@ -438,11 +520,7 @@ impl Simulation {
             }
         };
         Ok(Summary {
-            status: if error.is_none() {
-                "completed".into()
-            } else {
-                "diverged".into()
-            },
+            status: status.into(),
             error: error.map(|e| e.to_string()),
             scenario: self.scenario.path.display().to_string(),
             backend: backend.into(),
@@ -453,6 +531,7 @@ impl Simulation {
             steps,
             dt,
             dt_stable,
+            dt_above_stable: dt > dt_stable,
             dt_limited_by: limited_by,
             simulated_time: sim_time,
             wall_seconds: self.stepping,
@@ -471,9 +550,29 @@ impl Simulation {
     }
 }
 
+/// How a run ended.
+enum RunEnd {
+    Completed,
+    Interrupted,
+    Failed(Error),
+}
+
+/// What a stretch of stepping came to.
+enum Chunked {
+    /// The target was reached.
+    Done,
+    /// The caller's `stop` asked to stop, at a step boundary before the target.
+    Stopped,
+}
+
 /// Advances a lumped-mass run to step `target`, in sub-chunks of about twenty million
-/// node-steps (a tenth of a second or so), which keep progress moving on big runs
-/// without cutting the blocks' long runs too short.
+/// node-steps (a tenth of a second or so), which keep progress moving and a stop
+/// request answered on big runs without cutting the blocks' long runs too short.
+///
+/// On a blow-up the blocks of a chunk stand at different steps (each steps on its own
+/// until it fails or finishes). Where the state can be put back (the CPU path without
+/// winches), the chunk is stepped again from its start up to the step before the
+/// failure, so that every cable is at that one time, the last state that exists.
 fn advance_lumped(
     s: &mut LumpedStepper,
     plan: &StepPlan,
@@ -481,12 +580,22 @@ fn advance_lumped(
     target: u64,
     stepping: &mut f64,
     progress: &mut impl FnMut(Progress),
-) -> Result<(), Error> {
+    stop: &mut impl FnMut() -> bool,
+) -> Result<Chunked, Error> {
     let chunk = (20_000_000 / s.layout().n_nodes().max(1) as u64).clamp(1, plan.steps_per_output);
+    let mut first = true;
     while s.steps() < target {
+        if !first && stop() {
+            return Ok(Chunked::Stopped);
+        }
+        first = false;
         let n = chunk.min(target - s.steps());
+        let saved = s.checkpoint();
         let t0 = Instant::now();
         let r = s.advance(n);
+        if let (Err(e), Some(saved)) = (&r, saved) {
+            rewind_to_failure(s, saved, e, plan.dt);
+        }
         *stepping += t0.elapsed().as_secs_f64();
         let done = s.steps();
         progress(Progress {
@@ -497,5 +606,47 @@ fn advance_lumped(
         });
         r?;
     }
-    Ok(())
+    Ok(Chunked::Done)
+}
+
+/// Puts the stepper back at `saved` and steps it to the step before the failure `e`
+/// (step `dt`, s). Should the replay fail earlier (it does not: stepping is
+/// deterministic), the stepper stays at `saved`, where every cable is at one time too.
+fn rewind_to_failure(s: &mut LumpedStepper, saved: backend::Checkpoint, e: &Error, dt: f64) {
+    let t_fail = match e {
+        Error::Diverged { time, .. }
+        | Error::SingularFrame { time, .. }
+        | Error::Winch { time, .. } => *time,
+        _ => return,
+    };
+    let start = saved.steps();
+    let failing = (t_fail / dt).round() as u64;
+    s.restore(&saved);
+    let good = failing.saturating_sub(1).saturating_sub(start);
+    if good > 0 && s.advance(good).is_err() {
+        s.restore(&saved);
+    }
+    log::info!(
+        "blow-up at t = {t_fail} s: every cable's state kept at t = {} s, the step before",
+        s.steps() as f64 * dt
+    );
+}
+
+/// Where each `[[points]]` entry is found in the layout: `(name, cable, at its start)`,
+/// the first cable end attached to it; points no cable attaches to are left out.
+fn point_ends(sc: &Scenario) -> Vec<(String, usize, bool)> {
+    sc.points
+        .iter()
+        .filter_map(|p| {
+            sc.model.cables.iter().enumerate().find_map(|(ci, c)| {
+                if c.nodes.first() == Some(&p.node) {
+                    Some((p.name.clone(), ci, true))
+                } else if c.nodes.last() == Some(&p.node) {
+                    Some((p.name.clone(), ci, false))
+                } else {
+                    None
+                }
+            })
+        })
+        .collect()
 }

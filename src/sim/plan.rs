@@ -40,6 +40,35 @@ pub fn plan_steps(
     duration: f64,
     dt: DtSpec,
 ) -> Result<StepPlan, Error> {
+    let plan = plan_unbounded(sc, lay, opts, duration, dt)?;
+    let work = (duration / plan.dt) * lay.n_nodes() as f64;
+    if !(work <= MAX_NODE_STEPS) {
+        return Err(crate::scenario::err(
+            &sc.path,
+            "simulation.duration",
+            format!(
+                "{duration} s at dt = {:e} s over {} nodes is {work:.3e} node-steps, beyond what any machine runs (the limit is {MAX_NODE_STEPS:e}); the step is set by {}: shorten the run, coarsen the mesh or change that term",
+                plan.dt,
+                lay.n_nodes(),
+                plan.bound.term
+            ),
+        ));
+    }
+    Ok(plan)
+}
+
+/// The most node-steps (nodes times steps) a run may plan: about twelve days at 1e9
+/// node-steps per second. A plan beyond it comes from an absurd input (a tiny element,
+/// a huge stiffness or damping, a tiny step), not from a study anyone can wait for.
+pub const MAX_NODE_STEPS: f64 = 1e15;
+
+fn plan_unbounded(
+    sc: &Scenario,
+    lay: &Layout,
+    opts: &SolverOptions,
+    duration: f64,
+    dt: DtSpec,
+) -> Result<StepPlan, Error> {
     let mut bound = stable_step(lay, opts.scheme, opts.baumgarte);
     if sc.winches.is_empty() {
         return plan_with(sc, opts, duration, dt, bound);
@@ -143,10 +172,27 @@ fn plan_with(
     dt_spec: DtSpec,
     bound: StepBound,
 ) -> Result<StepPlan, Error> {
+    if matches!(dt_spec, DtSpec::Auto) && !(bound.dt > 0.0 && bound.dt.is_finite()) {
+        return Err(crate::scenario::err(
+            &sc.path,
+            "simulation.dt",
+            format!(
+                "the stable step is {:e} s (set by {}): no step can run this model; check the values behind that term",
+                bound.dt, bound.term
+            ),
+        ));
+    }
     let (dt, spo) = fit_step(sc, dt_spec, bound.dt)?;
+    if !(dt > 0.0 && dt.is_finite()) {
+        return Err(crate::scenario::err(
+            &sc.path,
+            "simulation.dt",
+            format!("the step {dt:e} s is not a positive number"),
+        ));
+    }
     let warning = (matches!(dt_spec, DtSpec::Fixed(_)) && dt > bound.dt).then(|| {
         format!(
-            "dt = {dt} s is above the stable step {:.4e} s of the {} scheme, set by {}; expect a blow-up",
+            "dt = {dt} s is above the stable step {:.4e} s of the {} scheme, set by {}; expect a blow-up or wrong results",
             bound.dt,
             opts.scheme.name(),
             bound.term

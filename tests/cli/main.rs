@@ -12,6 +12,8 @@ mod ancf_scenario;
 mod end_to_end;
 mod examples;
 mod moordyn_input;
+mod robust_runs;
 mod scenario;
 mod simulation_api;
 mod study_run;
+mod viz_output;

@@ -3,14 +3,13 @@
 //! `bodies.csv` (with the body's load against the cable's end force), and the errors
 //! of bad input.
 
-
+use crate::common::*;
 use cablesim::body::{Body, MeanPose, Motion, RaoMotion, RaoTable};
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{CableDef, Current, Layout, ModelDef, NodeDef, PointMass, Route};
 use cablesim::options::SolverOptions;
 use cablesim::scenario::Scenario;
 use cablesim::sea::WaveComponent;
-use crate::common::*;
 use std::f64::consts::{PI, TAU};
 use std::path::Path;
 use std::sync::Arc;
@@ -297,7 +296,7 @@ end = {{ free = [14.0, -1.0, -12.0], mass = 20.0, volume = 0.005 }}
         .map(|l| l.split(',').filter_map(|x| x.parse().ok()).collect())
         .collect();
     let (sh, ch) = 30f64.to_radians().sin_cos();
-    let mut rows = 0;
+    let (mut rows, mut sum_f) = (0, 0.0);
     for (line, end) in lines.zip(&starts) {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f[1], "ship");
@@ -347,10 +346,15 @@ end = {{ free = [14.0, -1.0, -12.0], mass = 20.0, volume = 0.005 }}
                 v[11 + k]
             );
         }
-        assert!(fnorm > 10.0, "the line hangs from the body: |F| {fnorm}");
+        sum_f += fnorm;
         rows += 1;
     }
     assert_eq!(rows, 41);
+    // The line and its clump hang from the body: a load near their wet weight (about
+    // 210 N) on average. It starts stretched, so the clump bounces and the force passes
+    // near zero at some output times; the mean is the steady measure.
+    let mean_f = sum_f / rows as f64;
+    assert!(mean_f > 100.0, "the line hangs from the body: mean |F| {mean_f} N");
 }
 
 /// The error of loading scenario `text` (with `files` written beside it).
@@ -638,8 +642,8 @@ end = {{ free = [32.0, -19.0, -12.0] }}
 #[test]
 fn the_docs_example_parses() {
     // docs/src/bodies.md's example scenario, with a motion file beside it.
-    let doc =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/src/bodies.md")).unwrap();
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/src/bodies.md"))
+        .unwrap();
     let example = doc.split("## Example").nth(1).expect("an Example section");
     let toml = example
         .split("```toml")

@@ -9,8 +9,8 @@
 mod common;
 
 mod ale;
-mod bodies;
 mod ancf;
+mod bodies;
 mod case1;
 mod chain_kernel;
 mod dynamics;
@@ -18,6 +18,6 @@ mod frames;
 mod nets;
 mod parallel;
 mod statics;
+mod study;
 mod water_surface;
 mod waves_steppers;
-mod study;

@@ -3,12 +3,11 @@
 //! the surface takes the water terms times its wetted fraction, a point mass times the
 //! submerged share of its sphere.
 
-
+use crate::common::*;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{Environment, Layout, LineType, ModelDef, PointMass, Route, Seabed};
 use cablesim::options::{Scheme, SolverOptions};
 use cablesim::statics::{relax, RelaxOptions};
-use crate::common::*;
 
 const G: f64 = 9.81;
 const RHO: f64 = 1025.0;

@@ -26,5 +26,6 @@ mod parity;
 mod shaders;
 mod step_functions;
 mod surface;
-mod winch;
+mod wave_parity;
 mod waves;
+mod winch;

@@ -54,7 +54,7 @@ fn t_variable(@builtin(global_invocation_id) gid: vec3<u32>) {
     let b = i * 23u;
     let lp = LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
         tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u]);
-    let ep = ElemParams(2u * i, 2u * i + 1u, 0u, 0u, 0u, u32(tin[b + 22u]), tin[b + 18u], R(0.0));
+    let ep = ElemParams(2u * i, 2u * i + 1u, 0u, 0u, 0u, u32(tin[b + 22u]), tin[b + 18u], R(0.0), R(0.0)); // l0_lo, diameter: unused here
     let py = Payout(tin[b + 18u], R(0.0), tin[b + 19u], tin[b + 20u], R(0.0));
     let ten = variable_element(ep, lp, py, v3in(b + 9u), v3in(b + 12u), v3in(b + 15u), tin[b + 21u]);
     let o = i * 7u;
@@ -476,6 +476,9 @@ fn check_gather<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
         (11, bytes(&loads)),
         (12, bytes(&node_out)),
         (16, bytes(&payout)),
+        // Still water: the waves' rows say no components (the cache is not read).
+        (19, bytes(&[R::c(0.0)])),
+        (20, bytes(&vec![WaveStep::<R>::default(); rows])),
     ];
     let out = run(ctx, p, "t_gather", &group0, &x, n, 9 * n);
     let mut w = Worst::new::<R>("gather_node (gather_begin, gather_add, gather_end)");

@@ -13,7 +13,7 @@
 //! tests/gpu_f32.rs: nodes within `1e-4` of the line's length, tensions within 1%
 //! plus 0.1% of the largest.
 
-
+use crate::common::*;
 use cablesim::cpu::CpuSolver;
 use cablesim::gpu::layout::*;
 use cablesim::gpu::{shaders, GpuContext, GpuKernel, GpuSolver, Precision};
@@ -24,7 +24,6 @@ use cablesim::physics::{
     glmf_element_wet, glmf_external_wet, point_wetted_fraction, wetted_fraction, Coefs,
     ElementInput,
 };
-use crate::common::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -368,7 +367,7 @@ fn surface_functions_match_their_rust_twins_in_f64() {
 /// A rope moored 30 m deep whose fairlead circles through the surface (radius 3 m,
 /// period 8 s), with a buoy (sphere of 0.2 m^3) at node 12 that floats across the
 /// surface; current 0.3 m/s.
-fn crossing_line() -> (Layout, Vec<[f64; 3]>) {
+pub(crate) fn crossing_line() -> (Layout, Vec<[f64; 3]>) {
     let mut def = straight_cable(
         water(),
         rope(),

@@ -8,7 +8,7 @@
 //! its arguments (a phase `theta` carries `eps |theta|`, an exponent `eps |x|`), so a
 //! missing or wrong term, of the size of `scale`, is caught.
 
-
+use crate::common::*;
 use cablesim::gpu::layout::{GpuReal, WaveComp};
 use cablesim::gpu::{shaders, GpuContext, Precision};
 use cablesim::math::V3;
@@ -19,7 +19,6 @@ use cablesim::sea::kinematics::{
 };
 use cablesim::sea::spectrum::Spectrum;
 use cablesim::sea::{SeaState, Stretching, WaveComponent, GPU_DEEP};
-use crate::common::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::{PI, TAU};

@@ -1,0 +1,217 @@
+//! The series `cablesim plot` draws, read from a run's or a study's output files.
+
+use crate::error::Error;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// One named series of `(x, y)` points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Series {
+    /// Legend label.
+    pub label: String,
+    /// Points, in drawing order.
+    pub points: Vec<(f64, f64)>,
+}
+
+fn bad(path: &Path, message: impl Into<String>) -> Error {
+    Error::Plot {
+        path: path.to_path_buf(),
+        message: message.into(),
+    }
+}
+
+/// The rows of a CSV file with a header, as `column -> text` maps.
+fn rows(path: &Path) -> Result<Vec<BTreeMap<String, String>>, Error> {
+    let mut r = csv::Reader::from_path(path).map_err(|e| bad(path, e.to_string()))?;
+    let head: Vec<String> = r
+        .headers()
+        .map_err(|e| bad(path, e.to_string()))?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    r.records()
+        .map(|rec| {
+            let rec = rec.map_err(|e| bad(path, e.to_string()))?;
+            Ok(head
+                .iter()
+                .cloned()
+                .zip(rec.iter().map(str::to_string))
+                .collect())
+        })
+        .collect()
+}
+
+fn num(path: &Path, row: &BTreeMap<String, String>, col: &str) -> Result<f64, Error> {
+    let s = row
+        .get(col)
+        .ok_or_else(|| bad(path, format!("no column `{col}`")))?;
+    s.parse()
+        .map_err(|_| bad(path, format!("column `{col}`: `{s}` is not a number")))
+}
+
+fn opt_num(row: &BTreeMap<String, String>, col: &str) -> Option<f64> {
+    row.get(col).and_then(|s| s.parse().ok())
+}
+
+/// `end_forces.csv`: per cable end (`cable start`, `cable end`, in file order), the
+/// force magnitude against time, N.
+pub fn end_force_series(path: &Path) -> Result<Vec<Series>, Error> {
+    let mut out: Vec<Series> = Vec::new();
+    for row in rows(path)? {
+        let t = num(path, &row, "time")?;
+        let f = [
+            num(path, &row, "fx")?,
+            num(path, &row, "fy")?,
+            num(path, &row, "fz")?,
+        ];
+        let m = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+        let label = format!("{} {}", row["cable"], row["end"]);
+        match out.iter_mut().find(|s| s.label == label) {
+            Some(s) => s.points.push((t, m)),
+            None => out.push(Series {
+                label,
+                points: vec![(t, m)],
+            }),
+        }
+    }
+    Ok(out)
+}
+
+/// A cable's node positions at one time, m.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Profile {
+    /// Cable name.
+    pub cable: String,
+    /// The output time, s.
+    pub time: f64,
+    /// Node positions, start to end, m.
+    pub nodes: Vec<[f64; 3]>,
+}
+
+/// `positions.csv`: every cable's profile at the output times nearest `times` (s; the
+/// first and the last output time when `times` is empty).
+pub fn profiles(path: &Path, times: &[f64]) -> Result<Vec<Profile>, Error> {
+    let all = rows(path)?;
+    let mut out_times: Vec<f64> = Vec::new();
+    for row in &all {
+        let t = num(path, row, "time")?;
+        if out_times.last() != Some(&t) {
+            out_times.push(t);
+        }
+    }
+    if out_times.is_empty() {
+        return Err(bad(path, "no rows"));
+    }
+    let nearest = |t: f64| {
+        *out_times
+            .iter()
+            .min_by(|a, b| (*a - t).abs().total_cmp(&(*b - t).abs()))
+            .expect("not empty")
+    };
+    let mut chosen: Vec<f64> = if times.is_empty() {
+        vec![out_times[0], *out_times.last().expect("not empty")]
+    } else {
+        times.iter().map(|&t| nearest(t)).collect()
+    };
+    chosen.dedup();
+    let mut out: Vec<Profile> = Vec::new();
+    for row in &all {
+        let t = num(path, row, "time")?;
+        if !chosen.contains(&t) {
+            continue;
+        }
+        let x = [
+            num(path, row, "x")?,
+            num(path, row, "y")?,
+            num(path, row, "z")?,
+        ];
+        let cable = &row["cable"];
+        match out.iter_mut().find(|p| p.time == t && &p.cable == cable) {
+            Some(p) => p.nodes.push(x),
+            None => out.push(Profile {
+                cable: cable.clone(),
+                time: t,
+                nodes: vec![x],
+            }),
+        }
+    }
+    Ok(out)
+}
+
+/// The seed maxima of one sea state and channel, with the Gumbel fit of `study.csv`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GumbelData {
+    /// Sea state index and name.
+    pub sea_state: (usize, String),
+    /// Channel and its unit.
+    pub channel: (String, String),
+    /// The seed maxima, ascending.
+    pub maxima: Vec<f64>,
+    /// Fitted location and scale (`mle_mu`, `mle_beta`), when fitted.
+    pub fit: Option<(f64, f64)>,
+}
+
+impl GumbelData {
+    /// The plotted points: `(maximum, reduced variate -ln(-ln(i / (n + 1))))`, the
+    /// `i`-th smallest maximum at its plotting position.
+    pub fn points(&self) -> Vec<(f64, f64)> {
+        let n = self.maxima.len() as f64;
+        self.maxima
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| (x, -(-((i as f64 + 1.0) / (n + 1.0)).ln()).ln()))
+            .collect()
+    }
+}
+
+/// `members.csv` and `study.csv`: the seed maxima per sea state and channel (members
+/// that completed), with the fits.
+pub fn gumbel_data(members: &Path, study: &Path) -> Result<Vec<GumbelData>, Error> {
+    let mut out: Vec<GumbelData> = Vec::new();
+    for row in rows(members)? {
+        let Some(max) = opt_num(&row, "max") else {
+            continue;
+        };
+        let ss = (
+            num(members, &row, "sea_state")? as usize,
+            row["sea_state_name"].clone(),
+        );
+        let ch = (row["channel"].clone(), row["unit"].clone());
+        match out
+            .iter_mut()
+            .find(|g| g.sea_state.0 == ss.0 && g.channel.0 == ch.0)
+        {
+            Some(g) => g.maxima.push(max),
+            None => out.push(GumbelData {
+                sea_state: ss,
+                channel: ch,
+                maxima: vec![max],
+                fit: None,
+            }),
+        }
+    }
+    for row in rows(study)? {
+        let ss = num(study, &row, "sea_state")? as usize;
+        if let Some(g) = out
+            .iter_mut()
+            .find(|g| g.sea_state.0 == ss && g.channel.0 == row["channel"])
+        {
+            g.fit = opt_num(&row, "mle_mu").zip(opt_num(&row, "mle_beta"));
+        }
+    }
+    for g in &mut out {
+        g.maxima.sort_by(f64::total_cmp);
+    }
+    Ok(out)
+}
+
+/// `study.csv`: `(sea state name, channel, utilisation)` for every row with a capacity.
+pub fn utilisation(study: &Path) -> Result<Vec<(String, String, f64)>, Error> {
+    Ok(rows(study)?
+        .into_iter()
+        .filter_map(|r| {
+            let u = opt_num(&r, "utilisation")?;
+            Some((r["sea_state_name"].clone(), r["channel"].clone(), u))
+        })
+        .collect())
+}

@@ -1,0 +1,77 @@
+//! `cablesim plot`: PNG charts of a run's or a study's output files, drawn with
+//! `plotters` (bitmap backend; text in DejaVu Sans, shipped in `assets/fonts`).
+//!
+//! From a run's directory: `end_forces.png` (force magnitude at each cable end against
+//! time) and, with `positions.csv`, `profiles.png` (side view x-z and plan view x-y of
+//! every cable at chosen times). From a study's directory (`study.csv`,
+//! `members.csv`): `gumbel_<sea state>_<channel>.png` (the seed maxima on Gumbel paper
+//! with the fitted line) and, when channels have capacities, `utilisation.png`.
+
+mod charts;
+pub mod data;
+
+use crate::error::Error;
+use std::path::{Path, PathBuf};
+
+/// Image size, pixels.
+pub const SIZE: (u32, u32) = (1200, 800);
+
+/// Draws every chart the files in `dir` allow into `out` (created when needed);
+/// `times` picks the profiles' output times (s; first and last when empty). Returns
+/// the images written.
+pub fn plot_dir(dir: &Path, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, Error> {
+    charts::register_font();
+    std::fs::create_dir_all(out).map_err(|source| Error::Output {
+        path: out.to_path_buf(),
+        source,
+    })?;
+    let mut written = Vec::new();
+    let ef = dir.join("end_forces.csv");
+    if ef.exists() {
+        let p = out.join("end_forces.png");
+        charts::end_forces(&p, &data::end_force_series(&ef)?)?;
+        written.push(p);
+    }
+    let pos = dir.join("positions.csv");
+    if pos.exists() {
+        let p = out.join("profiles.png");
+        charts::profiles(&p, &data::profiles(&pos, times)?)?;
+        written.push(p);
+    }
+    let (members, study) = (dir.join("members.csv"), dir.join("study.csv"));
+    if members.exists() && study.exists() {
+        for g in data::gumbel_data(&members, &study)? {
+            let name = format!("gumbel_{}_{}.png", g.sea_state.0, file_safe(&g.channel.0));
+            let p = out.join(name);
+            charts::gumbel(&p, &g)?;
+            written.push(p);
+        }
+        let u = data::utilisation(&study)?;
+        if !u.is_empty() {
+            let p = out.join("utilisation.png");
+            charts::utilisation(&p, &u)?;
+            written.push(p);
+        }
+    }
+    if written.is_empty() {
+        return Err(Error::Plot {
+            path: dir.to_path_buf(),
+            message: "nothing to plot: no end_forces.csv, positions.csv or study.csv/members.csv"
+                .into(),
+        });
+    }
+    Ok(written)
+}
+
+/// A channel name as a file name part (letters, digits, `-`, `_`; the rest `_`).
+fn file_safe(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,313 @@
+//! `[[line_types]]` as written: raw values, or a material and a nominal size whose
+//! properties come from a documented table (docs/src/line_types.md).
+//!
+//! The table's coefficients are those of MoorPy's default property table (NREL's MoorPy,
+//! `MoorProps_default.yaml`), which takes chain stiffness from DNV-OS-E301, drag
+//! coefficients from DNV-OS-E301 adjusted to the volume-equivalent diameter, and added
+//! mass from Bureau Veritas NR 493: properties scale with the nominal diameter `d_n`
+//! (m) as `mass = m2 d_n^2`, `EA = e2 d_n^2 + e3 d_n^3` (chain, wire) or `EA = k MBL`
+//! with `MBL = b2 d_n^2 + b3 d_n^3` (fibre ropes: the quasi-static stiffness), and the
+//! volume-equivalent diameter is `dvol_dnom d_n` or, from the material's density,
+//! `sqrt(4 mass / (pi density))`.
+
+use super::err;
+use crate::error::Error;
+use crate::model::LineType;
+use serde::Deserialize;
+use std::f64::consts::PI;
+use std::path::Path;
+
+/// A line material of the property table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Material {
+    /// R4 studless chain (also `"chain"`).
+    #[serde(alias = "chain")]
+    ChainStudless,
+    /// R4 studlink chain.
+    ChainStudlink,
+    /// Steel wire rope.
+    Wire,
+    /// Polyester rope.
+    Polyester,
+    /// Nylon rope.
+    Nylon,
+    /// HMPE rope.
+    Hmpe,
+}
+
+/// One material's coefficients (SI; `d_n` the nominal diameter in m).
+struct Props {
+    /// Mass per length per `d_n^2`, kg/m^3.
+    mass_d2: f64,
+    /// `EA` per `d_n^2` and per `d_n^3`, N/m^2 and N/m^3 (chain, wire).
+    ea_d2: f64,
+    ea_d3: f64,
+    /// Quasi-static `EA` per MBL (fibre ropes), -.
+    ea_mbl: f64,
+    /// MBL per `d_n`, `d_n^2` and `d_n^3`, N/m, N/m^2, N/m^3.
+    mbl_d: f64,
+    mbl_d2: f64,
+    mbl_d3: f64,
+    /// Volume-equivalent diameter per nominal diameter (0: from `density`).
+    dvol_dnom: f64,
+    /// Material density, kg/m^3 (fibre ropes).
+    density: f64,
+    /// Normal and axial drag, normal added mass, on the volume-equivalent diameter.
+    cd: f64,
+    cd_ax: f64,
+    ca: f64,
+}
+
+impl Material {
+    fn props(self) -> Props {
+        let zero = Props {
+            mass_d2: 0.0,
+            ea_d2: 0.0,
+            ea_d3: 0.0,
+            ea_mbl: 0.0,
+            mbl_d: 0.0,
+            mbl_d2: 0.0,
+            mbl_d3: 0.0,
+            dvol_dnom: 0.0,
+            density: 0.0,
+            cd: 0.0,
+            cd_ax: 0.0,
+            ca: 0.0,
+        };
+        match self {
+            Material::ChainStudless => Props {
+                mass_d2: 20.0e3,
+                ea_d2: 85.6e9,
+                ea_d3: -3.93e7,
+                mbl_d: 9.11e2,
+                mbl_d2: 1.21e9,
+                mbl_d3: -2.19e9,
+                dvol_dnom: 1.80,
+                cd: 1.333,
+                cd_ax: 0.639,
+                ca: 1.0,
+                ..zero
+            },
+            Material::ChainStudlink => Props {
+                mass_d2: 21.9e3,
+                ea_d2: 88.0e9,
+                mbl_d: 9.11e2,
+                mbl_d2: 1.21e9,
+                mbl_d3: -2.19e9,
+                dvol_dnom: 1.89,
+                cd: 1.376,
+                cd_ax: 0.741,
+                ca: 1.0,
+                ..zero
+            },
+            Material::Wire => Props {
+                mass_d2: 5293.0,
+                ea_d2: 97.1e9,
+                mbl_d2: 1022e6,
+                dvol_dnom: 1.18,
+                cd: 1.021,
+                // The table neglects the wire's axial drag; keep the default's order.
+                cd_ax: 0.0,
+                ca: 1.0,
+                ..zero
+            },
+            Material::Polyester => Props {
+                mass_d2: 679.0,
+                mbl_d2: 308e6,
+                ea_mbl: 14.0,
+                density: 1380.0,
+                cd: 2.021,
+                ca: 1.1,
+                ..zero
+            },
+            Material::Nylon => Props {
+                mass_d2: 585.0,
+                mbl_d2: 207e6,
+                mbl_d3: 230e6,
+                ea_mbl: 5.0,
+                density: 1140.0,
+                cd: 1.979,
+                ca: 1.1,
+                ..zero
+            },
+            Material::Hmpe => Props {
+                mass_d2: 496.0,
+                mbl_d2: 580e6,
+                mbl_d3: 651e6,
+                ea_mbl: 56.0,
+                density: 975.0,
+                cd: 1.988,
+                ca: 1.1,
+                ..zero
+            },
+        }
+    }
+}
+
+/// What a material and a nominal diameter give.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialLine {
+    /// Volume-equivalent (hydrodynamic) diameter, m.
+    pub diameter: f64,
+    /// Mass per length, kg/m.
+    pub mass_per_length: f64,
+    /// Axial stiffness, N.
+    pub ea: f64,
+    /// Minimum breaking load, N.
+    pub mbl: f64,
+    /// Normal drag coefficient (on `diameter`).
+    pub cn: f64,
+    /// Tangential drag coefficient (on `pi diameter`); `None` where the table has none.
+    pub ct: Option<f64>,
+    /// Normal added-mass coefficient.
+    pub cm: f64,
+}
+
+impl Material {
+    /// The properties of a line of this material with nominal diameter `dn` (m).
+    pub fn line(self, dn: f64) -> MaterialLine {
+        let p = self.props();
+        let mass = p.mass_d2 * dn * dn;
+        let mbl = p.mbl_d * dn + p.mbl_d2 * dn * dn + p.mbl_d3 * dn * dn * dn;
+        let ea = if p.ea_mbl > 0.0 {
+            p.ea_mbl * mbl
+        } else {
+            p.ea_d2 * dn * dn + p.ea_d3 * dn * dn * dn
+        };
+        let diameter = if p.dvol_dnom > 0.0 {
+            p.dvol_dnom * dn
+        } else {
+            (4.0 * mass / (PI * p.density)).sqrt()
+        };
+        MaterialLine {
+            diameter,
+            mass_per_length: mass,
+            ea,
+            mbl,
+            cn: p.cd,
+            ct: (p.cd_ax > 0.0).then_some(p.cd_ax),
+            cm: p.ca,
+        }
+    }
+}
+
+/// A `[[line_types]]` entry as written.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLineType {
+    /// Name that cables refer to.
+    pub name: String,
+    /// Material of the property table (with `nominal_diameter`).
+    #[serde(default)]
+    pub material: Option<Material>,
+    /// Nominal diameter, m (with `material`).
+    #[serde(default)]
+    pub nominal_diameter: Option<f64>,
+    /// Hydrodynamic diameter, m (overrides the material's).
+    #[serde(default)]
+    pub diameter: Option<f64>,
+    /// Mass per length, kg/m.
+    #[serde(default)]
+    pub mass_per_length: Option<f64>,
+    /// Axial stiffness, N.
+    #[serde(default)]
+    pub ea: Option<f64>,
+    /// Internal damping time constant, s.
+    #[serde(default)]
+    pub damping: f64,
+    /// Normal drag coefficient.
+    #[serde(default)]
+    pub cn: Option<f64>,
+    /// Tangential drag coefficient.
+    #[serde(default)]
+    pub ct: Option<f64>,
+    /// Normal added-mass coefficient.
+    #[serde(default)]
+    pub cm: Option<f64>,
+    /// Bending stiffness, N m^2.
+    #[serde(default)]
+    pub ei: f64,
+    /// Elastic force in compression too.
+    #[serde(default)]
+    pub allow_compression: bool,
+}
+
+impl RawLineType {
+    /// The line type: given values, else the material's, else the defaults (`cn` 1,
+    /// `ct` 0.01, `cm` 1); `diameter`, `mass_per_length` and `ea` are required without a
+    /// material.
+    pub fn resolve(&self, p: &Path, i: usize) -> Result<LineType, Error> {
+        let f = |k: &str| format!("line_types[{i}] (\"{}\").{k}", self.name);
+        let mat = match (self.material, self.nominal_diameter) {
+            (Some(m), Some(dn)) => {
+                if !(dn > 0.0 && dn.is_finite()) {
+                    return Err(err(p, f("nominal_diameter"), format!("must be positive, got {dn}")));
+                }
+                Some(m.line(dn))
+            }
+            (Some(_), None) => {
+                return Err(err(p, f("nominal_diameter"), "is required with `material`"));
+            }
+            (None, Some(_)) => {
+                return Err(err(p, f("material"), "is required with `nominal_diameter`"));
+            }
+            (None, None) => None,
+        };
+        let need = |given: Option<f64>, from: Option<f64>, key: &str| {
+            given.or(from).ok_or_else(|| {
+                err(
+                    p,
+                    f(key),
+                    format!("missing field `{key}` (give it, or `material` and `nominal_diameter`)"),
+                )
+            })
+        };
+        Ok(LineType {
+            name: self.name.clone(),
+            diameter: need(self.diameter, mat.map(|m| m.diameter), "diameter")?,
+            mass_per_length: need(
+                self.mass_per_length,
+                mat.map(|m| m.mass_per_length),
+                "mass_per_length",
+            )?,
+            ea: need(self.ea, mat.map(|m| m.ea), "ea")?,
+            damping: self.damping,
+            cn: self.cn.or(mat.map(|m| m.cn)).unwrap_or(1.0),
+            ct: self.ct.or(mat.and_then(|m| m.ct)).unwrap_or(0.01),
+            cm: self.cm.or(mat.map(|m| m.cm)).unwrap_or(1.0),
+            ei: self.ei,
+            allow_compression: self.allow_compression,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn studless_chain_76mm_against_hand_values() {
+        let l = Material::ChainStudless.line(0.076);
+        let d2 = 0.076f64 * 0.076;
+        assert!((l.mass_per_length - 20.0e3 * d2).abs() < 1e-9);
+        assert!((l.diameter - 0.1368).abs() < 1e-12);
+        assert!((l.ea - (85.6e9 * d2 - 3.93e7 * d2 * 0.076)).abs() < 1e-3);
+        // The volume-equivalent diameter of 7850 kg/m^3 steel: within 1% of 1.8 d_n.
+        let dvol_steel = (4.0 * l.mass_per_length / (PI * 7850.0)).sqrt();
+        assert!((dvol_steel / l.diameter - 1.0).abs() < 0.01, "{dvol_steel}");
+        assert_eq!((l.cn, l.ct, l.cm), (1.333, Some(0.639), 1.0));
+    }
+
+    #[test]
+    fn fibre_rope_stiffness_follows_its_breaking_load() {
+        let l = Material::Polyester.line(0.2);
+        let mbl = 308e6 * 0.04;
+        assert!((l.mbl - mbl).abs() < 1e-6);
+        assert!((l.ea - 14.0 * mbl).abs() < 1e-3);
+        // From its density: mass = rho A, so the rope is barely heavier than water.
+        let area = PI * l.diameter * l.diameter / 4.0;
+        assert!((area * 1380.0 - l.mass_per_length).abs() < 1e-9);
+        assert_eq!(l.ct, None);
+    }
+}
