@@ -13,6 +13,9 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
+#[path = "cablesim/study.rs"]
+mod study;
+
 #[derive(Parser)]
 #[command(
     name = "cablesim",
@@ -95,6 +98,12 @@ enum Cmd {
         #[arg(long, value_name = "ID=FILE")]
         motion: Vec<String>,
     },
+    /// Monte Carlo sea-state studies: run members (or one shard of them), merge shards,
+    /// write a Slurm submission script.
+    Study {
+        #[command(subcommand)]
+        cmd: study::StudyCmd,
+    },
 }
 
 /// A positive, finite number of seconds.
@@ -106,10 +115,17 @@ fn positive(s: &str) -> Result<f64, String> {
 }
 
 fn main() -> ExitCode {
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("info"))
+    let cli = Cli::parse();
+    // A study builds one simulation per member, each of which would log its mesh and
+    // step plan: a study shows warnings only, and its own progress.
+    let level = match cli.cmd {
+        Cmd::Study { .. } => "warn",
+        _ => "info",
+    };
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level))
         .format_timestamp(None)
         .init();
-    match real_main() {
+    match real_main(cli) {
         Ok(RunOutcome::Done) => ExitCode::SUCCESS,
         Ok(RunOutcome::Interrupted) => ExitCode::from(130),
         Err(e) => {
@@ -131,9 +147,9 @@ fn main() -> ExitCode {
     }
 }
 
-fn real_main() -> Result<RunOutcome> {
-    let cli = Cli::parse();
+fn real_main(cli: Cli) -> Result<RunOutcome> {
     match cli.cmd {
+        Cmd::Study { cmd } => study::main(cmd).map(|()| RunOutcome::Done),
         Cmd::Convert {
             input,
             output,

@@ -26,6 +26,10 @@ pub struct RawScenario {
     pub output: RawOutput,
     #[serde(default)]
     pub ancf: RawAncf,
+    /// A `[study]` table, read by `cablesim study` (`crate::study`); a single run of the
+    /// scenario ignores it (the study reads the table from the file's text itself).
+    #[allow(dead_code)]
+    pub study: Option<toml::Value>,
 }
 
 /// A `[[nets]]` entry: a net panel or cylindrical cage (see `model::net`).

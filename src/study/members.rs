@@ -6,7 +6,9 @@
 //!
 //! A member's wave seed (the seed of its random phases) is the first 64-bit word of the
 //! ChaCha20 stream whose 256-bit key is the study seed, the sea-state index and the seed
-//! number (8 little-endian bytes each, then zeros). It is derived from what identifies the
+//! number (8 little-endian bytes each, then zeros), shifted right by one bit: a TOML
+//! integer is signed, and a seed below 2^63 can be written as `environment.waves.seed`
+//! of a scenario, which then runs the member alone. It is derived from what identifies the
 //! member, never from time or thread order, so re-runs, thread counts and shards give the
 //! same waves. Keying by the seed number rather than the flat index means that adding a
 //! seed or a sea state at the end leaves the existing members' waves unchanged, and the
@@ -43,7 +45,7 @@ pub fn wave_seed(study_seed: u64, sea_state: usize, seed: u64) -> u64 {
     key[0..8].copy_from_slice(&study_seed.to_le_bytes());
     key[8..16].copy_from_slice(&(sea_state as u64).to_le_bytes());
     key[16..24].copy_from_slice(&seed.to_le_bytes());
-    ChaCha20Rng::from_seed(key).next_u64()
+    ChaCha20Rng::from_seed(key).next_u64() >> 1
 }
 
 /// Every member of a study, in member order.
@@ -186,8 +188,9 @@ mod tests {
         // The derivation is the standard ChaCha20 key stream (RFC 8439 block function,
         // nonce and counter 0): this value came from an independent implementation
         // (Python's `cryptography`, the first 8 bytes of the key stream for the key
-        // 7, 2, 11), so a change of the derivation or of the generator crate's output,
-        // which would change every study's waves, cannot pass unseen.
-        assert_eq!(a, 12_421_236_344_289_732_729);
+        // 7, 2, 11, 12_421_236_344_289_732_729, halved as the module doc says), so a
+        // change of the derivation or of the generator crate's output, which would change
+        // every study's waves, cannot pass unseen.
+        assert_eq!(a, 12_421_236_344_289_732_729 >> 1);
     }
 }

@@ -8,11 +8,13 @@
 //!    text; [`StudyPlan::new`] resolves the channels against the base model
 //!    ([`channels`]), enumerates the members with their wave seeds ([`members`]) and takes
 //!    the study hash ([`hash`]).
-//! 2. The runner runs the members of its shard ([`ShardSpec`], `K/N`), each with its sea
+//! 2. The runner ([`run`], [`StudyRunner`]) runs the members of its shard ([`ShardSpec`], `K/N`), each with its sea
 //!    state ([`StudyPlan::sea_state_of`]) and wave seed; at every output time a
 //!    [`Sampler`] pushes each channel's value into a [`ChannelStats`] from
 //!    [`StudyPlan::new_stats`] (fixed memory, [`channel_stats`]); each finished member becomes a [`MemberResult`], and the
-//!    shard a [`ShardResult`] written as `shard.json` ([`results`]).
+//!    shard a [`ShardResult`] written as `shard.json` ([`results`]). Each member is
+//!    written to the run directory as it finishes ([`run_dir`]), so an interrupted
+//!    run keeps what it finished and resumes from there.
 //! 3. [`merge`] checks that the shard files are the complete set of one study and puts the
 //!    members back in member order; [`summarise`] fits the seed maxima of each sea state
 //!    and channel ([`gumbel`]) and applies the design check ([`design`]); [`tables`] writes
@@ -30,6 +32,8 @@ pub mod gumbel;
 pub mod hash;
 pub mod members;
 pub mod results;
+pub mod run;
+pub mod run_dir;
 pub mod sampling;
 pub mod tables;
 
@@ -40,6 +44,8 @@ pub use extremes::{summarise, ChannelSummary, SeaStateSummary, StudySummary};
 pub use gumbel::{Gumbel, GumbelFit};
 pub use members::{Member, ShardSpec};
 pub use results::{merge, MemberResult, MemberStatus, ShardResult, StudyResults};
+pub use run::StudyRunner;
+pub use run_dir::{RunDir, RunState, RunStatus};
 pub use sampling::{BodySnapshot, CableSnapshot, Sampler};
 
 use crate::error::Error;

@@ -1,5 +1,6 @@
 //! Scenario files and the command line: parsing and its errors, every example,
-//! end-to-end runs of the `cablesim` binary, and the ANCF model chosen from a scenario.
+//! end-to-end runs of the `cablesim` binary (studies among them), and the ANCF model
+//! chosen from a scenario.
 //!
 //! One test binary (see `tests/cpu/main.rs` for why); shared helpers are in
 //! `tests/common`.
@@ -14,4 +15,5 @@ mod moordyn_input;
 mod robust_runs;
 mod scenario;
 mod simulation_api;
+mod study_run;
 mod viz_output;

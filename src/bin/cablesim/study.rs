@@ -1,0 +1,408 @@
+//! `cablesim study run | merge | slurm`: Monte Carlo sea-state studies from the command
+//! line (the study files are described in docs/src/studies.md).
+
+use anyhow::{bail, Context, Result};
+use cablesim::study::{
+    merge, summarise, tables, MemberResult, MemberStatus, RunDir, RunState, RunStatus, ShardResult,
+    ShardSpec, StudyFile, StudyRunner,
+};
+use clap::Subcommand;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+
+#[derive(Subcommand)]
+pub enum StudyCmd {
+    /// Run a study's members (all, or one shard) on the CPU across all threads
+    /// (RAYON_NUM_THREADS sets how many).
+    Run {
+        /// Study file (a `[study]` table, inside a scenario or naming one).
+        file: PathBuf,
+        /// Run only shard K of N (`K/N`, K from 1): a deterministic slice of the members.
+        #[arg(long, value_name = "K/N")]
+        shard: Option<String>,
+        /// Output directory (default: out/<study name>, or out/<study name>/shard-K-of-N).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Continue an interrupted run in the output directory: members already finished
+        /// there are kept and not run again.
+        #[arg(long)]
+        resume: bool,
+        /// No progress bar and no per-sea-state lines.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Merge the shards of one study (their run directories or shard.json files) into
+    /// study.csv, members.csv and study.json.
+    Merge {
+        /// Shard run directories (or their shard.json files), in any order.
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// Where to write the tables (default: the folder holding the first shard's
+        /// directory).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Write a Slurm submission script: a job array of N shard tasks, and a merge job
+    /// that runs when every task has succeeded.
+    Slurm {
+        /// Study file.
+        file: PathBuf,
+        /// Number of shards (array tasks).
+        #[arg(long)]
+        shards: usize,
+        /// Results folder: shard K runs in OUT/shard-K-of-N, the merged tables land in
+        /// OUT (default: out/<study name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Script to write (default: OUT/submit.sh).
+        #[arg(long)]
+        script: Option<PathBuf>,
+        /// The cablesim binary the jobs run (default: this one).
+        #[arg(long)]
+        cablesim: Option<PathBuf>,
+    },
+}
+
+pub fn main(cmd: StudyCmd) -> Result<()> {
+    match cmd {
+        StudyCmd::Run {
+            file,
+            shard,
+            out,
+            resume,
+            quiet,
+        } => run(&file, shard.as_deref(), out, resume, quiet),
+        StudyCmd::Merge { dirs, out } => merge_dirs(&dirs, out),
+        StudyCmd::Slurm {
+            file,
+            shards,
+            out,
+            script,
+            cablesim,
+        } => slurm(&file, shards, out, script, cablesim),
+    }
+}
+
+fn study_name(file: &Path) -> String {
+    file.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "study".into())
+}
+
+fn shard_dir_name(s: ShardSpec) -> String {
+    format!("shard-{}-of-{}", s.index, s.count)
+}
+
+fn run(
+    file: &Path,
+    shard: Option<&str>,
+    out: Option<PathBuf>,
+    resume: bool,
+    quiet: bool,
+) -> Result<()> {
+    let shard = match shard {
+        Some(s) => ShardSpec::parse(s, Path::new("--shard"))?,
+        None => ShardSpec::WHOLE,
+    };
+    let study = StudyFile::load(file)?;
+    let runner = StudyRunner::new(&study)?;
+    let plan = runner.plan();
+    let members = plan.shard_members(shard, Path::new("--shard"))?;
+    let out = out.unwrap_or_else(|| {
+        let base = PathBuf::from("out").join(study_name(file));
+        if shard == ShardSpec::WHOLE {
+            base
+        } else {
+            base.join(shard_dir_name(shard))
+        }
+    });
+    let (dir, done) = RunDir::open(&out, plan, shard, resume)?;
+    let remaining: Vec<_> = members
+        .iter()
+        .filter(|m| !done.iter().any(|d| d.member.index == m.index))
+        .copied()
+        .collect();
+    let status = |state, finished: &[MemberResult]| RunStatus {
+        state,
+        study_hash: plan.hash.clone(),
+        shard,
+        members: members.len(),
+        finished: finished.len(),
+        failed: finished
+            .iter()
+            .filter(|m| m.status != MemberStatus::Completed)
+            .count(),
+    };
+    dir.write_status(&status(RunState::Running, &done))?;
+
+    let stop = Arc::new(AtomicBool::new(false));
+    {
+        let stop = stop.clone();
+        // Ctrl-C and SIGTERM (Slurm's cancel and time limit) stop the run between output
+        // times: finished members are already on disk, running ones are dropped.
+        ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst))
+            .context("cannot install the Ctrl-C / SIGTERM handler")?;
+    }
+
+    let duration = plan.def.duration;
+    // Position in member-milliseconds of simulated time.
+    let ms = |s: f64| (s * 1e3).round() as u64;
+    let bar = if quiet {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::new(ms(duration) * members.len() as u64)
+    };
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{elapsed_precise} [{bar:40}] {percent}% {msg} (eta {eta})",
+        )
+        .expect("valid template")
+        .progress_chars("=> "),
+    );
+    bar.set_position(ms(duration) * done.len() as u64);
+    let members_msg = |finished: usize| {
+        format!(
+            "{finished} of {} members ({} member-s each)",
+            members.len(),
+            duration
+        )
+    };
+    bar.set_message(members_msg(done.len()));
+    if !quiet {
+        eprintln!(
+            "study {}: {} members in shard {shard} ({} already done), {} threads; output in {}",
+            file.display(),
+            members.len(),
+            done.len(),
+            rayon::current_num_threads(),
+            out.display()
+        );
+    }
+
+    // Per sea state of this shard: members in it, and members finished and failed.
+    let n_states = plan.def.sea_states.len();
+    let mut in_shard = vec![0usize; n_states];
+    for m in members {
+        in_shard[m.sea_state] += 1;
+    }
+    let tally = Mutex::new((vec![0usize; n_states], vec![0usize; n_states], done.len()));
+    {
+        let mut t = tally.lock().unwrap();
+        for d in &done {
+            t.0[d.member.sea_state] += 1;
+            if d.status != MemberStatus::Completed {
+                t.1[d.member.sea_state] += 1;
+            }
+        }
+    }
+    let progress = |dt: f64| bar.inc(ms(dt));
+    let on_done = |r: &MemberResult| -> Result<(), cablesim::Error> {
+        dir.write_member(&plan.hash, r)?;
+        let mut t = tally.lock().unwrap();
+        let s = r.member.sea_state;
+        t.0[s] += 1;
+        t.2 += 1;
+        if let MemberStatus::Failed { message } = &r.status {
+            t.1[s] += 1;
+            bar.println(format!("failed: {message}"));
+        }
+        bar.set_message(members_msg(t.2));
+        if t.0[s] == in_shard[s] {
+            let ss = &plan.def.sea_states[s];
+            bar.println(format!(
+                "sea state {s}{}: Hs {} m, Tp {} s: {} members done, {} failed",
+                ss.name
+                    .as_deref()
+                    .map(|n| format!(" ({n})"))
+                    .unwrap_or_default(),
+                ss.hs,
+                ss.tp,
+                t.0[s],
+                t.1[s]
+            ));
+        }
+        Ok(())
+    };
+    let result = runner.run(&remaining, &stop, &progress, &on_done);
+    bar.finish_and_clear();
+    let new = result.with_context(|| format!("study {}", file.display()))?;
+    let mut all = done;
+    all.extend(new);
+    all.sort_by_key(|m| m.member.index);
+    if all.len() < members.len() {
+        dir.write_status(&status(RunState::Interrupted, &all))?;
+        bail!(
+            "study interrupted: {} of {} members of shard {shard} finished and kept in {}; \
+             continue with `cablesim study run {} {}--out {} --resume`",
+            all.len(),
+            members.len(),
+            out.display(),
+            file.display(),
+            if shard == ShardSpec::WHOLE {
+                String::new()
+            } else {
+                format!("--shard {shard} ")
+            },
+            out.display()
+        );
+    }
+    let st = status(RunState::Complete, &all);
+    let shard_result = plan.shard_result(shard, all);
+    shard_result.write(&dir.shard_file())?;
+    dir.write_status(&st)?;
+    if shard == ShardSpec::WHOLE {
+        write_tables(&out, vec![(dir.shard_file(), shard_result)])?;
+        eprintln!(
+            "done: {} members ({} failed); study.csv, members.csv, study.json in {}",
+            st.members,
+            st.failed,
+            out.display()
+        );
+    } else {
+        eprintln!(
+            "done: shard {shard}, {} members ({} failed) in {}; merge the shards with \
+             `cablesim study merge`",
+            st.members,
+            st.failed,
+            dir.shard_file().display()
+        );
+    }
+    Ok(())
+}
+
+fn write_tables(out: &Path, shards: Vec<(PathBuf, ShardResult)>) -> Result<()> {
+    let results = merge(shards)?;
+    let summary = summarise(&results);
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    tables::write_all(out, &results, &summary)?;
+    Ok(())
+}
+
+fn merge_dirs(dirs: &[PathBuf], out: Option<PathBuf>) -> Result<()> {
+    let mut shards = Vec::new();
+    for d in dirs {
+        let path = if d.is_dir() {
+            d.join("shard.json")
+        } else {
+            d.clone()
+        };
+        if !path.exists() && d.join("status.json").exists() {
+            bail!(
+                "{}: the shard's run has not completed (see its status.json): resume it \
+                 (`cablesim study run ... --shard K/N --out {} --resume`) before merging",
+                d.display(),
+                d.display()
+            );
+        }
+        let s = ShardResult::read(&path)?;
+        shards.push((path, s));
+    }
+    let out = out.unwrap_or_else(|| {
+        let first = if dirs[0].is_dir() {
+            dirs[0].clone()
+        } else {
+            dirs[0].parent().map(Path::to_path_buf).unwrap_or_default()
+        };
+        first
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .map(Path::to_path_buf)
+            .unwrap_or_else(|| PathBuf::from("."))
+    });
+    let n = shards.len();
+    write_tables(&out, shards)?;
+    eprintln!(
+        "merged {n} shards: study.csv, members.csv, study.json in {}",
+        out.display()
+    );
+    Ok(())
+}
+
+/// Quotes a string for a POSIX shell.
+fn sh(s: &str) -> String {
+    format!("'{}'", s.replace('\'', r"'\''"))
+}
+
+fn slurm(
+    file: &Path,
+    shards: usize,
+    out: Option<PathBuf>,
+    script: Option<PathBuf>,
+    cablesim: Option<PathBuf>,
+) -> Result<()> {
+    let study = StudyFile::load(file)?;
+    let runner = StudyRunner::new(&study)?;
+    let plan = runner.plan();
+    if shards == 0 {
+        bail!("--shards: must be at least 1");
+    }
+    ShardSpec {
+        index: 1,
+        count: shards,
+    }
+    .check(plan.members.len(), Path::new("--shards"))?;
+    let abs = |p: &Path| std::path::absolute(p).with_context(|| format!("{}", p.display()));
+    let out = abs(&out.unwrap_or_else(|| PathBuf::from("out").join(study_name(file))))?;
+    let file = abs(file)?;
+    let exe = match cablesim {
+        Some(c) => abs(&c)?,
+        None => std::env::current_exe().context("cannot tell where this cablesim is")?,
+    };
+    let script = script.unwrap_or_else(|| out.join("submit.sh"));
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let (exe, file, outs) = (
+        sh(&exe.to_string_lossy()),
+        sh(&file.to_string_lossy()),
+        sh(&out.to_string_lossy()),
+    );
+    let shard_dirs: Vec<String> = (1..=shards)
+        .map(|k| {
+            format!(
+                "\"$OUT\"/{}",
+                shard_dir_name(ShardSpec {
+                    index: k,
+                    count: shards
+                })
+            )
+        })
+        .collect();
+    let text = format!(
+        r#"#!/bin/bash
+# Written by `cablesim study slurm`: study {file}, {members} members in {shards} shards.
+# Submit it with `bash submit.sh` (extra arguments go to the merge job's sbatch, e.g.
+# --wait to return when the study is merged). Shard K runs in $OUT/shard-K-of-{shards};
+# a task that is cancelled or hits its time limit keeps its finished members, and
+# resubmitting resumes it. The merged study.csv, members.csv and study.json land in $OUT.
+# Add sbatch options (partition, time limit, CPUs per task) in SBATCH_ARGS.
+set -euo pipefail
+CABLESIM={exe}
+STUDY={file}
+OUT={outs}
+mkdir -p "$OUT"
+array_job=$(sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-study \
+  --array=1-{shards} --output="$OUT/slurm-%A_%a.out" <<EOS
+#!/bin/bash
+exec "$CABLESIM" study run "$STUDY" --quiet --resume \
+  --shard "\$SLURM_ARRAY_TASK_ID/{shards}" --out "$OUT/shard-\$SLURM_ARRAY_TASK_ID-of-{shards}"
+EOS
+)
+array_job=${{array_job%%;*}}
+echo "shards: job array $array_job"
+sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-merge \
+  --dependency=afterok:"$array_job" --output="$OUT/slurm-merge-%j.out" "$@" <<EOS
+#!/bin/bash
+exec "$CABLESIM" study merge {dirs} --out "$OUT"
+EOS
+"#,
+        members = plan.members.len(),
+        dirs = shard_dirs.join(" "),
+    );
+    std::fs::write(&script, text).with_context(|| format!("cannot write {}", script.display()))?;
+    eprintln!(
+        "wrote {}: submit it with `bash {}`",
+        script.display(),
+        script.display()
+    );
+    Ok(())
+}

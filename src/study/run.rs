@@ -1,0 +1,257 @@
+//! Running a study's members on the CPU: each member is the base scenario with its own
+//! sea state, stepped through the library's [`Simulation`], its channels streamed into
+//! [`ChannelStats`] at every output time and nothing else kept.
+//!
+//! A member's scenario is the base scenario's text with two things replaced, then
+//! validated as any scenario is (so bodies that move in the waves, route files and every
+//! check behave as in a single run):
+//! - `[environment.waves]`: the trains become one long-crested JONSWAP train from the
+//!   sea state's `Hs`, `Tp`, peak factor and heading, with the member's wave seed as
+//!   `seed`; the base table's stretching, ramp and cache tolerance are kept;
+//! - `[environment] current`: a uniform current of the sea state's speed and heading
+//!   (a `current_profile` is removed); currents given per cable are kept.
+//!
+//! Members run in parallel over rayon's threads. Each member's statistics depend only on
+//! the member, and the results are returned in member order, so any thread count gives
+//! the same numbers.
+
+use super::channels::ModelChannels;
+use super::definition::StudyFile;
+use super::members::Member;
+use super::results::{MemberResult, MemberStatus};
+use super::sampling::{BodySnapshot, CableSnapshot, Sampler};
+use super::StudyPlan;
+use crate::error::Error;
+use crate::options::{Backend, Overrides};
+use crate::scenario::{err, Scenario};
+use crate::sim::Simulation;
+use rayon::prelude::*;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// A planned study with its base scenario, ready to run members.
+#[derive(Clone, Debug)]
+pub struct StudyRunner {
+    plan: StudyPlan,
+    /// The base scenario as a TOML table, without any `[study]` table.
+    base: toml::Table,
+    scenario_path: PathBuf,
+    model: ModelChannels,
+    sampler: Sampler,
+}
+
+/// Whether an error is a member's own blow-up (the member fails, the study goes on)
+/// rather than a problem of the study's input (the study stops).
+fn is_blow_up(e: &Error) -> bool {
+    matches!(e, Error::Diverged { .. } | Error::SingularFrame { .. })
+}
+
+impl StudyRunner {
+    /// Plans a loaded study against its base scenario.
+    pub fn new(file: &StudyFile) -> Result<StudyRunner, Error> {
+        let mut base: toml::Table = file
+            .scenario_text
+            .parse()
+            .map_err(|e| err(&file.scenario_path, "(file)", format!("{e}")))?;
+        base.remove("study");
+        let scenario = Scenario::parse(
+            &toml::to_string(&base).expect("a TOML table"),
+            &file.scenario_path,
+        )?;
+        let mut model = ModelChannels::from_model(&scenario.model);
+        if let Some(toml::Value::Array(bodies)) = base.get("bodies") {
+            model.bodies = bodies
+                .iter()
+                .filter_map(|b| b.get("name").and_then(|n| n.as_str()).map(String::from))
+                .collect();
+        }
+        let plan = StudyPlan::new(file, &model)?;
+        let sampler = Sampler::new(&plan.channels, &model);
+        Ok(StudyRunner {
+            plan,
+            base,
+            scenario_path: file.scenario_path.clone(),
+            model,
+            sampler,
+        })
+    }
+
+    /// The plan: definition, channels, members, hash.
+    pub fn plan(&self) -> &StudyPlan {
+        &self.plan
+    }
+
+    /// The scenario text member `m` runs (module documentation): writing it to a file
+    /// beside the base scenario and running it alone reproduces the member.
+    pub fn member_toml(&self, m: &Member) -> String {
+        let ss = self.plan.sea_state_of(m);
+        let mut doc = self.base.clone();
+        let env = doc
+            .entry("environment")
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+            .as_table_mut()
+            .expect("[environment] is a table in a valid scenario");
+        env.remove("current_profile");
+        let h = ss.current_heading.to_radians();
+        env.insert(
+            "current".into(),
+            toml::Value::Array(
+                [ss.current_speed * h.cos(), ss.current_speed * h.sin(), 0.0]
+                    .into_iter()
+                    .map(toml::Value::Float)
+                    .collect(),
+            ),
+        );
+        let waves = env
+            .entry("waves")
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+            .as_table_mut()
+            .expect("[environment.waves] is a table in a valid scenario");
+        // TOML integers are signed 64-bit: wave seeds are below 2^63 (members.rs).
+        waves.insert("seed".into(), toml::Value::Integer(m.wave_seed as i64));
+        let mut train = toml::Table::new();
+        train.insert("type".into(), "jonswap".into());
+        train.insert("hs".into(), ss.hs.into());
+        train.insert("tp".into(), ss.tp.into());
+        if let Some(g) = ss.gamma {
+            train.insert("gamma".into(), g.into());
+        }
+        train.insert("direction".into(), ss.heading.into());
+        waves.insert(
+            "trains".into(),
+            toml::Value::Array(vec![toml::Value::Table(train)]),
+        );
+        toml::to_string(&doc).expect("a TOML table")
+    }
+
+    /// Runs member `m` to the study's duration, streaming its channels at every output
+    /// time; `progress` is told each stretch of simulated time done (s). Returns `None`
+    /// when `stop` was raised before the member finished (its partial record is
+    /// dropped), a failed member when it blew up, and an error when its scenario does
+    /// not build (a problem of the study's input, not of the member).
+    pub fn run_member(
+        &self,
+        m: &Member,
+        stop: &AtomicBool,
+        progress: &(dyn Fn(f64) + Sync),
+    ) -> Result<Option<MemberResult>, Error> {
+        let def = &self.plan.def;
+        let text = self.member_toml(m);
+        let overrides = Overrides {
+            backend: Some(Backend::Cpu),
+            duration: Some(def.duration),
+            ..Overrides::default()
+        };
+        let mut sim = Simulation::from_toml(&text, &self.scenario_path, &overrides)?;
+        let interval = sim.scenario().sim.output_interval;
+        let mut stats = self.plan.new_stats();
+        let mut body_index: Option<Vec<Option<usize>>> = None;
+        let outputs = (def.duration / interval - 1e-9).ceil().max(1.0) as u64;
+        let mut done = 0.0;
+        let mut status = MemberStatus::Completed;
+        for k in 0..=outputs {
+            if k > 0 {
+                if stop.load(Ordering::Relaxed) {
+                    return Ok(None);
+                }
+                let target = (k as f64 * interval).min(def.duration);
+                if let Err(e) = sim.advance_to(target) {
+                    if !is_blow_up(&e) {
+                        return Err(e);
+                    }
+                    let ss = self.plan.sea_state_of(m);
+                    status = MemberStatus::Failed {
+                        message: format!(
+                            "member {} (sea state {}{}, seed {}, wave seed {}): {e}",
+                            m.index,
+                            m.sea_state,
+                            ss.name
+                                .as_deref()
+                                .map(|n| format!(" \"{n}\""))
+                                .unwrap_or_default(),
+                            m.seed,
+                            m.wave_seed
+                        ),
+                    };
+                    progress(def.duration - done);
+                    break;
+                }
+                progress(target - done);
+                done = target;
+            }
+            let snap = sim.snapshot()?;
+            let cables: Vec<CableSnapshot> = snap
+                .cables
+                .iter()
+                .map(|c| CableSnapshot {
+                    tensions: &c.tensions,
+                    start_force: c.end_forces.start,
+                    end_force: c.end_forces.end,
+                })
+                .collect();
+            // Bodies no cable end attaches to carry no load and are not in snapshots.
+            let index = body_index.get_or_insert_with(|| {
+                self.model
+                    .bodies
+                    .iter()
+                    .map(|n| snap.bodies.iter().position(|b| &b.name == n))
+                    .collect()
+            });
+            let bodies: Vec<BodySnapshot> = index
+                .iter()
+                .map(|i| match i {
+                    Some(i) => BodySnapshot {
+                        force: snap.bodies[*i].force,
+                        moment: snap.bodies[*i].moment,
+                    },
+                    None => BodySnapshot::default(),
+                })
+                .collect();
+            self.sampler.record(&mut stats, snap.time, &cables, &bodies);
+        }
+        Ok(Some(MemberResult {
+            member: *m,
+            status,
+            stats,
+        }))
+    }
+
+    /// Runs `members` in parallel on rayon's threads; `on_done` is called with each
+    /// finished member as it finishes (to write it at once), `progress` as in
+    /// [`StudyRunner::run_member`]. Returns the finished members in member order;
+    /// members not started or not finished when `stop` was raised are missing. An
+    /// input error of one member raises `stop` and is returned.
+    pub fn run(
+        &self,
+        members: &[Member],
+        stop: &AtomicBool,
+        progress: &(dyn Fn(f64) + Sync),
+        on_done: &(dyn Fn(&MemberResult) -> Result<(), Error> + Sync),
+    ) -> Result<Vec<MemberResult>, Error> {
+        let results: Vec<Result<Option<MemberResult>, Error>> = members
+            .par_iter()
+            .map(|m| {
+                if stop.load(Ordering::Relaxed) {
+                    return Ok(None);
+                }
+                let r = self.run_member(m, stop, progress).and_then(|r| {
+                    if let Some(r) = &r {
+                        on_done(r)?;
+                    }
+                    Ok(r)
+                });
+                if r.is_err() {
+                    stop.store(true, Ordering::Relaxed);
+                }
+                r
+            })
+            .collect();
+        let mut out = Vec::with_capacity(results.len());
+        for r in results {
+            if let Some(r) = r? {
+                out.push(r);
+            }
+        }
+        Ok(out)
+    }
+}
