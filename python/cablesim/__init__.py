@@ -23,9 +23,11 @@ from ._cablesim import (
     Simulation,
     Snapshot,
     __version__,
+    run_study,
 )
 
 __all__ = [
+    "run_study",
     "BodyState",
     "CablesimError",
     "DivergedError",

@@ -21,6 +21,7 @@ __all__ = [
     "Snapshot",
     "BodyState",
     "RunOutput",
+    "run_study",
 ]
 
 _Cable = Union[int, str]
@@ -31,6 +32,12 @@ _End = Literal["start", "end"]
 """A cable end: its first node ("start") or its last ("end")."""
 _Vec3 = Union[Sequence[float], npt.NDArray[np.float64]]
 _FloatArray = npt.NDArray[np.float64]
+
+def run_study(path: Union[str, os.PathLike[str]], out_dir: Union[str, os.PathLike[str]]) -> Dict[str, Any]:
+    """Runs every member of the study file ``path`` (a ``[study]`` table) on the CPU
+    across all threads, writes ``study.csv``, ``members.csv`` and ``study.json`` into
+    ``out_dir`` and returns the content of ``study.json``. Ctrl-C stops it with
+    KeyboardInterrupt."""
 
 class CablesimError(Exception):
     """Base class of every error cablesim raises (besides ValueError, KeyError and

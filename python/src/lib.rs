@@ -15,6 +15,7 @@ mod output;
 mod select;
 mod simulation;
 mod snapshot;
+mod study;
 
 use pyo3::prelude::*;
 
@@ -26,5 +27,6 @@ fn _cablesim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     simulation::register(m)?;
     snapshot::register(m)?;
     output::register(m)?;
+    study::register(m)?;
     Ok(())
 }

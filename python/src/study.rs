@@ -1,0 +1,58 @@
+//! `cablesim.run_study`: a Monte Carlo sea-state study (the `[study]` table of
+//! docs/src/studies.md) run from Python, as `cablesim study run` runs it, with its
+//! tables written to a directory and returned.
+
+use crate::errors::IntoPy;
+use cablesim::study::{merge, summarise, tables, ShardSpec, StudyFile, StudyRunner};
+use pyo3::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+/// Runs every member of the study in `path` on the CPU across all threads and writes
+/// `study.csv`, `members.csv` and `study.json` into `out_dir`; returns the content of
+/// `study.json` (a dict: per sea state and channel, the Gumbel fits, the most probable
+/// maximum, the quantile and, with capacities, the utilisation). Ctrl-C stops the
+/// running members and raises KeyboardInterrupt (nothing is written then).
+#[pyfunction]
+fn run_study<'py>(py: Python<'py>, path: PathBuf, out_dir: PathBuf) -> PyResult<Bound<'py, PyAny>> {
+    let study = StudyFile::load(&path).py(py)?;
+    let runner = StudyRunner::new(&study).py(py)?;
+    let plan = runner.plan();
+    let members = plan
+        .shard_members(ShardSpec::WHOLE, Path::new("shard"))
+        .py(py)?;
+    let stop = AtomicBool::new(false);
+    // The members run on rayon's threads from a scoped thread, while this one waits
+    // with the GIL released and checks for Ctrl-C every tenth of a second.
+    let results = std::thread::scope(|s| {
+        let job = s.spawn(|| runner.run(&members, &stop, &|_| {}, &|_| Ok(())));
+        loop {
+            if job.is_finished() {
+                return Ok(job.join().expect("the study thread does not panic"));
+            }
+            py.detach(|| std::thread::sleep(Duration::from_millis(100)));
+            if let Err(e) = py.check_signals() {
+                stop.store(true, Ordering::SeqCst);
+                let _ = job.join();
+                return Err(e);
+            }
+        }
+    })?
+    .py(py)?;
+    let shard = plan.shard_result(ShardSpec::WHOLE, results);
+    let merged = merge(vec![(out_dir.join("shard.json"), shard)]).py(py)?;
+    let summary = summarise(&merged);
+    std::fs::create_dir_all(&out_dir).map_err(|e| {
+        pyo3::exceptions::PyOSError::new_err(format!("cannot create {}: {e}", out_dir.display()))
+    })?;
+    tables::write_all(&out_dir, &merged, &summary).py(py)?;
+    let text = std::fs::read_to_string(out_dir.join("study.json")).map_err(|e| {
+        pyo3::exceptions::PyOSError::new_err(format!("cannot read study.json: {e}"))
+    })?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(run_study, m)?)
+}
