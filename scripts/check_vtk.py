@@ -7,8 +7,9 @@ as ParaView would, and checks it against the CSV files of the same run.
 Without OUTDIR it runs tests/data/buoy_three_chains.toml with target/release/cablesim
 into a temporary directory first. For every file of vtk/cablesim.pvd: the point count
 (every cable node of positions.csv at that time, or the bodies and shared points), the
-polyline count, and, for the cables, one node's position against positions.csv and its
-tension against the mean of its two elements in tensions.csv; for the points, the
+line count (one two-point line per element), and, for the cables, one node's position
+against positions.csv, its tension against the mean of its two elements in tensions.csv
+and the next element's own tension (cell data); for the points, the
 position and force against points.csv. Exits non-zero on the first mismatch.
 """
 
@@ -60,7 +61,8 @@ def check(out):
         if part == "0":
             rows = pos[t]
             cables = sorted({c for c, _, _ in rows}, key=[c for c, _, _ in rows].index)
-            if poly.GetNumberOfPoints() != len(rows) or poly.GetNumberOfLines() != len(cables):
+            # Each element is a two-point line: a cable of n nodes has n - 1.
+            if poly.GetNumberOfPoints() != len(rows) or poly.GetNumberOfLines() != len(rows) - len(cables):
                 sys.exit(f"check_vtk: {name}: {poly.GetNumberOfPoints()} points, "
                          f"{poly.GetNumberOfLines()} lines; positions.csv has {len(rows)} nodes "
                          f"of {len(cables)} cables at t = {t}")
@@ -72,6 +74,13 @@ def check(out):
             if not all(close(a, b) for a, b in zip(xyz[k], x)) or not close(tension[k], want):
                 sys.exit(f"check_vtk: {name}: point {k} ({cable} node {node}) at {[float(v) for v in xyz[k]]} "
                          f"tension {tension[k]}; the CSV files say {x}, {want}")
+            # The element from that node on (its cell: the elements of the cables before
+            # it, then its index in its cable): its own tension.
+            cell = k - len(cables) + 1
+            etension = vtk_to_numpy(poly.GetCellData().GetArray("element_tension"))
+            if not close(etension[cell], ten[(t, cable, node)]):
+                sys.exit(f"check_vtk: {name}: cell {cell} ({cable} element {node}) tension "
+                         f"{etension[cell]}; tensions.csv says {ten[(t, cable, node)]}")
         else:
             force = vtk_to_numpy(poly.GetPointData().GetArray("force"))
             want = pts[t]

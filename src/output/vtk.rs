@@ -9,10 +9,11 @@ use std::path::{Path, PathBuf};
 
 /// Writes a run for ParaView into one directory (`DIR/vtk` for `cablesim run`):
 /// - `cables_NNNNN.vtp` per output time `NNNNN` (0, 1, ...): every cable's nodes as
-///   points (m) and each cable as one polyline, start to end; point data `velocity`
-///   (m/s) and `tension` (N: at an inner node the mean of its two elements' tensions,
-///   at an end node its end element's), cell data `cable` (the cable's index in
-///   scenario order). A node shared by several cables appears once per cable.
+///   points (m) and each element as a two-point line (cable order, start to end);
+///   point data `velocity` (m/s) and `tension` (N: at an inner node the mean of its two
+///   elements' tensions, at an end node its end element's), cell data
+///   `element_tension` (N, the element's own axial force) and `cable` (the cable's
+///   index in scenario order). A node shared by several cables appears once per cable.
 /// - `points_NNNNN.vtp` when the run has vessel bodies or shared points: the bodies'
 ///   reference points (scenario order) then the shared points (`[[points]]`), as
 ///   vertices, with point data `force` (N: the cables' total force on the body, the
@@ -100,14 +101,15 @@ const HEAD: &str =
     "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n<PolyData>\n";
 const TAIL: &str = "</Piece>\n</PolyData>\n</VTKFile>\n";
 
-/// The cables' file: nodes, one polyline per cable, velocity and tension.
+/// The cables' file: nodes, and each element a two-point line (so that its tension is
+/// cell data of its own), with the node velocity and tension as point data.
 pub fn cables_vtp(s: &Snapshot) -> String {
     let n: usize = s.cables.iter().map(|c| c.positions.len()).sum();
+    let n_elem: usize = s.cables.iter().map(|c| c.positions.len().saturating_sub(1)).sum();
     let mut out = String::from(HEAD);
     let _ = writeln!(
         out,
-        "<Piece NumberOfPoints=\"{n}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">",
-        s.cables.len()
+        "<Piece NumberOfPoints=\"{n}\" NumberOfVerts=\"0\" NumberOfLines=\"{n_elem}\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">"
     );
     out.push_str("<PointData Vectors=\"velocity\" Scalars=\"tension\">\n");
     array(
@@ -128,8 +130,24 @@ pub fn cables_vtp(s: &Snapshot) -> String {
         })
     });
     array(&mut out, Some("tension"), 1, node_tension);
-    out.push_str("</PointData>\n<CellData Scalars=\"cable\">\n");
-    int_array(&mut out, "cable", 0..s.cables.len());
+    out.push_str("</PointData>\n<CellData Scalars=\"element_tension\">\n");
+    // Per element, in cable order: its axial force (N) and its cable's index.
+    array(
+        &mut out,
+        Some("element_tension"),
+        1,
+        s.cables
+            .iter()
+            .flat_map(|c| c.tensions.iter().take(c.positions.len().saturating_sub(1)).copied()),
+    );
+    int_array(
+        &mut out,
+        "cable",
+        s.cables
+            .iter()
+            .enumerate()
+            .flat_map(|(ci, c)| std::iter::repeat_n(ci, c.positions.len().saturating_sub(1))),
+    );
     out.push_str("</CellData>\n<Points>\n");
     array(
         &mut out,
@@ -140,12 +158,17 @@ pub fn cables_vtp(s: &Snapshot) -> String {
             .flat_map(|c| c.positions.iter().flatten().copied()),
     );
     out.push_str("</Points>\n<Lines>\n");
-    int_array(&mut out, "connectivity", 0..n);
-    let offsets = s.cables.iter().scan(0, |acc, c| {
-        *acc += c.positions.len();
-        Some(*acc)
-    });
-    int_array(&mut out, "offsets", offsets);
+    let mut conn = Vec::with_capacity(2 * n_elem);
+    let mut first = 0;
+    for c in &s.cables {
+        for k in 1..c.positions.len() {
+            conn.push(first + k - 1);
+            conn.push(first + k);
+        }
+        first += c.positions.len();
+    }
+    int_array(&mut out, "connectivity", conn.into_iter());
+    int_array(&mut out, "offsets", (1..=n_elem).map(|e| 2 * e));
     out.push_str("</Lines>\n");
     out.push_str(TAIL);
     out

@@ -133,12 +133,18 @@ fn vtk_files_hold_the_cables_bodies_and_times() {
         let xyz = data_array(&doc, None);
         assert_eq!(xyz.len(), 3 * n_points);
         if part == "0" {
-            // 3 chains of 21 nodes as 3 polylines, node by node in cable order.
+            // 3 chains of 21 nodes, node by node in cable order; each of their 60
+            // elements a two-point line.
             assert_eq!(n_points, 63);
-            assert_eq!(piece.attribute("NumberOfLines"), Some("3"));
+            assert_eq!(piece.attribute("NumberOfLines"), Some("60"));
             let conn = data_array(&doc, Some("connectivity"));
-            assert_eq!(conn, (0..63).map(f64::from).collect::<Vec<_>>());
-            assert_eq!(data_array(&doc, Some("offsets")), [21.0, 42.0, 63.0]);
+            let want_conn: Vec<f64> = (0..3)
+                .flat_map(|c| (0..20).flat_map(move |k| [21 * c + k, 21 * c + k + 1]))
+                .map(f64::from)
+                .collect();
+            assert_eq!(conn, want_conn);
+            let want_off: Vec<f64> = (1..=60).map(|e| f64::from(2 * e)).collect();
+            assert_eq!(data_array(&doc, Some("offsets")), want_off);
             assert_eq!(data_array(&doc, Some("velocity")).len(), 3 * 63);
             // Node 5 of chain2 (point 26): its position and the mean of its elements'
             // tensions, as the CSV files give them at this time.
@@ -155,6 +161,9 @@ fn vtk_files_hold_the_cables_bodies_and_times() {
             let tn = data_array(&doc, Some("tension"))[26];
             let want = 0.5 * (row(&tensions, "chain2", "4")[0] + row(&tensions, "chain2", "5")[0]);
             assert!((tn - want).abs() <= 1e-12 * want.abs(), "{tn} vs {want}");
+            // Element 4 of chain2 (cell 24): its own tension, exactly as tensions.csv.
+            let te = data_array(&doc, Some("element_tension"))[24];
+            assert_eq!(te, row(&tensions, "chain2", "4")[0]);
         } else {
             assert_eq!(n_points, 1);
             assert_eq!(piece.attribute("NumberOfVerts"), Some("1"));
