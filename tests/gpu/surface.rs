@@ -14,9 +14,10 @@
 //! plus 0.1% of the largest.
 
 use crate::common::*;
+use crate::functions::{run_kernels, rv, to_r, Worst};
 use cablesim::cpu::CpuSolver;
 use cablesim::gpu::layout::*;
-use cablesim::gpu::{shaders, GpuContext, GpuKernel, GpuSolver, Precision};
+use cablesim::gpu::{GpuContext, GpuKernel, GpuSolver, Precision};
 use cablesim::math::V3;
 use cablesim::model::{Layout, PointMass, Route};
 use cablesim::options::SolverOptions;
@@ -73,7 +74,8 @@ fn t_element_wet(@builtin(global_invocation_id) gid: vec3<u32>) {
 }
 "#;
 
-/// Runs `entry` over `input` with `group0` bound at group 0 and returns `n_out` values.
+/// Runs `entry` of this file's test kernels over `input` (the shared harness of
+/// `functions.rs`) and returns `n_out` values.
 fn run<R: GpuReal>(
     ctx: &GpuContext,
     p: Precision,
@@ -83,138 +85,11 @@ fn run<R: GpuReal>(
     n_threads: usize,
     n_out: usize,
 ) -> Vec<R> {
-    use wgpu::util::DeviceExt;
-    let dev = &ctx.device;
-    let src = format!("{}\n{KERNELS}", shaders::prelude(p));
-    let scope = dev.push_error_scope(wgpu::ErrorFilter::Validation);
-    let module = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("function parity"),
-        source: wgpu::ShaderSource::Wgsl(src.into()),
-    });
-    let pipe = dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(entry),
-        layout: None,
-        module: &module,
-        entry_point: Some(entry),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
-    let buf = |label: &str, bytes: &[u8]| {
-        dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(label),
-            contents: bytes,
-            usage,
-        })
-    };
-    let g0: Vec<wgpu::Buffer> = group0.iter().map(|(_, b)| buf("group0", b)).collect();
-    let tin = buf("tin", bytemuck::cast_slice(input));
-    let out_bytes = (n_out * std::mem::size_of::<R>()) as u64;
-    let tout = buf("tout", &vec![0u8; out_bytes as usize]);
-    let staging = dev.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("staging"),
-        size: out_bytes,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let bg0 = dev.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &pipe.get_bind_group_layout(0),
-        entries: &group0
-            .iter()
-            .zip(&g0)
-            .map(|((binding, _), b)| wgpu::BindGroupEntry {
-                binding: *binding,
-                resource: b.as_entire_binding(),
-            })
-            .collect::<Vec<_>>(),
-    });
-    let bg1 = dev.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &pipe.get_bind_group_layout(1),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: tin.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: tout.as_entire_binding(),
-            },
-        ],
-    });
-    let mut enc = dev.create_command_encoder(&Default::default());
-    {
-        let mut pass = enc.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipe);
-        pass.set_bind_group(0, &bg0, &[]);
-        pass.set_bind_group(1, &bg1, &[]);
-        pass.dispatch_workgroups((n_threads as u32).div_ceil(64), 1, 1);
-    }
-    enc.copy_buffer_to_buffer(&tout, 0, &staging, 0, out_bytes);
-    ctx.queue.submit([enc.finish()]);
-    if let Some(e) = pollster::block_on(scope.pop()) {
-        panic!("{entry} ({}): {e}", p.name());
-    }
-    staging
-        .slice(..)
-        .map_async(wgpu::MapMode::Read, |r| r.unwrap());
-    dev.poll(wgpu::PollType::wait_indefinitely()).unwrap();
-    let view = staging.slice(..).get_mapped_range().unwrap();
-    view.chunks_exact(std::mem::size_of::<R>())
-        .map(bytemuck::pod_read_unaligned)
-        .collect()
+    run_kernels(ctx, p, KERNELS, entry, group0, input, n_threads, n_out)
 }
 
-/// Records the worst `|gpu - rust| / (eps scale)` of a function.
-struct Worst {
-    name: &'static str,
-    eps: f64,
-    worst: f64,
-}
 
-impl Worst {
-    fn new<R: GpuReal>(name: &'static str) -> Self {
-        Self {
-            name,
-            eps: R::epsilon().f64(),
-            worst: 0.0,
-        }
-    }
-    fn check(&mut self, what: &str, case: usize, gpu: f64, rust: f64, scale: f64) {
-        let e = (gpu - rust).abs() / (self.eps * scale.max(f64::MIN_POSITIVE));
-        self.worst = self.worst.max(e);
-        assert!(
-            e <= 16.0,
-            "{} case {case} {what}: GPU {gpu:e}, Rust {rust:e}: {e:.1} eps x scale {scale:e}",
-            self.name
-        );
-    }
-    fn v(&mut self, what: &str, case: usize, gpu: &[f64], rust: V3<f64>, scale: f64) {
-        for (k, r) in [rust.x, rust.y, rust.z].into_iter().enumerate() {
-            self.check(what, case, gpu[k], r, scale);
-        }
-    }
-    fn report(&self, p: Precision) {
-        eprintln!(
-            "{} ({}): worst difference {:.2} eps x scale (limit 16)",
-            self.name,
-            p.name(),
-            self.worst
-        );
-    }
-}
 
-fn rv(rng: &mut ChaCha8Rng, a: f64) -> [f64; 3] {
-    [0, 1, 2].map(|_| rng.gen_range(-a..a))
-}
-
-/// Inputs as `R`, and back as f64 (what the GPU actually got).
-fn to_r<R: GpuReal>(x: &[f64]) -> (Vec<R>, Vec<f64>) {
-    let r: Vec<R> = x.iter().map(|&v| R::c(v)).collect();
-    let back = r.iter().map(|v| v.f64()).collect();
-    (r, back)
-}
 
 /// The two fractions on submergences of both signs, zero, and near the surface.
 fn check_fractions<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
