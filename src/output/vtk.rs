@@ -105,7 +105,11 @@ const TAIL: &str = "</Piece>\n</PolyData>\n</VTKFile>\n";
 /// cell data of its own), with the node velocity and tension as point data.
 pub fn cables_vtp(s: &Snapshot) -> String {
     let n: usize = s.cables.iter().map(|c| c.positions.len()).sum();
-    let n_elem: usize = s.cables.iter().map(|c| c.positions.len().saturating_sub(1)).sum();
+    let n_elem: usize = s
+        .cables
+        .iter()
+        .map(|c| c.positions.len().saturating_sub(1))
+        .sum();
     let mut out = String::from(HEAD);
     let _ = writeln!(
         out,
@@ -136,9 +140,12 @@ pub fn cables_vtp(s: &Snapshot) -> String {
         &mut out,
         Some("element_tension"),
         1,
-        s.cables
-            .iter()
-            .flat_map(|c| c.tensions.iter().take(c.positions.len().saturating_sub(1)).copied()),
+        s.cables.iter().flat_map(|c| {
+            c.tensions
+                .iter()
+                .take(c.positions.len().saturating_sub(1))
+                .copied()
+        }),
     );
     int_array(
         &mut out,

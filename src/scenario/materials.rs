@@ -242,7 +242,11 @@ impl RawLineType {
         let mat = match (self.material, self.nominal_diameter) {
             (Some(m), Some(dn)) => {
                 if !(dn > 0.0 && dn.is_finite()) {
-                    return Err(err(p, f("nominal_diameter"), format!("must be positive, got {dn}")));
+                    return Err(err(
+                        p,
+                        f("nominal_diameter"),
+                        format!("must be positive, got {dn}"),
+                    ));
                 }
                 Some(m.line(dn))
             }
@@ -259,7 +263,9 @@ impl RawLineType {
                 err(
                     p,
                     f(key),
-                    format!("missing field `{key}` (give it, or `material` and `nominal_diameter`)"),
+                    format!(
+                        "missing field `{key}` (give it, or `material` and `nominal_diameter`)"
+                    ),
                 )
             })
         };

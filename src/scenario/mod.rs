@@ -3,8 +3,8 @@
 
 mod arrays;
 mod bodies;
-pub mod materials;
 mod ends;
+pub mod materials;
 mod nets;
 mod raw;
 mod route_file;

@@ -406,14 +406,21 @@ fn a_line_type_from_a_material_and_a_nominal_size() {
     let lt = &sc.model.line_types[0];
     assert_eq!(lt.diameter, 0.04);
     let d2 = 0.076f64 * 0.076;
-    assert!((lt.ea - (85.6e9 * d2 - 3.93e7 * d2 * 0.076)).abs() < 1e-3, "{}", lt.ea);
+    assert!(
+        (lt.ea - (85.6e9 * d2 - 3.93e7 * d2 * 0.076)).abs() < 1e-3,
+        "{}",
+        lt.ea
+    );
     fails(
         &EXAMPLE.replace("diameter = 0.04", "material = \"chain\""),
         "line_types[0] (\"wire\").nominal_diameter",
         "is required with `material`",
     );
     fails(
-        &EXAMPLE.replace("diameter = 0.04", "material = \"kevlar\"\nnominal_diameter = 0.05"),
+        &EXAMPLE.replace(
+            "diameter = 0.04",
+            "material = \"kevlar\"\nnominal_diameter = 0.05",
+        ),
         "line_types[0]",
         "unknown variant `kevlar`",
     );

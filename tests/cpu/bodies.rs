@@ -354,7 +354,10 @@ end = {{ free = [14.0, -1.0, -12.0], mass = 20.0, volume = 0.005 }}
     // 210 N) on average. It starts stretched, so the clump bounces and the force passes
     // near zero at some output times; the mean is the steady measure.
     let mean_f = sum_f / rows as f64;
-    assert!(mean_f > 100.0, "the line hangs from the body: mean |F| {mean_f} N");
+    assert!(
+        mean_f > 100.0,
+        "the line hangs from the body: mean |F| {mean_f} N"
+    );
 }
 
 /// The error of loading scenario `text` (with `files` written beside it).

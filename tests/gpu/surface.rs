@@ -88,9 +88,6 @@ fn run<R: GpuReal>(
     run_kernels(ctx, p, KERNELS, entry, group0, input, n_threads, n_out)
 }
 
-
-
-
 /// The two fractions on submergences of both signs, zero, and near the surface.
 fn check_fractions<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
     let n = 2000;

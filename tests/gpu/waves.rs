@@ -120,8 +120,6 @@ fn run<R: GpuReal>(
     run_kernels(ctx, p, KERNELS, entry, group0, input, n_threads, n_out)
 }
 
-
-
 fn check_exp<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
     // Down to where f32 results are still normal numbers.
     let low = if R::epsilon().f64() > 1e-10 {
