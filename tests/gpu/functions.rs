@@ -281,6 +281,34 @@ impl Worst {
     }
 }
 
+/// The line constants and element kinematics of one random element case as the test
+/// kernels read it (`tin[b..b + 25]`: 9 coefficients, then r_b, v_a, v_b, l0, current,
+/// water acceleration; r_a at the origin).
+pub fn element_case(a: &[f64]) -> (Coefs<f64>, ElementInput<f64>) {
+    let c = Coefs::<f64> {
+        ea: a[0],
+        ea_c: a[1],
+        drag_n: a[2],
+        drag_t: a[3],
+        froude_krylov: a[4],
+        mass: a[5],
+        added_mass: a[6],
+        wet_weight_z: a[7],
+        compression: a[8],
+    };
+    let v = |k: usize| V3::new(a[k], a[k + 1], a[k + 2]);
+    let inp = ElementInput {
+        ra: V3::zero(),
+        rb: v(9),
+        va: v(12),
+        vb: v(15),
+        l0: a[18],
+        current: v(19),
+        water_accel: v(22),
+    };
+    (c, inp)
+}
+
 pub fn rv(rng: &mut ChaCha8Rng, a: f64) -> [f64; 3] {
     [0, 1, 2].map(|_| rng.gen_range(-a..a))
 }
@@ -328,27 +356,7 @@ fn check_element<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
     let mut w = Worst::new::<R>("glmf_element");
     for i in 0..n {
         let a = &x[25 * i..25 * (i + 1)];
-        let c = Coefs::<f64> {
-            ea: a[0],
-            ea_c: a[1],
-            drag_n: a[2],
-            drag_t: a[3],
-            froude_krylov: a[4],
-            mass: a[5],
-            added_mass: a[6],
-            wet_weight_z: a[7],
-            compression: a[8],
-        };
-        let v = |k: usize| V3::new(a[k], a[k + 1], a[k + 2]);
-        let inp = ElementInput {
-            ra: V3::zero(),
-            rb: v(9),
-            va: v(12),
-            vb: v(15),
-            l0: a[18],
-            current: v(19),
-            water_accel: v(22),
-        };
+        let (c, inp) = element_case(a);
         let el = glmf_element(&c, &inp);
         let ext = cablesim::physics::glmf_external(&c, &inp, el.t, inp.rb.norm());
         let o = &out[9 * i..9 * (i + 1)];

@@ -14,7 +14,7 @@
 //! plus 0.1% of the largest.
 
 use crate::common::*;
-use crate::functions::{run_kernels, rv, to_r, Worst};
+use crate::functions::{element_case, run_kernels, rv, to_r, Worst};
 use cablesim::cpu::CpuSolver;
 use cablesim::gpu::layout::*;
 use cablesim::gpu::{GpuContext, GpuKernel, GpuSolver, Precision};
@@ -22,8 +22,7 @@ use cablesim::math::V3;
 use cablesim::model::{Layout, PointMass, Route};
 use cablesim::options::SolverOptions;
 use cablesim::physics::{
-    glmf_element_wet, glmf_external_wet, point_wetted_fraction, wetted_fraction, Coefs,
-    ElementInput,
+    glmf_element_wet, glmf_external_wet, point_wetted_fraction, wetted_fraction,
 };
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -171,27 +170,7 @@ fn check_element_wet<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCh
     let mut w = Worst::new::<R>("glmf_element_wet");
     for i in 0..n {
         let a = &x[27 * i..27 * (i + 1)];
-        let c = Coefs::<f64> {
-            ea: a[0],
-            ea_c: a[1],
-            drag_n: a[2],
-            drag_t: a[3],
-            froude_krylov: a[4],
-            mass: a[5],
-            added_mass: a[6],
-            wet_weight_z: a[7],
-            compression: a[8],
-        };
-        let v = |k: usize| V3::new(a[k], a[k + 1], a[k + 2]);
-        let inp = ElementInput {
-            ra: V3::zero(),
-            rb: v(9),
-            va: v(12),
-            vb: v(15),
-            l0: a[18],
-            current: v(19),
-            water_accel: v(22),
-        };
+        let (c, inp) = element_case(a);
         let (wet, g) = (a[25], a[26]);
         let el = glmf_element_wet(&c, &inp, wet, g);
         let l = inp.rb.norm();
