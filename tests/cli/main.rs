@@ -15,5 +15,6 @@ mod moordyn_input;
 mod robust_runs;
 mod scenario;
 mod simulation_api;
+mod slurm;
 mod study_run;
 mod viz_output;

@@ -108,7 +108,7 @@ fn shards_threads_and_resume_give_the_one_machine_files() {
     // Interrupted by SIGTERM after its first member: the finished members stay, the
     // status says so, the merge refuses the shard, and --resume finishes it.
     let cut = tmp.path().join("cut");
-    let mut child = cablesim(1, &["study", "run", STUDY, "-q", "--out"])
+    let child = cablesim(1, &["study", "run", STUDY, "-q", "--out"])
         .arg(&cut)
         .stderr(std::process::Stdio::piped())
         .spawn()
