@@ -149,7 +149,7 @@ fn main() -> ExitCode {
 
 fn real_main(cli: Cli) -> Result<RunOutcome> {
     match cli.cmd {
-        Cmd::Study { cmd } => study::main(cmd).map(|()| RunOutcome::Done),
+        Cmd::Study { cmd } => study::main(cmd),
         Cmd::Convert {
             input,
             output,
@@ -278,7 +278,8 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
 /// How a command ended, when it did not fail.
 enum RunOutcome {
     Done,
-    /// A run stopped by Ctrl-C or SIGTERM (exit status 130, as a shell reports SIGINT).
+    /// A run or a study stopped by Ctrl-C or SIGTERM (exit status 130, as a shell
+    /// reports SIGINT).
     Interrupted,
 }
 

@@ -70,8 +70,20 @@ pub struct StudySummary {
     pub members: usize,
     /// Members that failed.
     pub failed: usize,
+    /// Each failed member, in member order: which it was and what happened.
+    pub failed_members: Vec<FailedMember>,
     /// Per sea state.
     pub sea_states: Vec<SeaStateSummary>,
+}
+
+/// A member that blew up, as `study.json` lists it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FailedMember {
+    /// The member: its index, sea state, seed number and wave seed.
+    #[serde(flatten)]
+    pub member: super::members::Member,
+    /// What happened, with the cable, node and time.
+    pub error: String,
 }
 
 /// Reduces a whole study (module documentation).
@@ -117,6 +129,17 @@ pub fn summarise(r: &StudyResults) -> StudySummary {
             .iter()
             .filter(|m| m.status != MemberStatus::Completed)
             .count(),
+        failed_members: r
+            .members
+            .iter()
+            .filter_map(|m| match &m.status {
+                MemberStatus::Completed => None,
+                MemberStatus::Failed { message } => Some(FailedMember {
+                    member: m.member,
+                    error: message.clone(),
+                }),
+            })
+            .collect(),
         sea_states,
     }
 }

@@ -40,7 +40,7 @@ pub mod tables;
 pub use channel_stats::{ChannelStats, Extreme};
 pub use channels::{BodyComponent, Channel, ModelChannels, Quantity};
 pub use definition::{DesignInputs, SeaState, StudyDef, StudyFile};
-pub use extremes::{summarise, ChannelSummary, SeaStateSummary, StudySummary};
+pub use extremes::{summarise, ChannelSummary, FailedMember, SeaStateSummary, StudySummary};
 pub use gumbel::{Gumbel, GumbelFit};
 pub use members::{Member, ShardSpec};
 pub use results::{merge, MemberResult, MemberStatus, ShardResult, StudyResults};

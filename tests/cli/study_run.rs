@@ -137,7 +137,8 @@ fn shards_threads_and_resume_give_the_one_machine_files() {
         .unwrap());
     let out = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "{err}");
+    // As an interrupted single run: exit status 130.
+    assert_eq!(out.status.code(), Some(130), "{err}");
     assert!(err.contains("study interrupted"), "{err}");
     assert!(err.contains("--resume"), "{err}");
     let status: serde_json::Value =
@@ -164,6 +165,123 @@ fn shards_threads_and_resume_give_the_one_machine_files() {
     same_tables(&whole, &cut);
 }
 
+/// The example study with a violent sea state in which one member's line moves faster
+/// than the base scenario's `max_speed` allows (the blow-up guard): that member, seed 1
+/// of the violent sea state, fails at about 17 s with a node speed of 0.85 m/s; the
+/// others stay under 0.5 m/s, well below the limit of 0.75 m/s.
+fn study_with_a_failing_member(dir: &Path) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(STUDY).unwrap();
+    let text = text.replace(
+        "output_interval = 0.5    # s: the study samples every channel at each output time",
+        "output_interval = 0.5\nmax_speed = 0.75",
+    );
+    let cut = text.find("\n[study]\n").unwrap();
+    let text = text[..cut].to_string()
+        + r#"
+[study]
+seed = 2026
+seeds = 3
+duration = 20.0
+transient = 10.0
+sea_states = [
+  { name = "calm", hs = 1.0, tp = 8.0 },
+  { name = "violent", hs = 8.0, tp = 10.0 },
+]
+"#;
+    assert!(text.contains("max_speed = 0.75"));
+    let path = dir.join("failing.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_member_that_blows_up_is_reported_and_left_out_of_the_extremes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let study = study_with_a_failing_member(tmp.path());
+    let out = tmp.path().join("out");
+    // Not quiet: the per-sea-state lines and the failure reach a log that is not a
+    // terminal (the progress bar is then hidden).
+    let o = ok(cablesim(2, &["study", "run"])
+        .arg(&study)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap());
+    let err = String::from_utf8_lossy(&o.stderr);
+    let failure = "member 3 (sea state 1 \"violent\", seed 1, wave seed ";
+    let line = err
+        .lines()
+        .find(|l| l.starts_with(&format!("failed: {failure}")))
+        .unwrap_or_else(|| panic!("no failure reported: {err}"));
+    assert!(
+        line.contains("simulation diverged at t = ")
+            && line.contains("cable 'line")
+            && line.contains("node ")
+            && line.contains("over the limit 7.5e-1 m/s"),
+        "{line}"
+    );
+    // One line per sea state, once all its members are done.
+    for head in [
+        "sea state 0 (calm): Hs 1 m, Tp 8 s: 3 members done, 0 failed",
+        "sea state 1 (violent): Hs 8 m, Tp 10 s: 3 members done, 1 failed",
+    ] {
+        assert_eq!(err.matches(head).count(), 1, "{head}: {err}");
+    }
+    assert!(err.contains("done: 6 members (1 failed)"), "{err}");
+
+    // members.csv: member 3 failed with the message, the others completed.
+    let members = std::fs::read_to_string(out.join("members.csv")).unwrap();
+    let mut rows = csv::Reader::from_reader(members.as_bytes());
+    let head = rows.headers().unwrap().clone();
+    let col = |n: &str| head.iter().position(|h| h == n).unwrap();
+    let rows: Vec<csv::StringRecord> = rows.records().map(|r| r.unwrap()).collect();
+    for r in &rows {
+        let failed = &r[col("member")] == "3";
+        assert_eq!(
+            &r[col("status")],
+            if failed { "failed" } else { "completed" }
+        );
+        assert_eq!(r[col("error")].starts_with(failure), failed, "{r:?}");
+    }
+    // study.json: counted and listed with its sea state, seed and wave seed.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("study.json")).unwrap()).unwrap();
+    assert_eq!(summary["failed"], 1);
+    let listed = &summary["failed_members"];
+    assert_eq!(listed.as_array().unwrap().len(), 1, "{listed}");
+    assert_eq!(
+        (
+            &listed[0]["index"],
+            &listed[0]["sea_state"],
+            &listed[0]["seed"]
+        ),
+        (&3.into(), &1.into(), &1.into())
+    );
+    assert!(listed[0]["error"].as_str().unwrap().starts_with(failure));
+    // The violent sea state's extremes come from its two completed seeds.
+    let ch = &summary["sea_states"][1]["channels"][0];
+    assert_eq!(ch["channel"], "line1.tension_max");
+    assert_eq!((&ch["seeds"], &ch["failed"]), (&2.into(), &1.into()));
+    let maxima: Vec<f64> = rows
+        .iter()
+        .filter(|r| {
+            &r[col("sea_state")] == "1"
+                && &r[col("status")] == "completed"
+                && &r[col("channel")] == "line1.tension_max"
+        })
+        .map(|r| r[col("max")].parse().unwrap())
+        .collect();
+    assert_eq!(maxima.len(), 2);
+    let max_mean = ch["max_mean"].as_f64().unwrap();
+    assert!((max_mean - (maxima[0] + maxima[1]) / 2.0).abs() <= 1e-9 * max_mean);
+    assert_eq!(
+        ch["max_largest"].as_f64().unwrap(),
+        maxima[0].max(maxima[1])
+    );
+    // The calm sea state lost nothing.
+    assert_eq!(summary["sea_states"][0]["channels"][0]["seeds"], 3);
+}
+
 #[test]
 fn bad_shards_and_foreign_directories_are_refused_by_name() {
     let tmp = tempfile::tempdir().unwrap();
@@ -181,6 +299,28 @@ fn bad_shards_and_foreign_directories_are_refused_by_name() {
         .unwrap();
     let m = String::from_utf8_lossy(&e.stderr);
     assert!(m.contains("at most 6 shards"), "{m}");
+    for (args, says) in [
+        (
+            &["study", "run", STUDY, "--shard", "0/2"][..],
+            "--shard: shard: in \"0/2\", the shard index K is out of range",
+        ),
+        (
+            &["study", "slurm", STUDY, "--shards", "0"][..],
+            "--shards: must be at least 1",
+        ),
+        (
+            &["study", "slurm", STUDY, "--shards", "9"][..],
+            "at most 6 shards",
+        ),
+    ] {
+        let e = cablesim(1, args)
+            .arg("--out")
+            .arg(tmp.path().join("never"))
+            .output()
+            .unwrap();
+        let m = String::from_utf8_lossy(&e.stderr);
+        assert!(!e.status.success() && m.contains(says), "{args:?}: {m}");
+    }
 
     // --resume into a directory of another study: change the study seed.
     let other = tmp.path().join("other.toml");

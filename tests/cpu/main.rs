@@ -19,5 +19,6 @@ mod nets;
 mod parallel;
 mod statics;
 mod study;
+mod study_validation;
 mod water_surface;
 mod waves_steppers;

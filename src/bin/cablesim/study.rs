@@ -1,6 +1,7 @@
 //! `cablesim study run | merge | slurm`: Monte Carlo sea-state studies from the command
 //! line (the study files are described in docs/src/studies.md).
 
+use crate::RunOutcome;
 use anyhow::{bail, Context, Result};
 use cablesim::study::{
     merge, summarise, tables, MemberResult, MemberStatus, RunDir, RunState, RunStatus, ShardResult,
@@ -28,7 +29,7 @@ pub enum StudyCmd {
         /// there are kept and not run again.
         #[arg(long)]
         resume: bool,
-        /// No progress bar and no per-sea-state lines.
+        /// No progress bar and no per-sea-state lines (a failed member is still reported).
         #[arg(long, short)]
         quiet: bool,
     },
@@ -64,7 +65,9 @@ pub enum StudyCmd {
     },
 }
 
-pub fn main(cmd: StudyCmd) -> Result<()> {
+/// Runs a study command; `study run` stopped by Ctrl-C or SIGTERM ends as
+/// [`RunOutcome::Interrupted`] (exit status 130, as a single run).
+pub fn main(cmd: StudyCmd) -> Result<RunOutcome> {
     match cmd {
         StudyCmd::Run {
             file,
@@ -73,14 +76,14 @@ pub fn main(cmd: StudyCmd) -> Result<()> {
             resume,
             quiet,
         } => run(&file, shard.as_deref(), out, resume, quiet),
-        StudyCmd::Merge { dirs, out } => merge_dirs(&dirs, out),
+        StudyCmd::Merge { dirs, out } => merge_dirs(&dirs, out).map(|()| RunOutcome::Done),
         StudyCmd::Slurm {
             file,
             shards,
             out,
             script,
             cablesim,
-        } => slurm(&file, shards, out, script, cablesim),
+        } => slurm(&file, shards, out, script, cablesim).map(|()| RunOutcome::Done),
     }
 }
 
@@ -100,7 +103,7 @@ fn run(
     out: Option<PathBuf>,
     resume: bool,
     quiet: bool,
-) -> Result<()> {
+) -> Result<RunOutcome> {
     let shard = match shard {
         Some(s) => ShardSpec::parse(s, Path::new("--shard"))?,
         None => ShardSpec::WHOLE,
@@ -197,6 +200,10 @@ fn run(
         }
     }
     let progress = |dt: f64| bar.inc(ms(dt));
+    // A line above the bar. `ProgressBar::println` prints nothing when the bar is hidden
+    // (--quiet, or stderr not a terminal: a Slurm log, a pipe), and a failed member must
+    // be reported there too; `suspend` clears the bar, if drawn, around the line.
+    let say = |line: String| bar.suspend(|| eprintln!("{line}"));
     let on_done = |r: &MemberResult| -> Result<(), cablesim::Error> {
         dir.write_member(&plan.hash, r)?;
         let mut t = tally.lock().unwrap();
@@ -205,12 +212,12 @@ fn run(
         t.2 += 1;
         if let MemberStatus::Failed { message } = &r.status {
             t.1[s] += 1;
-            bar.println(format!("failed: {message}"));
+            say(format!("failed: {message}"));
         }
         bar.set_message(members_msg(t.2));
-        if t.0[s] == in_shard[s] {
+        if t.0[s] == in_shard[s] && !quiet {
             let ss = &plan.def.sea_states[s];
-            bar.println(format!(
+            say(format!(
                 "sea state {s}{}: Hs {} m, Tp {} s: {} members done, {} failed",
                 ss.name
                     .as_deref()
@@ -232,7 +239,8 @@ fn run(
     all.sort_by_key(|m| m.member.index);
     if all.len() < members.len() {
         dir.write_status(&status(RunState::Interrupted, &all))?;
-        bail!(
+        // Printed even with --quiet: the exit status alone does not say how to go on.
+        eprintln!(
             "study interrupted: {} of {} members of shard {shard} finished and kept in {}; \
              continue with `cablesim study run {} {}--out {} --resume`",
             all.len(),
@@ -246,6 +254,7 @@ fn run(
             },
             out.display()
         );
+        return Ok(RunOutcome::Interrupted);
     }
     let st = status(RunState::Complete, &all);
     let shard_result = plan.shard_result(shard, all);
@@ -268,7 +277,7 @@ fn run(
             dir.shard_file().display()
         );
     }
-    Ok(())
+    Ok(RunOutcome::Done)
 }
 
 fn write_tables(out: &Path, shards: Vec<(PathBuf, ShardResult)>) -> Result<()> {
@@ -383,7 +392,7 @@ mkdir -p "$OUT"
 array_job=$(sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-study \
   --array=1-{shards} --output="$OUT/slurm-%A_%a.out" <<EOS
 #!/bin/bash
-exec "$CABLESIM" study run "$STUDY" --quiet --resume \
+exec "$CABLESIM" study run "$STUDY" --resume \
   --shard "\$SLURM_ARRAY_TASK_ID/{shards}" --out "$OUT/shard-\$SLURM_ARRAY_TASK_ID-of-{shards}"
 EOS
 )
