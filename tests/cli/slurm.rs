@@ -6,7 +6,8 @@
 //! single-node one `scripts/slurm_local.sh start` brings up (its config is used when
 //! `SLURM_CONF` is unset). Without a cluster the test says it skipped and passes,
 //! unless `CABLESIM_REQUIRE_SLURM=1` (set by `.ci/run`, which starts the cluster): then
-//! a missing cluster is a failure.
+//! a missing cluster is a failure. On the local cluster a study whose shards fail is
+//! submitted too: the script must end with an error, not hang.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -189,4 +190,35 @@ fn a_real_slurm_runs_the_submission_script_to_the_one_machine_files() {
             "{f} of the Slurm run differs from the one-machine run"
         );
     }
+
+    // Shards that fail (a "cablesim" that exits 1): the merge job never runs, and the
+    // script says so with exit status 1. Checked on the local cluster, which cancels a
+    // merge job whose dependency cannot be met (kill_invalid_depend); a cluster without
+    // that leaves it pending, and `--wait` would not return.
+    if slurm_conf().as_deref() != Some(Path::new(LOCAL_CONF)) {
+        eprintln!("a failing study is not submitted: not the local cluster");
+        return;
+    }
+    let bad = tmp.path().join("bad");
+    ok(
+        "cablesim study slurm --cablesim /bin/false",
+        Command::new(BIN)
+            .args(["study", "slurm"])
+            .arg(&study)
+            .args(["--shards", "2", "--cablesim", "/bin/false", "--out"])
+            .arg(&bad)
+            .output()
+            .unwrap(),
+    );
+    let submit = slurm_command("timeout")
+        .arg(WAIT.as_secs().to_string())
+        .arg("bash")
+        .arg(bad.join("submit.sh"))
+        .arg("--wait")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&submit.stderr);
+    assert_eq!(submit.status.code(), Some(1), "{err}");
+    assert!(err.contains("the study was not merged"), "{err}");
+    assert!(!bad.join("study.json").exists());
 }

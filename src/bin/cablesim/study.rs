@@ -380,7 +380,9 @@ fn slurm(
         r#"#!/bin/bash
 # Written by `cablesim study slurm`: study {file}, {members} members in {shards} shards.
 # Submit it with `bash submit.sh` (extra arguments go to the merge job's sbatch, e.g.
-# --wait to return when the study is merged). Shard K runs in $OUT/shard-K-of-{shards};
+# --wait to return when the study is merged, with exit status 1 if it was not: the
+# cluster should then cancel a merge job whose shards failed, kill_invalid_depend in
+# DependencyParameters, or the wait never ends). Shard K runs in $OUT/shard-K-of-{shards};
 # a task that is cancelled or hits its time limit keeps its finished members, and
 # resubmitting resumes it. The merged study.csv, members.csv and study.json land in $OUT.
 # Add sbatch options (partition, time limit, CPUs per task) in SBATCH_ARGS.
@@ -398,11 +400,29 @@ EOS
 )
 array_job=${{array_job%%;*}}
 echo "shards: job array $array_job"
-sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-merge \
+# With --wait, sbatch returns 0 also when the merge job never ran (cancelled because a
+# shard failed): the merged study.json, newer than this submission, says it did.
+stamp="$OUT/.submitted-$array_job"
+touch "$stamp"
+merge_job=$(sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-merge \
   --dependency=afterok:"$array_job" --output="$OUT/slurm-merge-%j.out" "$@" <<EOS
 #!/bin/bash
 exec "$CABLESIM" study merge {dirs} --out "$OUT"
 EOS
+)
+echo "merge: job ${{merge_job%%;*}}"
+for a in "$@"; do
+  if [ "$a" = --wait ] || [ "$a" = -W ]; then
+    if [ ! "$OUT/study.json" -nt "$stamp" ]; then
+      echo "the study was not merged: a shard failed or was cancelled (see" \
+        "$OUT/slurm-${{array_job}}_K.out); submit again to resume it" >&2
+      rm -f "$stamp"
+      exit 1
+    fi
+    echo "merged: study.csv, members.csv, study.json in $OUT"
+  fi
+done
+rm -f "$stamp"
 "#,
         members = plan.members.len(),
         dirs = shard_dirs.join(" "),
