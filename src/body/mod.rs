@@ -23,7 +23,13 @@ pub use kinematics::{attachment, BodyState, Dofs, MeanPose};
 pub use motion::MotionTable;
 pub use rao::{RaoMotion, RaoTable};
 
+use std::collections::HashMap;
 use std::sync::Mutex;
+
+/// How many states [`Body::state`] keeps (a few output intervals of steps): enough
+/// that every cable of a run, each stepped through an output interval on its own,
+/// finds the states the first cable computed; cleared when full.
+const STATE_CACHE_LEN: usize = 16_384;
 
 /// How a body moves about its mean pose.
 #[derive(Clone, Debug, PartialEq)]
@@ -46,9 +52,12 @@ pub struct Body {
     pub pose: MeanPose,
     /// Motion about the mean pose.
     pub motion: Motion,
-    /// The last state evaluated: every end on the body asks for the same time, and an
-    /// RAO motion costs a sine and cosine per wave component.
-    last: Mutex<Option<(f64, BodyState)>>,
+    /// The states evaluated, keyed by the time's bits: every end on the body asks for
+    /// the same times (the CPU path steps each cable through an output interval in
+    /// turn, so the times come round once per cable), and an RAO motion costs a sine
+    /// and cosine per wave component. A pure function of `t`, so a hit returns exactly
+    /// what evaluating again would.
+    cache: Mutex<HashMap<u64, BodyState>>,
 }
 
 impl Clone for Body {
@@ -70,7 +79,7 @@ impl Body {
             name,
             pose,
             motion,
-            last: Mutex::new(None),
+            cache: Mutex::new(HashMap::new()),
         }
     }
 
@@ -85,14 +94,17 @@ impl Body {
 
     /// The body's state at time `t`, s.
     pub fn state(&self, t: f64) -> BodyState {
-        let mut last = self.last.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((t0, s)) = *last {
-            if t0.to_bits() == t.to_bits() {
-                return s;
-            }
+        let lock = || self.cache.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(s) = lock().get(&t.to_bits()) {
+            return *s;
         }
+        // Evaluated outside the lock: cables on other threads go on meanwhile.
         let s = kinematics::body_state(&self.pose, &self.dofs(t));
-        *last = Some((t, s));
+        let mut cache = lock();
+        if cache.len() >= STATE_CACHE_LEN {
+            cache.clear();
+        }
+        cache.insert(t.to_bits(), s);
         s
     }
 }
