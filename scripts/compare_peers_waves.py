@@ -20,8 +20,9 @@ one regular wave train, `--height` 4 m, `--period` 12 s, travelling along +x
   over the fairlead at t = 0: forward at the top), plus the same waves on the line.
   cablesim: `route = "circle"`, axis [0, -1, 0], phase 90 degrees, centre 1 m below
   the static fairlead, so the fairlead starts where it hangs statically. MoorDyn: a
-  coupled point given the same circle's position and velocity at the start of every
-  `--chunk` (0.01 s; MoorDyn moves a coupled point linearly in time within a call).
+  coupled point given the same circle's position at the start of every `--chunk`
+  (0.01 s) and the secant velocity to its position at the chunk's end (MoorDyn moves a
+  coupled point linearly in time within a call; the secant keeps the path continuous).
 
 The same kinematics in both tools. MoorDyn v2's `WaveKin 7` (WAVES_SUM_COMPONENTS_NODE,
 source/Waves/SpectrumKin.cpp) sums the components of `wave_frequencies.txt` (rows
@@ -255,6 +256,17 @@ def write_moordyn_case(d: Path, line: dict, wave: dict, args) -> Path:
         "7          WaveKin       sum of wave_frequencies.txt at the nodes\n"
         "1          disableOutput")
     assert "WaveKin" in text
+    if args.md_caax != 0.0:
+        # the line type row ends with CaAx: `--md-caax -1` removes MoorDyn's tangential
+        # Froude-Krylov term (1 + CaAx) rho V a_t, at the price of a tangential added
+        # mass of -rho V (the axial inertia of the wire less its displaced water)
+        rows = text.split("\n")
+        k = next(i for i, r in enumerate(rows) if r.startswith(line["line_type"] + " "))
+        fields = rows[k].split()
+        assert len(fields) == 10, rows[k]
+        fields[-1] = repr(args.md_caax)
+        rows[k] = "  ".join(fields)
+        text = "\n".join(rows)
     inp.write_text(text)
     p = math.pi / 2.0 - wave["phi"]  # MoorDyn sin(w t - k x + p) = cablesim cos(k x - w t + phi)
     amp = complex(wave["amplitude"] * math.cos(p), wave["amplitude"] * math.sin(p))
@@ -292,8 +304,16 @@ def moordyn_worker(spec_path: str, result_path: str) -> None:
     hist, pos = [], {}
     t = 0.0
     wall = 0.0
+    h_chunk = n_chunk * dt
     for i in range(n_total):
-        x, v = fairlead_motion(case, line, wave, radius, t)
+        # MoorDyn moves a coupled point linearly within a call, x + v (t' - t): with the
+        # secant velocity it ends the call exactly where the next one starts. (With the
+        # tangent velocity it would jump by a h^2 / 2 at every call, 1.4e-5 m here, which
+        # the stiff end segment, EA / l = 1.3e7 N/m, turns into tension errors of the order
+        # of 100 N and a phase error of degrees.)
+        x, _ = fairlead_motion(case, line, wave, radius, t)
+        x1, _ = fairlead_motion(case, line, wave, radius, (i + 1) * h_chunk)
+        v = [(b - a) / h_chunk for a, b in zip(x, x1)]
         w0 = time.perf_counter()
         f = md.Step(s, x, v, t, n_chunk * dt * (1.0 - 1e-9))
         wall += time.perf_counter() - w0
@@ -419,7 +439,8 @@ def write_markdown(path: Path, rep: dict) -> None:
         f"T = {W['period']:g} s, travelling along {W['direction_deg']:g} deg, "
         f"depth {L['depth']:g} m: k = {W['k']:.5f} rad/m, L = {W['wavelength']:.1f} m, "
         f"kh = {W['kh']:.3f}; Wheeler stretching, no ramp. MoorDyn `WaveKin 7` "
-        f"(components summed at its nodes), RK2 at {rep['md_dt']:g} s; cablesim symplectic "
+        f"(components summed at its nodes), CaAx = {rep['md_caax']:g}, RK2 at "
+        f"{rep['md_dt']:g} s; cablesim symplectic "
         "at its auto step, kinematics cache at its default tolerance. Window: "
         f"t = {rep['window'][0]:g} to {rep['window'][1]:g} s.",
         "",
@@ -479,6 +500,9 @@ def parse_args():
     ap.add_argument("--output-interval", type=float, default=0.1)
     ap.add_argument("--md-dt", type=float, default=1e-4, help="MoorDyn RK2 dtM (1e-4)")
     ap.add_argument("--md-dt-ic", type=float, default=1e-4)
+    ap.add_argument("--md-caax", type=float, default=0.0,
+                    help="MoorDyn's CaAx (0, as cablesim has no tangential added mass; -1 "
+                         "removes its tangential Froude-Krylov force, for the comparison)")
     ap.add_argument("--chunk", type=float, default=0.01,
                     help="MoorDyn: seconds per moordyn.Step call (0.01)")
     ap.add_argument("--skip-moordyn", action="store_true")
@@ -522,7 +546,7 @@ def main() -> int:
                     "loadavg_start": " ".join(f"{x:.2f}" for x in os.getloadavg()),
                     "platform": platform.platform()},
         "versions": cp.versions(), "cablesim_rev": cp.git_rev(), "line": line, "wave": wave,
-        "md_dt": args.md_dt, "window": [t0, t1], "cases": {},
+        "md_dt": args.md_dt, "md_caax": args.md_caax, "window": [t0, t1], "cases": {},
     }
     checks, kin_max = [], 0.0
     for case in [c.strip() for c in args.cases.split(",") if c.strip()]:
