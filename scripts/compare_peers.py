@@ -165,8 +165,9 @@ def _base_python() -> str:
     sys.exit("compare_peers: needs Python 3.11 or newer to make .venv-peers")
 
 
-def ensure_venv_and_reexec() -> None:
-    """Makes .venv-peers with the pinned peers and re-runs this script inside it."""
+def ensure_venv_and_reexec(script: Path | None = None) -> None:
+    """Makes .venv-peers with the pinned peers and re-runs `script` (default: this
+    script; scripts/compare_peers_waves.py passes itself) inside it."""
     if _in_venv():
         return
     req_hash = hashlib.sha256(REQUIREMENTS.read_bytes()).hexdigest()
@@ -184,7 +185,7 @@ def ensure_venv_and_reexec() -> None:
         subprocess.run(pip + ["install", "-q", "-r", str(REQUIREMENTS)], check=True)
         stamp.write_text(req_hash + "\n")
     py = str(_venv_python())
-    os.execv(py, [py, str(Path(__file__).resolve())] + sys.argv[1:])
+    os.execv(py, [py, str((script or Path(__file__)).resolve())] + sys.argv[1:])
 
 
 # ---------------------------------------------------------------------------------
