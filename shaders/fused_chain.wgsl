@@ -90,7 +90,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
     for (var k = 0u; k < params.n_steps; k += 1u) {
         // Waves: a refresh step refreshes the block's own nodes (the elements read
         // only those), made visible to the workgroup before the element loads.
-        if wave_steps[k].refresh != 0u {
+        if wave_steps[blk.wave_rows + k].refresh != 0u {
             if has_node {
                 wave_refresh_node(i, k, vec3<R>(blk.ox, blk.oy, blk.oz) + (s.r_hi.xyz + s.r_lo.xyz), s.v.xyz);
             }

@@ -226,6 +226,9 @@ struct BlockParams {
     node_end: u32,
     elem_start: u32,
     elem_end: u32,
+    // The block's first WaveStep row (its sea's rows, shared/waves.wgsl).
+    wave_rows: u32,
+    pad: u32,
 }
 
 // One row of a current profile. Rust: CurrentPoint.
@@ -758,7 +761,7 @@ fn element_step(ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeSt
     // surface over each node for the wetted fraction (cpu::stepper element_input).
     var aw = vec3<R>(R(0.0), R(0.0), R(0.0));
     var wet: R;
-    if wave_steps[k].n == 0u {
+    if wave_steps[blocks[ep.block].wave_rows + k].n == 0u {
         wet = wetted_fraction(submergence(oz, sa), submergence(oz, sb), ep.diameter);
     } else {
         let wa = node_waves(ep.a, k);
@@ -850,7 +853,7 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
         f += vr * (nd.point_drag * norm3(vr) * wet);
     }
     let m_fk = nd.point_displaced + nd.point_added;
-    if wave_steps[k].n != 0u && m_fk > R(0.0) {
+    if wave_steps[blk.wave_rows + k].n != 0u && m_fk > R(0.0) {
         f += w.a * (m_fk * wet);
     }
     var trib = nd.tributary;

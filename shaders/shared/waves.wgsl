@@ -88,10 +88,10 @@ fn wave_theta(c: WaveComp, x: R, y: R, tau: R) -> R {
     return c.kx * x + c.ky * y + c.phase_ref - c.omega * tau;
 }
 
-// sum A cos(theta) over the first n components, no ramp.
-fn wave_elevation_sum(n: u32, x: R, y: R, tau: R) -> R {
+// sum A cos(theta) over the n components from `first`, no ramp.
+fn wave_elevation_sum(first: u32, n: u32, x: R, y: R, tau: R) -> R {
     var eta = R(0.0);
-    for (var j = 0u; j < n; j++) {
+    for (var j = first; j < first + n; j++) {
         let c = wave_comps[j];
         eta += c.amp * sin_cos(wave_theta(c, x, y, tau)).y;
     }
@@ -119,18 +119,19 @@ fn wave_depth_decay(k: R, zs: R, depth: R) -> vec2<R> {
 // Elevation, velocity and acceleration of the first n components at p and time t
 // (phases referred to t_ref), ramp included.
 fn wave_kinematics_at(n: u32, depth: R, stretching: u32, ramp_duration: R, p: vec3<R>, t: R, t_ref: R) -> WaveKin {
-    return wave_kinematics_tau(n, depth, stretching, wave_ramp(t, ramp_duration), p, t - t_ref);
+    return wave_kinematics_tau(0u, n, depth, stretching, wave_ramp(t, ramp_duration), p, t - t_ref);
 }
 
-// The same at tau = t - t_ref after the reference time, with the ramp factor r given
-// (the solver forms both on the host in f64: an absolute time in f32 would carry
-// 1e-3 s of rounding after three hours).
-fn wave_kinematics_tau(n: u32, depth: R, stretching: u32, r: R, p: vec3<R>, tau: R) -> WaveKin {
-    let eta = r * wave_elevation_sum(n, p.x, p.y, tau);
+// The same for the n components from `first` (one sea of a packed run, sea::set), at
+// tau = t - t_ref after the reference time, with the ramp factor r given (the solver
+// forms both on the host in f64: an absolute time in f32 would carry 1e-3 s of
+// rounding after three hours).
+fn wave_kinematics_tau(first: u32, n: u32, depth: R, stretching: u32, r: R, p: vec3<R>, tau: R) -> WaveKin {
+    let eta = r * wave_elevation_sum(first, n, p.x, p.y, tau);
     let zs = wave_eval_depth(p.z, eta, depth, stretching);
     var u = vec3<R>(R(0.0));
     var a = vec3<R>(R(0.0));
-    for (var j = 0u; j < n; j++) {
+    for (var j = first; j < first + n; j++) {
         let c = wave_comps[j];
         let sc = sin_cos(wave_theta(c, p.x, p.y, tau));
         let d = wave_depth_decay(c.k, zs, depth);
@@ -151,9 +152,11 @@ fn wave_cache_lerp(v0: WaveKin, v1: WaveKin, s: R) -> WaveKin {
 // ---- The solver's per-node kinematics cache (sea::cache::WaveCache, the CPU path's
 // cpu::water::BlockWaves): values at two refresh times t0, t1 per node, interpolated
 // between them at every step. The host decides when a refresh is due, exactly as the
-// CPU path does, and writes one WaveStep row per step of a submission. ----
+// CPU path does, and writes one WaveStep row per step of a submission and sea: the rows
+// of sea q are q * STEPS_PER_SUBMISSION + k, and a block reads its sea's from
+// `BlockParams::wave_rows` (a packed run's members each in their own sea, sea::set). ----
 
-// One step of a submission. Rust: gpu::layout::WaveStep.
+// One step of a submission in one sea. Rust: gpu::layout::WaveStep.
 struct WaveStep {
     // Cache slots of the t0 values and of the t1 values (0 or 1; 2: the evaluation's
     // own slot, so that an output-time evaluation leaves the run's cache alone).
@@ -168,6 +171,9 @@ struct WaveStep {
     n: u32,
     // WAVE_WHEELER or WAVE_CONSTANT.
     stretching: u32,
+    // The sea's first component in wave_comps (the seas' components are back to back).
+    first: u32,
+    pad: u32,
     // Interpolation weight of this step's time, (t - t0) / (t1 - t0) in [0, 1].
     s: R,
     // Refresh: t - t_ref (s) and the ramp factor at the step's time t (restart only).
@@ -206,10 +212,15 @@ fn wave_cache_store(slot: u32, i: u32, w: WaveKin) {
     wave_cache[o + 6u] = w.a.z;
 }
 
+// The row of step k of the submission for the sea of node i's block.
+fn node_wave_step(i: u32, k: u32) -> WaveStep {
+    return wave_steps[blocks[nodes[i].block].wave_rows + k];
+}
+
 // Node i's elevation, wave velocity and wave acceleration at step k of the
 // submission (all zero in still water). CPU twin: cpu::water::BlockWaves::fill.
 fn node_waves(i: u32, k: u32) -> WaveKin {
-    let ws = wave_steps[k];
+    let ws = node_wave_step(i, k);
     if ws.n == 0u {
         return WaveKin(R(0.0), vec3<R>(R(0.0)), vec3<R>(R(0.0)));
     }
@@ -218,11 +229,15 @@ fn node_waves(i: u32, k: u32) -> WaveKin {
 
 // The refresh of node i at step k, at absolute position p (m) with velocity v (m/s):
 // on a restart the t0 values at p, then the t1 values at the predicted position
-// p + v (t1 - t). CPU twin: sea::cache::WaveCache::refresh_if_due.
+// p + v (t1 - t); nothing when the node's sea does not refresh at this step. CPU twin:
+// sea::cache::WaveCache::refresh_if_due.
 fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
-    let ws = wave_steps[k];
-    if ws.restart != 0u {
-        wave_cache_store(ws.slot0, i, wave_kinematics_tau(ws.n, ws.depth, ws.stretching, ws.ramp0, p, ws.tau0));
+    let ws = node_wave_step(i, k);
+    if ws.refresh == 0u {
+        return;
     }
-    wave_cache_store(ws.slot1, i, wave_kinematics_tau(ws.n, ws.depth, ws.stretching, ws.ramp1, p + v * ws.ahead, ws.tau1));
+    if ws.restart != 0u {
+        wave_cache_store(ws.slot0, i, wave_kinematics_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp0, p, ws.tau0));
+    }
+    wave_cache_store(ws.slot1, i, wave_kinematics_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp1, p + v * ws.ahead, ws.tau1));
 }

@@ -14,7 +14,7 @@ use crate::physics::{
 };
 use crate::sea::cache::{evaluate_nodes, CACHE_STRIDE};
 use crate::sea::kinematics::WaveField;
-use crate::sea::SeaState;
+use crate::sea::{SeaSet, SeaState};
 use crate::step::{blow_up, Evaluation, StepFailure, WinchStatus};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -74,10 +74,10 @@ pub struct CpuSolver {
     ale: Option<Box<AleState>>,
     /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
     node_steps: u64,
-    /// The sea state (`None`: still water).
-    sea: Option<SeaState>,
-    /// Its field, for exact evaluation at output times.
-    wave_field: Option<WaveField>,
+    /// The seas and each cable's (`None`: still water everywhere).
+    seas: Option<SeaSet>,
+    /// Per sea: its field, for exact evaluation at output times.
+    wave_fields: Vec<WaveField>,
     /// Per block: its wave kinematics cache (empty in still water).
     wave_blocks: Vec<BlockWaves>,
     /// Evaluate the waves' component sum at every stage instead of interpolating the
@@ -161,8 +161,8 @@ impl CpuSolver {
                 .0,
             ale: None,
             node_steps: 0,
-            sea: None,
-            wave_field: None,
+            seas: None,
+            wave_fields: Vec::new(),
             wave_blocks: Vec::new(),
             exact_waves: false,
         };
@@ -218,38 +218,52 @@ impl CpuSolver {
     /// With `exact`, the component sum is evaluated at every node at every stage
     /// instead of through the kinematics cache (`sea::cache`).
     pub fn set_sea(&mut self, sea: &SeaState, exact: bool) {
+        self.set_seas(&SeaSet::single(sea), exact);
+    }
+
+    /// [`CpuSolver::set_sea`] with a sea per cable (a packed model's members,
+    /// `sea::set`): each block gets the kinematics cache of its cable's sea, with that
+    /// sea's own refresh interval, exactly as in a run of that sea alone.
+    pub fn set_seas(&mut self, seas: &SeaSet, exact: bool) {
         self.exact_waves = exact;
-        if sea.is_still() {
-            self.sea = None;
-            self.wave_field = None;
+        if seas.is_still() {
+            self.seas = None;
+            self.wave_fields = Vec::new();
         } else {
-            self.sea = Some(sea.clone());
-            self.wave_field = Some(WaveField::new(sea));
+            self.seas = Some(seas.clone());
+            self.wave_fields = seas.seas.iter().map(WaveField::new).collect();
         }
         self.install_waves();
     }
 
-    /// One wave cache per block (none in still water).
+    /// The sea index of the block starting at packed node `n0`.
+    fn block_sea(&self, seas: &SeaSet, n0: usize) -> usize {
+        seas.sea_of_cable(self.layout.node_cable[n0] as usize)
+    }
+
+    /// One wave cache per block, in its cable's sea (none in still water).
     fn install_waves(&mut self) {
-        self.wave_blocks = match &self.sea {
+        self.wave_blocks = match &self.seas {
             None => Vec::new(),
-            Some(sea) => self
+            Some(seas) => self
                 .layout
                 .blocks
                 .iter()
                 .map(|b| {
+                    let sea = &seas.seas[self.block_sea(seas, b.node_start as usize)];
                     BlockWaves::new(sea, (b.node_end - b.node_start) as usize, self.exact_waves)
                 })
                 .collect(),
         };
     }
 
-    /// The exact water values of nodes `n0..n1` at the current time (empty in still
-    /// water), for evaluations at output times.
+    /// The exact water values of the block of nodes `n0..n1` at the current time
+    /// (empty in still water), for evaluations at output times.
     fn water_now(&self, n0: usize, n1: usize) -> Water {
-        let Some(field) = &self.wave_field else {
+        let Some(seas) = &self.seas else {
             return Water::new();
         };
+        let field = &self.wave_fields[self.block_sea(seas, n0)];
         let pos: Vec<f64> = self.r[n0..n1].iter().flat_map(|r| r.to_f64()).collect();
         let mut out = vec![0.0; (n1 - n0) * CACHE_STRIDE];
         evaluate_nodes(field, &pos, self.t, &mut out);
@@ -461,7 +475,7 @@ impl CpuSolver {
                     && self.opts.scheme == Scheme::Symplectic
                     && self.opts.formulation == Formulation::Glmf
                     && ale_of(ale_state, bi).is_empty()
-                    && self.sea.is_none()
+                    && self.seas.is_none()
             })
             .collect();
         // Split the state into disjoint per-chunk slices.

@@ -426,6 +426,10 @@ gpu_struct! {
         elem_start: u32,
         /// One past the last element.
         elem_end: u32,
+        /// The block's first `WaveStep` row: its sea's rows (`sea::set`).
+        wave_rows: u32,
+        /// Padding (zero).
+        pad: u32,
     }
 }
 
@@ -564,6 +568,11 @@ gpu_struct! {
         n: u32,
         /// 0: Wheeler stretching, 1: the profile held at `z = 0`.
         stretching: u32,
+        /// The sea's first component in the components buffer (the seas of a packed
+        /// run are back to back, `sea::set`).
+        first: u32,
+        /// Padding (zero).
+        pad: u32,
         /// Interpolation weight `(t - t0) / (t1 - t0)` of the step's time.
         s: R,
         /// `t - t_ref` of the step, s (refresh with restart).

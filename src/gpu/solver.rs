@@ -34,7 +34,7 @@ use crate::options::Precision;
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::sea::cache::{refresh_interval, CACHE_STRIDE};
 use crate::sea::kinematics::{wave_ramp, WaveField};
-use crate::sea::{SeaState, Stretching, GPU_DEEP};
+use crate::sea::{SeaSet, SeaState, Stretching, GPU_DEEP};
 use crate::step::{diverged, Evaluation, StepFailure, WinchStatus};
 use bytemuck::Zeroable;
 use std::f64::consts::PI;
@@ -467,8 +467,8 @@ trait Engine: Send {
     fn fused_unavailable(&self) -> Option<&str>;
     /// Chooses the kernel (`Fused` only when available).
     fn set_kernel(&mut self, k: GpuKernel) -> Result<(), Error>;
-    /// Runs in `sea` from now on (still water without components), keeping the state.
-    fn set_sea(&mut self, lay: &Layout, host: &Host, sea: &SeaState) -> Result<(), Error>;
+    /// Runs in `seas` from now on (still water without components), keeping the state.
+    fn set_seas(&mut self, lay: &Layout, host: &Host, seas: &SeaSet) -> Result<(), Error>;
     /// Replaces the layout (after a remeshing) with state `r`, `v`.
     fn install(
         &mut self,
@@ -525,6 +525,8 @@ struct Buffers {
 /// same steps and interpolate with the same weights.
 struct WaveSchedule {
     field: WaveField,
+    /// Its first component in the components buffer.
+    first: u32,
     /// Refresh interval, s.
     interval: f64,
     started: bool,
@@ -536,9 +538,10 @@ struct WaveSchedule {
 }
 
 impl WaveSchedule {
-    fn new(sea: &SeaState) -> Self {
+    fn new(sea: &SeaState, first: u32) -> Self {
         Self {
             field: WaveField::new(sea),
+            first,
             interval: refresh_interval(&sea.components, sea.cache_tolerance),
             started: false,
             t0: 0.0,
@@ -551,6 +554,7 @@ impl WaveSchedule {
     fn base<R: GpuReal>(&self) -> WaveStep<R> {
         WaveStep {
             n: self.field.comps.len() as u32,
+            first: self.first,
             stretching: match self.field.stretching {
                 Stretching::Wheeler => 0,
                 Stretching::Constant => 1,
@@ -611,6 +615,56 @@ impl WaveSchedule {
     }
 }
 
+/// The waves of a run: one schedule per sea (`sea::set`), their components back to
+/// back in the components buffer, and `STEPS_PER_SUBMISSION` rows per sea in the rows
+/// buffer (sea `q`'s at `q * STEPS_PER_SUBMISSION`). Each sea refreshes on its own
+/// schedule, as its blocks' caches do on the CPU path.
+struct SeaSchedules {
+    /// Per sea: its schedule (`None`: still water, rows of zeros).
+    seas: Vec<Option<WaveSchedule>>,
+    /// Per cable: its sea (empty: all in sea 0).
+    cable_sea: Vec<u32>,
+    /// Components of every sea.
+    n_comps: usize,
+}
+
+impl SeaSchedules {
+    fn new(set: &SeaSet) -> Self {
+        let mut first = 0u32;
+        let seas = set
+            .seas
+            .iter()
+            .map(|sea| {
+                (!sea.is_still()).then(|| {
+                    let w = WaveSchedule::new(sea, first);
+                    first += sea.components.len() as u32;
+                    w
+                })
+            })
+            .collect();
+        Self {
+            seas,
+            cable_sea: set.cable_sea.clone(),
+            n_comps: first as usize,
+        }
+    }
+
+    /// The first row of the sea of the block starting at packed node `n0`.
+    fn block_rows(&self, lay: &Layout, n0: u32) -> u32 {
+        let c = lay.node_cable.get(n0 as usize).copied().unwrap_or(0) as usize;
+        self.cable_sea.get(c).copied().unwrap_or(0) * STEPS_PER_SUBMISSION
+    }
+
+    /// Starts every cache afresh (after a remesh, as the CPU path's caches do).
+    fn restart(&mut self) {
+        for w in self.seas.iter_mut().flatten() {
+            w.started = false;
+            w.t0 = 0.0;
+            w.t1 = 0.0;
+        }
+    }
+}
+
 struct GpuEngine<R: GpuReal> {
     ctx: GpuContext,
     opts: SolverOptions,
@@ -622,7 +676,7 @@ struct GpuEngine<R: GpuReal> {
     pipe_eval: wgpu::ComputePipeline,
     pipe_refresh: wgpu::ComputePipeline,
     /// The waves (`None`: still water).
-    waves: Option<WaveSchedule>,
+    waves: Option<SeaSchedules>,
     /// The fused kernel's pipeline and workgroup size, or why there is none.
     pipe_fused: Result<(wgpu::ComputePipeline, u32), String>,
     /// Whether `advance` uses the fused kernel.
@@ -749,7 +803,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 (pipeline(&m, "fused_steps"), wg)
             });
         let use_fused = pipe_fused.is_ok();
-        let inst = Self::build(ctx, &bgl, step_stride, lay, host, opts, 0);
+        let inst = Self::build(ctx, &bgl, step_stride, lay, host, opts, None);
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(Error::Gpu(format!(
                 "building the {} pipelines: {e}",
@@ -786,8 +840,10 @@ impl<R: GpuReal> GpuEngine<R> {
         lay: &Layout,
         host: &Host,
         opts: &SolverOptions,
-        n_comps: usize,
+        waves: Option<&SeaSchedules>,
     ) -> Installed<R> {
+        let n_comps = waves.map_or(0, |w| w.n_comps);
+        let n_seas = waves.map_or(1, |w| w.seas.len().max(1));
         let dev = &ctx.device;
         let env = &lay.env;
         let seabed = env.depth.is_finite();
@@ -871,6 +927,8 @@ impl<R: GpuReal> GpuEngine<R> {
                 node_end: b.node_end,
                 elem_start: b.elem_start,
                 elem_end: b.elem_end,
+                wave_rows: waves.map_or(0, |w| w.block_rows(lay, b.node_start)),
+                pad: 0,
             })
             .collect();
         let mut current_pts = Vec::new();
@@ -950,7 +1008,10 @@ impl<R: GpuReal> GpuEngine<R> {
             // Still water: rows of zeros (no components) are never rewritten.
             wave_steps: init(
                 "wave_steps",
-                &zeros(STEPS_PER_SUBMISSION as u64 * std::mem::size_of::<WaveStep<R>>() as u64),
+                &zeros(
+                    (n_seas as u64 * STEPS_PER_SUBMISSION as u64)
+                        * std::mem::size_of::<WaveStep<R>>() as u64,
+                ),
                 ro | U::COPY_DST,
             ),
             staging: dev.create_buffer(&wgpu::BufferDescriptor {
@@ -1117,21 +1178,25 @@ impl<R: GpuReal> GpuEngine<R> {
             .write_buffer(&self.inst.buf.routes, 0, bytemuck::cast_slice(&q));
     }
 
-    /// Rebases the wave components to `t_ref` and writes them (waves only).
+    /// Rebases every sea's wave components to `t_ref` and writes them, back to back
+    /// (waves only).
     fn write_wave_comps(&mut self, t_ref: f64) {
         let Some(w) = self.waves.as_mut() else {
             return;
         };
-        w.field.rebase(t_ref);
-        let comps: Vec<WaveComp<R>> = w.field.comps.iter().map(WaveComp::from_packed).collect();
+        let mut comps: Vec<WaveComp<R>> = Vec::with_capacity(w.n_comps);
+        for sea in w.seas.iter_mut().flatten() {
+            sea.field.rebase(t_ref);
+            comps.extend(sea.field.comps.iter().map(WaveComp::from_packed));
+        }
         self.ctx
             .queue
             .write_buffer(&self.inst.buf.wave_comps, 0, bytemuck::cast_slice(&comps));
     }
 
-    /// Writes the `wave_steps` rows of steps `step0 .. step0 + n`, components referred
-    /// to the time of `step0`; returns which steps refresh the cache (none in still
-    /// water).
+    /// Writes the `wave_steps` rows of steps `step0 .. step0 + n` of every sea,
+    /// components referred to the time of `step0`; returns which steps refresh the
+    /// cache of some sea (none in still water).
     fn write_waves(&mut self, step0: u64, n: u64) -> Vec<bool> {
         if self.waves.is_none() {
             return vec![false; n as usize];
@@ -1140,13 +1205,21 @@ impl<R: GpuReal> GpuEngine<R> {
         let t_ref = step0 as f64 * dt;
         self.write_wave_comps(t_ref);
         let w = self.waves.as_mut().expect("waves");
-        let rows: Vec<WaveStep<R>> = (0..n)
-            .map(|k| w.step::<R>((step0 + k) as f64 * dt, t_ref))
-            .collect();
+        let per = STEPS_PER_SUBMISSION as usize;
+        let mut rows = vec![WaveStep::<R>::default(); w.seas.len() * per];
+        let mut refresh = vec![false; n as usize];
+        for (q, sea) in w.seas.iter_mut().enumerate() {
+            let Some(sea) = sea else { continue };
+            for k in 0..n as usize {
+                let row = sea.step::<R>((step0 + k as u64) as f64 * dt, t_ref);
+                refresh[k] |= row.refresh != 0;
+                rows[q * per + k] = row;
+            }
+        }
         self.ctx
             .queue
             .write_buffer(&self.inst.buf.wave_steps, 0, bytemuck::cast_slice(&rows));
-        rows.iter().map(|r| r.refresh != 0).collect()
+        refresh
     }
 
     fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>, pipe: &wgpu::ComputePipeline, n: usize) {
@@ -1344,15 +1417,9 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             .device
             .push_error_scope(wgpu::ErrorFilter::Validation);
         // A new mesh starts the waves' cache afresh (as the CPU path's does).
-        let n_comps = match self.waves.as_mut() {
-            Some(w) => {
-                w.started = false;
-                w.t0 = 0.0;
-                w.t1 = 0.0;
-                w.field.comps.len()
-            }
-            None => 0,
-        };
+        if let Some(w) = self.waves.as_mut() {
+            w.restart();
+        }
         self.inst = Self::build(
             &self.ctx,
             &self.bgl,
@@ -1360,7 +1427,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             lay,
             host,
             &self.opts,
-            n_comps,
+            self.waves.as_ref(),
         );
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(Error::Gpu(format!("rebuilding the buffers: {e}")));
@@ -1369,9 +1436,8 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         Ok(())
     }
 
-    fn set_sea(&mut self, lay: &Layout, host: &Host, sea: &SeaState) -> Result<(), Error> {
-        self.waves = (!sea.is_still()).then(|| WaveSchedule::new(sea));
-        let n_comps = self.waves.as_ref().map_or(0, |w| w.field.comps.len());
+    fn set_seas(&mut self, lay: &Layout, host: &Host, seas: &SeaSet) -> Result<(), Error> {
+        self.waves = (!seas.is_still()).then(|| SeaSchedules::new(seas));
         let scope = self
             .ctx
             .device
@@ -1383,7 +1449,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             lay,
             host,
             &self.opts,
-            n_comps,
+            self.waves.as_ref(),
         );
         let old = std::mem::replace(&mut self.inst, new);
         // The state moves over bit for bit (no round trip through f64 positions).
@@ -1445,9 +1511,15 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         let t = step as f64 * self.dt64;
         self.write_wave_comps(t);
         if let Some(w) = &self.waves {
-            let row = w.exact::<R>(t, t);
+            let per = STEPS_PER_SUBMISSION as usize;
+            let mut rows = vec![WaveStep::<R>::default(); w.seas.len() * per];
+            for (q, sea) in w.seas.iter().enumerate() {
+                if let Some(sea) = sea {
+                    rows[q * per] = sea.exact::<R>(t, t);
+                }
+            }
             ctx.queue
-                .write_buffer(&self.inst.buf.wave_steps, 0, bytemuck::bytes_of(&row));
+                .write_buffer(&self.inst.buf.wave_steps, 0, bytemuck::cast_slice(&rows));
         }
         self.inst.params.step_base = 0;
         ctx.queue.write_buffer(
@@ -1771,7 +1843,14 @@ impl GpuSolver {
     /// components), as [`crate::cpu::CpuSolver`]'s stepper does with its kinematics
     /// cache: the same refresh times, the same interpolation, the same loads.
     pub fn set_sea(&mut self, sea: &SeaState) -> Result<(), Error> {
-        self.engine.set_sea(&self.layout, &self.host, sea)
+        self.set_seas(&SeaSet::single(sea))
+    }
+
+    /// [`GpuSolver::set_sea`] with a sea per cable (a packed model's members,
+    /// `sea::set`): each block reads its cable's sea, refreshed on that sea's own
+    /// schedule, as [`crate::cpu::CpuSolver::set_seas`] does.
+    pub fn set_seas(&mut self, seas: &SeaSet) -> Result<(), Error> {
+        self.engine.set_seas(&self.layout, &self.host, seas)
     }
 
     /// Reads back node positions (absolute, m) and velocities (m/s), packed order.

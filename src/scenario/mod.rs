@@ -82,6 +82,10 @@ pub struct Scenario {
     pub ancf: AncfSettings,
     /// The sea state of `[environment.waves]` (still water without it).
     pub sea: crate::sea::SeaState,
+    /// The seas of a packed model, one per member (`crate::model::pack`), each cable
+    /// in its member's; `None` for a scenario read from a file, whose every cable is
+    /// in `sea`.
+    pub member_seas: Option<crate::sea::SeaSet>,
     /// The `[[points]]`, in scenario order: each name and its node (index into
     /// `model.nodes`), for `points.csv`.
     pub points: Vec<NamedPoint>,
@@ -188,6 +192,14 @@ fn current(
 }
 
 impl Scenario {
+    /// The seas the run's cables are in: the packed model's, or `sea` for every cable.
+    pub fn sea_set(&self) -> crate::sea::SeaSet {
+        match &self.member_seas {
+            Some(s) => s.clone(),
+            None => crate::sea::SeaSet::single(&self.sea),
+        }
+    }
+
     /// Reads and validates a scenario file.
     pub fn load(path: impl AsRef<Path>) -> Result<Scenario, Error> {
         let path = path.as_ref();
@@ -596,6 +608,7 @@ impl Scenario {
             winches,
             ancf: ancf_settings(p, &raw.ancf)?,
             sea,
+            member_seas: None,
             points: named_points,
             vtk: raw.output.vtk.unwrap_or(false),
         })

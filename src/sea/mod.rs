@@ -42,7 +42,10 @@ pub mod dispersion;
 pub mod irregular;
 pub mod kinematics;
 pub mod poly;
+pub mod set;
 pub mod spectrum;
+
+pub use set::SeaSet;
 
 /// The depth, m, that stands for infinite depth on the GPU (finite in f32; the
 /// decay `e^{-2 k h}` is 0 there for any wave).

@@ -144,8 +144,8 @@ impl LumpedStepper {
             }
         };
         match &mut s {
-            LumpedStepper::Cpu(c) => c.set_sea(&sc.sea, false),
-            LumpedStepper::Gpu(g) => g.set_sea(&sc.sea)?,
+            LumpedStepper::Cpu(c) => c.set_seas(&sc.sea_set(), false),
+            LumpedStepper::Gpu(g) => g.set_seas(&sc.sea_set())?,
         }
         if let LumpedStepper::Gpu(g) = &s {
             match g.fused_unavailable() {

@@ -19,6 +19,7 @@
 
 pub mod ancf;
 pub mod backend;
+pub mod pack;
 pub mod plan;
 
 pub use crate::initial::prepare;

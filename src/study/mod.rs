@@ -44,7 +44,7 @@ pub use extremes::{summarise, ChannelSummary, FailedMember, SeaStateSummary, Stu
 pub use gumbel::{Gumbel, GumbelFit};
 pub use members::{Member, ShardSpec};
 pub use results::{merge, MemberResult, MemberStatus, ShardResult, StudyResults};
-pub use run::StudyRunner;
+pub use run::{PackedRun, StudyRunner};
 pub use run_dir::{RunDir, RunState, RunStatus};
 pub use sampling::{BodySnapshot, CableSnapshot, Sampler};
 

@@ -15,6 +15,10 @@
 //! the member, and the results are returned in member order, so any thread count gives
 //! the same numbers.
 
+mod packed;
+
+pub use packed::PackedRun;
+
 use super::channels::ModelChannels;
 use super::definition::StudyFile;
 use super::members::Member;
@@ -24,8 +28,10 @@ use super::StudyPlan;
 use crate::error::Error;
 use crate::options::{Backend, Overrides};
 use crate::scenario::{err, Scenario};
-use crate::sim::Simulation;
+use crate::sim::pack::packed_name;
+use crate::sim::{Simulation, Snapshot};
 use rayon::prelude::*;
+use std::ops::Range;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -42,7 +48,7 @@ pub struct StudyRunner {
 
 /// Whether an error is a member's own blow-up (the member fails, the study goes on)
 /// rather than a problem of the study's input (the study stops).
-fn is_blow_up(e: &Error) -> bool {
+pub(crate) fn is_blow_up(e: &Error) -> bool {
     matches!(e, Error::Diverged { .. } | Error::SingularFrame { .. })
 }
 
@@ -159,19 +165,8 @@ impl StudyRunner {
                     if !is_blow_up(&e) {
                         return Err(e);
                     }
-                    let ss = self.plan.sea_state_of(m);
                     status = MemberStatus::Failed {
-                        message: format!(
-                            "member {} (sea state {}{}, seed {}, wave seed {}): {e}",
-                            m.index,
-                            m.sea_state,
-                            ss.name
-                                .as_deref()
-                                .map(|n| format!(" \"{n}\""))
-                                .unwrap_or_default(),
-                            m.seed,
-                            m.wave_seed
-                        ),
+                        message: self.failure_message(m, &e),
                     };
                     progress(def.duration - done);
                     break;
@@ -180,40 +175,78 @@ impl StudyRunner {
                 done = target;
             }
             let snap = sim.snapshot()?;
-            let cables: Vec<CableSnapshot> = snap
-                .cables
-                .iter()
-                .map(|c| CableSnapshot {
-                    tensions: &c.tensions,
-                    start_force: c.end_forces.start,
-                    end_force: c.end_forces.end,
-                })
-                .collect();
-            // Bodies no cable end attaches to carry no load and are not in snapshots.
-            let index = body_index.get_or_insert_with(|| {
-                self.model
-                    .bodies
-                    .iter()
-                    .map(|n| snap.bodies.iter().position(|b| &b.name == n))
-                    .collect()
-            });
-            let bodies: Vec<BodySnapshot> = index
-                .iter()
-                .map(|i| match i {
-                    Some(i) => BodySnapshot {
-                        force: snap.bodies[*i].force,
-                        moment: snap.bodies[*i].moment,
-                    },
-                    None => BodySnapshot::default(),
-                })
-                .collect();
-            self.sampler.record(&mut stats, snap.time, &cables, &bodies);
+            let n = snap.cables.len();
+            self.record(&mut stats, &snap, 0..n, None, &mut body_index);
         }
         Ok(Some(MemberResult {
             member: *m,
             status,
             stats,
         }))
+    }
+
+    /// The message of member `m`'s blow-up `e`: the member, its sea state and seeds, and
+    /// the error (which names the cable, node and time).
+    pub(crate) fn failure_message(&self, m: &Member, e: &Error) -> String {
+        let ss = self.plan.sea_state_of(m);
+        format!(
+            "member {} (sea state {}{}, seed {}, wave seed {}): {e}",
+            m.index,
+            m.sea_state,
+            ss.name
+                .as_deref()
+                .map(|n| format!(" \"{n}\""))
+                .unwrap_or_default(),
+            m.seed,
+            m.wave_seed
+        )
+    }
+
+    /// Records one member's channels from `snap` into `stats`: the member's cables are
+    /// `cables` (in the base scenario's order), its bodies are named `PREFIX/name`
+    /// when `prefix` is given (a packed run, `sim::pack`), else by their own names;
+    /// `body_index` caches where they are in the snapshots.
+    pub(crate) fn record(
+        &self,
+        stats: &mut [crate::study::ChannelStats],
+        snap: &Snapshot,
+        cables: Range<usize>,
+        prefix: Option<&str>,
+        body_index: &mut Option<Vec<Option<usize>>>,
+    ) {
+        let cables: Vec<CableSnapshot> = snap.cables[cables]
+            .iter()
+            .map(|c| CableSnapshot {
+                tensions: &c.tensions,
+                start_force: c.end_forces.start,
+                end_force: c.end_forces.end,
+            })
+            .collect();
+        // Bodies no cable end attaches to carry no load and are not in snapshots.
+        let index = body_index.get_or_insert_with(|| {
+            self.model
+                .bodies
+                .iter()
+                .map(|n| {
+                    let name = match prefix {
+                        Some(p) => packed_name(p, n),
+                        None => n.clone(),
+                    };
+                    snap.bodies.iter().position(|b| b.name == name)
+                })
+                .collect()
+        });
+        let bodies: Vec<BodySnapshot> = index
+            .iter()
+            .map(|i| match i {
+                Some(i) => BodySnapshot {
+                    force: snap.bodies[*i].force,
+                    moment: snap.bodies[*i].moment,
+                },
+                None => BodySnapshot::default(),
+            })
+            .collect();
+        self.sampler.record(stats, snap.time, &cables, &bodies);
     }
 
     /// Runs `members` in parallel on rayon's threads; `on_done` is called with each

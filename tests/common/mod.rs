@@ -137,3 +137,52 @@ pub fn gpu_context(test: &str, need_f64: bool) -> Option<cablesim::gpu::GpuConte
         }
     }
 }
+
+/// `n` members of a packed run (`sim::pack`): the RAO-driven spread mooring of
+/// `examples/spread_mooring_waves.toml` with `segments` segments per line, each member
+/// in its own sea (its own wave seed, Hs and current), as `(prefix, scenario)`.
+pub fn wave_members(n: usize, segments: usize) -> Vec<(String, cablesim::scenario::Scenario)> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples")
+        .join("spread_mooring_waves.toml");
+    let text = std::fs::read_to_string(&path).expect("the example");
+    (0..n)
+        .map(|j| {
+            let t = text
+                .replace("seed = 1\n", &format!("seed = {}\n", 11 + 7 * j))
+                .replace("hs = 6.0 ", &format!("hs = {} ", 4.0 + 1.5 * j as f64))
+                .replace(
+                    "current = [0.6, 0.35, 0.0]",
+                    &format!("current = [{}, 0.35, 0.0]", 0.2 + 0.3 * j as f64),
+                )
+                .replace("segments = 40", &format!("segments = {segments}"));
+            assert_ne!(t, text);
+            let sc = cablesim::scenario::Scenario::parse(&t, &path).expect("a member");
+            (format!("m{j}"), sc)
+        })
+        .collect()
+}
+
+/// A copy of `examples/study_spread_mooring.toml` in `dir` with a short duration
+/// (`duration` s, the first second discarded) and `seeds` seeds; returns its path.
+pub fn short_study(dir: &std::path::Path, duration: f64, seeds: usize) -> std::path::PathBuf {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples")
+        .join("study_spread_mooring.toml");
+    let text = std::fs::read_to_string(path).expect("the example");
+    let t = text
+        .replace(
+            "duration = 40.0          # s (a study",
+            &format!("duration = {duration}          # s (a study"),
+        )
+        .replace(
+            "duration = 40.0          # s per member",
+            &format!("duration = {duration}          # s per member"),
+        )
+        .replace("transient = 10.0", "transient = 1.0")
+        .replace("seeds = 3\n", &format!("seeds = {seeds}\n"));
+    assert_eq!(t.matches(&format!("duration = {duration} ")).count(), 2);
+    let out = dir.join("study.toml");
+    std::fs::write(&out, t).expect("writing the study");
+    out
+}

@@ -16,6 +16,7 @@ mod chain_kernel;
 mod dynamics;
 mod frames;
 mod nets;
+mod packed;
 mod parallel;
 mod statics;
 mod study;

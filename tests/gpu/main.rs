@@ -22,6 +22,7 @@ mod f32_vs_f64;
 mod functions;
 mod fused;
 mod layout;
+mod packed;
 mod parity;
 mod shaders;
 mod step_functions;

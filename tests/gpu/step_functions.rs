@@ -103,7 +103,7 @@ fn t_check(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let b = i * 12u;
-    let blk = BlockParams(tin[b], tin[b + 1u], tin[b + 2u], R(0.0), 0u, 0u, 0u, 0u);
+    let blk = BlockParams(tin[b], tin[b + 1u], tin[b + 2u], R(0.0), 0u, 0u, 0u, 0u, 0u, 0u);
     tout[i] = R(node_check(blk, state_in(b + 3u)));
 }
 "#;

@@ -3,9 +3,10 @@
 
 use crate::RunOutcome;
 use anyhow::{bail, Context, Result};
+use cablesim::options::{Backend, Precision};
 use cablesim::study::{
-    merge, summarise, tables, MemberResult, MemberStatus, RunDir, RunState, RunStatus, ShardResult,
-    ShardSpec, StudyFile, StudyRunner,
+    merge, summarise, tables, MemberResult, MemberStatus, PackedRun, RunDir, RunState, RunStatus,
+    ShardResult, ShardSpec, StudyFile, StudyRunner,
 };
 use clap::Subcommand;
 use std::path::{Path, PathBuf};
@@ -14,8 +15,8 @@ use std::sync::{Arc, Mutex};
 
 #[derive(Subcommand)]
 pub enum StudyCmd {
-    /// Run a study's members (all, or one shard) on the CPU across all threads
-    /// (RAYON_NUM_THREADS sets how many).
+    /// Run a study's members (all, or one shard): on the CPU across all threads
+    /// (RAYON_NUM_THREADS sets how many), or packed into one run on the GPU.
     Run {
         /// Study file (a `[study]` table, inside a scenario or naming one).
         file: PathBuf,
@@ -32,6 +33,22 @@ pub enum StudyCmd {
         /// No progress bar and no per-sea-state lines (a failed member is still reported).
         #[arg(long, short)]
         quiet: bool,
+        /// Where the members run: cpu (each member its own run, members in parallel
+        /// across the threads), gpu (members packed into one run on the GPU, all in
+        /// one layout, in batches of --batch), or auto (packed, on the backend the
+        /// packed model picks). The GPU adapter can be picked with WGPU_BACKEND and
+        /// WGPU_ADAPTER_NAME.
+        #[arg(long, value_enum, default_value = "cpu")]
+        backend: Backend,
+        /// GPU shader precision of packed runs (default: the scenario's, else f32;
+        /// f64 needs an adapter with SHADER_F64).
+        #[arg(long, value_enum)]
+        precision: Option<Precision>,
+        /// Members per packed run (gpu or auto; default: every member of the shard in
+        /// one run). The results do not depend on it; a smaller batch needs less GPU
+        /// memory.
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+        batch: Option<u64>,
     },
     /// Merge the shards of one study (their run directories or shard.json files) into
     /// study.csv, members.csv and study.json.
@@ -75,7 +92,17 @@ pub fn main(cmd: StudyCmd) -> Result<RunOutcome> {
             out,
             resume,
             quiet,
-        } => run(&file, shard.as_deref(), out, resume, quiet),
+            backend,
+            precision,
+            batch,
+        } => {
+            let how = (backend != Backend::Cpu).then_some(PackedRun {
+                backend,
+                precision,
+                batch: batch.map(|b| b as usize),
+            });
+            run(&file, shard.as_deref(), out, resume, quiet, how)
+        }
         StudyCmd::Merge { dirs, out } => merge_dirs(&dirs, out).map(|()| RunOutcome::Done),
         StudyCmd::Slurm {
             file,
@@ -103,6 +130,7 @@ fn run(
     out: Option<PathBuf>,
     resume: bool,
     quiet: bool,
+    packed: Option<PackedRun>,
 ) -> Result<RunOutcome> {
     let shard = match shard {
         Some(s) => ShardSpec::parse(s, Path::new("--shard"))?,
@@ -173,12 +201,21 @@ fn run(
     };
     bar.set_message(members_msg(done.len()));
     if !quiet {
+        let how = match &packed {
+            None => format!("{} threads", rayon::current_num_threads()),
+            Some(p) => format!(
+                "packed on backend {}, {} members per run",
+                p.backend.name(),
+                p.batch
+                    .unwrap_or(remaining.len())
+                    .min(remaining.len().max(1))
+            ),
+        };
         eprintln!(
-            "study {}: {} members in shard {shard} ({} already done), {} threads; output in {}",
+            "study {}: {} members in shard {shard} ({} already done), {how}; output in {}",
             file.display(),
             members.len(),
             done.len(),
-            rayon::current_num_threads(),
             out.display()
         );
     }
@@ -231,7 +268,10 @@ fn run(
         }
         Ok(())
     };
-    let result = runner.run(&remaining, &stop, &progress, &on_done);
+    let result = match &packed {
+        None => runner.run(&remaining, &stop, &progress, &on_done),
+        Some(how) => runner.run_packed(&remaining, how, &stop, &progress, &on_done),
+    };
     bar.finish_and_clear();
     let new = result.with_context(|| format!("study {}", file.display()))?;
     let mut all = done;
