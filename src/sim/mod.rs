@@ -19,6 +19,7 @@
 
 pub mod ancf;
 pub mod backend;
+pub mod budget;
 pub mod plan;
 
 pub use crate::initial::prepare;
@@ -165,6 +166,7 @@ impl Simulation {
         let (lay, pos, relax_residual) = prepare(&sc)?;
         let engine = match model {
             CableModel::Ancf => {
+                budget::check_output(&sc, duration)?;
                 log::info!("backend cpu: the ANCF model runs on the CPU in f64");
                 Engine::Ancf(AncfFleet::new(
                     &sc, &sc.ancf, scheme, duration, dt_spec, &lay, &pos,
