@@ -12,6 +12,7 @@ mod ancf_scenario;
 mod end_to_end;
 mod examples;
 mod moordyn_input;
+mod robust_inputs;
 mod robust_runs;
 mod scenario;
 mod simulation_api;
