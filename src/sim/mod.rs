@@ -163,7 +163,21 @@ impl Simulation {
         if model == CableModel::Ancf && precision.is_some() {
             log::warn!("the ANCF model runs on the CPU in f64: precision is ignored");
         }
-        let (lay, pos, relax_residual) = prepare(&sc)?;
+        let (lay, mut pos) = crate::model::Layout::build(&sc.model)?;
+        let mut opts = SolverOptions {
+            formulation,
+            scheme,
+            baumgarte: sc.sim.baumgarte,
+            max_speed: sc.sim.max_speed,
+            ..SolverOptions::default()
+        };
+        // The step plan and its budget before the static solves: work refused costs
+        // nothing (the plan depends on the layout's constants, not on positions).
+        let plan = match model {
+            CableModel::LumpedMass => Some(plan_steps(&sc, &lay, &opts, duration, dt_spec)?),
+            CableModel::Ancf => None,
+        };
+        let relax_residual = crate::initial::apply(&sc, &lay, &mut pos)?;
         let engine = match model {
             CableModel::Ancf => {
                 budget::check_output(&sc, duration)?;
@@ -173,14 +187,7 @@ impl Simulation {
                 )?)
             }
             CableModel::LumpedMass => {
-                let mut opts = SolverOptions {
-                    formulation,
-                    scheme,
-                    baumgarte: sc.sim.baumgarte,
-                    max_speed: sc.sim.max_speed,
-                    ..SolverOptions::default()
-                };
-                let plan = plan_steps(&sc, &lay, &opts, duration, dt_spec)?;
+                let plan = plan.expect("planned above");
                 if let Some(w) = &plan.warning {
                     log::warn!("{w}");
                 }
