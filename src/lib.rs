@@ -33,6 +33,7 @@ pub mod cpu;
 pub mod error;
 pub mod gpu;
 pub mod initial;
+pub mod input;
 pub mod math;
 pub mod model;
 pub mod moordyn;

@@ -102,9 +102,13 @@ impl<T: Real> V3<T> {
     pub fn is_finite(self) -> bool {
         self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
     }
-    /// Largest absolute component.
+    /// Largest absolute component; NaN when any component is NaN (`max` alone drops a
+    /// NaN operand, and the blow-up checks rely on NaN failing their comparisons).
     #[inline(always)]
     pub fn max_abs(self) -> T {
+        if self.x.is_nan() || self.y.is_nan() || self.z.is_nan() {
+            return T::nan();
+        }
         self.x.abs().max(self.y.abs()).max(self.z.abs())
     }
 }

@@ -34,6 +34,49 @@ pub struct StepBound {
     pub term: String,
 }
 
+/// What a mode comes from; put in words ([`Term::describe`]) only for the one that
+/// sets the step, so that the search stays linear in the model's size.
+#[derive(Clone, Copy, Debug)]
+enum Term {
+    Baumgarte,
+    /// Axial waves, with the node's shortest element and its length.
+    Axial(usize, f64),
+    /// Internal damping, with the node's shortest element and its length.
+    Internal(usize, f64),
+    SeabedStiffness,
+    SeabedDamping,
+    Friction,
+}
+
+impl Term {
+    /// The term at node `i` of `lay`, in words (which cable, node, mode).
+    fn describe(self, lay: &Layout, i: usize) -> String {
+        let (cable, node) = lay.describe_node(i);
+        let sb = lay.env.seabed;
+        let element = |e: usize, l0: f64| {
+            let (_, ek) = lay.describe_element(e);
+            format!("(element {ek}, l0 = {l0:.4e} m)")
+        };
+        match self {
+            Term::Baumgarte => format!("the Baumgarte gains at cable '{cable}' node {node}"),
+            Term::Axial(e, l0) => format!(
+                "axial waves at cable '{cable}' node {node} {}",
+                element(e, l0)
+            ),
+            Term::Internal(e, l0) => format!(
+                "internal damping at cable '{cable}' node {node} {}",
+                element(e, l0)
+            ),
+            Term::SeabedStiffness => format!("seabed stiffness at cable '{cable}' node {node}"),
+            Term::SeabedDamping => format!("seabed damping at cable '{cable}' node {node}"),
+            Term::Friction => format!(
+                "seabed friction (mu = {}, v_eps = {} m/s) at cable '{cable}' node {node}",
+                sb.friction, sb.friction_velocity
+            ),
+        }
+    }
+}
+
 /// One node's mode: frequency squared and damping rate.
 #[derive(Clone, Copy, Debug)]
 struct Mode {
@@ -48,13 +91,9 @@ pub fn mode_step(scheme: Scheme, omega2: f64, gamma: f64) -> f64 {
     }
     match scheme {
         // (omega dt)^2 + 2 gamma dt < 4  (docs/src/model/time_stepping.md)
-        Scheme::Symplectic => {
-            if omega2 <= 0.0 {
-                2.0 / gamma
-            } else {
-                (-gamma + (gamma * gamma + 4.0 * omega2).sqrt()) / omega2
-            }
-        }
+        // Written as 4 / (gamma + sqrt(gamma^2 + 4 omega^2)): no cancellation, and a
+        // huge term gives a step near zero instead of overflowing to inf / inf.
+        Scheme::Symplectic => 4.0 / (gamma + gamma.hypot(2.0 * omega2.sqrt())),
         Scheme::Rk2 | Scheme::Rk4 => {
             // Eigenvalues of the mode; bisection on |R(h lambda)| <= 1 (+ tolerance).
             let disc = 0.25 * gamma * gamma - omega2;
@@ -111,25 +150,24 @@ fn amplification(scheme: Scheme, x: f64, y: f64) -> f64 {
     (re * re + im * im).sqrt()
 }
 
-/// The stable step of a whole layout.
+/// The stable step of a whole layout, in time linear in its size: each node's modes
+/// are bounded in turn and only the one setting the step is put in words.
 pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
-    let mut best = StepBound {
-        dt: f64::INFINITY,
-        term: "nothing (no stiff term)".into(),
-    };
+    // (step, node, term) of the smallest step so far.
+    let mut best: Option<(f64, usize, Term)> = None;
     let sb = lay.env.seabed;
     // Without a seabed (infinite depth) no node can touch one.
     let has_seabed = lay.env.depth.is_finite();
+    let mut parts: Vec<(Mode, Term, u8)> = Vec::with_capacity(6);
     for i in 0..lay.n_nodes() {
-        let (cable, node) = lay.describe_node(i);
-        let mut parts: Vec<(Mode, String, u8)> = Vec::with_capacity(5);
+        parts.clear();
         if lay.node_constraint[i] != NO_CONSTRAINT {
             parts.push((
                 Mode {
                     omega2: bg.alpha,
                     gamma: bg.beta,
                 },
-                format!("the Baumgarte gains at cable '{cable}' node {node}"),
+                Term::Baumgarte,
                 3,
             ));
         } else {
@@ -157,22 +195,23 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                 continue;
             }
             if k > 0.0 {
-                let (_, ek) = lay.describe_element(shortest.1);
                 parts.push((
                     Mode {
                         omega2: k / m,
                         gamma: 0.0,
                     },
-                    format!(
-                        "axial waves at cable '{cable}' node {node} (element {ek}, l0 = {:.4} m)",
-                        shortest.0
-                    ),
+                    Term::Axial(shortest.1, shortest.0),
                     0,
                 ));
                 if kc > 0.0 {
                     parts.push((
-                        Mode { omega2: 0.0, gamma: kc / m },
-                        format!("internal damping at cable '{cable}' node {node} (element {ek}, l0 = {:.4} m)", shortest.0), 0));
+                        Mode {
+                            omega2: 0.0,
+                            gamma: kc / m,
+                        },
+                        Term::Internal(shortest.1, shortest.0),
+                        0,
+                    ));
                 }
             }
             if has_seabed && lt > 0.0 && sb.stiffness > 0.0 {
@@ -181,7 +220,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                         omega2: sb.stiffness * lt / m,
                         gamma: 0.0,
                     },
-                    format!("seabed stiffness at cable '{cable}' node {node}"),
+                    Term::SeabedStiffness,
                     1,
                 ));
             }
@@ -191,7 +230,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                         omega2: 0.0,
                         gamma: sb.damping * lt / m,
                     },
-                    format!("seabed damping at cable '{cable}' node {node}"),
+                    Term::SeabedDamping,
                     1,
                 ));
             }
@@ -203,10 +242,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                         omega2: 0.0,
                         gamma: sb.friction * wet / (sb.friction_velocity * m),
                     },
-                    format!(
-                        "seabed friction (mu = {}, v_eps = {} m/s) at cable '{cable}' node {node}",
-                        sb.friction, sb.friction_velocity
-                    ),
+                    Term::Friction,
                     2,
                 ));
             }
@@ -246,22 +282,37 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                 })
                 .fold(f64::INFINITY, f64::min),
         };
-        if dt < best.dt {
+        // A step that is not a number (an overflowing stiffness) is the worst of all:
+        // it must not be dropped by the comparison.
+        let smaller = match best {
+            None => true,
+            Some((b, _, _)) => !b.is_nan() && (dt < b || dt.is_nan()),
+        };
+        if smaller {
             // Name the term that alone would set the smallest step.
-            let (_, name) = parts
+            let (_, term) = parts
                 .iter()
-                .map(|(p, n, _)| (mode_step(scheme, p.omega2, p.gamma), n))
-                .fold(
-                    (f64::INFINITY, &parts[0].1),
-                    |a, b| if b.0 < a.0 { b } else { a },
-                );
-            best = StepBound {
-                dt,
-                term: name.clone(),
-            };
+                .map(|(p, t, _)| (mode_step(scheme, p.omega2, p.gamma), *t))
+                .fold((f64::INFINITY, parts[0].1), |a, b| {
+                    if b.0 < a.0 || b.0.is_nan() {
+                        b
+                    } else {
+                        a
+                    }
+                });
+            best = Some((dt, i, term));
         }
     }
-    best
+    match best {
+        Some((dt, i, term)) if dt < f64::INFINITY || dt.is_nan() => StepBound {
+            dt,
+            term: term.describe(lay, i),
+        },
+        _ => StepBound {
+            dt: f64::INFINITY,
+            term: "nothing (no stiff term)".into(),
+        },
+    }
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@ use cablesim::options::{
     Backend, CableModel, FormulationChoice, Overrides, Precision, Scheme, SolverOptions,
 };
 use cablesim::output::{FanOut, FileSink, VtkSink};
-use cablesim::scenario::Scenario;
+use cablesim::scenario::{LimitOverrides, Scenario};
 use cablesim::sim::{self, Progress, Simulation};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -60,6 +60,11 @@ enum Cmd {
         /// Also write ParaView files into OUT/vtk (as `[output] vtk = true` does).
         #[arg(long)]
         vtk: bool,
+        /// Raise (or lower) a limit of the work budget over the scenario's `[limits]`:
+        /// node_steps (default 1e14), memory_gib (16), output_gib (20); repeatable,
+        /// e.g. `--limit node_steps=1e15`.
+        #[arg(long, value_name = "KEY=VALUE")]
+        limit: Vec<String>,
         /// No progress bar.
         #[arg(long, short)]
         quiet: bool,
@@ -81,6 +86,9 @@ enum Cmd {
     Check {
         /// Scenario file (TOML), or a MoorDyn input file.
         scenario: PathBuf,
+        /// A limit of the work budget over the scenario's `[limits]` (as for `run`).
+        #[arg(long, value_name = "KEY=VALUE")]
+        limit: Vec<String>,
     },
     /// Convert a MoorDyn input file (v1 or v2) to a scenario file, with a comment on
     /// every mapping choice.
@@ -156,7 +164,9 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
             duration,
             motion,
         } => convert(&input, output.as_deref(), duration, &motion).map(|_| RunOutcome::Done),
-        Cmd::Check { scenario } => check(&scenario).map(|_| RunOutcome::Done),
+        Cmd::Check { scenario, limit } => {
+            check(&scenario, &limits(&limit)?).map(|_| RunOutcome::Done)
+        }
         Cmd::Plot { dir, out, times } => {
             let out = out.unwrap_or_else(|| dir.join("plots"));
             for p in cablesim::plot::plot_dir(&dir, &out, &times)? {
@@ -175,7 +185,9 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
             duration,
             vtk,
             quiet,
+            limit,
         } => {
+            let limits = limits(&limit)?;
             let mut overrides = Overrides {
                 backend,
                 precision,
@@ -210,7 +222,7 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
             // A scenario that does not validate writes nothing. Then the output
             // directory: an earlier run's files go before the build can fail, and a
             // directory in use or not ours is refused before any work.
-            let sc = Scenario::load_any(&scenario).with_context(context)?;
+            let sc = Scenario::load_any_with(&scenario, &limits).with_context(context)?;
             let mut sink = FileSink::claim(&out_dir)?;
             let mut simulation = Simulation::new(sc, &overrides).with_context(context)?;
             let bar = if quiet {
@@ -283,9 +295,18 @@ enum RunOutcome {
     Interrupted,
 }
 
+/// The `--limit KEY=VALUE` flags.
+fn limits(flags: &[String]) -> Result<LimitOverrides> {
+    let mut l = LimitOverrides::default();
+    for f in flags {
+        l.set(f).map_err(anyhow::Error::msg)?;
+    }
+    Ok(l)
+}
+
 /// `cablesim check`: validates the scenario and prints the mesh and the step plan.
-fn check(scenario: &std::path::Path) -> Result<()> {
-    let sc = Scenario::load_any(scenario)?;
+fn check(scenario: &std::path::Path, limits: &LimitOverrides) -> Result<()> {
+    let sc = Scenario::load_any_with(scenario, limits)?;
     let (lay, _) = cablesim::model::Layout::build(&sc.model)?;
     let opts = SolverOptions {
         scheme: sc.sim.scheme,
@@ -293,6 +314,7 @@ fn check(scenario: &std::path::Path) -> Result<()> {
         ..Default::default()
     };
     if sc.sim.model == CableModel::Ancf {
+        sim::budget::check_output(&sc, sc.sim.duration)?;
         for (name, n, dt, term) in sim::ancf::check(&sc, &sc.ancf, sc.sim.scheme)? {
             println!(
                 "{}: ok: cable '{name}': ANCF, {n} elements, stable step {dt:.4e} s ({term})",
@@ -348,8 +370,8 @@ fn convert(
             .map_err(|_| anyhow::anyhow!("--motion {m}: \"{id}\" is not a point ID"))?;
         opts.motions.insert(id, file.to_string());
     }
-    let text = std::fs::read_to_string(input)
-        .with_context(|| format!("cannot read {}", input.display()))?;
+    let text = cablesim::input::read_text(input)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", input.display()))?;
     let conv = cablesim::moordyn::convert_text(&text, input, &opts)?;
     for w in &conv.warnings {
         log::warn!("{}: line {}: {}", input.display(), w.line, w.message);

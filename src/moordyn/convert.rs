@@ -280,12 +280,12 @@ fn read_current_profile(p: &Path, line: usize) -> Result<(Vec<[f64; 4]>, String)
         .parent()
         .unwrap_or(Path::new("."))
         .join("current_profile.txt");
-    let text = std::fs::read_to_string(&file).map_err(|e| {
+    let text = crate::input::read_text(&file).map_err(|e| {
         err_at(
             p,
             line,
             "option Currents",
-            format!("cannot read {}: {e}", file.display()),
+            format!("{}: {e}", file.display()),
         )
     })?;
     let mut rows: Vec<([f64; 4], usize)> = Vec::new();

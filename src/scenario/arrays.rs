@@ -9,6 +9,11 @@
 //!   `current = { random = [[0.0, 0.0, 0.0], [1.0, 0.5, 0.0]] }` (per component), from the
 //!   array's `seed` (default 0): the same file gives the same cables on every machine.
 //!
+//! Inside `start` and `end`, every vector key (`fixed`, `free`, `offset`, `at`, a route's
+//! `start`, `velocity`, `center`, `axis`) and number key (`mass`, `volume`,
+//! `drag_area`, `added_mass`, `diameter`, `period`, `phase`, `advance`) varies the same
+//! way, and a list of strings (`point = ["a", "b"]`) is cycled.
+//!
 //! A `winch` table, if given, is the same for every cable of the array.
 //!
 //! Placement: `offset` (a vector, or a variation) and `grid = { columns = N, spacing =
@@ -121,6 +126,24 @@ fn vary<const D: usize>(
                     _ => return Err(bad()),
                 };
                 let (a, b) = (one(&r[0]).ok_or_else(bad)?, one(&r[1]).ok_or_else(bad)?);
+                for k in 0..D {
+                    // NaN fails this too (`finite` below would catch it later).
+                    if !(a[k] <= b[k]) {
+                        let which = if D == 1 {
+                            String::new()
+                        } else {
+                            format!(" (component {k})")
+                        };
+                        return Err(err(
+                            p,
+                            format!("{field}.random"),
+                            format!(
+                                "the range [low, high] is reversed or not a number{which}: {} > {}",
+                                a[k], b[k]
+                            ),
+                        ));
+                    }
+                }
                 (0..count)
                     .map(|_| {
                         let mut o = [0.0; D];
@@ -146,16 +169,73 @@ fn vary<const D: usize>(
     Ok(out)
 }
 
-/// Adds `d` to the end table's `offset`.
-fn shifted(end: &toml::Table, d: [f64; 3]) -> toml::Table {
-    let mut t = end.clone();
+/// Keys of an end table that hold an `[x, y, z]` vector, and those that hold a number:
+/// each may vary across an array as the array's own keys do.
+const END_VECTORS: [&str; 8] = [
+    "fixed", "free", "offset", "start", "velocity", "center", "axis", "at",
+];
+const END_NUMBERS: [&str; 8] = [
+    "mass",
+    "volume",
+    "drag_area",
+    "added_mass",
+    "diameter",
+    "period",
+    "phase",
+    "advance",
+];
+
+/// The end table `end` (field `field`) of each of the `count` cables: every vector or
+/// number key varies as the array's keys do (a list, cycled; `{ from, to }`;
+/// `{ random = [..] }`), a list of strings is cycled; other keys are copied for
+/// [`super::ends::parse_end`] to check.
+fn vary_end(
+    p: &Path,
+    field: &str,
+    end: &toml::Table,
+    count: usize,
+    rng: &mut ChaCha8Rng,
+) -> Result<Vec<toml::Table>, Error> {
+    let mut out = vec![end.clone(); count];
+    for (k, v) in end {
+        let f = format!("{field}.{k}");
+        let values: Vec<toml::Value> = if END_VECTORS.contains(&k.as_str()) && vec3(v).is_none() {
+            vary::<3>(p, &f, v, count, rng)?
+                .into_iter()
+                .map(|x| toml::Value::Array(x.iter().map(|c| toml::Value::Float(*c)).collect()))
+                .collect()
+        } else if END_NUMBERS.contains(&k.as_str()) && num(v).is_none() {
+            vary::<1>(p, &f, v, count, rng)?
+                .into_iter()
+                .map(|x| toml::Value::Float(x[0]))
+                .collect()
+        } else if let toml::Value::Array(a) = v {
+            if a.is_empty() || !a.iter().all(|x| x.is_str()) {
+                continue;
+            }
+            (0..count).map(|i| a[i % a.len()].clone()).collect()
+        } else {
+            continue;
+        };
+        for (t, x) in out.iter_mut().zip(values) {
+            t.insert(k.clone(), x);
+        }
+    }
+    Ok(out)
+}
+
+/// Adds `d` to the end table's `offset` (nothing when `d` is zero: a point end takes
+/// no offset).
+fn shift(t: &mut toml::Table, d: [f64; 3]) {
+    if d == [0.0; 3] {
+        return;
+    }
     let base = t.get("offset").and_then(vec3).unwrap_or([0.0; 3]);
     let o = [base[0] + d[0], base[1] + d[1], base[2] + d[2]];
     t.insert(
         "offset".into(),
         toml::Value::Array(o.iter().map(|x| toml::Value::Float(*x)).collect()),
     );
-    t
 }
 
 /// Expands the arrays into cables, each with the field prefix its errors should name.
@@ -189,7 +269,18 @@ pub fn expand(p: &Path, arrays: &[toml::Table]) -> Result<Vec<(String, RawCable)
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let req = |k: &str| t.get(k).ok_or_else(|| err(p, f(k), "missing"));
         let lengths = vary::<1>(p, &f("length"), req("length")?, count, &mut rng)?;
-        let segments = vary::<1>(p, &f("segments"), req("segments")?, count, &mut rng)?;
+        let seg_spec = req("segments")?;
+        if seg_spec
+            .as_table()
+            .is_some_and(|t| t.contains_key("random"))
+        {
+            return Err(err(
+                p,
+                f("segments"),
+                "cannot be random (a count of elements): give a number, a list (cycled) or { from = .., to = .. } with whole steps",
+            ));
+        }
+        let segments = vary::<1>(p, &f("segments"), seg_spec, count, &mut rng)?;
         let line_types: Vec<String> = match req("line_type")? {
             toml::Value::String(s) => vec![s.clone(); count],
             toml::Value::Array(a) if !a.is_empty() && a.iter().all(|x| x.is_str()) => (0..count)
@@ -245,14 +336,28 @@ pub fn expand(p: &Path, arrays: &[toml::Table]) -> Result<Vec<(String, RawCable)
                 }
             }
         }
-        let start = req("start")?
-            .as_table()
-            .ok_or_else(|| err(p, f("start"), "must be an end table"))?
-            .clone();
-        let end = req("end")?
-            .as_table()
-            .ok_or_else(|| err(p, f("end"), "must be an end table"))?
-            .clone();
+        let placed = t.contains_key("offset") || t.contains_key("grid");
+        let mut ends = Vec::with_capacity(2);
+        for key in ["start", "end"] {
+            let table = req(key)?
+                .as_table()
+                .ok_or_else(|| err(p, f(key), "must be an end table"))?;
+            if placed && table.contains_key("point") {
+                let by = if t.contains_key("offset") {
+                    "offset"
+                } else {
+                    "grid"
+                };
+                return Err(err(
+                    p,
+                    f(by),
+                    format!("moves both ends of every cable, and `{key}` is on a named point, which cannot move: place the cables by their other end's positions (a list or a ramp, e.g. `fixed = [[..], [..]]`) instead"),
+                ));
+            }
+            ends.push(vary_end(p, &f(key), table, count, &mut rng)?);
+        }
+        let mut end_tables = ends.pop().expect("two ends").into_iter();
+        let mut start_tables = ends.pop().expect("two ends").into_iter();
         let initial = match t.get("initial") {
             None => None,
             Some(toml::Value::String(s)) => Some(s.clone()),
@@ -285,13 +390,19 @@ pub fn expand(p: &Path, arrays: &[toml::Table]) -> Result<Vec<(String, RawCable)
                     format!("cable {i}: {seg} is not a whole number"),
                 ));
             }
+            let (mut start, mut end) = (
+                start_tables.next().expect("one per cable"),
+                end_tables.next().expect("one per cable"),
+            );
+            shift(&mut start, offsets[i]);
+            shift(&mut end, offsets[i]);
             let cable = RawCable {
                 name: format!("{name}_{i}"),
                 line_type: line_types[i].clone(),
                 length: lengths[i][0],
                 segments: seg as i64,
-                start: shifted(&start, offsets[i]),
-                end: shifted(&end, offsets[i]),
+                start,
+                end,
                 initial: initial.clone(),
                 current: currents.as_ref().map(|c| c[i]),
                 current_profile: current_profile.clone(),

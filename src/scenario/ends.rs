@@ -116,6 +116,16 @@ pub fn parse_end(
             },
         ));
     }
+    if kinds[0] == "point" {
+        // The point carries the mass: keys here would be dropped without a word.
+        if let Some(k) = MASS_KEYS.into_iter().find(|k| t.contains_key(*k)) {
+            return Err(err(
+                p,
+                format!("{field}.{k}"),
+                "an end on a named point takes no point mass: give it on the point in [[points]]",
+            ));
+        }
+    }
     let mut allowed: Vec<&str> = vec![kinds[0], "offset"];
     allowed.extend(MASS_KEYS);
     allowed.extend(extra);

@@ -4,10 +4,12 @@
 mod arrays;
 mod bodies;
 mod ends;
+pub mod limits;
 pub mod materials;
 mod nets;
 mod raw;
 mod route_file;
+mod validate;
 pub mod waves;
 mod winch;
 
@@ -17,6 +19,7 @@ use crate::model::{add_net, CableDef, Current, Environment, ModelDef, NodeDef, P
 pub use crate::options::Backend;
 use crate::options::{AncfSettings, Baumgarte, CableModel, Formulation, Precision, Scheme};
 pub use ends::EndKind;
+pub use limits::{LimitOverrides, Limits};
 use raw::{RawDt, RawScenario};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -91,6 +94,8 @@ pub struct Scenario {
     pub points: Vec<NamedPoint>,
     /// `[output] vtk`: also write ParaView files (`vtk/`).
     pub vtk: bool,
+    /// The work budget (`[limits]`, with the caller's overrides over it).
+    pub limits: Limits,
 }
 
 /// A named shared point (`[[points]]`).
@@ -203,9 +208,27 @@ impl Scenario {
     /// Reads and validates a scenario file.
     pub fn load(path: impl AsRef<Path>) -> Result<Scenario, Error> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| err(path, "(file)", format!("cannot read: {e}")))?;
+        let text = crate::input::read_text(path).map_err(|e| err(path, "(file)", e))?;
         Self::parse(&text, path)
+    }
+
+    /// [`Scenario::load_any`] with `limits` over the file's `[limits]` (the memory
+    /// budget is checked while the file is read, before the model is built).
+    pub fn load_any_with(
+        path: impl AsRef<Path>,
+        limits: &LimitOverrides,
+    ) -> Result<Scenario, Error> {
+        let path = path.as_ref();
+        let text = crate::input::read_text(path).map_err(|e| err(path, "(file)", e))?;
+        if !crate::moordyn::is_moordyn(path, &text) {
+            return Self::parse_with(&text, path, limits);
+        }
+        let conv =
+            crate::moordyn::convert_text(&text, path, &crate::moordyn::ConvertOptions::default())?;
+        for w in &conv.warnings {
+            log::warn!("{}: line {}: {}", path.display(), w.line, w.message);
+        }
+        Self::parse_with(&conv.toml, path, limits)
     }
 
     /// Reads a scenario file or a MoorDyn input file (v1 or v2), told apart by
@@ -215,23 +238,17 @@ impl Scenario {
     /// each warning logged with its line, and the converted TOML validated as any
     /// scenario is.
     pub fn load_any(path: impl AsRef<Path>) -> Result<Scenario, Error> {
-        let path = path.as_ref();
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| err(path, "(file)", format!("cannot read: {e}")))?;
-        if !crate::moordyn::is_moordyn(path, &text) {
-            return Self::parse(&text, path);
-        }
-        let conv =
-            crate::moordyn::convert_text(&text, path, &crate::moordyn::ConvertOptions::default())?;
-        for w in &conv.warnings {
-            log::warn!("{}: line {}: {}", path.display(), w.line, w.message);
-        }
-        Self::parse(&conv.toml, path)
+        Self::load_any_with(path, &LimitOverrides::default())
     }
 
     /// Parses and validates scenario text; `path` names the file in messages and is the
     /// base for relative route files.
     pub fn parse(text: &str, path: &Path) -> Result<Scenario, Error> {
+        Self::parse_with(text, path, &LimitOverrides::default())
+    }
+
+    /// [`Scenario::parse`] with `limits` over the text's `[limits]`.
+    pub fn parse_with(text: &str, path: &Path, limits: &LimitOverrides) -> Result<Scenario, Error> {
         let de = toml::Deserializer::new(text);
         let raw: RawScenario = serde_path_to_error::deserialize(de).map_err(|e| {
             let field = e.path().to_string();
@@ -243,11 +260,14 @@ impl Scenario {
             // toml's message carries the line and column of the problem.
             err(path, field, e.into_inner().to_string().trim().to_string())
         })?;
-        Self::from_raw(raw, path)
+        Self::from_raw(raw, path, limits)
     }
 
-    fn from_raw(raw: RawScenario, path: &Path) -> Result<Scenario, Error> {
+    fn from_raw(raw: RawScenario, path: &Path, cli: &LimitOverrides) -> Result<Scenario, Error> {
         let p = path;
+        // The budget first: nothing large is built for a model beyond it.
+        let limits = limits::resolve(p, &raw.limits, cli)?;
+        limits::check_model_size(p, &raw, &limits)?;
         // [simulation]
         let s = &raw.simulation;
         let duration = positive(p, "simulation.duration", s.duration)?;
@@ -375,6 +395,8 @@ impl Scenario {
         // [[points]]: named shared nodes.
         let mut point_index: HashMap<String, usize> = HashMap::new();
         let mut named_points = Vec::with_capacity(raw.points.len());
+        // (field, node, free) of each point, for the check of unused points.
+        let mut point_fields = Vec::with_capacity(raw.points.len());
         for (i, t) in raw.points.iter().enumerate() {
             let field = format!("points[{i}]");
             let name = match t.get("name") {
@@ -389,6 +411,7 @@ impl Scenario {
             };
             let field = format!("points[{i}] (\"{name}\")");
             let spec = ends::parse_end(p, &field, t, &["name"], &HashMap::new(), &bodies)?;
+            let free = matches!(spec.kind, EndKind::Free(_));
             let (position, route, point) = match spec.kind {
                 EndKind::Point(_) => {
                     return Err(err(p, field, "a point cannot refer to another point"))
@@ -403,6 +426,8 @@ impl Scenario {
                     spec.mass,
                 ),
             };
+            validate::height(p, &field, position[2], depth)?;
+            point_fields.push((field.clone(), model.nodes.len(), free));
             named_points.push(NamedPoint {
                 name: name.clone(),
                 node: model.nodes.len(),
@@ -496,6 +521,15 @@ impl Scenario {
             let mut ids = [0usize; 2];
             let mut pos = [[0.0; 3]; 2];
             for (k, spec) in [start, end].into_iter().enumerate() {
+                if !matches!(spec.kind, EndKind::Point(_)) {
+                    let which = if k == 0 { "start" } else { "end" };
+                    let z = match (&spec.kind, &spec.route) {
+                        (EndKind::Fixed(x) | EndKind::Free(x), _) => x[2],
+                        (_, Some(r)) => r.eval(0.0).r[2],
+                        _ => 0.0,
+                    };
+                    validate::height(p, &f(which), z, depth)?;
+                }
                 match spec.kind {
                     EndKind::Point(idx) => {
                         ids[k] = idx;
@@ -530,6 +564,10 @@ impl Scenario {
                     f("end"),
                     "a cable cannot start and end at the same point",
                 ));
+            }
+            if shape == InitialShape::Straight {
+                let ea = model.line_types[lt].ea;
+                validate::straight_strain(p, &prefix.to_string(), length, ea, pos[0], pos[1]);
             }
             let mut nodes = Vec::with_capacity(n + 1);
             nodes.push(ids[0]);
@@ -591,6 +629,10 @@ impl Scenario {
             }
             names.insert(net.name.clone(), first);
         }
+        let line_field = |i: usize| format!("line_types[{i}] (\"{}\")", model.line_types[i].name);
+        validate::derived(p, &model, line_field, (baumgarte.alpha, baumgarte.beta))?;
+        validate::unused_points(p, &model, &point_fields)?;
+        validate::unused_line_types(p, &model, line_field);
         if let Selection::Names(v) = &positions_sel {
             if let Some(bad) = v.iter().find(|n| !names.contains_key(*n)) {
                 return Err(err(
@@ -611,6 +653,7 @@ impl Scenario {
             member_seas: None,
             points: named_points,
             vtk: raw.output.vtk.unwrap_or(false),
+            limits,
         })
     }
 }

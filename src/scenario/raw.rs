@@ -26,6 +26,8 @@ pub struct RawScenario {
     pub output: RawOutput,
     #[serde(default)]
     pub ancf: RawAncf,
+    #[serde(default)]
+    pub limits: super::limits::LimitOverrides,
     /// A `[study]` table, read by `cablesim study` (`crate::study`); a single run of the
     /// scenario ignores it (the study reads the table from the file's text itself).
     #[allow(dead_code)]

@@ -31,18 +31,18 @@ pub(crate) fn read_numbers_one_of(
     headers: &[&[&str]],
 ) -> Result<(usize, Rows), Error> {
     let shown = file.display();
+    let bytes = crate::input::read_bytes(file).map_err(|e| {
+        let message = match e.strip_prefix("cannot read: ") {
+            Some(why) => format!("cannot read {what} file {shown}: {why}"),
+            None => format!("{what} file {shown}: {e}"),
+        };
+        err(scenario, field, message)
+    })?;
     let mut rdr = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .flexible(true)
         .comment(Some(b'#'))
-        .from_path(file)
-        .map_err(|e| {
-            err(
-                scenario,
-                field,
-                format!("cannot read {what} file {shown}: {e}"),
-            )
-        })?;
+        .from_reader(bytes.as_slice());
     let found = rdr
         .headers()
         .map_err(|e| err(scenario, field, format!("{shown}: {e}")))?

@@ -38,6 +38,7 @@ use crate::options::{AncfSettings, Scheme};
 use crate::output::{CableState, CableSummary, EndForces, WinchSummary};
 use crate::physics::catenary::catenary_positions;
 use crate::scenario::{DtSpec, InitialShape, Scenario};
+use crate::stability::AUTO_SAFETY;
 use rayon::prelude::*;
 
 /// One cable of the run.
@@ -138,6 +139,7 @@ pub fn check(
     settings: &AncfSettings,
     scheme: Scheme,
 ) -> Result<Vec<(String, usize, f64, String)>, Error> {
+    super::budget::check_ancf_size(sc, settings.element_length)?;
     let uses = node_uses(&sc.model);
     (0..sc.model.cables.len())
         .map(|ci| {
@@ -145,6 +147,13 @@ pub fn check(
             cfg.scheme = scheme;
             let c = AncfCable::new(cfg)?;
             let (dt, term) = c.stable_dt();
+            super::budget::check_node_steps(
+                sc,
+                c.n_elements() + 1,
+                sc.sim.duration,
+                AUTO_SAFETY * dt,
+                &format!("cable '{}': {term}", c.name()),
+            )?;
             Ok((c.name().to_string(), c.n_elements(), dt, term.to_string()))
         })
         .collect()
@@ -194,6 +203,7 @@ impl AncfFleet {
         lay: &Layout,
         pos: &[[f64; 3]],
     ) -> Result<Self, Error> {
+        super::budget::check_ancf_size(sc, settings.element_length)?;
         let uses = node_uses(&sc.model);
         // Per-cable lines at info level only for a few cables.
         let level = if sc.model.cables.len() <= 20 {
@@ -216,6 +226,13 @@ impl AncfFleet {
             let (stable, term) = cable.stable_dt();
             let term = term.to_string();
             let (dt, per_output) = fit_step(sc, dt_spec, stable)?;
+            super::budget::check_node_steps(
+                sc,
+                cable.n_elements() + 1,
+                duration,
+                dt,
+                &format!("cable '{}': {term}", cable.name()),
+            )?;
             if matches!(dt_spec, DtSpec::Fixed(_)) && dt > stable {
                 log::warn!(
                 "cable '{}': dt = {dt} s is above the ANCF stable step {stable:.4e} s ({term}); expect a blow-up",

@@ -19,6 +19,7 @@
 
 pub mod ancf;
 pub mod backend;
+pub mod budget;
 pub mod pack;
 pub mod plan;
 
@@ -163,23 +164,31 @@ impl Simulation {
         if model == CableModel::Ancf && precision.is_some() {
             log::warn!("the ANCF model runs on the CPU in f64: precision is ignored");
         }
-        let (lay, pos, relax_residual) = prepare(&sc)?;
+        let (lay, mut pos) = crate::model::Layout::build(&sc.model)?;
+        let mut opts = SolverOptions {
+            formulation,
+            scheme,
+            baumgarte: sc.sim.baumgarte,
+            max_speed: sc.sim.max_speed,
+            ..SolverOptions::default()
+        };
+        // The step plan and its budget before the static solves: work refused costs
+        // nothing (the plan depends on the layout's constants, not on positions).
+        let plan = match model {
+            CableModel::LumpedMass => Some(plan_steps(&sc, &lay, &opts, duration, dt_spec)?),
+            CableModel::Ancf => None,
+        };
+        let relax_residual = crate::initial::apply(&sc, &lay, &mut pos)?;
         let engine = match model {
             CableModel::Ancf => {
+                budget::check_output(&sc, duration)?;
                 log::info!("backend cpu: the ANCF model runs on the CPU in f64");
                 Engine::Ancf(AncfFleet::new(
                     &sc, &sc.ancf, scheme, duration, dt_spec, &lay, &pos,
                 )?)
             }
             CableModel::LumpedMass => {
-                let mut opts = SolverOptions {
-                    formulation,
-                    scheme,
-                    baumgarte: sc.sim.baumgarte,
-                    max_speed: sc.sim.max_speed,
-                    ..SolverOptions::default()
-                };
-                let plan = plan_steps(&sc, &lay, &opts, duration, dt_spec)?;
+                let plan = plan.expect("planned above");
                 if let Some(w) = &plan.warning {
                     log::warn!("{w}");
                 }

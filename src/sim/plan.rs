@@ -41,26 +41,9 @@ pub fn plan_steps(
     dt: DtSpec,
 ) -> Result<StepPlan, Error> {
     let plan = plan_unbounded(sc, lay, opts, duration, dt)?;
-    let work = (duration / plan.dt) * lay.n_nodes() as f64;
-    if !(work <= MAX_NODE_STEPS) {
-        return Err(crate::scenario::err(
-            &sc.path,
-            "simulation.duration",
-            format!(
-                "{duration} s at dt = {:e} s over {} nodes is {work:.3e} node-steps, beyond what any machine runs (the limit is {MAX_NODE_STEPS:e}); the step is set by {}: shorten the run, coarsen the mesh or change that term",
-                plan.dt,
-                lay.n_nodes(),
-                plan.bound.term
-            ),
-        ));
-    }
+    super::budget::check_output(sc, duration)?;
     Ok(plan)
 }
-
-/// The most node-steps (nodes times steps) a run may plan: about twelve days at 1e9
-/// node-steps per second. A plan beyond it comes from an absurd input (a tiny element,
-/// a huge stiffness or damping, a tiny step), not from a study anyone can wait for.
-pub const MAX_NODE_STEPS: f64 = 1e15;
 
 fn plan_unbounded(
     sc: &Scenario,
@@ -71,7 +54,7 @@ fn plan_unbounded(
 ) -> Result<StepPlan, Error> {
     let mut bound = stable_step(lay, opts.scheme, opts.baumgarte);
     if sc.winches.is_empty() {
-        return plan_with(sc, opts, duration, dt, bound);
+        return plan_with(sc, lay, opts, duration, dt, bound);
     }
     let worst = |bound: &mut StepBound, collapse: &[usize]| -> Result<(), Error> {
         let (wl, _) = Layout::build(&winch_worst_case(&sc.model, sc, collapse))?;
@@ -85,11 +68,11 @@ fn plan_unbounded(
         Ok(())
     };
     worst(&mut bound, &[])?;
-    let mut plan = plan_with(sc, opts, duration, dt, bound.clone())?;
+    let mut plan = plan_with(sc, lay, opts, duration, dt, bound.clone())?;
     let collapse = scan_winches(sc, &plan)?;
     if !collapse.is_empty() {
         worst(&mut bound, &collapse)?;
-        plan = plan_with(sc, opts, duration, dt, bound)?;
+        plan = plan_with(sc, lay, opts, duration, dt, bound)?;
         scan_winches(sc, &plan)?;
     }
     Ok(plan)
@@ -165,14 +148,21 @@ pub fn fit_step(sc: &Scenario, spec: DtSpec, stable: f64) -> Result<(f64, u64), 
     }
 }
 
+/// The plan at `bound`; refused beyond the node-step budget (before the winch scan,
+/// which follows every planned step).
 fn plan_with(
     sc: &Scenario,
+    lay: &Layout,
     opts: &SolverOptions,
     duration: f64,
     dt_spec: DtSpec,
     bound: StepBound,
 ) -> Result<StepPlan, Error> {
-    if matches!(dt_spec, DtSpec::Auto) && !(bound.dt > 0.0 && bound.dt.is_finite()) {
+    // A stable step that is not a number comes from an overflowing term: no step,
+    // given or not, can be trusted then.
+    if (matches!(dt_spec, DtSpec::Auto) && !(bound.dt > 0.0 && bound.dt.is_finite()))
+        || bound.dt.is_nan()
+    {
         return Err(crate::scenario::err(
             &sc.path,
             "simulation.dt",
@@ -190,6 +180,7 @@ fn plan_with(
             format!("the step {dt:e} s is not a positive number"),
         ));
     }
+    super::budget::check_node_steps(sc, lay.n_nodes(), duration, dt, &bound.term)?;
     let warning = (matches!(dt_spec, DtSpec::Fixed(_)) && dt > bound.dt).then(|| {
         format!(
             "dt = {dt} s is above the stable step {:.4e} s of the {} scheme, set by {}; expect a blow-up or wrong results",

@@ -137,8 +137,7 @@ impl StudyFile {
     /// Reads a study: the `[study]` table of `path`, and its base scenario.
     pub fn load(path: impl AsRef<Path>) -> Result<StudyFile, Error> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| err(path, "(file)", format!("cannot read: {e}")))?;
+        let text = crate::input::read_text(path).map_err(|e| err(path, "(file)", e))?;
         let (def, scenario) = parse_study(&text, path)?;
         match scenario {
             None => Ok(StudyFile {
@@ -149,11 +148,11 @@ impl StudyFile {
             }),
             Some(rel) => {
                 let scenario_path = path.parent().unwrap_or(Path::new(".")).join(&rel);
-                let scenario_text = std::fs::read_to_string(&scenario_path).map_err(|e| {
+                let scenario_text = crate::input::read_text(&scenario_path).map_err(|e| {
                     err(
                         path,
                         "study.scenario",
-                        format!("cannot read \"{}\": {e}", scenario_path.display()),
+                        format!("\"{}\": {e}", scenario_path.display()),
                     )
                 })?;
                 Ok(StudyFile {
@@ -419,10 +418,10 @@ fn sea_state(p: &Path, f: &dyn Fn(&str) -> String, r: &RawSeaState) -> Result<Se
 /// required, `name`, `gamma`, `heading`, `current_speed`, `current_heading` optional
 /// (an empty cell takes the default).
 pub fn read_sea_states_csv(path: &Path) -> Result<Vec<SeaState>, Error> {
+    let bytes = crate::input::read_bytes(path).map_err(|e| err(path, "(file)", e))?;
     let mut rdr = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
-        .from_path(path)
-        .map_err(|e| err(path, "(file)", format!("cannot read: {e}")))?;
+        .from_reader(bytes.as_slice());
     let headers = rdr
         .headers()
         .map_err(|e| err(path, "(header)", e.to_string()))?

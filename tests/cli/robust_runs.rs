@@ -424,12 +424,13 @@ fn a_zero_stable_step_or_absurd_work_is_refused_by_check_and_run() {
     let dir = tempfile::tempdir().unwrap();
     let text = std::fs::read_to_string("examples/catenary.toml").unwrap();
     let cases = [
-        // Internal damping so strong the stable step is nothing.
+        // Internal damping so strong the stable step is 1e-12 s (it was computed as
+        // zero before, and the run looped for ever).
         (
             "damping = 1.0e-5 ",
             "damping = 1.0e6 ",
-            "simulation.dt",
-            "stable step",
+            "simulation.duration",
+            "internal damping",
         ),
         // Far more node-steps than any machine runs.
         (

@@ -286,3 +286,24 @@ fn point_mass_added_mass_sets_the_bounce_period() {
     let without = 2.0 * std::f64::consts::PI * ((m_eff - 512.5) / k).sqrt();
     assert!((period / without - 1.0).abs() > 0.05);
 }
+
+/// The blow-up check finds a NaN in any one component of a position or a velocity,
+/// the others sane (`f64::max` alone would drop it).
+#[test]
+fn a_nan_in_any_one_component_is_a_blow_up() {
+    use cablesim::math::V3;
+    use cablesim::step::blow_up;
+    let opts = SolverOptions::default();
+    let sane = V3::new(1.0, -2.0, 3.0);
+    assert!(blow_up(&opts, sane, sane).is_none());
+    for k in 0..3 {
+        let mut c = [1.0, -2.0, 3.0];
+        c[k] = f64::NAN;
+        let bad = V3::new(c[0], c[1], c[2]);
+        assert!(bad.max_abs().is_nan(), "component {k}");
+        for (r, v) in [(bad, sane), (sane, bad)] {
+            let what = blow_up(&opts, r, v).expect("a NaN is a blow-up");
+            assert!(what.contains("non-finite"), "component {k}: {what}");
+        }
+    }
+}

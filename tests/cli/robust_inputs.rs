@@ -1,0 +1,405 @@
+//! Absurd and wrong inputs get a clear error or warning before any work: the work
+//! budget (`[limits]`, `--limit`), the cap on input files, the checks of geometry and
+//! derived quantities, array keys read as written.
+
+use cablesim::error::Error;
+use cablesim::scenario::Scenario;
+use std::path::Path;
+use std::process::Command;
+
+const BIN: &str = env!("CARGO_BIN_EXE_cablesim");
+
+fn catenary() -> String {
+    std::fs::read_to_string("examples/catenary.toml").unwrap()
+}
+
+/// `text` with `from` replaced by `to` (which must be there) and `extra` appended.
+fn edit(text: &str, from: &str, to: &str, extra: &str) -> String {
+    assert!(text.contains(from), "the example changed: no `{from}`");
+    format!("{}{extra}", text.replacen(from, to, 1))
+}
+
+/// Writes `text` to `dir/case.toml` and runs `cablesim ARGS case.toml`.
+fn cli(dir: &Path, text: &str, args: &[&str]) -> (bool, String) {
+    let path = dir.join("case.toml");
+    std::fs::write(&path, text).unwrap();
+    let r = Command::new(BIN).args(args).arg(&path).output().unwrap();
+    (
+        r.status.success(),
+        String::from_utf8_lossy(&r.stderr).into_owned(),
+    )
+}
+
+fn check(dir: &Path, text: &str) -> (bool, String) {
+    cli(dir, text, &["check"])
+}
+
+/// `check` fails with an error naming `field` and saying `what`.
+fn refused(dir: &Path, text: &str, field: &str, what: &str) {
+    let (ok, err) = check(dir, text);
+    assert!(!ok, "accepted: expected {field}: {what}");
+    assert!(err.contains(field) && err.contains(what), "{err}");
+}
+
+fn parse(text: &str) -> Result<Scenario, Error> {
+    Scenario::parse(text, Path::new("/tmp/case.toml"))
+}
+
+fn parse_error(text: &str) -> (String, String) {
+    match parse(text) {
+        Err(Error::Scenario { field, message, .. }) => (field, message),
+        Err(e) => panic!("wrong error kind: {e}"),
+        Ok(_) => panic!("accepted"),
+    }
+}
+
+const ARRAY: &str = r#"
+[[cable_arrays]]
+name = "a"
+count = COUNT
+line_type = "wire"
+length = 250.0
+segments = 50
+start = { fixed = [-220.0, 0.0, -100.0] }
+end = { fixed = [0.0, 0.0, -10.0] }
+"#;
+
+const NET: &str = r#"
+[[nets]]
+name = "n"
+line_type = "wire"
+shape = "panel"
+knots = [100000, 100000]
+size = [10.0, 10.0]
+top = [0.0, 0.0, -1.0]
+"#;
+
+#[test]
+fn absurd_work_is_refused_with_the_estimate_before_anything_is_built() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let c = catenary();
+    let ancf = edit(
+        &c,
+        "backend = \"auto\" ",
+        "formulation = \"ancf\"\nbackend = \"auto\" ",
+        "\n[ancf]\nelement_length = 1e-9\n",
+    );
+    refused(
+        d,
+        &ancf,
+        "ancf.element_length",
+        "GiB of memory, over the budget",
+    );
+    let array = edit(
+        &c,
+        "segments = 50",
+        "segments = 50",
+        &ARRAY.replace("COUNT", "10000000"),
+    );
+    refused(
+        d,
+        &array,
+        "cable_arrays[0] (\"a\").count",
+        "over the budget of 16 GiB",
+    );
+    refused(
+        d,
+        &edit(&c, "segments = 50", "segments = 50", NET),
+        "nets[0] (\"n\").knots",
+        "over the budget",
+    );
+    let short = edit(&c, "length = 250.0", "length = 1e-6", "");
+    refused(
+        d,
+        &short,
+        "simulation.duration",
+        "node-steps, over the budget",
+    );
+    let dense = edit(&c, "output_interval = 1.0", "output_interval = 1e-9", "");
+    refused(
+        d,
+        &dense,
+        "simulation.output_interval",
+        "GiB, over the budget",
+    );
+    let long = edit(&c, "duration = 60.0", "duration = 1e20", "");
+    refused(
+        d,
+        &long,
+        "simulation.duration",
+        "node-steps, over the budget",
+    );
+    // A tiny given step, on the command line: refused before stepping.
+    let (ok, err) = cli(
+        d,
+        &c,
+        &[
+            "run",
+            "-q",
+            "--dt",
+            "1e-300",
+            "--out",
+            d.join("out").to_str().unwrap(),
+        ],
+    );
+    assert!(!ok && err.contains("node-steps, over the budget"), "{err}");
+    assert!(!d.join("out/summary.json").exists() || err.contains("simulation.duration"));
+}
+
+#[test]
+fn the_budget_is_raised_by_the_scenario_or_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // 60 s every 1 ms: 6e4 frames of 51 positions, some 0.25 GiB.
+    let dense = edit(
+        &catenary(),
+        "output_interval = 1.0 ",
+        "output_interval = 0.001 ",
+        "",
+    );
+    assert!(check(d, &dense).0, "within the default budget");
+    let low = format!("{dense}\n[limits]\noutput_gib = 0.01\n");
+    refused(d, &low, "simulation.output_interval", "[limits] output_gib");
+    let (ok, err) = cli(d, &low, &["check", "--limit", "output_gib=1"]);
+    assert!(ok, "--limit raises it: {err}");
+    let (ok, err) = cli(d, &dense, &["check", "--limit", "node_steps=1e3"]);
+    assert!(!ok && err.contains("budget of 1e3 node-steps"), "{err}");
+    let (ok, err) = cli(d, &dense, &["check", "--limit", "colour=1"]);
+    assert!(!ok && err.contains("unknown limit"), "{err}");
+    refused(
+        d,
+        &format!("{dense}\n[limits]\nnode_steps = -1.0\n"),
+        "limits.node_steps",
+        "positive",
+    );
+}
+
+#[test]
+fn an_endless_scenario_or_route_file_is_refused_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = Command::new(BIN)
+        .args(["check", "/dev/zero"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(!r.status.success() && err.contains("64 MiB"), "{err}");
+    let route = edit(
+        &catenary(),
+        "end = { fixed = [0.0, 0.0, -10.0] }",
+        "end = { route = \"table\", file = \"/dev/zero\" }",
+        "",
+    );
+    refused(
+        dir.path(),
+        &route,
+        "cables[0] (\"line1\").end.file",
+        "64 MiB",
+    );
+}
+
+/// `check` of a cable of 10^6 segments: the stable-step search is linear (it put each
+/// node's terms in words and searched the cable's elements per node before, 10^12
+/// steps here); this finishes in about a second (BENCHMARKS.md, "check").
+#[test]
+fn check_takes_a_million_node_cable() {
+    let dir = tempfile::tempdir().unwrap();
+    let big = edit(&catenary(), "segments = 50", "segments = 1000000", "")
+        .replace("initial = \"catenary\"", "initial = \"straight\"")
+        .replace("duration = 60.0 ", "duration = 0.001 ")
+        .replace("output_interval = 1.0 ", "output_interval = 0.001 ");
+    let (ok, err) = check(dir.path(), &big);
+    assert!(ok, "{err}");
+}
+
+#[test]
+fn ends_against_the_seabed_and_the_surface() {
+    let dir = tempfile::tempdir().unwrap();
+    let c = catenary();
+    let buried = edit(&c, "[-220.0, 0.0, -100.0]", "[-220.0, 0.0, -150.0]", "");
+    refused(
+        dir.path(),
+        &buried,
+        "cables[0] (\"line1\").start",
+        "below the seabed",
+    );
+    let high = edit(&c, "[0.0, 0.0, -10.0]", "[0.0, 0.0, 500.0]", "");
+    let (ok, err) = check(dir.path(), &high);
+    assert!(
+        err.contains("cables[0] (\"line1\").end") && err.contains("above the water surface"),
+        "ok = {ok}: {err}"
+    );
+}
+
+#[test]
+fn unused_points_and_line_types_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let c = catenary();
+    let fixed = format!("{c}\n[[points]]\nname = \"spare\"\nfixed = [5.0, 0.0, -20.0]\n\n[[line_types]]\nname = \"rope\"\ndiameter = 0.1\nmass_per_length = 8.0\nea = 1e8\n");
+    let (ok, err) = check(dir.path(), &fixed);
+    assert!(ok, "{err}");
+    assert!(
+        err.contains("points[0] (\"spare\"): no cable uses"),
+        "{err}"
+    );
+    assert!(
+        err.contains("line_types[1] (\"rope\"): no cable or net uses"),
+        "{err}"
+    );
+    // A free point nothing holds: an error on that point, not on another cable.
+    let free = format!("{c}\n[[points]]\nname = \"lost\"\nfree = [5.0, 0.0, -20.0]\nmass = 10.0\n");
+    refused(dir.path(), &free, "points[0] (\"lost\")", "no cable uses");
+}
+
+#[test]
+fn overflowing_inputs_name_their_field() {
+    let c = catenary();
+    for (from, to, field) in [
+        (
+            "ea = 6.2832e7 ",
+            "ea = 1e308 ",
+            "line_types[0] (\"wire\").ea",
+        ),
+        (
+            "damping = 1.0e-5 ",
+            "damping = 1e305 ",
+            "line_types[0] (\"wire\").damping",
+        ),
+        (
+            "mass_per_length = 5.0265",
+            "mass_per_length = 1e307",
+            "line_types[0] (\"wire\").mass_per_length",
+        ),
+        (
+            "stiffness = 3.0e6 ",
+            "stiffness = 1e308 ",
+            "environment.seabed.stiffness",
+        ),
+        (
+            "backend = \"auto\" ",
+            "baumgarte_alpha = 1e308\nbackend = \"auto\" ",
+            "simulation.baumgarte_alpha",
+        ),
+    ] {
+        let (f, m) = parse_error(&edit(&c, from, to, ""));
+        assert!(
+            f.contains(field) && m.contains("overflows"),
+            "{to}: {f}: {m}"
+        );
+    }
+}
+
+#[test]
+fn a_straight_start_far_beyond_its_length_warns() {
+    let dir = tempfile::tempdir().unwrap();
+    // 250 m between ends 750 m apart: 200 % strain.
+    let text = edit(
+        &catenary(),
+        "[-220.0, 0.0, -100.0]",
+        "[-750.0, 0.0, -10.0]",
+        "",
+    )
+    .replace("initial = \"catenary\"", "initial = \"straight\"");
+    let (_, err) = check(dir.path(), &text);
+    assert!(err.contains("200 % longer than its length"), "{err}");
+}
+
+#[test]
+fn impossible_random_specs_are_errors() {
+    let fleet = std::fs::read_to_string("examples/fleet.toml").unwrap();
+    let (f, m) = parse_error(&edit(
+        &fleet,
+        "segments = 50",
+        "segments = { random = [40, 60] }",
+        "",
+    ));
+    assert!(
+        f.ends_with("segments") && m.contains("cannot be random"),
+        "{f}: {m}"
+    );
+    let (f, m) = parse_error(&edit(
+        &fleet,
+        "random = [245.0, 255.0]",
+        "random = [255.0, 245.0]",
+        "",
+    ));
+    assert!(
+        f.ends_with("length.random") && m.contains("reversed"),
+        "{f}: {m}"
+    );
+}
+
+fn array_text(start: &str, end: &str, extra: &str) -> String {
+    let c = catenary();
+    let head = &c[..c.find("[[cables]]").unwrap()];
+    format!(
+        "{head}{extra}\n[[cable_arrays]]\nname = \"a\"\ncount = 3\nline_type = \"wire\"\nlength = 250.0\nsegments = 10\nstart = {start}\nend = {end}\n"
+    )
+}
+
+#[test]
+fn end_keys_of_an_array_vary_as_written() {
+    // An offset that varies inside an end: each cable gets its own.
+    let text = array_text(
+        "{ fixed = [0.0, 0.0, -100.0], offset = [[100.0, 0.0, 0.0], [-50.0, 86.6, 0.0], [-50.0, -86.6, 0.0]] }",
+        "{ fixed = [0.0, 0.0, -10.0], offset = { from = [0.0, 0.0, 0.0], to = [0.0, 0.0, 4.0] } }",
+        "",
+    );
+    let sc = parse(&text).unwrap();
+    let ends: Vec<([f64; 3], [f64; 3])> = sc
+        .model
+        .cables
+        .iter()
+        .map(|c| {
+            let (a, b) = (c.nodes[0], *c.nodes.last().unwrap());
+            (sc.model.nodes[a].position, sc.model.nodes[b].position)
+        })
+        .collect();
+    assert_eq!(ends[0].0, [100.0, 0.0, -100.0]);
+    assert_eq!(ends[1].0, [-50.0, 86.6, -100.0]);
+    assert_eq!(ends[2].0, [-50.0, -86.6, -100.0]);
+    assert_eq!(
+        [ends[0].1[2], ends[1].1[2], ends[2].1[2]],
+        [-10.0, -8.0, -6.0]
+    );
+    // A position list and a mass ramp too.
+    let text = array_text(
+        "{ fixed = [[10.0, 0.0, -100.0], [20.0, 0.0, -100.0]] }",
+        "{ free = [0.0, 0.0, -10.0], mass = [1.0, 2.0, 3.0] }",
+        "",
+    );
+    let sc = parse(&text).unwrap();
+    let c2 = &sc.model.cables[2];
+    assert_eq!(sc.model.nodes[c2.nodes[0]].position, [10.0, 0.0, -100.0]);
+    assert_eq!(sc.model.nodes[*c2.nodes.last().unwrap()].point.mass, 3.0);
+}
+
+#[test]
+fn an_array_on_a_named_point_blames_the_field_at_fault() {
+    let hub = "\n[[points]]\nname = \"hub\"\nfixed = [0.0, 0.0, -10.0]\n";
+    // The other end's own offset list is fine with a point end.
+    let ok = array_text(
+        "{ fixed = [0.0, 0.0, -100.0], offset = [[100.0, 0.0, 0.0], [-50.0, 86.6, 0.0], [-50.0, -86.6, 0.0]] }",
+        "{ point = \"hub\" }",
+        hub,
+    );
+    let sc = parse(&ok).unwrap();
+    assert_eq!(sc.model.cables.len(), 3);
+    // The array's own offset would move the point end: blamed on the offset.
+    let moved = format!("{ok}offset = [1.0, 0.0, 0.0]\n");
+    let (f, m) = parse_error(&moved);
+    assert!(
+        f.ends_with("(\"a\").offset") && m.contains("named point"),
+        "{f}: {m}"
+    );
+    // Mass on a point end was dropped without a word.
+    let (f, m) = parse_error(&array_text(
+        "{ fixed = [0.0, 0.0, -100.0] }",
+        "{ point = \"hub\", mass = 5.0 }",
+        hub,
+    ));
+    assert!(
+        f.ends_with("end.mass") && m.contains("on the point"),
+        "{f}: {m}"
+    );
+}
