@@ -73,29 +73,40 @@ fn horner<const N: usize>(c: &[f64; N], x: f64) -> f64 {
 /// `(sin x, cos x)` for `|x| < 2^50`.
 #[inline(always)]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    let q = (x * FRAC_2_PI + ROUND) - ROUND;
+    let shifted = x * FRAC_2_PI + ROUND;
+    let q = shifted - ROUND;
     let y = (x - q * FRAC_PI_2) - q * PIO2_LO;
     let y2 = y * y;
     let s = y * horner(&SIN, y2);
     let c = horner(&COS, y2);
-    match (q as i64) & 3 {
-        0 => (s, c),
-        1 => (c, -s),
-        2 => (-s, -c),
-        _ => (-c, s),
-    }
+    // The quadrant `q mod 4` is in the low bits of `shifted` (its unit in the last
+    // place is 1), read without a float-to-integer conversion; the quadrant then
+    // selects and negates without branches (`0: (s, c)`, `1: (c, -s)`, `2: (-s, -c)`,
+    // `3: (-c, s)`), so that a loop of these vectorises.
+    let quadrant = shifted.to_bits() & 3;
+    let (sin, cos) = if quadrant & 1 != 0 { (c, s) } else { (s, c) };
+    let sin = if quadrant & 2 != 0 { -sin } else { sin };
+    let cos = if (quadrant + 1) & 2 != 0 { -cos } else { cos };
+    (sin, cos)
 }
 
 /// `e^x` for `x <= 0` (0 below -708, where `e^x` leaves the normal numbers).
 #[inline(always)]
 pub fn exp_neg(x: f64) -> f64 {
-    if x < -708.0 {
-        return 0.0;
-    }
-    let n = (x * LOG2_E + ROUND) - ROUND;
+    let shifted = x * LOG2_E + ROUND;
+    let n = shifted - ROUND;
     let r = (x - n * LN2_HI) - n * LN2_LO;
     let p = horner(&EXP, r);
-    p * f64::from_bits(((n as i64 + 1023) as u64) << 52)
+    // `2^n` from the low bits of `shifted` (`n` in two's complement), without a
+    // float-to-integer conversion: `(n + 1023) << 52` is the exponent field, right
+    // for `-1022 <= n <= 0`. Below -708 the result is 0, by a select rather than a
+    // branch (the arithmetic above is then meaningless but harmless).
+    let scaled = p * f64::from_bits(shifted.to_bits().wrapping_add(1023) << 52);
+    if x < -708.0 {
+        0.0
+    } else {
+        scaled
+    }
 }
 
 #[cfg(test)]
