@@ -314,11 +314,12 @@ impl KinematicsScratch {
 /// [`wave_kinematics_tau`] over components in columns, with working columns
 /// `scratch`; on x86-64 with AVX2 the component loops run four components at a time.
 ///
-/// The result is bit for bit that of the plain loop over components in order (the WGSL
-/// twin's arrangement): each sum adds its terms in component order, and the terms
-/// are those of the one-at-a-time formulas; only the loops are split so that each
-/// vectorises. Two passes: every phase's sine and cosine and the elevation (which sets
-/// the Wheeler depth), then the depth decay and the velocity and acceleration terms.
+/// The terms are those of the one-at-a-time formulas (the WGSL twin's), with the loops
+/// split so that each vectorises: two passes, every phase's sine and cosine and the
+/// elevation (which sets the Wheeler depth), then the depth decay and the velocity
+/// and acceleration terms. With AVX2 and FMA the polynomials use fused multiply-adds,
+/// and every sum is four interleaved partial sums ([`sum_lanes`]): the result agrees
+/// with the sequential loop to round-off, not bit for bit.
 /// Exponentials whose terms are below round-off contribute exactly 0:
 /// `e^{-k (zs + 2 h)}` when it is under `1e-17` of `e^{k zs}` (deep water:
 /// `2 k (zs + h) > 39`), and a whole component whose decay `e^{k zs}` is under `1e-30`
@@ -336,16 +337,36 @@ pub fn wave_kinematics_columns(
     scratch.fit(cols.len());
     #[cfg(target_arch = "x86_64")]
     {
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2, checked just above.
+        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+        {
+            // SAFETY: the CPU has AVX2 and FMA, checked just above.
             return unsafe { kinematics_columns_avx2(cols, depth, stretching, r, p, tau, scratch) };
         }
     }
-    kinematics_columns_body(cols, depth, stretching, r, p, tau, scratch)
+    kinematics_columns_body::<false>(cols, depth, stretching, r, p, tau, scratch)
+}
+
+/// `sum v` as four interleaved partial sums (lanes `j mod 4`), then the lanes and the
+/// remainder: a reduction that vectorises.
+#[inline(always)]
+fn sum_lanes(v: &[f64]) -> f64 {
+    let mut acc = [0.0f64; 4];
+    let chunks = v.chunks_exact(4);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for l in 0..4 {
+            acc[l] += c[l];
+        }
+    }
+    let mut s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    for x in rest {
+        s += x;
+    }
+    s
 }
 
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn kinematics_columns_avx2(
     cols: &ComponentColumns,
     depth: f64,
@@ -355,11 +376,12 @@ unsafe fn kinematics_columns_avx2(
     tau: f64,
     scratch: &mut KinematicsScratch,
 ) -> Kinematics {
-    kinematics_columns_body(cols, depth, stretching, r, p, tau, scratch)
+    kinematics_columns_body::<true>(cols, depth, stretching, r, p, tau, scratch)
 }
 
+/// The body; `FMA`: fused polynomials and lane sums (only where the target has FMA).
 #[inline(always)]
-fn kinematics_columns_body(
+fn kinematics_columns_body<const FMA: bool>(
     cols: &ComponentColumns,
     depth: f64,
     stretching: Stretching,
@@ -397,26 +419,22 @@ fn kinematics_columns_body(
     for j in 0..n {
         // The phase of `wave_theta`, same order of operations.
         let theta = kx[j] * p[0] + ky[j] * p[1] + ph[j] - om[j] * tau;
-        let (s, c) = poly::sin_cos(theta);
+        let (s, c) = poly::sin_cos_with::<FMA>(theta);
         sin[j] = s;
         cos[j] = c;
         t0[j] = amp[j] * c;
     }
-    let mut eta = 0.0;
-    for v in t0.iter() {
-        eta += v;
-    }
-    let eta = r * eta;
+    let eta = r * if FMA { sum_lanes(t0) } else { t0.iter().sum() };
     let zs = wave_eval_depth(p[2], eta, depth, stretching);
     // Height above the seabed of the evaluation point (infinite in deep water).
     let above_bed = zs + depth;
     for j in 0..n {
         let (s, co) = (sin[j], cos[j]);
-        let e1 = poly::exp_neg(k[j] * zs);
+        let e1 = poly::exp_neg_with::<FMA>(k[j] * zs);
         let e2 = if 2.0 * k[j] * above_bed > 39.0 {
             0.0
         } else {
-            poly::exp_neg(-k[j] * (zs + 2.0 * depth))
+            poly::exp_neg_with::<FMA>(-k[j] * (zs + 2.0 * depth))
         };
         // Not `e1 < 1e-30`: a NaN depth must come out NaN, as in the plain loop
         // (which skips only on a true comparison).
@@ -432,16 +450,24 @@ fn kinematics_columns_body(
         t4[j] = w(ah * sin_b[j]);
         t5[j] = w(amp_a[j] * sh * co);
     }
-    let mut u = [0.0; 3];
-    let mut a = [0.0; 3];
-    for j in 0..n {
-        u[0] += t0[j];
-        u[1] += t1[j];
-        u[2] += t2[j];
-        a[0] += t3[j];
-        a[1] += t4[j];
-        a[2] -= t5[j];
-    }
+    let (u, a) = if FMA {
+        (
+            [sum_lanes(t0), sum_lanes(t1), sum_lanes(t2)],
+            [sum_lanes(t3), sum_lanes(t4), -sum_lanes(t5)],
+        )
+    } else {
+        let mut u = [0.0; 3];
+        let mut a = [0.0; 3];
+        for j in 0..n {
+            u[0] += t0[j];
+            u[1] += t1[j];
+            u[2] += t2[j];
+            a[0] += t3[j];
+            a[1] += t4[j];
+            a[2] -= t5[j];
+        }
+        (u, a)
+    };
     Kinematics {
         eta,
         u: u.map(|v| r * v),
