@@ -107,7 +107,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
             break;
         }
         if has_node {
-            let w = node_waves(i, k);
+            let w = point_waves(i, nd, k);
             var nf = gather_begin(nd, s, blk, w);
             for (var q = nd.inc_start; q < nd.inc_end; q += 1u) {
                 let entry = inc[q];

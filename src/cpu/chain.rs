@@ -914,8 +914,17 @@ fn advance_chain_scheme<const FRICTION: bool>(
                     [state[3][i], state[4][i], state[5][i]],
                 )
             };
-            wb.fill(time, c.n, st, wbuf);
-            add_waves(c.l0.len(), wbuf, u, aw, eta);
+            if wb.exact() {
+                wb.fill(time, c.n, st, wbuf);
+                add_waves(c.l0.len(), wbuf, u, aw, eta);
+            } else {
+                // The per-node values are needed only by the point masses' loads
+                // (`nodes`); the elements read the cache's columns.
+                if !c.point_drag.is_empty() || !c.point_volume.is_empty() {
+                    wb.fill(time, c.n, st, wbuf);
+                }
+                wb.fill_chain(time, c.n, st, eta, u, aw);
+            }
             elements::<true>(c, state, u, aw, eta, t, ten, f, haw);
         } else {
             elements::<false>(c, state, u, aw, eta, t, ten, f, haw);

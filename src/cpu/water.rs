@@ -5,6 +5,13 @@
 //!
 //! Each block keeps its own cache: blocks are stepped independently (in parallel, many
 //! steps at a time), so a block's refresh reads only its own nodes' state.
+//!
+//! The chain kernel reads the cache as columns ([`BlockWaves::fill_chain`]): each
+//! node's elevation and each element's midpoint wave velocity and acceleration (the
+//! mean of its two nodes'), formed once per refresh at both cache times, so that a
+//! stage interpolates seven columns straight into the element loop's inputs instead
+//! of interpolating per node and then averaging. Interpolation is linear, so this is
+//! the same value up to round-off.
 
 use crate::sea::cache::{evaluate_nodes, WaveCache, CACHE_STRIDE};
 use crate::sea::SeaState;
@@ -21,6 +28,21 @@ pub(crate) struct BlockWaves {
     exact: bool,
     pos: Vec<f64>,
     vel: Vec<f64>,
+    /// The chain kernel's columns of the cache, for the cache's `(t0, t1)` they were
+    /// formed at.
+    cols: ChainColumns,
+}
+
+/// A chain block's cache as columns at the cache's two times (index 0: `t0`, 1: `t1`).
+#[derive(Clone, Debug, Default)]
+struct ChainColumns {
+    /// The cache times these columns were formed for.
+    times: Option<(f64, f64)>,
+    /// Elevation over each node, m.
+    eta: [Vec<f64>; 2],
+    /// Per element (between nodes `k` and `k + 1`): the mean of its nodes' wave
+    /// velocity `x, y, z` then wave acceleration `x, y, z`.
+    mid: [[Vec<f64>; 6]; 2],
 }
 
 impl BlockWaves {
@@ -31,6 +53,7 @@ impl BlockWaves {
             exact,
             pos: vec![0.0; 3 * n],
             vel: vec![0.0; 3 * n],
+            cols: ChainColumns::default(),
         }
     }
 
@@ -61,6 +84,92 @@ impl BlockWaves {
             self.cache.refresh_if_due(t, &self.pos, &self.vel);
         }
         self.cache.interpolate(t, out);
+    }
+
+    /// Whether the sum is evaluated at every stage (no interpolation).
+    pub(crate) fn exact(&self) -> bool {
+        self.exact
+    }
+
+    /// The chain kernel's inputs at time `t` from the cache (not in exact mode): each
+    /// node's elevation into `eta`, each element's midpoint wave velocity added to `u`
+    /// and its midpoint wave acceleration into `aw` (elements `0..n - 1`). Refreshes
+    /// the cache when `t` is past it (`state` as in [`Self::fill`]).
+    #[inline(always)]
+    pub(crate) fn fill_chain(
+        &mut self,
+        t: f64,
+        n: usize,
+        state: impl Fn(usize) -> ([f64; 3], [f64; 3]),
+        eta: &mut [f64],
+        u: &mut [Vec<f64>; 3],
+        aw: &mut [Vec<f64>; 3],
+    ) {
+        debug_assert!(!self.exact);
+        let c = &self.cache;
+        if !(c.t1 > c.t0 && t >= c.t0 && t <= c.t1) {
+            for i in 0..n {
+                let (r, v) = state(i);
+                self.pos[3 * i..3 * i + 3].copy_from_slice(&r);
+                self.vel[3 * i..3 * i + 3].copy_from_slice(&v);
+            }
+            self.cache.refresh_if_due(t, &self.pos, &self.vel);
+        }
+        let c = &self.cache;
+        if self.cols.times != Some((c.t0, c.t1)) {
+            self.cols.form(&c.v0, &c.v1, n);
+            self.cols.times = Some((c.t0, c.t1));
+        }
+        let s = c.weight(t);
+        let ne = n - 1;
+        let cols = &self.cols;
+        lerp_into(&mut eta[..n], &cols.eta[0], &cols.eta[1], s);
+        for q in 0..3 {
+            lerp_add(&mut u[q][..ne], &cols.mid[0][q], &cols.mid[1][q], s);
+            lerp_into(
+                &mut aw[q][..ne],
+                &cols.mid[0][3 + q],
+                &cols.mid[1][3 + q],
+                s,
+            );
+        }
+    }
+}
+
+impl ChainColumns {
+    /// Forms the columns of `n` nodes from the cache's values at its two times.
+    fn form(&mut self, v0: &[f64], v1: &[f64], n: usize) {
+        for (side, v) in [v0, v1].into_iter().enumerate() {
+            let eta = &mut self.eta[side];
+            eta.clear();
+            eta.extend((0..n).map(|i| node_water(v, i).0));
+            for (q, col) in self.mid[side].iter_mut().enumerate() {
+                col.clear();
+                col.extend((0..n - 1).map(|k| {
+                    let (a, b) = (&v[k * CACHE_STRIDE..], &v[(k + 1) * CACHE_STRIDE..]);
+                    0.5 * (a[1 + q] + b[1 + q])
+                }));
+            }
+        }
+    }
+}
+
+/// `out = (1 - s) a + s b`, elementwise (a loop that vectorises: `out`, `a` and `b`
+/// are distinct slices of one length).
+#[inline(always)]
+fn lerp_into(out: &mut [f64], a: &[f64], b: &[f64], s: f64) {
+    let (a, b) = (&a[..out.len()], &b[..out.len()]);
+    for i in 0..out.len() {
+        out[i] = (1.0 - s) * a[i] + s * b[i];
+    }
+}
+
+/// `out += (1 - s) a + s b`, elementwise.
+#[inline(always)]
+fn lerp_add(out: &mut [f64], a: &[f64], b: &[f64], s: f64) {
+    let (a, b) = (&a[..out.len()], &b[..out.len()]);
+    for i in 0..out.len() {
+        out[i] += (1.0 - s) * a[i] + s * b[i];
     }
 }
 

@@ -23,7 +23,7 @@
 //! Layout: [`CACHE_STRIDE`] values per node, `eta, u_x, u_y, u_z, a_x, a_y, a_z`
 //! (m, m/s, m/s^2), nodes one after another; positions and velocities three per node.
 
-use super::kinematics::{Kinematics, WaveField};
+use super::kinematics::{Kinematics, KinematicsScratch, WaveField};
 use super::{SeaState, WaveComponent};
 use rayon::prelude::*;
 
@@ -52,7 +52,9 @@ pub fn evaluate_nodes(field: &WaveField, positions: &[f64], t: f64, out: &mut [f
     out.par_chunks_mut(CACHE_STRIDE)
         .zip(positions.par_chunks(3))
         .with_min_len(16)
-        .for_each(|(o, p)| write_node(o, &field.kinematics([p[0], p[1], p[2]], t)));
+        .for_each_init(KinematicsScratch::default, |scratch, (o, p)| {
+            write_node(o, &field.kinematics_with([p[0], p[1], p[2]], t, scratch))
+        });
 }
 
 fn write_node(o: &mut [f64], k: &Kinematics) {

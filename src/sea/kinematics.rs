@@ -69,6 +69,8 @@ pub struct WaveField {
     pub t_ref: f64,
     /// The components as given (for rebasing).
     source: Vec<WaveComponent>,
+    /// `comps` as columns, what the CPU's sum reads.
+    cols: ComponentColumns,
 }
 
 impl WaveField {
@@ -76,6 +78,7 @@ impl WaveField {
     pub fn new(sea: &SeaState) -> Self {
         let mut f = Self {
             comps: Vec::new(),
+            cols: ComponentColumns::default(),
             depth: sea.depth,
             stretching: sea.stretching,
             ramp_duration: sea.ramp_duration,
@@ -112,6 +115,7 @@ impl WaveField {
                 }
             })
             .collect();
+        self.cols = ComponentColumns::new(&self.comps);
     }
 
     /// Elevation `eta` at `(x, y)` and time `t`, ramp included, m.
@@ -121,14 +125,25 @@ impl WaveField {
 
     /// Elevation, velocity and acceleration at `p` and time `t`, ramp included.
     pub fn kinematics(&self, p: [f64; 3], t: f64) -> Kinematics {
-        wave_kinematics_at(
-            &self.comps,
+        self.kinematics_with(p, t, &mut KinematicsScratch::default())
+    }
+
+    /// [`Self::kinematics`] with working columns `scratch` (for loops over many
+    /// points: allocated once).
+    pub fn kinematics_with(
+        &self,
+        p: [f64; 3],
+        t: f64,
+        scratch: &mut KinematicsScratch,
+    ) -> Kinematics {
+        wave_kinematics_columns(
+            &self.cols,
             self.depth,
             self.stretching,
-            self.ramp_duration,
+            wave_ramp(t, self.ramp_duration),
             p,
-            t,
-            self.t_ref,
+            t - self.t_ref,
+            scratch,
         )
     }
 }
@@ -191,14 +206,9 @@ pub fn wave_depth_decay(k: f64, zs: f64, depth: f64) -> (f64, f64) {
 /// Elevation, velocity and acceleration of the sum of `comps` at `p` and time `t`
 /// (phases referred to `t_ref`), with the ramp of duration `ramp_duration`.
 ///
-/// The same sums as the WGSL twin, arranged for the CPU: one sine and cosine per
-/// component serve both the elevation and the kinematics (kept on the stack for up to
-/// [`PHASE_BUFFER`] components, recomputed beyond), and exponentials whose terms are
-/// below round-off are not computed: `e^{-k (zs + 2 h)}` when it is under `1e-17` of
-/// `e^{k zs}` (deep water: `2 k (zs + h) > 39`), and a component whose decay
-/// `e^{k zs}` is under `1e-30` (then so is the other term: short waves deep down).
-/// Sines, cosines and exponentials are the inlined polynomials of [`poly`] (the
-/// WGSL's own).
+/// The same sums as the WGSL twin, arranged for the CPU in [`wave_kinematics_columns`]
+/// (this packs the components into columns first; [`WaveField::kinematics`] keeps
+/// them packed).
 pub fn wave_kinematics_at(
     comps: &[PackedComponent],
     depth: f64,
@@ -228,55 +238,242 @@ pub fn wave_kinematics_tau(
     p: [f64; 3],
     tau: f64,
 ) -> Kinematics {
-    let mut phases = [(0.0, 0.0); PHASE_BUFFER];
-    let mut eta = 0.0;
-    for (j, c) in comps.iter().enumerate() {
-        let sc = poly::sin_cos(wave_theta(c, p[0], p[1], tau));
-        if j < PHASE_BUFFER {
-            phases[j] = sc;
+    let cols = ComponentColumns::new(comps);
+    let mut scratch = KinematicsScratch::default();
+    wave_kinematics_columns(&cols, depth, stretching, r, p, tau, &mut scratch)
+}
+
+/// The packed components as columns, one array per field (the fields of
+/// [`PackedComponent`] that the sum reads), so that the CPU's loops over components
+/// read consecutive memory and vectorise.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ComponentColumns {
+    kx: Vec<f64>,
+    ky: Vec<f64>,
+    k: Vec<f64>,
+    omega: Vec<f64>,
+    phase_ref: Vec<f64>,
+    amp: Vec<f64>,
+    amp_u: Vec<f64>,
+    amp_a: Vec<f64>,
+    cos_b: Vec<f64>,
+    sin_b: Vec<f64>,
+}
+
+impl ComponentColumns {
+    /// The columns of `comps`.
+    pub fn new(comps: &[PackedComponent]) -> Self {
+        let col = |f: fn(&PackedComponent) -> f64| comps.iter().map(f).collect::<Vec<_>>();
+        Self {
+            kx: col(|c| c.kx),
+            ky: col(|c| c.ky),
+            k: col(|c| c.k),
+            omega: col(|c| c.omega),
+            phase_ref: col(|c| c.phase_ref),
+            amp: col(|c| c.amp),
+            amp_u: col(|c| c.amp_u),
+            amp_a: col(|c| c.amp_a),
+            cos_b: col(|c| c.cos_b),
+            sin_b: col(|c| c.sin_b),
         }
-        eta += c.amp * sc.1;
     }
-    let eta = r * eta;
+
+    /// The number of components.
+    pub fn len(&self) -> usize {
+        self.k.len()
+    }
+
+    /// True when there are no components.
+    pub fn is_empty(&self) -> bool {
+        self.k.is_empty()
+    }
+}
+
+/// Per-component working columns of [`wave_kinematics_columns`] (sines, cosines and
+/// the terms of the sums), kept between calls so that a loop over nodes allocates
+/// them once.
+#[derive(Clone, Debug, Default)]
+pub struct KinematicsScratch {
+    sin: Vec<f64>,
+    cos: Vec<f64>,
+    terms: [Vec<f64>; 6],
+}
+
+impl KinematicsScratch {
+    /// Columns of length `n` (their contents are overwritten before being read).
+    fn fit(&mut self, n: usize) {
+        for v in [&mut self.sin, &mut self.cos]
+            .into_iter()
+            .chain(self.terms.iter_mut())
+        {
+            v.resize(n, 0.0);
+        }
+    }
+}
+
+/// [`wave_kinematics_tau`] over components in columns, with working columns
+/// `scratch`; on x86-64 with AVX2 the component loops run four components at a time.
+///
+/// The terms are those of the one-at-a-time formulas (the WGSL twin's), with the loops
+/// split so that each vectorises: two passes, every phase's sine and cosine and the
+/// elevation (which sets the Wheeler depth), then the depth decay and the velocity
+/// and acceleration terms. With AVX2 and FMA the polynomials use fused multiply-adds,
+/// and every sum is four interleaved partial sums ([`sum_lanes`]): the result agrees
+/// with the sequential loop to round-off, not bit for bit.
+/// Exponentials whose terms are below round-off contribute exactly 0:
+/// `e^{-k (zs + 2 h)}` when it is under `1e-17` of `e^{k zs}` (deep water:
+/// `2 k (zs + h) > 39`), and a whole component whose decay `e^{k zs}` is under `1e-30`
+/// (then so is the other term: short waves deep down). Sines, cosines and exponentials
+/// are the inlined, branch-free polynomials of [`poly`] (the WGSL's own).
+pub fn wave_kinematics_columns(
+    cols: &ComponentColumns,
+    depth: f64,
+    stretching: Stretching,
+    r: f64,
+    p: [f64; 3],
+    tau: f64,
+    scratch: &mut KinematicsScratch,
+) -> Kinematics {
+    scratch.fit(cols.len());
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+        {
+            // SAFETY: the CPU has AVX2 and FMA, checked just above.
+            return unsafe { kinematics_columns_avx2(cols, depth, stretching, r, p, tau, scratch) };
+        }
+    }
+    kinematics_columns_body::<false>(cols, depth, stretching, r, p, tau, scratch)
+}
+
+/// `sum v` as four interleaved partial sums (lanes `j mod 4`), then the lanes and the
+/// remainder: a reduction that vectorises.
+#[inline(always)]
+fn sum_lanes(v: &[f64]) -> f64 {
+    let mut acc = [0.0f64; 4];
+    let chunks = v.chunks_exact(4);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for l in 0..4 {
+            acc[l] += c[l];
+        }
+    }
+    let mut s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    for x in rest {
+        s += x;
+    }
+    s
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn kinematics_columns_avx2(
+    cols: &ComponentColumns,
+    depth: f64,
+    stretching: Stretching,
+    r: f64,
+    p: [f64; 3],
+    tau: f64,
+    scratch: &mut KinematicsScratch,
+) -> Kinematics {
+    kinematics_columns_body::<true>(cols, depth, stretching, r, p, tau, scratch)
+}
+
+/// The body; `FMA`: fused polynomials and lane sums (only where the target has FMA).
+#[inline(always)]
+fn kinematics_columns_body<const FMA: bool>(
+    cols: &ComponentColumns,
+    depth: f64,
+    stretching: Stretching,
+    r: f64,
+    p: [f64; 3],
+    tau: f64,
+    scratch: &mut KinematicsScratch,
+) -> Kinematics {
+    let n = cols.len();
+    let (kx, ky, ph, om, amp) = (
+        &cols.kx[..n],
+        &cols.ky[..n],
+        &cols.phase_ref[..n],
+        &cols.omega[..n],
+        &cols.amp[..n],
+    );
+    let (k, amp_u, amp_a, cos_b, sin_b) = (
+        &cols.k[..n],
+        &cols.amp_u[..n],
+        &cols.amp_a[..n],
+        &cols.cos_b[..n],
+        &cols.sin_b[..n],
+    );
+    let KinematicsScratch { sin, cos, terms } = scratch;
+    let (sin, cos) = (&mut sin[..n], &mut cos[..n]);
+    let [t0, t1, t2, t3, t4, t5] = terms;
+    let (t0, t1, t2, t3, t4, t5) = (
+        &mut t0[..n],
+        &mut t1[..n],
+        &mut t2[..n],
+        &mut t3[..n],
+        &mut t4[..n],
+        &mut t5[..n],
+    );
+    for j in 0..n {
+        // The phase of `wave_theta`, same order of operations.
+        let theta = kx[j] * p[0] + ky[j] * p[1] + ph[j] - om[j] * tau;
+        let (s, c) = poly::sin_cos_with::<FMA>(theta);
+        sin[j] = s;
+        cos[j] = c;
+        t0[j] = amp[j] * c;
+    }
+    let eta = r * if FMA { sum_lanes(t0) } else { t0.iter().sum() };
     let zs = wave_eval_depth(p[2], eta, depth, stretching);
     // Height above the seabed of the evaluation point (infinite in deep water).
     let above_bed = zs + depth;
-    let mut u = [0.0; 3];
-    let mut a = [0.0; 3];
-    for (j, c) in comps.iter().enumerate() {
-        let e1 = poly::exp_neg(c.k * zs);
-        if e1 < 1e-30 {
-            continue;
-        }
-        let e2 = if 2.0 * c.k * above_bed > 39.0 {
+    for j in 0..n {
+        let (s, co) = (sin[j], cos[j]);
+        let e1 = poly::exp_neg_with::<FMA>(k[j] * zs);
+        let e2 = if 2.0 * k[j] * above_bed > 39.0 {
             0.0
         } else {
-            poly::exp_neg(-c.k * (zs + 2.0 * depth))
+            poly::exp_neg_with::<FMA>(-k[j] * (zs + 2.0 * depth))
         };
+        // Not `e1 < 1e-30`: a NaN depth must come out NaN, as in the plain loop
+        // (which skips only on a true comparison).
+        let live = !(e1 < 1e-30);
         let (ch, sh) = (e1 + e2, e1 - e2);
-        let (s, co) = if j < PHASE_BUFFER {
-            phases[j]
-        } else {
-            poly::sin_cos(wave_theta(c, p[0], p[1], tau))
-        };
-        let uh = c.amp_u * ch * co;
-        let ah = c.amp_a * ch * s;
-        u[0] += uh * c.cos_b;
-        u[1] += uh * c.sin_b;
-        u[2] += c.amp_u * sh * s;
-        a[0] += ah * c.cos_b;
-        a[1] += ah * c.sin_b;
-        a[2] -= c.amp_a * sh * co;
+        let uh = amp_u[j] * ch * co;
+        let ah = amp_a[j] * ch * s;
+        let w = |v: f64| if live { v } else { 0.0 };
+        t0[j] = w(uh * cos_b[j]);
+        t1[j] = w(uh * sin_b[j]);
+        t2[j] = w(amp_u[j] * sh * s);
+        t3[j] = w(ah * cos_b[j]);
+        t4[j] = w(ah * sin_b[j]);
+        t5[j] = w(amp_a[j] * sh * co);
     }
+    let (u, a) = if FMA {
+        (
+            [sum_lanes(t0), sum_lanes(t1), sum_lanes(t2)],
+            [sum_lanes(t3), sum_lanes(t4), -sum_lanes(t5)],
+        )
+    } else {
+        let mut u = [0.0; 3];
+        let mut a = [0.0; 3];
+        for j in 0..n {
+            u[0] += t0[j];
+            u[1] += t1[j];
+            u[2] += t2[j];
+            a[0] += t3[j];
+            a[1] += t4[j];
+            a[2] -= t5[j];
+        }
+        (u, a)
+    };
     Kinematics {
         eta,
         u: u.map(|v| r * v),
         a: a.map(|v| r * v),
     }
 }
-
-/// Components whose sine and cosine [`wave_kinematics_at`] keeps on the stack.
-pub const PHASE_BUFFER: usize = 512;
 
 #[cfg(test)]
 mod tests {

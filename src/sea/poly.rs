@@ -60,12 +60,18 @@ const EXP: [f64; 14] = [
     1.0 / 6227020800.0,
 ];
 
-/// `sum c[i] x^i` by Horner's rule (unrolled by the compiler: the length is fixed).
+/// `sum c[i] x^i` by Horner's rule (unrolled by the compiler: the length is fixed);
+/// with `FMA`, each step one fused multiply-add (one rounding instead of two: call it
+/// only where the target has FMA, or `mul_add` is a library call).
 #[inline(always)]
-fn horner<const N: usize>(c: &[f64; N], x: f64) -> f64 {
+fn horner<const N: usize, const FMA: bool>(c: &[f64; N], x: f64) -> f64 {
     let mut p = c[N - 1];
     for i in (0..N - 1).rev() {
-        p = p * x + c[i];
+        p = if FMA {
+            p.mul_add(x, c[i])
+        } else {
+            p * x + c[i]
+        };
     }
     p
 }
@@ -73,29 +79,53 @@ fn horner<const N: usize>(c: &[f64; N], x: f64) -> f64 {
 /// `(sin x, cos x)` for `|x| < 2^50`.
 #[inline(always)]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    let q = (x * FRAC_2_PI + ROUND) - ROUND;
-    let y = (x - q * FRAC_PI_2) - q * PIO2_LO;
-    let y2 = y * y;
-    let s = y * horner(&SIN, y2);
-    let c = horner(&COS, y2);
-    match (q as i64) & 3 {
-        0 => (s, c),
-        1 => (c, -s),
-        2 => (-s, -c),
-        _ => (-c, s),
-    }
+    sin_cos_with::<false>(x)
 }
 
 /// `e^x` for `x <= 0` (0 below -708, where `e^x` leaves the normal numbers).
 #[inline(always)]
 pub fn exp_neg(x: f64) -> f64 {
-    if x < -708.0 {
-        return 0.0;
-    }
-    let n = (x * LOG2_E + ROUND) - ROUND;
+    exp_neg_with::<false>(x)
+}
+
+/// [`sin_cos`], its polynomials by fused multiply-adds when `FMA` (the same accuracy
+/// bound; results may differ from [`sin_cos`] in the last place).
+#[inline(always)]
+pub fn sin_cos_with<const FMA: bool>(x: f64) -> (f64, f64) {
+    let shifted = x * FRAC_2_PI + ROUND;
+    let q = shifted - ROUND;
+    let y = (x - q * FRAC_PI_2) - q * PIO2_LO;
+    let y2 = y * y;
+    let s = y * horner::<8, FMA>(&SIN, y2);
+    let c = horner::<9, FMA>(&COS, y2);
+    // The quadrant `q mod 4` is in the low bits of `shifted` (its unit in the last
+    // place is 1), read without a float-to-integer conversion; the quadrant then
+    // selects and negates without branches (`0: (s, c)`, `1: (c, -s)`, `2: (-s, -c)`,
+    // `3: (-c, s)`), so that a loop of these vectorises.
+    let quadrant = shifted.to_bits() & 3;
+    let (sin, cos) = if quadrant & 1 != 0 { (c, s) } else { (s, c) };
+    let sin = if quadrant & 2 != 0 { -sin } else { sin };
+    let cos = if (quadrant + 1) & 2 != 0 { -cos } else { cos };
+    (sin, cos)
+}
+
+/// [`exp_neg`], its polynomial by fused multiply-adds when `FMA`.
+#[inline(always)]
+pub fn exp_neg_with<const FMA: bool>(x: f64) -> f64 {
+    let shifted = x * LOG2_E + ROUND;
+    let n = shifted - ROUND;
     let r = (x - n * LN2_HI) - n * LN2_LO;
-    let p = horner(&EXP, r);
-    p * f64::from_bits(((n as i64 + 1023) as u64) << 52)
+    let p = horner::<14, FMA>(&EXP, r);
+    // `2^n` from the low bits of `shifted` (`n` in two's complement), without a
+    // float-to-integer conversion: `(n + 1023) << 52` is the exponent field, right
+    // for `-1022 <= n <= 0`. Below -708 the result is 0, by a select rather than a
+    // branch (the arithmetic above is then meaningless but harmless).
+    let scaled = p * f64::from_bits(shifted.to_bits().wrapping_add(1023) << 52);
+    if x < -708.0 {
+        0.0
+    } else {
+        scaled
+    }
 }
 
 #[cfg(test)]
@@ -131,6 +161,18 @@ mod tests {
                 _ => rng.gen_range(-708.0..0.0),
             };
             assert!((exp_neg(z) / z.exp() - 1.0).abs() <= 4.0 * eps, "exp {z}");
+            // The fused forms, within the same bounds.
+            let (sf, cf) = sin_cos_with::<true>(x);
+            assert!(
+                (sf - x.sin()).abs() <= 4.0 * eps * (1.0 + x.abs()),
+                "sin fma {x}"
+            );
+            assert!(
+                (cf - x.cos()).abs() <= 4.0 * eps * (1.0 + x.abs()),
+                "cos fma {x}"
+            );
+            let ef = exp_neg_with::<true>(z);
+            assert!((ef / z.exp() - 1.0).abs() <= 4.0 * eps, "exp fma {z}");
         }
         assert_eq!(exp_neg(0.0), 1.0);
         assert_eq!(exp_neg(-1000.0), 0.0);
