@@ -20,7 +20,7 @@
 
 use crate::error::Error;
 use crate::model::{ModelDef, Route};
-use crate::scenario::{NamedPoint, Scenario};
+use crate::scenario::{Limits, NamedPoint, Scenario};
 use crate::sea::SeaSet;
 use std::collections::HashMap;
 use std::ops::Range;
@@ -160,6 +160,15 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
         member_seas: Some(SeaSet { seas, cable_sea }),
         points,
         vtk: false,
+        // Each member passed its own budget; the packed run is their sum.
+        limits: {
+            let (n, l) = (members.len() as f64, &first.limits);
+            Limits {
+                node_steps: l.node_steps * n,
+                memory_gib: l.memory_gib * n,
+                output_gib: l.output_gib * n,
+            }
+        },
     };
     Ok(Packed {
         scenario,
