@@ -4,7 +4,7 @@ use super::{M3, V};
 use crate::model::{Block, Layout, NO_CONSTRAINT};
 use crate::physics::{
     glmf_element_wet, point_wetted_fraction, seabed_force, wetted_fraction, Coefs, ElementInput,
-    SeabedCoefs,
+    ElementLoads, SeabedCoefs,
 };
 use nalgebra::Vector3;
 use std::borrow::Cow;
@@ -86,6 +86,13 @@ impl<'a> Sys<'a> {
     /// Static forces of packed element `e` on its nodes a and b.
     #[inline]
     pub(super) fn element(&self, e: usize, ra: V, rb: V) -> (V, V) {
+        let el = self.element_loads(e, ra, rb);
+        (el.f_half + el.t * el.tension, el.f_half - el.t * el.tension)
+    }
+
+    /// The GLMF loads of packed element `e` at rest with ends `ra`, `rb`.
+    #[inline]
+    pub(super) fn element_loads(&self, e: usize, ra: V, rb: V) -> ElementLoads<f64> {
         let lay = self.lay;
         let current = lay.currents[lay.elem_current[e] as usize].at(0.5 * (ra.z + rb.z));
         let input = ElementInput {
@@ -101,8 +108,7 @@ impl<'a> Sys<'a> {
         let line = lay.elem_line[e] as usize;
         let wet = wetted_fraction(-ra.z, -rb.z, lay.line_types[line].diameter);
         let c = &self.coefs[line];
-        let el = glmf_element_wet(c, &input, wet, lay.env.gravity);
-        (el.f_half + el.t * el.tension, el.f_half - el.t * el.tension)
+        glmf_element_wet(c, &input, wet, lay.env.gravity)
     }
 
     /// The point loads of packed node `i`: weight less the buoyancy of the share of
@@ -262,35 +268,54 @@ impl<'a> Sys<'a> {
         for e in self.e0..self.e1 {
             let (a, b) = self.ends(e);
             let (ra, rb) = (r[a], r[b]);
-            let h = 1e-6 * (rb - ra).norm().max(self.lay.elem_l0[e]);
-            // Columns of dF/dr: F = (f_a, f_b), r = (r_a, r_b).
-            let mut kk = [[M3::zeros(); 2]; 2]; // kk[row node][column node]
+            // The axial force's stiffness is written out, not differenced: for a
+            // near-inextensible line (EA/l0 ~ 1e11 N/m) the round-off of the tension,
+            // EA/l0 times that of the length (eps |r|), divided by a difference step
+            // swamps the geometric stiffness T/l of the catenary's shape, and Newton's
+            // model fails. G = dT/dl t t^T + T/l (I - t t^T), with dT/dl as in
+            // `axial_force` (EA/l0 taut, compression EA/l0 for a rod shortened, none
+            // for a slack line).
+            let c = &self.coefs[self.lay.elem_line[e] as usize];
+            let d = rb - ra;
+            let l = d.norm();
+            let l0 = self.lay.elem_l0[e];
+            let mut g = M3::zeros();
+            if l > 0.0 {
+                let t = vec3(d / l);
+                let tt = t * t.transpose();
+                let eps = l / l0 - 1.0;
+                let (k_ax, tension) = if eps > 0.0 {
+                    (c.ea / l0, c.ea * eps)
+                } else {
+                    (c.ea * c.compression / l0, c.ea * eps * c.compression)
+                };
+                g = tt * k_ax + (M3::identity() - tt) * (tension / l);
+                // A slack element has no stiffness, and Newton's model would let the
+                // step stretch it without limit: give it its taut axial stiffness in
+                // the Jacobian only (the residual, hence the solution, is unchanged).
+                if c.compression == 0.0 && l < l0 {
+                    g += tt * (c.ea / l0);
+                }
+            }
+            let mut kk = [[g, -g], [-g, g]]; // kk[row node][column node]
+                                             // The external loads (weight, buoyancy at the surface, drag: the same
+                                             // half on each end) by central differences.
+            let h = 1e-6 * l.max(l0);
             for k in 0..6 {
                 let (mut p, mut m) = ([ra, rb], [ra, rb]);
                 let x = *comp(&mut p[k / 3], k % 3);
                 let (xp, xm) = (x + h, x - h);
                 *comp(&mut p[k / 3], k % 3) = xp;
                 *comp(&mut m[k / 3], k % 3) = xm;
-                let (fap, fbp) = self.element(e, p[0], p[1]);
-                let (fam, fbm) = self.element(e, m[0], m[1]);
-                let inv = -1.0 / (xp - xm);
-                kk[0][k / 3].set_column(k % 3, &(vec3(fap - fam) * inv));
-                kk[1][k / 3].set_column(k % 3, &(vec3(fbp - fbm) * inv));
-            }
-            // A slack element has no stiffness, and Newton's model would let the step
-            // stretch it without limit: give it its taut axial stiffness in the
-            // Jacobian only (the residual, hence the solution, is unchanged).
-            let c = &self.coefs[self.lay.elem_line[e] as usize];
-            let d = rb - ra;
-            let l = d.norm();
-            let l0 = self.lay.elem_l0[e];
-            if c.compression == 0.0 && l < l0 && l > 0.0 {
-                let t = vec3(d / l);
-                let ks = t * t.transpose() * (c.ea / l0);
-                kk[0][0] += ks;
-                kk[1][1] += ks;
-                kk[0][1] -= ks;
-                kk[1][0] -= ks;
+                let fp = self.element_loads(e, p[0], p[1]).f_half;
+                let fm = self.element_loads(e, m[0], m[1]).f_half;
+                let col = vec3(fp - fm) * (-1.0 / (xp - xm));
+                if col != Vector3::zeros() {
+                    let mut c0 = kk[0][k / 3].column_mut(k % 3);
+                    c0 += col;
+                    let mut c1 = kk[1][k / 3].column_mut(k % 3);
+                    c1 += col;
+                }
             }
             add(a, a, &kk[0][0]);
             add(a, b, &kk[0][1]);
