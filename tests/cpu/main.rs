@@ -18,6 +18,7 @@ mod frames;
 mod nets;
 mod parallel;
 mod statics;
+mod stiff_statics;
 mod study;
 mod water_surface;
 mod waves_steppers;
