@@ -22,13 +22,17 @@
 //! # The solver
 //! Blocks (connected components, `Layout::blocks`) are independent and are solved in
 //! parallel. Each is solved by Newton's method on the free nodes' positions:
-//! * the stiffness `K = -dF/dr` is assembled from central finite differences of each
-//!   element's static force with respect to its two end nodes (a 6x6 matrix per
-//!   element, step `1e-6` of the element length) and of each node's own loads (point
-//!   drag, seabed contact, near the seabed): general, drag and current profiles
-//!   included. A slack element has no stiffness, so Newton's model would let a step
-//!   stretch it without bound: it gets its taut axial stiffness `EA/l0 t t^T` in `K`
-//!   (the Jacobian only; the residual, hence the solution, is unchanged);
+//! * the stiffness `K = -dF/dr` is assembled per element from its axial force written
+//!   out, `dT/dl t t^T + T/l (I - t t^T)`, and from central finite differences of its
+//!   external loads (weight at the water surface, drag) with respect to its two end
+//!   nodes (step `1e-6` of the element length), and from differences of each node's
+//!   own loads (point drag, seabed contact, near the seabed): general, drag and current
+//!   profiles included. The axial part is not differenced: for a near-inextensible
+//!   line the tension's round-off over the difference step swamps the geometric
+//!   stiffness `T/l` (docs/src/model/initial.md). A slack element has no stiffness, so
+//!   Newton's model would let a step stretch it without bound: it gets its taut axial
+//!   stiffness `EA/l0 t t^T` in `K` (the Jacobian only; the residual, hence the
+//!   solution, is unchanged);
 //! * a chain block (`Block::is_chain`) gives a block-tridiagonal `K` (3x3 blocks),
 //!   solved by the block Thomas algorithm in O(n); another block with at most
 //!   [`RelaxOptions::max_dense_dof`] free coordinates is solved by a dense LU with

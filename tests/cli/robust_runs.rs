@@ -456,6 +456,16 @@ fn a_zero_stable_step_or_absurd_work_is_refused_by_check_and_run() {
                 err.contains(field) && err.contains(what),
                 "{cmd} {to}: {err}"
             );
+            if cmd == "run" && field == "simulation.duration" {
+                // Refused after the output directory was claimed (the plan needs the
+                // initial state): a failed start still writes its summary.
+                let s = summary(&dir.path().join("out"));
+                assert_eq!(s["status"], "failed");
+                assert_eq!(s["steps"], 0);
+                assert_eq!(s["simulated_time"], 0.0);
+                let e = s["error"].as_str().unwrap();
+                assert!(e.contains(field) && e.contains(what), "{e}");
+            }
         }
     }
 }
