@@ -4,7 +4,7 @@ use anyhow::{Context, Result};
 use cablesim::options::{
     Backend, CableModel, FormulationChoice, Overrides, Precision, Scheme, SolverOptions,
 };
-use cablesim::output::{FanOut, FileSink, VtkSink};
+use cablesim::output::{FailedStart, FanOut, FileSink, VtkSink};
 use cablesim::scenario::{LimitOverrides, Scenario};
 use cablesim::sim::{self, Progress, Simulation};
 use clap::{Parser, Subcommand};
@@ -224,7 +224,19 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
             // directory in use or not ours is refused before any work.
             let sc = Scenario::load_any_with(&scenario, &limits).with_context(context)?;
             let mut sink = FileSink::claim(&out_dir)?;
-            let mut simulation = Simulation::new(sc, &overrides).with_context(context)?;
+            let scenario_path = sc.path.clone();
+            let mut simulation = match Simulation::new(sc, &overrides) {
+                Ok(s) => s,
+                Err(e) => {
+                    // The docs promise a summary for a failed run: this one failed
+                    // before its first step (the initial equilibrium, the GPU set-up).
+                    let summary = FailedStart::new(&scenario_path, &e.to_string());
+                    if let Err(w) = summary.write(&out_dir) {
+                        log::warn!("could not write the summary of the failed run: {w}");
+                    }
+                    return Err(e).with_context(context);
+                }
+            };
             let bar = if quiet {
                 indicatif::ProgressBar::hidden()
             } else {

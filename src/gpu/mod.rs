@@ -85,4 +85,4 @@ pub mod solver;
 
 pub use crate::options::Precision;
 pub use context::GpuContext;
-pub use solver::{GpuKernel, GpuSolver, GpuTimings};
+pub use solver::{GpuCheckpoint, GpuKernel, GpuSolver, GpuTimings};

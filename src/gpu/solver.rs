@@ -1858,6 +1858,29 @@ impl GpuSolver {
         self.engine.download(&self.host)
     }
 
+    /// The state now, to go back to with [`GpuSolver::restore`] (read back from the
+    /// device); `None` with winches (their mesh and payout change as the run goes).
+    pub fn checkpoint(&mut self) -> Result<Option<GpuCheckpoint>, Error> {
+        if self.ale.is_some() {
+            return Ok(None);
+        }
+        let (r, v) = self.engine.download(&self.host)?;
+        Ok(Some(GpuCheckpoint {
+            steps: self.steps,
+            node_steps: self.node_steps,
+            r,
+            v,
+        }))
+    }
+
+    /// Goes back to the state `cp`, taken from this solver.
+    pub fn restore(&mut self, cp: &GpuCheckpoint) {
+        self.steps = cp.steps;
+        self.node_steps = cp.node_steps;
+        self.t = self.steps as f64 * self.opts.dt;
+        self.engine.upload(&self.host, &cp.r, &cp.v);
+    }
+
     /// Replaces node positions and velocities (packed order).
     pub fn set_state(&mut self, r: &[[f64; 3]], v: &[[f64; 3]]) {
         assert_eq!(r.len(), self.layout.n_nodes());
@@ -1871,6 +1894,15 @@ impl GpuSolver {
     pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
         self.engine.evaluate(&self.layout, &self.host, self.steps)
     }
+}
+
+/// A GPU run's state at one step ([`GpuSolver::checkpoint`]).
+pub struct GpuCheckpoint {
+    /// Steps taken.
+    pub steps: u64,
+    node_steps: u64,
+    r: Vec<[f64; 3]>,
+    v: Vec<[f64; 3]>,
 }
 
 /// What the GPU path cannot do with these winches, or `None`: two winch cables that

@@ -17,7 +17,7 @@ pub use fanout::FanOut;
 pub use files::{FileSink, LOCK_FILE, MARKER_FILE, OWN_DIRS, OWN_FILES};
 pub use memory::MemorySink;
 pub use sink::{BodyState, CableState, OutputSink, PointState, Snapshot};
-pub use summary::{write_summary, CableSummary, EndForces, Summary, WinchSummary};
+pub use summary::{write_summary, CableSummary, EndForces, FailedStart, Summary, WinchSummary};
 pub use vtk::{cables_vtp, points_vtp, VtkSink};
 
 use crate::math::{Sym3, V3};

@@ -98,6 +98,42 @@ pub struct Summary {
     pub cables: Vec<CableSummary>,
 }
 
+/// `summary.json` of a run that failed before its first step (the build, the initial
+/// equilibrium, the GPU set-up): no state to report, only what stopped it.
+#[derive(Clone, Debug, Serialize)]
+pub struct FailedStart {
+    /// `failed`.
+    pub status: String,
+    /// The error that stopped the run.
+    pub error: String,
+    /// The scenario file.
+    pub scenario: String,
+    /// Steps taken: 0.
+    pub steps: u64,
+    /// Simulated time reached: 0.
+    pub simulated_time: f64,
+}
+
+impl FailedStart {
+    /// The summary of a run of `scenario` that `error` stopped before its first step.
+    pub fn new(scenario: &Path, error: &str) -> Self {
+        Self {
+            status: "failed".into(),
+            error: error.to_string(),
+            scenario: scenario.display().to_string(),
+            steps: 0,
+            simulated_time: 0.0,
+        }
+    }
+
+    /// Writes it as `summary.json` into `dir`.
+    pub fn write(&self, dir: &Path) -> Result<(), Error> {
+        let path = dir.join("summary.json");
+        let text = serde_json::to_string_pretty(self).expect("summary serialises");
+        std::fs::write(&path, text).map_err(|source| Error::Output { path, source })
+    }
+}
+
 /// Writes `summary.json` into `dir`.
 pub fn write_summary(dir: &Path, s: &Summary) -> Result<(), Error> {
     let path = dir.join("summary.json");

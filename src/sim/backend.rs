@@ -104,12 +104,20 @@ pub fn choose_backend(
 }
 
 /// A lumped-mass stepper's state at one step, to go back to.
-pub struct Checkpoint(crate::cpu::CpuCheckpoint);
+pub enum Checkpoint {
+    /// Of the CPU path.
+    Cpu(crate::cpu::CpuCheckpoint),
+    /// Of the GPU path (read back from the device).
+    Gpu(crate::gpu::GpuCheckpoint),
+}
 
 impl Checkpoint {
     /// Steps taken when it was made.
     pub fn steps(&self) -> u64 {
-        self.0.steps
+        match self {
+            Checkpoint::Cpu(c) => c.steps,
+            Checkpoint::Gpu(c) => c.steps,
+        }
     }
 }
 
@@ -156,19 +164,28 @@ impl LumpedStepper {
         Ok(s)
     }
 
-    /// A copy of the state to go back to ([`LumpedStepper::restore`]): on the CPU path
-    /// without winches (whose mesh does not change), else `None`.
-    pub fn checkpoint(&self) -> Option<Checkpoint> {
+    /// A copy of the state to go back to ([`LumpedStepper::restore`]): without
+    /// winches (whose mesh changes), else `None`. The GPU path reads its state back
+    /// (one download per call); should that fail, `None`.
+    pub fn checkpoint(&mut self) -> Option<Checkpoint> {
         match self {
-            LumpedStepper::Cpu(s) => s.checkpoint().map(Checkpoint),
-            LumpedStepper::Gpu(_) => None,
+            LumpedStepper::Cpu(s) => s.checkpoint().map(Checkpoint::Cpu),
+            LumpedStepper::Gpu(s) => match s.checkpoint() {
+                Ok(c) => c.map(Checkpoint::Gpu),
+                Err(e) => {
+                    log::warn!("no checkpoint of the GPU state: {e}");
+                    None
+                }
+            },
         }
     }
 
     /// Puts the state back to `cp`, taken from this stepper.
     pub fn restore(&mut self, cp: &Checkpoint) {
-        if let LumpedStepper::Cpu(s) = self {
-            s.restore(&cp.0);
+        match (self, cp) {
+            (LumpedStepper::Cpu(s), Checkpoint::Cpu(c)) => s.restore(c),
+            (LumpedStepper::Gpu(s), Checkpoint::Gpu(c)) => s.restore(c),
+            _ => unreachable!("a checkpoint goes back to the stepper that made it"),
         }
     }
 

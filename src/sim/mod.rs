@@ -580,9 +580,11 @@ enum Chunked {
 /// request answered on big runs without cutting the blocks' long runs too short.
 ///
 /// On a blow-up the blocks of a chunk stand at different steps (each steps on its own
-/// until it fails or finishes). Where the state can be put back (the CPU path without
-/// winches), the chunk is stepped again from its start up to the step before the
-/// failure, so that every cable is at that one time, the last state that exists.
+/// until it fails or finishes). Where the state can be put back (without winches),
+/// the stretch is stepped again from a checkpoint up to the step before the failure, so
+/// that every cable is at that one time, the last state that exists. The CPU path
+/// keeps a checkpoint per chunk (a copy in memory); the GPU path one per call (an
+/// output interval), since it must read its state back from the device for it.
 fn advance_lumped(
     s: &mut LumpedStepper,
     plan: &StepPlan,
@@ -594,16 +596,18 @@ fn advance_lumped(
 ) -> Result<Chunked, Error> {
     let chunk = (20_000_000 / s.layout().n_nodes().max(1) as u64).clamp(1, plan.steps_per_output);
     let mut first = true;
+    let gpu = matches!(s, LumpedStepper::Gpu(_));
+    let mut saved_gpu = if gpu { s.checkpoint() } else { None };
     while s.steps() < target {
         if !first && stop() {
             return Ok(Chunked::Stopped);
         }
         first = false;
         let n = chunk.min(target - s.steps());
-        let saved = s.checkpoint();
+        let saved = if gpu { None } else { s.checkpoint() };
         let t0 = Instant::now();
         let r = s.advance(n);
-        if let (Err(e), Some(saved)) = (&r, saved) {
+        if let (Err(e), Some(saved)) = (&r, saved.or_else(|| saved_gpu.take())) {
             rewind_to_failure(s, saved, e, plan.dt);
         }
         *stepping += t0.elapsed().as_secs_f64();

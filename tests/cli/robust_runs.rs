@@ -202,6 +202,17 @@ output_positions = true
 
 #[test]
 fn a_blow_up_leaves_every_cable_at_the_failure_and_says_the_step_was_too_big() {
+    blow_up_case("cpu");
+}
+
+/// The same on the GPU path (lavapipe here): it reads a checkpoint back once per output
+/// interval and replays from it to the step before the failure.
+#[test]
+fn a_blow_up_on_the_gpu_leaves_every_cable_at_the_failure() {
+    blow_up_case("gpu");
+}
+
+fn blow_up_case(backend: &str) {
     let dir = tempfile::tempdir().unwrap();
     let scenario = catenary_and_midwater(dir.path());
     let check = Command::new(BIN)
@@ -214,7 +225,15 @@ fn a_blow_up_leaves_every_cable_at_the_failure_and_says_the_step_was_too_big() {
 
     let out = dir.path().join("out");
     let run = Command::new(BIN)
-        .args(["run", "-q", "--duration", "20", "--out"])
+        .args([
+            "run",
+            "-q",
+            "--duration",
+            "20",
+            "--backend",
+            backend,
+            "--out",
+        ])
         .arg(&out)
         .arg(&scenario)
         .output()
@@ -222,6 +241,7 @@ fn a_blow_up_leaves_every_cable_at_the_failure_and_says_the_step_was_too_big() {
     assert!(!run.status.success());
     let s = summary(&out);
     assert_eq!(s["status"], "diverged");
+    assert_eq!(s["backend"], backend);
     assert_eq!(s["dt_above_stable"], true);
     let (t, dt, steps) = (
         s["simulated_time"].as_f64().unwrap(),
@@ -280,7 +300,8 @@ fn an_output_directory_belongs_to_one_run() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     // An earlier run's files, a stale `completed` summary among them, are cleared even
-    // when the new run fails before writing anything (the ANCF model has no GPU path).
+    // when the new run fails before its first step (the ANCF model has no GPU path);
+    // that run writes its own `failed` summary.
     std::fs::create_dir(&out).unwrap();
     for f in ["winches.csv", "summary.json", "end_forces.csv"] {
         std::fs::write(out.join(f), "stale").unwrap();
@@ -298,9 +319,11 @@ fn an_output_directory_belongs_to_one_run() {
         .output()
         .unwrap();
     assert!(!r.status.success());
-    for f in ["winches.csv", "summary.json", "end_forces.csv"] {
+    for f in ["winches.csv", "end_forces.csv"] {
         assert!(!out.join(f).exists(), "{f} of the earlier run is left");
     }
+    // The summary is the failed start's, not the stale one.
+    assert_eq!(summary(&out)["status"], "failed");
     assert!(out.join(cablesim::output::MARKER_FILE).exists());
 
     // A folder holding anything else is refused, and nothing in it is touched.
@@ -457,6 +480,16 @@ fn a_zero_stable_step_or_absurd_work_is_refused_by_check_and_run() {
                 err.contains(field) && err.contains(what),
                 "{cmd} {to}: {err}"
             );
+            if cmd == "run" && field == "simulation.duration" {
+                // Refused after the output directory was claimed (the plan needs the
+                // initial state): a failed start still writes its summary.
+                let s = summary(&dir.path().join("out"));
+                assert_eq!(s["status"], "failed");
+                assert_eq!(s["steps"], 0);
+                assert_eq!(s["simulated_time"], 0.0);
+                let e = s["error"].as_str().unwrap();
+                assert!(e.contains(field) && e.contains(what), "{e}");
+            }
         }
     }
 }

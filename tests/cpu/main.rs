@@ -19,6 +19,7 @@ mod nets;
 mod packed;
 mod parallel;
 mod statics;
+mod stiff_statics;
 mod study;
 mod study_validation;
 mod water_surface;

@@ -39,7 +39,14 @@ fn without_an_adapter_gpu_fails_and_auto_falls_back() {
     let (ok, err, summary) = run_cli(&["--backend", "gpu"], Some("metal"));
     assert!(!ok, "--backend gpu without an adapter must fail");
     assert!(err.contains("no GPU adapter"), "{err}");
-    assert!(summary.is_none(), "no run without an adapter");
+    // The run failed before its first step: its summary says so, and why.
+    let s = summary.expect("a failed start writes summary.json");
+    assert_eq!(s["status"], "failed");
+    assert_eq!(s["steps"], 0);
+    assert!(
+        s["error"].as_str().unwrap().contains("no GPU adapter"),
+        "{s}"
+    );
     let (ok, err, summary) = run_cli(&["--backend", "auto"], Some("metal"));
     assert!(ok, "{err}");
     assert!(
