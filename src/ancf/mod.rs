@@ -154,12 +154,20 @@
 //! assert!(last[2] < -150.0 && top_force[2] < 0.0 && t_mid > 0.0);
 //! ```
 
+mod assembly;
 pub mod band;
 mod cable;
+mod config;
 pub mod element;
+mod readback;
 pub mod shape;
+mod stable_step;
+mod static_solver;
+#[cfg(test)]
+mod tests;
 
 pub use crate::options::AddedMass;
-pub use cable::{
-    AncfCable, AncfConfig, AncfEnd, AncfEnergy, StaticOptions, StaticReport, AUTO_SAFETY,
-};
+pub use cable::AncfCable;
+pub use config::{AncfConfig, AncfEnd, AUTO_SAFETY};
+pub use readback::AncfEnergy;
+pub use static_solver::{StaticOptions, StaticReport};

@@ -5,7 +5,9 @@
 //! TOML. docs/src/moordyn.md lists what is read, how each field maps and what is refused.
 
 pub mod convert;
+mod options;
 pub mod parse;
+mod tables;
 
 pub use convert::{convert, ConvertOptions, Converted, Warning};
 pub use parse::{looks_like_moordyn, parse, MoorDynFile, Version};

@@ -1,0 +1,258 @@
+//! The options section of a MoorDyn file read into the values cablesim uses (with the
+//! line each came from, for comments and warnings), and MoorDyn's steady current
+//! profile file.
+
+use super::convert::Warning;
+use super::err_at;
+use super::parse::MoorDynFile;
+use crate::error::Error;
+use std::path::Path;
+
+/// The options cablesim uses, with the line each came from (0: MoorDyn's default).
+pub(super) struct Opts {
+    pub(super) g: (f64, usize),
+    pub(super) rho: (f64, usize),
+    pub(super) depth: Option<(f64, usize)>,
+    pub(super) kbot: (f64, usize),
+    pub(super) cbot: (f64, usize),
+    pub(super) mu: Option<(f64, usize)>,
+    pub(super) mu_axial: Option<(f64, usize)>,
+    pub(super) fric_damp: Option<(f64, usize)>,
+    pub(super) dt_out: Option<(f64, usize)>,
+    pub(super) dt_m: Option<(f64, usize)>,
+    pub(super) cfl: Option<(f64, usize)>,
+    /// `Currents` 1 or 3 (a steady profile in `current_profile.txt`), and its line.
+    pub(super) currents: Option<(u8, usize)>,
+    pub(super) scheme: Option<(String, usize)>,
+    pub(super) ic: Vec<(String, String, usize)>,
+    pub(super) ignored: Vec<(String, usize)>,
+}
+
+pub(super) fn opt_num(p: &Path, line: usize, name: &str, value: &str) -> Result<f64, Error> {
+    match value.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(err_at(
+            p,
+            line,
+            format!("option {name}"),
+            format!("must be a number, got \"{value}\""),
+        )),
+    }
+}
+
+pub(super) fn read_options(
+    file: &MoorDynFile,
+    p: &Path,
+    warn: &mut Vec<Warning>,
+) -> Result<Opts, Error> {
+    // Defaults: MoorDyn-C's (MoorDyn2.cpp sets g = 9.80665 and rho = 1025, although
+    // its v2 documentation says g = 9.81; v1 documents 9.80665).
+    let g0 = 9.80665;
+    let mut o = Opts {
+        g: (g0, 0),
+        rho: (1025.0, 0),
+        depth: None,
+        kbot: (3.0e6, 0),
+        cbot: (3.0e5, 0),
+        mu: None,
+        mu_axial: None,
+        fric_damp: None,
+        dt_out: None,
+        dt_m: None,
+        cfl: None,
+        currents: None,
+        scheme: None,
+        ic: Vec::new(),
+        ignored: Vec::new(),
+    };
+    for r in &file.options {
+        let l = r.line;
+        let name = r.name.to_lowercase();
+        let val = r.value.as_str();
+        let n = || opt_num(p, l, &r.name, val);
+        // MoorDyn-F files may say DEFAULT (take OpenFAST's value); standalone, the
+        // default is MoorDyn-C's.
+        if val.eq_ignore_ascii_case("default") {
+            warn.push(Warning {
+                line: l,
+                message: format!(
+                    "{} = DEFAULT takes OpenFAST's value in MoorDyn-F; MoorDyn-C's default \
+                     is used",
+                    r.name
+                ),
+            });
+            continue;
+        }
+        match name.as_str() {
+            "dtm" | "dt" => o.dt_m = Some((n()?, l)),
+            "cfl" => o.cfl = Some((n()?, l)),
+            "tscheme" => o.scheme = Some((val.to_string(), l)),
+            "g" | "gravity" => o.g = (n()?, l),
+            "rho" | "rhow" | "wtrdnsty" => o.rho = (n()?, l),
+            "wtrdpth" | "depth" => match val.parse::<f64>() {
+                Ok(x) if x.is_finite() => o.depth = Some((x, l)),
+                _ => {
+                    return Err(err_at(
+                        p,
+                        l,
+                        format!("option {}", r.name),
+                        format!(
+                            "\"{val}\" is a bathymetry file; cablesim's seabed is a flat plane \
+                             (give the depth in metres)"
+                        ),
+                    ))
+                }
+            },
+            "kbot" | "kb" => o.kbot = (n()?, l),
+            "cbot" | "cb" => o.cbot = (n()?, l),
+            "frictioncoefficient" | "mu_kt" => o.mu = Some((n()?, l)),
+            "mu_ka" => o.mu_axial = Some((n()?, l)),
+            "fricdamp" | "cv" => o.fric_damp = Some((n()?, l)),
+            "statdynfricscale" | "mc" => {
+                let x = n()?;
+                if x != 1.0 {
+                    warn.push(Warning {
+                        line: l,
+                        message: format!(
+                            "{} = {x}: cablesim has one friction coefficient for sliding \
+                             and sticking (ratio 1)",
+                            r.name
+                        ),
+                    });
+                }
+            }
+            "dtout" => o.dt_out = Some((n()?, l)),
+            "dtic" | "icdt" | "tmaxic" | "ictmax" | "cdscaleic" | "icdfac" | "threshic"
+            | "icthresh" | "icgendynamic" | "gendynamicic" | "fileic" | "icfile" => {
+                o.ic.push((r.name.clone(), val.to_string(), l))
+            }
+            "wavekin" => {
+                if n()? != 0.0 {
+                    return Err(err_at(
+                        p,
+                        l,
+                        format!("option {}", r.name),
+                        format!(
+                            "WaveKin = {val}: MoorDyn's wave kinematics (grids, FFT, \
+                             component files) are not read; only still water converts"
+                        ),
+                    ));
+                }
+            }
+            "currents" => {
+                let mode = n()?;
+                if mode == 1.0 || mode == 3.0 {
+                    o.currents = Some((mode as u8, l));
+                } else if mode != 0.0 {
+                    return Err(err_at(
+                        p,
+                        l,
+                        format!("option {}", r.name),
+                        format!(
+                            "Currents = {val}: only steady profiles (1 or 3, read from \
+                             current_profile.txt) convert; MoorDyn's dynamic and 4D current \
+                             grids are not read"
+                        ),
+                    ));
+                }
+            }
+            "waterkin" => {
+                if !val.eq_ignore_ascii_case("null") && !val.is_empty() && val != "\"\"" {
+                    return Err(err_at(
+                        p,
+                        l,
+                        format!("option {}", r.name),
+                        format!("water kinematics file \"{val}\" is not read; only still water converts"),
+                    ));
+                }
+            }
+            "seafloorfile" => {
+                return Err(err_at(
+                    p,
+                    l,
+                    format!("option {}", r.name),
+                    "a 3D seafloor file is not supported: cablesim's seabed is a flat plane",
+                ))
+            }
+            "dtwave" | "unifycurrentgrid" | "writelog" | "writeunits" | "disableoutput"
+            | "disableouttime" | "outswitch" | "echo" | "inertialf" | "inertialf_rampt" => {
+                o.ignored.push((r.name.clone(), l))
+            }
+            _ => warn.push(Warning {
+                line: l,
+                message: format!("unknown option \"{}\" ignored", r.name),
+            }),
+        }
+    }
+    Ok(o)
+}
+
+/// MoorDyn's steady current profile: `current_profile.txt` in the model file's folder,
+/// three header lines, then rows `z ux [uy [uz]]` (m, m/s; missing components are 0),
+/// interpolated linearly in z and held beyond the ends, as cablesim's
+/// `current_profile` is. Returns the rows sorted by z, and the file's path.
+pub(super) fn read_current_profile(
+    p: &Path,
+    line: usize,
+) -> Result<(Vec<[f64; 4]>, String), Error> {
+    let file = p
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join("current_profile.txt");
+    let text = crate::input::read_text(&file).map_err(|e| {
+        err_at(
+            p,
+            line,
+            "option Currents",
+            format!("{}: {e}", file.display()),
+        )
+    })?;
+    let mut rows: Vec<([f64; 4], usize)> = Vec::new();
+    for (i, l) in text.lines().enumerate().skip(3) {
+        let f: Vec<&str> = l.split_whitespace().collect();
+        if f.is_empty() {
+            continue;
+        }
+        let mut r = [0.0; 4];
+        if f.len() < 2 {
+            return Err(err_at(&file, i + 1, "row", "needs at least z and ux"));
+        }
+        for (k, x) in f.iter().take(4).enumerate() {
+            r[k] = match x.parse::<f64>() {
+                Ok(v) if v.is_finite() => v,
+                _ => {
+                    return Err(err_at(
+                        &file,
+                        i + 1,
+                        ["z", "ux", "uy", "uz"][k],
+                        format!("must be a number, got \"{x}\""),
+                    ))
+                }
+            };
+        }
+        rows.push((r, i + 1));
+    }
+    if rows.is_empty() {
+        return Err(err_at(
+            &file,
+            0,
+            "rows",
+            "no rows after the three header lines",
+        ));
+    }
+    rows.sort_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+    for w in rows.windows(2) {
+        if w[0].0[0] == w[1].0[0] {
+            return Err(err_at(
+                &file,
+                w[1].1,
+                "z",
+                format!("depth {} is given twice", w[1].0[0]),
+            ));
+        }
+    }
+    Ok((
+        rows.into_iter().map(|r| r.0).collect(),
+        file.display().to_string(),
+    ))
+}
