@@ -17,6 +17,7 @@ mod dynamics;
 mod frames;
 mod nets;
 mod parallel;
+mod seabed_implicit;
 mod statics;
 mod study;
 mod study_validation;
