@@ -5,7 +5,11 @@
 //! internal damping (`gamma = c omega^2`), seabed contact (`omega^2 = K lt / m`,
 //! `gamma = C lt / m`) and, for constrained nodes, the Baumgarte gains
 //! (`omega^2 = alpha`, `gamma = beta`); regularised seabed friction is a damper of
-//! rate `mu F_N / (v_eps m)` with `F_N` the node's wet weight. `m` is the node's scalar mass without added
+//! rate `mu F_N / (v_eps m)` with `F_N` the node's wet weight. The symplectic scheme
+//! takes the seabed's damping and friction implicitly in the node solve
+//! (`(M + dt diag(c)) a = F`, docs/src/model/seabed.md), so for it they bound nothing
+//! and only the seabed stiffness counts; the Runge-Kutta schemes take them explicitly
+//! and keep their bounds. `m` is the node's scalar mass without added
 //! mass (the axial direction has none, and neither has anything above the water
 //! surface), so the estimate errs on the safe side. The
 //! modes of a node are summed for the symplectic scheme (damping only shrinks its step);
@@ -156,6 +160,9 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
     // (step, node, term) of the smallest step so far.
     let mut best: Option<(f64, usize, Term)> = None;
     let sb = lay.env.seabed;
+    // The symplectic node solve takes the seabed's damping and friction implicitly
+    // (cpu::stepper::implicit_dt and node_advance in shared/prelude.wgsl).
+    let contact_damping_bounds = scheme != Scheme::Symplectic;
     // Without a seabed (infinite depth) no node can touch one.
     let has_seabed = lay.env.depth.is_finite();
     let mut parts: Vec<(Mode, Term, u8)> = Vec::with_capacity(6);
@@ -224,7 +231,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                     1,
                 ));
             }
-            if has_seabed && lt > 0.0 && sb.damping > 0.0 {
+            if contact_damping_bounds && has_seabed && lt > 0.0 && sb.damping > 0.0 {
                 parts.push((
                     Mode {
                         omega2: 0.0,
@@ -236,7 +243,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
             }
             // Regularised friction is a viscous damper of slope mu F_N / v_eps below
             // v_eps; F_N is about the node's wet weight when it rests on the seabed.
-            if has_seabed && lt > 0.0 && sb.friction > 0.0 && wet > 0.0 {
+            if contact_damping_bounds && has_seabed && lt > 0.0 && sb.friction > 0.0 && wet > 0.0 {
                 parts.push((
                     Mode {
                         omega2: 0.0,

@@ -587,6 +587,24 @@ fn seabed_force(pen: R, lt: R, v: vec3<R>) -> vec3<R> {
     return f;
 }
 
+// The contact's damping slopes (c_h, c_h, c_z), N s/m, on a node penetrating by `pen`
+// with tributary length `lt`, moving at `v` (physics::seabed_damping): C lt normal, and
+// the regularised friction's mu F_N / max(|v_h|, v_eps); zero above the seabed.
+// node_advance takes them implicitly, so they do not bound the step.
+fn seabed_damping(pen: R, lt: R, v: vec3<R>) -> vec3<R> {
+    if !(pen > R(0.0)) {
+        return vec3<R>(R(0.0), R(0.0), R(0.0));
+    }
+    let cz = params.seabed_c * lt;
+    var ch = R(0.0);
+    if params.seabed_mu > R(0.0) {
+        let fnorm = params.seabed_k * lt * pen;
+        let speed = max(norm3(vec3<R>(v.x, v.y, R(0.0))), params.seabed_v_eps);
+        ch = params.seabed_mu * fnorm / speed;
+    }
+    return vec3<R>(ch, ch, cz);
+}
+
 // Target position (relative to the origin, as a compensated pair r_hi + r_lo),
 // velocity and acceleration of a route at `tau` seconds after the rebase time.
 struct RouteState {
@@ -818,6 +836,9 @@ fn variable_element(ep: ElemParams, lp: LineParams, py: Payout, d: vec3<R>, va: 
 struct NodeForce {
     f: vec3<R>,
     m: Sym3,
+    // The seabed's damping slopes (seabed_damping), which node_advance takes
+    // implicitly; zero off the seabed.
+    c: vec3<R>,
 }
 
 // The waves over node `i` at step `k` as its point mass's loads read them
@@ -840,7 +861,8 @@ fn point_waves(i: u32, nd: NodeParams, k: u32) -> WaveKin {
 fn gather_begin(nd: NodeParams, s: NodeState, blk: BlockParams, w: WaveKin) -> NodeForce {
     let dry = R(1.0) - point_wetted_fraction(w.eta + submergence(blk.oz, s), nd.point_radius);
     let wz = nd.point_weight_z - dry * (nd.point_displaced * params.gravity);
-    return NodeForce(vec3<R>(R(0.0), R(0.0), wz), sym3_scalar(nd.point_mass - dry * nd.point_added));
+    let zero = vec3<R>(R(0.0), R(0.0), R(0.0));
+    return NodeForce(vec3<R>(R(0.0), R(0.0), wz), sym3_scalar(nd.point_mass - dry * nd.point_added), zero);
 }
 
 // Adds the loads `el` of the element of incidence entry `entry` (element * 2 + side).
@@ -849,7 +871,7 @@ fn gather_add(nf: NodeForce, el: ElemLoads, entry: u32) -> NodeForce {
     let sign = select(R(1.0), R(-1.0), (entry & 1u) == 1u);
     let t = vec3<R>(el.tx, el.ty, el.tz);
     f += vec3<R>(el.fx, el.fy, el.fz) + t * (sign * el.tension);
-    return NodeForce(f, sym3_add_element(nf.m, el.half_mass, el.half_added, t));
+    return NodeForce(f, sym3_add_element(nf.m, el.half_mass, el.half_added, t), nf.c);
 }
 
 // The end of node `i`'s gather (block `blk`, state `s`, step `k` of the submission,
@@ -879,11 +901,13 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
             f += node_out[i].force.xyz;
         }
     }
+    var c = nf.c;
     if params.seabed != 0u {
         let pen = (blk.zb - s.r_hi.z) - s.r_lo.z;
         f += seabed_force(pen, trib, v);
+        c = seabed_damping(pen, trib, v);
     }
-    return NodeForce(f, nf.m);
+    return NodeForce(f, nf.m, c);
 }
 
 // Force and mass block of node `i`: its elements' loads and half masses gathered over
@@ -913,9 +937,15 @@ fn node_accel(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R, k: u32) -> ve
 }
 
 // Symplectic Euler from state `s` under `nf` at `tau` into the submission (its step
-// `k`): v += a dt; r += v dt (r kept as a compensated pair).
+// `k`): v += a dt; r += v dt (r kept as a compensated pair). The seabed's damping is
+// taken implicitly, linearised at this state: (M + dt diag(c)) a = F (CPU twin:
+// cpu::stepper node_accel_of with implicit_dt), so it does not bound the step.
 fn node_advance(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R, k: u32) -> NodeState {
-    let a = node_accel(nd, s, nf, tau, k);
+    var nfi = nf;
+    nfi.m.xx += params.dt * nf.c.x;
+    nfi.m.yy += params.dt * nf.c.y;
+    nfi.m.zz += params.dt * nf.c.z;
+    let a = node_accel(nd, s, nfi, tau, k);
     let vn = s.v.xyz + a * params.dt;
     let r = add_compensated(s.r_hi.xyz, s.r_lo.xyz, opaque3(vn * params.dt));
     return NodeState(vec4<R>(r[0], R(0.0)), vec4<R>(r[1], R(0.0)), vec4<R>(vn, R(0.0)));

@@ -15,6 +15,7 @@
 //!
 //! A test checks it against the general path (`tests/cpu/chain_kernel.rs`).
 
+use super::stepper::implicit_dt;
 use super::water::{node_water, BlockWaves, Water};
 use crate::ale::{mass_flow_forces, AleElem};
 use crate::math::V3;
@@ -370,23 +371,55 @@ fn element_kernel<const WAVES: bool>(
     }
 }
 
-/// Solves the chain node's mass block `s I - a1 t1 t1^T - a2 t2 t2^T` for `f`.
+/// Solves the chain node's mass block `D - a1 t1 t1^T - a2 t2 t2^T` for `f`, with
+/// `D = diag(d)`: the scalar mass `s` on the diagonal plus the seabed's implicit damping
+/// `dt c` (Woodbury identity with a diagonal `D`: a 2x2 system, written so that `a = 0`
+/// of a ghost element needs no division by it).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn solve_mass(s: f64, a1: f64, a2: f64, t1: [f64; 3], t2: [f64; 3], f: [f64; 3]) -> [f64; 3] {
-    let w1 = t1[0] * f[0] + t1[1] * f[1] + t1[2] * f[2];
-    let w2 = t2[0] * f[0] + t2[1] * f[1] + t2[2] * f[2];
-    let d = t1[0] * t2[0] + t1[1] * t2[1] + t1[2] * t2[2];
-    let (p, q) = (s - a1, s - a2);
-    let idet = 1.0 / (p * q - a1 * a2 * d * d);
-    let c1 = a1 * (q * w1 + a2 * d * w2) * idet;
-    let c2 = a2 * (p * w2 + a1 * d * w1) * idet;
-    let is = 1.0 / s;
+fn solve_mass(d: [f64; 3], a1: f64, a2: f64, t1: [f64; 3], t2: [f64; 3], f: [f64; 3]) -> [f64; 3] {
+    let id = [1.0 / d[0], 1.0 / d[1], 1.0 / d[2]];
+    let (u1, u2) = (
+        [t1[0] * id[0], t1[1] * id[1], t1[2] * id[2]],
+        [t2[0] * id[0], t2[1] * id[1], t2[2] * id[2]],
+    );
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (w1, w2) = (dot(u1, f), dot(u2, f));
+    let (g11, g22, g12) = (dot(u1, t1), dot(u2, t2), dot(u1, t2));
+    // (I - A G) c = A w with A = diag(a1, a2), G = U^T D^-1 U.
+    let (m11, m22) = (1.0 - a1 * g11, 1.0 - a2 * g22);
+    let (m12, m21) = (-a1 * g12, -a2 * g12);
+    let idet = 1.0 / (m11 * m22 - m12 * m21);
+    let (aw1, aw2) = (a1 * w1, a2 * w2);
+    let c1 = (m22 * aw1 - m12 * aw2) * idet;
+    let c2 = (m11 * aw2 - m21 * aw1) * idet;
     [
-        (f[0] + c1 * t1[0] + c2 * t2[0]) * is,
-        (f[1] + c1 * t1[1] + c2 * t2[1]) * is,
-        (f[2] + c1 * t1[2] + c2 * t2[2]) * is,
+        (f[0] + c1 * t1[0] + c2 * t2[0]) * id[0],
+        (f[1] + c1 * t1[1] + c2 * t2[1]) * id[1],
+        (f[2] + c1 * t1[2] + c2 * t2[2]) * id[2],
     ]
+}
+
+/// The seabed's damping slopes `(c_h, c_z)` on a chain node penetrating by `pen` and
+/// sliding at `(vx, vy)` (physics::seabed_damping): `C lt` normal, and the regularised
+/// friction's `mu K lt pen / max(|v_h|, v_eps)`; zero off the seabed.
+#[inline(always)]
+fn contact_slopes<const FRICTION: bool>(
+    pen: f64,
+    vx: f64,
+    vy: f64,
+    cl: f64,
+    mukl: f64,
+    v_eps: f64,
+) -> (f64, f64) {
+    let on = pen > 0.0;
+    let cz = if on { cl } else { 0.0 };
+    let ch = if FRICTION && on {
+        mukl * pen / (vx * vx + vy * vy).sqrt().max(v_eps)
+    } else {
+        0.0
+    };
+    (ch, cz)
 }
 
 /// Node pass: accelerations of every node into `a`, with constraints and point drag
@@ -407,15 +440,26 @@ fn nodes<const FRICTION: bool>(
     a: &mut [Vec<f64>; 3],
 ) {
     let [ax, ay, az] = a;
+    // The symplectic scheme takes the seabed's damping implicitly (stepper::implicit_dt).
+    let h = implicit_dt(opts);
     node_kernel::<FRICTION>(
-        c, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2], m.pm,
-        m.pwz, m.hm, m.ha, m.kl, m.cl, m.mukl, ax, ay, az,
+        c, h, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2],
+        m.pm, m.pwz, m.hm, m.ha, m.kl, m.cl, m.mukl, ax, ay, az,
     );
-    // The solve is linear: a node's extra force F adds M^-1 F to its acceleration.
+    // The solve is linear: a node's extra force F adds M^-1 F to its acceleration
+    // (M with the same implicit damping as the node loop's).
     let add = |a: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
         let s = m.pm[i] + m.hm[i] + m.hm[i + 1] + m.ha[i] + m.ha[i + 1];
+        let (ch, cz) = contact_slopes::<FRICTION>(
+            c.zb - p[2][i],
+            p[3][i],
+            p[4][i],
+            m.cl[i],
+            m.mukl[i],
+            c.v_eps,
+        );
         let d = solve_mass(
-            s,
+            [s + h * ch, s + h * ch, s + h * cz],
             m.ha[i],
             m.ha[i + 1],
             [tv[0][i], tv[1][i], tv[2][i]],
@@ -480,6 +524,7 @@ fn nodes<const FRICTION: bool>(
 #[allow(clippy::too_many_arguments)]
 fn node_kernel<const FRICTION: bool>(
     c: &ChainConsts,
+    h: f64,
     z: &[f64],
     vx: &[f64],
     vy: &[f64],
@@ -518,20 +563,16 @@ fn node_kernel<const FRICTION: bool>(
         let mut gz = fz[j] + fz[k] - tn[j] * tz[j] + tn[k] * tz[k] + pwz[i];
         let pen = zb - z[i];
         let on = pen > 0.0;
-        gz += if on { kl[i] * pen - cl[i] * vz[i] } else { 0.0 };
+        let (ch, cz) = contact_slopes::<FRICTION>(pen, vx[i], vy[i], cl[i], mukl[i], v_eps);
+        gz += if on { kl[i] * pen - cz * vz[i] } else { 0.0 };
         if FRICTION {
-            let vh = (vx[i] * vx[i] + vy[i] * vy[i]).sqrt();
-            let fr = if on {
-                mukl[i] * pen / vh.max(v_eps)
-            } else {
-                0.0
-            };
-            gx -= fr * vx[i];
-            gy -= fr * vy[i];
+            gx -= ch * vx[i];
+            gy -= ch * vy[i];
         }
+        // Seabed damping and friction implicit: (M + h diag(c_h, c_h, c_z)) a = F.
         let s = pm[i] + hm[j] + hm[k] + ha[j] + ha[k];
         let acc = solve_mass(
-            s,
+            [s + h * ch, s + h * ch, s + h * cz],
             ha[j],
             ha[k],
             [tx[j], ty[j], tz[j]],

@@ -9,8 +9,8 @@ use crate::model::{Block, Layout, ModelDef, Route, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{
-    glmf_element_wet, point_wetted_fraction, seabed_force, wetted_fraction, Coefs, ElementInput,
-    ElementLoads, SeabedCoefs,
+    glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force, wetted_fraction, Coefs,
+    ElementInput, ElementLoads, SeabedCoefs,
 };
 use crate::sea::cache::{evaluate_nodes, CACHE_STRIDE};
 use crate::sea::kinematics::WaveField;
@@ -42,6 +42,10 @@ struct Ctx<'a> {
     uniform_current: &'a [Option<V>],
     /// Gravity, m/s^2 (the dry weight of what is above the water surface).
     gravity: f64,
+    /// The step with which the seabed's damping terms are taken implicitly in the
+    /// node solve, `(M + h diag(c)) a = F` (the symplectic scheme: `h = dt`); 0 for
+    /// the explicit acceleration (Runge-Kutta stages, evaluation).
+    implicit_dt: f64,
 }
 
 /// The f64 reference solver: layout, state, and scratch.
@@ -440,6 +444,7 @@ impl CpuSolver {
             elem_in_cable: &self.elem_in_cable,
             uniform_current: &self.uniform_current,
             gravity: self.layout.env.gravity,
+            implicit_dt: 0.0,
         }
     }
 
@@ -458,6 +463,7 @@ impl CpuSolver {
             elem_in_cable: &self.elem_in_cable,
             uniform_current: &self.uniform_current,
             gravity: self.layout.env.gravity,
+            implicit_dt: implicit_dt(&self.opts),
         };
         let blocks = &self.layout.blocks;
         let chain_consts = &self.chain_consts;
@@ -1122,7 +1128,18 @@ fn node_accel_of<T: Topo>(
     f += seabed_force(&ctx.seabed, trib, ri, vi);
     let c = lay.node_constraint[i];
     let a = if c == NO_CONSTRAINT {
-        m.solve(f)
+        if ctx.implicit_dt > 0.0 {
+            // The seabed's damping taken implicitly (linearised at this state), so it
+            // does not bound the step: (M + dt diag(c)) a = F.
+            let cd = seabed_damping(&ctx.seabed, trib, ri, vi) * ctx.implicit_dt;
+            let mut mi = m;
+            mi.xx += cd.x;
+            mi.yy += cd.y;
+            mi.zz += cd.z;
+            mi.solve(f)
+        } else {
+            m.solve(f)
+        }
     } else {
         let d = lay.routes[c as usize].eval(t);
         let bg = ctx.opts.baumgarte;
@@ -1130,6 +1147,18 @@ fn node_accel_of<T: Topo>(
         ad - (vi - vd) * bg.beta - (ri - rd) * bg.alpha
     };
     (a, f, m)
+}
+
+/// The step with which a scheme takes the seabed's damping implicitly: the
+/// symplectic scheme's `dt`; 0 (explicit) for the Runge-Kutta schemes, whose stages
+/// need the ODE's own acceleration (their stable step keeps the seabed's damping:
+/// [`crate::stability`]).
+pub(crate) fn implicit_dt(opts: &SolverOptions) -> f64 {
+    if opts.scheme == Scheme::Symplectic {
+        opts.dt
+    } else {
+        0.0
+    }
 }
 
 /// Checks a node's new state; `None` when sane ([`crate::step::blow_up`]).

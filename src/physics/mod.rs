@@ -10,5 +10,5 @@ pub use element::{
     axial_force, glmf_element, glmf_element_wet, glmf_external, glmf_external_wet, Coefs,
     ElementInput, ElementLoads, ExternalLoads,
 };
-pub use seabed::{seabed_force, SeabedCoefs};
+pub use seabed::{seabed_damping, seabed_force, SeabedCoefs};
 pub use surface::{point_wetted_fraction, sphere_radius, wetted_fraction};

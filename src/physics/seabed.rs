@@ -39,6 +39,31 @@ pub fn seabed_force<T: Real>(s: &SeabedCoefs<T>, lt: T, r: V3<T>, v: V3<T>) -> V
     f
 }
 
+/// The contact's damping slopes on a node at `r` moving at `v` (tributary length
+/// `lt`): `(c_h, c_h, c_z)`, N s/m, with `c_z = C lt` (normal damping) and
+/// `c_h = mu F_N / max(|v_h|, v_eps)` (the regularised friction as a damper, its slope
+/// at the node's current speed), so that the damping part of [`seabed_force`] is
+/// `-(c_h v_x, c_h v_y, c_z v_z)`. Zero above the seabed.
+///
+/// The symplectic stepper treats these terms implicitly: it solves
+/// `(M + dt diag(c)) a = F` instead of `M a = F` (docs/src/model/seabed.md), so the
+/// contact's damping does not bound the explicit step.
+#[inline(always)]
+pub fn seabed_damping<T: Real>(s: &SeabedCoefs<T>, lt: T, r: V3<T>, v: V3<T>) -> V3<T> {
+    let pen = s.z - r.z;
+    if pen <= T::zero() {
+        return V3::zero();
+    }
+    let cz = s.c * lt;
+    let mut ch = T::zero();
+    if s.mu > T::zero() {
+        let fnorm = s.k * lt * pen;
+        let speed = V3::new(v.x, v.y, T::zero()).norm().max(s.v_eps);
+        ch = s.mu * fnorm / speed;
+    }
+    V3::new(ch, ch, cz)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -57,6 +82,12 @@ mod tests {
         assert_eq!((up.x, up.y), (0.0, 0.0));
         let sliding = seabed_force(&s, 2.0, V3::new(0.0, 0.0, -100.01), V3::new(1.0, 0.0, 0.0));
         assert!((sliding.x + 0.5 * up.z).abs() < 1e-6);
+        // The damping slopes reproduce the force's damping part.
+        let v = V3::new(0.3, -0.4, 0.2);
+        let c = seabed_damping(&s, 2.0, V3::new(0.0, 0.0, -100.01), v);
+        let f = seabed_force(&s, 2.0, V3::new(0.0, 0.0, -100.01), v);
+        assert!((f.x + c.x * v.x).abs() < 1e-9 && (f.y + c.y * v.y).abs() < 1e-9);
+        assert!((f.z - up.z + c.z * v.z).abs() < 1e-9);
         let above = seabed_force(&s, 2.0, V3::new(0.0, 0.0, -99.0), V3::new(1.0, 0.0, -1.0));
         assert_eq!(above, V3::zero());
     }

@@ -100,7 +100,7 @@ fn step_above_the_bound_warns_and_blow_up_is_named() {
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("above the stable step") && err.contains("set by seabed damping"),
+        err.contains("above the stable step") && err.contains("set by axial waves"),
         "{err}"
     );
     assert!(

@@ -18,6 +18,7 @@ mod frames;
 mod nets;
 mod packed;
 mod parallel;
+mod seabed_implicit;
 mod statics;
 mod stiff_statics;
 mod study;

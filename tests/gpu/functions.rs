@@ -15,7 +15,9 @@ use cablesim::gpu::solver::{rebased_route, route_samples};
 use cablesim::gpu::{shaders, GpuContext, Precision};
 use cablesim::math::{Sym3, V3};
 use cablesim::model::{Current, Route};
-use cablesim::physics::{glmf_element, seabed_force, Coefs, ElementInput, SeabedCoefs};
+use cablesim::physics::{
+    glmf_element, seabed_damping, seabed_force, Coefs, ElementInput, SeabedCoefs,
+};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -71,6 +73,16 @@ fn t_seabed(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let b = i * 5u;
     v3out(i * 3u, seabed_force(tin[b], tin[b + 1u], v3in(b + 2u)));
+}
+
+@compute @workgroup_size(64)
+fn t_seabed_damping(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 5u {
+        return;
+    }
+    let b = i * 5u;
+    v3out(i * 3u, seabed_damping(tin[b], tin[b + 1u], v3in(b + 2u)));
 }
 
 @compute @workgroup_size(64)
@@ -493,6 +505,34 @@ fn check_seabed<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
         let o: Vec<f64> = out[3 * i..3 * i + 3].iter().map(|v| v.f64()).collect();
         w.v("force", i, &o, f, scale);
     }
+    w.report(p);
+    // The damping slopes node_advance takes implicitly, on the same inputs.
+    let out = run::<R>(
+        ctx,
+        p,
+        "t_seabed_damping",
+        &[(0, params::<R>(k, c, mu, v_eps))],
+        &xr,
+        n,
+        3 * n,
+    );
+    let mut w = Worst::new::<R>("seabed_damping");
+    let mut sliding = 0;
+    for i in 0..n {
+        let a = &x[5 * i..5 * (i + 1)];
+        let (pen, lt, v) = (a[0], a[1], V3::new(a[2], a[3], a[4]));
+        let d = seabed_damping(&sc, lt, V3::new(0.0, 0.0, -pen), v);
+        if d.x > 0.0 {
+            sliding += 1;
+        }
+        let scale = sc.c * lt + sc.mu * sc.k * lt * pen.abs() / sc.v_eps;
+        let o: Vec<f64> = out[3 * i..3 * i + 3].iter().map(|v| v.f64()).collect();
+        w.v("slopes", i, &o, d, scale);
+    }
+    assert!(
+        sliding > n / 2,
+        "{sliding} of {n} nodes in contact with friction"
+    );
     w.report(p);
 }
 

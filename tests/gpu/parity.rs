@@ -273,6 +273,27 @@ fn gpu_f64_matches_cpu_f64_on_a_line() {
     compare(&ctx, "line", lay, &pos, opts, steps, wire().ea);
 }
 
+/// The same line at its automatic step (0.8 of the axial waves' bound, 4x the step the
+/// seabed's damping allowed when it was explicit): the grounded nodes, sliding and
+/// creeping under friction, take the contact's damping implicitly on both paths.
+#[test]
+fn gpu_f64_matches_cpu_f64_on_a_line_at_its_auto_step() {
+    let Some(ctx) = gpu_context("gpu_f64_matches_cpu_f64_on_a_line_at_its_auto_step", true) else {
+        return;
+    };
+    let (lay, pos) = line_model();
+    let bound = cablesim::stability::stable_step(&lay, Default::default(), Default::default());
+    assert!(bound.term.starts_with("axial waves"), "{}", bound.term);
+    let opts = SolverOptions {
+        dt: cablesim::stability::AUTO_SAFETY * bound.dt,
+        ..Default::default()
+    };
+    let zb = -lay.env.depth;
+    let grounded = pos.iter().filter(|p| p[2] < zb).count();
+    assert!(grounded >= 3, "{grounded} nodes on the seabed");
+    compare(&ctx, "line, auto step", lay, &pos, opts, 2000, wire().ea);
+}
+
 #[test]
 fn gpu_f64_matches_cpu_f64_on_a_net() {
     let Some(ctx) = gpu_context("gpu_f64_matches_cpu_f64_on_a_net", true) else {

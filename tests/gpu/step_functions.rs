@@ -22,7 +22,7 @@ use cablesim::gpu::solver::rebased_route;
 use cablesim::gpu::{GpuContext, Precision};
 use cablesim::math::{Sym3, V3};
 use cablesim::model::{Current, Route};
-use cablesim::physics::{seabed_force, SeabedCoefs};
+use cablesim::physics::{seabed_damping, seabed_force, SeabedCoefs};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -71,7 +71,8 @@ fn t_gather(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let b = i * 10u;
     let nf = gather_node(i, nodes[i], state_in(b), u32(tin[b + 9u]));
-    let o = i * 9u;
+    let o = i * 12u;
+    v3out(o + 9u, nf.c);
     v3out(o, nf.f);
     tout[o + 3u] = nf.m.xx;
     tout[o + 4u] = nf.m.yy;
@@ -87,9 +88,9 @@ fn t_advance(@builtin(global_invocation_id) gid: vec3<u32>) {
     if i >= params.n_nodes {
         return;
     }
-    let b = i * 19u;
+    let b = i * 22u;
     let m = Sym3(tin[b + 12u], tin[b + 13u], tin[b + 14u], tin[b + 15u], tin[b + 16u], tin[b + 17u]);
-    let sn = node_advance(nodes[i], state_in(b), NodeForce(v3in(b + 9u), m), tin[b + 18u], 0u); // step 0 of a submission: no body rows here
+    let sn = node_advance(nodes[i], state_in(b), NodeForce(v3in(b + 9u), m, v3in(b + 19u)), tin[b + 18u], 0u); // step 0 of a submission: no body rows here
     let o = i * 9u;
     v3out(o, sn.r_hi.xyz);
     v3out(o + 3u, sn.r_lo.xyz);
@@ -480,7 +481,7 @@ fn check_gather<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
         (19, bytes(&[R::c(0.0)])),
         (20, bytes(&vec![WaveStep::<R>::default(); rows])),
     ];
-    let out = run(ctx, p, "t_gather", &group0, &x, n, 9 * n);
+    let out = run(ctx, p, "t_gather", &group0, &x, n, 12 * n);
     let mut w = Worst::new::<R>("gather_node (gather_begin, gather_add, gather_end)");
     let v3r = |a: [R; 4]| V3::new(a[0].f64(), a[1].f64(), a[2].f64());
     let (mut contact, mut drag, mut flow) = (0, 0, 0);
@@ -538,7 +539,11 @@ fn check_gather<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
         }
         f += fs;
         f_scale += sb.k * trib * (zb - ri.z).abs() * (1.0 + sb.mu) + sb.c * trib * vi.z.abs();
-        let o = &out[9 * i..9 * i + 9];
+        // The damping slopes node_advance takes implicitly (physics::seabed_damping).
+        let cd = seabed_damping(&sbi, trib, ri, vi);
+        let c_scale = sb.c * trib + sb.mu * sb.k * trib * (zb - ri.z).abs() / sb.v_eps;
+        let o = &out[12 * i..12 * i + 12];
+        w.v("damping", i, &o[9..12], cd, c_scale.max(f64::MIN_POSITIVE));
         w.v("force", i, &o[0..3], f, f_scale.max(f64::MIN_POSITIVE));
         for (q, r) in [m.xx, m.yy, m.zz, m.xy, m.xz, m.yz].into_iter().enumerate() {
             w.check("mass", i, o[3 + q], r, m_scale.max(f64::MIN_POSITIVE));
@@ -621,6 +626,16 @@ fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
         x.extend(fr);
         x.extend(mr);
         x.push(R::c(tau));
+        // The seabed's damping slopes (c_h, c_h, c_z), taken implicitly: none on a
+        // third of the nodes, up to dt c = 50 s (far beyond an explicit step) on others.
+        let cd = if i % 3 == 0 {
+            [0.0; 3]
+        } else {
+            let ch = rng.gen_range(0.0..1e5);
+            [ch, ch, rng.gen_range(0.0..1e5)]
+        };
+        let (cr, cg) = to_r::<R>(&cd);
+        x.extend(cr);
         nodes.push(NodeParams::<R> {
             constraint: if driven {
                 routes.len() as u32
@@ -652,6 +667,7 @@ fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
             mg,
             s,
             a_tot,
+            v3(&cg),
         ));
     }
     let samples = vec![RouteSample::<R>::default()];
@@ -666,7 +682,8 @@ fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
     let out = run(ctx, p, "t_advance", &group0, &x, n, 9 * n);
     let mut w = Worst::new::<R>("node_advance (node_accel: mass solve, Baumgarte)");
     let (alpha, beta, dt) = (R::c(400.0).f64(), R::c(40.0).f64(), R::c(dt).f64());
-    for (i, (driven, route, t0, tau, origin, r, v, f, m, s, a_tot)) in cases.into_iter().enumerate()
+    for (i, (driven, route, t0, tau, origin, r, v, f, m, s, a_tot, cd)) in
+        cases.into_iter().enumerate()
     {
         // cpu::stepper node_accel_of, then the symplectic arm of advance_block_in.
         let (a, a_scale) = if driven {
@@ -705,8 +722,14 @@ fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
         } else {
             // Eigenvalues in [s, s + a_tot]: the solve's error is the condition number
             // squared times eps times |f| / s (`functions`, mass block).
-            let cond = (s + a_tot) / s;
-            (m.solve(f), cond * cond * f.norm() / s)
+            // The seabed's damping implicit (cpu::stepper node_accel_of with
+            // implicit_dt): (M + dt diag(c)) a = F.
+            let mut mi = m;
+            mi.xx += dt * cd.x;
+            mi.yy += dt * cd.y;
+            mi.zz += dt * cd.z;
+            let cond = (s + a_tot + dt * cd.x.max(cd.z)) / s;
+            (mi.solve(f), cond * cond * f.norm() / s)
         };
         let vn = v + a * dt;
         let rn = r + vn * dt;
