@@ -59,7 +59,7 @@ impl Term {
         let sb = lay.env.seabed;
         let element = |e: usize, l0: f64| {
             let (_, ek) = lay.describe_element(e);
-            format!("(element {ek}, l0 = {l0:.4e} m)")
+            format!("(element {ek}, l0 = {l0:.4} m)")
         };
         match self {
             Term::Baumgarte => format!("the Baumgarte gains at cable '{cable}' node {node}"),
