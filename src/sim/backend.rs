@@ -164,9 +164,10 @@ impl LumpedStepper {
         Ok(s)
     }
 
-    /// A copy of the state to go back to ([`LumpedStepper::restore`]): without
-    /// winches (whose mesh changes), else `None`. The GPU path reads its state back
-    /// (one download per call); should that fail, `None`.
+    /// A copy of the state to go back to ([`LumpedStepper::restore`]). The CPU path
+    /// always has one (the whole solver where the mesh or the waves' cache carry state);
+    /// the GPU path reads its state back (one download per call), and has none with
+    /// winches (whose mesh changes) or should the download fail.
     pub fn checkpoint(&mut self) -> Option<Checkpoint> {
         match self {
             LumpedStepper::Cpu(s) => s.checkpoint().map(Checkpoint::Cpu),

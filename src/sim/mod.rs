@@ -580,7 +580,7 @@ enum Chunked {
 /// request answered on big runs without cutting the blocks' long runs too short.
 ///
 /// On a blow-up the blocks of a chunk stand at different steps (each steps on its own
-/// until it fails or finishes). Where the state can be put back (without winches),
+/// until it fails or finishes). Where the state can be put back (the CPU path always; the GPU path without winches),
 /// the stretch is stepped again from a checkpoint up to the step before the failure, so
 /// that every cable is at that one time, the last state that exists. The CPU path
 /// keeps a checkpoint per chunk (a copy in memory); the GPU path one per call (an

@@ -295,6 +295,65 @@ fn blow_up_case(backend: &str) {
     assert_eq!(last[5].parse::<f64>().unwrap(), mid[2].as_f64().unwrap());
 }
 
+/// A winch cable (its mesh changes as it pays out) that blows up: the summary's time
+/// and steps are the step before the failure, and the last frame and `winches.csv`
+/// stand there too (the CPU path checkpoints the whole solver, mesh and payout).
+#[test]
+fn a_blow_up_of_a_winch_cable_leaves_it_at_the_failure() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/winch_deploy.toml"),
+    )
+    .unwrap()
+    .replace(
+        "output_interval = 1.0",
+        "output_interval = 10.0\nmax_speed = 0.3",
+    );
+    let scenario = dir.path().join("winch_blow.toml");
+    std::fs::write(&scenario, text).unwrap();
+    let out = dir.path().join("out");
+    let run = Command::new(BIN)
+        .args(["run", "-q", "--backend", "cpu", "--out"])
+        .arg(&out)
+        .arg(&scenario)
+        .output()
+        .unwrap();
+    assert!(!run.status.success());
+    let s = summary(&out);
+    assert_eq!(s["status"], "diverged");
+    let (t, dt, steps) = (
+        s["simulated_time"].as_f64().unwrap(),
+        s["dt"].as_f64().unwrap(),
+        s["steps"].as_u64().unwrap(),
+    );
+    let err = s["error"].as_str().unwrap();
+    let t_fail: f64 = err
+        .split("diverged at t = ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("no failure time in {err}"));
+    // The failure falls inside the first output interval (10 s), so a summary at the
+    // interval's end would be caught here.
+    assert!(t_fail < 10.0, "{err}");
+    assert!(
+        (t - steps as f64 * dt).abs() < 1e-9,
+        "t = {t}, {steps} steps"
+    );
+    assert!(
+        (t_fail - t - dt).abs() < 1e-6,
+        "failure at {t_fail}, state at {t}"
+    );
+    for file in ["positions.csv", "winches.csv"] {
+        let rows = assert_whole_rows(&out.join(file));
+        let tl: f64 = rows.last().unwrap()[0].parse().unwrap();
+        assert!(
+            (tl - t).abs() < 1e-9,
+            "{file}: last frame at {tl}, summary at {t}"
+        );
+    }
+}
+
 #[test]
 fn an_output_directory_belongs_to_one_run() {
     let dir = tempfile::tempdir().unwrap();
