@@ -457,6 +457,9 @@ trait Engine: Send {
     fn download(&mut self, host: &Host) -> Result<NodeStates, Error>;
     /// Writes positions and velocities.
     fn upload(&mut self, host: &Host, r: &[[f64; 3]], v: &[[f64; 3]]);
+    /// Starts the waves' kinematics cache afresh at the next step (after the state was
+    /// put back to an earlier time).
+    fn restart_waves(&mut self);
     /// Loads, accelerations and reactions at step `step`.
     fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error>;
     /// Where the host's time went in `advance` so far.
@@ -1484,6 +1487,12 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         Ok((r, v))
     }
 
+    fn restart_waves(&mut self) {
+        if let Some(w) = self.waves.as_mut() {
+            w.restart();
+        }
+    }
+
     fn upload(&mut self, host: &Host, r: &[[f64; 3]], v: &[[f64; 3]]) {
         let st: Vec<NodeState<R>> = (0..self.inst.n_nodes)
             .map(|i| {
@@ -1879,6 +1888,9 @@ impl GpuSolver {
         self.node_steps = cp.node_steps;
         self.t = self.steps as f64 * self.opts.dt;
         self.engine.upload(&self.host, &cp.r, &cp.v);
+        // The cache holds values for times ahead of the state now: it starts afresh
+        // (so a replay agrees with the first pass within the cache's tolerance).
+        self.engine.restart_waves();
     }
 
     /// Replaces node positions and velocities (packed order).
