@@ -251,30 +251,46 @@ fn elements<const WAVES: bool>(
     let ne = c.l0.len();
     let [tx, ty, tz] = t;
     let [fx, fy, fz] = f;
-    element_kernel::<WAVES>(
-        &p[0][..ne + 1],
-        &p[1][..ne + 1],
-        &p[2][..ne + 1],
-        &p[3][..ne + 1],
-        &p[4][..ne + 1],
-        &p[5][..ne + 1],
-        &u[0][..ne],
-        &u[1][..ne],
-        &u[2][..ne],
-        &aw[0][..ne],
-        &aw[1][..ne],
-        &aw[2][..ne],
-        &eta[..ne + 1],
-        c,
-        &mut tx[1..ne + 1],
-        &mut ty[1..ne + 1],
-        &mut tz[1..ne + 1],
-        &mut ten[1..ne + 1],
-        &mut fx[1..ne + 1],
-        &mut fy[1..ne + 1],
-        &mut fz[1..ne + 1],
-        &mut haw[1..ne + 1],
-    );
+    // Every node at or below the surface (the common case: a line in still water, or
+    // deep in waves) makes every wetted fraction exactly 1 (`wetted_fraction`'s first
+    // case), so the loop without it gives the same bits, and stays vectorised.
+    let submerged = eta[..ne + 1]
+        .iter()
+        .zip(&p[2][..ne + 1])
+        .fold(true, |all, (e, z)| all & (e - z >= 0.0));
+    macro_rules! kernel {
+        ($submerged:literal) => {
+            element_kernel::<WAVES, $submerged>(
+                &p[0][..ne + 1],
+                &p[1][..ne + 1],
+                &p[2][..ne + 1],
+                &p[3][..ne + 1],
+                &p[4][..ne + 1],
+                &p[5][..ne + 1],
+                &u[0][..ne],
+                &u[1][..ne],
+                &u[2][..ne],
+                &aw[0][..ne],
+                &aw[1][..ne],
+                &aw[2][..ne],
+                &eta[..ne + 1],
+                c,
+                &mut tx[1..ne + 1],
+                &mut ty[1..ne + 1],
+                &mut tz[1..ne + 1],
+                &mut ten[1..ne + 1],
+                &mut fx[1..ne + 1],
+                &mut fy[1..ne + 1],
+                &mut fz[1..ne + 1],
+                &mut haw[1..ne + 1],
+            )
+        };
+    }
+    if submerged {
+        kernel!(true)
+    } else {
+        kernel!(false)
+    }
 }
 
 /// The element loop. Every array is its own parameter: `&mut [f64]` parameters are
@@ -282,7 +298,7 @@ fn elements<const WAVES: bool>(
 /// reached through one `&mut [Vec<f64>; 3]` would need run-time overlap checks).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn element_kernel<const WAVES: bool>(
+fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
     x: &[f64],
     y: &[f64],
     z: &[f64],
@@ -348,7 +364,11 @@ fn element_kernel<const WAVES: bool>(
         let vt = ex * rx + ey * ry + ez * rz;
         let (nx, ny, nz) = (rx - ex * vt, ry - ey * vt, rz - ez * vt);
         // Water terms times the wetted fraction; the dry part loses its buoyancy.
-        let wet = wetted_fraction(eta[k] - z[k], eta[k + 1] - z[k + 1], diam[k]);
+        let wet = if SUBMERGED {
+            1.0
+        } else {
+            wetted_fraction(eta[k] - z[k], eta[k + 1] - z[k + 1], diam[k])
+        };
         let kn = dn[k] * l * (nx * nx + ny * ny + nz * nz).sqrt() * wet;
         let kt = dt[k] * l * vt.abs() * vt * wet;
         // Half of drag, plus half the weight less buoyancy (no water acceleration yet).
