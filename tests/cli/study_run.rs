@@ -403,3 +403,32 @@ fn slurm_script_runs_shards_and_merges_to_the_one_machine_files() {
     run(2, &["study", "run", STUDY, "-q"], &whole);
     same_tables(&whole, &runs);
 }
+
+/// `study slurm --backend/--precision/--batch` hands those options to every task's
+/// `study run` (and only those given); the default is the CPU.
+#[test]
+fn slurm_tasks_get_the_backend_options() {
+    let tmp = tempfile::tempdir().unwrap();
+    let task_line = |extra: &[&str]| {
+        let out = tmp.path().join(format!("runs{}", extra.len()));
+        let mut args = vec!["study", "slurm", STUDY, "--shards", "2"];
+        args.extend_from_slice(extra);
+        ok(cablesim(1, &args).arg("--out").arg(&out).output().unwrap());
+        let text = std::fs::read_to_string(out.join("submit.sh")).unwrap();
+        text.lines()
+            .find(|l| l.contains("study run"))
+            .unwrap_or_else(|| panic!("no study run line in {text}"))
+            .to_string()
+    };
+    let gpu = task_line(&["--backend", "gpu", "--precision", "f64", "--batch", "3"]);
+    assert!(
+        gpu.contains("--resume --backend gpu --precision f64 --batch 3 "),
+        "{gpu}"
+    );
+    let cpu = task_line(&[]);
+    assert!(cpu.contains("--resume --backend cpu "), "{cpu}");
+    assert!(
+        !cpu.contains("--precision") && !cpu.contains("--batch"),
+        "{cpu}"
+    );
+}

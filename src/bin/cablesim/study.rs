@@ -8,7 +8,7 @@ use cablesim::study::{
     merge, summarise, tables, MemberResult, MemberStatus, PackedRun, RunDir, RunState, RunStatus,
     ShardResult, ShardSpec, StudyFile, StudyRunner,
 };
-use clap::Subcommand;
+use clap::{Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
@@ -79,6 +79,16 @@ pub enum StudyCmd {
         /// The cablesim binary the jobs run (default: this one).
         #[arg(long)]
         cablesim: Option<PathBuf>,
+        /// Where each task runs its members (as `study run --backend`; gpu needs a GPU
+        /// on the nodes: ask for it in SBATCH_ARGS, e.g. --gres=gpu:1).
+        #[arg(long, value_enum, default_value = "cpu")]
+        backend: Backend,
+        /// GPU shader precision of the tasks' packed runs (as `study run --precision`).
+        #[arg(long, value_enum)]
+        precision: Option<Precision>,
+        /// Members per packed run in each task (as `study run --batch`).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+        batch: Option<u64>,
     },
 }
 
@@ -110,7 +120,23 @@ pub fn main(cmd: StudyCmd) -> Result<RunOutcome> {
             out,
             script,
             cablesim,
-        } => slurm(&file, shards, out, script, cablesim).map(|()| RunOutcome::Done),
+            backend,
+            precision,
+            batch,
+        } => {
+            // The options each task's `study run` gets, as the command line spells them.
+            let name = |v: &dyn Fn() -> Option<clap::builder::PossibleValue>| {
+                v().map(|p| p.get_name().to_string()).unwrap_or_default()
+            };
+            let mut run_args = format!(" --backend {}", name(&|| backend.to_possible_value()));
+            if let Some(p) = precision {
+                run_args += &format!(" --precision {}", name(&|| p.to_possible_value()));
+            }
+            if let Some(b) = batch {
+                run_args += &format!(" --batch {b}");
+            }
+            slurm(&file, shards, out, script, cablesim, &run_args).map(|()| RunOutcome::Done)
+        }
     }
 }
 
@@ -379,6 +405,7 @@ fn slurm(
     out: Option<PathBuf>,
     script: Option<PathBuf>,
     cablesim: Option<PathBuf>,
+    run_args: &str,
 ) -> Result<()> {
     let study = StudyFile::load(file)?;
     let runner = StudyRunner::new(&study)?;
@@ -434,7 +461,7 @@ mkdir -p "$OUT"
 array_job=$(sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-study \
   --array=1-{shards} --output="$OUT/slurm-%A_%a.out" <<EOS
 #!/bin/bash
-exec "$CABLESIM" study run "$STUDY" --resume \
+exec "$CABLESIM" study run "$STUDY" --resume{run_args} \
   --shard "\$SLURM_ARRAY_TASK_ID/{shards}" --out "$OUT/shard-\$SLURM_ARRAY_TASK_ID-of-{shards}"
 EOS
 )
