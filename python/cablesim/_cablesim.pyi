@@ -33,10 +33,19 @@ _End = Literal["start", "end"]
 _Vec3 = Union[Sequence[float], npt.NDArray[np.float64]]
 _FloatArray = npt.NDArray[np.float64]
 
-def run_study(path: Union[str, os.PathLike[str]], out_dir: Union[str, os.PathLike[str]]) -> Dict[str, Any]:
-    """Runs every member of the study file ``path`` (a ``[study]`` table) on the CPU
-    across all threads, writes ``study.csv``, ``members.csv`` and ``study.json`` into
-    ``out_dir`` and returns the content of ``study.json``. Ctrl-C stops it with
+def run_study(
+    path: Union[str, os.PathLike[str]],
+    out_dir: Union[str, os.PathLike[str]],
+    *,
+    backend: Optional[Literal["auto", "cpu", "gpu"]] = None,
+    precision: Optional[Literal["f32", "f64"]] = None,
+    batch: Optional[int] = None,
+) -> Dict[str, Any]:
+    """Runs every member of the study file ``path`` (a ``[study]`` table), writes
+    ``study.csv``, ``members.csv`` and ``study.json`` into ``out_dir`` and returns the
+    content of ``study.json``. ``backend`` as ``cablesim study run --backend``: "cpu"
+    (the default; members across all threads), "gpu" or "auto" (members packed into
+    one run, ``batch`` at a time, at ``precision``). Ctrl-C stops it with
     KeyboardInterrupt."""
 
 class CablesimError(Exception):

@@ -3,19 +3,44 @@
 //! tables written to a directory and returned.
 
 use crate::errors::IntoPy;
-use cablesim::study::{merge, summarise, tables, ShardSpec, StudyFile, StudyRunner};
+use crate::select;
+use cablesim::options::{Backend, Precision};
+use cablesim::study::{merge, summarise, tables, PackedRun, ShardSpec, StudyFile, StudyRunner};
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-/// Runs every member of the study in `path` on the CPU across all threads and writes
-/// `study.csv`, `members.csv` and `study.json` into `out_dir`; returns the content of
-/// `study.json` (a dict: per sea state and channel, the Gumbel fits, the most probable
-/// maximum, the quantile and, with capacities, the utilisation). Ctrl-C stops the
-/// running members and raises KeyboardInterrupt (nothing is written then).
+/// Runs every member of the study in `path` and writes `study.csv`, `members.csv` and
+/// `study.json` into `out_dir`; returns the content of `study.json` (a dict: per sea
+/// state and channel, the Gumbel fits, the most probable maximum, the quantile and,
+/// with capacities, the utilisation). `backend` as `study run --backend`: "cpu" (the
+/// default: each member its own run, members across all threads), "gpu" or "auto"
+/// (members packed into one run, `batch` members at a time, `precision` "f32" or
+/// "f64"). Ctrl-C stops the running members and raises KeyboardInterrupt (nothing is
+/// written then).
 #[pyfunction]
-fn run_study<'py>(py: Python<'py>, path: PathBuf, out_dir: PathBuf) -> PyResult<Bound<'py, PyAny>> {
+#[pyo3(signature = (path, out_dir, *, backend=None, precision=None, batch=None))]
+fn run_study<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    out_dir: PathBuf,
+    backend: Option<&str>,
+    precision: Option<&str>,
+    batch: Option<usize>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let backend = select::option::<Backend>("backend", backend)?.unwrap_or(Backend::Cpu);
+    let precision = select::option::<Precision>("precision", precision)?;
+    if batch == Some(0) {
+        return Err(pyo3::exceptions::PyValueError::new_err(
+            "batch: must be at least 1",
+        ));
+    }
+    let packed = (backend != Backend::Cpu).then_some(PackedRun {
+        backend,
+        precision,
+        batch,
+    });
     let study = StudyFile::load(&path).py(py)?;
     let runner = StudyRunner::new(&study).py(py)?;
     let plan = runner.plan();
@@ -26,7 +51,10 @@ fn run_study<'py>(py: Python<'py>, path: PathBuf, out_dir: PathBuf) -> PyResult<
     // The members run on rayon's threads from a scoped thread, while this one waits
     // with the GIL released and checks for Ctrl-C every tenth of a second.
     let results = std::thread::scope(|s| {
-        let job = s.spawn(|| runner.run(&members, &stop, &|_| {}, &|_| Ok(())));
+        let job = s.spawn(|| match &packed {
+            None => runner.run(&members, &stop, &|_| {}, &|_| Ok(())),
+            Some(how) => runner.run_packed(&members, how, &stop, &|_| {}, &|_| Ok(())),
+        });
         loop {
             if job.is_finished() {
                 return Ok(job.join().expect("the study thread does not panic"));

@@ -27,3 +27,25 @@ def test_run_study_errors_name_the_file(tmp_path):
         assert "bad.toml" in str(e)
     else:
         raise AssertionError("a bad study file must raise")
+
+
+def test_run_study_packed_gives_the_members_own_results(repo, cli, tmp_path):
+    # backend="auto" packs the members into one run (on this machine's software
+    # adapter the packed model runs on the CPU): every member steps as it does alone,
+    # so the tables equal the command line's member-by-member CPU run byte for byte.
+    study = repo / "examples" / "study_spread_mooring.toml"
+    cablesim.run_study(study, tmp_path / "packed", backend="auto", batch=4)
+    run_cli(cli, "study", "run", study, "--out", tmp_path / "cli", "--quiet")
+    for name in ("study.csv", "members.csv", "study.json"):
+        assert (tmp_path / "packed" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+
+
+def test_run_study_rejects_a_bad_backend_by_name(repo, tmp_path):
+    study = repo / "examples" / "study_spread_mooring.toml"
+    for kwargs, word in (({"backend": "tpu"}, "backend"), ({"batch": 0}, "batch")):
+        try:
+            cablesim.run_study(study, tmp_path / "out", **kwargs)
+        except ValueError as e:
+            assert word in str(e), e
+        else:
+            raise AssertionError(f"{kwargs} must raise ValueError")
