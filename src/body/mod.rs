@@ -26,10 +26,12 @@ pub use rao::{RaoMotion, RaoTable};
 use std::collections::HashMap;
 use std::sync::Mutex;
 
-/// How many states [`Body::state`] keeps (a few output intervals of steps): enough
-/// that every cable of a run, each stepped through an output interval on its own,
-/// finds the states the first cable computed; cleared when full.
-const STATE_CACHE_LEN: usize = 16_384;
+/// How many states [`Body::state`] keeps: enough that every cable of a run, each
+/// stepped through an output interval (or a chunk of steps) on its own, finds the
+/// states the first cable computed, for intervals of up to some two thousand steps;
+/// cleared when full. About 400 kB per body at most (a packed study has a body per
+/// member).
+const STATE_CACHE_LEN: usize = 2048;
 
 /// How a body moves about its mean pose.
 #[derive(Clone, Debug, PartialEq)]
@@ -92,14 +94,20 @@ impl Body {
         }
     }
 
-    /// The body's state at time `t`, s.
+    /// The body's state at time `t`, s, evaluated (not cached: for callers that ask for
+    /// each time once, as the GPU path's per-step rows do).
+    pub fn evaluate(&self, t: f64) -> BodyState {
+        kinematics::body_state(&self.pose, &self.dofs(t))
+    }
+
+    /// The body's state at time `t`, s (kept for the other ends that ask for it).
     pub fn state(&self, t: f64) -> BodyState {
         let lock = || self.cache.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(s) = lock().get(&t.to_bits()) {
             return *s;
         }
         // Evaluated outside the lock: cables on other threads go on meanwhile.
-        let s = kinematics::body_state(&self.pose, &self.dofs(t));
+        let s = self.evaluate(t);
         let mut cache = lock();
         if cache.len() >= STATE_CACHE_LEN {
             cache.clear();

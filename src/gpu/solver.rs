@@ -385,7 +385,7 @@ pub fn body_rows<R: GpuReal>(
     let s0 = body.state(t0);
     times
         .map(|t| {
-            let s = body.state(t);
+            let s = body.evaluate(t);
             let d = s.x - s0.x;
             let dr = |i: usize, j: usize| R::c(s.rot[i][j] - s0.rot[i][j]);
             BodyRow {
