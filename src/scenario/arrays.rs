@@ -143,6 +143,17 @@ fn vary<const D: usize>(
                             ),
                         ));
                     }
+                    // A width that overflows (e.g. [-1e308, 1e308]) cannot be sampled.
+                    if !(b[k] - a[k]).is_finite() {
+                        return Err(err(
+                            p,
+                            format!("{field}.random"),
+                            format!(
+                                "the range [{}, {}] is not finite or too wide to sample",
+                                a[k], b[k]
+                            ),
+                        ));
+                    }
                 }
                 (0..count)
                     .map(|_| {

@@ -327,6 +327,18 @@ fn impossible_random_specs_are_errors() {
         f.ends_with("length.random") && m.contains("reversed"),
         "{f}: {m}"
     );
+    // A range whose width overflows cannot be sampled (it panicked the random
+    // generator before; found by the fuzz test).
+    let (f, m) = parse_error(&edit(
+        &fleet,
+        "random = [245.0, 255.0]",
+        "random = [-1e308, 1e308]",
+        "",
+    ));
+    assert!(
+        f.ends_with("length.random") && m.contains("too wide"),
+        "{f}: {m}"
+    );
 }
 
 fn array_text(start: &str, end: &str, extra: &str) -> String {
