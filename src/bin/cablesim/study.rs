@@ -125,12 +125,14 @@ pub fn main(cmd: StudyCmd) -> Result<RunOutcome> {
             batch,
         } => {
             // The options each task's `study run` gets, as the command line spells them.
-            let name = |v: &dyn Fn() -> Option<clap::builder::PossibleValue>| {
-                v().map(|p| p.get_name().to_string()).unwrap_or_default()
-            };
-            let mut run_args = format!(" --backend {}", name(&|| backend.to_possible_value()));
+            fn name(v: impl ValueEnum) -> String {
+                v.to_possible_value()
+                    .map(|p| p.get_name().to_owned())
+                    .unwrap_or_default()
+            }
+            let mut run_args = format!(" --backend {}", name(backend));
             if let Some(p) = precision {
-                run_args += &format!(" --precision {}", name(&|| p.to_possible_value()));
+                run_args += &format!(" --precision {}", name(p));
             }
             if let Some(b) = batch {
                 run_args += &format!(" --batch {b}");
