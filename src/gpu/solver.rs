@@ -2,14 +2,17 @@
 //!
 //! With the fused kernel ([`GpuKernel::Fused`], chosen by [`fused_workgroup`] where it
 //! applies) a submission is one dispatch of `fused_steps`, one workgroup per block,
-//! looping over the submission's steps (`Params::n_steps`) inside the shader. With the
+//! looping over the submission's steps inside the shader (in waves, one dispatch from
+//! each refresh of the kinematics cache to the next, the refresh a `wave_refresh`
+//! dispatch of its own: see [`fused_segments`]). With the
 //! two-pass kernel a step is two dispatches in one compute pass, `element_forces` then
 //! `node_update` (wgpu orders the storage writes of one dispatch before the reads of the
 //! next). Both read the step's route and payout rows the same way, so the rest of this
 //! note holds for both.
 //! [`STEPS_PER_SUBMISSION`] steps go into one command buffer; the step index reaches
 //! the shaders through a dynamic-offset uniform (one 16-byte `StepInfo` per step,
-//! written once), so nothing is written between steps. Before each submission the
+//! written once; the fused kernel's end step is written at each of its dispatches'
+//! first step), so nothing is written between steps. Before each submission the
 //! routes are rebased to its start time (see [`RouteParams`]): the shaders evaluate
 //! `r_d(t0 + tau)` with a small `tau`, which keeps f32 route positions and angles
 //! accurate over long runs. Nothing is read back while stepping except, at the end of
@@ -990,7 +993,7 @@ impl<R: GpuReal> GpuEngine<R> {
         let zeros = |n: u64| vec![0u8; n as usize];
         let buf = Buffers {
             params: init("params", bytemuck::bytes_of(&params), ro | U::COPY_DST),
-            step: init("step", &steps, U::UNIFORM),
+            step: init("step", &steps, U::UNIFORM | U::COPY_DST),
             routes: init(
                 "routes",
                 &bytes_or_one(&vec![RouteParams::<R>::zeroed(); n_routes]),
@@ -1274,6 +1277,21 @@ impl<R: GpuReal> GpuEngine<R> {
     }
 }
 
+/// The fused kernel's dispatches of a submission, as step ranges `a .. b`: a new one
+/// starts at every step that refreshes the waves' cache (`refresh[k]`), after a
+/// `wave_refresh` dispatch. Why the fused kernel does not refresh by itself: on
+/// llvmpipe (lavapipe) all the loops of a shader invocation share one budget of 65535
+/// iterations, after which each loop stops after one iteration without a word; the
+/// refresh's sums over the wave components spent it within a submission
+/// (`shaders/fused_chain.wgsl`).
+fn fused_segments(refresh: &[bool]) -> Vec<(u64, u64)> {
+    let n = refresh.len() as u64;
+    let mut starts: Vec<u64> = (1..n).filter(|&k| refresh[k as usize]).collect();
+    starts.insert(0, 0);
+    let ends = starts.iter().skip(1).copied().chain([n]);
+    starts.iter().copied().zip(ends).collect()
+}
+
 /// Decodes read-back bytes (the staging copy is not aligned for `T`).
 fn decode<T: bytemuck::Pod>(b: &[u8]) -> Vec<T> {
     b.chunks_exact(std::mem::size_of::<T>())
@@ -1328,11 +1346,29 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                 });
                 match (&self.pipe_fused, self.use_fused) {
                     (Ok((pipe, _)), true) => {
-                        // One workgroup per block, all `chunk` steps in one dispatch.
-                        pass.set_bind_group(0, &self.inst.bind_group, &[0]);
-                        pass.set_pipeline(pipe);
-                        pass.dispatch_workgroups(self.inst.n_blocks as u32, 1, 1);
-                        self.timings.dispatches += 1;
+                        // One workgroup per block, stepping from one refresh of the
+                        // waves' cache to the next (all `chunk` steps in still water).
+                        for (a, b) in fused_segments(&refresh) {
+                            let off = a * self.step_stride;
+                            let info = StepInfo {
+                                k: a as u32,
+                                end: b as u32,
+                                ..Default::default()
+                            };
+                            ctx.queue.write_buffer(
+                                &self.inst.buf.step,
+                                off,
+                                bytemuck::bytes_of(&info),
+                            );
+                            pass.set_bind_group(0, &self.inst.bind_group, &[off as u32]);
+                            if refresh[a as usize] {
+                                self.dispatch(&mut pass, &self.pipe_refresh, self.inst.n_nodes);
+                                self.timings.dispatches += 1;
+                            }
+                            pass.set_pipeline(pipe);
+                            pass.dispatch_workgroups(self.inst.n_blocks as u32, 1, 1);
+                            self.timings.dispatches += 1;
+                        }
                     }
                     _ => {
                         for k in 0..chunk {
@@ -1937,4 +1973,17 @@ pub fn unsupported_winches(def: &ModelDef, winches: &[Winch]) -> Option<String> 
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fused_segments;
+
+    #[test]
+    fn fused_segments_cut_at_refresh_steps() {
+        assert_eq!(fused_segments(&[false; 5]), vec![(0, 5)]);
+        let r = [true, false, false, true, false, true];
+        assert_eq!(fused_segments(&r), vec![(0, 3), (3, 5), (5, 6)]);
+        assert_eq!(fused_segments(&[false, true]), vec![(0, 1), (1, 2)]);
+    }
 }

@@ -15,7 +15,7 @@ pub enum CableEnd {
 }
 use crate::error::Error;
 use crate::gpu::solver::NodeStates;
-use crate::gpu::{GpuContext, GpuKernel, GpuSolver};
+use crate::gpu::{GpuContext, GpuSolver};
 use crate::model::{Layout, Route, NO_CONSTRAINT};
 use crate::options::{Backend, Precision, SolverOptions};
 use crate::output::{
@@ -151,28 +151,12 @@ impl LumpedStepper {
                 LumpedStepper::Gpu(GpuSolver::new(&ctx, lay, pos, opts, p)?)
             }
         };
-        let mut waves_fault = false;
         match &mut s {
             LumpedStepper::Cpu(c) => c.set_seas(&sc.sea_set(), false),
-            LumpedStepper::Gpu(g) => {
-                let seas = sc.sea_set();
-                g.set_seas(&seas)?;
-                // The fused kernel has a known fault in waves (docs/src/limitations.md:
-                // it drifts from the two-pass kernel over long submissions): wave runs
-                // take the two-pass kernel unless CABLESIM_GPU_KERNEL=fused asks for it.
-                let forced = std::env::var("CABLESIM_GPU_KERNEL").is_ok_and(|v| v == "fused");
-                if !seas.is_still() && g.kernel() == GpuKernel::Fused && !forced {
-                    g.set_kernel(GpuKernel::TwoPass)?;
-                    waves_fault = true;
-                }
-            }
+            LumpedStepper::Gpu(g) => g.set_seas(&sc.sea_set())?,
         }
         if let LumpedStepper::Gpu(g) = &s {
             match g.fused_unavailable() {
-                _ if waves_fault => log::info!(
-                    "GPU kernel: two-pass (not fused: waves, where the fused kernel has a \
-                     known fault; CABLESIM_GPU_KERNEL=fused forces it)"
-                ),
                 Some(why) => log::info!("GPU kernel: {} (not fused: {why})", g.kernel().name()),
                 None => log::info!("GPU kernel: {}", g.kernel().name()),
             }
