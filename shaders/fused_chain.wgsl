@@ -28,7 +28,9 @@
 // wave component at a node (hundreds of iterations), so one invocation stepping a
 // whole submission spent the budget after some twenty refreshes and computed wrong
 // kinematics from then on. Without the refresh, an invocation's loops are the step
-// loop, the incidence gathers and the current-profile and route-table searches.
+// loop, the incidence gathers and the current-profile and route-table searches; the
+// host bounds the steps of one dispatch so that these stay within the budget
+// (gpu::solver::fused_max_steps: a whole submission unless a current profile is long).
 
 // A node state in workgroup memory (no vec3: 9 scalars, no padding).
 struct WgState {

@@ -717,6 +717,8 @@ struct Installed<R: GpuReal> {
     n_elems: usize,
     n_routes: usize,
     n_blocks: usize,
+    /// The most steps of one fused dispatch ([`fused_max_steps`]).
+    fused_max_steps: u64,
 }
 
 impl<R: GpuReal> GpuEngine<R> {
@@ -1101,6 +1103,7 @@ impl<R: GpuReal> GpuEngine<R> {
             n_elems,
             n_routes,
             n_blocks,
+            fused_max_steps: fused_max_steps(lay),
         }
     }
 
@@ -1279,17 +1282,57 @@ impl<R: GpuReal> GpuEngine<R> {
 
 /// The fused kernel's dispatches of a submission, as step ranges `a .. b`: a new one
 /// starts at every step that refreshes the waves' cache (`refresh[k]`), after a
-/// `wave_refresh` dispatch. Why the fused kernel does not refresh by itself: on
-/// llvmpipe (lavapipe) all the loops of a shader invocation share one budget of 65535
-/// iterations, after which each loop stops after one iteration without a word; the
-/// refresh's sums over the wave components spent it within a submission
-/// (`shaders/fused_chain.wgsl`).
-fn fused_segments(refresh: &[bool]) -> Vec<(u64, u64)> {
+/// `wave_refresh` dispatch, and after at most `max_len` steps. Why: on llvmpipe
+/// (lavapipe) all the loops of a shader invocation share one budget of 65535
+/// iterations, after which each loop stops after one iteration without a word
+/// (`shaders/fused_chain.wgsl`). The refresh's sums over the wave components spent it
+/// within a submission, so the fused kernel does not refresh; `max_len`
+/// ([`fused_max_steps`]) keeps the loops of its steps within it.
+fn fused_segments(refresh: &[bool], max_len: u64) -> Vec<(u64, u64)> {
     let n = refresh.len() as u64;
-    let mut starts: Vec<u64> = (1..n).filter(|&k| refresh[k as usize]).collect();
-    starts.insert(0, 0);
-    let ends = starts.iter().skip(1).copied().chain([n]);
-    starts.iter().copied().zip(ends).collect()
+    let max_len = max_len.max(1);
+    let mut segs = Vec::new();
+    let mut a = 0;
+    for k in 1..=n {
+        if k == n || refresh[k as usize] || k - a == max_len {
+            segs.push((a, k));
+            a = k;
+        }
+    }
+    segs
+}
+
+/// The most steps one fused dispatch may take on this layout: half of llvmpipe's
+/// budget of 65535 loop iterations per shader invocation over an upper bound of one
+/// step's iterations (the step loop, a node's incidence list, the linear search of the
+/// longest current profile, the binary search of the longest route table). 512 steps
+/// (a whole submission) fit unless a current profile has more than some 50 points.
+fn fused_max_steps(lay: &Layout) -> u64 {
+    const LOOP_BUDGET: u64 = 65535 / 2;
+    let incidence = lay
+        .inc_start
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .max()
+        .unwrap_or(0) as u64;
+    let profile = lay
+        .currents
+        .iter()
+        .map(|c| c.table.len())
+        .max()
+        .unwrap_or(0) as u64;
+    let table = lay
+        .routes
+        .iter()
+        .map(|r| match r {
+            Route::Table { t, .. } => t.len(),
+            _ => 0,
+        })
+        .max()
+        .unwrap_or(0) as u64;
+    let search = 64 - table.leading_zeros() as u64 + 1;
+    let per_step = 1 + incidence + profile + search;
+    (LOOP_BUDGET / per_step).max(1)
 }
 
 /// Decodes read-back bytes (the staging copy is not aligned for `T`).
@@ -1348,7 +1391,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                     (Ok((pipe, _)), true) => {
                         // One workgroup per block, stepping from one refresh of the
                         // waves' cache to the next (all `chunk` steps in still water).
-                        for (a, b) in fused_segments(&refresh) {
+                        for (a, b) in fused_segments(&refresh, self.inst.fused_max_steps) {
                             let off = a * self.step_stride;
                             let info = StepInfo {
                                 k: a as u32,
@@ -1980,10 +2023,12 @@ mod tests {
     use super::fused_segments;
 
     #[test]
-    fn fused_segments_cut_at_refresh_steps() {
-        assert_eq!(fused_segments(&[false; 5]), vec![(0, 5)]);
+    fn fused_segments_cut_at_refresh_steps_and_at_the_longest() {
+        assert_eq!(fused_segments(&[false; 5], 512), vec![(0, 5)]);
         let r = [true, false, false, true, false, true];
-        assert_eq!(fused_segments(&r), vec![(0, 3), (3, 5), (5, 6)]);
-        assert_eq!(fused_segments(&[false, true]), vec![(0, 1), (1, 2)]);
+        assert_eq!(fused_segments(&r, 512), vec![(0, 3), (3, 5), (5, 6)]);
+        assert_eq!(fused_segments(&[false, true], 512), vec![(0, 1), (1, 2)]);
+        assert_eq!(fused_segments(&[false; 5], 2), vec![(0, 2), (2, 4), (4, 5)]);
+        assert_eq!(fused_segments(&r, 2), vec![(0, 2), (2, 3), (3, 5), (5, 6)]);
     }
 }
