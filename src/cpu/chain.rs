@@ -1,7 +1,7 @@
 //! The fast path of the CPU stepper for blocks that are one chain in node order
 //! (mooring lines, towed cables: the common case).
 //!
-//! It runs the same two passes as the general path ([`super::stepper`]), on the same
+//! It runs the same two passes as the general path ([`super::passes`]), on the same
 //! physics, but over structure-of-arrays scratch and without branches in the loops,
 //! so the compiler vectorises them (4 lanes of f64 with AVX2, chosen at run time):
 //! - the element pass reads node `k` and `k+1` for element `k` (no index arrays);
@@ -15,7 +15,7 @@
 //!
 //! A test checks it against the general path (`tests/cpu/chain_kernel.rs`).
 
-use super::stepper::implicit_dt;
+use super::passes::implicit_dt;
 use super::water::{node_water, BlockWaves, Water};
 use crate::ale::{mass_flow_forces, AleElem};
 use crate::math::V3;
@@ -460,7 +460,7 @@ fn nodes<const FRICTION: bool>(
     a: &mut [Vec<f64>; 3],
 ) {
     let [ax, ay, az] = a;
-    // The symplectic scheme takes the seabed's damping implicitly (stepper::implicit_dt).
+    // The symplectic scheme takes the seabed's damping implicitly (passes::implicit_dt).
     let h = implicit_dt(opts);
     node_kernel::<FRICTION>(
         c, h, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2],

@@ -17,8 +17,10 @@
 //! remeshed between steps ([`CpuSolver::with_winches`]).
 
 mod chain;
-mod stepper;
+mod passes;
+mod solver;
+mod threaded;
 mod water;
 
 pub use crate::step::{Evaluation, StepFailure, WinchStatus};
-pub use stepper::{CpuCheckpoint, CpuSolver};
+pub use solver::{CpuCheckpoint, CpuSolver};
