@@ -7,7 +7,10 @@ mod checkpoint;
 
 pub use checkpoint::CpuCheckpoint;
 
-use super::chain::{advance_chain, ChainConsts, ChainScratch};
+use super::chain::{
+    advance_chain, advance_net, advance_net_threaded, ChainConsts, ChainScratch, NetConsts,
+    NetScratch,
+};
 use super::passes::{
     advance_block, element_pass, implicit_dt, node_accel, node_mass, Ctx, GeneralTopo, NodeScratch,
 };
@@ -51,6 +54,12 @@ pub struct CpuSolver {
     /// Use the vectorised fast path for chain blocks (GLMF only). On by default; the
     /// general path is the reference the fast path is tested against.
     pub use_chain_kernel: bool,
+    /// Per block: constants of the network fast path (`None` for chains, and for
+    /// networks with a node of more than 8 elements).
+    net_consts: Vec<Option<Box<NetConsts>>>,
+    /// Use the vectorised fast path for network blocks (GLMF, symplectic, no winch
+    /// elements). On by default; the general path is the reference it is tested against.
+    pub use_net_kernel: bool,
     /// Groups of consecutive blocks handed to one task each.
     chunks: Vec<std::ops::Range<usize>>,
     /// Winch cables (ALE-GLMF), if any.
@@ -95,6 +104,8 @@ impl CpuSolver {
         let mut s = Self {
             chain_consts: Vec::new(),
             use_chain_kernel: true,
+            net_consts: Vec::new(),
+            use_net_kernel: true,
             uniform_current: Vec::new(),
             opts,
             t: 0.0,
@@ -258,6 +269,7 @@ impl CpuSolver {
     /// remesh of one cable.
     fn install_remeshed(&mut self, layout: Layout, r: Vec<V>, v: Vec<V>, changed: &[usize]) {
         let mut old = std::mem::take(&mut self.chain_consts);
+        let mut old_net = std::mem::take(&mut self.net_consts);
         let same_blocks = old.len() == layout.blocks.len();
         self.install_state(layout, r, v);
         if !same_blocks {
@@ -280,7 +292,18 @@ impl CpuSolver {
                 (false, _) => None,
             };
         }
+        for (bi, (b, c)) in lay.blocks.iter().zip(old_net.iter_mut()).enumerate() {
+            *c = match (b.is_chain, c.take()) {
+                (false, Some(mut k)) if !redo[bi] => {
+                    k.refresh_constraints(lay, b);
+                    Some(k)
+                }
+                (false, _) => NetConsts::new(lay, b).map(Box::new),
+                (true, _) => None,
+            };
+        }
         self.chain_consts = old;
+        self.net_consts = old_net;
     }
 
     /// Chain fast-path constants for chain blocks (winch cables included: the fast
@@ -291,6 +314,17 @@ impl CpuSolver {
             .blocks
             .iter()
             .map(|b| b.is_chain.then(|| ChainConsts::new(lay, b)))
+            .collect();
+        self.net_consts = lay
+            .blocks
+            .iter()
+            .map(|b| {
+                if b.is_chain {
+                    None
+                } else {
+                    NetConsts::new(lay, b).map(Box::new)
+                }
+            })
             .collect();
     }
 
@@ -415,6 +449,16 @@ impl CpuSolver {
         let chain_consts = &self.chain_consts;
         let ale_state = self.ale.as_deref();
         let fast = self.use_chain_kernel && self.opts.formulation == Formulation::Glmf;
+        // The network fast path: GLMF, symplectic, no winch elements in the block.
+        let net_consts = &self.net_consts;
+        let net_fast = self.use_net_kernel
+            && self.opts.formulation == Formulation::Glmf
+            && self.opts.scheme == Scheme::Symplectic;
+        let net_of = |bi: usize| {
+            net_consts[bi]
+                .as_deref()
+                .filter(|_| net_fast && ale_of(ale_state, bi).is_empty())
+        };
         // Big networks are stepped after the rest, each by every thread of the pool.
         let threads = rayon::current_num_threads();
         let threaded: Vec<bool> = blocks
@@ -465,6 +509,7 @@ impl CpuSolver {
                 let mut wbuf = Water::new();
                 let mut wb = wb.iter_mut();
                 let mut chain_scratch = ChainScratch::default();
+                let mut net_scratch = NetScratch::default();
                 for (bi, b) in blocks[ch.clone()].iter().enumerate() {
                     let waves = wb.next();
                     if threaded[ch.start + bi] {
@@ -475,6 +520,23 @@ impl CpuSolver {
                     let n1 = (b.node_end - base.node_start) as usize;
                     let e0 = (b.elem_start - base.elem_start) as usize;
                     let e1 = (b.elem_end - base.elem_start) as usize;
+                    if let Some(nc) = net_of(ch.start + bi) {
+                        advance_net(
+                            nc,
+                            ctx.lay,
+                            &ctx.opts,
+                            &mut net_scratch,
+                            &mut r[n0..n1],
+                            &mut v[n0..n1],
+                            b.node_start as usize,
+                            waves,
+                            &mut wbuf,
+                            step0,
+                            dt,
+                            nsteps,
+                        )?;
+                        continue;
+                    }
                     match &chain_consts[ch.start + bi] {
                         Some(cc) if fast => advance_chain(
                             cc,
@@ -512,9 +574,26 @@ impl CpuSolver {
                 Ok(())
             });
         let result = result.and_then(|_| {
-            for (b, _) in blocks.iter().zip(&threaded).filter(|(_, &t)| t) {
+            let mut net_scratch = NetScratch::default();
+            for (bi, b) in blocks.iter().enumerate().filter(|(bi, _)| threaded[*bi]) {
                 let (n0, n1) = (b.node_start as usize, b.node_end as usize);
                 let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
+                if let Some(nc) = net_of(bi) {
+                    advance_net_threaded(
+                        nc,
+                        ctx.lay,
+                        &ctx.opts,
+                        &mut net_scratch,
+                        &mut self.r[n0..n1],
+                        &mut self.v[n0..n1],
+                        n0,
+                        step0,
+                        dt,
+                        nsteps,
+                        threads,
+                    )?;
+                    continue;
+                }
                 advance_block_threaded(
                     &ctx,
                     b,

@@ -18,14 +18,14 @@ pub const THREADED_MIN_NODES: usize = 4096;
 
 /// A sense-reversing barrier that spins (then yields): the threads of one block meet
 /// twice per step, far more often than a sleeping barrier's wake-up allows.
-struct SpinBarrier {
+pub(super) struct SpinBarrier {
     n: usize,
     count: AtomicUsize,
     sense: AtomicBool,
 }
 
 impl SpinBarrier {
-    fn new(n: usize) -> Self {
+    pub(super) fn new(n: usize) -> Self {
         Self {
             n,
             count: AtomicUsize::new(0),
@@ -34,7 +34,7 @@ impl SpinBarrier {
     }
 
     /// Waits for all `n` threads; `local` is the caller's sense, flipped each call.
-    fn wait(&self, local: &mut bool) {
+    pub(super) fn wait(&self, local: &mut bool) {
         *local = !*local;
         if self.count.fetch_add(1, Ordering::AcqRel) + 1 == self.n {
             self.count.store(0, Ordering::Relaxed);
