@@ -289,6 +289,92 @@ fn overflowing_inputs_name_their_field() {
     }
 }
 
+/// Finite inputs whose squares overflow f64 (the solvers square lengths and forces):
+/// each is refused by name before the statics, which without these checks stopped on
+/// "non-finite static force ... (a zero-length element?)" (found by mutating the
+/// examples' numbers to 1e200 and -1e160), with the value or the product's factors.
+#[test]
+fn inputs_whose_squares_overflow_name_their_field() {
+    let c = catenary();
+    let point = "\n[[points]]\nname = \"buoy\"\nfixed = [0.0, 0.0, -5.0]\n";
+    for (from, to, extra, field, what) in [
+        (
+            "gravity = 9.81",
+            "gravity = 1e200",
+            "",
+            "environment.gravity",
+            "1e200 m/s^2 is beyond 1e150",
+        ),
+        (
+            "water_density = 1025.0",
+            "water_density = 1e200",
+            "",
+            "environment.water_density",
+            "1e200 kg/m^3",
+        ),
+        (
+            "current = [0.0, 0.0, 0.0]",
+            "current = [0.0, -1e160, 0.0]",
+            "",
+            "environment.current",
+            "beyond 1e75 m/s",
+        ),
+        (
+            "length = 250.0 ",
+            "length = 1e200 ",
+            "",
+            "cables[0] (\"line1\").length",
+            "1e200 m is beyond 1e150 m",
+        ),
+        (
+            "[-220.0, 0.0, -100.0]",
+            "[1e200, 0.0, -100.0]",
+            "",
+            "cables[0] (\"line1\").start",
+            "a coordinate beyond 1e150 m",
+        ),
+        (
+            "end = { fixed = [0.0, 0.0, -10.0] }",
+            "end = { fixed = [0.0, 0.0, -1e160] }",
+            "",
+            "cables[0] (\"line1\").end",
+            "a coordinate beyond 1e150 m",
+        ),
+        // A product: each factor in range, the weight beyond (and its factors named).
+        (
+            "mass_per_length = 5.0265",
+            "mass_per_length = 1e149",
+            "",
+            "line_types[0] (\"wire\").mass_per_length",
+            "mass_per_length 1e149 kg/m x length 2.5e2 m x gravity 9.81e0",
+        ),
+        (
+            "cm = 0.2",
+            "cm = 1e200",
+            "",
+            "line_types[0] (\"wire\").cm",
+            "the added mass of a cable (cm 1e200",
+        ),
+        (
+            "end = { fixed = [0.0, 0.0, -10.0] }",
+            "end = { point = \"buoy\" }",
+            &format!("{point}mass = 1e200\n"),
+            "points[0] (\"buoy\").mass",
+            "weight (mass x gravity) is 9.81e200 N",
+        ),
+        (
+            "end = { fixed = [0.0, 0.0, -10.0] }",
+            "end = { fixed = [0.0, 0.0, -10.0], drag_area = 1e200 }",
+            "",
+            "cables[0] (\"line1\").end.drag_area",
+            "drag (drag_area x water_density x speed^2)",
+        ),
+    ] {
+        let (f, m) = parse_error(&edit(&c, from, to, extra));
+        assert!(f.contains(field) && m.contains(what), "{to}: {f}: {m}");
+    }
+}
+
 #[test]
 fn a_straight_start_far_beyond_its_length_warns() {
     let dir = tempfile::tempdir().unwrap();
