@@ -10,6 +10,7 @@ mod nets;
 mod raw;
 mod route_file;
 mod validate;
+mod wave_checks;
 pub mod waves;
 mod winch;
 
@@ -440,6 +441,9 @@ impl Scenario {
             };
             validate::position(p, &field, position)?;
             validate::height(p, &field, position[2], depth)?;
+            if let Some(r) = &route {
+                validate::route_speed(p, &field, r, sim.max_speed)?;
+            }
             point_fields.push((field.clone(), model.nodes.len(), free));
             named_points.push(NamedPoint {
                 name: name.clone(),
@@ -544,6 +548,9 @@ impl Scenario {
                     };
                     validate::position(p, &f(which), x)?;
                     validate::height(p, &f(which), x[2], depth)?;
+                    if let Some(r) = &spec.route {
+                        validate::route_speed(p, &f(which), r, sim.max_speed)?;
+                    }
                 }
                 match spec.kind {
                     EndKind::Point(idx) => {
@@ -661,10 +668,19 @@ impl Scenario {
                     }
                 }
             }
-            model.nodes[n]
-                .label
-                .clone()
-                .unwrap_or_else(|| format!("node {n}"))
+            // A net's knot: its point mass is the net's sinker.
+            let label = model.nodes[n].label.clone();
+            if let Some(l) = &label {
+                if let Some((i, net)) = raw
+                    .nets
+                    .iter()
+                    .enumerate()
+                    .find(|(_, net)| l.starts_with(&format!("{}.knot", net.name)))
+                {
+                    return format!("nets[{i}] (\"{}\").sinker", net.name);
+                }
+            }
+            label.unwrap_or_else(|| format!("node {n}"))
         };
         validate::derived(
             p,

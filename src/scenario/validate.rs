@@ -5,7 +5,9 @@
 
 use super::err;
 use crate::error::Error;
-use crate::model::ModelDef;
+use crate::model::{ModelDef, Route};
+use crate::options::SolverOptions;
+use std::f64::consts::TAU;
 use std::path::Path;
 
 /// The largest magnitude a coordinate or a derived force, stiffness or mass may have:
@@ -19,8 +21,15 @@ fn out_of_range(x: f64) -> bool {
     !(x.abs() <= MAGNITUDE_LIMIT)
 }
 
+/// How far from the origin (m, per coordinate) a node may go before the solvers stop
+/// the run as a blow-up (`SolverOptions::max_distance`).
+pub fn max_distance() -> f64 {
+    SolverOptions::default().max_distance
+}
+
 /// A position (m) given at `field`: each coordinate within [`MAGNITUDE_LIMIT`] (beyond
-/// it the squared distances between nodes overflow f64).
+/// it the squared distances between nodes overflow f64) and within [`max_distance`]
+/// (beyond it the first step stops the run as a blow-up).
 pub fn position(p: &Path, field: &str, x: [f64; 3]) -> Result<(), Error> {
     if x.iter().any(|c| out_of_range(*c)) {
         return Err(err(
@@ -29,6 +38,60 @@ pub fn position(p: &Path, field: &str, x: [f64; 3]) -> Result<(), Error> {
             format!(
                 "position {x:?} m: a coordinate beyond {MAGNITUDE_LIMIT:e} m, whose square (in the lengths of the elements) overflows f64; check the value and its units"
             ),
+        ));
+    }
+    let limit = max_distance();
+    if x.iter().any(|c| !(c.abs() < limit)) {
+        return Err(err(
+            p,
+            field,
+            format!(
+                "position {x:?} m: a coordinate {limit:e} m or more from the origin, where the solver stops a run as a blow-up; move the origin near the model, or check the value and its units"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The speed of a driven end's route against `max_speed` (m/s, `simulation.max_speed`):
+/// a route faster than `sqrt(3) max_speed` drags its node past the limit, and the first
+/// step stops the run as a blow-up. Tables are checked where they are read.
+pub fn route_speed(p: &Path, field: &str, route: &Route, max_speed: f64) -> Result<(), Error> {
+    // Of two factors, the one further from 1 in orders of magnitude is named.
+    let culprit = |a: (&'static str, f64), b: (&'static str, f64)| {
+        if a.1.abs().log10().abs() >= b.1.abs().log10().abs() {
+            a.0
+        } else {
+            b.0
+        }
+    };
+    let (key, speed) = match *route {
+        Route::Line { velocity: v, .. } => {
+            ("velocity", (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
+        }
+        Route::Circle {
+            radius,
+            period,
+            advance,
+            ..
+        } => {
+            let (round, along) = (TAU * radius / period, advance / period);
+            let key = if round.abs() >= along.abs() {
+                culprit(("diameter", 2.0 * radius), ("period", period))
+            } else {
+                culprit(("advance", advance), ("period", period))
+            };
+            (key, round.hypot(along))
+        }
+        _ => return Ok(()),
+    };
+    // Beyond sqrt(3) max_speed some velocity component is beyond max_speed at every
+    // instant (the solver's test is by component).
+    if !(speed <= 3f64.sqrt() * max_speed) {
+        return Err(err(
+            p,
+            format!("{field}.{key}"),
+            format!("the route moves its end at {speed:e} m/s, more than sqrt(3) x simulation.max_speed = {max_speed:e} m/s: a velocity component is above max_speed, and the first step would stop the run as a blow-up; check the values and their units"),
         ));
     }
     Ok(())
@@ -237,6 +300,11 @@ pub fn derived(
                 "drag_area",
                 "drag (drag_area x water_density x speed^2)",
                 pm.drag_area * rho * u * u,
+            ),
+            (
+                "added_mass",
+                "added mass's weight (added_mass x volume x water_density x gravity)",
+                pm.added_mass_coef * pm.volume * g_rho.max(1.0),
             ),
         ] {
             if out_of_range(x) {
