@@ -654,6 +654,18 @@ impl Scenario {
         let line_field = |i: usize| format!("line_types[{i}] (\"{}\")", model.line_types[i].name);
         // The entry that gives node `n` its point mass: a point, or a cable's end.
         let node_field = |n: usize| {
+            // A net's knot: its point mass is the net's sinker.
+            let label = model.nodes[n].label.clone();
+            if let Some(l) = &label {
+                if let Some((i, net)) = raw
+                    .nets
+                    .iter()
+                    .enumerate()
+                    .find(|(_, net)| l.starts_with(&format!("{}.knot", net.name)))
+                {
+                    return format!("nets[{i}] (\"{}\").sinker", net.name);
+                }
+            }
             if let Some((f, _, _)) = point_fields.iter().find(|(_, k, _)| *k == n) {
                 return f.clone();
             }
@@ -666,18 +678,6 @@ impl Scenario {
                             None => format!("cable \"{}\" {end}", c.name),
                         };
                     }
-                }
-            }
-            // A net's knot: its point mass is the net's sinker.
-            let label = model.nodes[n].label.clone();
-            if let Some(l) = &label {
-                if let Some((i, net)) = raw
-                    .nets
-                    .iter()
-                    .enumerate()
-                    .find(|(_, net)| l.starts_with(&format!("{}.knot", net.name)))
-                {
-                    return format!("nets[{i}] (\"{}\").sinker", net.name);
                 }
             }
             label.unwrap_or_else(|| format!("node {n}"))
