@@ -163,6 +163,7 @@ fn kernel_from_env() -> Result<Option<GpuKernel>, Error> {
 pub type NodeStates = (Vec<[f64; 3]>, Vec<[f64; 3]>);
 
 /// Precision-independent host data, computed once per layout.
+#[derive(Clone)]
 struct Host {
     /// Per block: origin (absolute, m), a whole number of metres (exact in f32).
     origin: Vec<[f64; 3]>,
@@ -1947,22 +1948,40 @@ impl GpuSolver {
     }
 
     /// The state now, to go back to with [`GpuSolver::restore`] (read back from the
-    /// device); `None` with winches (their mesh and payout change as the run goes).
-    pub fn checkpoint(&mut self) -> Result<Option<GpuCheckpoint>, Error> {
-        if self.ale.is_some() {
-            return Ok(None);
-        }
+    /// device). With winches it also keeps the host's side of the mesh (layout, host
+    /// data, winch state), since a remeshing after it replaces them.
+    pub fn checkpoint(&mut self) -> Result<GpuCheckpoint, Error> {
         let (r, v) = self.engine.download(&self.host)?;
-        Ok(Some(GpuCheckpoint {
+        let mesh = self.ale.as_ref().map(|ale| {
+            Box::new(SavedMesh {
+                layout: self.layout.clone(),
+                host: self.host.clone(),
+                ale: ale.clone(),
+                remeshes: self.remeshes,
+            })
+        });
+        Ok(GpuCheckpoint {
             steps: self.steps,
             node_steps: self.node_steps,
             r,
             v,
-        }))
+            mesh,
+        })
     }
 
-    /// Goes back to the state `cp`, taken from this solver.
-    pub fn restore(&mut self, cp: &GpuCheckpoint) {
+    /// Goes back to the state `cp`, taken from this solver. Where a winch cable was
+    /// remeshed since, the saved layout is installed again (as a remeshing installs
+    /// its new one); an error there is the device's, when rebuilding the buffers.
+    pub fn restore(&mut self, cp: &GpuCheckpoint) -> Result<(), Error> {
+        if let Some(m) = &cp.mesh {
+            if m.remeshes != self.remeshes {
+                self.engine.install(&m.layout, &m.host, &cp.r, &cp.v)?;
+                self.layout.clone_from(&m.layout);
+                self.host = m.host.clone();
+            }
+            self.ale = Some(m.ale.clone());
+            self.remeshes = m.remeshes;
+        }
         self.steps = cp.steps;
         self.node_steps = cp.node_steps;
         self.t = self.steps as f64 * self.opts.dt;
@@ -1970,6 +1989,7 @@ impl GpuSolver {
         // The cache holds values for times ahead of the state now: it starts afresh
         // (so a replay agrees with the first pass within the cache's tolerance).
         self.engine.restart_waves();
+        Ok(())
     }
 
     /// Replaces node positions and velocities (packed order).
@@ -1994,6 +2014,17 @@ pub struct GpuCheckpoint {
     node_steps: u64,
     r: Vec<[f64; 3]>,
     v: Vec<[f64; 3]>,
+    /// With winches: the mesh then.
+    mesh: Option<Box<SavedMesh>>,
+}
+
+/// The host's side of a winch run's mesh at a checkpoint.
+struct SavedMesh {
+    layout: Layout,
+    host: Host,
+    ale: Box<AleState>,
+    /// [`GpuSolver::remeshes`] then: the device holds another layout where it differs.
+    remeshes: u64,
 }
 
 /// What the GPU path cannot do with these winches, or `None`: two winch cables that

@@ -10,6 +10,7 @@ mod nets;
 mod raw;
 mod route_file;
 mod validate;
+mod wave_checks;
 pub mod waves;
 mod winch;
 
@@ -166,11 +167,12 @@ fn current(
             field,
             "give either `current` or `current_profile`, not both",
         )),
-        (Some(u), None) => Ok(Some(Current::uniform(vec3(
-            path,
-            &format!("{field}current"),
-            u,
-        )?))),
+        (Some(u), None) => {
+            let f = format!("{field}current");
+            let u = vec3(path, &f, u)?;
+            validate::current_speed(path, &f, u)?;
+            Ok(Some(Current::uniform(u)))
+        }
         (None, Some(rows)) => {
             let f = format!("{field}current_profile");
             if rows.is_empty() {
@@ -181,6 +183,7 @@ fn current(
                 for (k, x) in r.iter().enumerate() {
                     finite(path, &format!("{f}[{i}][{k}]"), *x)?;
                 }
+                validate::current_speed(path, &format!("{f}[{i}]"), [r[1], r[2], r[3]])?;
                 if i > 0 && r[0] <= rows[i - 1][0] {
                     return Err(err(
                         path,
@@ -330,8 +333,18 @@ impl Scenario {
             sb.friction_velocity,
         )?;
         let env = Environment {
-            gravity: non_negative(p, "environment.gravity", e.gravity)?,
-            water_density: non_negative(p, "environment.water_density", e.water_density)?,
+            gravity: validate::magnitude(
+                p,
+                "environment.gravity",
+                non_negative(p, "environment.gravity", e.gravity)?,
+                "m/s^2",
+            )?,
+            water_density: validate::magnitude(
+                p,
+                "environment.water_density",
+                non_negative(p, "environment.water_density", e.water_density)?,
+                "kg/m^3",
+            )?,
             depth,
             seabed: sb,
         };
@@ -426,7 +439,11 @@ impl Scenario {
                     spec.mass,
                 ),
             };
+            validate::position(p, &field, position)?;
             validate::height(p, &field, position[2], depth)?;
+            if let Some(r) = &route {
+                validate::route_speed(p, &field, r, sim.max_speed)?;
+            }
             point_fields.push((field.clone(), model.nodes.len(), free));
             named_points.push(NamedPoint {
                 name: name.clone(),
@@ -479,6 +496,7 @@ impl Scenario {
                 )
             })?;
             let length = positive(p, &f("length"), c.length)?;
+            validate::magnitude(p, &f("length"), length, "m")?;
             if c.segments < 1 || c.segments > 1_000_000 {
                 return Err(err(
                     p,
@@ -523,12 +541,16 @@ impl Scenario {
             for (k, spec) in [start, end].into_iter().enumerate() {
                 if !matches!(spec.kind, EndKind::Point(_)) {
                     let which = if k == 0 { "start" } else { "end" };
-                    let z = match (&spec.kind, &spec.route) {
-                        (EndKind::Fixed(x) | EndKind::Free(x), _) => x[2],
-                        (_, Some(r)) => r.eval(0.0).r[2],
-                        _ => 0.0,
+                    let x = match (&spec.kind, &spec.route) {
+                        (EndKind::Fixed(x) | EndKind::Free(x), _) => *x,
+                        (_, Some(r)) => r.eval(0.0).r,
+                        _ => [0.0; 3],
                     };
-                    validate::height(p, &f(which), z, depth)?;
+                    validate::position(p, &f(which), x)?;
+                    validate::height(p, &f(which), x[2], depth)?;
+                    if let Some(r) = &spec.route {
+                        validate::route_speed(p, &f(which), r, sim.max_speed)?;
+                    }
                 }
                 match spec.kind {
                     EndKind::Point(idx) => {
@@ -630,7 +652,43 @@ impl Scenario {
             names.insert(net.name.clone(), first);
         }
         let line_field = |i: usize| format!("line_types[{i}] (\"{}\")", model.line_types[i].name);
-        validate::derived(p, &model, line_field, (baumgarte.alpha, baumgarte.beta))?;
+        // The entry that gives node `n` its point mass: a point, or a cable's end.
+        let node_field = |n: usize| {
+            // A net's knot: its point mass is the net's sinker.
+            let label = model.nodes[n].label.clone();
+            if let Some(l) = &label {
+                if let Some((i, net)) = raw
+                    .nets
+                    .iter()
+                    .enumerate()
+                    .find(|(_, net)| l.starts_with(&format!("{}.knot", net.name)))
+                {
+                    return format!("nets[{i}] (\"{}\").sinker", net.name);
+                }
+            }
+            if let Some((f, _, _)) = point_fields.iter().find(|(_, k, _)| *k == n) {
+                return f.clone();
+            }
+            for (i, c) in model.cables.iter().enumerate() {
+                for (end, k) in [("start", c.nodes.first()), ("end", c.nodes.last())] {
+                    if k == Some(&n) {
+                        // Cables before nets, in the order of `cables` (arrays expanded).
+                        return match cables.get(i) {
+                            Some((prefix, _)) => format!("{prefix}.{end}"),
+                            None => format!("cable \"{}\" {end}", c.name),
+                        };
+                    }
+                }
+            }
+            label.unwrap_or_else(|| format!("node {n}"))
+        };
+        validate::derived(
+            p,
+            &model,
+            line_field,
+            node_field,
+            (baumgarte.alpha, baumgarte.beta),
+        )?;
         validate::unused_points(p, &model, &point_fields)?;
         validate::unused_line_types(p, &model, line_field);
         if let Selection::Names(v) = &positions_sel {

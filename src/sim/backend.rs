@@ -166,13 +166,13 @@ impl LumpedStepper {
 
     /// A copy of the state to go back to ([`LumpedStepper::restore`]). The CPU path
     /// always has one (the whole solver where the mesh or the waves' cache carry state);
-    /// the GPU path reads its state back (one download per call), and has none with
-    /// winches (whose mesh changes) or should the download fail.
+    /// the GPU path reads its state back (one download per call; with winches the
+    /// host's mesh and winch state too), and has none should the download fail.
     pub fn checkpoint(&mut self) -> Option<Checkpoint> {
         match self {
             LumpedStepper::Cpu(s) => s.checkpoint().map(Checkpoint::Cpu),
             LumpedStepper::Gpu(s) => match s.checkpoint() {
-                Ok(c) => c.map(Checkpoint::Gpu),
+                Ok(c) => Some(Checkpoint::Gpu(c)),
                 Err(e) => {
                     log::warn!("no checkpoint of the GPU state: {e}");
                     None
@@ -181,10 +181,14 @@ impl LumpedStepper {
         }
     }
 
-    /// Puts the state back to `cp`, taken from this stepper.
-    pub fn restore(&mut self, cp: &Checkpoint) {
+    /// Puts the state back to `cp`, taken from this stepper. Only the GPU path can
+    /// fail here (rebuilding its buffers for a winch run's earlier mesh).
+    pub fn restore(&mut self, cp: &Checkpoint) -> Result<(), Error> {
         match (self, cp) {
-            (LumpedStepper::Cpu(s), Checkpoint::Cpu(c)) => s.restore(c),
+            (LumpedStepper::Cpu(s), Checkpoint::Cpu(c)) => {
+                s.restore(c);
+                Ok(())
+            }
             (LumpedStepper::Gpu(s), Checkpoint::Gpu(c)) => s.restore(c),
             _ => unreachable!("a checkpoint goes back to the stepper that made it"),
         }
