@@ -120,10 +120,10 @@ pub fn parse(
                 let file = base.join(string(p, &f("rao_file"), v)?);
                 let rao = read_rao(&file, p, &f("rao_file"))?;
                 if waves.is_empty() {
-                    log::warn!(
+                    super::warnings::warn(format!(
                         "{}: {field}: RAOs given but the scenario has no waves; the body stays in its mean pose",
                         p.display()
-                    );
+                    ));
                 }
                 let m = pose.position();
                 Motion::Rao(RaoMotion::new(&rao, waves, m[0], m[1], pose.heading, ramp))

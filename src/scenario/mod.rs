@@ -10,7 +10,9 @@ mod nets;
 mod raw;
 mod route_file;
 mod validate;
+mod warnings;
 mod wave_checks;
+pub use warnings::collect_warnings;
 pub mod waves;
 mod winch;
 
@@ -247,7 +249,12 @@ impl Scenario {
         let conv =
             crate::moordyn::convert_text(&text, path, &crate::moordyn::ConvertOptions::default())?;
         for w in &conv.warnings {
-            log::warn!("{}: line {}: {}", path.display(), w.line, w.message);
+            warnings::warn(format!(
+                "{}: line {}: {}",
+                path.display(),
+                w.line,
+                w.message
+            ));
         }
         Self::parse_with(&conv.toml, path, limits)
     }
@@ -369,7 +376,9 @@ impl Scenario {
         let global_current =
             current(p, "environment.", e.current, &e.current_profile)?.unwrap_or_default();
         let (sea, sea_warnings) = waves::sea_state(p, e.waves.as_ref(), depth, env.gravity)?;
-        sea_warnings.iter().for_each(|w| log::warn!("{w}"));
+        sea_warnings
+            .iter()
+            .for_each(|w| warnings::warn(w.to_string()));
 
         // [[line_types]]
         let mut lt_index = HashMap::new();

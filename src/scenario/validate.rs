@@ -156,10 +156,10 @@ pub fn height(p: &Path, field: &str, z: f64, depth: f64) -> Result<(), Error> {
     }
     let up = above_warning(depth);
     if z > up {
-        log::warn!(
+        super::warnings::warn(format!(
             "{}: {field}: z = {z} m is more than {up} m above the water surface (z = 0): is the sign right?",
             p.display()
-        );
+        ));
     }
     Ok(())
 }
@@ -170,12 +170,12 @@ pub fn straight_strain(p: &Path, field: &str, length: f64, ea: f64, a: [f64; 3],
     let chord = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt();
     let strain = chord / length - 1.0;
     if strain > 0.1 {
-        log::warn!(
+        super::warnings::warn(format!(
             "{}: {field}: starts straight between ends {chord:.4} m apart, {:.0} % longer than its length {length} m: a tension EA * strain = {:.3e} N at t = 0, and a violent start (check the length or the ends)",
             p.display(),
             100.0 * strain,
             ea * strain
-        );
+        ));
     }
 }
 
@@ -378,7 +378,10 @@ pub fn unused_points(
                 "a free point that no cable uses: nothing holds it (attach a cable to it, make it `fixed`, or remove it)",
             ));
         }
-        log::warn!("{}: {field}: no cable uses this point", p.display());
+        super::warnings::warn(format!(
+            "{}: {field}: no cable uses this point",
+            p.display()
+        ));
     }
     Ok(())
 }
@@ -391,11 +394,11 @@ pub fn unused_line_types(p: &Path, model: &ModelDef, line_field: impl Fn(usize) 
     }
     for (i, u) in used.iter().enumerate() {
         if !u {
-            log::warn!(
+            super::warnings::warn(format!(
                 "{}: {}: no cable or net uses this line type",
                 p.display(),
                 line_field(i)
-            );
+            ));
         }
     }
 }

@@ -3,6 +3,13 @@
 
 use std::f64::consts::TAU;
 
+/// The largest JONSWAP peak factor a scenario may give. The normalising factor
+/// `1 - 0.287 ln g` of DNV-RP-C205 is an approximation that drifts as `g` grows: the
+/// spectrum's `m0` is 1.8% below `Hs^2 / 16` at `g = 7`, 7% at 10, 39% at 20, and the
+/// factor is negative above `g = e^(1 / 0.287) = 32.6`. DNV gives the form for the usual
+/// range `1 <= g <= 7`; a peakier sea is better given as a spectrum table.
+pub const JONSWAP_GAMMA_MAX: f64 = 7.0;
+
 /// A wave spectrum.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Spectrum {
@@ -17,7 +24,8 @@ pub enum Spectrum {
     /// JONSWAP (DNV-RP-C205 form): `(1 - 0.287 ln g) S_PM(w) g^r`,
     /// `r = exp(-(w - w_p)^2 / (2 s^2 w_p^2))`, `s = 0.07` for `w <= w_p`, 0.09 above.
     /// The factor `1 - 0.287 ln g` keeps `m0 = Hs^2 / 16` within 0.3% for
-    /// `1 <= g <= 5` (1.8% low at `g = 7`).
+    /// `1 <= g <= 5` (1.8% low at `g = 7`); scenarios refuse `g` above
+    /// [`JONSWAP_GAMMA_MAX`].
     Jonswap {
         /// Significant wave height `Hs`, m.
         hs: f64,

@@ -400,7 +400,11 @@ fn sea_state(p: &Path, f: &dyn Fn(&str) -> String, r: &RawSeaState) -> Result<Se
                     format!("a JONSWAP peak factor is at least 1 (1 = Pierson-Moskowitz), got {g}"),
                 ));
             }
-            Some(g)
+            Some(crate::scenario::waves::jonswap_gamma_in_range(
+                p,
+                &f("gamma"),
+                g,
+            )?)
         }
     };
     Ok(SeaState {

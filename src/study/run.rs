@@ -16,6 +16,7 @@
 //! the same numbers.
 
 mod packed;
+mod sea_check;
 
 pub use packed::PackedRun;
 
@@ -42,6 +43,8 @@ pub struct StudyRunner {
     /// The base scenario as a TOML table, without any `[study]` table.
     base: toml::Table,
     scenario_path: PathBuf,
+    /// The study file (the base scenario's own path when the `[study]` table is in it).
+    study_path: PathBuf,
     model: ModelChannels,
     sampler: Sampler,
 }
@@ -73,13 +76,16 @@ impl StudyRunner {
         }
         let plan = StudyPlan::new(file, &model)?;
         let sampler = Sampler::new(&plan.channels, &model);
-        Ok(StudyRunner {
+        let runner = StudyRunner {
             plan,
             base,
             scenario_path: file.scenario_path.clone(),
+            study_path: file.path.clone(),
             model,
             sampler,
-        })
+        };
+        runner.check_sea_states()?;
+        Ok(runner)
     }
 
     /// The plan: definition, channels, members, hash.
@@ -142,13 +148,12 @@ impl StudyRunner {
         progress: &(dyn Fn(f64) + Sync),
     ) -> Result<Option<MemberResult>, Error> {
         let def = &self.plan.def;
-        let text = self.member_toml(m);
         let overrides = Overrides {
             backend: Some(Backend::Cpu),
             duration: Some(def.duration),
             ..Overrides::default()
         };
-        let mut sim = Simulation::from_toml(&text, &self.scenario_path, &overrides)?;
+        let mut sim = Simulation::new(self.member_scenario(m)?, &overrides)?;
         let interval = sim.scenario().sim.output_interval;
         let mut stats = self.plan.new_stats();
         let mut body_index: Option<Vec<Option<usize>>> = None;

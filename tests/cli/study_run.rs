@@ -404,3 +404,79 @@ fn slurm_tasks_get_the_backend_options() {
         "{cpu}"
     );
 }
+
+/// The example study with its first sea state row replaced by `row` (inline table
+/// fields after the name), one seed of 2 s.
+fn study_with_row(dir: &Path, row: &str, seeds: u32) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(STUDY).unwrap();
+    let first = "{ name = \"operating\", hs = 2.0, tp = 8.0, heading = 0.0, current_speed = 0.3,";
+    assert!(
+        text.contains(first),
+        "the example's first sea state changed"
+    );
+    let text = text
+        .replace(first, &format!("{{ name = \"operating\", {row},"))
+        .replace("seeds = 3", &format!("seeds = {seeds}"))
+        .replace("duration = 40.0          # s per member", "duration = 2.0")
+        .replace("transient = 10.0", "transient = 1.0");
+    let path = dir.join("study.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_sea_state_the_waves_cannot_take_is_named_by_its_study_field_before_any_member_runs() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (row, says) in [
+        (
+            "hs = 1e200, tp = 8.0, heading = 0.0, current_speed = 0.3",
+            "study.sea_states[0].hs: hs = 1e200 m",
+        ),
+        (
+            "hs = 2.0, tp = 8.0, heading = 0.0, current_speed = 1e200",
+            "study.sea_states[0].current_speed: current [1e200",
+        ),
+        (
+            "hs = 2.0, tp = 8.0, gamma = 40.0, heading = 0.0, current_speed = 0.3",
+            "study.sea_states[0].gamma: a JONSWAP peak factor of at most 7",
+        ),
+    ] {
+        let study = study_with_row(tmp.path(), row, 2);
+        let out = tmp.path().join("out");
+        let e = cablesim(1, &["study", "run"])
+            .arg(&study)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let m = String::from_utf8_lossy(&e.stderr);
+        assert!(!e.status.success(), "{row}: {m}");
+        assert!(m.contains(&format!("study.toml: {says}")), "{row}: {m}");
+        // Nothing ran: no member's record was written.
+        assert!(!out.join("members").exists(), "{row}: {m}");
+    }
+}
+
+#[test]
+fn a_steep_sea_states_warning_is_printed_once_under_its_study_field() {
+    let tmp = tempfile::tempdir().unwrap();
+    let study = study_with_row(
+        tmp.path(),
+        "hs = 90.0, tp = 3.0, heading = 0.0, current_speed = 0.3",
+        3,
+    );
+    let out = ok(cablesim(2, &["study", "run"])
+        .arg(&study)
+        .arg("--out")
+        .arg(tmp.path().join("out"))
+        .output()
+        .unwrap());
+    let m = String::from_utf8_lossy(&out.stderr);
+    let warnings: Vec<&str> = m.lines().filter(|l| l.contains("breaking limit")).collect();
+    assert_eq!(warnings.len(), 1, "{m}");
+    assert!(
+        warnings[0].contains("study.toml: study.sea_states[0].hs: Hs/L")
+            && warnings[0].contains("sea state 0 \"operating\""),
+        "{m}"
+    );
+}

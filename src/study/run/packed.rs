@@ -16,7 +16,6 @@
 use super::{is_blow_up, StudyRunner};
 use crate::error::Error;
 use crate::options::{Backend, Overrides, Precision};
-use crate::scenario::Scenario;
 use crate::sim::pack::{pack, Packed};
 use crate::sim::Simulation;
 use crate::study::members::Member;
@@ -134,7 +133,7 @@ impl StudyRunner {
         let scenarios = batch
             .iter()
             .map(|m| {
-                let sc = Scenario::parse(&self.member_toml(m), &self.scenario_path)?;
+                let sc = self.member_scenario(m)?;
                 Ok((prefix(m), sc))
             })
             .collect::<Result<Vec<_>, Error>>()?;
