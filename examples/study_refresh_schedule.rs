@@ -5,7 +5,8 @@
 //! `target/release/examples/study_refresh_schedule examples/study_design_check.toml 0.006666666666666667 1620000`
 //!
 //! (arguments: a study file, the step in s (the design check's auto step, 1/150 s), the
-//! steps to follow: here the 3 hours). For every member it
+//! steps to follow: here the 3 hours; optionally a factor on every interval, e.g. 2.35
+//! for what the cubic Hermite cache of branch `herm` gives). For every member it
 //! builds the member's sea as the study does (its sea state's JONSWAP train, 200
 //! components, seeded with the member's wave seed, in the base scenario's depth) and
 //! prints the cache's refresh interval (`sea::cache::refresh_interval` at the default
@@ -35,6 +36,7 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(6.6667e-3);
     let steps: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(9000);
+    let factor: f64 = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(1.0);
     let file = StudyFile::load(path).expect("study file");
     let depth = 320.0;
     assert!(
@@ -59,7 +61,7 @@ fn main() {
             stream: 0,
         };
         let comps = discretise(&spectrum, &d, depth, 9.81);
-        intervals.push((m.sea_state, refresh_interval(&comps, 1e-3)));
+        intervals.push((m.sea_state, factor * refresh_interval(&comps, 1e-3)));
     }
     for (q, s) in def.sea_states.iter().enumerate() {
         let iv: Vec<f64> = intervals
