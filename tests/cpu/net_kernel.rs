@@ -145,21 +145,28 @@ fn compare(
 #[test]
 fn net_fast_path_matches_the_general_path() {
     // Top row 1 m under water; 0.2 m over it (the top elements partly dry); in waves.
-    for (top, waves) in [(-1.0, false), (0.2, false), (-1.0, true)] {
-        let def = net(8, 2, top);
-        let depth = def.env.depth;
-        let (lay, pos) = Layout::build(&def).unwrap();
-        assert!(!lay.blocks[0].is_chain && lay.blocks.len() == 1);
-        let sea = waves.then(|| wave(depth));
-        let (dr, dv, moved) = compare(&lay, &pos, sea.as_ref(), 3000, 1);
-        println!(
-            "top {top}, waves {waves}: |dr| {dr:.2e} m, |dv| {dv:.2e} m/s, moved {moved:.3} m"
-        );
-        assert!(moved > 0.1, "the net must move: {moved} m");
-        assert!(
-            dr < 1e-10 && dv < 1e-8,
-            "top {top}, waves {waves}: fast and general paths differ by {dr:e} m, {dv:e} m/s"
-        );
+    // 8 x 8 knots, twines of 2 elements: runs of consecutive ends too short to be read
+    // in place, every element's ends gathered; 20 x 20 knots, twines of one element:
+    // the rows (19 elements) and the twines between rows read in place.
+    for (k, seg, steps) in [(8, 2, 3000), (20, 1, 1000)] {
+        for (top, waves) in [(-1.0, false), (0.2, false), (-1.0, true)] {
+            let def = net(k, seg, top);
+            let depth = def.env.depth;
+            let (lay, pos) = Layout::build(&def).unwrap();
+            assert!(!lay.blocks[0].is_chain && lay.blocks.len() == 1);
+            let sea = waves.then(|| wave(depth));
+            let (dr, dv, moved) = compare(&lay, &pos, sea.as_ref(), steps, 1);
+            println!(
+                "{k} x {k} knots, {seg} elements a twine, top {top}, waves {waves}: \
+                 |dr| {dr:.2e} m, |dv| {dv:.2e} m/s, moved {moved:.3} m"
+            );
+            assert!(moved > 0.1, "the net must move: {moved} m");
+            assert!(
+                dr < 1e-10 && dv < 1e-8,
+                "{k} x {k}, top {top}, waves {waves}: fast and general paths differ by \
+                 {dr:e} m, {dv:e} m/s"
+            );
+        }
     }
 }
 

@@ -2,11 +2,15 @@
 //! without winch elements, GLMF, symplectic Euler. It shares the chain path's per-block
 //! constants ([`ChainConsts`], which do not assume a chain) and its element loop
 //! ([`element_kernel`]), behind a gather front-end:
-//! - the element pass gathers each element's two end nodes by index into
-//!   structure-of-arrays scratch, then runs the chain's element loop over them;
-//! - the element pass then folds each element's results into what its two nodes add:
-//!   the force on node a (`f/2 + T t`) and on node b (`f/2 - T t`), and the six entries
-//!   of its share of their mass block (`m/2 I + a (I - t t^T)`);
+//! - the element pass walks the elements in pieces ([`pieces`]): a run of elements
+//!   whose ends are consecutive nodes (a net's rows and the twines between two rows)
+//!   reads its ends in place, as the chain path does; other elements have their two
+//!   end nodes gathered by index into structure-of-arrays scratch; then the chain's
+//!   element loop runs over them;
+//! - the element pass then folds each element's results into what its two nodes add,
+//!   one record per element: the six entries of its share of their mass block
+//!   (`m/2 I + a (I - t t^T)`), the force on node a (`f/2 + T t`) and on node b
+//!   (`f/2 - T t`);
 //! - the node pass sums those over each node's incident elements through fixed-width
 //!   slot arrays (the incidence lists padded with the zero "ghost" element 0 to 4 or 8
 //!   slots), and solves its 3x3 mass block with the general path's adjugate
@@ -14,9 +18,10 @@
 //! - point-mass drag, a point's water-acceleration load and held nodes are done from
 //!   short index lists, as on the chain path.
 //!
-//! The two passes run over ranges of elements and nodes, so a big block is stepped by
-//! all the pool's threads with the same arithmetic per element and per node (the same
-//! bits), meeting twice per step at a spinning barrier ([`advance_net_threaded`]).
+//! The two passes run over pieces of elements and ranges of nodes, so a big block is
+//! stepped by all the pool's threads with the same arithmetic per element and per node
+//! (the same bits), meeting twice per step at a spinning barrier
+//! ([`advance_net_threaded`]).
 //! A node with more than 8 incident elements sends its block to the general path.
 //! A test checks it against the general path (`tests/cpu/net_kernel.rs`).
 
@@ -32,7 +37,9 @@ use crate::options::SolverOptions;
 use crate::step::{diverged, StepFailure};
 use std::ops::Range;
 
+mod pieces;
 mod threaded;
+use pieces::{pieces, Piece, TILE};
 pub(crate) use threaded::advance_net_threaded;
 
 /// Per-block constants of a network, built once.
@@ -41,6 +48,8 @@ pub(crate) struct NetConsts {
     c: ChainConsts,
     /// Block-local end nodes `a`, `b` per element.
     ends: [Vec<u32>; 2],
+    /// The element pass's pieces, in element order.
+    pieces: Vec<Piece>,
     /// Slots per node: 4 or 8.
     width: usize,
     /// Slot-major (`slot[s * n + i]`): node `i`'s `s`-th incident element, in the
@@ -79,6 +88,7 @@ impl NetConsts {
         assert!(slot.iter().all(|&p| (p as usize) < 2 * (ne + 1)));
         Some(Self {
             c: ChainConsts::new(lay, b),
+            pieces: pieces(&ends[0], &ends[1]),
             ends,
             width,
             slot,
@@ -112,13 +122,16 @@ pub(crate) struct NetScratch {
     work: Work,
 }
 
-/// What each element adds to its nodes (padded: ghost 0, element `k` at `k + 1`).
+/// Values per element in [`Loads`].
+const REC: usize = 12;
+
+/// What each element adds to its nodes (padded: ghost 0, element `k` at `k + 1`), one
+/// record of [`REC`] values per element: its share of its nodes' mass block `xx, yy,
+/// zz, xy, xz, yz` (the same for both), the force on its node a, the force on its node
+/// b. A node's slot reads one record (two cache lines at most), not nine arrays.
 #[derive(Default)]
 struct Loads {
-    /// Force on the element's node a at `2 p`, on its node b at `2 p + 1`.
-    f: [Vec<f64>; 3],
-    /// Mass block share `xx, yy, zz, xy, xz, yz` (the same for both nodes).
-    m: [Vec<f64>; 6],
+    rec: Vec<f64>,
 }
 
 /// One thread's scratch: gathered element inputs over its elements, node work over
@@ -167,25 +180,19 @@ impl Work {
     }
 }
 
-/// [`Loads`] of elements `er`, written by the element pass: `f` from `2 (er.start + 1)`,
-/// `m` from `er.start + 1`.
+/// [`Loads`] of elements `er`, written by the element pass: the records from
+/// `REC (er.start + 1)`.
 struct LoadsOut<'a> {
-    f: [&'a mut [f64]; 3],
-    m: [&'a mut [f64]; 6],
+    rec: &'a mut [f64],
 }
 
 /// [`Loads`] of all elements, read by the node pass.
 #[derive(Clone, Copy)]
 struct LoadsIn<'a> {
-    f: [&'a [f64]; 3],
-    m: [&'a [f64]; 6],
+    rec: &'a [f64],
 }
 
-/// Elements per tile of the element pass: its scratch stays in the core's own cache
-/// (a net cage's block is far bigger).
-const TILE: usize = 256;
-
-/// The element pass over elements `er`, tile by tile ([`element_tile`]).
+/// The element pass over elements `er`, piece by piece ([`element_tile`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn element_pass(
@@ -198,28 +205,27 @@ fn element_pass(
     g: &mut Work,
     out: LoadsOut,
 ) {
-    let LoadsOut { mut f, mut m } = out;
-    for start in er.clone().step_by(TILE) {
-        let tile = start..(start + TILE).min(er.end);
-        let (k0, k1) = (start - er.start, tile.end - er.start);
+    let rec = out.rec;
+    for p in nc.pieces.iter().filter_map(|p| p.clip(&er)) {
+        let (k0, k1) = (p.elems.start - er.start, p.elems.end - er.start);
         let o = LoadsOut {
-            f: f.each_mut().map(|q| &mut q[2 * k0..2 * k1]),
-            m: m.each_mut().map(|q| &mut q[k0..k1]),
+            rec: &mut rec[REC * k0..REC * k1],
         };
-        element_tile(nc, lay, tile, x, eta, w, g, o);
+        element_tile(nc, lay, p, x, eta, w, g, o);
     }
 }
 
-/// The element pass over elements `er`: gathers their ends' state `x` and surface
-/// `eta`, their water velocity and acceleration (`w`: per-node water values, empty in
-/// still water), runs the chain path's element loop, and folds its results into what
-/// the elements add to their nodes (`out`).
+/// The element pass over the elements of `piece`: reads their ends' state `x` and
+/// surface `eta` in place (a run) or gathers them, their water velocity and
+/// acceleration (`w`: per-node water values, empty in still water), runs the chain
+/// path's element loop, and folds its results into what the elements add to their
+/// nodes (`out`).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn element_tile(
     nc: &NetConsts,
     lay: &Layout,
-    er: Range<usize>,
+    piece: Piece,
     x: [&[f64]; 6],
     eta: &[f64],
     w: &[f64],
@@ -227,42 +233,65 @@ fn element_tile(
     out: LoadsOut,
 ) {
     let c = &nc.c;
+    let er = piece.elems;
     let ne = er.len();
     let (ea, eb) = (&nc.ends[0][er.clone()], &nc.ends[1][er.clone()]);
     let waves = !w.is_empty();
-    // In still water the surface columns stay zero.
-    let cols = if waves { 7 } else { 6 };
     let src: [&[f64]; 7] = [x[0], x[1], x[2], x[3], x[4], x[5], eta];
     let n = x[0].len();
     assert!(src.iter().all(|q| q.len() == n));
-    {
-        let ga = g.a.each_mut().map(|q| &mut q[..ne]);
-        let gb = g.b.each_mut().map(|q| &mut q[..ne]);
-        for k in 0..ne {
-            let (ia, ib) = (ea[k] as usize, eb[k] as usize);
-            for q in 0..cols {
-                // SAFETY: element ends are below `n` (checked in `NetConsts::new`),
-                // every column has `n` entries and every gathered column `ne`.
-                unsafe {
-                    *ga[q].get_unchecked_mut(k) = *src[q].get_unchecked(ia);
-                    *gb[q].get_unchecked_mut(k) = *src[q].get_unchecked(ib);
+    let Work {
+        a: ga,
+        b: gb,
+        u,
+        aw,
+        t,
+        ten,
+        f,
+        haw,
+        ..
+    } = g;
+    let (a, b): ([&[f64]; 7], [&[f64]; 7]) = match piece.ends {
+        // A run: the ends are consecutive nodes, read in place as on the chain path.
+        Some((a0, b0)) => (src.map(|q| &q[a0..a0 + ne]), src.map(|q| &q[b0..b0 + ne])),
+        None => {
+            // In still water the surface columns stay zero.
+            let cols = if waves { 7 } else { 6 };
+            {
+                let ga = ga.each_mut().map(|q| &mut q[..ne]);
+                let gb = gb.each_mut().map(|q| &mut q[..ne]);
+                for k in 0..ne {
+                    let (ia, ib) = (ea[k] as usize, eb[k] as usize);
+                    for q in 0..cols {
+                        // SAFETY: element ends are below `n` (checked in
+                        // `NetConsts::new`), every column has `n` entries and every
+                        // gathered column `ne`.
+                        unsafe {
+                            *ga[q].get_unchecked_mut(k) = *src[q].get_unchecked(ia);
+                            *gb[q].get_unchecked_mut(k) = *src[q].get_unchecked(ib);
+                        }
+                    }
                 }
             }
+            (
+                std::array::from_fn(|q| &ga[q][..ne]),
+                std::array::from_fn(|q| &gb[q][..ne]),
+            )
         }
-    }
+    };
     match c.uniform {
         Some(un) => {
-            for (q, uq) in g.u.iter_mut().enumerate() {
+            for (q, uq) in u.iter_mut().enumerate() {
                 uq[..ne].fill(un[q]);
             }
         }
         None => {
             for k in 0..ne {
                 let v = lay.currents[c.current[er.start + k] as usize]
-                    .at::<f64>(0.5 * (g.a[2][k] + g.b[2][k]))
+                    .at::<f64>(0.5 * (a[2][k] + b[2][k]))
                     .to_f64();
                 for q in 0..3 {
-                    g.u[q][k] = v[q];
+                    u[q][k] = v[q];
                 }
             }
         }
@@ -273,29 +302,18 @@ fn element_tile(
             let (_, ua, aa) = node_water(w, ea[k] as usize);
             let (_, ub, ab) = node_water(w, eb[k] as usize);
             for q in 0..3 {
-                g.u[q][k] += 0.5 * (ua[q] + ub[q]);
-                g.aw[q][k] = 0.5 * (aa[q] + ab[q]);
+                u[q][k] += 0.5 * (ua[q] + ub[q]);
+                aw[q][k] = 0.5 * (aa[q] + ab[q]);
             }
         }
     }
     // Every end at or below the surface makes every wetted fraction exactly 1, as on
     // the chain path.
-    let submerged = (0..ne).fold(true, |all, k| {
-        all & (g.a[6][k] - g.a[2][k] >= 0.0) & (g.b[6][k] - g.b[2][k] >= 0.0)
-    });
-    let Work {
-        a,
-        b,
-        u,
-        aw,
-        t,
-        ten,
-        f,
-        haw,
-        ..
-    } = g;
-    let a: [&[f64]; 7] = std::array::from_fn(|q| &a[q][..ne]);
-    let b: [&[f64]; 7] = std::array::from_fn(|q| &b[q][..ne]);
+    // (A count, not a fold with `&`: it vectorises.)
+    let under: usize = (0..ne)
+        .map(|k| ((a[6][k] - a[2][k] >= 0.0) & (b[6][k] - b[2][k] >= 0.0)) as usize)
+        .sum();
+    let submerged = under == ne;
     let (ten, haw) = (&mut ten[..ne], &mut haw[..ne]);
     {
         let [tx, ty, tz] = t.each_mut().map(|q| &mut q[..ne]);
@@ -334,24 +352,22 @@ fn node_shares(
     let [tx, ty, tz] = t.each_ref().map(|q| &q[..ne]);
     let [fx, fy, fz] = f.each_ref().map(|q| &q[..ne]);
     let (haw, hm) = (&haw[..ne], &c.hm[e0 + 1..e0 + 1 + ne]);
-    let LoadsOut { f: fo, m: mo } = out;
-    let [fox, foy, foz] = fo.map(|q| &mut q[..2 * ne]);
-    let [mxx, myy, mzz, mxy, mxz, myz] = mo.map(|q| &mut q[..ne]);
-    for k in 0..ne {
+    let rec = &mut out.rec[..REC * ne];
+    for (k, r) in rec.chunks_exact_mut(REC).enumerate().take(ne) {
         let (tn, ntn) = (ten[k], -ten[k]);
-        fox[2 * k] = fx[k] + tx[k] * tn;
-        foy[2 * k] = fy[k] + ty[k] * tn;
-        foz[2 * k] = fz[k] + tz[k] * tn;
-        fox[2 * k + 1] = fx[k] + tx[k] * ntn;
-        foy[2 * k + 1] = fy[k] + ty[k] * ntn;
-        foz[2 * k + 1] = fz[k] + tz[k] * ntn;
         let a = haw[k];
-        mxx[k] = hm[k] + (a - a * tx[k] * tx[k]);
-        myy[k] = hm[k] + (a - a * ty[k] * ty[k]);
-        mzz[k] = hm[k] + (a - a * tz[k] * tz[k]);
-        mxy[k] = -(a * tx[k] * ty[k]);
-        mxz[k] = -(a * tx[k] * tz[k]);
-        myz[k] = -(a * ty[k] * tz[k]);
+        r[0] = hm[k] + (a - a * tx[k] * tx[k]);
+        r[1] = hm[k] + (a - a * ty[k] * ty[k]);
+        r[2] = hm[k] + (a - a * tz[k] * tz[k]);
+        r[3] = -(a * tx[k] * ty[k]);
+        r[4] = -(a * tx[k] * tz[k]);
+        r[5] = -(a * ty[k] * tz[k]);
+        r[6] = fx[k] + tx[k] * tn;
+        r[7] = fy[k] + ty[k] * tn;
+        r[8] = fz[k] + tz[k] * tn;
+        r[9] = fx[k] + tx[k] * ntn;
+        r[10] = fy[k] + ty[k] * ntn;
+        r[11] = fz[k] + tz[k] * ntn;
     }
 }
 
@@ -406,6 +422,7 @@ fn node_pass<const FRICTION: bool>(
             }
         }
     }
+    assert_eq!(el.rec.len(), REC * (nc.ne() + 1));
     let h = implicit_dt(opts);
     let slots = |s: usize| {
         let o = s * c.n;
@@ -508,33 +525,41 @@ fn node_kernel<const W: usize, const FRICTION: bool>(
     let (pwz, [exx, exy, exz]) = (&pwz[..n], ex.map(|q| &q[..n]));
     let [kl, cl, mukl] = seabed.map(|q| &q[..n]);
     let slot = slot.map(|q| &q[..n]);
-    let ne = el.m[0].len();
-    let [fx, fy, fz] = el.f.map(|q| &q[..2 * ne]);
-    let [mxx, myy, mzz, mxy, mxz, myz] = el.m.map(|q| &q[..ne]);
+    let rec = el.rec;
     let [ax, ay, az] = acc;
     let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
     let (zb, v_eps) = (c.zb, c.v_eps);
     for i in 0..n {
-        let mut g = V3::new(0.0, 0.0, pwz[i]);
-        let mut m = Sym3::scalar(pm[i]);
+        // Mass block `xx, yy, zz, xy, xz, yz` and force, summed entry by entry in slot
+        // order (the general path's order).
+        let mut sm = [pm[i], pm[i], pm[i], 0.0, 0.0, 0.0];
+        let mut sf = [0.0, 0.0, pwz[i]];
         for sl in &slot {
             let p = sl[i] as usize;
-            let e = p >> 1;
-            debug_assert!(p < 2 * ne);
-            // SAFETY: every slot is below `2 ne` (checked in `NetConsts::new`; `ne` is
-            // the padded element count), so `e` is below `ne`.
+            // The element's record: its mass share, then the force on its side.
+            let (mo, fo) = (REC * (p >> 1), REC * (p >> 1) + 6 + 3 * (p & 1));
+            debug_assert!(mo + REC <= rec.len());
+            // SAFETY: every slot is below `2 (ne + 1)` (checked in `NetConsts::new`),
+            // and `rec` holds `REC (ne + 1)` values (checked in `node_pass`).
             unsafe {
-                g.x += *fx.get_unchecked(p);
-                g.y += *fy.get_unchecked(p);
-                g.z += *fz.get_unchecked(p);
-                m.xx += *mxx.get_unchecked(e);
-                m.yy += *myy.get_unchecked(e);
-                m.zz += *mzz.get_unchecked(e);
-                m.xy += *mxy.get_unchecked(e);
-                m.xz += *mxz.get_unchecked(e);
-                m.yz += *myz.get_unchecked(e);
+                let (rm, rf) = (rec.as_ptr().add(mo), rec.as_ptr().add(fo));
+                for (q, s) in sm.iter_mut().enumerate() {
+                    *s += *rm.add(q);
+                }
+                for (q, s) in sf.iter_mut().enumerate() {
+                    *s += *rf.add(q);
+                }
             }
         }
+        let mut m = Sym3 {
+            xx: sm[0],
+            yy: sm[1],
+            zz: sm[2],
+            xy: sm[3],
+            xz: sm[4],
+            yz: sm[5],
+        };
+        let mut g = V3::new(sf[0], sf[1], sf[2]);
         g += V3::new(exx[i], exy[i], exz[i]);
         let (sb, ch, cz) = seabed_load::<FRICTION>(
             zb - z[i],
@@ -575,14 +600,8 @@ fn load(nc: &NetConsts, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
     }
     sc.eta.clear();
     sc.eta.resize(n, 0.0);
-    for v in &mut sc.el.f {
-        v.clear();
-        v.resize(2 * (ne + 1), 0.0);
-    }
-    for v in &mut sc.el.m {
-        v.clear();
-        v.resize(ne + 1, 0.0);
-    }
+    sc.el.rec.clear();
+    sc.el.rec.resize(REC * (ne + 1), 0.0);
 }
 
 /// Copies the SoA state back to `r`, `v`.
@@ -678,16 +697,12 @@ fn advance_net_body(
         }
         {
             let out = LoadsOut {
-                f: el.f.each_mut().map(|q| &mut q[2..]),
-                m: el.m.each_mut().map(|q| &mut q[1..]),
+                rec: &mut el.rec[REC..],
             };
             let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
             element_pass(nc, lay, 0..ne, xs, eta, wbuf, work, out);
         }
-        let lin = LoadsIn {
-            f: el.f.each_ref().map(|q| &q[..]),
-            m: el.m.each_ref().map(|q| &q[..]),
-        };
+        let lin = LoadsIn { rec: &el.rec };
         let [x0, x1, x2, x3, x4, x5] = x;
         let xs = [x0, x1, x2, x3, x4, x5].map(|q| &mut q[..]);
         let bad = if nc.c.friction {

@@ -1,8 +1,9 @@
 //! A network block stepped by all the pool's threads together (a net cage: thousands
 //! of nodes), on the network path's passes over each thread's own elements and nodes.
 
+use super::pieces::{owned, Piece};
 use super::{
-    element_pass, load, node_pass, store, LoadsIn, LoadsOut, NetConsts, NetScratch, Work, TILE,
+    element_tile, load, node_pass, store, LoadsIn, LoadsOut, NetConsts, NetScratch, Work, REC, TILE,
 };
 use crate::cpu::threaded::SpinBarrier;
 use crate::math::V3;
@@ -19,16 +20,18 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 #[derive(Clone, Copy)]
 struct Shared {
     x: [*mut f64; 6],
-    /// [`Loads`]: `f` (3, `2 (ne + 1)` each), `m` (6, `ne + 1` each).
-    f: [*mut f64; 3],
-    m: [*mut f64; 6],
+    /// [`Loads`]: `REC (ne + 1)` values.
+    rec: *mut f64,
 }
 unsafe impl Send for Shared {}
 unsafe impl Sync for Shared {}
 
 /// Steps a network block (still water) by `nsteps` with `threads` threads: each owns a
-/// contiguous range of elements and of nodes. Per step, phase 1: each thread evaluates
-/// its elements (reading every node's state, which nobody writes in this phase);
+/// contiguous range of nodes and the elements whose node a is one of them (so that a
+/// thread mostly reads what it wrote: across the threads go only the state and loads
+/// of the elements that cross the border of two node ranges). Per step, phase 1: each
+/// thread evaluates its elements (reading every node's state, which nobody writes in
+/// this phase);
 /// barrier; phase 2: each thread updates its nodes (reading every element's loads,
 /// which nobody writes now, and its own nodes' state); barrier. The arithmetic per
 /// element and per node is [`advance_net`]'s, so the result is the same bit for bit,
@@ -52,8 +55,7 @@ pub(crate) fn advance_net_threaded(
     let NetScratch { x, eta, el, .. } = sc;
     let sh = Shared {
         x: x.each_mut().map(|q| q.as_mut_ptr()),
-        f: el.f.each_mut().map(|q| q.as_mut_ptr()),
-        m: el.m.each_mut().map(|q| q.as_mut_ptr()),
+        rec: el.rec.as_mut_ptr(),
     };
     let eta: &[f64] = eta;
     let barrier = SpinBarrier::new(threads);
@@ -64,13 +66,15 @@ pub(crate) fn advance_net_threaded(
         // Capture the whole `Shared` (Sync), not its raw-pointer fields one by one.
         #[allow(clippy::redundant_locals)]
         let sh = sh;
-        let (er, nr) = (range(tid, ne), range(tid, n));
+        let nr = range(tid, n);
+        let pieces = owned(&nc.pieces, &nc.ends[0], &nr);
         let mut g = Work::default();
-        g.size(&nc.c, er.len().min(TILE), &nr);
-        // SAFETY: `sh` holds this block's scratch, and each thread has its own ranges.
+        g.size(&nc.c, ne.min(TILE), &nr);
+        // SAFETY: `sh` holds this block's scratch, and each thread has its own nodes
+        // and elements (each element has one node a).
         unsafe {
             step_threads(
-                nc, lay, opts, sh, &barrier, &failed, er, nr, eta, &mut g, step0, dt, nsteps,
+                nc, lay, opts, sh, &barrier, &failed, &pieces, nr, eta, &mut g, step0, dt, nsteps,
             )
         }
     };
@@ -105,7 +109,7 @@ unsafe fn step_threads(
     sh: Shared,
     barrier: &SpinBarrier,
     failed: &AtomicUsize,
-    er: Range<usize>,
+    pieces: &[Piece],
     nr: Range<usize>,
     eta: &[f64],
     g: &mut Work,
@@ -119,13 +123,13 @@ unsafe fn step_threads(
             // SAFETY: the CPU has AVX2, checked just above; the rest as the body's.
             return unsafe {
                 step_threads_avx2(
-                    nc, lay, opts, sh, barrier, failed, er, nr, eta, g, step0, dt, nsteps,
+                    nc, lay, opts, sh, barrier, failed, pieces, nr, eta, g, step0, dt, nsteps,
                 )
             };
         }
     }
     step_threads_body(
-        nc, lay, opts, sh, barrier, failed, er, nr, eta, g, step0, dt, nsteps,
+        nc, lay, opts, sh, barrier, failed, pieces, nr, eta, g, step0, dt, nsteps,
     )
 }
 
@@ -139,7 +143,7 @@ unsafe fn step_threads_avx2(
     sh: Shared,
     barrier: &SpinBarrier,
     failed: &AtomicUsize,
-    er: Range<usize>,
+    pieces: &[Piece],
     nr: Range<usize>,
     eta: &[f64],
     g: &mut Work,
@@ -148,13 +152,13 @@ unsafe fn step_threads_avx2(
     nsteps: u64,
 ) -> Option<f64> {
     step_threads_body(
-        nc, lay, opts, sh, barrier, failed, er, nr, eta, g, step0, dt, nsteps,
+        nc, lay, opts, sh, barrier, failed, pieces, nr, eta, g, step0, dt, nsteps,
     )
 }
 
 /// # Safety
 /// `sh` points at the block's state (`n` nodes) and padded element loads (`ne + 1`),
-/// and every thread of `barrier` runs this with its own disjoint `er` and `nr`.
+/// and every thread of `barrier` runs this with its own disjoint `pieces` and `nr`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 unsafe fn step_threads_body(
@@ -164,7 +168,7 @@ unsafe fn step_threads_body(
     sh: Shared,
     barrier: &SpinBarrier,
     failed: &AtomicUsize,
-    er: Range<usize>,
+    pieces: &[Piece],
     nr: Range<usize>,
     eta: &[f64],
     g: &mut Work,
@@ -181,27 +185,26 @@ unsafe fn step_threads_body(
             // last writes happened before the barrier).
             let xs: [&[f64]; 6] =
                 sh.x.map(|p| unsafe { std::slice::from_raw_parts(p as *const f64, n) });
-            let out = LoadsOut {
-                f: sh.f.map(|p| unsafe {
-                    std::slice::from_raw_parts_mut(p.add(2 * (er.start + 1)), 2 * er.len())
-                }),
-                m: sh.m.map(|p| unsafe {
-                    std::slice::from_raw_parts_mut(p.add(er.start + 1), er.len())
-                }),
-            };
-            element_pass(nc, lay, er.clone(), xs, eta, &[], g, out);
+            for p in pieces {
+                let er = &p.elems;
+                assert!(er.end <= ne);
+                let out = LoadsOut {
+                    rec: unsafe {
+                        std::slice::from_raw_parts_mut(
+                            sh.rec.add(REC * (er.start + 1)),
+                            REC * er.len(),
+                        )
+                    },
+                };
+                element_tile(nc, lay, p.clone(), xs, eta, &[], g, out);
+            }
         }
         barrier.wait(&mut sense);
         {
             // Phase 2 only reads the element loads (written before the barrier) and
             // reads and writes this thread's own nodes.
             let lin = LoadsIn {
-                f: sh
-                    .f
-                    .map(|p| unsafe { std::slice::from_raw_parts(p as *const f64, 2 * (ne + 1)) }),
-                m: sh
-                    .m
-                    .map(|p| unsafe { std::slice::from_raw_parts(p as *const f64, ne + 1) }),
+                rec: unsafe { std::slice::from_raw_parts(sh.rec as *const f64, REC * (ne + 1)) },
             };
             let xs: [&mut [f64]; 6] =
                 sh.x.map(|p| unsafe { std::slice::from_raw_parts_mut(p.add(nr.start), nr.len()) });
