@@ -573,16 +573,27 @@ gpu_struct! {
         first: u32,
         /// Padding (zero).
         pad: u32,
-        /// Interpolation weight `(t - t0) / (t1 - t0)` of the step's time.
-        s: R,
+        /// Hermite weight `h00(s)` of the step's time, `s = (t - t0) / (t1 - t0)`
+        /// (`sea::cache::hermite_weights`): of the values at `t0`.
+        w0: R,
+        /// `(t1 - t0) h10(s)`: of the rates at `t0`.
+        w1: R,
+        /// `h01(s)`: of the values at `t1`.
+        w2: R,
+        /// `(t1 - t0) h11(s)`: of the rates at `t1`.
+        w3: R,
         /// `t - t_ref` of the step, s (refresh with restart).
         tau0: R,
         /// Start-up ramp factor at the step's time (refresh with restart).
         ramp0: R,
+        /// Its rate, 1/s (refresh with restart).
+        ramp_rate0: R,
         /// `t1 - t_ref`, s (refresh).
         tau1: R,
         /// Start-up ramp factor at `t1` (refresh).
         ramp1: R,
+        /// Its rate at `t1`, 1/s (refresh).
+        ramp_rate1: R,
         /// `t1 - t`, s: the `t1` values are evaluated at `x + v (t1 - t)` (refresh).
         ahead: R,
         /// Water depth, m (`sea::GPU_DEEP` for deep water).
