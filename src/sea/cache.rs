@@ -30,10 +30,26 @@ use rayon::prelude::*;
 /// Values per node in the cache: `eta, u (3), a (3)`.
 pub const CACHE_STRIDE: usize = 7;
 
-/// The refresh interval, s, that keeps the root-mean-square interpolation error of
-/// the water acceleration within `tolerance` of its root-mean-square value (see the
-/// module doc); infinite for still water.
+/// The refresh interval, s, that keeps the root-mean-square cubic Hermite interpolation
+/// error of the water acceleration within `tolerance` of its root-mean-square value
+/// (see the module doc): `dt_r = (384^2 eps^2 m4 / m12)^(1/8)` with
+/// `m_n = sum A^2 w^n / 2`; for one component `w dt_r = (384 eps)^(1/4)`. Infinite for
+/// still water.
 pub fn refresh_interval(components: &[WaveComponent], tolerance: f64) -> f64 {
+    let (m4, m12) = components.iter().fold((0.0, 0.0), |(m4, m12), c| {
+        let a2w4 = 0.5 * c.amplitude * c.amplitude * c.omega.powi(4);
+        (m4 + a2w4, m12 + a2w4 * c.omega.powi(8))
+    });
+    if m12 <= 0.0 {
+        return f64::INFINITY;
+    }
+    (384.0 * 384.0 * tolerance * tolerance * m4 / m12).powf(0.125)
+}
+
+/// The interval of linear interpolation, `(64 eps^2 m4 / m8)^(1/4)` (what the cache
+/// used before it interpolated with rates; kept while the cache still interpolates
+/// linearly).
+fn linear_refresh_interval(components: &[WaveComponent], tolerance: f64) -> f64 {
     let (m4, m8) = components.iter().fold((0.0, 0.0), |(m4, m8), c| {
         let a2w4 = c.amplitude * c.amplitude * c.omega.powi(4);
         (m4 + a2w4, m8 + a2w4 * c.omega.powi(4))
@@ -42,6 +58,38 @@ pub fn refresh_interval(components: &[WaveComponent], tolerance: f64) -> f64 {
         return f64::INFINITY;
     }
     (64.0 * tolerance * tolerance * m4 / m8).powf(0.25)
+}
+
+/// The cubic Hermite weights at `s = (t - t0) / delta` in `[0, 1]`, `delta = t1 - t0`:
+/// `[h00, delta h10, h01, delta h11]`, so that `f(t) = w0 f0 + w1 f0' + w2 f1 + w3 f1'`.
+/// Factored so that they are exactly `[1, 0, 0, 0]` at `s = 0` and `[0, 0, 1, 0]` at
+/// `s = 1`. Formed once per step on the host (f64) for every node.
+pub fn hermite_weights(s: f64, delta: f64) -> [f64; 4] {
+    let s2 = s * s;
+    let m = s - 1.0;
+    [
+        s2 * (2.0 * s - 3.0) + 1.0,
+        delta * (s * m * m),
+        s2 * (3.0 - 2.0 * s),
+        delta * (s2 * m),
+    ]
+}
+
+/// Cubic Hermite interpolation of cached values `v0, v1` with rates `d0, d1`,
+/// elementwise, with the weights `w` of [`hermite_weights`]: four multiply-adds a value.
+pub fn wave_cache_hermite(
+    v0: &[f64],
+    d0: &[f64],
+    v1: &[f64],
+    d1: &[f64],
+    w: [f64; 4],
+    out: &mut [f64],
+) {
+    let n = out.len();
+    let (v0, d0, v1, d1) = (&v0[..n], &d0[..n], &v1[..n], &d1[..n]);
+    for i in 0..n {
+        out[i] = w[0] * v0[i] + w[1] * d0[i] + w[2] * v1[i] + w[3] * d1[i];
+    }
 }
 
 /// The exact kinematics at every node (positions `x, y, z` per node) at time `t`,
@@ -103,7 +151,7 @@ impl WaveCache {
     /// A cache for `n_nodes` nodes in `sea`, refreshed at the interval of
     /// [`refresh_interval`] for the sea's `cache_tolerance`.
     pub fn new(sea: &SeaState, n_nodes: usize) -> Self {
-        let interval = refresh_interval(&sea.components, sea.cache_tolerance);
+        let interval = linear_refresh_interval(&sea.components, sea.cache_tolerance);
         Self::with_interval(sea, n_nodes, interval)
     }
 
@@ -257,7 +305,7 @@ mod tests {
     fn interpolation_error_is_within_the_tolerance() {
         let sea = broad_sea();
         for &tol in &[1e-3, 1e-2] {
-            let dt_r = refresh_interval(&sea.components, tol);
+            let dt_r = linear_refresh_interval(&sea.components, tol);
             let (eu, ea) = cache_error(&sea, dt_r, 40.0);
             eprintln!("tolerance {tol:e}: interval {dt_r:.4} s, rms error u {eu:.3e}, a {ea:.3e}");
             assert!(
@@ -270,7 +318,7 @@ mod tests {
                 "acceleration error {ea:e}: the rule is far too strict"
             );
         }
-        let dt_r = refresh_interval(&sea.components, 1e-2);
+        let dt_r = linear_refresh_interval(&sea.components, 1e-2);
         let (_, e1) = cache_error(&sea, dt_r, 20.0);
         let (_, e2) = cache_error(&sea, dt_r / 2.0, 20.0);
         let order = (e1 / e2).log2();
@@ -289,7 +337,7 @@ mod tests {
             direction: 0.0,
             phase: 0.0,
         };
-        let dt_r = refresh_interval(&[c], 1e-3);
+        let dt_r = linear_refresh_interval(&[c], 1e-3);
         assert!((dt_r - (8e-3f64).sqrt() / w).abs() < 1e-15);
         let sea = SeaState {
             components: vec![c],
@@ -304,6 +352,65 @@ mod tests {
         for &t in &[cache.t0, cache.t1] {
             assert_eq!(cache.node(0, t), exact.kinematics(p, t));
         }
+        assert!(linear_refresh_interval(&[], 1e-3).is_infinite());
+    }
+
+    /// The Hermite weights are exact at both ends, sum to one (a constant is kept) and
+    /// reproduce a cubic exactly.
+    #[test]
+    fn hermite_weights_are_exact_at_the_ends_and_on_cubics() {
+        assert_eq!(hermite_weights(0.0, 0.37), [1.0, 0.0, 0.0, 0.0]);
+        assert_eq!(hermite_weights(1.0, 0.37), [0.0, 0.0, 1.0, 0.0]);
+        let f = |t: f64| 0.3 - 1.2 * t + 0.7 * t * t - 2.1 * t * t * t;
+        let df = |t: f64| -1.2 + 1.4 * t - 6.3 * t * t;
+        let (t0, t1) = (0.4, 0.95);
+        for i in 0..=10 {
+            let s = i as f64 / 10.0;
+            let w = hermite_weights(s, t1 - t0);
+            assert!((w[0] + w[2] - 1.0).abs() < 1e-15);
+            let mut o = [0.0];
+            wave_cache_hermite(&[f(t0)], &[df(t0)], &[f(t1)], &[df(t1)], w, &mut o);
+            let t = t0 + s * (t1 - t0);
+            assert!((o[0] - f(t)).abs() < 1e-14, "s = {s}: {} {}", o[0], f(t));
+        }
+    }
+
+    /// A single cosine interpolated over the interval of the rule: within the bound
+    /// `(w dt_r)^4 / 384` of its amplitude, and the bound is nearly reached (it is the
+    /// error, not a loose bound); the rule's single-component interval is
+    /// `(384 eps)^(1/4) / w`.
+    #[test]
+    fn hermite_interpolation_of_a_cosine_is_within_the_bound() {
+        let w = TAU / 6.0;
+        let c = WaveComponent {
+            amplitude: 1.0,
+            omega: w,
+            k: wave_number(w, 50.0, 9.81),
+            direction: 0.0,
+            phase: 0.0,
+        };
+        let dt_r = refresh_interval(&[c], 1e-3);
+        assert!((w * dt_r - (0.384f64).powf(0.25)).abs() < 1e-14);
+        let bound = (w * dt_r).powi(4) / 384.0;
+        let mut worst = 0.0f64;
+        for start in 0..20 {
+            let t0 = 0.173 * start as f64;
+            let t1 = t0 + dt_r;
+            let (f0, f1) = ((w * t0).cos(), (w * t1).cos());
+            let (d0, d1) = (-w * (w * t0).sin(), -w * (w * t1).sin());
+            for i in 0..=100 {
+                let s = i as f64 / 100.0;
+                let mut o = [0.0];
+                wave_cache_hermite(&[f0], &[d0], &[f1], &[d1], hermite_weights(s, dt_r), &mut o);
+                worst = worst.max((o[0] - (w * (t0 + s * dt_r)).cos()).abs());
+            }
+        }
+        eprintln!("worst {worst:.3e}, bound {bound:.3e}");
+        assert!(worst <= bound, "error {worst:e} over the bound {bound:e}");
+        assert!(
+            worst >= 0.5 * bound,
+            "error {worst:e} far under the bound {bound:e}"
+        );
         assert!(refresh_interval(&[], 1e-3).is_infinite());
     }
 }

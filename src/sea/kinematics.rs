@@ -161,6 +161,16 @@ pub fn wave_ramp(t: f64, ramp_duration: f64) -> f64 {
     }
 }
 
+/// The time derivative of [`wave_ramp`]: `(pi / (2 T_r)) sin(pi t / T_r)` on
+/// `0 < t < T_r`, 0 elsewhere (and 0 when `T_r <= 0`).
+pub fn wave_ramp_rate(t: f64, ramp_duration: f64) -> f64 {
+    if ramp_duration <= 0.0 || t <= 0.0 || t >= ramp_duration {
+        0.0
+    } else {
+        0.5 * PI / ramp_duration * (PI * t / ramp_duration).sin()
+    }
+}
+
 /// Phase `theta` of a packed component at `(x, y)`, `tau = t - t_ref` after its
 /// reference time.
 #[inline]
@@ -241,6 +251,110 @@ pub fn wave_kinematics_tau(
     let cols = ComponentColumns::new(comps);
     let mut scratch = KinematicsScratch::default();
     wave_kinematics_columns(&cols, depth, stretching, r, p, tau, &mut scratch)
+}
+
+/// The time derivative of the evaluation depth [`wave_eval_depth`] along a path with
+/// vertical velocity `vz` under an elevation changing at `eta_rate` (both along the
+/// path): Wheeler `(vz - eta_rate (1 + zs / h)) / (1 + eta / h)`, constant `vz`, and 0
+/// where the clamp to `[-h, 0]` holds the depth (a point in air or under the seabed).
+pub fn wave_eval_depth_rate(
+    z: f64,
+    eta: f64,
+    depth: f64,
+    stretching: Stretching,
+    vz: f64,
+    eta_rate: f64,
+) -> f64 {
+    let (zs, rate) = match stretching {
+        Stretching::Wheeler => {
+            let d = 1.0 + eta / depth;
+            let zs = (z - eta) / d;
+            (zs, (vz - eta_rate * (1.0 + zs / depth)) / d)
+        }
+        Stretching::Constant => (z, vz),
+    };
+    if zs > 0.0 || zs < -depth {
+        0.0
+    } else {
+        rate
+    }
+}
+
+/// [`wave_kinematics_tau`] and the rates of the same values along a path through `p`
+/// with velocity `v` (m/s): `d/dt` of `eta`, `u` and `a` seen by a point moving at `v`,
+/// with the ramp factor `r` and its rate `r_rate` ([`wave_ramp_rate`]) given. Returns
+/// `(values, rates)`; the rates as a [`Kinematics`] (`eta` rate, m/s; `u` rate, m/s^2;
+/// `a` rate, m/s^3).
+///
+/// One component at a time, the reference (and the WGSL twin's arrangement): with
+/// `theta' = kx vx + ky vy - w` (the Doppler-shifted frequency) and `zs'` from
+/// [`wave_eval_depth_rate`], `d/dt [ch cos] = k sh zs' cos - ch sin theta'` and the like
+/// (`d ch / dzs = k sh`, `d sh / dzs = k ch`). Each rate sum is times `r`, plus `r_rate`
+/// times the unramped value sum. A component whose decay `e^{k zs}` is under `1e-30`
+/// contributes 0 to the velocity and acceleration and their rates, as in
+/// [`wave_kinematics_columns`].
+#[allow(clippy::too_many_arguments)]
+pub fn wave_kinematics_rates_tau(
+    comps: &[PackedComponent],
+    depth: f64,
+    stretching: Stretching,
+    r: f64,
+    r_rate: f64,
+    p: [f64; 3],
+    v: [f64; 3],
+    tau: f64,
+) -> (Kinematics, Kinematics) {
+    let (mut se, mut se_rate) = (0.0, 0.0);
+    for c in comps {
+        let (s, co) = poly::sin_cos(wave_theta(c, p[0], p[1], tau));
+        let theta_rate = c.kx * v[0] + c.ky * v[1] - c.omega;
+        se += c.amp * co;
+        se_rate -= c.amp * s * theta_rate;
+    }
+    let eta = r * se;
+    let eta_rate = r * se_rate + r_rate * se;
+    let zs = wave_eval_depth(p[2], eta, depth, stretching);
+    let zs_rate = wave_eval_depth_rate(p[2], eta, depth, stretching, v[2], eta_rate);
+    // Unramped sums: u, a (a_z without its sign) and their rates.
+    let (mut u, mut a, mut du, mut da) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
+    for c in comps {
+        let (ch, sh) = wave_depth_decay(c.k, zs, depth);
+        if poly::exp_neg(c.k * zs) < 1e-30 {
+            continue;
+        }
+        let (s, co) = poly::sin_cos(wave_theta(c, p[0], p[1], tau));
+        let theta_rate = c.kx * v[0] + c.ky * v[1] - c.omega;
+        let kz = c.k * zs_rate;
+        let (cc, ss, cs, sc) = (ch * co, sh * s, ch * s, sh * co);
+        let (uh, uh_rate) = (c.amp_u * cc, c.amp_u * (kz * sc - cs * theta_rate));
+        let (ah, ah_rate) = (c.amp_a * cs, c.amp_a * (kz * ss + cc * theta_rate));
+        u[0] += uh * c.cos_b;
+        u[1] += uh * c.sin_b;
+        u[2] += c.amp_u * ss;
+        a[0] += ah * c.cos_b;
+        a[1] += ah * c.sin_b;
+        a[2] += c.amp_a * sc;
+        du[0] += uh_rate * c.cos_b;
+        du[1] += uh_rate * c.sin_b;
+        du[2] += c.amp_u * (kz * cs + sc * theta_rate);
+        da[0] += ah_rate * c.cos_b;
+        da[1] += ah_rate * c.sin_b;
+        da[2] += c.amp_a * (kz * cc - ss * theta_rate);
+    }
+    a[2] = -a[2];
+    da[2] = -da[2];
+    let values = Kinematics {
+        eta,
+        u: u.map(|x| r * x),
+        a: a.map(|x| r * x),
+    };
+    let rate = |x: [f64; 3], dx: [f64; 3]| [0, 1, 2].map(|d| r * dx[d] + r_rate * x[d]);
+    let rates = Kinematics {
+        eta: eta_rate,
+        u: rate(u, du),
+        a: rate(a, da),
+    };
+    (values, rates)
 }
 
 /// The packed components as columns, one array per field (the fields of
@@ -670,5 +784,102 @@ mod tests {
         let (a, b) = (f0.kinematics(p, 10_003.0), f1.kinematics(p, 10_003.0));
         assert!((a.eta - b.eta).abs() < 1e-10);
         assert!((a.u[0] - b.u[0]).abs() < 1e-10);
+    }
+
+    /// The rates of [`wave_kinematics_rates_tau`] against a central finite difference of
+    /// the values along a moving path `p(t) = p0 + v t`: Wheeler and constant
+    /// stretching, finite and infinite depth, deep down, just under the surface and in
+    /// air, at full height and inside the ramp; and its values are those of
+    /// [`wave_kinematics_tau`].
+    #[test]
+    fn rates_match_a_finite_difference_along_the_path() {
+        let cases: [(f64, Stretching, f64); 4] = [
+            (30.0, Stretching::Wheeler, 0.0),
+            (30.0, Stretching::Constant, 0.0),
+            (f64::INFINITY, Stretching::Wheeler, 0.0),
+            (30.0, Stretching::Wheeler, 20.0),
+        ];
+        let v = [1.3, -0.7, 0.9];
+        for (h, stretching, ramp) in cases {
+            let hd = if h.is_finite() { h } else { 200.0 };
+            let comps = vec![
+                comp(1.2, 9.0, hd, 0.3, 0.1),
+                comp(0.6, 5.0, hd, -0.8, 2.0),
+                comp(0.25, 3.0, hd, 1.9, 4.0),
+            ];
+            let mut sea = sea(comps, h, stretching);
+            sea.ramp_duration = ramp;
+            let f = WaveField::new(&sea);
+            let t = if ramp > 0.0 { 5.3 } else { 12.7 };
+            let eta0 = f.elevation(4.0, -2.0, t);
+            // Deep down, 2 m under the surface, and 3 m in air.
+            for z in [-22.0, eta0 - 2.0, eta0 + 3.0] {
+                let p0 = [4.0 - v[0] * t, -2.0 - v[1] * t, z - v[2] * t];
+                let at = |t: f64| {
+                    let p = [0, 1, 2].map(|d| p0[d] + v[d] * t);
+                    (p, wave_ramp(t, ramp))
+                };
+                let (p, r) = at(t);
+                let (val, rate) = wave_kinematics_rates_tau(
+                    &f.comps,
+                    h,
+                    stretching,
+                    r,
+                    wave_ramp_rate(t, ramp),
+                    p,
+                    v,
+                    t,
+                );
+                let plain = wave_kinematics_tau(&f.comps, h, stretching, r, p, t);
+                assert!((val.eta - plain.eta).abs() < 1e-13);
+                for d in 0..3 {
+                    assert!((val.u[d] - plain.u[d]).abs() < 1e-13);
+                    assert!((val.a[d] - plain.a[d]).abs() < 1e-13);
+                }
+                let dt = 1e-4;
+                let ((pp, rp), (pm, rm)) = (at(t + dt), at(t - dt));
+                let kp = wave_kinematics_tau(&f.comps, h, stretching, rp, pp, t + dt);
+                let km = wave_kinematics_tau(&f.comps, h, stretching, rm, pm, t - dt);
+                let fd = |a: f64, b: f64| (a - b) / (2.0 * dt);
+                let norm = |x: [f64; 3]| (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+                let what = format!("h {h}, {stretching:?}, ramp {ramp}, z {z:.2}");
+                let e = fd(kp.eta, km.eta);
+                assert!(
+                    (e - rate.eta).abs() <= 1e-7 * rate.eta.abs().max(0.1),
+                    "eta rate {} against {e}: {what}",
+                    rate.eta
+                );
+                let (su, sa) = (norm(rate.u), norm(rate.a));
+                assert!(su > 1e-3 && sa > 1e-3, "{what}: rates too small to test");
+                for d in 0..3 {
+                    let (eu, ea) = (fd(kp.u[d], km.u[d]), fd(kp.a[d], km.a[d]));
+                    assert!(
+                        (eu - rate.u[d]).abs() <= 1e-7 * su,
+                        "u[{d}] rate {} against {eu}: {what}",
+                        rate.u[d]
+                    );
+                    assert!(
+                        (ea - rate.a[d]).abs() <= 1e-7 * sa,
+                        "a[{d}] rate {} against {ea}: {what}",
+                        rate.a[d]
+                    );
+                }
+            }
+        }
+    }
+
+    /// The ramp's rate is the derivative of the ramp (central difference), 0 outside
+    /// the ramp and without one.
+    #[test]
+    fn ramp_rate_is_the_ramps_derivative() {
+        let tr = 20.0;
+        for &t in &[0.5, 5.0, 10.0, 17.3, 19.9] {
+            let h = 1e-5;
+            let fd = (wave_ramp(t + h, tr) - wave_ramp(t - h, tr)) / (2.0 * h);
+            assert!((wave_ramp_rate(t, tr) - fd).abs() < 1e-9, "t = {t}");
+        }
+        assert_eq!(wave_ramp_rate(-1.0, tr), 0.0);
+        assert_eq!(wave_ramp_rate(25.0, tr), 0.0);
+        assert_eq!(wave_ramp_rate(3.0, 0.0), 0.0);
     }
 }
