@@ -266,7 +266,9 @@ struct WaveStep {
     stretching: u32,
     // The sea's first component in wave_comps (the seas' components are back to back).
     first: u32,
-    pad: u32,
+    // 1 when the refresh records each node's velocity for the next refresh's estimate
+    // of its acceleration (0 for an output-time evaluation).
+    track: u32,
     // The Hermite weights of this step's time, [h00, Delta h10, h01, Delta h11]
     // (wave_cache_hermite; four scalars, not a vec4, whose alignment would pad the row).
     w0: R,
@@ -282,14 +284,19 @@ struct WaveStep {
     tau1: R,
     ramp1: R,
     ramp_rate1: R,
-    // Refresh: t1 - t, s (the t1 values are evaluated at x + v (t1 - t)).
+    // Refresh: t1 - t, s (the t1 values are evaluated at x + v (t1 - t) + acc (t1 - t)^2 / 2
+    // with velocity v + acc (t1 - t)).
     ahead: R,
+    // Refresh: 1 / (t - the previous refresh's time), 1/s, 0 on a restart: the node's
+    // acceleration acc is estimated as (v - v at the previous refresh) times it.
+    acc_rate: R,
     // Water depth, m (sea::GPU_DEEP for deep water).
     depth: R,
 }
 
 // Fourteen scalars per node and slot: eta, u, a (m, m/s, m/s^2), then their rates
-// along the node's path (m/s, m/s^2, m/s^3); three slots.
+// along the node's path (m/s, m/s^2, m/s^3); three slots; then three per node: the
+// node's velocity at the last refresh (m/s).
 const WAVE_CACHE_STRIDE: u32 = 14u;
 @group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
 @group(0) @binding(20) var<storage, read> wave_steps: array<WaveStep>;
@@ -342,9 +349,10 @@ fn node_waves(i: u32, k: u32) -> WaveKin {
 }
 
 // The refresh of node i at step k, at absolute position p (m) with velocity v (m/s):
-// on a restart the t0 values and rates at p, then the t1 values and rates at the
-// predicted position p + v (t1 - t), rates along the velocity v; nothing when the
-// node's sea does not refresh at this step. CPU twin:
+// on a restart the t0 values and rates at p along v, then the t1 values and rates at
+// the predicted position p + v h + acc h^2 / 2 along v + acc h (h = t1 - t, acc the
+// velocity change since the previous refresh over its time, 0 on a restart); nothing
+// when the node's sea does not refresh at this step. CPU twin:
 // sea::cache::WaveCache::refresh_if_due.
 fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
     let ws = node_wave_step(i, k);
@@ -354,5 +362,18 @@ fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
     if ws.restart != 0u {
         wave_cache_store(ws.slot0, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp0, ws.ramp_rate0, p, v, ws.tau0));
     }
-    wave_cache_store(ws.slot1, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp1, ws.ramp_rate1, p + v * ws.ahead, v, ws.tau1));
+    let ov = (3u * params.n_nodes * WAVE_CACHE_STRIDE) + 3u * i;
+    var acc = vec3<R>(R(0.0));
+    if ws.acc_rate != R(0.0) {
+        acc = (v - vec3<R>(wave_cache[ov], wave_cache[ov + 1u], wave_cache[ov + 2u])) * ws.acc_rate;
+    }
+    if ws.track != 0u {
+        wave_cache[ov] = v.x;
+        wave_cache[ov + 1u] = v.y;
+        wave_cache[ov + 2u] = v.z;
+    }
+    let h = ws.ahead;
+    let p1 = p + v * h + R(0.5) * acc * h * h;
+    let v1 = v + acc * h;
+    wave_cache_store(ws.slot1, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp1, ws.ramp_rate1, p1, v1, ws.tau1));
 }

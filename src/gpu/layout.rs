@@ -553,7 +553,7 @@ gpu_struct! {
 gpu_struct! {
     /// The waves at one step of a submission (WGSL `WaveStep` in
     /// `shaders/shared/waves.wgsl`): where the kinematics cache's two times are, the
-    /// interpolation weight, and what a refresh at this step evaluates. Times are
+    /// Hermite weights, and what a refresh at this step evaluates. Times are
     /// relative to the components' reference time `t_ref`, formed in f64 on the host.
     WaveStep {
         /// Cache slot of the values at `t0` (0 or 1; 2 for an output-time evaluation).
@@ -571,8 +571,9 @@ gpu_struct! {
         /// The sea's first component in the components buffer (the seas of a packed
         /// run are back to back, `sea::set`).
         first: u32,
-        /// Padding (zero).
-        pad: u32,
+        /// 1 when the refresh records each node's velocity for the next refresh's
+        /// acceleration estimate (0: an output-time evaluation).
+        track: u32,
         /// Hermite weight `h00(s)` of the step's time, `s = (t - t0) / (t1 - t0)`
         /// (`sea::cache::hermite_weights`): of the values at `t0`.
         w0: R,
@@ -594,8 +595,12 @@ gpu_struct! {
         ramp1: R,
         /// Its rate at `t1`, 1/s (refresh).
         ramp_rate1: R,
-        /// `t1 - t`, s: the `t1` values are evaluated at `x + v (t1 - t)` (refresh).
+        /// `t1 - t`, s: the `t1` values are evaluated at `x + v h + acc h^2 / 2`
+        /// with velocity `v + acc h`, `h = t1 - t` (refresh).
         ahead: R,
+        /// `1 / (t - t_prev)`, 1/s, `t_prev` the previous refresh's time; 0 on a
+        /// restart: `acc = (v - v_prev) / (t - t_prev)` (refresh).
+        acc_rate: R,
         /// Water depth, m (`sea::GPU_DEEP` for deep water).
         depth: R,
     }

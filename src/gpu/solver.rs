@@ -523,7 +523,8 @@ struct Buffers {
 }
 
 /// Scalars per node and cache slot on the GPU: the values `eta, u, a` and their rates
-/// along the node's path (`WAVE_CACHE_STRIDE` in `shaders/shared/waves.wgsl`).
+/// along the node's path (`WAVE_CACHE_STRIDE` in `shaders/shared/waves.wgsl`); after
+/// the three slots, three per node: its velocity at the last refresh.
 const WAVE_CACHE_STRIDE: usize = 14;
 
 /// The host's side of the waves' kinematics cache: the components (rebased at each
@@ -542,6 +543,9 @@ struct WaveSchedule {
     t1: f64,
     /// Cache slot of the older values (0 or 1).
     slot0: u32,
+    /// Time of the last refresh, s (NaN before the first): the nodes' acceleration
+    /// for the path prediction is their velocity change since then over this span.
+    last_t: f64,
 }
 
 impl WaveSchedule {
@@ -554,6 +558,7 @@ impl WaveSchedule {
             t0: 0.0,
             t1: 0.0,
             slot0: 0,
+            last_t: f64::NAN,
         }
     }
 
@@ -583,7 +588,14 @@ impl WaveSchedule {
         let covered = self.t1 > self.t0 && t >= self.t0 && t <= self.t1;
         if !covered {
             row.refresh = 1;
-            if !self.started || t < self.t0 || t > self.t1 + self.interval {
+            row.track = 1;
+            let restart = !self.started || t < self.t0 || t > self.t1 + self.interval;
+            let span = t - self.last_t;
+            if !restart && span > 0.0 {
+                row.acc_rate = R::c(1.0 / span);
+            }
+            self.last_t = t;
+            if restart {
                 self.t0 = t;
                 self.started = true;
                 row.restart = 1;
@@ -1049,11 +1061,11 @@ impl<R: GpuReal> GpuEngine<R> {
             .collect();
         let samples_b = init("route_samples", &bytes_or_one(&samples), ro);
         // Three slots (t0, t1, output-time evaluation) of WAVE_CACHE_STRIDE values per
-        // node; one value in still water.
+        // node, then each node's velocity at the last refresh; one value in still water.
         let cache_len = if n_comps == 0 {
             1
         } else {
-            3 * n_nodes * WAVE_CACHE_STRIDE
+            n_nodes * (3 * WAVE_CACHE_STRIDE + 3)
         };
         let cache_b = init(
             "wave_cache",
