@@ -3,6 +3,9 @@
 //! and the start-up ramp. Each function here has a WGSL twin of the same name in
 //! `shaders/shared/waves.wgsl`.
 
+pub use super::columns::{
+    wave_kinematics_columns, wave_kinematics_rates_columns, ComponentColumns, KinematicsScratch,
+};
 use super::{poly, SeaState, Stretching, WaveComponent};
 use std::f64::consts::{PI, TAU};
 
@@ -142,6 +145,28 @@ impl WaveField {
             self.stretching,
             wave_ramp(t, self.ramp_duration),
             p,
+            t - self.t_ref,
+            scratch,
+        )
+    }
+
+    /// The values of [`Self::kinematics_with`] and their rates along a path through `p`
+    /// with velocity `v`, m/s (see [`wave_kinematics_rates_tau`]): `(values, rates)`.
+    pub fn kinematics_rates_with(
+        &self,
+        p: [f64; 3],
+        v: [f64; 3],
+        t: f64,
+        scratch: &mut KinematicsScratch,
+    ) -> (Kinematics, Kinematics) {
+        wave_kinematics_rates_columns(
+            &self.cols,
+            self.depth,
+            self.stretching,
+            wave_ramp(t, self.ramp_duration),
+            wave_ramp_rate(t, self.ramp_duration),
+            p,
+            v,
             t - self.t_ref,
             scratch,
         )
@@ -355,238 +380,6 @@ pub fn wave_kinematics_rates_tau(
         a: rate(a, da),
     };
     (values, rates)
-}
-
-/// The packed components as columns, one array per field (the fields of
-/// [`PackedComponent`] that the sum reads), so that the CPU's loops over components
-/// read consecutive memory and vectorise.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ComponentColumns {
-    kx: Vec<f64>,
-    ky: Vec<f64>,
-    k: Vec<f64>,
-    omega: Vec<f64>,
-    phase_ref: Vec<f64>,
-    amp: Vec<f64>,
-    amp_u: Vec<f64>,
-    amp_a: Vec<f64>,
-    cos_b: Vec<f64>,
-    sin_b: Vec<f64>,
-}
-
-impl ComponentColumns {
-    /// The columns of `comps`.
-    pub fn new(comps: &[PackedComponent]) -> Self {
-        let col = |f: fn(&PackedComponent) -> f64| comps.iter().map(f).collect::<Vec<_>>();
-        Self {
-            kx: col(|c| c.kx),
-            ky: col(|c| c.ky),
-            k: col(|c| c.k),
-            omega: col(|c| c.omega),
-            phase_ref: col(|c| c.phase_ref),
-            amp: col(|c| c.amp),
-            amp_u: col(|c| c.amp_u),
-            amp_a: col(|c| c.amp_a),
-            cos_b: col(|c| c.cos_b),
-            sin_b: col(|c| c.sin_b),
-        }
-    }
-
-    /// The number of components.
-    pub fn len(&self) -> usize {
-        self.k.len()
-    }
-
-    /// True when there are no components.
-    pub fn is_empty(&self) -> bool {
-        self.k.is_empty()
-    }
-}
-
-/// Per-component working columns of [`wave_kinematics_columns`] (sines, cosines and
-/// the terms of the sums), kept between calls so that a loop over nodes allocates
-/// them once.
-#[derive(Clone, Debug, Default)]
-pub struct KinematicsScratch {
-    sin: Vec<f64>,
-    cos: Vec<f64>,
-    terms: [Vec<f64>; 6],
-}
-
-impl KinematicsScratch {
-    /// Columns of length `n` (their contents are overwritten before being read).
-    fn fit(&mut self, n: usize) {
-        for v in [&mut self.sin, &mut self.cos]
-            .into_iter()
-            .chain(self.terms.iter_mut())
-        {
-            v.resize(n, 0.0);
-        }
-    }
-}
-
-/// [`wave_kinematics_tau`] over components in columns, with working columns
-/// `scratch`; on x86-64 with AVX2 the component loops run four components at a time.
-///
-/// The terms are those of the one-at-a-time formulas (the WGSL twin's), with the loops
-/// split so that each vectorises: two passes, every phase's sine and cosine and the
-/// elevation (which sets the Wheeler depth), then the depth decay and the velocity
-/// and acceleration terms. With AVX2 and FMA the polynomials use fused multiply-adds,
-/// and every sum is four interleaved partial sums ([`sum_lanes`]): the result agrees
-/// with the sequential loop to round-off, not bit for bit.
-/// Exponentials whose terms are below round-off contribute exactly 0:
-/// `e^{-k (zs + 2 h)}` when it is under `1e-17` of `e^{k zs}` (deep water:
-/// `2 k (zs + h) > 39`), and a whole component whose decay `e^{k zs}` is under `1e-30`
-/// (then so is the other term: short waves deep down). Sines, cosines and exponentials
-/// are the inlined, branch-free polynomials of [`poly`] (the WGSL's own).
-pub fn wave_kinematics_columns(
-    cols: &ComponentColumns,
-    depth: f64,
-    stretching: Stretching,
-    r: f64,
-    p: [f64; 3],
-    tau: f64,
-    scratch: &mut KinematicsScratch,
-) -> Kinematics {
-    scratch.fit(cols.len());
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-        {
-            // SAFETY: the CPU has AVX2 and FMA, checked just above.
-            return unsafe { kinematics_columns_avx2(cols, depth, stretching, r, p, tau, scratch) };
-        }
-    }
-    kinematics_columns_body::<false>(cols, depth, stretching, r, p, tau, scratch)
-}
-
-/// `sum v` as four interleaved partial sums (lanes `j mod 4`), then the lanes and the
-/// remainder: a reduction that vectorises.
-#[inline(always)]
-fn sum_lanes(v: &[f64]) -> f64 {
-    let mut acc = [0.0f64; 4];
-    let chunks = v.chunks_exact(4);
-    let rest = chunks.remainder();
-    for c in chunks {
-        for l in 0..4 {
-            acc[l] += c[l];
-        }
-    }
-    let mut s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
-    for x in rest {
-        s += x;
-    }
-    s
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn kinematics_columns_avx2(
-    cols: &ComponentColumns,
-    depth: f64,
-    stretching: Stretching,
-    r: f64,
-    p: [f64; 3],
-    tau: f64,
-    scratch: &mut KinematicsScratch,
-) -> Kinematics {
-    kinematics_columns_body::<true>(cols, depth, stretching, r, p, tau, scratch)
-}
-
-/// The body; `FMA`: fused polynomials and lane sums (only where the target has FMA).
-#[inline(always)]
-fn kinematics_columns_body<const FMA: bool>(
-    cols: &ComponentColumns,
-    depth: f64,
-    stretching: Stretching,
-    r: f64,
-    p: [f64; 3],
-    tau: f64,
-    scratch: &mut KinematicsScratch,
-) -> Kinematics {
-    let n = cols.len();
-    let (kx, ky, ph, om, amp) = (
-        &cols.kx[..n],
-        &cols.ky[..n],
-        &cols.phase_ref[..n],
-        &cols.omega[..n],
-        &cols.amp[..n],
-    );
-    let (k, amp_u, amp_a, cos_b, sin_b) = (
-        &cols.k[..n],
-        &cols.amp_u[..n],
-        &cols.amp_a[..n],
-        &cols.cos_b[..n],
-        &cols.sin_b[..n],
-    );
-    let KinematicsScratch { sin, cos, terms } = scratch;
-    let (sin, cos) = (&mut sin[..n], &mut cos[..n]);
-    let [t0, t1, t2, t3, t4, t5] = terms;
-    let (t0, t1, t2, t3, t4, t5) = (
-        &mut t0[..n],
-        &mut t1[..n],
-        &mut t2[..n],
-        &mut t3[..n],
-        &mut t4[..n],
-        &mut t5[..n],
-    );
-    for j in 0..n {
-        // The phase of `wave_theta`, same order of operations.
-        let theta = kx[j] * p[0] + ky[j] * p[1] + ph[j] - om[j] * tau;
-        let (s, c) = poly::sin_cos_with::<FMA>(theta);
-        sin[j] = s;
-        cos[j] = c;
-        t0[j] = amp[j] * c;
-    }
-    let eta = r * if FMA { sum_lanes(t0) } else { t0.iter().sum() };
-    let zs = wave_eval_depth(p[2], eta, depth, stretching);
-    // Height above the seabed of the evaluation point (infinite in deep water).
-    let above_bed = zs + depth;
-    for j in 0..n {
-        let (s, co) = (sin[j], cos[j]);
-        let e1 = poly::exp_neg_with::<FMA>(k[j] * zs);
-        let e2 = if 2.0 * k[j] * above_bed > 39.0 {
-            0.0
-        } else {
-            poly::exp_neg_with::<FMA>(-k[j] * (zs + 2.0 * depth))
-        };
-        // Not `e1 < 1e-30`: a NaN depth must come out NaN, as in the plain loop
-        // (which skips only on a true comparison).
-        let live = !(e1 < 1e-30);
-        let (ch, sh) = (e1 + e2, e1 - e2);
-        let uh = amp_u[j] * ch * co;
-        let ah = amp_a[j] * ch * s;
-        let w = |v: f64| if live { v } else { 0.0 };
-        t0[j] = w(uh * cos_b[j]);
-        t1[j] = w(uh * sin_b[j]);
-        t2[j] = w(amp_u[j] * sh * s);
-        t3[j] = w(ah * cos_b[j]);
-        t4[j] = w(ah * sin_b[j]);
-        t5[j] = w(amp_a[j] * sh * co);
-    }
-    let (u, a) = if FMA {
-        (
-            [sum_lanes(t0), sum_lanes(t1), sum_lanes(t2)],
-            [sum_lanes(t3), sum_lanes(t4), -sum_lanes(t5)],
-        )
-    } else {
-        let mut u = [0.0; 3];
-        let mut a = [0.0; 3];
-        for j in 0..n {
-            u[0] += t0[j];
-            u[1] += t1[j];
-            u[2] += t2[j];
-            a[0] += t3[j];
-            a[1] += t4[j];
-            a[2] -= t5[j];
-        }
-        (u, a)
-    };
-    Kinematics {
-        eta,
-        u: u.map(|v| r * v),
-        a: a.map(|v| r * v),
-    }
 }
 
 #[cfg(test)]
