@@ -1,6 +1,9 @@
 // The fused kernel, `fused_steps`: one workgroup advances one block (a cable, or any
-// connected component with at most FUSED_WG nodes and FUSED_WG elements) through all
-// `params.n_steps` steps of a submission in one dispatch. Invocation `j` owns node
+// connected component with at most FUSED_WG nodes and FUSED_WG elements) through the
+// steps `step.k .. step.end` of a submission in one dispatch (all of them in still
+// water; in waves the host cuts the submission at the cache's refresh steps and runs
+// the refresh as its own `wave_refresh` dispatch before each piece: see below).
+// Invocation `j` owns node
 // `node_start + j` (its state in registers) and element `elem_start + j`; the node
 // states its elements need and the element loads its nodes gather are exchanged
 // through workgroup memory, with two barriers a step:
@@ -17,6 +20,17 @@
 // read per step. A blow-up stops the block at the failing step (its state stays there) and
 // raises `status.failed` (see Status), after which later dispatches do nothing.
 // FUSED_WG comes from the generated header.
+//
+// Why the refresh is not done in here: Mesa's llvmpipe (lavapipe, the software adapter
+// the tests run on) counts the iterations of every loop of a shader invocation
+// against one budget of 65535 (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS) and, once it
+// is spent, ends each loop after its first iteration, silently. A refresh sums every
+// wave component at a node (hundreds of iterations), so one invocation stepping a
+// whole submission spent the budget after some twenty refreshes and computed wrong
+// kinematics from then on. Without the refresh, an invocation's loops are the step
+// loop, the incidence gathers and the current-profile and route-table searches; the
+// host bounds the steps of one dispatch so that these stay within the budget
+// (gpu::solver::fused_max_steps: a whole submission unless a current profile is long).
 
 // A node state in workgroup memory (no vec3: 9 scalars, no padding).
 struct WgState {
@@ -61,7 +75,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
     let i = blk.node_start + j;
     let e = blk.elem_start + j;
     if j == 0u {
-        // A blow-up in an earlier submission stops every block.
+        // A blow-up in an earlier dispatch stops every block.
         wg_stop = atomicLoad(&status.failed);
         atomicStore(&wg_fail, 0u);
     }
@@ -87,15 +101,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
     if workgroupUniformLoad(&wg_stop) != 0u {
         return;
     }
-    for (var k = 0u; k < params.n_steps; k += 1u) {
-        // Waves: a refresh step refreshes the block's own nodes (the elements read
-        // only those), made visible to the workgroup before the element loads.
-        if wave_steps[blk.wave_rows + k].refresh != 0u {
-            if has_node {
-                wave_refresh_node(i, k, vec3<R>(blk.ox, blk.oy, blk.oz) + (s.r_hi.xyz + s.r_lo.xyz), s.v.xyz);
-            }
-            storageBarrier();
-        }
+    for (var k = step.k; k < step.end; k += 1u) {
         if has_elem {
             wg_loads[j] = element_step(ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k);
         }

@@ -37,7 +37,7 @@ struct Params {
     step_base: u32,
     // Winch cables: rows of `payout` per step.
     n_winch: u32,
-    // Steps of the current submission (the fused kernel's loop count).
+    // Steps of the current submission.
     n_steps: u32,
     // Bodies: rows of `body_rows` per step.
     n_bodies: u32,
@@ -57,9 +57,11 @@ struct Params {
 }
 
 // The step within the current submission (a dynamic-offset uniform). Rust: StepInfo.
+// `end`: the fused kernel steps `k .. end` (the host writes it at each dispatch's
+// first step; the two-pass stages read `k` only).
 struct StepInfo {
     k: u32,
-    pad0: u32,
+    end: u32,
     pad1: u32,
     pad2: u32,
 }

@@ -1,7 +1,7 @@
 //! The fast path of the CPU stepper for blocks that are one chain in node order
 //! (mooring lines, towed cables: the common case).
 //!
-//! It runs the same two passes as the general path ([`super::stepper`]), on the same
+//! It runs the same two passes as the general path ([`super::passes`]), on the same
 //! physics, but over structure-of-arrays scratch and without branches in the loops,
 //! so the compiler vectorises them (4 lanes of f64 with AVX2, chosen at run time):
 //! - the element pass reads node `k` and `k+1` for element `k` (no index arrays);
@@ -15,7 +15,7 @@
 //!
 //! A test checks it against the general path (`tests/cpu/chain_kernel.rs`).
 
-use super::stepper::implicit_dt;
+use super::passes::implicit_dt;
 use super::water::{node_water, BlockWaves, Water};
 use crate::ale::{mass_flow_forces, AleElem};
 use crate::math::V3;
@@ -25,6 +25,9 @@ use crate::physics::{
     glmf_element_wet, point_wetted_fraction, wetted_fraction, Coefs, ElementInput,
 };
 use crate::step::{diverged, StepFailure};
+
+mod net;
+pub(crate) use net::{advance_net, advance_net_threaded, NetConsts, NetScratch};
 
 /// Per-block constants of a chain, built once.
 #[derive(Clone, Debug, Default)]
@@ -261,20 +264,32 @@ fn elements<const WAVES: bool>(
     macro_rules! kernel {
         ($submerged:literal) => {
             element_kernel::<WAVES, $submerged>(
-                &p[0][..ne + 1],
-                &p[1][..ne + 1],
-                &p[2][..ne + 1],
-                &p[3][..ne + 1],
-                &p[4][..ne + 1],
-                &p[5][..ne + 1],
+                [
+                    &p[0][..ne],
+                    &p[1][..ne],
+                    &p[2][..ne],
+                    &p[3][..ne],
+                    &p[4][..ne],
+                    &p[5][..ne],
+                    &eta[..ne],
+                ],
+                [
+                    &p[0][1..ne + 1],
+                    &p[1][1..ne + 1],
+                    &p[2][1..ne + 1],
+                    &p[3][1..ne + 1],
+                    &p[4][1..ne + 1],
+                    &p[5][1..ne + 1],
+                    &eta[1..ne + 1],
+                ],
                 &u[0][..ne],
                 &u[1][..ne],
                 &u[2][..ne],
                 &aw[0][..ne],
                 &aw[1][..ne],
                 &aw[2][..ne],
-                &eta[..ne + 1],
                 c,
+                0,
                 &mut tx[1..ne + 1],
                 &mut ty[1..ne + 1],
                 &mut tz[1..ne + 1],
@@ -293,26 +308,25 @@ fn elements<const WAVES: bool>(
     }
 }
 
-/// The element loop. Every array is its own parameter: `&mut [f64]` parameters are
-/// known not to alias, which is what lets the compiler vectorise the loop (arrays
-/// reached through one `&mut [Vec<f64>; 3]` would need run-time overlap checks).
+/// The element loop over elements `e0..e0 + tx.len()` of the block's constants `c`.
+/// Every array is its own parameter: `&mut [f64]` parameters are known not to alias,
+/// which is what lets the compiler vectorise the loop (arrays reached through one
+/// `&mut [Vec<f64>; 3]` would need run-time overlap checks). `a` and `b` are the
+/// elements' end nodes, `[x, y, z, vx, vy, vz, eta]` per element (for a chain, the
+/// node arrays and the same shifted by one; for a network, gathered by index).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
-    x: &[f64],
-    y: &[f64],
-    z: &[f64],
-    vx: &[f64],
-    vy: &[f64],
-    vz: &[f64],
+pub(super) fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
+    a: [&[f64]; 7],
+    b: [&[f64]; 7],
     ux: &[f64],
     uy: &[f64],
     uz: &[f64],
     awx: &[f64],
     awy: &[f64],
     awz: &[f64],
-    eta: &[f64],
     c: &ChainConsts,
+    e0: usize,
     tx: &mut [f64],
     ty: &mut [f64],
     tz: &mut [f64],
@@ -323,19 +337,14 @@ fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
     haw: &mut [f64],
 ) {
     let ne = tx.len();
-    let (x, y, z, vx, vy, vz) = (
-        &x[..ne + 1],
-        &y[..ne + 1],
-        &z[..ne + 1],
-        &vx[..ne + 1],
-        &vy[..ne + 1],
-        &vz[..ne + 1],
-    );
-    let (ux, uy, uz, eta) = (&ux[..ne], &uy[..ne], &uz[..ne], &eta[..ne + 1]);
+    let [xa, ya, za, vxa, vya, vza, eta_a] = a.map(|q| &q[..ne]);
+    let [xb, yb, zb, vxb, vyb, vzb, eta_b] = b.map(|q| &q[..ne]);
+    let (ux, uy, uz) = (&ux[..ne], &uy[..ne], &uz[..ne]);
     let haw = &mut haw[..ne];
-    let (hb, ha) = (&c.half_bz[..ne], &c.ha[1..ne + 1]);
-    let (awx, awy, awz, hfk) = (&awx[..ne], &awy[..ne], &awz[..ne], &c.half_fk[..ne]);
-    let diam = &c.diameter[..ne];
+    let e1 = e0 + ne;
+    let (hb, ha) = (&c.half_bz[e0..e1], &c.ha[e0 + 1..e1 + 1]);
+    let (awx, awy, awz, hfk) = (&awx[..ne], &awy[..ne], &awz[..ne], &c.half_fk[e0..e1]);
+    let diam = &c.diameter[e0..e1];
     let (ty, tz, ten, fx, fy, fz) = (
         &mut ty[..ne],
         &mut tz[..ne],
@@ -344,30 +353,34 @@ fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
         &mut fy[..ne],
         &mut fz[..ne],
     );
-    let (il0, ea, eac, comp) = (&c.il0[..ne], &c.ea[..ne], &c.eac[..ne], &c.comp[..ne]);
-    let (dn, dt, hw) = (&c.drag_n[..ne], &c.drag_t[..ne], &c.half_wz[..ne]);
+    let (il0, ea, eac, comp) = (
+        &c.il0[e0..e1],
+        &c.ea[e0..e1],
+        &c.eac[e0..e1],
+        &c.comp[e0..e1],
+    );
+    let (dn, dt, hw) = (&c.drag_n[e0..e1], &c.drag_t[e0..e1], &c.half_wz[e0..e1]);
     for k in 0..ne {
-        let (dx, dy, dz) = (x[k + 1] - x[k], y[k + 1] - y[k], z[k + 1] - z[k]);
+        let (dx, dy, dz) = (xb[k] - xa[k], yb[k] - ya[k], zb[k] - za[k]);
         let l = (dx * dx + dy * dy + dz * dz).sqrt();
         let il = 1.0 / l;
         let (ex, ey, ez) = (dx * il, dy * il, dz * il);
         let eps = l * il0[k] - 1.0;
         let epsdot =
-            (ex * (vx[k + 1] - vx[k]) + ey * (vy[k + 1] - vy[k]) + ez * (vz[k + 1] - vz[k]))
-                * il0[k];
+            (ex * (vxb[k] - vxa[k]) + ey * (vyb[k] - vya[k]) + ez * (vzb[k] - vza[k])) * il0[k];
         // Slack: the elastic part vanishes in compression unless the line is a rod.
         let elastic = ea[k] * eps * if eps > 0.0 { 1.0 } else { comp[k] };
         let tension = elastic + eac[k] * epsdot;
-        let rx = ux[k] - 0.5 * (vx[k] + vx[k + 1]);
-        let ry = uy[k] - 0.5 * (vy[k] + vy[k + 1]);
-        let rz = uz[k] - 0.5 * (vz[k] + vz[k + 1]);
+        let rx = ux[k] - 0.5 * (vxa[k] + vxb[k]);
+        let ry = uy[k] - 0.5 * (vya[k] + vyb[k]);
+        let rz = uz[k] - 0.5 * (vza[k] + vzb[k]);
         let vt = ex * rx + ey * ry + ez * rz;
         let (nx, ny, nz) = (rx - ex * vt, ry - ey * vt, rz - ez * vt);
         // Water terms times the wetted fraction; the dry part loses its buoyancy.
         let wet = if SUBMERGED {
             1.0
         } else {
-            wetted_fraction(eta[k] - z[k], eta[k + 1] - z[k + 1], diam[k])
+            wetted_fraction(eta_a[k] - za[k], eta_b[k] - zb[k], diam[k])
         };
         let kn = dn[k] * l * (nx * nx + ny * ny + nz * nz).sqrt() * wet;
         let kt = dt[k] * l * vt.abs() * vt * wet;
@@ -442,6 +455,24 @@ fn contact_slopes<const FRICTION: bool>(
     (ch, cz)
 }
 
+/// The seabed's load on a node penetrating by `pen` with velocity `v` (`kl`, `cl`,
+/// `mukl` its `K lt`, `C lt`, `mu K lt`): `([-c_h vx, -c_h vy, K lt pen - c_z vz], c_h,
+/// c_z)` on the seabed (the friction terms only with `FRICTION`), zero off it.
+#[inline(always)]
+pub(super) fn seabed_load<const FRICTION: bool>(
+    pen: f64,
+    v: [f64; 3],
+    kl: f64,
+    cl: f64,
+    mukl: f64,
+    v_eps: f64,
+) -> ([f64; 3], f64, f64) {
+    let on = pen > 0.0;
+    let (ch, cz) = contact_slopes::<FRICTION>(pen, v[0], v[1], cl, mukl, v_eps);
+    let gz = if on { kl * pen - cz * v[2] } else { 0.0 };
+    ([-(ch * v[0]), -(ch * v[1]), gz], ch, cz)
+}
+
 /// Node pass: accelerations of every node into `a`, with constraints and point drag
 /// fixed up afterwards. `p` is the state the element pass used.
 #[inline(always)]
@@ -460,7 +491,7 @@ fn nodes<const FRICTION: bool>(
     a: &mut [Vec<f64>; 3],
 ) {
     let [ax, ay, az] = a;
-    // The symplectic scheme takes the seabed's damping implicitly (stepper::implicit_dt).
+    // The symplectic scheme takes the seabed's damping implicitly (passes::implicit_dt).
     let h = implicit_dt(opts);
     node_kernel::<FRICTION>(
         c, h, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2],
@@ -508,35 +539,79 @@ fn nodes<const FRICTION: bool>(
             add(a, ae.w, fw.to_f64());
         }
     }
-    // Point-mass drag, on the wet share of the point.
-    for &(i, pd, ci, radius) in &c.point_drag {
-        let zi = p[2][i];
-        let wet = point_wetted_fraction(m.eta[i] - zi, radius);
-        let mut u = lay.currents[ci].at::<f64>(zi).to_f64();
-        if !m.w.is_empty() {
-            let (_, uw, _) = node_water(m.w, i);
-            u = [u[0] + uw[0], u[1] + uw[1], u[2] + uw[2]];
-        }
-        let r = [u[0] - p[3][i], u[1] - p[4][i], u[2] - p[5][i]];
-        let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt() * wet;
-        add(a, i, [r[0] * k, r[1] * k, r[2] * k]);
+    for pd in &c.point_drag {
+        let i = pd.0;
+        let f = point_drag_force(lay, pd, p[2][i], [p[3][i], p[4][i], p[5][i]], m.eta[i], m.w);
+        add(a, i, f);
     }
-    // Waves: the water-acceleration load (1 + Ca) rho V a of the wet share of points.
     if !m.w.is_empty() {
-        for &(i, radius, added, _, displaced) in &c.point_volume {
-            let (_, _, aw) = node_water(m.w, i);
-            let k = (displaced + added) * point_wetted_fraction(m.eta[i] - p[2][i], radius);
-            add(a, i, [aw[0] * k, aw[1] * k, aw[2] * k]);
+        for pv in &c.point_volume {
+            let i = pv.0;
+            add(a, i, point_water_accel_force(pv, p[2][i], m.eta[i], m.w));
         }
     }
-    // Constrained nodes take the Baumgarte acceleration of their route.
-    let bg = opts.baumgarte;
     for &(i, ri) in &c.constrained {
-        let d = lay.routes[ri].eval(time);
+        let d = route_accel(lay, opts, time, ri, |q| (p[q][i], p[3 + q][i]));
         for (q, aq) in a.iter_mut().enumerate() {
-            aq[i] = d.a[q] - bg.beta * (p[3 + q][i] - d.v[q]) - bg.alpha * (p[q][i] - d.r[q]);
+            aq[i] = d[q];
         }
     }
+}
+
+/// Point-mass drag on node `pd.0` (a `point_drag` entry) at height `z`, velocity `v`,
+/// under surface `eta`, on the wet share of the point; `w` the per-node water values
+/// (empty in still water).
+#[inline(always)]
+pub(super) fn point_drag_force(
+    lay: &Layout,
+    &(i, pd, ci, radius): &(usize, f64, usize, f64),
+    z: f64,
+    v: [f64; 3],
+    eta: f64,
+    w: &[f64],
+) -> [f64; 3] {
+    let wet = point_wetted_fraction(eta - z, radius);
+    let mut u = lay.currents[ci].at::<f64>(z).to_f64();
+    if !w.is_empty() {
+        let (_, uw, _) = node_water(w, i);
+        u = [u[0] + uw[0], u[1] + uw[1], u[2] + uw[2]];
+    }
+    let r = [u[0] - v[0], u[1] - v[1], u[2] - v[2]];
+    let k = pd * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt() * wet;
+    [r[0] * k, r[1] * k, r[2] * k]
+}
+
+/// Waves: the water-acceleration load `(1 + Ca) rho V a` of the wet share of the point
+/// of node `pv.0` (a `point_volume` entry) at height `z` under surface `eta`; `w` the
+/// per-node water values (not empty).
+#[inline(always)]
+pub(super) fn point_water_accel_force(
+    &(i, radius, added, _, displaced): &(usize, f64, f64, f64, f64),
+    z: f64,
+    eta: f64,
+    w: &[f64],
+) -> [f64; 3] {
+    let (_, _, aw) = node_water(w, i);
+    let k = (displaced + added) * point_wetted_fraction(eta - z, radius);
+    [aw[0] * k, aw[1] * k, aw[2] * k]
+}
+
+/// The Baumgarte acceleration of a node held on route `route` at `time`; `state(q)` is
+/// its position and velocity along axis `q`.
+#[inline(always)]
+pub(super) fn route_accel(
+    lay: &Layout,
+    opts: &SolverOptions,
+    time: f64,
+    route: usize,
+    state: impl Fn(usize) -> (f64, f64),
+) -> [f64; 3] {
+    let d = lay.routes[route].eval(time);
+    let bg = opts.baumgarte;
+    std::array::from_fn(|q| {
+        let (r, v) = state(q);
+        d.a[q] - bg.beta * (v - d.v[q]) - bg.alpha * (r - d.r[q])
+    })
 }
 
 /// The node loop (see [`element_kernel`] for why every array is a parameter).
@@ -581,13 +656,18 @@ fn node_kernel<const FRICTION: bool>(
         let mut gx = fx[j] + fx[k] - tn[j] * tx[j] + tn[k] * tx[k];
         let mut gy = fy[j] + fy[k] - tn[j] * ty[j] + tn[k] * ty[k];
         let mut gz = fz[j] + fz[k] - tn[j] * tz[j] + tn[k] * tz[k] + pwz[i];
-        let pen = zb - z[i];
-        let on = pen > 0.0;
-        let (ch, cz) = contact_slopes::<FRICTION>(pen, vx[i], vy[i], cl[i], mukl[i], v_eps);
-        gz += if on { kl[i] * pen - cz * vz[i] } else { 0.0 };
+        let (sb, ch, cz) = seabed_load::<FRICTION>(
+            zb - z[i],
+            [vx[i], vy[i], vz[i]],
+            kl[i],
+            cl[i],
+            mukl[i],
+            v_eps,
+        );
+        gz += sb[2];
         if FRICTION {
-            gx -= ch * vx[i];
-            gy -= ch * vy[i];
+            gx += sb[0];
+            gy += sb[1];
         }
         // Seabed damping and friction implicit: (M + h diag(c_h, c_h, c_z)) a = F.
         let s = pm[i] + hm[j] + hm[k] + ha[j] + ha[k];
@@ -717,11 +797,22 @@ fn ale_patch(
 /// `dry` is 0 and the block's constants stand bit for bit.
 #[inline(always)]
 fn point_surface(c: &ChainConsts, p: &[Vec<f64>; 6], eta: &[f64], pm: &mut [f64], pwz: &mut [f64]) {
-    for &(i, radius, added, buoyancy, _) in &c.point_volume {
-        let dry = 1.0 - point_wetted_fraction(eta[i] - p[2][i], radius);
-        pm[i] = c.pm[i] - dry * added;
-        pwz[i] = c.pwz[i] - dry * buoyancy;
+    for pv in &c.point_volume {
+        let i = pv.0;
+        (pm[i], pwz[i]) = point_surface_at(c, pv, eta[i] - p[2][i]);
     }
+}
+
+/// The point mass and weight of node `pv.0` (a `point_volume` entry) whose point is
+/// `depth` under the surface, less what its share out of the water loses.
+#[inline(always)]
+pub(super) fn point_surface_at(
+    c: &ChainConsts,
+    &(i, radius, added, buoyancy, _): &(usize, f64, f64, f64, f64),
+    depth: f64,
+) -> (f64, f64) {
+    let dry = 1.0 - point_wetted_fraction(depth, radius);
+    (c.pm[i] - dry * added, c.pwz[i] - dry * buoyancy)
 }
 
 /// Fills the per-element current (midpoint height) when the block's is not uniform.

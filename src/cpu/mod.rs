@@ -12,13 +12,22 @@
 //! Blocks (connected components) are independent, so each is advanced through a whole
 //! output interval on its own, and blocks are spread over threads with rayon.
 //!
+//! Three implementations of the passes: the general path over any graph
+//! (`passes`: incidence lists, per node; the reference), the vectorised chain path
+//! (`chain`: a block that is one chain in node order) and the vectorised network path
+//! (`chain::net`: any other block, GLMF and symplectic, the chain path's element loop
+//! behind a gather). A big network is stepped by all threads together (`threaded`,
+//! `chain::net`).
+//!
 //! Winch cables (ALE-GLMF, [`crate::ale`]) take the general passes with their variable
 //! element's length and mass-flow forces evaluated at each stage's time, and are
 //! remeshed between steps ([`CpuSolver::with_winches`]).
 
 mod chain;
-mod stepper;
+mod passes;
+mod solver;
+mod threaded;
 mod water;
 
 pub use crate::step::{Evaluation, StepFailure, WinchStatus};
-pub use stepper::{CpuCheckpoint, CpuSolver};
+pub use solver::{CpuCheckpoint, CpuSolver};

@@ -124,7 +124,7 @@ gpu_struct! {
         step_base: u32,
         /// Number of winch cables (rows of the `payout` buffer per step).
         n_winch: u32,
-        /// Steps of the current submission (the fused kernel's loop count).
+        /// Steps of the current submission.
         n_steps: u32,
         /// Number of bodies (rows of the `body_rows` buffer per step).
         n_bodies: u32,
@@ -158,8 +158,9 @@ gpu_struct_u32! {
     StepInfo {
         /// Step index since the routes were last rebased.
         k: u32,
-        /// Padding.
-        pad0: u32,
+        /// The fused kernel's end: it steps `k .. end` (written by the host for the
+        /// first step of each fused dispatch; the two-pass stages read `k` only).
+        end: u32,
         /// Padding.
         pad1: u32,
         /// Padding.

@@ -2,14 +2,17 @@
 //!
 //! With the fused kernel ([`GpuKernel::Fused`], chosen by [`fused_workgroup`] where it
 //! applies) a submission is one dispatch of `fused_steps`, one workgroup per block,
-//! looping over the submission's steps (`Params::n_steps`) inside the shader. With the
+//! looping over the submission's steps inside the shader (in waves, one dispatch from
+//! each refresh of the kinematics cache to the next, the refresh a `wave_refresh`
+//! dispatch of its own: see [`fused_segments`]). With the
 //! two-pass kernel a step is two dispatches in one compute pass, `element_forces` then
 //! `node_update` (wgpu orders the storage writes of one dispatch before the reads of the
 //! next). Both read the step's route and payout rows the same way, so the rest of this
 //! note holds for both.
 //! [`STEPS_PER_SUBMISSION`] steps go into one command buffer; the step index reaches
 //! the shaders through a dynamic-offset uniform (one 16-byte `StepInfo` per step,
-//! written once), so nothing is written between steps. Before each submission the
+//! written once; the fused kernel's end step is written at each of its dispatches'
+//! first step), so nothing is written between steps. Before each submission the
 //! routes are rebased to its start time (see [`RouteParams`]): the shaders evaluate
 //! `r_d(t0 + tau)` with a small `tau`, which keeps f32 route positions and angles
 //! accurate over long runs. Nothing is read back while stepping except, at the end of
@@ -160,6 +163,7 @@ fn kernel_from_env() -> Result<Option<GpuKernel>, Error> {
 pub type NodeStates = (Vec<[f64; 3]>, Vec<[f64; 3]>);
 
 /// Precision-independent host data, computed once per layout.
+#[derive(Clone)]
 struct Host {
     /// Per block: origin (absolute, m), a whole number of metres (exact in f32).
     origin: Vec<[f64; 3]>,
@@ -736,6 +740,8 @@ struct Installed<R: GpuReal> {
     n_elems: usize,
     n_routes: usize,
     n_blocks: usize,
+    /// The most steps of one fused dispatch ([`fused_max_steps`]).
+    fused_max_steps: u64,
 }
 
 impl<R: GpuReal> GpuEngine<R> {
@@ -1012,7 +1018,7 @@ impl<R: GpuReal> GpuEngine<R> {
         let zeros = |n: u64| vec![0u8; n as usize];
         let buf = Buffers {
             params: init("params", bytemuck::bytes_of(&params), ro | U::COPY_DST),
-            step: init("step", &steps, U::UNIFORM),
+            step: init("step", &steps, U::UNIFORM | U::COPY_DST),
             routes: init(
                 "routes",
                 &bytes_or_one(&vec![RouteParams::<R>::zeroed(); n_routes]),
@@ -1120,6 +1126,7 @@ impl<R: GpuReal> GpuEngine<R> {
             n_elems,
             n_routes,
             n_blocks,
+            fused_max_steps: fused_max_steps(lay),
         }
     }
 
@@ -1296,6 +1303,61 @@ impl<R: GpuReal> GpuEngine<R> {
     }
 }
 
+/// The fused kernel's dispatches of a submission, as step ranges `a .. b`: a new one
+/// starts at every step that refreshes the waves' cache (`refresh[k]`), after a
+/// `wave_refresh` dispatch, and after at most `max_len` steps. Why: on llvmpipe
+/// (lavapipe) all the loops of a shader invocation share one budget of 65535
+/// iterations, after which each loop stops after one iteration without a word
+/// (`shaders/fused_chain.wgsl`). The refresh's sums over the wave components spent it
+/// within a submission, so the fused kernel does not refresh; `max_len`
+/// ([`fused_max_steps`]) keeps the loops of its steps within it.
+fn fused_segments(refresh: &[bool], max_len: u64) -> Vec<(u64, u64)> {
+    let n = refresh.len() as u64;
+    let max_len = max_len.max(1);
+    let mut segs = Vec::new();
+    let mut a = 0;
+    for k in 1..=n {
+        if k == n || refresh[k as usize] || k - a == max_len {
+            segs.push((a, k));
+            a = k;
+        }
+    }
+    segs
+}
+
+/// The most steps one fused dispatch may take on this layout: half of llvmpipe's
+/// budget of 65535 loop iterations per shader invocation over an upper bound of one
+/// step's iterations (the step loop, a node's incidence list, the linear search of the
+/// longest current profile, the binary search of the longest route table). 512 steps
+/// (a whole submission) fit unless a current profile has more than some 50 points.
+fn fused_max_steps(lay: &Layout) -> u64 {
+    const LOOP_BUDGET: u64 = 65535 / 2;
+    let incidence = lay
+        .inc_start
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .max()
+        .unwrap_or(0) as u64;
+    let profile = lay
+        .currents
+        .iter()
+        .map(|c| c.table.len())
+        .max()
+        .unwrap_or(0) as u64;
+    let table = lay
+        .routes
+        .iter()
+        .map(|r| match r {
+            Route::Table { t, .. } => t.len(),
+            _ => 0,
+        })
+        .max()
+        .unwrap_or(0) as u64;
+    let search = 64 - table.leading_zeros() as u64 + 1;
+    let per_step = 1 + incidence + profile + search;
+    (LOOP_BUDGET / per_step).max(1)
+}
+
 /// Decodes read-back bytes (the staging copy is not aligned for `T`).
 fn decode<T: bytemuck::Pod>(b: &[u8]) -> Vec<T> {
     b.chunks_exact(std::mem::size_of::<T>())
@@ -1350,11 +1412,29 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                 });
                 match (&self.pipe_fused, self.use_fused) {
                     (Ok((pipe, _)), true) => {
-                        // One workgroup per block, all `chunk` steps in one dispatch.
-                        pass.set_bind_group(0, &self.inst.bind_group, &[0]);
-                        pass.set_pipeline(pipe);
-                        pass.dispatch_workgroups(self.inst.n_blocks as u32, 1, 1);
-                        self.timings.dispatches += 1;
+                        // One workgroup per block, stepping from one refresh of the
+                        // waves' cache to the next (all `chunk` steps in still water).
+                        for (a, b) in fused_segments(&refresh, self.inst.fused_max_steps) {
+                            let off = a * self.step_stride;
+                            let info = StepInfo {
+                                k: a as u32,
+                                end: b as u32,
+                                ..Default::default()
+                            };
+                            ctx.queue.write_buffer(
+                                &self.inst.buf.step,
+                                off,
+                                bytemuck::bytes_of(&info),
+                            );
+                            pass.set_bind_group(0, &self.inst.bind_group, &[off as u32]);
+                            if refresh[a as usize] {
+                                self.dispatch(&mut pass, &self.pipe_refresh, self.inst.n_nodes);
+                                self.timings.dispatches += 1;
+                            }
+                            pass.set_pipeline(pipe);
+                            pass.dispatch_workgroups(self.inst.n_blocks as u32, 1, 1);
+                            self.timings.dispatches += 1;
+                        }
                     }
                     _ => {
                         for k in 0..chunk {
@@ -1890,22 +1970,40 @@ impl GpuSolver {
     }
 
     /// The state now, to go back to with [`GpuSolver::restore`] (read back from the
-    /// device); `None` with winches (their mesh and payout change as the run goes).
-    pub fn checkpoint(&mut self) -> Result<Option<GpuCheckpoint>, Error> {
-        if self.ale.is_some() {
-            return Ok(None);
-        }
+    /// device). With winches it also keeps the host's side of the mesh (layout, host
+    /// data, winch state), since a remeshing after it replaces them.
+    pub fn checkpoint(&mut self) -> Result<GpuCheckpoint, Error> {
         let (r, v) = self.engine.download(&self.host)?;
-        Ok(Some(GpuCheckpoint {
+        let mesh = self.ale.as_ref().map(|ale| {
+            Box::new(SavedMesh {
+                layout: self.layout.clone(),
+                host: self.host.clone(),
+                ale: ale.clone(),
+                remeshes: self.remeshes,
+            })
+        });
+        Ok(GpuCheckpoint {
             steps: self.steps,
             node_steps: self.node_steps,
             r,
             v,
-        }))
+            mesh,
+        })
     }
 
-    /// Goes back to the state `cp`, taken from this solver.
-    pub fn restore(&mut self, cp: &GpuCheckpoint) {
+    /// Goes back to the state `cp`, taken from this solver. Where a winch cable was
+    /// remeshed since, the saved layout is installed again (as a remeshing installs
+    /// its new one); an error there is the device's, when rebuilding the buffers.
+    pub fn restore(&mut self, cp: &GpuCheckpoint) -> Result<(), Error> {
+        if let Some(m) = &cp.mesh {
+            if m.remeshes != self.remeshes {
+                self.engine.install(&m.layout, &m.host, &cp.r, &cp.v)?;
+                self.layout.clone_from(&m.layout);
+                self.host = m.host.clone();
+            }
+            self.ale = Some(m.ale.clone());
+            self.remeshes = m.remeshes;
+        }
         self.steps = cp.steps;
         self.node_steps = cp.node_steps;
         self.t = self.steps as f64 * self.opts.dt;
@@ -1913,6 +2011,7 @@ impl GpuSolver {
         // The cache holds values for times ahead of the state now: it starts afresh
         // (so a replay agrees with the first pass within the cache's tolerance).
         self.engine.restart_waves();
+        Ok(())
     }
 
     /// Replaces node positions and velocities (packed order).
@@ -1937,6 +2036,17 @@ pub struct GpuCheckpoint {
     node_steps: u64,
     r: Vec<[f64; 3]>,
     v: Vec<[f64; 3]>,
+    /// With winches: the mesh then.
+    mesh: Option<Box<SavedMesh>>,
+}
+
+/// The host's side of a winch run's mesh at a checkpoint.
+struct SavedMesh {
+    layout: Layout,
+    host: Host,
+    ale: Box<AleState>,
+    /// [`GpuSolver::remeshes`] then: the device holds another layout where it differs.
+    remeshes: u64,
 }
 
 /// What the GPU path cannot do with these winches, or `None`: two winch cables that
@@ -1959,4 +2069,19 @@ pub fn unsupported_winches(def: &ModelDef, winches: &[Winch]) -> Option<String> 
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fused_segments;
+
+    #[test]
+    fn fused_segments_cut_at_refresh_steps_and_at_the_longest() {
+        assert_eq!(fused_segments(&[false; 5], 512), vec![(0, 5)]);
+        let r = [true, false, false, true, false, true];
+        assert_eq!(fused_segments(&r, 512), vec![(0, 3), (3, 5), (5, 6)]);
+        assert_eq!(fused_segments(&[false, true], 512), vec![(0, 1), (1, 2)]);
+        assert_eq!(fused_segments(&[false; 5], 2), vec![(0, 2), (2, 4), (4, 5)]);
+        assert_eq!(fused_segments(&r, 2), vec![(0, 2), (2, 3), (3, 5), (5, 6)]);
+    }
 }

@@ -10,6 +10,7 @@ mod nets;
 mod raw;
 mod route_file;
 mod validate;
+mod wave_checks;
 pub mod waves;
 mod winch;
 
@@ -116,6 +117,16 @@ pub(crate) fn err(path: &Path, field: impl Into<String>, message: impl Into<Stri
     }
 }
 
+/// A number as a message shows it: plainly in the range people write by hand, in
+/// exponent form outside it (`-1e160`, not a hundred and sixty digits).
+pub(crate) fn show(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// Checks a number is finite (TOML allows `nan` and `inf`).
 pub(crate) fn finite(path: &Path, field: &str, x: f64) -> Result<f64, Error> {
     if x.is_finite() {
@@ -124,7 +135,7 @@ pub(crate) fn finite(path: &Path, field: &str, x: f64) -> Result<f64, Error> {
         Err(err(
             path,
             field,
-            format!("must be a finite number, got {x}"),
+            format!("must be a finite number, got {}", show(x)),
         ))
     }
 }
@@ -134,7 +145,11 @@ pub(crate) fn positive(path: &Path, field: &str, x: f64) -> Result<f64, Error> {
     if x > 0.0 {
         Ok(x)
     } else {
-        Err(err(path, field, format!("must be positive, got {x}")))
+        Err(err(
+            path,
+            field,
+            format!("must be positive, got {}", show(x)),
+        ))
     }
 }
 
@@ -143,7 +158,11 @@ pub(crate) fn non_negative(path: &Path, field: &str, x: f64) -> Result<f64, Erro
     if x >= 0.0 {
         Ok(x)
     } else {
-        Err(err(path, field, format!("must not be negative, got {x}")))
+        Err(err(
+            path,
+            field,
+            format!("must not be negative, got {}", show(x)),
+        ))
     }
 }
 
@@ -166,11 +185,12 @@ fn current(
             field,
             "give either `current` or `current_profile`, not both",
         )),
-        (Some(u), None) => Ok(Some(Current::uniform(vec3(
-            path,
-            &format!("{field}current"),
-            u,
-        )?))),
+        (Some(u), None) => {
+            let f = format!("{field}current");
+            let u = vec3(path, &f, u)?;
+            validate::current_speed(path, &f, u)?;
+            Ok(Some(Current::uniform(u)))
+        }
         (None, Some(rows)) => {
             let f = format!("{field}current_profile");
             if rows.is_empty() {
@@ -181,6 +201,7 @@ fn current(
                 for (k, x) in r.iter().enumerate() {
                     finite(path, &format!("{f}[{i}][{k}]"), *x)?;
                 }
+                validate::current_speed(path, &format!("{f}[{i}]"), [r[1], r[2], r[3]])?;
                 if i > 0 && r[0] <= rows[i - 1][0] {
                     return Err(err(
                         path,
@@ -330,8 +351,18 @@ impl Scenario {
             sb.friction_velocity,
         )?;
         let env = Environment {
-            gravity: non_negative(p, "environment.gravity", e.gravity)?,
-            water_density: non_negative(p, "environment.water_density", e.water_density)?,
+            gravity: validate::magnitude(
+                p,
+                "environment.gravity",
+                non_negative(p, "environment.gravity", e.gravity)?,
+                "m/s^2",
+            )?,
+            water_density: validate::magnitude(
+                p,
+                "environment.water_density",
+                non_negative(p, "environment.water_density", e.water_density)?,
+                "kg/m^3",
+            )?,
             depth,
             seabed: sb,
         };
@@ -426,7 +457,11 @@ impl Scenario {
                     spec.mass,
                 ),
             };
+            validate::position(p, &field, position)?;
             validate::height(p, &field, position[2], depth)?;
+            if let Some(r) = &route {
+                validate::route_speed(p, &field, r, sim.max_speed)?;
+            }
             point_fields.push((field.clone(), model.nodes.len(), free));
             named_points.push(NamedPoint {
                 name: name.clone(),
@@ -479,6 +514,7 @@ impl Scenario {
                 )
             })?;
             let length = positive(p, &f("length"), c.length)?;
+            validate::magnitude(p, &f("length"), length, "m")?;
             if c.segments < 1 || c.segments > 1_000_000 {
                 return Err(err(
                     p,
@@ -523,12 +559,16 @@ impl Scenario {
             for (k, spec) in [start, end].into_iter().enumerate() {
                 if !matches!(spec.kind, EndKind::Point(_)) {
                     let which = if k == 0 { "start" } else { "end" };
-                    let z = match (&spec.kind, &spec.route) {
-                        (EndKind::Fixed(x) | EndKind::Free(x), _) => x[2],
-                        (_, Some(r)) => r.eval(0.0).r[2],
-                        _ => 0.0,
+                    let x = match (&spec.kind, &spec.route) {
+                        (EndKind::Fixed(x) | EndKind::Free(x), _) => *x,
+                        (_, Some(r)) => r.eval(0.0).r,
+                        _ => [0.0; 3],
                     };
-                    validate::height(p, &f(which), z, depth)?;
+                    validate::position(p, &f(which), x)?;
+                    validate::height(p, &f(which), x[2], depth)?;
+                    if let Some(r) = &spec.route {
+                        validate::route_speed(p, &f(which), r, sim.max_speed)?;
+                    }
                 }
                 match spec.kind {
                     EndKind::Point(idx) => {
@@ -630,7 +670,43 @@ impl Scenario {
             names.insert(net.name.clone(), first);
         }
         let line_field = |i: usize| format!("line_types[{i}] (\"{}\")", model.line_types[i].name);
-        validate::derived(p, &model, line_field, (baumgarte.alpha, baumgarte.beta))?;
+        // The entry that gives node `n` its point mass: a point, or a cable's end.
+        let node_field = |n: usize| {
+            // A net's knot: its point mass is the net's sinker.
+            let label = model.nodes[n].label.clone();
+            if let Some(l) = &label {
+                if let Some((i, net)) = raw
+                    .nets
+                    .iter()
+                    .enumerate()
+                    .find(|(_, net)| l.starts_with(&format!("{}.knot", net.name)))
+                {
+                    return format!("nets[{i}] (\"{}\").sinker", net.name);
+                }
+            }
+            if let Some((f, _, _)) = point_fields.iter().find(|(_, k, _)| *k == n) {
+                return f.clone();
+            }
+            for (i, c) in model.cables.iter().enumerate() {
+                for (end, k) in [("start", c.nodes.first()), ("end", c.nodes.last())] {
+                    if k == Some(&n) {
+                        // Cables before nets, in the order of `cables` (arrays expanded).
+                        return match cables.get(i) {
+                            Some((prefix, _)) => format!("{prefix}.{end}"),
+                            None => format!("cable \"{}\" {end}", c.name),
+                        };
+                    }
+                }
+            }
+            label.unwrap_or_else(|| format!("node {n}"))
+        };
+        validate::derived(
+            p,
+            &model,
+            line_field,
+            node_field,
+            (baumgarte.alpha, baumgarte.beta),
+        )?;
         validate::unused_points(p, &model, &point_fields)?;
         validate::unused_line_types(p, &model, line_field);
         if let Selection::Names(v) = &positions_sel {
@@ -722,4 +798,20 @@ fn output_selection(p: &Path, v: &Option<toml::Value>) -> Result<Selection, Erro
             ))
         }
     })
+}
+
+#[cfg(test)]
+mod message_tests {
+    use super::*;
+
+    #[test]
+    fn numbers_in_messages_are_short() {
+        assert_eq!(show(9.81), "9.81");
+        assert_eq!(show(-1e160), "-1e160");
+        assert_eq!(show(2.5e-200), "2.5e-200");
+        assert_eq!(show(0.0), "0");
+        let e = non_negative(Path::new("m.toml"), "environment.gravity", -1e160).unwrap_err();
+        let text = e.to_string();
+        assert!(text.ends_with("must not be negative, got -1e160"), "{text}");
+    }
 }

@@ -54,6 +54,10 @@ pub fn parse(
     for (k, x) in n.top.iter().enumerate() {
         finite(p, &format!("{}[{k}]", f("top")), *x)?;
     }
+    super::validate::position(p, &f("top"), n.top)?;
+    for (k, x) in size.iter().enumerate() {
+        super::validate::magnitude(p, &format!("{}[{k}]", f("size")), *x, "m")?;
+    }
     let segments = n.segments.unwrap_or(1);
     if !(1..=1000).contains(&segments) {
         return Err(err(

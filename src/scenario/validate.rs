@@ -5,8 +5,124 @@
 
 use super::err;
 use crate::error::Error;
-use crate::model::ModelDef;
+use crate::model::{ModelDef, Route};
+use crate::options::SolverOptions;
+use std::f64::consts::TAU;
 use std::path::Path;
+
+/// The largest magnitude a coordinate or a derived force, stiffness or mass may have:
+/// the solvers square them (lengths, force magnitudes, sums of squares over all nodes),
+/// and a value beyond `1e150` has a square beyond `1e300`, at the edge of f64. Every
+/// physical input is many orders of magnitude below it.
+pub const MAGNITUDE_LIMIT: f64 = 1e150;
+
+/// Whether `x` is not a finite number within [`MAGNITUDE_LIMIT`].
+fn out_of_range(x: f64) -> bool {
+    !(x.abs() <= MAGNITUDE_LIMIT)
+}
+
+/// How far from the origin (m, per coordinate) a node may go before the solvers stop
+/// the run as a blow-up (`SolverOptions::max_distance`).
+pub fn max_distance() -> f64 {
+    SolverOptions::default().max_distance
+}
+
+/// A position (m) given at `field`: each coordinate within [`MAGNITUDE_LIMIT`] (beyond
+/// it the squared distances between nodes overflow f64) and within [`max_distance`]
+/// (beyond it the first step stops the run as a blow-up).
+pub fn position(p: &Path, field: &str, x: [f64; 3]) -> Result<(), Error> {
+    if x.iter().any(|c| out_of_range(*c)) {
+        return Err(err(
+            p,
+            field,
+            format!(
+                "position {x:?} m: a coordinate beyond {MAGNITUDE_LIMIT:e} m, whose square (in the lengths of the elements) overflows f64; check the value and its units"
+            ),
+        ));
+    }
+    let limit = max_distance();
+    if x.iter().any(|c| !(c.abs() < limit)) {
+        return Err(err(
+            p,
+            field,
+            format!(
+                "position {x:?} m: a coordinate {limit:e} m or more from the origin, where the solver stops a run as a blow-up; move the origin near the model, or check the value and its units"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The speed of a driven end's route against `max_speed` (m/s, `simulation.max_speed`):
+/// a route faster than `sqrt(3) max_speed` drags its node past the limit, and the first
+/// step stops the run as a blow-up. Tables are checked where they are read.
+pub fn route_speed(p: &Path, field: &str, route: &Route, max_speed: f64) -> Result<(), Error> {
+    // Of two factors, the one further from 1 in orders of magnitude is named.
+    let culprit = |a: (&'static str, f64), b: (&'static str, f64)| {
+        if a.1.abs().log10().abs() >= b.1.abs().log10().abs() {
+            a.0
+        } else {
+            b.0
+        }
+    };
+    let (key, speed) = match *route {
+        Route::Line { velocity: v, .. } => {
+            ("velocity", (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
+        }
+        Route::Circle {
+            radius,
+            period,
+            advance,
+            ..
+        } => {
+            let (round, along) = (TAU * radius / period, advance / period);
+            let key = if round.abs() >= along.abs() {
+                culprit(("diameter", 2.0 * radius), ("period", period))
+            } else {
+                culprit(("advance", advance), ("period", period))
+            };
+            (key, round.hypot(along))
+        }
+        _ => return Ok(()),
+    };
+    // Beyond sqrt(3) max_speed some velocity component is beyond max_speed at every
+    // instant (the solver's test is by component).
+    if !(speed <= 3f64.sqrt() * max_speed) {
+        return Err(err(
+            p,
+            format!("{field}.{key}"),
+            format!("the route moves its end at {speed:e} m/s, more than sqrt(3) x simulation.max_speed = {max_speed:e} m/s: a velocity component is above max_speed, and the first step would stop the run as a blow-up; check the values and their units"),
+        ));
+    }
+    Ok(())
+}
+
+/// A value (in `unit`) given at `field` that the solvers multiply into forces and
+/// square (a cable's length, gravity, the water's density): within [`MAGNITUDE_LIMIT`].
+pub fn magnitude(p: &Path, field: &str, x: f64, unit: &str) -> Result<f64, Error> {
+    if out_of_range(x) {
+        return Err(err(
+            p,
+            field,
+            format!("{x:e} {unit} is beyond {MAGNITUDE_LIMIT:e} {unit}, whose square overflows f64; check the value and its units"),
+        ));
+    }
+    Ok(x)
+}
+
+/// A current velocity (m/s) given at `field`: its speed squared (in the drag) within
+/// [`MAGNITUDE_LIMIT`].
+pub fn current_speed(p: &Path, field: &str, u: [f64; 3]) -> Result<(), Error> {
+    let limit = MAGNITUDE_LIMIT.sqrt();
+    if u.iter().any(|c| !(c.abs() <= limit)) {
+        return Err(err(
+            p,
+            field,
+            format!("current {u:?} m/s: a component beyond {limit:e} m/s, whose square in the drag overflows f64; check the value and its units"),
+        ));
+    }
+    Ok(())
+}
 
 /// How far below the seabed plane an end may sit before it is an error, m: rounding in
 /// converted files, not a buried anchor.
@@ -64,13 +180,17 @@ pub fn straight_strain(p: &Path, field: &str, length: f64, ea: f64, a: [f64; 3],
 }
 
 /// Quantities derived from each line type on the elements that use it (stiffness and
-/// damping over the shortest element, weights over the longest cable) and from the
-/// seabed: each must stay a finite f64, else an error naming the input.
-/// `line_field(i)` is line type `i`'s field prefix.
+/// damping over the shortest element, weights over the longest cable, drag in the
+/// fastest current or 10 m/s), from each point mass (its weight, buoyancy and drag;
+/// `node_field(n)` names the entry that gives node `n`'s) and from the seabed: each
+/// must stay within
+/// [`MAGNITUDE_LIMIT`] (the solvers square them), else an error naming the input and
+/// the factors of the product. `line_field(i)` is line type `i`'s field prefix.
 pub fn derived(
     p: &Path,
     model: &ModelDef,
     line_field: impl Fn(usize) -> String,
+    node_field: impl Fn(usize) -> String,
     baumgarte: (f64, f64),
 ) -> Result<(), Error> {
     let n = model.line_types.len();
@@ -83,46 +203,115 @@ pub fn derived(
     }
     let env = &model.env;
     let g_rho = env.gravity * env.water_density;
+    let (g, rho) = (env.gravity, env.water_density);
+    // The fastest current anywhere (its drag goes as the square), at least 10 m/s.
+    let u = model
+        .currents
+        .iter()
+        .flat_map(|c| c.table.iter())
+        .map(|(_, u)| (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt())
+        .fold(10.0f64, |a, b| if b.is_nan() { b } else { a.max(b) });
     for (i, lt) in model.line_types.iter().enumerate() {
         if longest[i] == 0.0 {
             continue;
         }
         let (l0, len) = (shortest[i], longest[i]);
+        let (d, ea) = (lt.diameter, lt.ea);
         let terms = [
-            ("ea", "axial stiffness 2 EA / l0", 2.0 * lt.ea / l0),
+            (
+                "ea",
+                format!("axial stiffness 2 EA / l0 (EA {ea:e} N, l0 {l0:e} m)"),
+                2.0 * ea / l0,
+            ),
             (
                 "damping",
-                "internal damping 2 EA c / l0",
-                2.0 * lt.ea * lt.damping / l0,
+                format!(
+                    "internal damping 2 EA c / l0 (EA {ea:e} N, c {:e} s, l0 {l0:e} m)",
+                    lt.damping
+                ),
+                2.0 * ea * lt.damping / l0,
             ),
             (
                 "mass_per_length",
-                "the weight of a cable",
-                lt.mass_per_length * len * env.gravity.max(1.0),
+                format!(
+                    "the weight of a cable (mass_per_length {:e} kg/m x length {len:e} m x gravity {g:e} m/s^2)",
+                    lt.mass_per_length
+                ),
+                lt.mass_per_length * len * g.max(1.0),
             ),
             (
                 "diameter",
-                "the buoyancy and added mass of a cable",
-                (lt.diameter * lt.diameter) * len * g_rho.max(1.0) * (1.0 + lt.cm),
+                format!(
+                    "the buoyancy of a cable (diameter {d:e} m, length {len:e} m, gravity {g:e} m/s^2, water_density {rho:e} kg/m^3)"
+                ),
+                (d * d) * len * g_rho.max(1.0),
             ),
-            ("ei", "bending stiffness EI / l0^3", lt.ei / (l0 * l0 * l0)),
+            (
+                "cm",
+                format!(
+                    "the added mass of a cable (cm {:e}, diameter {d:e} m, length {len:e} m, water_density {rho:e} kg/m^3)",
+                    lt.cm
+                ),
+                (d * d) * len * rho.max(1.0) * lt.cm,
+            ),
+            (
+                "ei",
+                format!("bending stiffness EI / l0^3 (EI {:e} N m^2, l0 {l0:e} m)", lt.ei),
+                lt.ei / (l0 * l0 * l0),
+            ),
             (
                 "cn",
-                "the normal drag on a cable at 10 m/s",
-                lt.cn * lt.diameter * len * env.water_density.max(1.0) * 100.0,
+                format!(
+                    "the normal drag on a cable (cn {:e}, diameter {d:e} m, length {len:e} m, water_density {rho:e} kg/m^3, at {u:e} m/s: the fastest current or 10 m/s)",
+                    lt.cn
+                ),
+                lt.cn * d * len * rho.max(1.0) * u * u,
             ),
             (
                 "ct",
-                "the tangential drag on a cable at 10 m/s",
-                lt.ct * lt.diameter * len * env.water_density.max(1.0) * 100.0,
+                format!(
+                    "the tangential drag on a cable (ct {:e}, diameter {d:e} m, length {len:e} m, water_density {rho:e} kg/m^3, at {u:e} m/s: the fastest current or 10 m/s)",
+                    lt.ct
+                ),
+                lt.ct * d * len * rho.max(1.0) * u * u,
             ),
         ];
         for (key, what, x) in terms {
-            if !x.is_finite() {
+            if out_of_range(x) {
                 return Err(err(
                     p,
                     format!("{}.{key}", line_field(i)),
-                    format!("{what} overflows f64 ({x}) on the elements of this line type (shortest l0 = {l0:e} m): no step can simulate it; check the value and its units"),
+                    format!("{what} is {x:e} on the elements of this line type, beyond {MAGNITUDE_LIMIT:e}: it overflows f64 where the solver squares it, and no step can simulate it; check the values and their units"),
+                ));
+            }
+        }
+    }
+    // The point masses' loads: weight, buoyancy, drag in the fastest current.
+    for (n, node) in model.nodes.iter().enumerate() {
+        let pm = &node.point;
+        for (key, what, x) in [
+            ("mass", "weight (mass x gravity)", pm.mass * g),
+            (
+                "volume",
+                "buoyancy (volume x water_density x gravity)",
+                pm.volume * g_rho,
+            ),
+            (
+                "drag_area",
+                "drag (drag_area x water_density x speed^2)",
+                pm.drag_area * rho * u * u,
+            ),
+            (
+                "added_mass",
+                "added mass's weight (added_mass x volume x water_density x gravity)",
+                pm.added_mass_coef * pm.volume * g_rho.max(1.0),
+            ),
+        ] {
+            if out_of_range(x) {
+                return Err(err(
+                    p,
+                    format!("{}.{key}", node_field(n)),
+                    format!("the point mass's {what} is {x:e} N (gravity {g:e} m/s^2, water_density {rho:e} kg/m^3, speed {u:e} m/s: the fastest current or 10 m/s), beyond {MAGNITUDE_LIMIT:e} N: it overflows f64 where the solver squares it; check the values and their units"),
                 ));
             }
         }
@@ -136,11 +325,11 @@ pub fn derived(
             ("stiffness", env.seabed.stiffness * len / l0.min(1.0)),
             ("damping", env.seabed.damping * len / l0.min(1.0)),
         ] {
-            if !x.is_finite() {
+            if out_of_range(x) {
                 return Err(err(
                     p,
                     format!("environment.seabed.{key}"),
-                    format!("{} overflows f64 in the contact force of a node: no step can simulate it; check the value and its units", if key == "stiffness" { "K" } else { "C" }),
+                    format!("{} overflows f64 in the contact force of a node (beyond {MAGNITUDE_LIMIT:e} per metre of penetration, or per m/s): no step can simulate it; check the value and its units", if key == "stiffness" { "K" } else { "C" }),
                 ));
             }
         }

@@ -15,6 +15,7 @@
 //! direction = 30.0         # degrees, direction of travel from +x towards +y
 //! ```
 
+use super::wave_checks::{self, TrainInputs};
 use super::{err, finite, positive};
 use crate::error::Error;
 use crate::sea::dispersion::wave_number;
@@ -24,6 +25,9 @@ use crate::sea::{SeaState, Stretching, WaveComponent};
 use serde::Deserialize;
 use std::f64::consts::TAU;
 use std::path::Path;
+
+/// The shortest start-up ramp, s (0, no ramp, aside).
+pub const MIN_RAMP: f64 = 1e-3;
 
 /// Fewest components an irregular train may have.
 pub const MIN_COMPONENTS: i64 = 10;
@@ -112,6 +116,15 @@ pub fn sea_state(
                 p,
                 format!("{F}.ramp"),
                 format!("must not be negative, got {r}"),
+            ));
+        }
+        // The ramp's rate (in the accelerations) goes as 1 / ramp: a ramp far shorter
+        // than any step overflows it.
+        if r > 0.0 && r < MIN_RAMP {
+            return Err(err(
+                p,
+                format!("{F}.ramp"),
+                format!("{r:e} s is shorter than {MIN_RAMP} s: use 0 for no ramp"),
             ));
         }
         sea.ramp_duration = r;
@@ -221,13 +234,28 @@ pub fn sea_state(
                     f("height")
                 ));
             }
-            sea.components.push(WaveComponent {
+            let component = WaveComponent {
                 amplitude,
                 omega,
                 k,
                 direction,
                 phase,
-            });
+            };
+            let key = if t.height.is_some() {
+                "height"
+            } else {
+                "amplitude"
+            };
+            let inputs = TrainInputs {
+                height: (
+                    &f(key),
+                    amplitude * if t.height.is_some() { 2.0 } else { 1.0 },
+                ),
+                period: (&f("period"), period),
+            };
+            let tolerance = sea.cache_tolerance;
+            wave_checks::train(p, &inputs, &[component], depth, tolerance)?;
+            sea.components.push(component);
             continue;
         }
         let spectrum = match t.kind.as_str() {
@@ -290,8 +318,18 @@ pub fn sea_state(
             seed,
             stream: i as u64,
         };
-        sea.components
-            .extend(discretise(&spectrum, &d, depth, gravity));
+        let components = discretise(&spectrum, &d, depth, gravity);
+        let (hf, tf) = match &spectrum {
+            Spectrum::Table { .. } => (f("spectrum"), f("spectrum")),
+            _ => (f("hs"), f("tp")),
+        };
+        let inputs = TrainInputs {
+            height: (&hf, t.hs.unwrap_or(1.0)),
+            period: (&tf, t.tp.unwrap_or(1.0)),
+        };
+        let tolerance = sea.cache_tolerance;
+        wave_checks::train(p, &inputs, &components, depth, tolerance)?;
+        sea.components.extend(components);
     }
     Ok((sea, warnings))
 }

@@ -15,7 +15,7 @@ pub enum CableEnd {
 }
 use crate::error::Error;
 use crate::gpu::solver::NodeStates;
-use crate::gpu::{GpuContext, GpuKernel, GpuSolver};
+use crate::gpu::{GpuContext, GpuSolver};
 use crate::model::{Layout, Route, NO_CONSTRAINT};
 use crate::options::{Backend, Precision, SolverOptions};
 use crate::output::{
@@ -151,28 +151,12 @@ impl LumpedStepper {
                 LumpedStepper::Gpu(GpuSolver::new(&ctx, lay, pos, opts, p)?)
             }
         };
-        let mut waves_fault = false;
         match &mut s {
             LumpedStepper::Cpu(c) => c.set_seas(&sc.sea_set(), false),
-            LumpedStepper::Gpu(g) => {
-                let seas = sc.sea_set();
-                g.set_seas(&seas)?;
-                // The fused kernel has a known fault in waves (docs/src/limitations.md:
-                // it drifts from the two-pass kernel over long submissions): wave runs
-                // take the two-pass kernel unless CABLESIM_GPU_KERNEL=fused asks for it.
-                let forced = std::env::var("CABLESIM_GPU_KERNEL").is_ok_and(|v| v == "fused");
-                if !seas.is_still() && g.kernel() == GpuKernel::Fused && !forced {
-                    g.set_kernel(GpuKernel::TwoPass)?;
-                    waves_fault = true;
-                }
-            }
+            LumpedStepper::Gpu(g) => g.set_seas(&sc.sea_set())?,
         }
         if let LumpedStepper::Gpu(g) = &s {
             match g.fused_unavailable() {
-                _ if waves_fault => log::info!(
-                    "GPU kernel: two-pass (not fused: waves, where the fused kernel has a \
-                     known fault; CABLESIM_GPU_KERNEL=fused forces it)"
-                ),
                 Some(why) => log::info!("GPU kernel: {} (not fused: {why})", g.kernel().name()),
                 None => log::info!("GPU kernel: {}", g.kernel().name()),
             }
@@ -182,13 +166,13 @@ impl LumpedStepper {
 
     /// A copy of the state to go back to ([`LumpedStepper::restore`]). The CPU path
     /// always has one (the whole solver where the mesh or the waves' cache carry state);
-    /// the GPU path reads its state back (one download per call), and has none with
-    /// winches (whose mesh changes) or should the download fail.
+    /// the GPU path reads its state back (one download per call; with winches the
+    /// host's mesh and winch state too), and has none should the download fail.
     pub fn checkpoint(&mut self) -> Option<Checkpoint> {
         match self {
             LumpedStepper::Cpu(s) => s.checkpoint().map(Checkpoint::Cpu),
             LumpedStepper::Gpu(s) => match s.checkpoint() {
-                Ok(c) => c.map(Checkpoint::Gpu),
+                Ok(c) => Some(Checkpoint::Gpu(c)),
                 Err(e) => {
                     log::warn!("no checkpoint of the GPU state: {e}");
                     None
@@ -197,10 +181,14 @@ impl LumpedStepper {
         }
     }
 
-    /// Puts the state back to `cp`, taken from this stepper.
-    pub fn restore(&mut self, cp: &Checkpoint) {
+    /// Puts the state back to `cp`, taken from this stepper. Only the GPU path can
+    /// fail here (rebuilding its buffers for a winch run's earlier mesh).
+    pub fn restore(&mut self, cp: &Checkpoint) -> Result<(), Error> {
         match (self, cp) {
-            (LumpedStepper::Cpu(s), Checkpoint::Cpu(c)) => s.restore(c),
+            (LumpedStepper::Cpu(s), Checkpoint::Cpu(c)) => {
+                s.restore(c);
+                Ok(())
+            }
             (LumpedStepper::Gpu(s), Checkpoint::Gpu(c)) => s.restore(c),
             _ => unreachable!("a checkpoint goes back to the stepper that made it"),
         }

@@ -580,9 +580,9 @@ enum Chunked {
 /// request answered on big runs without cutting the blocks' long runs too short.
 ///
 /// On a blow-up the blocks of a chunk stand at different steps (each steps on its own
-/// until it fails or finishes). Where the state can be put back (the CPU path always; the GPU path without winches),
-/// the stretch is stepped again from a checkpoint up to the step before the failure, so
-/// that every cable is at that one time, the last state that exists. The CPU path
+/// until it fails or finishes). Where the state can be put back (always, unless the GPU
+/// path cannot read its state back), the stretch is stepped again from a checkpoint up
+/// to the step before the failure, so that every cable is at that one time, the last state that exists. The CPU path
 /// keeps a checkpoint per chunk (a copy in memory); the GPU path one per call (an
 /// output interval), since it must read its state back from the device for it.
 fn advance_lumped(
@@ -626,6 +626,8 @@ fn advance_lumped(
 /// Puts the stepper back at `saved` and steps it to the step before the failure `e`
 /// (step `dt`, s). Should the replay fail earlier (it does not: stepping is
 /// deterministic), the stepper stays at `saved`, where every cable is at one time too.
+/// Should putting it back fail (the device, rebuilding a winch run's buffers), the log
+/// says so and the state is the device's, whatever it holds.
 fn rewind_to_failure(s: &mut LumpedStepper, saved: backend::Checkpoint, e: &Error, dt: f64) {
     let t_fail = match e {
         Error::Diverged { time, .. }
@@ -635,10 +637,16 @@ fn rewind_to_failure(s: &mut LumpedStepper, saved: backend::Checkpoint, e: &Erro
     };
     let start = saved.steps();
     let failing = (t_fail / dt).round() as u64;
-    s.restore(&saved);
+    if let Err(why) = s.restore(&saved) {
+        log::warn!("blow-up at t = {t_fail} s: the state could not be put back ({why})");
+        return;
+    }
     let good = failing.saturating_sub(1).saturating_sub(start);
     if good > 0 && s.advance(good).is_err() {
-        s.restore(&saved);
+        if let Err(why) = s.restore(&saved) {
+            log::warn!("blow-up at t = {t_fail} s: the state could not be put back ({why})");
+            return;
+        }
     }
     log::info!(
         "blow-up at t = {t_fail} s: every cable's state kept at t = {} s, the step before",

@@ -93,9 +93,11 @@ impl Sys<'_> {
         self.residual(&r, &mut f);
         let (fmax, worst, _) = self.measure(&f);
         if !fmax.is_finite() {
-            let (cable, k) = self.lay.describe_node(self.n0 + worst.unwrap_or_default());
+            let li = worst.unwrap_or_default();
+            let (cable, k) = self.lay.describe_node(self.n0 + li);
             return Err(Error::Statics(format!(
-                "non-finite static force at cable '{cable}', node {k} (a zero-length element?)"
+                "non-finite static force at cable '{cable}', node {k}: {} (an input far out of range? check the values and their units)",
+                self.why_not_finite(&r, li)
             )));
         }
         for (p, ri) in pos.iter_mut().zip(&r) {

@@ -221,6 +221,72 @@ impl<'a> Sys<'a> {
         }
     }
 
+    /// What makes the static force at block-local node `li` (state `r`) not a finite
+    /// magnitude, in words for an error: the first of its position, an element of its
+    /// (zero length, tension, distributed loads), its point loads and its seabed contact
+    /// found out of range, with the values; else the sum of them that overflows.
+    pub(super) fn why_not_finite(&self, r: &[V], li: usize) -> String {
+        let bad = |v: V| !v.norm2().is_finite();
+        let i = self.n0 + li;
+        if bad(r[li]) {
+            return format!(
+                "its position {:?} m is not finite, or its square overflows f64",
+                r[li].to_f64()
+            );
+        }
+        for e in self.e0..self.e1 {
+            let (a, b) = self.ends(e);
+            if a != li && b != li {
+                continue;
+            }
+            let (cable, k) = self.lay.describe_element(e);
+            let el = format!("element {k} of cable '{cable}'");
+            let other = if a == li { b } else { a };
+            if bad(r[other]) {
+                return format!(
+                    "the other node of {el} is at {:?} m, not finite or with a square that overflows f64",
+                    r[other].to_f64()
+                );
+            }
+            if (r[b] - r[a]).norm2() == 0.0 {
+                return format!(
+                    "{el} has zero length (both its nodes at {:?} m): no direction for its tension",
+                    r[li].to_f64()
+                );
+            }
+            let loads = self.element_loads(e, r[a], r[b]);
+            if !(loads.tension * loads.tension).is_finite() {
+                return format!(
+                    "the tension of {el} is {:e} N (unstretched length {:e} m, stretched {:e} m), whose square overflows f64",
+                    loads.tension,
+                    self.lay.elem_l0[e],
+                    (r[b] - r[a]).norm()
+                );
+            }
+            if bad(loads.f_half) {
+                return format!(
+                    "the weight, buoyancy or drag on {el} is {:?} N, whose square overflows f64",
+                    (loads.f_half * 2.0).to_f64()
+                );
+            }
+        }
+        let point = self.point(i, r[li]);
+        if bad(point) {
+            return format!(
+                "its point load (weight, buoyancy, drag of a point mass) is {:?} N, whose square overflows f64",
+                point.to_f64()
+            );
+        }
+        let contact = seabed_force(&self.seabed, self.lay.node_tributary[i], r[li], V::zero());
+        if bad(contact) {
+            return format!(
+                "its seabed contact force is {:?} N, whose square overflows f64",
+                contact.to_f64()
+            );
+        }
+        "the sum of its loads overflows f64".into()
+    }
+
     /// Largest free-node force magnitude and its block-local node, and the sum of
     /// squares over free nodes.
     pub(super) fn measure(&self, f: &[V]) -> (f64, Option<usize>, f64) {

@@ -289,6 +289,92 @@ fn overflowing_inputs_name_their_field() {
     }
 }
 
+/// Finite inputs whose squares overflow f64 (the solvers square lengths and forces):
+/// each is refused by name before the statics, which without these checks stopped on
+/// "non-finite static force ... (a zero-length element?)" (found by mutating the
+/// examples' numbers to 1e200 and -1e160), with the value or the product's factors.
+#[test]
+fn inputs_whose_squares_overflow_name_their_field() {
+    let c = catenary();
+    let point = "\n[[points]]\nname = \"buoy\"\nfixed = [0.0, 0.0, -5.0]\n";
+    for (from, to, extra, field, what) in [
+        (
+            "gravity = 9.81",
+            "gravity = 1e200",
+            "",
+            "environment.gravity",
+            "1e200 m/s^2 is beyond 1e150",
+        ),
+        (
+            "water_density = 1025.0",
+            "water_density = 1e200",
+            "",
+            "environment.water_density",
+            "1e200 kg/m^3",
+        ),
+        (
+            "current = [0.0, 0.0, 0.0]",
+            "current = [0.0, -1e160, 0.0]",
+            "",
+            "environment.current",
+            "beyond 1e75 m/s",
+        ),
+        (
+            "length = 250.0 ",
+            "length = 1e200 ",
+            "",
+            "cables[0] (\"line1\").length",
+            "1e200 m is beyond 1e150 m",
+        ),
+        (
+            "[-220.0, 0.0, -100.0]",
+            "[1e200, 0.0, -100.0]",
+            "",
+            "cables[0] (\"line1\").start",
+            "a coordinate beyond 1e150 m",
+        ),
+        (
+            "end = { fixed = [0.0, 0.0, -10.0] }",
+            "end = { fixed = [0.0, 0.0, -1e160] }",
+            "",
+            "cables[0] (\"line1\").end",
+            "a coordinate beyond 1e150 m",
+        ),
+        // A product: each factor in range, the weight beyond (and its factors named).
+        (
+            "mass_per_length = 5.0265",
+            "mass_per_length = 1e149",
+            "",
+            "line_types[0] (\"wire\").mass_per_length",
+            "mass_per_length 1e149 kg/m x length 2.5e2 m x gravity 9.81e0",
+        ),
+        (
+            "cm = 0.2",
+            "cm = 1e200",
+            "",
+            "line_types[0] (\"wire\").cm",
+            "the added mass of a cable (cm 1e200",
+        ),
+        (
+            "end = { fixed = [0.0, 0.0, -10.0] }",
+            "end = { point = \"buoy\" }",
+            &format!("{point}mass = 1e200\n"),
+            "points[0] (\"buoy\").mass",
+            "weight (mass x gravity) is 9.81e200 N",
+        ),
+        (
+            "end = { fixed = [0.0, 0.0, -10.0] }",
+            "end = { fixed = [0.0, 0.0, -10.0], drag_area = 1e200 }",
+            "",
+            "cables[0] (\"line1\").end.drag_area",
+            "drag (drag_area x water_density x speed^2)",
+        ),
+    ] {
+        let (f, m) = parse_error(&edit(&c, from, to, extra));
+        assert!(f.contains(field) && m.contains(what), "{to}: {f}: {m}");
+    }
+}
+
 #[test]
 fn a_straight_start_far_beyond_its_length_warns() {
     let dir = tempfile::tempdir().unwrap();
@@ -414,4 +500,147 @@ fn an_array_on_a_named_point_blames_the_field_at_fault() {
         f.ends_with("end.mass") && m.contains("on the point"),
         "{f}: {m}"
     );
+}
+
+/// The rest of the sweep of the examples' numbers (1e200, -1e160, 1e-200): waves whose
+/// kinematics overflow or underflow (a regular `height = 1e200` panicked in the
+/// kinematics cache; the others went NaN at the first step), point and sinker masses,
+/// positions beyond the blow-up distance, routes faster than `max_speed`. Each is
+/// refused by `cablesim check` with the field and the reason, and never a panic.
+#[test]
+fn derived_kinematics_out_of_range_name_their_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let read = |f: &str| std::fs::read_to_string(format!("examples/{f}")).unwrap();
+    let train = "environment.waves.trains[0]";
+    let cases: &[(&str, &str, &str, &str, &str)] = &[
+        (
+            "buoy_spread.toml",
+            "height = 3.0 ",
+            "height = 1e200 ",
+            &format!("{train}.height"),
+            "above 1e4 m/s, far beyond any sea",
+        ),
+        (
+            "buoy_spread.toml",
+            "height = 3.0 ",
+            "height = 1e-200 ",
+            &format!("{train}.height"),
+            "overflow or underflow f64",
+        ),
+        (
+            "buoy_spread.toml",
+            "period = 12.0 ",
+            "period = 1e-200 ",
+            &format!("{train}.period"),
+            "wave number inf rad/m",
+        ),
+        (
+            "buoy_spread.toml",
+            "period = 12.0 ",
+            "period = 1e200 ",
+            &format!("{train}.period"),
+            "wave number 0e0 rad/m",
+        ),
+        (
+            "net_cage_waves.toml",
+            "height = 2.0 ",
+            "height = 1e200 ",
+            &format!("{train}.height"),
+            "above 1e4 m/s, far beyond any sea",
+        ),
+        (
+            "spread_mooring_waves.toml",
+            "hs = 6.0 ",
+            "hs = 1e200 ",
+            &format!("{train}.hs"),
+            "overflow or underflow f64",
+        ),
+        (
+            "spread_mooring_waves.toml",
+            "tp = 11.0 ",
+            "tp = 1e200 ",
+            &format!("{train}.tp"),
+            "wave number",
+        ),
+        (
+            "spread_mooring_waves.toml",
+            "tp = 11.0 ",
+            "tp = 1e-200 ",
+            &format!("{train}.tp"),
+            "",
+        ),
+        (
+            "spread_mooring_waves.toml",
+            "hs = 6.0 ",
+            "hs = 1e-200 ",
+            &format!("{train}.hs"),
+            "overflow or underflow f64",
+        ),
+        (
+            "spread_mooring_waves.toml",
+            "ramp = 20.0 ",
+            "ramp = 1e-200 ",
+            "environment.waves.ramp",
+            "use 0 for no ramp",
+        ),
+        (
+            "buoy_spread.toml",
+            "added_mass = 1.0 ",
+            "added_mass = 1e200 ",
+            "points[0] (\"buoy\").added_mass",
+            "added mass's weight",
+        ),
+        (
+            "net_cage.toml",
+            "mass = 20.0,",
+            "mass = 1e200,",
+            "nets[0] (\"cage\").sinker.mass",
+            "weight (mass x gravity)",
+        ),
+        (
+            "net_cage.toml",
+            "top = [0.0, 0.0, -0.5]",
+            "top = [0.0, 2e7, -0.5]",
+            "nets[0] (\"cage\").top",
+            "1e7 m or more from the origin",
+        ),
+        (
+            "catenary.toml",
+            "[-220.0, 0.0, -100.0]",
+            "[-1e7, 0.0, -100.0]",
+            "cables[0] (\"line1\").start",
+            "1e7 m or more from the origin",
+        ),
+        (
+            "case2_straight.toml",
+            "velocity = [2.0, 0.0, 0.0]",
+            "velocity = [2.0, -1e160, 0.0]",
+            "cables[0] (\"payout\").start.velocity",
+            "more than sqrt(3) x simulation.max_speed",
+        ),
+        (
+            "case2_circle.toml",
+            "period = 62.8 }",
+            "period = 1e-200 }",
+            "cables[0] (\"payout\").start.period",
+            "more than sqrt(3) x simulation.max_speed",
+        ),
+        (
+            "case1_screw.toml",
+            "advance = 62.8,",
+            "advance = 1e200,",
+            "cables[0] (\"towed\").start.advance",
+            "more than sqrt(3) x simulation.max_speed",
+        ),
+    ];
+    for (file, from, to, field, what) in cases {
+        let text = edit(&read(file), from, to, "");
+        let (ok, err) = check(dir.path(), &text);
+        assert!(!ok, "{file}: {to}: accepted");
+        assert!(!err.contains("panicked"), "{file}: {to}: {err}");
+        assert!(
+            err.contains(&format!("{field}:")) && err.contains(what),
+            "{file}: {to}: expected {field}: {what}, got {err}"
+        );
+    }
 }

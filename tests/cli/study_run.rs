@@ -3,6 +3,7 @@
 //! its finished members and `--resume` completes it to the same files, and bad shard
 //! and directory arguments are refused by name.
 
+use crate::common::study_with_a_failing_member;
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -163,35 +164,6 @@ fn shards_threads_and_resume_give_the_one_machine_files() {
     assert!(String::from_utf8_lossy(&again.stderr).contains("--resume"));
     run(2, &["study", "run", STUDY, "-q", "--resume"], &cut);
     same_tables(&whole, &cut);
-}
-
-/// The example study with a violent sea state in which one member's line moves faster
-/// than the base scenario's `max_speed` allows (the blow-up guard): that member, seed 1
-/// of the violent sea state, fails at about 17 s with a node speed of 0.85 m/s; the
-/// others stay under 0.5 m/s, well below the limit of 0.75 m/s.
-fn study_with_a_failing_member(dir: &Path) -> std::path::PathBuf {
-    let text = std::fs::read_to_string(STUDY).unwrap();
-    let text = text.replace(
-        "output_interval = 0.5    # s: the study samples every channel at each output time",
-        "output_interval = 0.5\nmax_speed = 0.75",
-    );
-    let cut = text.find("\n[study]\n").unwrap();
-    let text = text[..cut].to_string()
-        + r#"
-[study]
-seed = 2026
-seeds = 3
-duration = 20.0
-transient = 10.0
-sea_states = [
-  { name = "calm", hs = 1.0, tp = 8.0 },
-  { name = "violent", hs = 8.0, tp = 10.0 },
-]
-"#;
-    assert!(text.contains("max_speed = 0.75"));
-    let path = dir.join("failing.toml");
-    std::fs::write(&path, text).unwrap();
-    path
 }
 
 #[test]

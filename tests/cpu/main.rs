@@ -15,6 +15,7 @@ mod case1;
 mod chain_kernel;
 mod dynamics;
 mod frames;
+mod net_kernel;
 mod nets;
 mod packed;
 mod parallel;

@@ -1,14 +1,16 @@
 //! Packed runs (`sim::pack`) on the CPU: each member of a packed run, in its own sea,
 //! steps exactly as it does alone; packing refuses members that cannot share a run;
 //! and a study run packed gives the same members as one run per member, for any batch
-//! size.
+//! size; a member that blows up in a packed run (run again alone, the others again
+//! without it) counts once in the progress.
 
-use crate::common::{short_study, wave_members};
+use crate::common::{short_study, study_with_a_failing_member, wave_members};
 use cablesim::options::{Backend, Overrides};
 use cablesim::sim::pack::{pack, packed_name};
 use cablesim::sim::Simulation;
-use cablesim::study::{PackedRun, StudyFile, StudyRunner};
+use cablesim::study::{MemberResult, MemberStatus, PackedRun, StudyFile, StudyRunner};
 use std::sync::atomic::AtomicBool;
+use std::sync::Mutex;
 
 fn cpu(duration: f64) -> Overrides {
     Overrides {
@@ -110,4 +112,57 @@ fn a_study_run_packed_equals_one_run_per_member_for_any_batch_size() {
         serde_json::to_string(&alone[0].stats).unwrap(),
         serde_json::to_string(&alone[2].stats).unwrap()
     );
+}
+
+/// Members 3 (which blows up at about 17 s of its 20) and 4 packed in one batch: the
+/// batch stops at the blow-up, member 3 runs again alone and member 4 again alone.
+/// The progress told, in member-seconds, never passes the study's total (2 x 20 s) and
+/// ends on it, as when each member runs once; the records are those of one run per
+/// member.
+#[test]
+fn a_member_run_again_after_a_packed_blow_up_counts_once_in_the_progress() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = StudyFile::load(study_with_a_failing_member(dir.path())).unwrap();
+    let runner = StudyRunner::new(&file).unwrap();
+    let members = runner.plan().members[3..5].to_vec();
+    let total = 2.0 * runner.plan().def.duration;
+    let stop = AtomicBool::new(false);
+    let keep = |_: &MemberResult| Ok(());
+    // (sum told so far, the most it reached)
+    let told = Mutex::new((0.0f64, 0.0f64));
+    let progress = |dt: f64| {
+        let mut t = told.lock().unwrap();
+        t.0 += dt;
+        t.1 = t.1.max(t.0);
+    };
+    let how = PackedRun {
+        backend: Backend::Cpu,
+        precision: None,
+        batch: None,
+    };
+    let packed = runner
+        .run_packed(&members, &how, &stop, &progress, &keep)
+        .unwrap();
+    let (sum, most) = *told.lock().unwrap();
+    println!("packed: progress told {sum} member-s (at most {most}) of {total}");
+    assert!(
+        matches!(packed[0].status, MemberStatus::Failed { .. }),
+        "member 3 did not fail: the case no longer tests a rerun"
+    );
+    assert_eq!(packed[1].status, MemberStatus::Completed);
+    assert!((sum - total).abs() <= 1e-9 * total, "told {sum} of {total}");
+    assert!(
+        most <= total * (1.0 + 1e-12),
+        "passed the total: {most} of {total}"
+    );
+    // One run per member tells the same total, and records the same members.
+    *told.lock().unwrap() = (0.0, 0.0);
+    let alone = runner.run(&members, &stop, &progress, &keep).unwrap();
+    let (sum, _) = *told.lock().unwrap();
+    assert!(
+        (sum - total).abs() <= 1e-9 * total,
+        "alone: told {sum} of {total}"
+    );
+    let json = |r: &[MemberResult]| serde_json::to_string(r).unwrap();
+    assert_eq!(json(&packed), json(&alone));
 }

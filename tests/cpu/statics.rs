@@ -488,3 +488,29 @@ fn independent_blocks_and_errors() {
     // Wrong length.
     assert!(relax(&lay, &mut pos[..3].to_vec(), &RelaxOptions::default()).is_err());
 }
+
+/// A model built without the scenario's checks (which refuse such inputs by name):
+/// a free middle node carrying a point mass whose weight, 9.81e200 N, has a square
+/// that overflows f64. The statics' error says so, at that node, with the value,
+/// rather than guessing at a zero-length element.
+#[test]
+fn a_static_force_that_overflows_says_which_load() {
+    let mid = [-110.0, 0.0, -80.0];
+    let mut def = single_line(&[ANCHOR, mid, FAIRLEAD], LENGTH, 100.0, [0.0; 3]);
+    def.nodes[1].point = PointMass {
+        mass: 1e200,
+        ..PointMass::default()
+    };
+    let (lay, mut pos) = Layout::build(&def).unwrap();
+    let e = relax(&lay, &mut pos, &RelaxOptions::default())
+        .unwrap_err()
+        .to_string();
+    println!("{e}");
+    assert!(
+        e.contains("non-finite static force at cable 'line', node 1")
+            && e.contains("point load")
+            && e.contains("e200")
+            && !e.contains("zero-length"),
+        "{e}"
+    );
+}

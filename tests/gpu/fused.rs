@@ -68,6 +68,13 @@ fn line_types() -> Vec<LineType> {
 /// clump (mass, buoyancy, drag) a third of the way up. Relaxed to static equilibrium
 /// before the run.
 fn fleet(n: usize, seed: u64) -> (Layout, Vec<[f64; 3]>) {
+    fleet_with_profiles(n, seed, 3)
+}
+
+/// [`fleet`] with current profiles of `points` points (3: the fleet's own, three
+/// depths with random speeds; more: evenly from the seabed to the surface, the same
+/// for every profiled cable).
+fn fleet_with_profiles(n: usize, seed: u64, points: usize) -> (Layout, Vec<[f64; 3]>) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut def = ModelDef {
         env: Environment {
@@ -131,7 +138,16 @@ fn fleet(n: usize, seed: u64) -> (Layout, Vec<[f64; 3]>) {
                 Route::Table { t, p }
             }
         };
-        let current = if c % 3 == 2 {
+        let current = if c % 3 == 2 && points > 3 {
+            Current {
+                table: (0..points)
+                    .map(|i| {
+                        let z = -DEPTH + DEPTH * i as f64 / (points - 1) as f64;
+                        (z, [0.05 + 0.5 * (i as f64 / points as f64), 0.1, 0.0])
+                    })
+                    .collect(),
+            }
+        } else if c % 3 == 2 {
             Current {
                 table: vec![
                     (-DEPTH, [0.05, 0.0, 0.0]),
@@ -458,4 +474,58 @@ fn fused_blow_up_names_the_cable_node_and_time() {
             assert!((t[0] - t[1]).abs() <= slack, "{}: {t:?}", p.name());
         }
     }
+}
+
+/// A current profile of 300 points: each element's linear search of it is up to 300
+/// loop iterations a step, so a whole submission in one fused dispatch would pass
+/// llvmpipe's budget of 65535 loop iterations per shader invocation, after which every
+/// loop silently ends after one iteration (with whole submissions in one dispatch the
+/// fused kernel parted from the two-pass kernel by 0.28 m on this fleet and these
+/// `advance` calls, at cable m41). The host cuts the fused dispatches short
+/// (`fused_max_steps`): more dispatches than submissions, and agreement to round-off.
+#[test]
+fn fused_with_a_long_current_profile_matches_two_pass() {
+    let name = "fused_with_a_long_current_profile_matches_two_pass";
+    let Some(ctx) = gpu_context(name, true) else {
+        return;
+    };
+    let (lay, pos) = fleet_with_profiles(50, 7, 300);
+    assert!(lay.currents.iter().any(|c| c.table.len() == 300));
+    let bound = cablesim::stability::stable_step(&lay, Default::default(), Default::default());
+    let opts = SolverOptions {
+        dt: 0.8 * bound.dt,
+        ..Default::default()
+    };
+    let steps = 3000;
+    let run = |kernel| {
+        let mut gpu = GpuSolver::new(&ctx, lay.clone(), &pos, opts, Precision::F64).unwrap();
+        gpu.set_kernel(kernel).unwrap();
+        // The uneven advance calls of `run`.
+        for n in [1u64, 700, 299, 1000, 1, 700, 299] {
+            gpu.advance(n).unwrap();
+        }
+        let t = gpu.timings();
+        (
+            Snapshot::gpu(format!("GPU f64 {}", kernel.name()), &mut gpu),
+            t,
+        )
+    };
+    let (fused, tf) = run(GpuKernel::Fused);
+    let (two, _) = run(GpuKernel::TwoPass);
+    assert!(
+        tf.dispatches > tf.submissions,
+        "{name}: {} dispatches in {} submissions",
+        tf.dispatches,
+        tf.submissions
+    );
+    let l0_min = lay.elem_l0.iter().cloned().fold(f64::INFINITY, f64::min);
+    let ea = lay.line_coefs.iter().map(|c| c.ea).fold(0.0, f64::max);
+    let bounds = RoundOff::new(&lay, &two, steps, f64::EPSILON, ea, l0_min, 2.0 / bound.dt);
+    let d = bounds.check(name, &lay, &fused, &two);
+    eprintln!(
+        "{name}: {} dispatches in {} submissions; {}",
+        tf.dispatches,
+        tf.submissions,
+        d.report(&lay)
+    );
 }

@@ -30,3 +30,4 @@ mod surface;
 mod wave_parity;
 mod waves;
 mod winch;
+mod winch_blow_up;

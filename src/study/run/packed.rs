@@ -10,7 +10,8 @@
 //! A blow-up stops a packed run. The member it names (the error names the cable,
 //! `m<index>/name`) is then run alone, as a batch of one, which records it as failed
 //! with its statistics up to the failure as the CPU path does; the rest of the batch
-//! runs again without it.
+//! runs again without it. The progress counts each member's simulated time once
+//! ([`Counted`]): what a member steps again in those runs is not counted twice.
 
 use super::{is_blow_up, StudyRunner};
 use crate::error::Error;
@@ -43,6 +44,30 @@ enum BatchEnd {
     BlewUp(usize),
 }
 
+/// How far each member has been counted in the progress (simulated time, s), so that a
+/// member stepped again (alone after a blow-up, or in its batch run again without the
+/// member that blew up) adds only the time past what it had reached: the progress of a
+/// shard ends at its members times the duration, never past it.
+#[derive(Default)]
+struct Counted(std::collections::HashMap<usize, f64>);
+
+impl Counted {
+    /// Every member of `batch` has reached time `t`: tells `progress` what that adds.
+    fn reach(&mut self, batch: &[Member], t: f64, progress: &(dyn Fn(f64) + Sync)) {
+        let mut add = 0.0;
+        for m in batch {
+            let c = self.0.entry(m.index).or_insert(0.0);
+            if t > *c {
+                add += t - *c;
+                *c = t;
+            }
+        }
+        if add > 0.0 {
+            progress(add);
+        }
+    }
+}
+
 /// The member prefix in a packed scenario.
 fn prefix(m: &Member) -> String {
     format!("m{}", m.index)
@@ -61,6 +86,8 @@ impl StudyRunner {
     ) -> Result<Vec<MemberResult>, Error> {
         let size = how.batch.unwrap_or(members.len()).max(1);
         let mut out = Vec::with_capacity(members.len());
+        let mut counted = Counted::default();
+        let mut reached = |b: &[Member], t: f64| counted.reach(b, t, progress);
         for batch in members.chunks(size) {
             let mut todo: Vec<Member> = batch.to_vec();
             let mut done: Vec<MemberResult> = Vec::new();
@@ -68,7 +95,7 @@ impl StudyRunner {
                 if stop.load(Ordering::Relaxed) {
                     return Ok(out);
                 }
-                match self.run_batch(&todo, how, stop, progress)? {
+                match self.run_batch(&todo, how, stop, &mut reached)? {
                     BatchEnd::Done(None) => return Ok(out),
                     BatchEnd::Done(Some(rs)) => {
                         done.extend(rs);
@@ -80,7 +107,7 @@ impl StudyRunner {
                             "member {} blew up in a packed run: run alone, the others again",
                             m.index
                         );
-                        match self.run_batch(&[m], how, stop, progress)? {
+                        match self.run_batch(&[m], how, stop, &mut reached)? {
                             BatchEnd::Done(Some(rs)) => done.extend(rs),
                             BatchEnd::Done(None) => return Ok(out),
                             BatchEnd::BlewUp(_) => {
@@ -115,13 +142,14 @@ impl StudyRunner {
     }
 
     /// Runs one batch packed to the study's duration, streaming every member's
-    /// channels at each output time.
+    /// channels at each output time; `reached(batch, t)` is told each time `t` (s) its
+    /// members reach (the duration for a member that failed: its share is done).
     fn run_batch(
         &self,
         batch: &[Member],
         how: &PackedRun,
         stop: &AtomicBool,
-        progress: &(dyn Fn(f64) + Sync),
+        reached: &mut dyn FnMut(&[Member], f64),
     ) -> Result<BatchEnd, Error> {
         let def = &self.plan.def;
         let packed = self.pack_batch(batch)?;
@@ -137,7 +165,6 @@ impl StudyRunner {
             batch.iter().map(|_| self.plan.new_stats()).collect();
         let mut body_index: Vec<Option<Vec<Option<usize>>>> = vec![None; batch.len()];
         let outputs = (def.duration / interval - 1e-9).ceil().max(1.0) as u64;
-        let mut done = 0.0;
         let mut failed: Option<String> = None;
         for k in 0..=outputs {
             if k > 0 {
@@ -154,11 +181,10 @@ impl StudyRunner {
                     }
                     let e = unprefixed(e, &packed.members[0].prefix);
                     failed = Some(self.failure_message(&batch[0], &e));
-                    progress(def.duration - done);
+                    reached(batch, def.duration);
                     break;
                 }
-                progress((target - done) * batch.len() as f64);
-                done = target;
+                reached(batch, target);
             }
             let snap = sim.snapshot()?;
             for (j, pm) in packed.members.iter().enumerate() {

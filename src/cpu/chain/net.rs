@@ -1,0 +1,705 @@
+//! The vectorised path for network blocks (net cages, panels: any graph of elements)
+//! without winch elements, GLMF, symplectic Euler. It shares the chain path's per-block
+//! constants ([`ChainConsts`], which do not assume a chain) and its element loop
+//! ([`element_kernel`]), behind a gather front-end:
+//! - the element pass gathers each element's two end nodes by index into
+//!   structure-of-arrays scratch, then runs the chain's element loop over them;
+//! - the element pass then folds each element's results into what its two nodes add:
+//!   the force on node a (`f/2 + T t`) and on node b (`f/2 - T t`), and the six entries
+//!   of its share of their mass block (`m/2 I + a (I - t t^T)`);
+//! - the node pass sums those over each node's incident elements through fixed-width
+//!   slot arrays (the incidence lists padded with the zero "ghost" element 0 to 4 or 8
+//!   slots), and solves its 3x3 mass block with the general path's adjugate
+//!   ([`Sym3::solve`]);
+//! - point-mass drag, a point's water-acceleration load and held nodes are done from
+//!   short index lists, as on the chain path.
+//!
+//! The two passes run over ranges of elements and nodes, so a big block is stepped by
+//! all the pool's threads with the same arithmetic per element and per node (the same
+//! bits), meeting twice per step at a spinning barrier ([`advance_net_threaded`]).
+//! A node with more than 8 incident elements sends its block to the general path.
+//! A test checks it against the general path (`tests/cpu/net_kernel.rs`).
+
+use super::{
+    element_kernel, point_drag_force, point_surface_at, point_water_accel_force, route_accel,
+    seabed_load, ChainConsts,
+};
+use crate::cpu::passes::implicit_dt;
+use crate::cpu::water::{node_water, BlockWaves, Water};
+use crate::math::{Sym3, V3};
+use crate::model::{Block, Layout};
+use crate::options::SolverOptions;
+use crate::step::{diverged, StepFailure};
+use std::ops::Range;
+
+mod threaded;
+pub(crate) use threaded::advance_net_threaded;
+
+/// Per-block constants of a network, built once.
+#[derive(Clone, Debug)]
+pub(crate) struct NetConsts {
+    c: ChainConsts,
+    /// Block-local end nodes `a`, `b` per element.
+    ends: [Vec<u32>; 2],
+    /// Slots per node: 4 or 8.
+    width: usize,
+    /// Slot-major (`slot[s * n + i]`): node `i`'s `s`-th incident element, in the
+    /// order of the layout's incidence list, as `2 p + side`: `p` its padded index
+    /// (element `k` is `k + 1`; 0 is the ghost, all of whose loads are zero), `side` 0
+    /// where the node is its node a, 1 where node b.
+    slot: Vec<u32>,
+}
+
+impl NetConsts {
+    /// Folds the layout's constants for network block `b`; `None` when a node has
+    /// more than 8 incident elements (the block takes the general path).
+    pub(crate) fn new(lay: &Layout, b: &Block) -> Option<Self> {
+        let (n0, e0) = (b.node_start as usize, b.elem_start as usize);
+        let n = (b.node_end - b.node_start) as usize;
+        let deg = (0..n).map(|i| lay.incidence(n0 + i).len()).max()?;
+        let width = match deg {
+            0..=4 => 4,
+            5..=8 => 8,
+            _ => return None,
+        };
+        let mut slot = vec![0u32; width * n];
+        for i in 0..n {
+            for (s, &inc) in lay.incidence(n0 + i).iter().enumerate() {
+                slot[s * n + i] = 2 * ((inc >> 1) - e0 as u32 + 1) + (inc & 1);
+            }
+        }
+        let elems = b.elem_start as usize..b.elem_end as usize;
+        let ne = elems.len();
+        let ends: [Vec<u32>; 2] = [
+            elems.clone().map(|e| lay.elem_a[e] - n0 as u32).collect(),
+            elems.map(|e| lay.elem_b[e] - n0 as u32).collect(),
+        ];
+        // The passes index by these without bounds checks.
+        assert!(ends.iter().flatten().all(|&i| (i as usize) < n));
+        assert!(slot.iter().all(|&p| (p as usize) < 2 * (ne + 1)));
+        Some(Self {
+            c: ChainConsts::new(lay, b),
+            ends,
+            width,
+            slot,
+        })
+    }
+
+    /// Re-reads the constraint numbers of block `b` of `lay` (the same network,
+    /// possibly renumbered by a rebuild).
+    pub(crate) fn refresh_constraints(&mut self, lay: &Layout, b: &Block) {
+        self.c.refresh_constraints(lay, b);
+    }
+
+    fn n(&self) -> usize {
+        self.c.n
+    }
+
+    fn ne(&self) -> usize {
+        self.ends[0].len()
+    }
+}
+
+/// A network's state and scratch, reused across blocks.
+#[derive(Default)]
+pub(crate) struct NetScratch {
+    /// Node state, `[x, y, z, vx, vy, vz]`.
+    x: [Vec<f64>; 6],
+    /// Surface elevation over each node, m (zero in still water).
+    eta: Vec<f64>,
+    el: Loads,
+    /// One thread's work of either pass (the first thread's when threaded).
+    work: Work,
+}
+
+/// What each element adds to its nodes (padded: ghost 0, element `k` at `k + 1`).
+#[derive(Default)]
+struct Loads {
+    /// Force on the element's node a at `2 p`, on its node b at `2 p + 1`.
+    f: [Vec<f64>; 3],
+    /// Mass block share `xx, yy, zz, xy, xz, yz` (the same for both nodes).
+    m: [Vec<f64>; 6],
+}
+
+/// One thread's scratch: gathered element inputs over its elements, node work over
+/// its nodes.
+#[derive(Default)]
+struct Work {
+    /// End nodes a and b, `[x, y, z, vx, vy, vz, eta]` per element.
+    a: [Vec<f64>; 7],
+    b: [Vec<f64>; 7],
+    /// Water velocity (current, plus waves) and wave acceleration per element.
+    u: [Vec<f64>; 3],
+    aw: [Vec<f64>; 3],
+    /// The element loop's results: tangent, tension, half external load, half normal
+    /// added mass times the wetted fraction.
+    t: [Vec<f64>; 3],
+    ten: Vec<f64>,
+    f: [Vec<f64>; 3],
+    haw: Vec<f64>,
+    /// Per node: point mass and weight (less what the dry share of a point loses),
+    /// point loads (drag, water acceleration), acceleration.
+    pm: Vec<f64>,
+    pwz: Vec<f64>,
+    ex: [Vec<f64>; 3],
+    acc: [Vec<f64>; 3],
+}
+
+impl Work {
+    /// Sized for `ne` elements and the nodes `nr` of `c`.
+    fn size(&mut self, c: &ChainConsts, ne: usize, nr: &Range<usize>) {
+        let per_elem = (self.a.iter_mut().chain(&mut self.b).chain(&mut self.u))
+            .chain(self.aw.iter_mut().chain(&mut self.t).chain(&mut self.f))
+            .chain([&mut self.ten, &mut self.haw]);
+        for v in per_elem {
+            // Zero: the surface columns stay so in still water.
+            v.clear();
+            v.resize(ne, 0.0);
+        }
+        self.pm.clear();
+        self.pm.extend_from_slice(&c.pm[nr.clone()]);
+        self.pwz.clear();
+        self.pwz.extend_from_slice(&c.pwz[nr.clone()]);
+        for v in self.ex.iter_mut().chain(&mut self.acc) {
+            v.clear();
+            v.resize(nr.len(), 0.0);
+        }
+    }
+}
+
+/// [`Loads`] of elements `er`, written by the element pass: `f` from `2 (er.start + 1)`,
+/// `m` from `er.start + 1`.
+struct LoadsOut<'a> {
+    f: [&'a mut [f64]; 3],
+    m: [&'a mut [f64]; 6],
+}
+
+/// [`Loads`] of all elements, read by the node pass.
+#[derive(Clone, Copy)]
+struct LoadsIn<'a> {
+    f: [&'a [f64]; 3],
+    m: [&'a [f64]; 6],
+}
+
+/// Elements per tile of the element pass: its scratch stays in the core's own cache
+/// (a net cage's block is far bigger).
+const TILE: usize = 256;
+
+/// The element pass over elements `er`, tile by tile ([`element_tile`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn element_pass(
+    nc: &NetConsts,
+    lay: &Layout,
+    er: Range<usize>,
+    x: [&[f64]; 6],
+    eta: &[f64],
+    w: &[f64],
+    g: &mut Work,
+    out: LoadsOut,
+) {
+    let LoadsOut { mut f, mut m } = out;
+    for start in er.clone().step_by(TILE) {
+        let tile = start..(start + TILE).min(er.end);
+        let (k0, k1) = (start - er.start, tile.end - er.start);
+        let o = LoadsOut {
+            f: f.each_mut().map(|q| &mut q[2 * k0..2 * k1]),
+            m: m.each_mut().map(|q| &mut q[k0..k1]),
+        };
+        element_tile(nc, lay, tile, x, eta, w, g, o);
+    }
+}
+
+/// The element pass over elements `er`: gathers their ends' state `x` and surface
+/// `eta`, their water velocity and acceleration (`w`: per-node water values, empty in
+/// still water), runs the chain path's element loop, and folds its results into what
+/// the elements add to their nodes (`out`).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn element_tile(
+    nc: &NetConsts,
+    lay: &Layout,
+    er: Range<usize>,
+    x: [&[f64]; 6],
+    eta: &[f64],
+    w: &[f64],
+    g: &mut Work,
+    out: LoadsOut,
+) {
+    let c = &nc.c;
+    let ne = er.len();
+    let (ea, eb) = (&nc.ends[0][er.clone()], &nc.ends[1][er.clone()]);
+    let waves = !w.is_empty();
+    // In still water the surface columns stay zero.
+    let cols = if waves { 7 } else { 6 };
+    let src: [&[f64]; 7] = [x[0], x[1], x[2], x[3], x[4], x[5], eta];
+    let n = x[0].len();
+    assert!(src.iter().all(|q| q.len() == n));
+    {
+        let ga = g.a.each_mut().map(|q| &mut q[..ne]);
+        let gb = g.b.each_mut().map(|q| &mut q[..ne]);
+        for k in 0..ne {
+            let (ia, ib) = (ea[k] as usize, eb[k] as usize);
+            for q in 0..cols {
+                // SAFETY: element ends are below `n` (checked in `NetConsts::new`),
+                // every column has `n` entries and every gathered column `ne`.
+                unsafe {
+                    *ga[q].get_unchecked_mut(k) = *src[q].get_unchecked(ia);
+                    *gb[q].get_unchecked_mut(k) = *src[q].get_unchecked(ib);
+                }
+            }
+        }
+    }
+    match c.uniform {
+        Some(un) => {
+            for (q, uq) in g.u.iter_mut().enumerate() {
+                uq[..ne].fill(un[q]);
+            }
+        }
+        None => {
+            for k in 0..ne {
+                let v = lay.currents[c.current[er.start + k] as usize]
+                    .at::<f64>(0.5 * (g.a[2][k] + g.b[2][k]))
+                    .to_f64();
+                for q in 0..3 {
+                    g.u[q][k] = v[q];
+                }
+            }
+        }
+    }
+    if waves {
+        // The mean of the two ends' wave velocity and acceleration.
+        for k in 0..ne {
+            let (_, ua, aa) = node_water(w, ea[k] as usize);
+            let (_, ub, ab) = node_water(w, eb[k] as usize);
+            for q in 0..3 {
+                g.u[q][k] += 0.5 * (ua[q] + ub[q]);
+                g.aw[q][k] = 0.5 * (aa[q] + ab[q]);
+            }
+        }
+    }
+    // Every end at or below the surface makes every wetted fraction exactly 1, as on
+    // the chain path.
+    let submerged = (0..ne).fold(true, |all, k| {
+        all & (g.a[6][k] - g.a[2][k] >= 0.0) & (g.b[6][k] - g.b[2][k] >= 0.0)
+    });
+    let Work {
+        a,
+        b,
+        u,
+        aw,
+        t,
+        ten,
+        f,
+        haw,
+        ..
+    } = g;
+    let a: [&[f64]; 7] = std::array::from_fn(|q| &a[q][..ne]);
+    let b: [&[f64]; 7] = std::array::from_fn(|q| &b[q][..ne]);
+    let (ten, haw) = (&mut ten[..ne], &mut haw[..ne]);
+    {
+        let [tx, ty, tz] = t.each_mut().map(|q| &mut q[..ne]);
+        let [fx, fy, fz] = f.each_mut().map(|q| &mut q[..ne]);
+        macro_rules! kernel {
+            ($waves:literal, $submerged:literal) => {
+                element_kernel::<$waves, $submerged>(
+                    a, b, &u[0], &u[1], &u[2], &aw[0], &aw[1], &aw[2], c, er.start, tx, ty, tz,
+                    &mut *ten, fx, fy, fz, &mut *haw,
+                )
+            };
+        }
+        match (waves, submerged) {
+            (true, true) => kernel!(true, true),
+            (true, false) => kernel!(true, false),
+            (false, true) => kernel!(false, true),
+            (false, false) => kernel!(false, false),
+        }
+    }
+    node_shares(c, er.start, t, ten, f, haw, out);
+}
+
+/// Folds the element loop's results for elements `e0..` into what they add to their
+/// nodes: the general path's `f/2 + (+-1 T) t` per end, and `m/2 I + a (I - t t^T)`.
+#[inline(always)]
+fn node_shares(
+    c: &ChainConsts,
+    e0: usize,
+    t: &[Vec<f64>; 3],
+    ten: &[f64],
+    f: &[Vec<f64>; 3],
+    haw: &[f64],
+    out: LoadsOut,
+) {
+    let ne = ten.len();
+    let [tx, ty, tz] = t.each_ref().map(|q| &q[..ne]);
+    let [fx, fy, fz] = f.each_ref().map(|q| &q[..ne]);
+    let (haw, hm) = (&haw[..ne], &c.hm[e0 + 1..e0 + 1 + ne]);
+    let LoadsOut { f: fo, m: mo } = out;
+    let [fox, foy, foz] = fo.map(|q| &mut q[..2 * ne]);
+    let [mxx, myy, mzz, mxy, mxz, myz] = mo.map(|q| &mut q[..ne]);
+    for k in 0..ne {
+        let (tn, ntn) = (ten[k], -ten[k]);
+        fox[2 * k] = fx[k] + tx[k] * tn;
+        foy[2 * k] = fy[k] + ty[k] * tn;
+        foz[2 * k] = fz[k] + tz[k] * tn;
+        fox[2 * k + 1] = fx[k] + tx[k] * ntn;
+        foy[2 * k + 1] = fy[k] + ty[k] * ntn;
+        foz[2 * k + 1] = fz[k] + tz[k] * ntn;
+        let a = haw[k];
+        mxx[k] = hm[k] + (a - a * tx[k] * tx[k]);
+        myy[k] = hm[k] + (a - a * ty[k] * ty[k]);
+        mzz[k] = hm[k] + (a - a * tz[k] * tz[k]);
+        mxy[k] = -(a * tx[k] * ty[k]);
+        mxz[k] = -(a * tx[k] * tz[k]);
+        myz[k] = -(a * ty[k] * tz[k]);
+    }
+}
+
+/// The node pass over nodes `nr` (`x`: their state, updated in place by a symplectic
+/// step of `dt`), reading every element's loads `el`; `eta`, `w` over the whole block.
+/// Returns the block-local index of the first node whose new state is over the limits.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn node_pass<const FRICTION: bool>(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    time: f64,
+    dt: f64,
+    nr: Range<usize>,
+    x: [&mut [f64]; 6],
+    eta: &[f64],
+    w: &[f64],
+    el: LoadsIn,
+    g: &mut Work,
+) -> Option<usize> {
+    let c = &nc.c;
+    let n0 = nr.start;
+    let own = |i: usize| nr.contains(&i);
+    // Point loads and the surface's share of points, on this range's listed nodes.
+    for &(i, ..) in c.point_drag.iter().filter(|p| own(p.0)) {
+        for q in 0..3 {
+            g.ex[q][i - n0] = 0.0;
+        }
+    }
+    for pv in c.point_volume.iter().filter(|p| own(p.0)) {
+        let i = pv.0;
+        (g.pm[i - n0], g.pwz[i - n0]) = point_surface_at(c, pv, eta[i] - x[2][i - n0]);
+        for q in 0..3 {
+            g.ex[q][i - n0] = 0.0;
+        }
+    }
+    for pd in c.point_drag.iter().filter(|p| own(p.0)) {
+        let j = pd.0 - n0;
+        let v = [x[3][j], x[4][j], x[5][j]];
+        let f = point_drag_force(lay, pd, x[2][j], v, eta[pd.0], w);
+        for q in 0..3 {
+            g.ex[q][j] += f[q];
+        }
+    }
+    if !w.is_empty() {
+        for pv in c.point_volume.iter().filter(|p| own(p.0)) {
+            let j = pv.0 - n0;
+            let f = point_water_accel_force(pv, x[2][j], eta[pv.0], w);
+            for q in 0..3 {
+                g.ex[q][j] += f[q];
+            }
+        }
+    }
+    let h = implicit_dt(opts);
+    let slots = |s: usize| {
+        let o = s * c.n;
+        &nc.slot[o + nr.start..o + nr.end]
+    };
+    macro_rules! kernel {
+        ($width:literal) => {
+            node_kernel::<$width, FRICTION>(
+                c,
+                h,
+                std::array::from_fn(slots),
+                [&x[2][..], &x[3][..], &x[4][..], &x[5][..]],
+                &g.pm,
+                &g.pwz,
+                [&g.ex[0], &g.ex[1], &g.ex[2]],
+                [&c.kl[nr.clone()], &c.cl[nr.clone()], &c.mukl[nr.clone()]],
+                el,
+                &mut g.acc,
+            )
+        };
+    }
+    if nc.width == 4 {
+        kernel!(4)
+    } else {
+        kernel!(8)
+    }
+    for &(i, ri) in c.constrained.iter().filter(|p| own(p.0)) {
+        let j = i - n0;
+        let d = route_accel(lay, opts, time, ri, |q| (x[q][j], x[3 + q][j]));
+        for q in 0..3 {
+            g.acc[q][j] = d[q];
+        }
+    }
+    let [px, py, pz, vx, vy, vz] = x;
+    for (p, v, a) in [
+        (&mut *px, &mut *vx, &g.acc[0]),
+        (&mut *py, &mut *vy, &g.acc[1]),
+        (&mut *pz, &mut *vz, &g.acc[2]),
+    ] {
+        let (v, a) = (&mut v[..p.len()], &a[..p.len()]);
+        for i in 0..p.len() {
+            v[i] += a[i] * dt;
+            p[i] += v[i] * dt;
+        }
+    }
+    first_bad([&*px, &*py, &*pz, &*vx, &*vy, &*vz], opts)
+}
+
+/// The first node whose state is non-finite or over the limits (a vectorised count
+/// first: the search runs only on a blow-up).
+#[inline(always)]
+fn first_bad(x: [&[f64]; 6], opts: &SolverOptions) -> Option<usize> {
+    let (rmax, vmax) = (opts.max_distance, opts.max_speed);
+    let n = x[0].len();
+    let [px, py, pz, vx, vy, vz] = x.map(|q| &q[..n]);
+    let mut bad = 0usize;
+    for i in 0..n {
+        // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
+        let ok = (px[i].abs() < rmax)
+            & (py[i].abs() < rmax)
+            & (pz[i].abs() < rmax)
+            & (vx[i].abs() < vmax)
+            & (vy[i].abs() < vmax)
+            & (vz[i].abs() < vmax);
+        bad += (!ok) as usize;
+    }
+    if bad == 0 {
+        return None;
+    }
+    (0..n).find(|&i| {
+        !(px[i].abs() < rmax
+            && py[i].abs() < rmax
+            && pz[i].abs() < rmax
+            && vx[i].abs() < vmax
+            && vy[i].abs() < vmax
+            && vz[i].abs() < vmax)
+    })
+}
+
+/// The node loop: per node, the sum over its `W` slots of what the incident elements
+/// add to its force and mass block (the general path's order: point, then each
+/// incident element, then point loads, then the seabed), the seabed's damping taken
+/// implicitly with step `h`, and the 3x3 solve.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn node_kernel<const W: usize, const FRICTION: bool>(
+    c: &ChainConsts,
+    h: f64,
+    slot: [&[u32]; W],
+    state: [&[f64]; 4],
+    pm: &[f64],
+    pwz: &[f64],
+    ex: [&[f64]; 3],
+    seabed: [&[f64]; 3],
+    el: LoadsIn,
+    acc: &mut [Vec<f64>; 3],
+) {
+    let n = pm.len();
+    let [z, vx, vy, vz] = state.map(|q| &q[..n]);
+    let (pwz, [exx, exy, exz]) = (&pwz[..n], ex.map(|q| &q[..n]));
+    let [kl, cl, mukl] = seabed.map(|q| &q[..n]);
+    let slot = slot.map(|q| &q[..n]);
+    let ne = el.m[0].len();
+    let [fx, fy, fz] = el.f.map(|q| &q[..2 * ne]);
+    let [mxx, myy, mzz, mxy, mxz, myz] = el.m.map(|q| &q[..ne]);
+    let [ax, ay, az] = acc;
+    let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
+    let (zb, v_eps) = (c.zb, c.v_eps);
+    for i in 0..n {
+        let mut g = V3::new(0.0, 0.0, pwz[i]);
+        let mut m = Sym3::scalar(pm[i]);
+        for sl in &slot {
+            let p = sl[i] as usize;
+            let e = p >> 1;
+            debug_assert!(p < 2 * ne);
+            // SAFETY: every slot is below `2 ne` (checked in `NetConsts::new`; `ne` is
+            // the padded element count), so `e` is below `ne`.
+            unsafe {
+                g.x += *fx.get_unchecked(p);
+                g.y += *fy.get_unchecked(p);
+                g.z += *fz.get_unchecked(p);
+                m.xx += *mxx.get_unchecked(e);
+                m.yy += *myy.get_unchecked(e);
+                m.zz += *mzz.get_unchecked(e);
+                m.xy += *mxy.get_unchecked(e);
+                m.xz += *mxz.get_unchecked(e);
+                m.yz += *myz.get_unchecked(e);
+            }
+        }
+        g += V3::new(exx[i], exy[i], exz[i]);
+        let (sb, ch, cz) = seabed_load::<FRICTION>(
+            zb - z[i],
+            [vx[i], vy[i], vz[i]],
+            kl[i],
+            cl[i],
+            mukl[i],
+            v_eps,
+        );
+        g.z += sb[2];
+        if FRICTION {
+            g.x += sb[0];
+            g.y += sb[1];
+        }
+        m.xx += h * ch;
+        m.yy += h * ch;
+        m.zz += h * cz;
+        let a = m.solve(g);
+        ax[i] = a.x;
+        ay[i] = a.y;
+        az[i] = a.z;
+    }
+}
+
+/// Copies the block's AoS state into the scratch's SoA arrays and sizes the element
+/// results and surface (zero: still water until the waves fill it).
+fn load(nc: &NetConsts, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
+    let (n, ne) = (nc.n(), nc.ne());
+    for (q, xq) in sc.x.iter_mut().enumerate() {
+        xq.clear();
+        xq.extend((0..n).map(|i| {
+            if q < 3 {
+                r[i].to_f64()[q]
+            } else {
+                v[i].to_f64()[q - 3]
+            }
+        }));
+    }
+    sc.eta.clear();
+    sc.eta.resize(n, 0.0);
+    for v in &mut sc.el.f {
+        v.clear();
+        v.resize(2 * (ne + 1), 0.0);
+    }
+    for v in &mut sc.el.m {
+        v.clear();
+        v.resize(ne + 1, 0.0);
+    }
+}
+
+/// Copies the SoA state back to `r`, `v`.
+fn store(sc: &NetScratch, r: &mut [V3<f64>], v: &mut [V3<f64>]) {
+    let x = &sc.x;
+    for i in 0..r.len() {
+        r[i] = V3::new(x[0][i], x[1][i], x[2][i]);
+        v[i] = V3::new(x[3][i], x[4][i], x[5][i]);
+    }
+}
+
+/// Advances a network block by `nsteps` symplectic steps on one thread; `r`, `v` are
+/// its AoS state (block-local), `n0` its first packed node.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn advance_net(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut NetScratch,
+    r: &mut [V3<f64>],
+    v: &mut [V3<f64>],
+    n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2, checked just above.
+            return unsafe {
+                advance_net_avx2(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+            };
+        }
+    }
+    advance_net_body(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn advance_net_avx2(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut NetScratch,
+    r: &mut [V3<f64>],
+    v: &mut [V3<f64>],
+    n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    advance_net_body(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn advance_net_body(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut NetScratch,
+    r: &mut [V3<f64>],
+    v: &mut [V3<f64>],
+    n0: usize,
+    mut waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    let (n, ne) = (nc.n(), nc.ne());
+    load(nc, sc, r, v);
+    if waves.is_none() {
+        wbuf.clear();
+    }
+    let NetScratch { x, eta, el, work } = sc;
+    work.size(&nc.c, ne.min(TILE), &(0..n));
+    let mut result = Ok(());
+    for k in 0..nsteps {
+        let time = (step0 + k) as f64 * dt;
+        if let Some(wb) = waves.as_deref_mut() {
+            let st = |i: usize| ([x[0][i], x[1][i], x[2][i]], [x[3][i], x[4][i], x[5][i]]);
+            wb.fill(time, n, st, wbuf);
+            for (i, e) in eta.iter_mut().enumerate() {
+                *e = node_water(wbuf, i).0;
+            }
+        }
+        {
+            let out = LoadsOut {
+                f: el.f.each_mut().map(|q| &mut q[2..]),
+                m: el.m.each_mut().map(|q| &mut q[1..]),
+            };
+            let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
+            element_pass(nc, lay, 0..ne, xs, eta, wbuf, work, out);
+        }
+        let lin = LoadsIn {
+            f: el.f.each_ref().map(|q| &q[..]),
+            m: el.m.each_ref().map(|q| &q[..]),
+        };
+        let [x0, x1, x2, x3, x4, x5] = x;
+        let xs = [x0, x1, x2, x3, x4, x5].map(|q| &mut q[..]);
+        let bad = if nc.c.friction {
+            node_pass::<true>(nc, lay, opts, time, dt, 0..n, xs, eta, wbuf, lin, work)
+        } else {
+            node_pass::<false>(nc, lay, opts, time, dt, 0..n, xs, eta, wbuf, lin, work)
+        };
+        if let Some(i) = bad {
+            result = Err((i, time + dt));
+            break;
+        }
+    }
+    store(sc, r, v);
+    result.map_err(|(i, time)| diverged(opts, r[i], v[i], n0 + i, time))
+}

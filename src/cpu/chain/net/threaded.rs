@@ -1,0 +1,223 @@
+//! A network block stepped by all the pool's threads together (a net cage: thousands
+//! of nodes), on the network path's passes over each thread's own elements and nodes.
+
+use super::{
+    element_pass, load, node_pass, store, LoadsIn, LoadsOut, NetConsts, NetScratch, Work, TILE,
+};
+use crate::cpu::threaded::SpinBarrier;
+use crate::math::V3;
+use crate::model::Layout;
+use crate::options::SolverOptions;
+use crate::step::{diverged, StepFailure};
+use std::ops::Range;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Raw views of the state and element loads shared by the threads of
+/// [`advance_net_threaded`]. Within each phase of a step every element and every node
+/// has exactly one writer and nothing reads what is being written (see the function),
+/// which the barriers between the phases order.
+#[derive(Clone, Copy)]
+struct Shared {
+    x: [*mut f64; 6],
+    /// [`Loads`]: `f` (3, `2 (ne + 1)` each), `m` (6, `ne + 1` each).
+    f: [*mut f64; 3],
+    m: [*mut f64; 6],
+}
+unsafe impl Send for Shared {}
+unsafe impl Sync for Shared {}
+
+/// Steps a network block (still water) by `nsteps` with `threads` threads: each owns a
+/// contiguous range of elements and of nodes. Per step, phase 1: each thread evaluates
+/// its elements (reading every node's state, which nobody writes in this phase);
+/// barrier; phase 2: each thread updates its nodes (reading every element's loads,
+/// which nobody writes now, and its own nodes' state); barrier. The arithmetic per
+/// element and per node is [`advance_net`]'s, so the result is the same bit for bit,
+/// and a blow-up names the lowest failing node of the first failing step, as there.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn advance_net_threaded(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut NetScratch,
+    r: &mut [V3<f64>],
+    v: &mut [V3<f64>],
+    n0: usize,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+    threads: usize,
+) -> Result<(), StepFailure> {
+    let (n, ne) = (nc.n(), nc.ne());
+    load(nc, sc, r, v);
+    let NetScratch { x, eta, el, .. } = sc;
+    let sh = Shared {
+        x: x.each_mut().map(|q| q.as_mut_ptr()),
+        f: el.f.each_mut().map(|q| q.as_mut_ptr()),
+        m: el.m.each_mut().map(|q| q.as_mut_ptr()),
+    };
+    let eta: &[f64] = eta;
+    let barrier = SpinBarrier::new(threads);
+    // Lowest failing node of the current step (usize::MAX: none yet).
+    let failed = AtomicUsize::new(usize::MAX);
+    let range = |tid: usize, len: usize| (len * tid / threads)..(len * (tid + 1) / threads);
+    let work = |tid: usize| {
+        // Capture the whole `Shared` (Sync), not its raw-pointer fields one by one.
+        #[allow(clippy::redundant_locals)]
+        let sh = sh;
+        let (er, nr) = (range(tid, ne), range(tid, n));
+        let mut g = Work::default();
+        g.size(&nc.c, er.len().min(TILE), &nr);
+        // SAFETY: `sh` holds this block's scratch, and each thread has its own ranges.
+        unsafe {
+            step_threads(
+                nc, lay, opts, sh, &barrier, &failed, er, nr, eta, &mut g, step0, dt, nsteps,
+            )
+        }
+    };
+    let stop = std::thread::scope(|s| {
+        let helpers: Vec<_> = (1..threads).map(|tid| s.spawn(move || work(tid))).collect();
+        let mine = work(0);
+        for h in helpers {
+            h.join().expect("a stepping thread panicked");
+        }
+        mine
+    });
+    store(sc, r, v);
+    match stop {
+        None => Ok(()),
+        Some(time) => {
+            let i = failed.load(Ordering::Acquire);
+            Err(diverged(opts, r[i], v[i], n0 + i, time))
+        }
+    }
+}
+
+/// One thread's steps of [`advance_net_threaded`] (compiled for AVX2 where the CPU has
+/// it); the time its node failed at, if one did.
+///
+/// # Safety
+/// As [`step_threads_body`].
+#[allow(clippy::too_many_arguments)]
+unsafe fn step_threads(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sh: Shared,
+    barrier: &SpinBarrier,
+    failed: &AtomicUsize,
+    er: Range<usize>,
+    nr: Range<usize>,
+    eta: &[f64],
+    g: &mut Work,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Option<f64> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2, checked just above; the rest as the body's.
+            return unsafe {
+                step_threads_avx2(
+                    nc, lay, opts, sh, barrier, failed, er, nr, eta, g, step0, dt, nsteps,
+                )
+            };
+        }
+    }
+    step_threads_body(
+        nc, lay, opts, sh, barrier, failed, er, nr, eta, g, step0, dt, nsteps,
+    )
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn step_threads_avx2(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sh: Shared,
+    barrier: &SpinBarrier,
+    failed: &AtomicUsize,
+    er: Range<usize>,
+    nr: Range<usize>,
+    eta: &[f64],
+    g: &mut Work,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Option<f64> {
+    step_threads_body(
+        nc, lay, opts, sh, barrier, failed, er, nr, eta, g, step0, dt, nsteps,
+    )
+}
+
+/// # Safety
+/// `sh` points at the block's state (`n` nodes) and padded element loads (`ne + 1`),
+/// and every thread of `barrier` runs this with its own disjoint `er` and `nr`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+unsafe fn step_threads_body(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sh: Shared,
+    barrier: &SpinBarrier,
+    failed: &AtomicUsize,
+    er: Range<usize>,
+    nr: Range<usize>,
+    eta: &[f64],
+    g: &mut Work,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Option<f64> {
+    let (n, ne) = (nc.n(), nc.ne());
+    let mut sense = false;
+    for k in 0..nsteps {
+        let time = (step0 + k) as f64 * dt;
+        {
+            // Phase 1 writes only this thread's elements; the state is only read (its
+            // last writes happened before the barrier).
+            let xs: [&[f64]; 6] =
+                sh.x.map(|p| unsafe { std::slice::from_raw_parts(p as *const f64, n) });
+            let out = LoadsOut {
+                f: sh.f.map(|p| unsafe {
+                    std::slice::from_raw_parts_mut(p.add(2 * (er.start + 1)), 2 * er.len())
+                }),
+                m: sh.m.map(|p| unsafe {
+                    std::slice::from_raw_parts_mut(p.add(er.start + 1), er.len())
+                }),
+            };
+            element_pass(nc, lay, er.clone(), xs, eta, &[], g, out);
+        }
+        barrier.wait(&mut sense);
+        {
+            // Phase 2 only reads the element loads (written before the barrier) and
+            // reads and writes this thread's own nodes.
+            let lin = LoadsIn {
+                f: sh
+                    .f
+                    .map(|p| unsafe { std::slice::from_raw_parts(p as *const f64, 2 * (ne + 1)) }),
+                m: sh
+                    .m
+                    .map(|p| unsafe { std::slice::from_raw_parts(p as *const f64, ne + 1) }),
+            };
+            let xs: [&mut [f64]; 6] =
+                sh.x.map(|p| unsafe { std::slice::from_raw_parts_mut(p.add(nr.start), nr.len()) });
+            let bad = if nc.c.friction {
+                node_pass::<true>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], lin, g)
+            } else {
+                node_pass::<false>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], lin, g)
+            };
+            if let Some(j) = bad {
+                failed.fetch_min(nr.start + j, Ordering::AcqRel);
+            }
+        }
+        barrier.wait(&mut sense);
+        if failed.load(Ordering::Acquire) != usize::MAX {
+            return Some(time + dt);
+        }
+    }
+    None
+}

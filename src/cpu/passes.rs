@@ -1,0 +1,622 @@
+//! The general passes of the CPU reference path over any graph (see the module doc of
+//! `cpu`): the element pass, the node pass, and the time schemes over one block, with
+//! the block's connectivity behind [`Topo`].
+
+use super::water::{node_water, BlockWaves, Water};
+use crate::ale::{mass_flow_forces, AleElem};
+use crate::math::{Sym3, V3};
+use crate::model::{Block, Layout, NO_CONSTRAINT};
+use crate::options::{Formulation, Scheme, SolverOptions};
+use crate::physics::frames::{frame_element, frenet_virtual_node};
+use crate::physics::{
+    glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force, wetted_fraction, Coefs,
+    ElementInput, ElementLoads, SeabedCoefs,
+};
+use crate::step::{blow_up, StepFailure};
+
+type V = V3<f64>;
+
+/// Per-node scratch of the Runge-Kutta schemes.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct NodeScratch {
+    r0: V,
+    v0: V,
+    sr: V,
+    sv: V,
+    acc: V,
+}
+
+/// Read-only context of the passes.
+pub(super) struct Ctx<'a> {
+    pub(super) lay: &'a Layout,
+    pub(super) coefs: &'a [Coefs<f64>],
+    pub(super) seabed: SeabedCoefs<f64>,
+    pub(super) opts: SolverOptions,
+    pub(super) elem_in_cable: &'a [u32],
+    /// Per current profile: its value when uniform (looked up without a table walk).
+    pub(super) uniform_current: &'a [Option<V>],
+    /// Gravity, m/s^2 (the dry weight of what is above the water surface).
+    pub(super) gravity: f64,
+    /// The step with which the seabed's damping terms are taken implicitly in the
+    /// node solve, `(M + h diag(c)) a = F` (the symplectic scheme: `h = dt`); 0 for
+    /// the explicit acceleration (Runge-Kutta stages, evaluation).
+    pub(super) implicit_dt: f64,
+}
+
+/// How a block's elements and nodes are connected, in block-local indices.
+///
+/// Two implementations share the passes: [`ChainTopo`] for a block that is one chain
+/// in node order (element `k` joins nodes `k` and `k+1`: no index arrays read at all),
+/// and [`GeneralTopo`] for networks (element ends and incidence lists from the layout).
+/// Gathers are iterators (one loop body), not callbacks, so they inline.
+pub(super) trait Topo {
+    /// The incidence iterator.
+    type Inc<'a>: Iterator<Item = (usize, f64)>
+    where
+        Self: 'a;
+    /// Block-local end nodes of block-local element `e`.
+    fn ends(&self, e: usize) -> (usize, usize);
+    /// `(element, sign)` for each element incident to block-local node `i`; `sign` is
+    /// +1 where the node is the element's node a, -1 where it is node b.
+    fn incident(&self, i: usize) -> Self::Inc<'_>;
+}
+
+/// One chain in node order.
+struct ChainTopo {
+    n_nodes: usize,
+}
+
+/// Incidence of a chain node: element `i-1` (as its node b), then element `i` (as a).
+pub(super) struct ChainInc {
+    next: usize,
+    end: usize,
+}
+
+impl Iterator for ChainInc {
+    type Item = (usize, f64);
+    #[inline(always)]
+    fn next(&mut self) -> Option<(usize, f64)> {
+        if self.next >= self.end {
+            return None;
+        }
+        let k = self.next;
+        self.next += 1;
+        // Side 2i-1 is element i-1 (node b), side 2i is element i (node a).
+        Some((k >> 1, if k & 1 == 1 { -1.0 } else { 1.0 }))
+    }
+}
+
+impl Topo for ChainTopo {
+    type Inc<'a> = ChainInc;
+    #[inline(always)]
+    fn ends(&self, e: usize) -> (usize, usize) {
+        (e, e + 1)
+    }
+    #[inline(always)]
+    fn incident(&self, i: usize) -> ChainInc {
+        let start = if i > 0 { 2 * i - 1 } else { 0 };
+        let end = if i + 1 < self.n_nodes {
+            2 * i + 1
+        } else {
+            2 * i
+        };
+        ChainInc { next: start, end }
+    }
+}
+
+/// Any graph, through the layout's element ends and incidence lists.
+pub(super) struct GeneralTopo<'a> {
+    pub(super) lay: &'a Layout,
+    pub(super) n0: usize,
+    pub(super) e0: usize,
+}
+
+/// Incidence of a node from the layout's lists.
+pub(super) struct GeneralInc<'a> {
+    it: std::slice::Iter<'a, u32>,
+    e0: usize,
+}
+
+impl Iterator for GeneralInc<'_> {
+    type Item = (usize, f64);
+    #[inline(always)]
+    fn next(&mut self) -> Option<(usize, f64)> {
+        self.it.next().map(|&inc| {
+            (
+                (inc >> 1) as usize - self.e0,
+                if inc & 1 == 0 { 1.0 } else { -1.0 },
+            )
+        })
+    }
+}
+
+impl<'l> Topo for GeneralTopo<'l> {
+    type Inc<'a>
+        = GeneralInc<'a>
+    where
+        Self: 'a;
+    #[inline(always)]
+    fn ends(&self, e: usize) -> (usize, usize) {
+        let g = self.e0 + e;
+        (
+            self.lay.elem_a[g] as usize - self.n0,
+            self.lay.elem_b[g] as usize - self.n0,
+        )
+    }
+    #[inline(always)]
+    fn incident(&self, i: usize) -> GeneralInc<'_> {
+        GeneralInc {
+            it: self.lay.incidence(self.n0 + i).iter(),
+            e0: self.e0,
+        }
+    }
+}
+
+/// Block-local input of element `k`, and the fraction of it under water.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn element_input<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    r: &[V],
+    v: &[V],
+    w: &[f64],
+    k: usize,
+    l0: f64,
+    current: u32,
+    diameter: f64,
+) -> (ElementInput<f64>, f64) {
+    let (a, bn) = topo.ends(k);
+    let (ra, rb) = (r[a], r[bn]);
+    let ci = current as usize;
+    let current = match ctx.uniform_current[ci] {
+        Some(u) => u,
+        None => ctx.lay.currents[ci].at(0.5 * (ra.z + rb.z)),
+    };
+    if w.is_empty() {
+        // Still water: the surface is z = 0 and the water does not accelerate.
+        let wet = wetted_fraction(-ra.z, -rb.z, diameter);
+        let inp = ElementInput {
+            ra,
+            rb,
+            va: v[a],
+            vb: v[bn],
+            l0,
+            current,
+            water_accel: V::zero(),
+        };
+        return (inp, wet);
+    }
+    // Waves: the mean of the two nodes' wave velocity and acceleration at the
+    // midpoint, the surface over each node for the wetted fraction.
+    let (eta_a, ua, aa) = node_water(w, a);
+    let (eta_b, ub, ab) = node_water(w, bn);
+    let mid = |p: [f64; 3], q: [f64; 3]| {
+        V::new(
+            0.5 * (p[0] + q[0]),
+            0.5 * (p[1] + q[1]),
+            0.5 * (p[2] + q[2]),
+        )
+    };
+    let wet = wetted_fraction(eta_a - ra.z, eta_b - rb.z, diameter);
+    let inp = ElementInput {
+        ra,
+        rb,
+        va: v[a],
+        vb: v[bn],
+        l0,
+        current: current + mid(ua, ub),
+        water_accel: mid(aa, ab),
+    };
+    (inp, wet)
+}
+
+/// Pass 1 over one block: element loads. `r`, `v`, `out` are block-local slices.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn element_pass<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    b: &Block,
+    ale: &[AleElem],
+    r: &[V],
+    v: &[V],
+    t: f64,
+    w: &[f64],
+    out: &mut [ElementLoads<f64>],
+) -> Result<(), StepFailure> {
+    let lay = ctx.lay;
+    let e0 = b.elem_start as usize;
+    let n_el = out.len();
+    let l0s = &lay.elem_l0[e0..e0 + n_el];
+    let lines = &lay.elem_line[e0..e0 + n_el];
+    let curs = &lay.elem_current[e0..e0 + n_el];
+    let diam = |k: usize| lay.line_types[lines[k] as usize].diameter;
+    match ctx.opts.formulation {
+        Formulation::Glmf => {
+            for (k, o) in out.iter_mut().enumerate() {
+                let (inp, wet) = element_input(ctx, topo, r, v, w, k, l0s[k], curs[k], diam(k));
+                *o = glmf_element_wet(&ctx.coefs[lines[k] as usize], &inp, wet, ctx.gravity);
+            }
+            // Winch cables: the variable element at this stage's time.
+            for ae in ale {
+                let k = ae.elem;
+                let pay = ae.sched.eval(t);
+                let l0 = ae.l0(pay.dl);
+                let c = &ctx.coefs[lines[k] as usize];
+                let (inp, wet) = element_input(ctx, topo, r, v, w, k, l0, curs[k], diam(k));
+                out[k] = glmf_element_wet(c, &inp, wet, ctx.gravity);
+                if pay.rate != 0.0 {
+                    // Internal damping acts on the material strain rate, and l0 changes:
+                    // epsdot = (t . dv - (l / l0) Ldot) / l0 (crate::ale).
+                    let (a, bn) = topo.ends(k);
+                    let l = (r[bn] - r[a]).norm();
+                    out[k].tension -= c.ea_c * l * pay.rate / (l0 * l0);
+                }
+            }
+        }
+        Formulation::Frame(frame) => {
+            let n0 = b.node_start as usize;
+            for (k, o) in out.iter_mut().enumerate() {
+                let e = e0 + k;
+                // The element frames are the older formulations, compared in still
+                // water: they take the element wholly submerged.
+                let (inp, _) = element_input(ctx, topo, r, v, w, k, l0s[k], curs[k], diam(k));
+                let cable = &lay.cables[lay.elem_cable[e] as usize];
+                let j = ctx.elem_in_cable[e] as usize;
+                let prev = (j > 0).then(|| r[cable.nodes[j - 1] as usize - n0]);
+                let next = cable.nodes.get(j + 2).map(|&n| r[n as usize - n0]);
+                let mid = frenet_virtual_node(prev, inp.ra, inp.rb, next);
+                *o = frame_element(frame, &ctx.coefs[lines[k] as usize], &inp, mid).map_err(
+                    |reason| StepFailure::Singular {
+                        element: e,
+                        time: t,
+                        frame: frame.name(),
+                        reason,
+                    },
+                )?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The node's mass block at position `r` under surface elevation `eta`: point mass,
+/// half masses and half normal added masses.
+#[inline(always)]
+pub(super) fn node_mass<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    b: &Block,
+    li: usize,
+    r: V,
+    eta: f64,
+    elems: &[ElementLoads<f64>],
+) -> Sym3<f64> {
+    let i = b.node_start as usize + li;
+    let lay = ctx.lay;
+    let dry = 1.0 - point_wetted_fraction(eta - r.z, lay.node_point_radius[i]);
+    let mut m = Sym3::scalar(lay.node_point_mass[i] - dry * lay.node_point_added[i]);
+    for (e, _) in topo.incident(li) {
+        let el = &elems[e];
+        let s = el.half_mass;
+        m.xx += s;
+        m.yy += s;
+        m.zz += s;
+        m.add_normal_projection(el.half_added, el.t);
+    }
+    m
+}
+
+/// Pass 2 for one node: gathered force, mass block, and acceleration (free or
+/// Baumgarte-constrained). `r`, `v`, `elems` are block-local, `li` block-local too.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn node_accel<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    b: &Block,
+    ale: &[AleElem],
+    li: usize,
+    r: &[V],
+    v: &[V],
+    t: f64,
+    w: &[f64],
+    elems: &[ElementLoads<f64>],
+) -> (V, V, Sym3<f64>) {
+    let wn = (!w.is_empty()).then(|| node_water(w, li));
+    node_accel_of(ctx, topo, b, li, r[li], v[li], t, wn, elems, |trib, f| {
+        // Winch cables: the variable element's share of the tributary length, and the
+        // mass-flow forces of Eq. 39 on its two nodes (crate::ale).
+        for ae in ale {
+            if li == ae.m || li == ae.w {
+                let pay = ae.sched.eval(t);
+                let l0 = ae.l0(pay.dl);
+                *trib += 0.5 * (l0 - ae.base_l0);
+                if pay.rate != 0.0 || pay.accel != 0.0 {
+                    let (fm, fw) = mass_flow_forces(
+                        ae.mass, l0, pay.rate, pay.accel, r[ae.m], r[ae.w], v[ae.m], v[ae.w],
+                    );
+                    *f += if li == ae.m { fm } else { fw };
+                }
+            }
+        }
+    })
+}
+
+/// [`node_accel`] of block-local node `li` at state `(ri, vi)`; `extra` adds to the
+/// node's tributary length and force what the winch cables add (nothing elsewhere).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn node_accel_of<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    b: &Block,
+    li: usize,
+    ri: V,
+    vi: V,
+    t: f64,
+    wn: Option<(f64, [f64; 3], [f64; 3])>,
+    elems: &[ElementLoads<f64>],
+    extra: impl FnOnce(&mut f64, &mut V),
+) -> (V, V, Sym3<f64>) {
+    let lay = ctx.lay;
+    let i = b.node_start as usize + li;
+    // A point mass loses in air the buoyancy and added mass of its dry share. Fully
+    // under water `dry` is 0 and nothing changes.
+    let eta = wn.map_or(0.0, |w| w.0);
+    let wet = point_wetted_fraction(eta - ri.z, lay.node_point_radius[i]);
+    let dry = 1.0 - wet;
+    let buoyancy = lay.node_point_displaced[i] * ctx.gravity;
+    let mut f = V::new(0.0, 0.0, lay.node_point_weight_z[i] - dry * buoyancy);
+    let mut m = Sym3::scalar(lay.node_point_mass[i] - dry * lay.node_point_added[i]);
+    for (e, sign) in topo.incident(li) {
+        let el = &elems[e];
+        f += el.f_half + el.t * (sign * el.tension);
+        let s = el.half_mass;
+        m.xx += s;
+        m.yy += s;
+        m.zz += s;
+        m.add_normal_projection(el.half_added, el.t);
+    }
+    let pd = lay.node_point_drag[i];
+    if pd > 0.0 {
+        let mut u = lay.currents[lay.node_current[i] as usize].at(ri.z);
+        if let Some((_, uw, _)) = wn {
+            u += V::from_f64(uw);
+        }
+        let vr = u - vi;
+        f += vr * (pd * vr.norm() * wet);
+    }
+    if let Some((_, _, aw)) = wn {
+        // Froude-Krylov and added mass of the wet share: (1 + Ca) rho V a.
+        let m_fk = lay.node_point_displaced[i] + lay.node_point_added[i];
+        if m_fk > 0.0 {
+            f += V::from_f64(aw) * (m_fk * wet);
+        }
+    }
+    let mut trib = lay.node_tributary[i];
+    extra(&mut trib, &mut f);
+    f += seabed_force(&ctx.seabed, trib, ri, vi);
+    let c = lay.node_constraint[i];
+    let a = if c == NO_CONSTRAINT {
+        if ctx.implicit_dt > 0.0 {
+            // The seabed's damping taken implicitly (linearised at this state), so it
+            // does not bound the step: (M + dt diag(c)) a = F.
+            let cd = seabed_damping(&ctx.seabed, trib, ri, vi) * ctx.implicit_dt;
+            let mut mi = m;
+            mi.xx += cd.x;
+            mi.yy += cd.y;
+            mi.zz += cd.z;
+            mi.solve(f)
+        } else {
+            m.solve(f)
+        }
+    } else {
+        let d = lay.routes[c as usize].eval(t);
+        let bg = ctx.opts.baumgarte;
+        let (rd, vd, ad) = (V::from_f64(d.r), V::from_f64(d.v), V::from_f64(d.a));
+        ad - (vi - vd) * bg.beta - (ri - rd) * bg.alpha
+    };
+    (a, f, m)
+}
+
+/// The step with which a scheme takes the seabed's damping implicitly: the
+/// symplectic scheme's `dt`; 0 (explicit) for the Runge-Kutta schemes, whose stages
+/// need the ODE's own acceleration (their stable step keeps the seabed's damping:
+/// [`crate::stability`]).
+pub(crate) fn implicit_dt(opts: &SolverOptions) -> f64 {
+    if opts.scheme == Scheme::Symplectic {
+        opts.dt
+    } else {
+        0.0
+    }
+}
+
+/// Checks a node's new state; `None` when sane ([`crate::step::blow_up`]).
+#[inline(always)]
+pub(super) fn check(ctx: &Ctx, r: V, v: V) -> Option<String> {
+    blow_up(&ctx.opts, r, v)
+}
+
+/// Evaluates accelerations of every node of a block (block-local), handing each to `store`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn accelerations<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    b: &Block,
+    ale: &[AleElem],
+    r: &[V],
+    v: &[V],
+    t: f64,
+    w: &[f64],
+    elems: &mut [ElementLoads<f64>],
+    mut store: impl FnMut(usize, V),
+) -> Result<(), StepFailure> {
+    element_pass(ctx, topo, b, ale, r, v, t, w, elems)?;
+    for li in 0..r.len() {
+        let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, w, elems);
+        store(li, a);
+    }
+    Ok(())
+}
+
+/// Advances one block by `nsteps` steps starting at step number `step0`, with the
+/// chain fast path where the block is one chain in node order.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn advance_block(
+    ctx: &Ctx,
+    b: &Block,
+    ale: &[AleElem],
+    r: &mut [V],
+    v: &mut [V],
+    s: &mut [NodeScratch],
+    elems: &mut [ElementLoads<f64>],
+    rs: &mut Vec<V>,
+    vs: &mut Vec<V>,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    if b.is_chain {
+        let topo = ChainTopo { n_nodes: r.len() };
+        advance_block_in(
+            ctx, &topo, b, ale, r, v, s, elems, rs, vs, waves, wbuf, step0, dt, nsteps,
+        )
+    } else {
+        let topo = GeneralTopo {
+            lay: ctx.lay,
+            n0: b.node_start as usize,
+            e0: b.elem_start as usize,
+        };
+        advance_block_in(
+            ctx, &topo, b, ale, r, v, s, elems, rs, vs, waves, wbuf, step0, dt, nsteps,
+        )
+    }
+}
+
+/// Fills `buf` with the block's water values at `t` for nodes at `r`, `v` (left empty
+/// in still water).
+#[inline(always)]
+fn fill_water(waves: &mut Option<&mut BlockWaves>, t: f64, r: &[V], v: &[V], buf: &mut Water) {
+    if let Some(wb) = waves.as_deref_mut() {
+        wb.fill(t, r.len(), |i| (r[i].to_f64(), v[i].to_f64()), buf);
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn advance_block_in<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    b: &Block,
+    ale: &[AleElem],
+    r: &mut [V],
+    v: &mut [V],
+    s: &mut [NodeScratch],
+    elems: &mut [ElementLoads<f64>],
+    rs: &mut Vec<V>,
+    vs: &mut Vec<V>,
+    mut waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    let n0 = b.node_start as usize;
+    if waves.is_none() {
+        wbuf.clear();
+    }
+    let n = r.len();
+    rs.resize(n, V::zero());
+    vs.resize(n, V::zero());
+    let diverged = |li: usize, t: f64, what: String| StepFailure::Diverged {
+        node: n0 + li,
+        time: t,
+        what,
+    };
+    for k in 0..nsteps {
+        // Time from the step count, not by accumulation: output times stay exact.
+        let t = (step0 + k) as f64 * dt;
+        match ctx.opts.scheme {
+            Scheme::Symplectic => {
+                fill_water(&mut waves, t, r, v, wbuf);
+                element_pass(ctx, topo, b, ale, r, v, t, wbuf, elems)?;
+                // The element pass has read every position and velocity of this step,
+                // so each node can be updated as soon as its acceleration is known.
+                for li in 0..n {
+                    let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, wbuf, elems);
+                    let vn = v[li] + a * dt;
+                    let rn = r[li] + vn * dt;
+                    v[li] = vn;
+                    r[li] = rn;
+                    if let Some(what) = check(ctx, rn, vn) {
+                        return Err(diverged(li, t + dt, what));
+                    }
+                }
+            }
+            Scheme::Rk2 => {
+                let h = 0.5 * dt;
+                fill_water(&mut waves, t, r, v, wbuf);
+                accelerations(ctx, topo, b, ale, r, v, t, wbuf, elems, |li, a| {
+                    s[li].acc = a
+                })?;
+                for li in 0..n {
+                    rs[li] = r[li] + v[li] * h;
+                    vs[li] = v[li] + s[li].acc * h;
+                }
+                fill_water(&mut waves, t + h, rs, vs, wbuf);
+                accelerations(ctx, topo, b, ale, rs, vs, t + h, wbuf, elems, |li, a| {
+                    s[li].acc = a
+                })?;
+                for li in 0..n {
+                    r[li] += vs[li] * dt;
+                    v[li] += s[li].acc * dt;
+                    if let Some(what) = check(ctx, r[li], v[li]) {
+                        return Err(diverged(li, t + dt, what));
+                    }
+                }
+            }
+            Scheme::Rk4 => {
+                let h = 0.5 * dt;
+                for li in 0..n {
+                    s[li].r0 = r[li];
+                    s[li].v0 = v[li];
+                    s[li].sr = V::zero();
+                    s[li].sv = V::zero();
+                }
+                rs.copy_from_slice(r);
+                vs.copy_from_slice(v);
+                for (stage, (tau, w, next)) in
+                    [(0.0, 1.0, h), (h, 2.0, h), (h, 2.0, dt), (dt, 1.0, 0.0)]
+                        .into_iter()
+                        .enumerate()
+                {
+                    fill_water(&mut waves, t + tau, rs, vs, wbuf);
+                    accelerations(ctx, topo, b, ale, rs, vs, t + tau, wbuf, elems, |li, a| {
+                        s[li].acc = a
+                    })?;
+                    for li in 0..n {
+                        let x = &mut s[li];
+                        x.sr += vs[li] * w;
+                        x.sv += x.acc * w;
+                        if stage < 3 {
+                            rs[li] = x.r0 + vs[li] * next;
+                            vs[li] = x.v0 + x.acc * next;
+                        }
+                    }
+                }
+                for li in 0..n {
+                    r[li] = s[li].r0 + s[li].sr * (dt / 6.0);
+                    v[li] = s[li].v0 + s[li].sv * (dt / 6.0);
+                    if let Some(what) = check(ctx, r[li], v[li]) {
+                        return Err(diverged(li, t + dt, what));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}

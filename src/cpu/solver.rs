@@ -1,0 +1,796 @@
+//! The solver's API: building a [`CpuSolver`], winches, seas, stepping a run's blocks
+//! (chunks over rayon's threads, each block on the chain fast path, the general passes
+//! of [`super::passes`] or, for a big network, [`super::threaded`]), evaluation and
+//! energies. Checkpoints are in [`checkpoint`].
+
+mod checkpoint;
+
+pub use checkpoint::CpuCheckpoint;
+
+use super::chain::{
+    advance_chain, advance_net, advance_net_threaded, ChainConsts, ChainScratch, NetConsts,
+    NetScratch,
+};
+use super::passes::{
+    advance_block, element_pass, implicit_dt, node_accel, node_mass, Ctx, GeneralTopo, NodeScratch,
+};
+use super::threaded::{advance_block_threaded, THREADED_MIN_NODES};
+use super::water::{node_water, BlockWaves, Water};
+use crate::ale::{AleElem, AleState, Winch};
+use crate::error::Error;
+use crate::math::V3;
+use crate::model::{Block, Layout, ModelDef, Route, NO_CONSTRAINT};
+use crate::options::{Formulation, Scheme, SolverOptions};
+use crate::physics::{Coefs, ElementLoads, SeabedCoefs};
+use crate::sea::cache::{evaluate_nodes, CACHE_STRIDE};
+use crate::sea::kinematics::WaveField;
+use crate::sea::{SeaSet, SeaState};
+use crate::step::{Evaluation, StepFailure, WinchStatus};
+use rayon::prelude::*;
+
+type V = V3<f64>;
+/// The f64 reference solver: layout, state, and scratch.
+#[derive(Clone)]
+pub struct CpuSolver {
+    /// The packed model.
+    layout: Layout,
+    /// Options.
+    opts: SolverOptions,
+    /// Simulated time, s.
+    t: f64,
+    /// Number of steps taken.
+    steps: u64,
+    /// Node positions, m.
+    pub r: Vec<V>,
+    /// Node velocities, m/s.
+    pub v: Vec<V>,
+    coefs: Vec<Coefs<f64>>,
+    elem_in_cable: Vec<u32>,
+    uniform_current: Vec<Option<V>>,
+    elems: Vec<ElementLoads<f64>>,
+    scratch: Vec<NodeScratch>,
+    /// Per block: constants of the chain fast path (`None` for networks).
+    chain_consts: Vec<Option<ChainConsts>>,
+    /// Use the vectorised fast path for chain blocks (GLMF only). On by default; the
+    /// general path is the reference the fast path is tested against.
+    pub use_chain_kernel: bool,
+    /// Per block: constants of the network fast path (`None` for chains, and for
+    /// networks with a node of more than 8 elements).
+    net_consts: Vec<Option<Box<NetConsts>>>,
+    /// Use the vectorised fast path for network blocks (GLMF, symplectic, no winch
+    /// elements). On by default; the general path is the reference it is tested against.
+    pub use_net_kernel: bool,
+    /// Groups of consecutive blocks handed to one task each.
+    chunks: Vec<std::ops::Range<usize>>,
+    /// Winch cables (ALE-GLMF), if any.
+    ale: Option<Box<AleState>>,
+    /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
+    node_steps: u64,
+    /// The seas and each cable's (`None`: still water everywhere).
+    seas: Option<SeaSet>,
+    /// Per sea: its field, for exact evaluation at output times.
+    wave_fields: Vec<WaveField>,
+    /// Per block: its wave kinematics cache (empty in still water).
+    wave_blocks: Vec<BlockWaves>,
+    /// Evaluate the waves' component sum at every stage instead of interpolating the
+    /// kinematics cache (the reference the cache is tested against; slow).
+    exact_waves: bool,
+}
+
+impl CpuSolver {
+    /// The packed model (the current mesh, with winches).
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+    /// The options it steps with.
+    pub fn opts(&self) -> &SolverOptions {
+        &self.opts
+    }
+    /// Simulated time, s.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// Node-steps taken: nodes times steps, summed over the meshes a run went through.
+    pub fn node_steps(&self) -> u64 {
+        self.node_steps
+    }
+
+    /// A solver at rest at `positions` (packed order), `t = 0`.
+    pub fn new(layout: Layout, positions: &[[f64; 3]], opts: SolverOptions) -> Self {
+        let mut s = Self {
+            chain_consts: Vec::new(),
+            use_chain_kernel: true,
+            net_consts: Vec::new(),
+            use_net_kernel: true,
+            uniform_current: Vec::new(),
+            opts,
+            t: 0.0,
+            steps: 0,
+            r: Vec::new(),
+            v: Vec::new(),
+            coefs: Vec::new(),
+            elem_in_cable: Vec::new(),
+            elems: Vec::new(),
+            scratch: Vec::new(),
+            chunks: Vec::new(),
+            layout: Layout::build(&ModelDef::default())
+                .expect("an empty model packs")
+                .0,
+            ale: None,
+            node_steps: 0,
+            seas: None,
+            wave_fields: Vec::new(),
+            wave_blocks: Vec::new(),
+            exact_waves: false,
+        };
+        let r = positions.iter().map(|p| V::from_f64(*p)).collect();
+        let v = vec![V::zero(); positions.len()];
+        s.install(layout, r, v);
+        s
+    }
+
+    /// A solver at rest at `positions` (packed order of `Layout::build(&def)`), `t = 0`,
+    /// whose cables listed in `winches` pay out or haul in (ALE-GLMF, [`crate::ale`]).
+    /// The description is kept: remeshing edits it and repacks the layout. Only the
+    /// GLMF formulation supports winches.
+    pub fn with_winches(
+        def: ModelDef,
+        winches: Vec<Winch>,
+        positions: &[[f64; 3]],
+        opts: SolverOptions,
+    ) -> Result<Self, Error> {
+        if winches.is_empty() {
+            let (lay, _) = Layout::build(&def)?;
+            return Ok(Self::new(lay, positions, opts));
+        }
+        if opts.formulation != Formulation::Glmf {
+            return Err(Error::Model(format!(
+                "cable '{}' has a winch: ALE-GLMF needs the glmf formulation, not {}",
+                def.cables
+                    .get(winches[0].cable)
+                    .map_or("?", |c| c.name.as_str()),
+                opts.formulation.name()
+            )));
+        }
+        let (lay, pos0, packed) = Layout::build_indexed(&def)?;
+        if pos0.len() != positions.len() {
+            return Err(Error::Model(format!(
+                "{} initial positions for {} nodes",
+                positions.len(),
+                pos0.len()
+            )));
+        }
+        let mut ale = AleState::new(def, winches, packed)?;
+        ale.index(&lay);
+        let mut s = Self::new(lay, positions, opts);
+        s.ale = Some(Box::new(ale));
+        // Winch blocks take the general passes.
+        s.install_chain_consts();
+        Ok(s)
+    }
+
+    /// Runs in the sea state `sea` from now on (still water when it has no
+    /// components): water velocity = current + wave velocity, the wave acceleration in
+    /// the water-acceleration loads, the surface elevation in the wetted fractions.
+    /// With `exact`, the component sum is evaluated at every node at every stage
+    /// instead of through the kinematics cache (`sea::cache`).
+    pub fn set_sea(&mut self, sea: &SeaState, exact: bool) {
+        self.set_seas(&SeaSet::single(sea), exact);
+    }
+
+    /// [`CpuSolver::set_sea`] with a sea per cable (a packed model's members,
+    /// `sea::set`): each block gets the kinematics cache of its cable's sea, with that
+    /// sea's own refresh interval, exactly as in a run of that sea alone.
+    pub fn set_seas(&mut self, seas: &SeaSet, exact: bool) {
+        self.exact_waves = exact;
+        if seas.is_still() {
+            self.seas = None;
+            self.wave_fields = Vec::new();
+        } else {
+            self.seas = Some(seas.clone());
+            self.wave_fields = seas.seas.iter().map(WaveField::new).collect();
+        }
+        self.install_waves();
+    }
+
+    /// The sea index of the block starting at packed node `n0`.
+    fn block_sea(&self, seas: &SeaSet, n0: usize) -> usize {
+        seas.sea_of_cable(self.layout.node_cable[n0] as usize)
+    }
+
+    /// One wave cache per block, in its cable's sea (none in still water).
+    fn install_waves(&mut self) {
+        self.wave_blocks = match &self.seas {
+            None => Vec::new(),
+            Some(seas) => self
+                .layout
+                .blocks
+                .iter()
+                .map(|b| {
+                    let sea = &seas.seas[self.block_sea(seas, b.node_start as usize)];
+                    BlockWaves::new(sea, (b.node_end - b.node_start) as usize, self.exact_waves)
+                })
+                .collect(),
+        };
+    }
+
+    /// The exact water values of the block of nodes `n0..n1` at the current time
+    /// (empty in still water), for evaluations at output times.
+    fn water_now(&self, n0: usize, n1: usize) -> Water {
+        let Some(seas) = &self.seas else {
+            return Water::new();
+        };
+        let field = &self.wave_fields[self.block_sea(seas, n0)];
+        let pos: Vec<f64> = self.r[n0..n1].iter().flat_map(|r| r.to_f64()).collect();
+        let mut out = vec![0.0; (n1 - n0) * CACHE_STRIDE];
+        evaluate_nodes(field, &pos, self.t, &mut out);
+        out
+    }
+
+    /// Takes `layout` with state `r`, `v` (packed order) and rebuilds what depends on it.
+    fn install(&mut self, layout: Layout, r: Vec<V>, v: Vec<V>) {
+        self.install_state(layout, r, v);
+        self.install_chain_consts();
+    }
+
+    /// Everything [`Self::install`] sets but the chain constants.
+    fn install_state(&mut self, layout: Layout, r: Vec<V>, v: Vec<V>) {
+        self.coefs = layout.line_coefs.iter().map(Coefs::from_line).collect();
+        let mut elem_in_cable = vec![0u32; layout.n_elements()];
+        for c in &layout.cables {
+            for (k, &e) in c.elements.iter().enumerate() {
+                elem_in_cable[e as usize] = k as u32;
+            }
+        }
+        self.elem_in_cable = elem_in_cable;
+        self.chunks = make_chunks(&layout.blocks, rayon::current_num_threads());
+        self.uniform_current = layout
+            .currents
+            .iter()
+            .map(|c| (c.table.len() <= 1).then(|| c.at(0.0)))
+            .collect();
+        self.elems = vec![ElementLoads::default(); layout.n_elements()];
+        self.scratch = vec![NodeScratch::default(); layout.n_nodes()];
+        self.r = r;
+        self.v = v;
+        self.layout = layout;
+        // A remesh changes node counts: the caches restart (evaluated afresh).
+        self.install_waves();
+    }
+
+    /// [`Self::install`] after a remesh that changed the meshes of `changed` cables
+    /// only: the chain constants of every other block are kept (their block is the same
+    /// in the new layout, at a new position, and only its constraint numbers may have
+    /// changed), so a fleet of winch cables does not rebuild thousands of them at every
+    /// remesh of one cable.
+    fn install_remeshed(&mut self, layout: Layout, r: Vec<V>, v: Vec<V>, changed: &[usize]) {
+        let mut old = std::mem::take(&mut self.chain_consts);
+        let mut old_net = std::mem::take(&mut self.net_consts);
+        let same_blocks = old.len() == layout.blocks.len();
+        self.install_state(layout, r, v);
+        if !same_blocks {
+            self.install_chain_consts();
+            return;
+        }
+        let lay = &self.layout;
+        let mut redo = vec![false; lay.blocks.len()];
+        for &ci in changed {
+            let first = lay.cables[ci].nodes[0];
+            redo[lay.blocks.partition_point(|b| b.node_end <= first)] = true;
+        }
+        for (bi, (b, c)) in lay.blocks.iter().zip(old.iter_mut()).enumerate() {
+            *c = match (b.is_chain, c.take()) {
+                (true, Some(mut k)) if !redo[bi] => {
+                    k.refresh_constraints(lay, b);
+                    Some(k)
+                }
+                (true, _) => Some(ChainConsts::new(lay, b)),
+                (false, _) => None,
+            };
+        }
+        for (bi, (b, c)) in lay.blocks.iter().zip(old_net.iter_mut()).enumerate() {
+            *c = match (b.is_chain, c.take()) {
+                (false, Some(mut k)) if !redo[bi] => {
+                    k.refresh_constraints(lay, b);
+                    Some(k)
+                }
+                (false, _) => NetConsts::new(lay, b).map(Box::new),
+                (true, _) => None,
+            };
+        }
+        self.chain_consts = old;
+        self.net_consts = old_net;
+    }
+
+    /// Chain fast-path constants for chain blocks (winch cables included: the fast
+    /// path applies the ALE variable element as the general path does).
+    fn install_chain_consts(&mut self) {
+        let lay = &self.layout;
+        self.chain_consts = lay
+            .blocks
+            .iter()
+            .map(|b| b.is_chain.then(|| ChainConsts::new(lay, b)))
+            .collect();
+        self.net_consts = lay
+            .blocks
+            .iter()
+            .map(|b| {
+                if b.is_chain {
+                    None
+                } else {
+                    NetConsts::new(lay, b).map(Box::new)
+                }
+            })
+            .collect();
+    }
+
+    /// The variable elements of block `bi` (none without winches).
+    fn ale_block(&self, bi: usize) -> &[AleElem] {
+        ale_of(self.ale.as_deref(), bi)
+    }
+
+    /// Unstretched length of every packed element now, m (the variable elements of
+    /// winch cables at the current time).
+    pub fn element_l0(&self) -> Vec<f64> {
+        let mut l0 = self.layout.elem_l0.clone();
+        if let Some(a) = self.ale.as_deref() {
+            for (bi, b) in self.layout.blocks.iter().enumerate() {
+                for ae in &a.blocks[bi] {
+                    l0[b.elem_start as usize + ae.elem] = ae.l0(ae.sched.eval(self.t).dl);
+                }
+            }
+        }
+        l0
+    }
+
+    /// Replaces the route of held node `node` (packed index) from now on (a coupling
+    /// loop driving an end from outside). Errors when the node is not held.
+    pub fn set_route(&mut self, node: usize, route: Route) -> Result<(), Error> {
+        let k = self.layout.node_constraint[node];
+        if k == NO_CONSTRAINT {
+            return Err(Error::Model(format!(
+                "node {node} is free: only a held node (fixed or on a route) can be driven"
+            )));
+        }
+        if let Some(ale) = self.ale.as_mut() {
+            // Remeshing rebuilds from the description: it must carry the new route.
+            if let Some(d) = ale.packed_of_def.iter().position(|&p| p as usize == node) {
+                ale.def.nodes[d].route = Some(route.clone());
+            }
+        }
+        self.layout.routes[k as usize] = route;
+        Ok(())
+    }
+
+    /// Where each winch cable stands now (empty without winches).
+    pub fn winch_status(&self) -> Vec<WinchStatus> {
+        self.ale
+            .as_deref()
+            .map_or_else(Vec::new, |a| a.status(self.t))
+    }
+
+    /// Advances `nsteps` steps of `opts.dt`. Blocks run independently (in parallel);
+    /// on failure the state is left where the failing block stopped and the error names
+    /// the cable, node (or element) and time. With winches, the steps are cut where a
+    /// winch cable must be remeshed (or passes a limit of its winch), which is done
+    /// between steps.
+    pub fn advance(&mut self, nsteps: u64) -> Result<(), Error> {
+        if self.ale.is_none() {
+            return self.advance_fixed(nsteps);
+        }
+        let dt = self.opts.dt;
+        let mut left = nsteps;
+        while left > 0 {
+            let ale = self.ale.as_deref().expect("winches");
+            let k = ale.steps_on_this_mesh(self.steps, left, dt);
+            self.advance_fixed(k)?;
+            left -= k;
+            let ale = self.ale.as_deref_mut().expect("winches");
+            let mut lay = std::mem::take(&mut self.layout);
+            let (mut r, mut v) = (std::mem::take(&mut self.r), std::mem::take(&mut self.v));
+            let changed = ale.remesh_in_place(self.t, &mut lay, &mut r, &mut v);
+            let cables = ale.last_changed.clone();
+            match changed {
+                Ok(true) => self.install_remeshed(lay, r, v, &cables),
+                Ok(false) => (self.layout, self.r, self.v) = (lay, r, v),
+                Err(e) => {
+                    // The description moved on, the layout may be half spliced: the
+                    // run ends here (a limit of the winch was passed).
+                    (self.layout, self.r, self.v) = (lay, r, v);
+                    return Err(e);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn ctx(&self) -> Ctx<'_> {
+        let e = &self.layout.env;
+        Ctx {
+            lay: &self.layout,
+            coefs: &self.coefs,
+            seabed: SeabedCoefs {
+                z: -e.depth,
+                k: e.seabed.stiffness,
+                c: e.seabed.damping,
+                mu: e.seabed.friction,
+                v_eps: e.seabed.friction_velocity,
+            },
+            opts: self.opts,
+            elem_in_cable: &self.elem_in_cable,
+            uniform_current: &self.uniform_current,
+            gravity: self.layout.env.gravity,
+            implicit_dt: 0.0,
+        }
+    }
+
+    /// Advances `nsteps` steps on the current mesh.
+    fn advance_fixed(&mut self, nsteps: u64) -> Result<(), Error> {
+        if nsteps == 0 {
+            return Ok(());
+        }
+        let step0 = self.steps;
+        let dt = self.opts.dt;
+        let ctx = Ctx {
+            lay: &self.layout,
+            coefs: &self.coefs,
+            seabed: self.ctx().seabed,
+            opts: self.opts,
+            elem_in_cable: &self.elem_in_cable,
+            uniform_current: &self.uniform_current,
+            gravity: self.layout.env.gravity,
+            implicit_dt: implicit_dt(&self.opts),
+        };
+        let blocks = &self.layout.blocks;
+        let chain_consts = &self.chain_consts;
+        let ale_state = self.ale.as_deref();
+        let fast = self.use_chain_kernel && self.opts.formulation == Formulation::Glmf;
+        // The network fast path: GLMF, symplectic, no winch elements in the block.
+        let net_consts = &self.net_consts;
+        let net_fast = self.use_net_kernel
+            && self.opts.formulation == Formulation::Glmf
+            && self.opts.scheme == Scheme::Symplectic;
+        let net_of = |bi: usize| {
+            net_consts[bi]
+                .as_deref()
+                .filter(|_| net_fast && ale_of(ale_state, bi).is_empty())
+        };
+        // Big networks are stepped after the rest, each by every thread of the pool.
+        let threads = rayon::current_num_threads();
+        let threaded: Vec<bool> = blocks
+            .iter()
+            .enumerate()
+            .map(|(bi, b)| {
+                threads > 1
+                    && !b.is_chain
+                    && (b.node_end - b.node_start) as usize >= THREADED_MIN_NODES
+                    && self.opts.scheme == Scheme::Symplectic
+                    && self.opts.formulation == Formulation::Glmf
+                    && ale_of(ale_state, bi).is_empty()
+                    && self.seas.is_none()
+            })
+            .collect();
+        // Split the state into disjoint per-chunk slices.
+        let mut parts = Vec::with_capacity(self.chunks.len());
+        {
+            let (mut r, mut v, mut s, mut el) = (
+                &mut self.r[..],
+                &mut self.v[..],
+                &mut self.scratch[..],
+                &mut self.elems[..],
+            );
+            let mut wb = &mut self.wave_blocks[..];
+            for ch in &self.chunks {
+                let (b0, b1) = (blocks[ch.start], blocks[ch.end - 1]);
+                let nn = (b1.node_end - b0.node_start) as usize;
+                let ne = (b1.elem_end - b0.elem_start) as usize;
+                let (r1, r2) = r.split_at_mut(nn);
+                let (v1, v2) = v.split_at_mut(nn);
+                let (s1, s2) = s.split_at_mut(nn);
+                let (e1, e2) = el.split_at_mut(ne);
+                let (w1, w2) = wb.split_at_mut(if wb.is_empty() { 0 } else { ch.len() });
+                parts.push((ch.clone(), r1, v1, s1, e1, w1));
+                wb = w2;
+                r = r2;
+                v = v2;
+                s = s2;
+                el = e2;
+            }
+        }
+        let result: Result<(), StepFailure> =
+            parts.into_par_iter().try_for_each(|(ch, r, v, s, el, wb)| {
+                let base = blocks[ch.start];
+                // Stage buffers of the Runge-Kutta schemes, reused across the chunk's blocks.
+                let (mut rs, mut vs) = (Vec::new(), Vec::new());
+                let mut wbuf = Water::new();
+                let mut wb = wb.iter_mut();
+                let mut chain_scratch = ChainScratch::default();
+                let mut net_scratch = NetScratch::default();
+                for (bi, b) in blocks[ch.clone()].iter().enumerate() {
+                    let waves = wb.next();
+                    if threaded[ch.start + bi] {
+                        continue;
+                    }
+                    let ale = ale_of(ale_state, ch.start + bi);
+                    let n0 = (b.node_start - base.node_start) as usize;
+                    let n1 = (b.node_end - base.node_start) as usize;
+                    let e0 = (b.elem_start - base.elem_start) as usize;
+                    let e1 = (b.elem_end - base.elem_start) as usize;
+                    if let Some(nc) = net_of(ch.start + bi) {
+                        advance_net(
+                            nc,
+                            ctx.lay,
+                            &ctx.opts,
+                            &mut net_scratch,
+                            &mut r[n0..n1],
+                            &mut v[n0..n1],
+                            b.node_start as usize,
+                            waves,
+                            &mut wbuf,
+                            step0,
+                            dt,
+                            nsteps,
+                        )?;
+                        continue;
+                    }
+                    match &chain_consts[ch.start + bi] {
+                        Some(cc) if fast => advance_chain(
+                            cc,
+                            ctx.lay,
+                            &ctx.opts,
+                            &mut chain_scratch,
+                            ale,
+                            &mut r[n0..n1],
+                            &mut v[n0..n1],
+                            b.node_start as usize,
+                            waves,
+                            &mut wbuf,
+                            step0,
+                            dt,
+                            nsteps,
+                        )?,
+                        _ => advance_block(
+                            &ctx,
+                            b,
+                            ale,
+                            &mut r[n0..n1],
+                            &mut v[n0..n1],
+                            &mut s[n0..n1],
+                            &mut el[e0..e1],
+                            &mut rs,
+                            &mut vs,
+                            waves,
+                            &mut wbuf,
+                            step0,
+                            dt,
+                            nsteps,
+                        )?,
+                    }
+                }
+                Ok(())
+            });
+        let result = result.and_then(|_| {
+            let mut net_scratch = NetScratch::default();
+            for (bi, b) in blocks.iter().enumerate().filter(|(bi, _)| threaded[*bi]) {
+                let (n0, n1) = (b.node_start as usize, b.node_end as usize);
+                let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
+                if let Some(nc) = net_of(bi) {
+                    advance_net_threaded(
+                        nc,
+                        ctx.lay,
+                        &ctx.opts,
+                        &mut net_scratch,
+                        &mut self.r[n0..n1],
+                        &mut self.v[n0..n1],
+                        n0,
+                        step0,
+                        dt,
+                        nsteps,
+                        threads,
+                    )?;
+                    continue;
+                }
+                advance_block_threaded(
+                    &ctx,
+                    b,
+                    &mut self.r[n0..n1],
+                    &mut self.v[n0..n1],
+                    &mut self.elems[e0..e1],
+                    step0,
+                    dt,
+                    nsteps,
+                    threads,
+                )?;
+            }
+            Ok(())
+        });
+        self.steps += nsteps;
+        self.node_steps += nsteps * self.layout.n_nodes() as u64;
+        self.t = (self.steps as f64) * dt;
+        result.map_err(|f| self.name_failure(f))
+    }
+
+    /// Turns a failure in packed indices into an error naming cable, node and time.
+    pub fn name_failure(&self, f: StepFailure) -> Error {
+        match f {
+            StepFailure::Diverged { node, time, what } => {
+                let (cable, node) = self.layout.describe_node(node);
+                Error::Diverged {
+                    cable,
+                    node,
+                    time,
+                    what,
+                }
+            }
+            StepFailure::Singular {
+                element,
+                time,
+                frame,
+                reason,
+            } => {
+                let (cable, element) = self.layout.describe_element(element);
+                Error::SingularFrame {
+                    frame,
+                    cable,
+                    element,
+                    time,
+                    reason,
+                }
+            }
+        }
+    }
+
+    /// Evaluates loads, accelerations and reactions at the current state.
+    pub fn evaluate(&self) -> Result<Evaluation, Error> {
+        let ctx = self.ctx();
+        let lay = &self.layout;
+        let mut ev = Evaluation {
+            acc: vec![[0.0; 3]; lay.n_nodes()],
+            force: vec![[0.0; 3]; lay.n_nodes()],
+            tension: vec![0.0; lay.n_elements()],
+            reaction: vec![[0.0; 3]; lay.routes.len()],
+            elements: Vec::new(),
+        };
+        let mut elems = vec![ElementLoads::default(); lay.n_elements()];
+        for (bi, b) in lay.blocks.iter().enumerate() {
+            let ale = self.ale_block(bi);
+            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
+            let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
+            let topo = GeneralTopo { lay, n0, e0 };
+            let w = self.water_now(n0, n1);
+            element_pass(
+                &ctx,
+                &topo,
+                b,
+                ale,
+                &self.r[n0..n1],
+                &self.v[n0..n1],
+                self.t,
+                &w,
+                &mut elems[e0..e1],
+            )
+            .map_err(|f| self.name_failure(f))?;
+            for i in n0..n1 {
+                let (a, f, m) = node_accel(
+                    &ctx,
+                    &topo,
+                    b,
+                    ale,
+                    i - n0,
+                    &self.r[n0..n1],
+                    &self.v[n0..n1],
+                    self.t,
+                    &w,
+                    &elems[e0..e1],
+                );
+                ev.acc[i] = a.to_f64();
+                ev.force[i] = f.to_f64();
+                let c = lay.node_constraint[i];
+                if c != NO_CONSTRAINT {
+                    ev.reaction[c as usize] = (f - m.mul_vec(a)).to_f64();
+                }
+            }
+        }
+        for (e, el) in elems.iter().enumerate() {
+            ev.tension[e] = el.tension;
+        }
+        ev.elements = elems;
+        Ok(ev)
+    }
+
+    /// Total kinetic energy `1/2 v^T M v` (mass blocks with added mass), J.
+    pub fn kinetic_energy(&self) -> f64 {
+        let ctx = self.ctx();
+        let lay = &self.layout;
+        let mut elems = vec![ElementLoads::default(); lay.n_elements()];
+        let mut ke = 0.0;
+        for (bi, b) in lay.blocks.iter().enumerate() {
+            let ale = self.ale_block(bi);
+            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
+            let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
+            // Frames can only fail where GLMF would not; energy uses the GLMF masses.
+            let ctx = Ctx {
+                opts: SolverOptions {
+                    formulation: Formulation::Glmf,
+                    ..ctx.opts
+                },
+                ..ctx
+            };
+            let topo = GeneralTopo { lay, n0, e0 };
+            let w = self.water_now(n0, n1);
+            let _ = element_pass(
+                &ctx,
+                &topo,
+                b,
+                ale,
+                &self.r[n0..n1],
+                &self.v[n0..n1],
+                self.t,
+                &w,
+                &mut elems[e0..e1],
+            );
+            for i in n0..n1 {
+                let eta = if w.is_empty() {
+                    0.0
+                } else {
+                    node_water(&w, i - n0).0
+                };
+                let m = node_mass(&ctx, &topo, b, i - n0, self.r[i], eta, &elems[e0..e1]);
+                let v = self.v[i];
+                ke += 0.5 * v.dot(m.mul_vec(v));
+            }
+        }
+        ke
+    }
+
+    /// Elastic strain energy `sum 1/2 EA l0 eps^2` over stretched elements, J.
+    pub fn strain_energy(&self) -> f64 {
+        let lay = &self.layout;
+        let l0s = self.element_l0();
+        (0..lay.n_elements())
+            .map(|e| {
+                let l = (self.r[lay.elem_b[e] as usize] - self.r[lay.elem_a[e] as usize]).norm();
+                let l0 = l0s[e];
+                let c = &self.coefs[lay.elem_line[e] as usize];
+                let eps = l / l0 - 1.0;
+                if eps > 0.0 || c.compression > 0.0 {
+                    0.5 * c.ea * l0 * eps * eps
+                } else {
+                    0.0
+                }
+            })
+            .sum()
+    }
+}
+/// The variable elements of block `bi` under `ale` (none without winches).
+fn ale_of(ale: Option<&AleState>, bi: usize) -> &[AleElem] {
+    ale.map_or(&[], |a| &a.blocks[bi][..])
+}
+
+/// Groups consecutive blocks into about `4 * threads` chunks of similar node counts.
+fn make_chunks(blocks: &[Block], threads: usize) -> Vec<std::ops::Range<usize>> {
+    let total: u64 = blocks
+        .iter()
+        .map(|b| (b.node_end - b.node_start) as u64)
+        .sum();
+    let target = (total / (4 * threads.max(1)) as u64).max(1);
+    let mut chunks = Vec::new();
+    let mut start = 0;
+    let mut acc = 0u64;
+    for (i, b) in blocks.iter().enumerate() {
+        acc += (b.node_end - b.node_start) as u64;
+        if acc >= target {
+            chunks.push(start..i + 1);
+            start = i + 1;
+            acc = 0;
+        }
+    }
+    if start < blocks.len() {
+        chunks.push(start..blocks.len());
+    }
+    chunks
+}

@@ -1,0 +1,75 @@
+//! Checkpoints of a [`CpuSolver`]: its state at one step, to go back to.
+
+use super::CpuSolver;
+use crate::math::V3;
+
+type V = V3<f64>;
+
+/// The state of a [`CpuSolver`] at one step: positions and velocities where that is all
+/// it carries from step to step (a fixed mesh in still water: element loads and scratch
+/// are recomputed each step); the whole solver where more is (winch cables, whose mesh
+/// and payout change, and the waves' kinematics cache).
+#[derive(Clone)]
+pub struct CpuCheckpoint {
+    /// Steps taken.
+    pub steps: u64,
+    saved: Saved,
+}
+
+#[derive(Clone)]
+enum Saved {
+    State {
+        t: f64,
+        node_steps: u64,
+        r: Vec<V>,
+        v: Vec<V>,
+    },
+    Whole(Box<CpuSolver>),
+}
+
+impl std::fmt::Debug for CpuCheckpoint {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CpuCheckpoint")
+            .field("steps", &self.steps)
+            .finish_non_exhaustive()
+    }
+}
+
+impl CpuSolver {
+    /// The state now, to go back to with [`CpuSolver::restore`].
+    pub fn checkpoint(&self) -> Option<CpuCheckpoint> {
+        let saved = if self.ale.is_some() || !self.wave_blocks.is_empty() {
+            Saved::Whole(Box::new(self.clone()))
+        } else {
+            Saved::State {
+                t: self.t,
+                node_steps: self.node_steps,
+                r: self.r.clone(),
+                v: self.v.clone(),
+            }
+        };
+        Some(CpuCheckpoint {
+            steps: self.steps,
+            saved,
+        })
+    }
+
+    /// Goes back to the state `cp`, taken from this solver.
+    pub fn restore(&mut self, cp: &CpuCheckpoint) {
+        match &cp.saved {
+            Saved::State {
+                t,
+                node_steps,
+                r,
+                v,
+            } => {
+                self.steps = cp.steps;
+                self.t = *t;
+                self.node_steps = *node_steps;
+                self.r.clone_from(r);
+                self.v.clone_from(v);
+            }
+            Saved::Whole(w) => *self = (**w).clone(),
+        }
+    }
+}
