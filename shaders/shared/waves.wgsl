@@ -3,7 +3,7 @@
 //
 // Appended after the prelude (it uses `R`, `PIO2_HI`, `PIO2_LO`, `sin_cos` and
 // `params`). Buffers: the components, `WaveComp` per component
-// (`sea::kinematics::PackedComponent`, ten scalars, phases referred to a reference
+// (`sea::kinematics::PackedComponent`, thirteen scalars, sorted by k, phases referred to a reference
 // time `t_ref` chosen by the host: the solver rebases them at each submission), at
 // group 0, binding 17; the solver's per-node cache at binding 19 and its per-step rows
 // at binding 20 (see the end of this file).
@@ -23,6 +23,10 @@ struct WaveComp {
     amp_a: R,
     cos_b: R,
     sin_b: R,
+    // The decay cut's bounds on this component and all after it (sea::cut).
+    cut0: R,
+    cut1: R,
+    cut2: R,
 }
 
 struct WaveKin {
@@ -171,6 +175,26 @@ fn wave_kinematics_tau(first: u32, n: u32, depth: R, stretching: u32, r: R, p: v
     return WaveKin(eta, r * u, r * a);
 }
 
+// The decay cut (Rust twin: sea::cut::wave_decay_prefix): how many of the n components
+// from `first` (sorted by k) a node at evaluation depth zs <= 0 needs in its decay pass,
+// for a speed s = |v_h| + |zs'| and a ramp rate r_rate: the smallest m whose bound on
+// the components from m on is at most 1, by bisection.
+fn wave_decay_prefix(first: u32, n: u32, zs: R, s: R, r_rate: R) -> u32 {
+    var lo = 0u;
+    var hi = n;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        let c = wave_comps[first + mid];
+        let bound = wave_exp(c.k * zs) * (c.cut0 + c.cut1 * s + c.cut2 * abs(r_rate));
+        if bound <= R(1.0) {
+            hi = mid;
+        } else {
+            lo = mid + 1u;
+        }
+    }
+    return lo;
+}
+
 // Values and their rates along a path.
 struct WaveKinRates {
     val: WaveKin,
@@ -196,11 +220,13 @@ fn wave_kinematics_rates_tau(first: u32, n: u32, depth: R, stretching: u32, r: R
     let eta_rate = r * sed + r_rate * se;
     let zs = wave_eval_depth(p.z, eta, depth, stretching);
     let zs_rate = wave_eval_depth_rate(p.z, eta, depth, stretching, v.z, eta_rate);
+    // The decay pass over the prefix the node needs (sea::cut).
+    let m = wave_decay_prefix(first, n, zs, length(v.xy) + abs(zs_rate), r_rate);
     var u = vec3<R>(R(0.0));
     var a = vec3<R>(R(0.0));
     var du = vec3<R>(R(0.0));
     var da = vec3<R>(R(0.0));
-    for (var j = first; j < first + n; j++) {
+    for (var j = first; j < first + m; j++) {
         let c = wave_comps[j];
         let d = wave_depth_decay(c.k, zs, depth);
         // A component decayed below 1e-30 (e^{k zs} = (ch + sh) / 2: short waves deep

@@ -548,6 +548,12 @@ gpu_struct! {
         cos_b: R,
         /// `sin b`.
         sin_b: R,
+        /// The decay cut's bounds (`sea::cut::decay_cut_bounds`).
+        cut0: R,
+        /// The decay cut's factor of the node's speed, s/m.
+        cut1: R,
+        /// The decay cut's factor of the ramp's rate, s.
+        cut2: R,
     }
 }
 
@@ -621,6 +627,9 @@ impl<R: GpuReal> WaveComp<R> {
             amp_a: R::c(c.amp_a),
             cos_b: R::c(c.cos_b),
             sin_b: R::c(c.sin_b),
+            cut0: R::c(c.cut0),
+            cut1: R::c(c.cut1),
+            cut2: R::c(c.cut2),
         }
     }
 }

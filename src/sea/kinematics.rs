@@ -6,6 +6,7 @@
 pub use super::columns::{
     wave_kinematics_columns, wave_kinematics_rates_columns, ComponentColumns, KinematicsScratch,
 };
+use super::cut::{decay_cut_bounds, wave_decay_prefix};
 use super::{poly, SeaState, Stretching, WaveComponent};
 use std::f64::consts::{PI, TAU};
 
@@ -29,7 +30,7 @@ pub struct Kinematics {
 /// form overflows once `k h > 710`), and infinite depth is the limit
 /// `e^{-k (z + 2 h)} = 0`. The constant `1 / (1 - e^{-2 k h})` is folded into
 /// `amp_u` and `amp_a` here, on the host, with `expm1` (exact in shallow water too).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PackedComponent {
     /// `k cos b`, rad/m.
     pub kx: f64,
@@ -51,6 +52,36 @@ pub struct PackedComponent {
     pub cos_b: f64,
     /// `sin b`.
     pub sin_b: f64,
+    /// The decay cut's bounds on this component and all after it (sorted by `k`),
+    /// over their limits ([`super::cut::decay_cut_bounds`]): the part independent of
+    /// the node's speed.
+    pub cut0: f64,
+    /// The decay cut's factor of the node's speed, s/m.
+    pub cut1: f64,
+    /// The decay cut's factor of the ramp's rate, s.
+    pub cut2: f64,
+}
+
+impl Default for PackedComponent {
+    /// All zero but the cut's bounds, which are infinite (nothing is cut until
+    /// [`super::cut::decay_cut_bounds`] sets them).
+    fn default() -> Self {
+        Self {
+            kx: 0.0,
+            ky: 0.0,
+            k: 0.0,
+            omega: 0.0,
+            phase_ref: 0.0,
+            amp: 0.0,
+            amp_u: 0.0,
+            amp_a: 0.0,
+            cos_b: 0.0,
+            sin_b: 0.0,
+            cut0: f64::INFINITY,
+            cut1: f64::INFINITY,
+            cut2: f64::INFINITY,
+        }
+    }
 }
 
 /// A sea state ready for evaluation: components packed, phases referred to `t_ref`.
@@ -72,6 +103,8 @@ pub struct WaveField {
     pub t_ref: f64,
     /// The components as given (for rebasing).
     source: Vec<WaveComponent>,
+    /// The cache tolerance the decay cut's bounds are for.
+    tolerance: f64,
     /// `comps` as columns, what the CPU's sum reads.
     cols: ComponentColumns,
 }
@@ -87,13 +120,16 @@ impl WaveField {
             ramp_duration: sea.ramp_duration,
             t_ref: 0.0,
             source: sea.components.clone(),
+            tolerance: sea.cache_tolerance,
         };
         f.rebase(0.0);
         f
     }
 
     /// Refers the packed phases to `t_ref` (does not change any result beyond
-    /// round-off).
+    /// round-off). The packed components are sorted by wave number, ascending (the
+    /// order both the CPU and the GPU sum in: the decay cut of [`super::cut`] drops a
+    /// suffix of the shortest waves).
     pub fn rebase(&mut self, t_ref: f64) {
         self.t_ref = t_ref;
         let h = self.depth;
@@ -115,9 +151,13 @@ impl WaveField {
                     amp_a: c.amplitude * c.omega * c.omega / den,
                     cos_b,
                     sin_b,
+                    ..Default::default()
                 }
             })
             .collect();
+        // Stable: equal wave numbers keep the sea's order.
+        self.comps.sort_by(|a, b| a.k.total_cmp(&b.k));
+        decay_cut_bounds(&mut self.comps, self.tolerance);
         self.cols = ComponentColumns::new(&self.comps);
     }
 
@@ -317,7 +357,11 @@ pub fn wave_eval_depth_rate(
 /// (`d ch / dzs = k sh`, `d sh / dzs = k ch`). Each rate sum is times `r`, plus `r_rate`
 /// times the unramped value sum. A component whose decay `e^{k zs}` is under `1e-30`
 /// contributes 0 to the velocity and acceleration and their rates, as in
-/// [`wave_kinematics_columns`].
+/// [`wave_kinematics_columns`]. The decay pass sums only the prefix of `comps` that
+/// [`wave_decay_prefix`] keeps (the decay cut of [`super::cut`]: `comps` sorted by
+/// `k`, with their cut bounds set; with the default infinite bounds nothing is cut),
+/// so the values' `u` and `a` are those of [`wave_kinematics_tau`] within the cut's
+/// bound.
 #[allow(clippy::too_many_arguments)]
 pub fn wave_kinematics_rates_tau(
     comps: &[PackedComponent],
@@ -340,9 +384,12 @@ pub fn wave_kinematics_rates_tau(
     let eta_rate = r * se_rate + r_rate * se;
     let zs = wave_eval_depth(p[2], eta, depth, stretching);
     let zs_rate = wave_eval_depth_rate(p[2], eta, depth, stretching, v[2], eta_rate);
+    // The decay cut: the components the node needs (sorted by k, a prefix).
+    let speed = v[0].hypot(v[1]) + zs_rate.abs();
+    let m = wave_decay_prefix(comps, zs, speed, r_rate);
     // Unramped sums: u, a (a_z without its sign) and their rates.
     let (mut u, mut a, mut du, mut da) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
-    for c in comps {
+    for c in &comps[..m] {
         let (ch, sh) = wave_depth_decay(c.k, zs, depth);
         if poly::exp_neg(c.k * zs) < 1e-30 {
             continue;

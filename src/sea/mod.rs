@@ -31,7 +31,8 @@
 //! `kinematics::WaveField::new(&sea).kinematics(p, t)`.
 //!
 //! On the GPU the twins are in `shaders/shared/waves.wgsl`: the struct `WaveComp` is
-//! [`kinematics::PackedComponent`] (ten scalars, `WaveField::comps`, phases referred
+//! [`kinematics::PackedComponent`] (thirteen scalars, `WaveField::comps`, sorted by `k`
+//! for the decay cut of [`cut`], phases referred
 //! to `WaveField::t_ref`: rebase on the host and pass `t - t_ref`), the per-node
 //! evaluation is `wave_kinematics_at`, the interpolation `wave_cache_lerp` (the CPU's
 //! cache interpolates with `wave_cache_hermite`, values and rates; the GPU's Hermite
@@ -41,6 +42,7 @@
 
 pub mod cache;
 pub mod columns;
+pub mod cut;
 pub mod dispersion;
 pub mod irregular;
 pub mod kinematics;

@@ -14,6 +14,7 @@ use cablesim::gpu::layout::{GpuReal, WaveComp};
 use cablesim::gpu::{GpuContext, Precision};
 use cablesim::math::V3;
 use cablesim::sea::cache::{hermite_weights, wave_cache_hermite};
+use cablesim::sea::cut::wave_decay_prefix;
 use cablesim::sea::irregular::{discretise, Discretisation};
 use cablesim::sea::kinematics::{
     wave_depth_decay, wave_eval_depth, wave_eval_depth_rate, wave_kinematics_at,
@@ -129,6 +130,17 @@ fn t_kin_rates(@builtin(global_invocation_id) gid: vec3<u32>) {
         vec3<R>(tin[b], tin[b + 1u], tin[b + 2u]), vec3<R>(tin[b + 3u], tin[b + 4u], tin[b + 5u]), tin[b + 6u]);
     kin_out(14u * i, k.val);
     kin_out(14u * i + 7u, k.rate);
+}
+
+// tin: n, then zs, s, r_rate per case; tout: the prefix length.
+@compute @workgroup_size(64)
+fn t_prefix(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= (arrayLength(&tin) - 1u) / 3u {
+        return;
+    }
+    let b = 1u + 3u * i;
+    tout[i] = R(wave_decay_prefix(0u, u32(tin[0]), tin[b], tin[b + 1u], tin[b + 2u]));
 }
 
 // tin: v0, d0, v1, d1 (7 each), then the four weights, per case.
@@ -324,6 +336,9 @@ fn gpu_comps<R: GpuReal>(field: &WaveField) -> (Vec<u8>, Vec<PackedComponent>) {
             amp_a: c.amp_a.f64(),
             cos_b: c.cos_b.f64(),
             sin_b: c.sin_b.f64(),
+            cut0: c.cut0.f64(),
+            cut1: c.cut1.f64(),
+            cut2: c.cut2.f64(),
         })
         .collect();
     (bytemuck::cast_slice(&comps).to_vec(), back)
@@ -540,6 +555,45 @@ fn check_kinematics_rates<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut 
     }
 }
 
+/// The decay cut's prefix length against the Rust twin on the components the GPU
+/// received: equal, but where the bound at the boundary is within the precision's
+/// rounding of 1 (then one more or less).
+fn check_decay_prefix<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let s = sea(300.0, Stretching::Wheeler, 30.0);
+    let field = WaveField::new(&s);
+    let (bytes, comps) = gpu_comps::<R>(&field);
+    let n = 1000;
+    let mut x = vec![comps.len() as f64];
+    for _ in 0..n {
+        x.push(-rng.gen_range(0.0..300.0f64).powf(rng.gen_range(0.5..1.0)));
+        x.push(rng.gen_range(0.0..4.0));
+        x.push(rng.gen_range(0.0..0.05));
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_prefix", &[(17, bytes)], &xr, n, n);
+    let (mut inner, mut near) = (0, 0);
+    for i in 0..n {
+        let (zs, sp, rr) = (x[1 + 3 * i], x[2 + 3 * i], x[3 + 3 * i]);
+        let m = wave_decay_prefix(&comps, zs, sp, rr);
+        let g = out[i].f64() as usize;
+        inner += usize::from(m > 0 && m < comps.len());
+        if g != m {
+            let j = g.min(m);
+            let c = &comps[j];
+            let bound = (c.k * zs).exp() * (c.cut0 + c.cut1 * sp + c.cut2 * rr);
+            let tol = 64.0 * R::epsilon().f64() * (1.0 + (c.k * zs).abs());
+            assert!(
+                g.abs_diff(m) == 1 && (bound - 1.0).abs() <= tol,
+                "{p:?} case {i}: zs {zs}: GPU {g}, Rust {m} (bound {bound})"
+            );
+            near += 1;
+        }
+    }
+    // The cut is active in most cases; rounding-edge cases are rare.
+    assert!(inner > n / 4, "{inner} of {n} cut");
+    assert!(near <= n / 100, "{near} of {n} off by one");
+}
+
 fn check_hermite<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
     let n = 1000;
     let mut x = Vec::new();
@@ -587,6 +641,7 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_ramp_rate::<R>(ctx, p, &mut rng);
     check_eval_depth_rate::<R>(ctx, p, &mut rng);
     check_kinematics_rates::<R>(ctx, p, &mut rng);
+    check_decay_prefix::<R>(ctx, p, &mut rng);
     check_hermite::<R>(ctx, p, &mut rng);
 }
 
