@@ -3,7 +3,7 @@
 //
 // Appended after the prelude (it uses `R`, `PIO2_HI`, `PIO2_LO`, `sin_cos` and
 // `params`). Buffers: the components, `WaveComp` per component
-// (`sea::kinematics::PackedComponent`, ten scalars, phases referred to a reference
+// (`sea::kinematics::PackedComponent`, thirteen scalars, sorted by k, phases referred to a reference
 // time `t_ref` chosen by the host: the solver rebases them at each submission), at
 // group 0, binding 17; the solver's per-node cache at binding 19 and its per-step rows
 // at binding 20 (see the end of this file).
@@ -23,6 +23,10 @@ struct WaveComp {
     amp_a: R,
     cos_b: R,
     sin_b: R,
+    // The decay cut's bounds on this component and all after it (sea::cut).
+    cut0: R,
+    cut1: R,
+    cut2: R,
 }
 
 struct WaveKin {
@@ -83,6 +87,16 @@ fn wave_ramp(t: R, ramp_duration: R) -> R {
     return s * s;
 }
 
+// The ramp's time derivative (pi / (2 T_r)) sin(pi t / T_r) on (0, T_r), 0 elsewhere
+// (and always 0 when T_r <= 0).
+fn wave_ramp_rate(t: R, ramp_duration: R) -> R {
+    if ramp_duration <= R(0.0) || t >= ramp_duration || t <= R(0.0) {
+        return R(0.0);
+    }
+    let c = (PIO2_HI + PIO2_LO) / ramp_duration;
+    return c * sin_cos(R(2.0) * c * t).x;
+}
+
 // Phase of a component at (x, y), tau = t - t_ref after its reference time.
 fn wave_theta(c: WaveComp, x: R, y: R, tau: R) -> R {
     return c.kx * x + c.ky * y + c.phase_ref - c.omega * tau;
@@ -106,6 +120,24 @@ fn wave_eval_depth(z: R, eta: R, depth: R, stretching: u32) -> R {
         zs = (z - eta) / (R(1.0) + eta / depth);
     }
     return max(min(zs, R(0.0)), -depth);
+}
+
+// The time derivative of wave_eval_depth along a path with vertical velocity vz under
+// an elevation changing at eta_rate (both along the path): Wheeler
+// (vz - eta_rate (1 + zs / h)) / (1 + eta / h), constant vz, and 0 where the clamp to
+// [-h, 0] holds the depth (a point in air or under the seabed).
+fn wave_eval_depth_rate(z: R, eta: R, depth: R, stretching: u32, vz: R, eta_rate: R) -> R {
+    var zs = z;
+    var rate = vz;
+    if stretching == WAVE_WHEELER {
+        let d = R(1.0) + eta / depth;
+        zs = (z - eta) / d;
+        rate = (vz - eta_rate * (R(1.0) + zs / depth)) / d;
+    }
+    if zs > R(0.0) || zs < -depth {
+        return R(0.0);
+    }
+    return rate;
 }
 
 // (e^{k zs} + e^{-k (zs + 2 h)}, e^{k zs} - e^{-k (zs + 2 h)}): the depth decay
@@ -143,17 +175,104 @@ fn wave_kinematics_tau(first: u32, n: u32, depth: R, stretching: u32, r: R, p: v
     return WaveKin(eta, r * u, r * a);
 }
 
-// The cache's interpolation (1 - s) v0 + s v1 between refresh times (s in [0, 1]).
-fn wave_cache_lerp(v0: WaveKin, v1: WaveKin, s: R) -> WaveKin {
-    let q = R(1.0) - s;
-    return WaveKin(q * v0.eta + s * v1.eta, q * v0.u + s * v1.u, q * v0.a + s * v1.a);
+// The decay cut (Rust twin: sea::cut::wave_decay_prefix): how many of the n components
+// from `first` (sorted by k) a node at evaluation depth zs <= 0 needs in its decay pass,
+// for a speed s = |v_h| + |zs'| and a ramp rate r_rate: the smallest m whose bound on
+// the components from m on is at most 1, by bisection.
+fn wave_decay_prefix(first: u32, n: u32, zs: R, s: R, r_rate: R) -> u32 {
+    var lo = 0u;
+    var hi = n;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        let c = wave_comps[first + mid];
+        let bound = wave_exp(c.k * zs) * (c.cut0 + c.cut1 * s + c.cut2 * abs(r_rate));
+        if bound <= R(1.0) {
+            hi = mid;
+        } else {
+            lo = mid + 1u;
+        }
+    }
+    return lo;
+}
+
+// Values and their rates along a path.
+struct WaveKinRates {
+    val: WaveKin,
+    rate: WaveKin,
+}
+
+// wave_kinematics_tau and the time derivatives of its values along the path of a
+// point at p moving with velocity v (the cache's interpolant takes both at each end):
+// the phases' rate is the Doppler-shifted kx vx + ky vy - w, the evaluation depth's is
+// wave_eval_depth_rate's, d/dzs (ch, sh) = k (sh, ch), and the ramp's rate r_rate
+// multiplies the unramped sums.
+fn wave_kinematics_rates_tau(first: u32, n: u32, depth: R, stretching: u32, r: R, r_rate: R, p: vec3<R>, v: vec3<R>, tau: R) -> WaveKinRates {
+    // The elevation and its rate (unramped sums), which set the evaluation depth.
+    var se = R(0.0);
+    var sed = R(0.0);
+    for (var j = first; j < first + n; j++) {
+        let c = wave_comps[j];
+        let sc = sin_cos(wave_theta(c, p.x, p.y, tau));
+        se += c.amp * sc.y;
+        sed -= c.amp * sc.x * (c.kx * v.x + c.ky * v.y - c.omega);
+    }
+    let eta = r * se;
+    let eta_rate = r * sed + r_rate * se;
+    let zs = wave_eval_depth(p.z, eta, depth, stretching);
+    let zs_rate = wave_eval_depth_rate(p.z, eta, depth, stretching, v.z, eta_rate);
+    // The decay pass over the prefix the node needs (sea::cut).
+    let m = wave_decay_prefix(first, n, zs, length(v.xy) + abs(zs_rate), r_rate);
+    var u = vec3<R>(R(0.0));
+    var a = vec3<R>(R(0.0));
+    var du = vec3<R>(R(0.0));
+    var da = vec3<R>(R(0.0));
+    for (var j = first; j < first + m; j++) {
+        let c = wave_comps[j];
+        let d = wave_depth_decay(c.k, zs, depth);
+        // A component decayed below 1e-30 (e^{k zs} = (ch + sh) / 2: short waves deep
+        // down) contributes 0, as in the CPU's sums; its phase is not needed.
+        if d.x + d.y < R(2e-30) {
+            continue;
+        }
+        let sc = sin_cos(wave_theta(c, p.x, p.y, tau));
+        let th_rate = c.kx * v.x + c.ky * v.y - c.omega;
+        // d/dt of (ch, sh): k (sh, ch) zs_rate.
+        let kz = c.k * zs_rate;
+        let ch_cos = d.x * sc.y;
+        let ch_sin = d.x * sc.x;
+        let uh = c.amp_u * ch_cos;
+        let ah = c.amp_a * ch_sin;
+        u += vec3<R>(uh * c.cos_b, uh * c.sin_b, c.amp_u * d.y * sc.x);
+        a += vec3<R>(ah * c.cos_b, ah * c.sin_b, -c.amp_a * d.y * sc.y);
+        let duh = c.amp_u * (kz * d.y * sc.y - ch_sin * th_rate);
+        let dah = c.amp_a * (kz * d.y * sc.x + ch_cos * th_rate);
+        du += vec3<R>(duh * c.cos_b, duh * c.sin_b, c.amp_u * (kz * d.x * sc.x + d.y * sc.y * th_rate));
+        da += vec3<R>(dah * c.cos_b, dah * c.sin_b, -c.amp_a * (kz * d.x * sc.y - d.y * sc.x * th_rate));
+    }
+    return WaveKinRates(
+        WaveKin(eta, r * u, r * a),
+        WaveKin(eta_rate, r * du + r_rate * u, r * da + r_rate * a),
+    );
+}
+
+// The cache's cubic Hermite interpolation between refresh times t0, t1 from the
+// values v0, v1 and rates d0, d1 there: w = [h00, Delta h10, h01, Delta h11] of
+// s = (t - t0) / Delta, Delta = t1 - t0 (the host forms them in f64:
+// sea::cache::hermite_weights).
+fn wave_cache_hermite(v0: WaveKin, d0: WaveKin, v1: WaveKin, d1: WaveKin, w: vec4<R>) -> WaveKin {
+    return WaveKin(
+        w.x * v0.eta + w.y * d0.eta + w.z * v1.eta + w.w * d1.eta,
+        w.x * v0.u + w.y * d0.u + w.z * v1.u + w.w * d1.u,
+        w.x * v0.a + w.y * d0.a + w.z * v1.a + w.w * d1.a,
+    );
 }
 
 // ---- The solver's per-node kinematics cache (sea::cache::WaveCache, the CPU path's
-// cpu::water::BlockWaves): values at two refresh times t0, t1 per node, interpolated
-// between them at every step. The host decides when a refresh is due, exactly as the
-// CPU path does, and writes one WaveStep row per step of a submission and sea: the rows
-// of sea q are q * STEPS_PER_SUBMISSION + k, and a block reads its sea's from
+// cpu::water::BlockWaves): values and their rates along each node's path at two
+// refresh times t0, t1 per node, interpolated between them (cubic Hermite) at every
+// step. The host decides when a refresh is due, exactly as the CPU path does, and
+// writes one WaveStep row per step of a submission and sea: the rows of sea q are
+// q * STEPS_PER_SUBMISSION + k, and a block reads its sea's from
 // `BlockParams::wave_rows` (a packed run's members each in their own sea, sea::set). ----
 
 // One step of a submission in one sea. Rust: gpu::layout::WaveStep.
@@ -173,27 +292,42 @@ struct WaveStep {
     stretching: u32,
     // The sea's first component in wave_comps (the seas' components are back to back).
     first: u32,
-    pad: u32,
-    // Interpolation weight of this step's time, (t - t0) / (t1 - t0) in [0, 1].
-    s: R,
-    // Refresh: t - t_ref (s) and the ramp factor at the step's time t (restart only).
+    // 1 when the refresh records each node's velocity for the next refresh's estimate
+    // of its acceleration (0 for an output-time evaluation).
+    track: u32,
+    // The Hermite weights of this step's time, [h00, Delta h10, h01, Delta h11]
+    // (wave_cache_hermite; four scalars, not a vec4, whose alignment would pad the row).
+    w0: R,
+    w1: R,
+    w2: R,
+    w3: R,
+    // Refresh: t - t_ref (s), the ramp factor and its rate (1/s) at the step's time t
+    // (restart only).
     tau0: R,
     ramp0: R,
-    // Refresh: t1 - t_ref (s) and the ramp factor at t1.
+    ramp_rate0: R,
+    // Refresh: t1 - t_ref (s), the ramp factor and its rate at t1.
     tau1: R,
     ramp1: R,
-    // Refresh: t1 - t, s (the t1 values are evaluated at x + v (t1 - t)).
+    ramp_rate1: R,
+    // Refresh: t1 - t, s (the t1 values are evaluated at x + v (t1 - t) + acc (t1 - t)^2 / 2
+    // with velocity v + acc (t1 - t)).
     ahead: R,
+    // Refresh: 1 / (t - the previous refresh's time), 1/s, 0 on a restart: the node's
+    // acceleration acc is estimated as (v - v at the previous refresh) times it.
+    acc_rate: R,
     // Water depth, m (sea::GPU_DEEP for deep water).
     depth: R,
 }
 
-// Seven scalars per node and slot: eta, u, a (m, m/s, m/s^2); three slots.
+// Fourteen scalars per node and slot: eta, u, a (m, m/s, m/s^2), then their rates
+// along the node's path (m/s, m/s^2, m/s^3); three slots; then three per node: the
+// node's velocity at the last refresh (m/s).
+const WAVE_CACHE_STRIDE: u32 = 14u;
 @group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
 @group(0) @binding(20) var<storage, read> wave_steps: array<WaveStep>;
 
-fn wave_cache_load(slot: u32, i: u32) -> WaveKin {
-    let o = (slot * params.n_nodes + i) * 7u;
+fn wave_cache_load7(o: u32) -> WaveKin {
     return WaveKin(
         wave_cache[o],
         vec3<R>(wave_cache[o + 1u], wave_cache[o + 2u], wave_cache[o + 3u]),
@@ -201,8 +335,7 @@ fn wave_cache_load(slot: u32, i: u32) -> WaveKin {
     );
 }
 
-fn wave_cache_store(slot: u32, i: u32, w: WaveKin) {
-    let o = (slot * params.n_nodes + i) * 7u;
+fn wave_cache_store7(o: u32, w: WaveKin) {
     wave_cache[o] = w.eta;
     wave_cache[o + 1u] = w.u.x;
     wave_cache[o + 2u] = w.u.y;
@@ -210,6 +343,12 @@ fn wave_cache_store(slot: u32, i: u32, w: WaveKin) {
     wave_cache[o + 4u] = w.a.x;
     wave_cache[o + 5u] = w.a.y;
     wave_cache[o + 6u] = w.a.z;
+}
+
+fn wave_cache_store(slot: u32, i: u32, w: WaveKinRates) {
+    let o = (slot * params.n_nodes + i) * WAVE_CACHE_STRIDE;
+    wave_cache_store7(o, w.val);
+    wave_cache_store7(o + 7u, w.rate);
 }
 
 // The row of step k of the submission for the sea of node i's block.
@@ -224,12 +363,22 @@ fn node_waves(i: u32, k: u32) -> WaveKin {
     if ws.n == 0u {
         return WaveKin(R(0.0), vec3<R>(R(0.0)), vec3<R>(R(0.0)));
     }
-    return wave_cache_lerp(wave_cache_load(ws.slot0, i), wave_cache_load(ws.slot1, i), ws.s);
+    let o0 = (ws.slot0 * params.n_nodes + i) * WAVE_CACHE_STRIDE;
+    let o1 = (ws.slot1 * params.n_nodes + i) * WAVE_CACHE_STRIDE;
+    return wave_cache_hermite(
+        wave_cache_load7(o0),
+        wave_cache_load7(o0 + 7u),
+        wave_cache_load7(o1),
+        wave_cache_load7(o1 + 7u),
+        vec4<R>(ws.w0, ws.w1, ws.w2, ws.w3),
+    );
 }
 
 // The refresh of node i at step k, at absolute position p (m) with velocity v (m/s):
-// on a restart the t0 values at p, then the t1 values at the predicted position
-// p + v (t1 - t); nothing when the node's sea does not refresh at this step. CPU twin:
+// on a restart the t0 values and rates at p along v, then the t1 values and rates at
+// the predicted position p + v h + acc h^2 / 2 along v + acc h (h = t1 - t, acc the
+// velocity change since the previous refresh over its time, 0 on a restart); nothing
+// when the node's sea does not refresh at this step. CPU twin:
 // sea::cache::WaveCache::refresh_if_due.
 fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
     let ws = node_wave_step(i, k);
@@ -237,7 +386,20 @@ fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
         return;
     }
     if ws.restart != 0u {
-        wave_cache_store(ws.slot0, i, wave_kinematics_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp0, p, ws.tau0));
+        wave_cache_store(ws.slot0, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp0, ws.ramp_rate0, p, v, ws.tau0));
     }
-    wave_cache_store(ws.slot1, i, wave_kinematics_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp1, p + v * ws.ahead, ws.tau1));
+    let ov = (3u * params.n_nodes * WAVE_CACHE_STRIDE) + 3u * i;
+    var acc = vec3<R>(R(0.0));
+    if ws.acc_rate != R(0.0) {
+        acc = (v - vec3<R>(wave_cache[ov], wave_cache[ov + 1u], wave_cache[ov + 2u])) * ws.acc_rate;
+    }
+    if ws.track != 0u {
+        wave_cache[ov] = v.x;
+        wave_cache[ov + 1u] = v.y;
+        wave_cache[ov + 2u] = v.z;
+    }
+    let h = ws.ahead;
+    let p1 = p + v * h + R(0.5) * acc * h * h;
+    let v1 = v + acc * h;
+    wave_cache_store(ws.slot1, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp1, ws.ramp_rate1, p1, v1, ws.tau1));
 }

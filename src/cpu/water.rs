@@ -8,12 +8,13 @@
 //!
 //! The chain kernel reads the cache as columns ([`BlockWaves::fill_chain`]): each
 //! node's elevation and each element's midpoint wave velocity and acceleration (the
-//! mean of its two nodes'), formed once per refresh at both cache times, so that a
-//! stage interpolates seven columns straight into the element loop's inputs instead
-//! of interpolating per node and then averaging. Interpolation is linear, so this is
-//! the same value up to round-off.
+//! mean of its two nodes'), values and rates formed once per refresh at both cache
+//! times, so that a stage interpolates seven columns (four multiply-adds a value, the
+//! cubic Hermite weights formed once per stage) straight into the element loop's
+//! inputs instead of interpolating per node and then averaging. Interpolation is
+//! linear in the cached values and rates, so this is the same value up to round-off.
 
-use crate::sea::cache::{evaluate_nodes, WaveCache, CACHE_STRIDE};
+use crate::sea::cache::{evaluate_nodes, wave_cache_hermite, WaveCache, CACHE_STRIDE};
 use crate::sea::SeaState;
 
 /// Per-node water values: `eta, u (3), a (3)` ([`CACHE_STRIDE`] per node), m, m/s,
@@ -33,16 +34,17 @@ pub(crate) struct BlockWaves {
     cols: ChainColumns,
 }
 
-/// A chain block's cache as columns at the cache's two times (index 0: `t0`, 1: `t1`).
+/// A chain block's cache as columns, in the order of [`wave_cache_hermite`]'s
+/// arguments: values at `t0`, rates at `t0`, values at `t1`, rates at `t1`.
 #[derive(Clone, Debug, Default)]
 struct ChainColumns {
     /// The cache times these columns were formed for.
     times: Option<(f64, f64)>,
-    /// Elevation over each node, m.
-    eta: [Vec<f64>; 2],
+    /// Elevation over each node, m (rates: m/s).
+    eta: [Vec<f64>; 4],
     /// Per element (between nodes `k` and `k + 1`): the mean of its nodes' wave
-    /// velocity `x, y, z` then wave acceleration `x, y, z`.
-    mid: [[Vec<f64>; 6]; 2],
+    /// velocity `x, y, z` then wave acceleration `x, y, z` (or of their rates).
+    mid: [[Vec<f64>; 6]; 4],
 }
 
 impl BlockWaves {
@@ -117,29 +119,30 @@ impl BlockWaves {
         }
         let c = &self.cache;
         if self.cols.times != Some((c.t0, c.t1)) {
-            self.cols.form(&c.v0, &c.v1, n);
+            self.cols.form([&c.v0, &c.d0, &c.v1, &c.d1], n);
             self.cols.times = Some((c.t0, c.t1));
         }
-        let s = c.weight(t);
+        let w = c.weights(t);
         let ne = n - 1;
         let cols = &self.cols;
-        lerp_into(&mut eta[..n], &cols.eta[0], &cols.eta[1], s);
+        let e = &cols.eta;
+        wave_cache_hermite_cols(&mut eta[..n], [&e[0], &e[1], &e[2], &e[3]], w, false);
+        let m = &cols.mid;
         for q in 0..3 {
-            lerp_add(&mut u[q][..ne], &cols.mid[0][q], &cols.mid[1][q], s);
-            lerp_into(
-                &mut aw[q][..ne],
-                &cols.mid[0][3 + q],
-                &cols.mid[1][3 + q],
-                s,
-            );
+            let (uq, aq) = (q, 3 + q);
+            let uc = [&m[0][uq][..], &m[1][uq], &m[2][uq], &m[3][uq]];
+            wave_cache_hermite_cols(&mut u[q][..ne], uc, w, true);
+            let ac = [&m[0][aq][..], &m[1][aq], &m[2][aq], &m[3][aq]];
+            wave_cache_hermite_cols(&mut aw[q][..ne], ac, w, false);
         }
     }
 }
 
 impl ChainColumns {
-    /// Forms the columns of `n` nodes from the cache's values at its two times.
-    fn form(&mut self, v0: &[f64], v1: &[f64], n: usize) {
-        for (side, v) in [v0, v1].into_iter().enumerate() {
+    /// Forms the columns of `n` nodes from the cache's four arrays (values and rates
+    /// at its two times).
+    fn form(&mut self, v: [&[f64]; 4], n: usize) {
+        for (side, v) in v.into_iter().enumerate() {
             let eta = &mut self.eta[side];
             eta.clear();
             eta.extend((0..n).map(|i| node_water(v, i).0));
@@ -154,22 +157,19 @@ impl ChainColumns {
     }
 }
 
-/// `out = (1 - s) a + s b`, elementwise (a loop that vectorises: `out`, `a` and `b`
-/// are distinct slices of one length).
+/// `out = w0 v0 + w1 d0 + w2 v1 + w3 d1` elementwise over the columns `c = [v0, d0,
+/// v1, d1]` ([`wave_cache_hermite`] into the kernel's inputs), or `out +=` that when
+/// `add` (a loop that vectorises: distinct slices of one length).
 #[inline(always)]
-fn lerp_into(out: &mut [f64], a: &[f64], b: &[f64], s: f64) {
-    let (a, b) = (&a[..out.len()], &b[..out.len()]);
-    for i in 0..out.len() {
-        out[i] = (1.0 - s) * a[i] + s * b[i];
-    }
-}
-
-/// `out += (1 - s) a + s b`, elementwise.
-#[inline(always)]
-fn lerp_add(out: &mut [f64], a: &[f64], b: &[f64], s: f64) {
-    let (a, b) = (&a[..out.len()], &b[..out.len()]);
-    for i in 0..out.len() {
-        out[i] += (1.0 - s) * a[i] + s * b[i];
+fn wave_cache_hermite_cols(out: &mut [f64], c: [&[f64]; 4], w: [f64; 4], add: bool) {
+    let n = out.len();
+    let (v0, d0, v1, d1) = (&c[0][..n], &c[1][..n], &c[2][..n], &c[3][..n]);
+    if add {
+        for i in 0..n {
+            out[i] += w[0] * v0[i] + w[1] * d0[i] + w[2] * v1[i] + w[3] * d1[i];
+        }
+    } else {
+        wave_cache_hermite(v0, d0, v1, d1, w, out);
     }
 }
 

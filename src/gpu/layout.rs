@@ -548,13 +548,19 @@ gpu_struct! {
         cos_b: R,
         /// `sin b`.
         sin_b: R,
+        /// The decay cut's bounds (`sea::cut::decay_cut_bounds`).
+        cut0: R,
+        /// The decay cut's factor of the node's speed, s/m.
+        cut1: R,
+        /// The decay cut's factor of the ramp's rate, s.
+        cut2: R,
     }
 }
 
 gpu_struct! {
     /// The waves at one step of a submission (WGSL `WaveStep` in
     /// `shaders/shared/waves.wgsl`): where the kinematics cache's two times are, the
-    /// interpolation weight, and what a refresh at this step evaluates. Times are
+    /// Hermite weights, and what a refresh at this step evaluates. Times are
     /// relative to the components' reference time `t_ref`, formed in f64 on the host.
     WaveStep {
         /// Cache slot of the values at `t0` (0 or 1; 2 for an output-time evaluation).
@@ -572,20 +578,36 @@ gpu_struct! {
         /// The sea's first component in the components buffer (the seas of a packed
         /// run are back to back, `sea::set`).
         first: u32,
-        /// Padding (zero).
-        pad: u32,
-        /// Interpolation weight `(t - t0) / (t1 - t0)` of the step's time.
-        s: R,
+        /// 1 when the refresh records each node's velocity for the next refresh's
+        /// acceleration estimate (0: an output-time evaluation).
+        track: u32,
+        /// Hermite weight `h00(s)` of the step's time, `s = (t - t0) / (t1 - t0)`
+        /// (`sea::cache::hermite_weights`): of the values at `t0`.
+        w0: R,
+        /// `(t1 - t0) h10(s)`: of the rates at `t0`.
+        w1: R,
+        /// `h01(s)`: of the values at `t1`.
+        w2: R,
+        /// `(t1 - t0) h11(s)`: of the rates at `t1`.
+        w3: R,
         /// `t - t_ref` of the step, s (refresh with restart).
         tau0: R,
         /// Start-up ramp factor at the step's time (refresh with restart).
         ramp0: R,
+        /// Its rate, 1/s (refresh with restart).
+        ramp_rate0: R,
         /// `t1 - t_ref`, s (refresh).
         tau1: R,
         /// Start-up ramp factor at `t1` (refresh).
         ramp1: R,
-        /// `t1 - t`, s: the `t1` values are evaluated at `x + v (t1 - t)` (refresh).
+        /// Its rate at `t1`, 1/s (refresh).
+        ramp_rate1: R,
+        /// `t1 - t`, s: the `t1` values are evaluated at `x + v h + acc h^2 / 2`
+        /// with velocity `v + acc h`, `h = t1 - t` (refresh).
         ahead: R,
+        /// `1 / (t - t_prev)`, 1/s, `t_prev` the previous refresh's time; 0 on a
+        /// restart: `acc = (v - v_prev) / (t - t_prev)` (refresh).
+        acc_rate: R,
         /// Water depth, m (`sea::GPU_DEEP` for deep water).
         depth: R,
     }
@@ -605,6 +627,9 @@ impl<R: GpuReal> WaveComp<R> {
             amp_a: R::c(c.amp_a),
             cos_b: R::c(c.cos_b),
             sin_b: R::c(c.sin_b),
+            cut0: R::c(c.cut0),
+            cut1: R::c(c.cut1),
+            cut2: R::c(c.cut2),
         }
     }
 }

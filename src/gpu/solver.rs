@@ -35,8 +35,8 @@ use crate::math::V3;
 use crate::model::{circle_basis, Layout, ModelDef, Route};
 use crate::options::Precision;
 use crate::options::{Formulation, Scheme, SolverOptions};
-use crate::sea::cache::{refresh_interval, CACHE_STRIDE};
-use crate::sea::kinematics::{wave_ramp, WaveField};
+use crate::sea::cache::{hermite_weights, refresh_interval};
+use crate::sea::kinematics::{wave_ramp, wave_ramp_rate, WaveField};
 use crate::sea::{SeaSet, SeaState, Stretching, GPU_DEEP};
 use crate::step::{diverged, Evaluation, StepFailure, WinchStatus};
 use bytemuck::Zeroable;
@@ -526,10 +526,15 @@ struct Buffers {
     staging: wgpu::Buffer,
 }
 
+/// Scalars per node and cache slot on the GPU: the values `eta, u, a` and their rates
+/// along the node's path (`WAVE_CACHE_STRIDE` in `shaders/shared/waves.wgsl`); after
+/// the three slots, three per node: its velocity at the last refresh.
+const WAVE_CACHE_STRIDE: usize = 14;
+
 /// The host's side of the waves' kinematics cache: the components (rebased at each
 /// submission) and when the cache's two times are, kept exactly as the CPU path's
 /// `sea::cache::WaveCache::refresh_if_due` keeps them, so that both refresh at the
-/// same steps and interpolate with the same weights.
+/// same steps and interpolate with the same Hermite weights.
 struct WaveSchedule {
     field: WaveField,
     /// Its first component in the components buffer.
@@ -542,6 +547,9 @@ struct WaveSchedule {
     t1: f64,
     /// Cache slot of the older values (0 or 1).
     slot0: u32,
+    /// Time of the last refresh, s (NaN before the first): the nodes' acceleration
+    /// for the path prediction is their velocity change since then over this span.
+    last_t: f64,
 }
 
 impl WaveSchedule {
@@ -554,6 +562,7 @@ impl WaveSchedule {
             t0: 0.0,
             t1: 0.0,
             slot0: 0,
+            last_t: f64::NAN,
         }
     }
 
@@ -583,12 +592,20 @@ impl WaveSchedule {
         let covered = self.t1 > self.t0 && t >= self.t0 && t <= self.t1;
         if !covered {
             row.refresh = 1;
-            if !self.started || t < self.t0 || t > self.t1 + self.interval {
+            row.track = 1;
+            let restart = !self.started || t < self.t0 || t > self.t1 + self.interval;
+            let span = t - self.last_t;
+            if !restart && span > 0.0 {
+                row.acc_rate = R::c(1.0 / span);
+            }
+            self.last_t = t;
+            if restart {
                 self.t0 = t;
                 self.started = true;
                 row.restart = 1;
                 row.tau0 = R::c(t - t_ref);
                 row.ramp0 = R::c(wave_ramp(t, ramp));
+                row.ramp_rate0 = R::c(wave_ramp_rate(t, ramp));
             } else {
                 self.slot0 = 1 - self.slot0;
                 self.t0 = self.t1;
@@ -597,26 +614,31 @@ impl WaveSchedule {
             row.ahead = R::c(self.t1 - t);
             row.tau1 = R::c(self.t1 - t_ref);
             row.ramp1 = R::c(wave_ramp(self.t1, ramp));
+            row.ramp_rate1 = R::c(wave_ramp_rate(self.t1, ramp));
         }
         row.slot0 = self.slot0;
         row.slot1 = 1 - self.slot0;
-        row.s = R::c(((t - self.t0) / (self.t1 - self.t0)).clamp(0.0, 1.0));
+        let delta = self.t1 - self.t0;
+        let s = ((t - self.t0) / delta).clamp(0.0, 1.0);
+        let w = hermite_weights(s, delta);
+        (row.w0, row.w1, row.w2, row.w3) = (R::c(w[0]), R::c(w[1]), R::c(w[2]), R::c(w[3]));
         row
     }
 
     /// The row of an output-time evaluation at `t`: exact values at the nodes, in
-    /// the evaluation's own slot 2 (the CPU path evaluates exactly there too).
+    /// the evaluation's own slot 2 (the CPU path evaluates exactly there too). One
+    /// evaluation (no restart: the "t1" values, at `t` itself, ahead 0) read back with
+    /// the weights `[1, 0, 0, 0]` of slot 2 as the "t0" values.
     fn exact<R: GpuReal>(&self, t: f64, t_ref: f64) -> WaveStep<R> {
-        let ramp = R::c(wave_ramp(t, self.field.ramp_duration));
+        let d = self.field.ramp_duration;
         WaveStep {
             slot0: 2,
             slot1: 2,
-            restart: 1,
             refresh: 1,
-            tau0: R::c(t - t_ref),
-            ramp0: ramp,
+            w0: R::c(1.0),
             tau1: R::c(t - t_ref),
-            ramp1: ramp,
+            ramp1: R::c(wave_ramp(t, d)),
+            ramp_rate1: R::c(wave_ramp_rate(t, d)),
             ..self.base::<R>()
         }
     }
@@ -1044,12 +1066,12 @@ impl<R: GpuReal> GpuEngine<R> {
             .flat_map(|(c, r)| route_samples::<R>(r, host.route_origin(lay, c)))
             .collect();
         let samples_b = init("route_samples", &bytes_or_one(&samples), ro);
-        // Three slots (t0, t1, output-time evaluation) of CACHE_STRIDE values per node;
-        // one value in still water.
+        // Three slots (t0, t1, output-time evaluation) of WAVE_CACHE_STRIDE values per
+        // node, then each node's velocity at the last refresh; one value in still water.
         let cache_len = if n_comps == 0 {
             1
         } else {
-            3 * n_nodes * CACHE_STRIDE
+            n_nodes * (3 * WAVE_CACHE_STRIDE + 3)
         };
         let cache_b = init(
             "wave_cache",

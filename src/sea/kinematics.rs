@@ -3,6 +3,10 @@
 //! and the start-up ramp. Each function here has a WGSL twin of the same name in
 //! `shaders/shared/waves.wgsl`.
 
+pub use super::columns::{
+    wave_kinematics_columns, wave_kinematics_rates_columns, ComponentColumns, KinematicsScratch,
+};
+use super::cut::{decay_cut_bounds, wave_decay_prefix};
 use super::{poly, SeaState, Stretching, WaveComponent};
 use std::f64::consts::{PI, TAU};
 
@@ -26,7 +30,7 @@ pub struct Kinematics {
 /// form overflows once `k h > 710`), and infinite depth is the limit
 /// `e^{-k (z + 2 h)} = 0`. The constant `1 / (1 - e^{-2 k h})` is folded into
 /// `amp_u` and `amp_a` here, on the host, with `expm1` (exact in shallow water too).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PackedComponent {
     /// `k cos b`, rad/m.
     pub kx: f64,
@@ -48,6 +52,36 @@ pub struct PackedComponent {
     pub cos_b: f64,
     /// `sin b`.
     pub sin_b: f64,
+    /// The decay cut's bounds on this component and all after it (sorted by `k`),
+    /// over their limits ([`super::cut::decay_cut_bounds`]): the part independent of
+    /// the node's speed.
+    pub cut0: f64,
+    /// The decay cut's factor of the node's speed, s/m.
+    pub cut1: f64,
+    /// The decay cut's factor of the ramp's rate, s.
+    pub cut2: f64,
+}
+
+impl Default for PackedComponent {
+    /// All zero but the cut's bounds, which are infinite (nothing is cut until
+    /// [`super::cut::decay_cut_bounds`] sets them).
+    fn default() -> Self {
+        Self {
+            kx: 0.0,
+            ky: 0.0,
+            k: 0.0,
+            omega: 0.0,
+            phase_ref: 0.0,
+            amp: 0.0,
+            amp_u: 0.0,
+            amp_a: 0.0,
+            cos_b: 0.0,
+            sin_b: 0.0,
+            cut0: f64::INFINITY,
+            cut1: f64::INFINITY,
+            cut2: f64::INFINITY,
+        }
+    }
 }
 
 /// A sea state ready for evaluation: components packed, phases referred to `t_ref`.
@@ -69,6 +103,8 @@ pub struct WaveField {
     pub t_ref: f64,
     /// The components as given (for rebasing).
     source: Vec<WaveComponent>,
+    /// The cache tolerance the decay cut's bounds are for.
+    tolerance: f64,
     /// `comps` as columns, what the CPU's sum reads.
     cols: ComponentColumns,
 }
@@ -84,13 +120,16 @@ impl WaveField {
             ramp_duration: sea.ramp_duration,
             t_ref: 0.0,
             source: sea.components.clone(),
+            tolerance: sea.cache_tolerance,
         };
         f.rebase(0.0);
         f
     }
 
     /// Refers the packed phases to `t_ref` (does not change any result beyond
-    /// round-off).
+    /// round-off). The packed components are sorted by wave number, ascending (the
+    /// order both the CPU and the GPU sum in: the decay cut of [`super::cut`] drops a
+    /// suffix of the shortest waves).
     pub fn rebase(&mut self, t_ref: f64) {
         self.t_ref = t_ref;
         let h = self.depth;
@@ -112,9 +151,13 @@ impl WaveField {
                     amp_a: c.amplitude * c.omega * c.omega / den,
                     cos_b,
                     sin_b,
+                    ..Default::default()
                 }
             })
             .collect();
+        // Stable: equal wave numbers keep the sea's order.
+        self.comps.sort_by(|a, b| a.k.total_cmp(&b.k));
+        decay_cut_bounds(&mut self.comps, self.tolerance);
         self.cols = ComponentColumns::new(&self.comps);
     }
 
@@ -146,6 +189,28 @@ impl WaveField {
             scratch,
         )
     }
+
+    /// The values of [`Self::kinematics_with`] and their rates along a path through `p`
+    /// with velocity `v`, m/s (see [`wave_kinematics_rates_tau`]): `(values, rates)`.
+    pub fn kinematics_rates_with(
+        &self,
+        p: [f64; 3],
+        v: [f64; 3],
+        t: f64,
+        scratch: &mut KinematicsScratch,
+    ) -> (Kinematics, Kinematics) {
+        wave_kinematics_rates_columns(
+            &self.cols,
+            self.depth,
+            self.stretching,
+            wave_ramp(t, self.ramp_duration),
+            wave_ramp_rate(t, self.ramp_duration),
+            p,
+            v,
+            t - self.t_ref,
+            scratch,
+        )
+    }
 }
 
 /// The start-up ramp `0.5 (1 - cos(pi t / T_r))` for `0 <= t < T_r`, 0 before, 1
@@ -158,6 +223,16 @@ pub fn wave_ramp(t: f64, ramp_duration: f64) -> f64 {
     } else {
         // 0.5 (1 - cos x) = sin^2(x / 2), without the cancellation near t = 0.
         (0.5 * PI * t / ramp_duration).sin().powi(2)
+    }
+}
+
+/// The time derivative of [`wave_ramp`]: `(pi / (2 T_r)) sin(pi t / T_r)` on
+/// `0 < t < T_r`, 0 elsewhere (and 0 when `T_r <= 0`).
+pub fn wave_ramp_rate(t: f64, ramp_duration: f64) -> f64 {
+    if ramp_duration <= 0.0 || t <= 0.0 || t >= ramp_duration {
+        0.0
+    } else {
+        0.5 * PI / ramp_duration * (PI * t / ramp_duration).sin()
     }
 }
 
@@ -243,236 +318,115 @@ pub fn wave_kinematics_tau(
     wave_kinematics_columns(&cols, depth, stretching, r, p, tau, &mut scratch)
 }
 
-/// The packed components as columns, one array per field (the fields of
-/// [`PackedComponent`] that the sum reads), so that the CPU's loops over components
-/// read consecutive memory and vectorise.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ComponentColumns {
-    kx: Vec<f64>,
-    ky: Vec<f64>,
-    k: Vec<f64>,
-    omega: Vec<f64>,
-    phase_ref: Vec<f64>,
-    amp: Vec<f64>,
-    amp_u: Vec<f64>,
-    amp_a: Vec<f64>,
-    cos_b: Vec<f64>,
-    sin_b: Vec<f64>,
-}
-
-impl ComponentColumns {
-    /// The columns of `comps`.
-    pub fn new(comps: &[PackedComponent]) -> Self {
-        let col = |f: fn(&PackedComponent) -> f64| comps.iter().map(f).collect::<Vec<_>>();
-        Self {
-            kx: col(|c| c.kx),
-            ky: col(|c| c.ky),
-            k: col(|c| c.k),
-            omega: col(|c| c.omega),
-            phase_ref: col(|c| c.phase_ref),
-            amp: col(|c| c.amp),
-            amp_u: col(|c| c.amp_u),
-            amp_a: col(|c| c.amp_a),
-            cos_b: col(|c| c.cos_b),
-            sin_b: col(|c| c.sin_b),
-        }
-    }
-
-    /// The number of components.
-    pub fn len(&self) -> usize {
-        self.k.len()
-    }
-
-    /// True when there are no components.
-    pub fn is_empty(&self) -> bool {
-        self.k.is_empty()
-    }
-}
-
-/// Per-component working columns of [`wave_kinematics_columns`] (sines, cosines and
-/// the terms of the sums), kept between calls so that a loop over nodes allocates
-/// them once.
-#[derive(Clone, Debug, Default)]
-pub struct KinematicsScratch {
-    sin: Vec<f64>,
-    cos: Vec<f64>,
-    terms: [Vec<f64>; 6],
-}
-
-impl KinematicsScratch {
-    /// Columns of length `n` (their contents are overwritten before being read).
-    fn fit(&mut self, n: usize) {
-        for v in [&mut self.sin, &mut self.cos]
-            .into_iter()
-            .chain(self.terms.iter_mut())
-        {
-            v.resize(n, 0.0);
-        }
-    }
-}
-
-/// [`wave_kinematics_tau`] over components in columns, with working columns
-/// `scratch`; on x86-64 with AVX2 the component loops run four components at a time.
-///
-/// The terms are those of the one-at-a-time formulas (the WGSL twin's), with the loops
-/// split so that each vectorises: two passes, every phase's sine and cosine and the
-/// elevation (which sets the Wheeler depth), then the depth decay and the velocity
-/// and acceleration terms. With AVX2 and FMA the polynomials use fused multiply-adds,
-/// and every sum is four interleaved partial sums ([`sum_lanes`]): the result agrees
-/// with the sequential loop to round-off, not bit for bit.
-/// Exponentials whose terms are below round-off contribute exactly 0:
-/// `e^{-k (zs + 2 h)}` when it is under `1e-17` of `e^{k zs}` (deep water:
-/// `2 k (zs + h) > 39`), and a whole component whose decay `e^{k zs}` is under `1e-30`
-/// (then so is the other term: short waves deep down). Sines, cosines and exponentials
-/// are the inlined, branch-free polynomials of [`poly`] (the WGSL's own).
-pub fn wave_kinematics_columns(
-    cols: &ComponentColumns,
+/// The time derivative of the evaluation depth [`wave_eval_depth`] along a path with
+/// vertical velocity `vz` under an elevation changing at `eta_rate` (both along the
+/// path): Wheeler `(vz - eta_rate (1 + zs / h)) / (1 + eta / h)`, constant `vz`, and 0
+/// where the clamp to `[-h, 0]` holds the depth (a point in air or under the seabed).
+pub fn wave_eval_depth_rate(
+    z: f64,
+    eta: f64,
     depth: f64,
     stretching: Stretching,
-    r: f64,
-    p: [f64; 3],
-    tau: f64,
-    scratch: &mut KinematicsScratch,
-) -> Kinematics {
-    scratch.fit(cols.len());
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-        {
-            // SAFETY: the CPU has AVX2 and FMA, checked just above.
-            return unsafe { kinematics_columns_avx2(cols, depth, stretching, r, p, tau, scratch) };
+    vz: f64,
+    eta_rate: f64,
+) -> f64 {
+    let (zs, rate) = match stretching {
+        Stretching::Wheeler => {
+            let d = 1.0 + eta / depth;
+            let zs = (z - eta) / d;
+            (zs, (vz - eta_rate * (1.0 + zs / depth)) / d)
         }
-    }
-    kinematics_columns_body::<false>(cols, depth, stretching, r, p, tau, scratch)
-}
-
-/// `sum v` as four interleaved partial sums (lanes `j mod 4`), then the lanes and the
-/// remainder: a reduction that vectorises.
-#[inline(always)]
-fn sum_lanes(v: &[f64]) -> f64 {
-    let mut acc = [0.0f64; 4];
-    let chunks = v.chunks_exact(4);
-    let rest = chunks.remainder();
-    for c in chunks {
-        for l in 0..4 {
-            acc[l] += c[l];
-        }
-    }
-    let mut s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
-    for x in rest {
-        s += x;
-    }
-    s
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn kinematics_columns_avx2(
-    cols: &ComponentColumns,
-    depth: f64,
-    stretching: Stretching,
-    r: f64,
-    p: [f64; 3],
-    tau: f64,
-    scratch: &mut KinematicsScratch,
-) -> Kinematics {
-    kinematics_columns_body::<true>(cols, depth, stretching, r, p, tau, scratch)
-}
-
-/// The body; `FMA`: fused polynomials and lane sums (only where the target has FMA).
-#[inline(always)]
-fn kinematics_columns_body<const FMA: bool>(
-    cols: &ComponentColumns,
-    depth: f64,
-    stretching: Stretching,
-    r: f64,
-    p: [f64; 3],
-    tau: f64,
-    scratch: &mut KinematicsScratch,
-) -> Kinematics {
-    let n = cols.len();
-    let (kx, ky, ph, om, amp) = (
-        &cols.kx[..n],
-        &cols.ky[..n],
-        &cols.phase_ref[..n],
-        &cols.omega[..n],
-        &cols.amp[..n],
-    );
-    let (k, amp_u, amp_a, cos_b, sin_b) = (
-        &cols.k[..n],
-        &cols.amp_u[..n],
-        &cols.amp_a[..n],
-        &cols.cos_b[..n],
-        &cols.sin_b[..n],
-    );
-    let KinematicsScratch { sin, cos, terms } = scratch;
-    let (sin, cos) = (&mut sin[..n], &mut cos[..n]);
-    let [t0, t1, t2, t3, t4, t5] = terms;
-    let (t0, t1, t2, t3, t4, t5) = (
-        &mut t0[..n],
-        &mut t1[..n],
-        &mut t2[..n],
-        &mut t3[..n],
-        &mut t4[..n],
-        &mut t5[..n],
-    );
-    for j in 0..n {
-        // The phase of `wave_theta`, same order of operations.
-        let theta = kx[j] * p[0] + ky[j] * p[1] + ph[j] - om[j] * tau;
-        let (s, c) = poly::sin_cos_with::<FMA>(theta);
-        sin[j] = s;
-        cos[j] = c;
-        t0[j] = amp[j] * c;
-    }
-    let eta = r * if FMA { sum_lanes(t0) } else { t0.iter().sum() };
-    let zs = wave_eval_depth(p[2], eta, depth, stretching);
-    // Height above the seabed of the evaluation point (infinite in deep water).
-    let above_bed = zs + depth;
-    for j in 0..n {
-        let (s, co) = (sin[j], cos[j]);
-        let e1 = poly::exp_neg_with::<FMA>(k[j] * zs);
-        let e2 = if 2.0 * k[j] * above_bed > 39.0 {
-            0.0
-        } else {
-            poly::exp_neg_with::<FMA>(-k[j] * (zs + 2.0 * depth))
-        };
-        // Not `e1 < 1e-30`: a NaN depth must come out NaN, as in the plain loop
-        // (which skips only on a true comparison).
-        let live = !(e1 < 1e-30);
-        let (ch, sh) = (e1 + e2, e1 - e2);
-        let uh = amp_u[j] * ch * co;
-        let ah = amp_a[j] * ch * s;
-        let w = |v: f64| if live { v } else { 0.0 };
-        t0[j] = w(uh * cos_b[j]);
-        t1[j] = w(uh * sin_b[j]);
-        t2[j] = w(amp_u[j] * sh * s);
-        t3[j] = w(ah * cos_b[j]);
-        t4[j] = w(ah * sin_b[j]);
-        t5[j] = w(amp_a[j] * sh * co);
-    }
-    let (u, a) = if FMA {
-        (
-            [sum_lanes(t0), sum_lanes(t1), sum_lanes(t2)],
-            [sum_lanes(t3), sum_lanes(t4), -sum_lanes(t5)],
-        )
-    } else {
-        let mut u = [0.0; 3];
-        let mut a = [0.0; 3];
-        for j in 0..n {
-            u[0] += t0[j];
-            u[1] += t1[j];
-            u[2] += t2[j];
-            a[0] += t3[j];
-            a[1] += t4[j];
-            a[2] -= t5[j];
-        }
-        (u, a)
+        Stretching::Constant => (z, vz),
     };
-    Kinematics {
-        eta,
-        u: u.map(|v| r * v),
-        a: a.map(|v| r * v),
+    if zs > 0.0 || zs < -depth {
+        0.0
+    } else {
+        rate
     }
+}
+
+/// [`wave_kinematics_tau`] and the rates of the same values along a path through `p`
+/// with velocity `v` (m/s): `d/dt` of `eta`, `u` and `a` seen by a point moving at `v`,
+/// with the ramp factor `r` and its rate `r_rate` ([`wave_ramp_rate`]) given. Returns
+/// `(values, rates)`; the rates as a [`Kinematics`] (`eta` rate, m/s; `u` rate, m/s^2;
+/// `a` rate, m/s^3).
+///
+/// One component at a time, the reference (and the WGSL twin's arrangement): with
+/// `theta' = kx vx + ky vy - w` (the Doppler-shifted frequency) and `zs'` from
+/// [`wave_eval_depth_rate`], `d/dt [ch cos] = k sh zs' cos - ch sin theta'` and the like
+/// (`d ch / dzs = k sh`, `d sh / dzs = k ch`). Each rate sum is times `r`, plus `r_rate`
+/// times the unramped value sum. A component whose decay `e^{k zs}` is under `1e-30`
+/// contributes 0 to the velocity and acceleration and their rates, as in
+/// [`wave_kinematics_columns`]. The decay pass sums only the prefix of `comps` that
+/// [`wave_decay_prefix`] keeps (the decay cut of [`super::cut`]: `comps` sorted by
+/// `k`, with their cut bounds set; with the default infinite bounds nothing is cut),
+/// so the values' `u` and `a` are those of [`wave_kinematics_tau`] within the cut's
+/// bound.
+#[allow(clippy::too_many_arguments)]
+pub fn wave_kinematics_rates_tau(
+    comps: &[PackedComponent],
+    depth: f64,
+    stretching: Stretching,
+    r: f64,
+    r_rate: f64,
+    p: [f64; 3],
+    v: [f64; 3],
+    tau: f64,
+) -> (Kinematics, Kinematics) {
+    let (mut se, mut se_rate) = (0.0, 0.0);
+    for c in comps {
+        let (s, co) = poly::sin_cos(wave_theta(c, p[0], p[1], tau));
+        let theta_rate = c.kx * v[0] + c.ky * v[1] - c.omega;
+        se += c.amp * co;
+        se_rate -= c.amp * s * theta_rate;
+    }
+    let eta = r * se;
+    let eta_rate = r * se_rate + r_rate * se;
+    let zs = wave_eval_depth(p[2], eta, depth, stretching);
+    let zs_rate = wave_eval_depth_rate(p[2], eta, depth, stretching, v[2], eta_rate);
+    // The decay cut: the components the node needs (sorted by k, a prefix).
+    let speed = v[0].hypot(v[1]) + zs_rate.abs();
+    let m = wave_decay_prefix(comps, zs, speed, r_rate);
+    // Unramped sums: u, a (a_z without its sign) and their rates.
+    let (mut u, mut a, mut du, mut da) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
+    for c in &comps[..m] {
+        let (ch, sh) = wave_depth_decay(c.k, zs, depth);
+        if poly::exp_neg(c.k * zs) < 1e-30 {
+            continue;
+        }
+        let (s, co) = poly::sin_cos(wave_theta(c, p[0], p[1], tau));
+        let theta_rate = c.kx * v[0] + c.ky * v[1] - c.omega;
+        let kz = c.k * zs_rate;
+        let (cc, ss, cs, sc) = (ch * co, sh * s, ch * s, sh * co);
+        let (uh, uh_rate) = (c.amp_u * cc, c.amp_u * (kz * sc - cs * theta_rate));
+        let (ah, ah_rate) = (c.amp_a * cs, c.amp_a * (kz * ss + cc * theta_rate));
+        u[0] += uh * c.cos_b;
+        u[1] += uh * c.sin_b;
+        u[2] += c.amp_u * ss;
+        a[0] += ah * c.cos_b;
+        a[1] += ah * c.sin_b;
+        a[2] += c.amp_a * sc;
+        du[0] += uh_rate * c.cos_b;
+        du[1] += uh_rate * c.sin_b;
+        du[2] += c.amp_u * (kz * cs + sc * theta_rate);
+        da[0] += ah_rate * c.cos_b;
+        da[1] += ah_rate * c.sin_b;
+        da[2] += c.amp_a * (kz * cc - ss * theta_rate);
+    }
+    a[2] = -a[2];
+    da[2] = -da[2];
+    let values = Kinematics {
+        eta,
+        u: u.map(|x| r * x),
+        a: a.map(|x| r * x),
+    };
+    let rate = |x: [f64; 3], dx: [f64; 3]| [0, 1, 2].map(|d| r * dx[d] + r_rate * x[d]);
+    let rates = Kinematics {
+        eta: eta_rate,
+        u: rate(u, du),
+        a: rate(a, da),
+    };
+    (values, rates)
 }
 
 #[cfg(test)]
@@ -670,5 +624,102 @@ mod tests {
         let (a, b) = (f0.kinematics(p, 10_003.0), f1.kinematics(p, 10_003.0));
         assert!((a.eta - b.eta).abs() < 1e-10);
         assert!((a.u[0] - b.u[0]).abs() < 1e-10);
+    }
+
+    /// The rates of [`wave_kinematics_rates_tau`] against a central finite difference of
+    /// the values along a moving path `p(t) = p0 + v t`: Wheeler and constant
+    /// stretching, finite and infinite depth, deep down, just under the surface and in
+    /// air, at full height and inside the ramp; and its values are those of
+    /// [`wave_kinematics_tau`].
+    #[test]
+    fn rates_match_a_finite_difference_along_the_path() {
+        let cases: [(f64, Stretching, f64); 4] = [
+            (30.0, Stretching::Wheeler, 0.0),
+            (30.0, Stretching::Constant, 0.0),
+            (f64::INFINITY, Stretching::Wheeler, 0.0),
+            (30.0, Stretching::Wheeler, 20.0),
+        ];
+        let v = [1.3, -0.7, 0.9];
+        for (h, stretching, ramp) in cases {
+            let hd = if h.is_finite() { h } else { 200.0 };
+            let comps = vec![
+                comp(1.2, 9.0, hd, 0.3, 0.1),
+                comp(0.6, 5.0, hd, -0.8, 2.0),
+                comp(0.25, 3.0, hd, 1.9, 4.0),
+            ];
+            let mut sea = sea(comps, h, stretching);
+            sea.ramp_duration = ramp;
+            let f = WaveField::new(&sea);
+            let t = if ramp > 0.0 { 5.3 } else { 12.7 };
+            let eta0 = f.elevation(4.0, -2.0, t);
+            // Deep down, 2 m under the surface, and 3 m in air.
+            for z in [-22.0, eta0 - 2.0, eta0 + 3.0] {
+                let p0 = [4.0 - v[0] * t, -2.0 - v[1] * t, z - v[2] * t];
+                let at = |t: f64| {
+                    let p = [0, 1, 2].map(|d| p0[d] + v[d] * t);
+                    (p, wave_ramp(t, ramp))
+                };
+                let (p, r) = at(t);
+                let (val, rate) = wave_kinematics_rates_tau(
+                    &f.comps,
+                    h,
+                    stretching,
+                    r,
+                    wave_ramp_rate(t, ramp),
+                    p,
+                    v,
+                    t,
+                );
+                let plain = wave_kinematics_tau(&f.comps, h, stretching, r, p, t);
+                assert!((val.eta - plain.eta).abs() < 1e-13);
+                for d in 0..3 {
+                    assert!((val.u[d] - plain.u[d]).abs() < 1e-13);
+                    assert!((val.a[d] - plain.a[d]).abs() < 1e-13);
+                }
+                let dt = 1e-4;
+                let ((pp, rp), (pm, rm)) = (at(t + dt), at(t - dt));
+                let kp = wave_kinematics_tau(&f.comps, h, stretching, rp, pp, t + dt);
+                let km = wave_kinematics_tau(&f.comps, h, stretching, rm, pm, t - dt);
+                let fd = |a: f64, b: f64| (a - b) / (2.0 * dt);
+                let norm = |x: [f64; 3]| (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+                let what = format!("h {h}, {stretching:?}, ramp {ramp}, z {z:.2}");
+                let e = fd(kp.eta, km.eta);
+                assert!(
+                    (e - rate.eta).abs() <= 1e-7 * rate.eta.abs().max(0.1),
+                    "eta rate {} against {e}: {what}",
+                    rate.eta
+                );
+                let (su, sa) = (norm(rate.u), norm(rate.a));
+                assert!(su > 1e-3 && sa > 1e-3, "{what}: rates too small to test");
+                for d in 0..3 {
+                    let (eu, ea) = (fd(kp.u[d], km.u[d]), fd(kp.a[d], km.a[d]));
+                    assert!(
+                        (eu - rate.u[d]).abs() <= 1e-7 * su,
+                        "u[{d}] rate {} against {eu}: {what}",
+                        rate.u[d]
+                    );
+                    assert!(
+                        (ea - rate.a[d]).abs() <= 1e-7 * sa,
+                        "a[{d}] rate {} against {ea}: {what}",
+                        rate.a[d]
+                    );
+                }
+            }
+        }
+    }
+
+    /// The ramp's rate is the derivative of the ramp (central difference), 0 outside
+    /// the ramp and without one.
+    #[test]
+    fn ramp_rate_is_the_ramps_derivative() {
+        let tr = 20.0;
+        for &t in &[0.5, 5.0, 10.0, 17.3, 19.9] {
+            let h = 1e-5;
+            let fd = (wave_ramp(t + h, tr) - wave_ramp(t - h, tr)) / (2.0 * h);
+            assert!((wave_ramp_rate(t, tr) - fd).abs() < 1e-9, "t = {t}");
+        }
+        assert_eq!(wave_ramp_rate(-1.0, tr), 0.0);
+        assert_eq!(wave_ramp_rate(25.0, tr), 0.0);
+        assert_eq!(wave_ramp_rate(3.0, 0.0), 0.0);
     }
 }

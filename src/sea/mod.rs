@@ -31,13 +31,18 @@
 //! `kinematics::WaveField::new(&sea).kinematics(p, t)`.
 //!
 //! On the GPU the twins are in `shaders/shared/waves.wgsl`: the struct `WaveComp` is
-//! [`kinematics::PackedComponent`] (ten scalars, `WaveField::comps`, phases referred
+//! [`kinematics::PackedComponent`] (thirteen scalars, `WaveField::comps`, sorted by `k`
+//! for the decay cut of [`cut`], phases referred
 //! to `WaveField::t_ref`: rebase on the host and pass `t - t_ref`), the per-node
-//! evaluation is `wave_kinematics_at`, the interpolation `wave_cache_lerp`; see the
+//! evaluation is `wave_kinematics_at`, the interpolation `wave_cache_lerp` (the CPU's
+//! cache interpolates with `wave_cache_hermite`, values and rates; the GPU's Hermite
+//! twin is to follow); see the
 //! shader file's header for the buffers. Infinite depth goes to the GPU as
 //! [`GPU_DEEP`] m.
 
 pub mod cache;
+pub mod columns;
+pub mod cut;
 pub mod dispersion;
 pub mod irregular;
 pub mod kinematics;

@@ -13,10 +13,12 @@ use crate::functions::{run_kernels, to_r, Worst};
 use cablesim::gpu::layout::{GpuReal, WaveComp};
 use cablesim::gpu::{GpuContext, Precision};
 use cablesim::math::V3;
-use cablesim::sea::cache::wave_cache_lerp;
+use cablesim::sea::cache::{hermite_weights, wave_cache_hermite};
+use cablesim::sea::cut::wave_decay_prefix;
 use cablesim::sea::irregular::{discretise, Discretisation};
 use cablesim::sea::kinematics::{
-    wave_depth_decay, wave_eval_depth, wave_kinematics_at, wave_ramp, PackedComponent, WaveField,
+    wave_depth_decay, wave_eval_depth, wave_eval_depth_rate, wave_kinematics_at,
+    wave_kinematics_rates_tau, wave_ramp, wave_ramp_rate, PackedComponent, WaveField,
 };
 use cablesim::sea::spectrum::Spectrum;
 use cablesim::sea::{SeaState, Stretching, WaveComponent, GPU_DEEP};
@@ -47,6 +49,15 @@ fn t_ramp(@builtin(global_invocation_id) gid: vec3<u32>) {
 }
 
 @compute @workgroup_size(64)
+fn t_ramp_rate(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 2u {
+        return;
+    }
+    tout[i] = wave_ramp_rate(tin[2u * i], tin[2u * i + 1u]);
+}
+
+@compute @workgroup_size(64)
 fn t_decay(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
     if i >= arrayLength(&tin) / 3u {
@@ -65,6 +76,17 @@ fn t_eval_depth(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let b = 4u * i;
     tout[i] = wave_eval_depth(tin[b], tin[b + 1u], tin[b + 2u], u32(tin[b + 3u]));
+}
+
+// tin: z, eta, depth, stretching, vz, eta_rate per case.
+@compute @workgroup_size(64)
+fn t_eval_depth_rate(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 6u {
+        return;
+    }
+    let b = 6u * i;
+    tout[i] = wave_eval_depth_rate(tin[b], tin[b + 1u], tin[b + 2u], u32(tin[b + 3u]), tin[b + 4u], tin[b + 5u]);
 }
 
 fn kin_out(o: u32, k: WaveKin) {
@@ -95,14 +117,42 @@ fn t_kin(@builtin(global_invocation_id) gid: vec3<u32>) {
     kin_out(7u * i, k);
 }
 
+// tin: n, depth, stretching, then x, y, z, vx, vy, vz, tau, r, r_rate per point;
+// tout: the values, then the rates (14 per point).
 @compute @workgroup_size(64)
-fn t_lerp(@builtin(global_invocation_id) gid: vec3<u32>) {
+fn t_kin_rates(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
-    if i >= arrayLength(&tin) / 15u {
+    if i >= (arrayLength(&tin) - 3u) / 9u {
         return;
     }
-    let b = 15u * i;
-    kin_out(7u * i, wave_cache_lerp(kin_in(b), kin_in(b + 7u), tin[b + 14u]));
+    let b = 3u + 9u * i;
+    let k = wave_kinematics_rates_tau(0u, u32(tin[0]), tin[1], u32(tin[2]), tin[b + 7u], tin[b + 8u],
+        vec3<R>(tin[b], tin[b + 1u], tin[b + 2u]), vec3<R>(tin[b + 3u], tin[b + 4u], tin[b + 5u]), tin[b + 6u]);
+    kin_out(14u * i, k.val);
+    kin_out(14u * i + 7u, k.rate);
+}
+
+// tin: n, then zs, s, r_rate per case; tout: the prefix length.
+@compute @workgroup_size(64)
+fn t_prefix(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= (arrayLength(&tin) - 1u) / 3u {
+        return;
+    }
+    let b = 1u + 3u * i;
+    tout[i] = R(wave_decay_prefix(0u, u32(tin[0]), tin[b], tin[b + 1u], tin[b + 2u]));
+}
+
+// tin: v0, d0, v1, d1 (7 each), then the four weights, per case.
+@compute @workgroup_size(64)
+fn t_hermite(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 32u {
+        return;
+    }
+    let b = 32u * i;
+    let w = vec4<R>(tin[b + 28u], tin[b + 29u], tin[b + 30u], tin[b + 31u]);
+    kin_out(7u * i, wave_cache_hermite(kin_in(b), kin_in(b + 7u), kin_in(b + 14u), kin_in(b + 21u), w));
 }
 "#;
 
@@ -163,6 +213,29 @@ fn check_ramp<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) 
     w.report(p);
 }
 
+fn check_ramp_rate<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1000;
+    let mut x = Vec::new();
+    for i in 0..n {
+        x.push(rng.gen_range(-5.0..30.0));
+        x.push([0.0, 20.0, 7.3][i % 3]);
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_ramp_rate", &[], &xr, n, n);
+    let mut w = Worst::new::<R>("wave_ramp_rate");
+    for i in 0..n {
+        let (t, tr) = (x[2 * i], x[2 * i + 1]);
+        // The rate's size pi / (2 T_r), times the rounding of its phase pi t / T_r.
+        let scale = if tr > 0.0 {
+            PI / (2.0 * tr) * (1.0 + PI * t.abs() / tr)
+        } else {
+            1.0
+        };
+        w.check("ramp rate", i, out[i].f64(), wave_ramp_rate(t, tr), scale);
+    }
+    w.report(p);
+}
+
 fn check_decay<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
     let n = 1500;
     let mut x = Vec::new();
@@ -212,6 +285,41 @@ fn check_eval_depth<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha
     w.report(p);
 }
 
+fn check_eval_depth_rate<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1000;
+    let mut x = Vec::new();
+    for i in 0..n {
+        let h = [6.0, 80.0, GPU_DEEP][i % 3];
+        x.push(rng.gen_range(-h.min(300.0)..5.0));
+        x.push(rng.gen_range(-3.0..3.0));
+        x.push(h);
+        x.push((i / 3 % 2) as f64);
+        x.push(rng.gen_range(-4.0..4.0));
+        x.push(rng.gen_range(-6.0..6.0));
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_eval_depth_rate", &[], &xr, n, n);
+    let mut w = Worst::new::<R>("wave_eval_depth_rate");
+    let mut clamped = 0;
+    for i in 0..n {
+        let b = &x[6 * i..6 * i + 6];
+        let (z, eta, h, vz, er) = (b[0], b[1], b[2], b[4], b[5]);
+        let s = [Stretching::Wheeler, Stretching::Constant][b[3] as usize];
+        let rust = wave_eval_depth_rate(z, eta, h, s, vz, er);
+        clamped += usize::from(rust == 0.0);
+        let d = 1.0 + eta / h;
+        let zs = (z.abs() + eta.abs()) / d;
+        let scale = (vz.abs() + er.abs() * (1.0 + zs / h)) / d * (1.0 + eta.abs() / h / d);
+        w.check("zs rate", i, out[i].f64(), rust, scale);
+    }
+    // Both sides of the clamp are exercised.
+    assert!(
+        clamped > n / 20 && clamped < n / 2,
+        "{clamped} clamped of {n}"
+    );
+    w.report(p);
+}
+
 /// Components at precision `R` (as bytes for binding 17) and back as f64.
 fn gpu_comps<R: GpuReal>(field: &WaveField) -> (Vec<u8>, Vec<PackedComponent>) {
     let comps: Vec<WaveComp<R>> = field.comps.iter().map(WaveComp::from_packed).collect();
@@ -228,6 +336,9 @@ fn gpu_comps<R: GpuReal>(field: &WaveField) -> (Vec<u8>, Vec<PackedComponent>) {
             amp_a: c.amp_a.f64(),
             cos_b: c.cos_b.f64(),
             sin_b: c.sin_b.f64(),
+            cut0: c.cut0.f64(),
+            cut1: c.cut1.f64(),
+            cut2: c.cut2.f64(),
         })
         .collect();
     (bytemuck::cast_slice(&comps).to_vec(), back)
@@ -339,25 +450,182 @@ fn check_kinematics<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha
     }
 }
 
-fn check_lerp<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
-    let n = 1000;
-    let mut x = Vec::new();
-    for _ in 0..n {
-        for _ in 0..14 {
-            x.push(rng.gen_range(-5.0..5.0));
+fn check_kinematics_rates<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    for (case, (depth, stretching, t_ref)) in [
+        (60.0, Stretching::Wheeler, 100.0),
+        (f64::INFINITY, Stretching::Constant, 0.0),
+        (15.0, Stretching::Wheeler, 3.0),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let s = sea(depth, stretching, 0.0);
+        let mut field = WaveField::new(&s);
+        field.rebase(t_ref);
+        let (bytes, comps) = gpu_comps::<R>(&field);
+        let code = match stretching {
+            Stretching::Wheeler => 0.0,
+            Stretching::Constant => 1.0,
+        };
+        let n = 500;
+        let mut x = vec![comps.len() as f64, depth.min(GPU_DEEP), code];
+        for i in 0..n {
+            x.push(rng.gen_range(-150.0..150.0));
+            x.push(rng.gen_range(-150.0..150.0));
+            x.push(rng.gen_range(-depth.min(200.0)..3.0));
+            for _ in 0..3 {
+                x.push(rng.gen_range(-3.0..3.0));
+            }
+            x.push(rng.gen_range(-5.0..25.0));
+            // Ramp factor and rate: full, or within a ramp.
+            let (r, r_rate) = if i % 3 == 0 {
+                (1.0, 0.0)
+            } else {
+                (rng.gen_range(0.0..1.0), rng.gen_range(0.0..0.08))
+            };
+            x.push(r);
+            x.push(r_rate);
         }
-        x.push(rng.gen_range(0.0..1.0));
+        let (xr, x) = to_r::<R>(&x);
+        let out = run::<R>(ctx, p, "t_kin_rates", &[(17, bytes)], &xr, n, 14 * n);
+        let h = x[1];
+        let mut w = Worst::new::<R>("wave_kinematics_rates_tau");
+        for i in 0..n {
+            let q = &x[3 + 9 * i..12 + 9 * i];
+            let (pt, v, tau, r, r_rate) =
+                ([q[0], q[1], q[2]], [q[3], q[4], q[5]], q[6], q[7], q[8]);
+            let (kv, kr) = wave_kinematics_rates_tau(&comps, h, stretching, r, r_rate, pt, v, tau);
+            // Sizes as in check_kinematics: the phase of each term carries the rounding
+            // of its pieces, the depth decay that of the evaluation depth.
+            let theta = |c: &PackedComponent| {
+                1.0 + (c.kx * pt[0]).abs()
+                    + (c.ky * pt[1]).abs()
+                    + c.phase_ref.abs()
+                    + (c.omega * tau).abs()
+            };
+            // The size of a phase's rate.
+            let theta_rate =
+                |c: &PackedComponent| (c.kx * v[0]).abs() + (c.ky * v[1]).abs() + c.omega;
+            let s_eta: f64 = comps.iter().map(|c| c.amp * theta(c)).sum();
+            let s_eta_rate: f64 = r * comps
+                .iter()
+                .map(|c| c.amp * theta(c) * theta_rate(c))
+                .sum::<f64>()
+                + r_rate.abs() * s_eta;
+            let zs = wave_eval_depth(pt[2], kv.eta, h, stretching);
+            let zs_rate = wave_eval_depth_rate(pt[2], kv.eta, h, stretching, v[2], kr.eta);
+            let d = 1.0 + kv.eta / h;
+            let zs_rate_size = match stretching {
+                Stretching::Wheeler => {
+                    (v[2].abs() + s_eta_rate * (1.0 + zs.abs() / h) + zs_rate.abs() * r * s_eta / h)
+                        / d
+                }
+                Stretching::Constant => v[2].abs(),
+            };
+            let exps = |c: &PackedComponent| ((c.k * zs).exp(), (-c.k * (zs + 2.0 * h)).exp());
+            let depth_term = |c: &PackedComponent| {
+                let (e1, e2) = exps(c);
+                let shift = c.k * (s_eta + pt[2].abs() + zs.abs());
+                e1 * (theta(c) + shift) + e2 * (theta(c) + shift + (c.k * (zs + 2.0 * h)).abs())
+            };
+            // A rate term: the value's size times the phase's and the depth's rates,
+            // plus the rounding of the depth's rate.
+            let rate_term = |c: &PackedComponent| {
+                let (e1, e2) = exps(c);
+                depth_term(c) * (theta_rate(c) + c.k * zs_rate.abs())
+                    + (e1 + e2) * c.k * zs_rate_size
+            };
+            let s_u: f64 = comps.iter().map(|c| c.amp_u * depth_term(c)).sum();
+            let s_a: f64 = comps.iter().map(|c| c.amp_a * depth_term(c)).sum();
+            let s_du =
+                r * comps.iter().map(|c| c.amp_u * rate_term(c)).sum::<f64>() + r_rate.abs() * s_u;
+            let s_da =
+                r * comps.iter().map(|c| c.amp_a * rate_term(c)).sum::<f64>() + r_rate.abs() * s_a;
+            let o: Vec<f64> = out[14 * i..14 * i + 14].iter().map(|v| v.f64()).collect();
+            let vv = |a: [f64; 3]| V3::new(a[0], a[1], a[2]);
+            let what = format!("case {case} eta");
+            w.check(&what, i, o[0], kv.eta, r * s_eta);
+            w.v("u", i, &o[1..4], vv(kv.u), r * s_u);
+            w.v("a", i, &o[4..7], vv(kv.a), r * s_a);
+            w.check("eta rate", i, o[7], kr.eta, s_eta_rate);
+            w.v("u rate", i, &o[8..11], vv(kr.u), s_du);
+            w.v("a rate", i, &o[11..14], vv(kr.a), s_da);
+        }
+        w.report(p);
+    }
+}
+
+/// The decay cut's prefix length against the Rust twin on the components the GPU
+/// received: equal, but where the bound at the boundary is within the precision's
+/// rounding of 1 (then one more or less).
+fn check_decay_prefix<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let s = sea(300.0, Stretching::Wheeler, 30.0);
+    let field = WaveField::new(&s);
+    let (bytes, comps) = gpu_comps::<R>(&field);
+    let n = 1000;
+    let mut x = vec![comps.len() as f64];
+    for _ in 0..n {
+        x.push(-rng.gen_range(0.0..300.0f64).powf(rng.gen_range(0.5..1.0)));
+        x.push(rng.gen_range(0.0..4.0));
+        x.push(rng.gen_range(0.0..0.05));
     }
     let (xr, x) = to_r::<R>(&x);
-    let out = run::<R>(ctx, p, "t_lerp", &[], &xr, n, 7 * n);
-    let mut w = Worst::new::<R>("wave_cache_lerp");
+    let out = run::<R>(ctx, p, "t_prefix", &[(17, bytes)], &xr, n, n);
+    let (mut inner, mut near) = (0, 0);
     for i in 0..n {
-        let b = &x[15 * i..15 * i + 15];
+        let (zs, sp, rr) = (x[1 + 3 * i], x[2 + 3 * i], x[3 + 3 * i]);
+        let m = wave_decay_prefix(&comps, zs, sp, rr);
+        let g = out[i].f64() as usize;
+        inner += usize::from(m > 0 && m < comps.len());
+        if g != m {
+            let j = g.min(m);
+            let c = &comps[j];
+            let bound = (c.k * zs).exp() * (c.cut0 + c.cut1 * sp + c.cut2 * rr);
+            let tol = 64.0 * R::epsilon().f64() * (1.0 + (c.k * zs).abs());
+            assert!(
+                g.abs_diff(m) == 1 && (bound - 1.0).abs() <= tol,
+                "{p:?} case {i}: zs {zs}: GPU {g}, Rust {m} (bound {bound})"
+            );
+            near += 1;
+        }
+    }
+    // The cut is active in most cases; rounding-edge cases are rare.
+    assert!(inner > n / 4, "{inner} of {n} cut");
+    assert!(near <= n / 100, "{near} of {n} off by one");
+}
+
+fn check_hermite<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1000;
+    let mut x = Vec::new();
+    for i in 0..n {
+        for _ in 0..28 {
+            x.push(rng.gen_range(-5.0..5.0));
+        }
+        // Ends included: s = 0 and s = 1 give [1, 0, 0, 0] and [0, 0, 1, 0].
+        let s = match i % 10 {
+            0 => 0.0,
+            1 => 1.0,
+            _ => rng.gen_range(0.0..1.0),
+        };
+        x.extend(hermite_weights(s, rng.gen_range(0.01..3.0)));
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_hermite", &[], &xr, n, 7 * n);
+    let mut w = Worst::new::<R>("wave_cache_hermite");
+    for i in 0..n {
+        let b = &x[32 * i..32 * i + 32];
+        let wt = [b[28], b[29], b[30], b[31]];
         let mut o = [0.0; 7];
-        wave_cache_lerp(&b[0..7], &b[7..14], b[14], &mut o);
+        wave_cache_hermite(&b[0..7], &b[7..14], &b[14..21], &b[21..28], wt, &mut o);
         for d in 0..7 {
-            let scale = b[d].abs() + b[7 + d].abs();
+            let scale: f64 = (0..4).map(|q| (wt[q] * b[7 * q + d]).abs()).sum();
             w.check("value", i, out[7 * i + d].f64(), o[d], scale);
+        }
+        if i % 10 < 2 {
+            // Exactly the values at an end.
+            for d in 0..7 {
+                assert_eq!(out[7 * i + d].f64(), b[14 * (i % 10) + d], "case {i}");
+            }
         }
     }
     w.report(p);
@@ -370,7 +638,11 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_decay::<R>(ctx, p, &mut rng);
     check_eval_depth::<R>(ctx, p, &mut rng);
     check_kinematics::<R>(ctx, p, &mut rng);
-    check_lerp::<R>(ctx, p, &mut rng);
+    check_ramp_rate::<R>(ctx, p, &mut rng);
+    check_eval_depth_rate::<R>(ctx, p, &mut rng);
+    check_kinematics_rates::<R>(ctx, p, &mut rng);
+    check_decay_prefix::<R>(ctx, p, &mut rng);
+    check_hermite::<R>(ctx, p, &mut rng);
 }
 
 #[test]
