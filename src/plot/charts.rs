@@ -43,8 +43,8 @@ fn draw_png(
         let mut png = png::Encoder::new(file, w, h);
         png.set_color(png::ColorType::Rgb);
         png.set_depth(png::BitDepth::Eight);
-        // As the `image` crate's encoder did: fast deflate, a filter chosen per row (files
-        // of the same size as before, 120-200 kB for a chart).
+        // As the `image` crate's encoder did: fast deflate, a filter chosen per row (the
+        // same bytes as the files plotters wrote through `image`).
         png.set_compression(png::Compression::Fast);
         png.set_filter(png::FilterType::Sub);
         png.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
