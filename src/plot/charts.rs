@@ -21,6 +21,44 @@ fn plot_err(path: &Path) -> impl Fn(Box<dyn std::error::Error>) -> Error + '_ {
     }
 }
 
+/// Draws `chart` on a white canvas of [`SIZE`] and writes it to `path` as an 8-bit RGB
+/// PNG. plotters draws into a buffer here and `png` encodes it: plotters' own file
+/// backend would need the `image` crate and its other codecs.
+fn draw_png(
+    path: &Path,
+    chart: impl FnOnce(&Canvas) -> Result<(), Box<dyn std::error::Error>>,
+) -> Result<(), Error> {
+    let (w, h) = SIZE;
+    let mut rgb = vec![0u8; 3 * w as usize * h as usize];
+    let draw = |rgb: &mut [u8]| -> Result<(), Box<dyn std::error::Error>> {
+        let root = BitMapBackend::with_buffer(rgb, SIZE).into_drawing_area();
+        root.fill(&WHITE)?;
+        chart(&root)?;
+        root.present()?;
+        Ok(())
+    };
+    draw(&mut rgb).map_err(plot_err(path))?;
+    let write = || -> Result<(), Box<dyn std::error::Error>> {
+        let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+        let mut png = png::Encoder::new(file, w, h);
+        png.set_color(png::ColorType::Rgb);
+        png.set_depth(png::BitDepth::Eight);
+        // As the `image` crate's encoder did: fast deflate, a filter chosen per row (the
+        // same bytes as the files plotters wrote through `image`).
+        png.set_compression(png::Compression::Fast);
+        png.set_filter(png::FilterType::Sub);
+        png.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
+        let mut png = png.write_header()?;
+        png.write_image_data(&rgb)?;
+        png.finish()?;
+        Ok(())
+    };
+    write().map_err(plot_err(path))
+}
+
+/// What every chart draws on: the whole picture, in pixels.
+type Canvas<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+
 /// A range around `lo..hi` with 5% margins (a unit range around a single value).
 fn padded(lo: f64, hi: f64) -> std::ops::Range<f64> {
     if !(lo.is_finite() && hi.is_finite()) {
@@ -156,7 +194,7 @@ fn ranges(
 
 /// Lines of `series` on labelled axes in `area`.
 fn lines(
-    area: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
+    area: &Canvas,
     title: &str,
     x_label: &str,
     y_label: &str,
@@ -205,9 +243,7 @@ fn lines(
 
 /// `end_forces.png`: force magnitude at each cable end against time.
 pub fn end_forces(path: &Path, series: &[Series]) -> Result<(), Error> {
-    let draw = || -> Result<(), Box<dyn std::error::Error>> {
-        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
-        root.fill(&WHITE)?;
+    draw_png(path, |root| {
         // kN reads better than N for mooring loads.
         let kn: Vec<Series> = series
             .iter()
@@ -217,24 +253,20 @@ pub fn end_forces(path: &Path, series: &[Series]) -> Result<(), Error> {
             })
             .collect();
         lines(
-            &root,
+            root,
             "End forces",
             "time (s)",
             "force magnitude (kN)",
             &kn,
             Axes::FromZero,
         )?;
-        root.present()?;
         Ok(())
-    };
-    draw().map_err(plot_err(path))
+    })
 }
 
 /// `profiles.png`: side view (x-z) and plan view (x-y) of every cable at each time.
 pub fn profiles(path: &Path, profiles: &[Profile]) -> Result<(), Error> {
-    let draw = || -> Result<(), Box<dyn std::error::Error>> {
-        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
-        root.fill(&WHITE)?;
+    draw_png(path, |root| {
         let view = |a: usize, b: usize| -> Vec<Series> {
             profiles
                 .iter()
@@ -260,20 +292,16 @@ pub fn profiles(path: &Path, profiles: &[Profile]) -> Result<(), Error> {
         };
         lines(&side, "Side view", "x (m)", "z (m)", &xz, Axes::Equal)?;
         lines(&plan, "Plan view", "x (m)", "y (m)", &xy, Axes::Equal)?;
-        root.present()?;
         Ok(())
-    };
-    draw().map_err(plot_err(path))
+    })
 }
 
 /// `gumbel_*.png`: the seed maxima against their reduced variate, and the fitted line.
 pub fn gumbel(path: &Path, g: &GumbelData) -> Result<(), Error> {
-    let draw = || -> Result<(), Box<dyn std::error::Error>> {
-        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
-        root.fill(&WHITE)?;
+    draw_png(path, |root| {
         let pts = g.points();
         let ((x0, x1), (y0, y1)) = bounds(pts.iter().copied());
-        let mut chart = ChartBuilder::on(&root)
+        let mut chart = ChartBuilder::on(root)
             .caption(
                 format!(
                     "Gumbel plot: {}, sea state {} ({})",
@@ -316,21 +344,17 @@ pub fn gumbel(path: &Path, g: &GumbelData) -> Result<(), Error> {
             .label_font(("sans-serif", 16))
             .position(SeriesLabelPosition::UpperLeft)
             .draw()?;
-        root.present()?;
         Ok(())
-    };
-    draw().map_err(plot_err(path))
+    })
 }
 
 /// `utilisation.png`: one bar per sea state and channel, with the limit 1 drawn.
 pub fn utilisation(path: &Path, rows: &[(String, String, f64)]) -> Result<(), Error> {
-    let draw = || -> Result<(), Box<dyn std::error::Error>> {
-        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
-        root.fill(&WHITE)?;
+    draw_png(path, |root| {
         // Room above the tallest bar for the legend.
         let top = rows.iter().map(|r| r.2).fold(1.0f64, f64::max) * 1.3;
         let n = rows.len();
-        let mut chart = ChartBuilder::on(&root)
+        let mut chart = ChartBuilder::on(root)
             .caption("Utilisation (design value / capacity)", ("sans-serif", 26))
             .margin(15)
             .x_label_area_size(60)
@@ -377,8 +401,6 @@ pub fn utilisation(path: &Path, rows: &[(String, String, f64)]) -> Result<(), Er
             .label_font(("sans-serif", 16))
             .position(SeriesLabelPosition::UpperLeft)
             .draw()?;
-        root.present()?;
         Ok(())
-    };
-    draw().map_err(plot_err(path))
+    })
 }

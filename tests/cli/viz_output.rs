@@ -175,10 +175,54 @@ fn vtk_files_hold_the_cables_bodies_and_times() {
     }
 }
 
-fn decode(path: &Path) -> image::RgbImage {
-    image::open(path)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-        .to_rgb8()
+/// A decoded 8-bit RGB picture, row by row.
+struct Rgb {
+    width: u32,
+    height: u32,
+    pixels: Vec<[u8; 3]>,
+}
+
+impl Rgb {
+    fn dimensions(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    fn pixels(&self) -> impl Iterator<Item = &[u8; 3]> {
+        self.pixels.iter()
+    }
+
+    /// `(x, y, pixel)`, x across and y down from the top left corner.
+    fn enumerate_pixels(&self) -> impl Iterator<Item = (u32, u32, [u8; 3])> + '_ {
+        let w = self.width as usize;
+        (self.pixels.iter().enumerate()).map(move |(k, p)| ((k % w) as u32, (k / w) as u32, *p))
+    }
+}
+
+/// Reads a PNG that `cablesim plot` wrote: it must be 8-bit RGB, one frame.
+fn decode(path: &Path) -> Rgb {
+    fn fail(path: &Path, e: impl std::fmt::Display) -> ! {
+        panic!("{}: {e}", path.display())
+    }
+    let file = std::fs::File::open(path).unwrap_or_else(|e| fail(path, e));
+    let mut reader = png::Decoder::new(file)
+        .read_info()
+        .unwrap_or_else(|e| fail(path, e));
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader
+        .next_frame(&mut buf)
+        .unwrap_or_else(|e| fail(path, e));
+    assert_eq!(
+        (info.color_type, info.bit_depth),
+        (png::ColorType::Rgb, png::BitDepth::Eight),
+        "{}",
+        path.display()
+    );
+    let bytes = &buf[..info.buffer_size()];
+    Rgb {
+        width: info.width,
+        height: info.height,
+        pixels: bytes.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
+    }
 }
 
 #[test]
@@ -200,7 +244,7 @@ fn plot_command_draws_end_forces_and_profiles() {
         let img = decode(&out.path().join(name));
         assert_eq!(img.dimensions(), cablesim::plot::SIZE, "{name}");
         // Not blank: more than a few per cent of the pixels are drawn on.
-        let inked = img.pixels().filter(|p| p.0 != [255, 255, 255]).count();
+        let inked = img.pixels().filter(|p| **p != [255, 255, 255]).count();
         assert!(inked > 5_000, "{name}: {inked} pixels drawn");
     }
     // The profiles read from positions.csv at the two chosen times.
@@ -248,7 +292,7 @@ fn end_force_plot_puts_the_peak_at_its_time() {
     // The line's colour (the first of the palette): strongly red, little green.
     let line: Vec<(u32, u32)> = img
         .enumerate_pixels()
-        .filter(|(_, _, p)| p.0[0] > 180 && p.0[1] < 80 && p.0[2] < 120)
+        .filter(|(_, _, p)| p[0] > 180 && p[1] < 80 && p[2] < 120)
         .map(|(x, y, _)| (x, y))
         .collect();
     assert!(line.len() > 500, "{} line pixels", line.len());
