@@ -128,15 +128,6 @@ pub fn read_node(v: &[f64]) -> Kinematics {
     }
 }
 
-/// Linear interpolation `(1 - s) v0 + s v1` of cached values, elementwise (exact at
-/// both ends): the GPU cache's interpolation until its Hermite twin
-/// ([`wave_cache_hermite`]) replaces it; the WGSL twin interpolates one node.
-pub fn wave_cache_lerp(v0: &[f64], v1: &[f64], s: f64, out: &mut [f64]) {
-    for ((o, a), b) in out.iter_mut().zip(v0).zip(v1) {
-        *o = (1.0 - s) * a + s * b;
-    }
-}
-
 /// The values and their rates along each node's path at every node (positions and
 /// velocities `x, y, z` per node) at time `t`, written to `values` and `rates`
 /// ([`CACHE_STRIDE`] per node each). Nodes in parallel.

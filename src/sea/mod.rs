@@ -34,10 +34,9 @@
 //! [`kinematics::PackedComponent`] (thirteen scalars, `WaveField::comps`, sorted by `k`
 //! for the decay cut of [`cut`], phases referred
 //! to `WaveField::t_ref`: rebase on the host and pass `t - t_ref`), the per-node
-//! evaluation is `wave_kinematics_at`, the interpolation `wave_cache_lerp` (the CPU's
-//! cache interpolates with `wave_cache_hermite`, values and rates; the GPU's Hermite
-//! twin is to follow); see the
-//! shader file's header for the buffers. Infinite depth goes to the GPU as
+//! refresh is `wave_kinematics_rates_tau` (values and rates along each node's path), the
+//! interpolation `wave_cache_hermite`, as on the CPU; see the shader file's header for
+//! the buffers. Infinite depth goes to the GPU as
 //! [`GPU_DEEP`] m.
 
 pub mod cache;
