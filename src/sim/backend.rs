@@ -290,32 +290,12 @@ impl LumpedStepper {
     pub fn cables(&mut self) -> Result<Vec<CableState>, Error> {
         let ev = self.evaluate()?;
         let (r, v) = self.state()?;
-        let winches = self.winch_status();
-        let lay = self.layout();
-        Ok(lay
-            .cables
-            .iter()
-            .enumerate()
-            .map(|(ci, c)| CableState {
-                name: c.name.clone(),
-                output_positions: c.output_positions,
-                positions: c.nodes.iter().map(|&i| r[i as usize]).collect(),
-                velocities: c.nodes.iter().map(|&i| v[i as usize]).collect(),
-                tensions: c.elements.iter().map(|&e| ev.tension[e as usize]).collect(),
-                end_forces: end_forces(lay, &ev, c),
-                winch: winch_summary(&winches, ci),
-            })
-            .collect())
+        Ok(self.cables_from(&ev, &r, &v))
     }
 
     /// Every vessel body's pose and load at time `t` (now).
     pub fn bodies(&mut self, t: f64) -> Result<Vec<BodyState>, Error> {
-        if !self
-            .layout()
-            .routes
-            .iter()
-            .any(|r| matches!(r, Route::Body { .. }))
-        {
+        if !self.has_bodies() {
             return Ok(Vec::new());
         }
         let ev = self.evaluate()?;
@@ -331,9 +311,72 @@ impl LumpedStepper {
         }
         let ev = self.evaluate()?;
         let (r, _) = self.state()?;
+        Ok(self.points_from(points, &ev, &r))
+    }
+
+    /// [`Self::cables`], [`Self::bodies`] and [`Self::points`] at time `t` (now) from one
+    /// evaluation and one read of the state: an output time evaluates the loads once
+    /// (on the GPU, one evaluation dispatch and one read-back), not once per kind.
+    pub fn snapshot_parts(
+        &mut self,
+        t: f64,
+        points: &[(String, usize, bool)],
+    ) -> Result<(Vec<CableState>, Vec<BodyState>, Vec<PointState>), Error> {
+        let ev = self.evaluate()?;
+        let (r, v) = self.state()?;
+        let bodies = if self.has_bodies() {
+            crate::body::output::body_states(self.layout(), t, &r, &ev)
+        } else {
+            Vec::new()
+        };
+        Ok((
+            self.cables_from(&ev, &r, &v),
+            bodies,
+            self.points_from(points, &ev, &r),
+        ))
+    }
+
+    /// Whether a cable end rides on a vessel body.
+    fn has_bodies(&self) -> bool {
+        self.layout()
+            .routes
+            .iter()
+            .any(|r| matches!(r, Route::Body { .. }))
+    }
+
+    /// The cables' states from evaluation `ev` and positions and velocities `r`, `v`.
+    fn cables_from(&self, ev: &Evaluation, r: &[[f64; 3]], v: &[[f64; 3]]) -> Vec<CableState> {
+        let winches = self.winch_status();
         let lay = self.layout();
-        let forces: Vec<EndForces> = lay.cables.iter().map(|c| end_forces(lay, &ev, c)).collect();
-        Ok(points
+        lay.cables
+            .iter()
+            .enumerate()
+            .map(|(ci, c)| CableState {
+                name: c.name.clone(),
+                output_positions: c.output_positions,
+                positions: c.nodes.iter().map(|&i| r[i as usize]).collect(),
+                velocities: c.nodes.iter().map(|&i| v[i as usize]).collect(),
+                tensions: c.elements.iter().map(|&e| ev.tension[e as usize]).collect(),
+                end_forces: end_forces(lay, ev, c),
+                winch: winch_summary(&winches, ci),
+            })
+            .collect()
+    }
+
+    /// The shared points' states (as [`Self::points`]) from evaluation `ev` and
+    /// positions `r`.
+    fn points_from(
+        &self,
+        points: &[(String, usize, bool)],
+        ev: &Evaluation,
+        r: &[[f64; 3]],
+    ) -> Vec<PointState> {
+        if points.is_empty() {
+            return Vec::new();
+        }
+        let lay = self.layout();
+        let forces: Vec<EndForces> = lay.cables.iter().map(|c| end_forces(lay, ev, c)).collect();
+        points
             .iter()
             .map(|(name, ci, at_start)| {
                 let c = &lay.cables[*ci];
@@ -364,7 +407,7 @@ impl LumpedStepper {
                     force,
                 }
             })
-            .collect())
+            .collect()
     }
 
     /// Every cable's final state for the summary: tensions and end forces are NaN when

@@ -344,7 +344,7 @@ impl Simulation {
         let time = self.time();
         let steps = self.steps();
         let (cables, bodies, points) = match &mut self.engine {
-            Engine::Lumped(s, _) => (s.cables()?, s.bodies(time)?, s.points(&self.points)?),
+            Engine::Lumped(s, _) => s.snapshot_parts(time, &self.points)?,
             // The ANCF backend follows body ends but does not report body or point loads.
             Engine::Ancf(f) => (f.cables()?, Vec::new(), Vec::new()),
         };
