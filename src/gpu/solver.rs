@@ -528,7 +528,7 @@ struct Buffers {
 
 /// Scalars per node and cache slot on the GPU: the values `eta, u, a` and their rates
 /// along the node's path (`WAVE_CACHE_STRIDE` in `shaders/shared/waves.wgsl`); after
-/// the three slots, three per node: its velocity at the last refresh.
+/// the two slots, three per node: its velocity at the last refresh.
 const WAVE_CACHE_STRIDE: usize = 14;
 
 /// The host's side of the waves' kinematics cache: the components (rebased at each
@@ -623,24 +623,6 @@ impl WaveSchedule {
         let w = hermite_weights(s, delta);
         (row.w0, row.w1, row.w2, row.w3) = (R::c(w[0]), R::c(w[1]), R::c(w[2]), R::c(w[3]));
         row
-    }
-
-    /// The row of an output-time evaluation at `t`: exact values at the nodes, in
-    /// the evaluation's own slot 2 (the CPU path evaluates exactly there too). One
-    /// evaluation (no restart: the "t1" values, at `t` itself, ahead 0) read back with
-    /// the weights `[1, 0, 0, 0]` of slot 2 as the "t0" values.
-    fn exact<R: GpuReal>(&self, t: f64, t_ref: f64) -> WaveStep<R> {
-        let d = self.field.ramp_duration;
-        WaveStep {
-            slot0: 2,
-            slot1: 2,
-            refresh: 1,
-            w0: R::c(1.0),
-            tau1: R::c(t - t_ref),
-            ramp1: R::c(wave_ramp(t, d)),
-            ramp_rate1: R::c(wave_ramp_rate(t, d)),
-            ..self.base::<R>()
-        }
     }
 }
 
@@ -1066,12 +1048,12 @@ impl<R: GpuReal> GpuEngine<R> {
             .flat_map(|(c, r)| route_samples::<R>(r, host.route_origin(lay, c)))
             .collect();
         let samples_b = init("route_samples", &bytes_or_one(&samples), ro);
-        // Three slots (t0, t1, output-time evaluation) of WAVE_CACHE_STRIDE values per
-        // node, then each node's velocity at the last refresh; one value in still water.
+        // Two slots (t0, t1) of WAVE_CACHE_STRIDE values per node, then each node's
+        // velocity at the last refresh; one value in still water.
         let cache_len = if n_comps == 0 {
             1
         } else {
-            n_nodes * (3 * WAVE_CACHE_STRIDE + 3)
+            n_nodes * (2 * WAVE_CACHE_STRIDE + 3)
         };
         let cache_b = init(
             "wave_cache",
@@ -1620,13 +1602,18 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         self.write_payout(host, step, 1);
         self.write_bodies(host, step, 1);
         let t = step as f64 * self.dt64;
+        // The components referred to `t`, as the next submission's (it starts at this
+        // step), and each sea's row of the step at `t`: the cache interpolated at `t`,
+        // refreshed first (the refresh dispatch below) where that step would refresh it,
+        // which then finds it covering its time (the CPU path's rule:
+        // `cpu::water::BlockWaves::cover`).
         self.write_wave_comps(t);
-        if let Some(w) = &self.waves {
+        if let Some(w) = self.waves.as_mut() {
             let per = STEPS_PER_SUBMISSION as usize;
             let mut rows = vec![WaveStep::<R>::default(); w.seas.len() * per];
-            for (q, sea) in w.seas.iter().enumerate() {
+            for (q, sea) in w.seas.iter_mut().enumerate() {
                 if let Some(sea) = sea {
-                    rows[q * per] = sea.exact::<R>(t, t);
+                    rows[q * per] = sea.step::<R>(t, t);
                 }
             }
             ctx.queue
@@ -2014,16 +2001,22 @@ impl GpuSolver {
         Ok(())
     }
 
-    /// Replaces node positions and velocities (packed order).
+    /// Replaces node positions and velocities (packed order). The waves' cache starts
+    /// afresh (it holds values along the nodes' old paths): the next step or
+    /// evaluation evaluates the sum at the state set.
     pub fn set_state(&mut self, r: &[[f64; 3]], v: &[[f64; 3]]) {
         assert_eq!(r.len(), self.layout.n_nodes());
         assert_eq!(v.len(), self.layout.n_nodes());
         self.engine.upload(&self.host, r, v);
+        self.engine.restart_waves();
     }
 
     /// Loads, accelerations and reactions at the current state, evaluated on the GPU
     /// (an `element_forces` and a `node_evaluate` dispatch) and read back. A winch
-    /// cable's variable element is evaluated at the current time.
+    /// cable's variable element is evaluated at the current time. In waves, with the
+    /// kinematics the next step starts from: the cache interpolated at the current
+    /// time, refreshed first (a `wave_refresh` dispatch) where that step would refresh
+    /// it, as on the CPU path ([`crate::cpu::CpuSolver::evaluate`]).
     pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
         self.engine.evaluate(&self.layout, &self.host, self.steps)
     }

@@ -25,4 +25,5 @@ mod stiff_statics;
 mod study;
 mod study_validation;
 mod water_surface;
+mod waves_output;
 mod waves_steppers;

@@ -13,7 +13,7 @@ use cablesim::statics::{relax, RelaxOptions};
 const DEPTH: f64 = 50.0;
 
 /// A 200-component JONSWAP sea (Hs 4 m, Tp 9 s) in 50 m of water, ramped in over 4 s.
-fn jonswap() -> SeaState {
+pub(crate) fn jonswap() -> SeaState {
     let spectrum = Spectrum::Jonswap {
         hs: 4.0,
         tp: 9.0,
@@ -37,7 +37,7 @@ fn jonswap() -> SeaState {
 
 /// A rope moored on the seabed at 50 m, its fairlead held 1 m under the mean level
 /// (its top elements go through the surface in the troughs), in static equilibrium.
-fn moored_rope() -> (Layout, Vec<[f64; 3]>) {
+pub(crate) fn moored_rope() -> (Layout, Vec<[f64; 3]>) {
     let env = Environment {
         depth: DEPTH,
         seabed: Seabed::default(),
