@@ -522,10 +522,23 @@ mod tests {
         let m = RaoMotion::new(&rao, &[wc], 0.0, 0.0, 0.0, 10.0);
         assert_eq!(m.eval(0.0).q[4], 0.0);
         let h = 1e-4;
+        // The exact sum, ramped: the ramp's product rule.
         for &t in &[2.0, 7.5, 12.0] {
-            let (a, b, c) = (m.eval(t - h), m.eval(t), m.eval(t + h));
+            let (a, b, c) = (m.eval_exact(t - h), m.eval_exact(t), m.eval_exact(t + h));
             assert!(((c.q[4] - a.q[4]) / (2.0 * h) - b.qd[4]).abs() < 1e-9);
             assert!(((c.qd[4] - a.qd[4]) / (2.0 * h) - b.qdd[4]).abs() < 1e-9);
         }
+        // Between knots the same ramp on the interpolated motion: within the knots'
+        // tolerance of the amplitude (0.04 rad; rates and accelerations times w, w^2,
+        // plus the ramp's rates on the smaller ones).
+        let tol = RAO_KNOT_TOLERANCE * 0.04 * 2.0;
+        for i in 0..400 {
+            let t = 0.0371 * i as f64;
+            let (e, g) = (m.eval_exact(t), m.eval(t));
+            assert!((e.q[4] - g.q[4]).abs() < tol, "t {t}");
+            assert!((e.qd[4] - g.qd[4]).abs() < tol * 0.8, "t {t}");
+            assert!((e.qdd[4] - g.qdd[4]).abs() < tol * 0.64, "t {t}");
+        }
+        assert_eq!(m.eval(0.0).q[4], 0.0);
     }
 }
