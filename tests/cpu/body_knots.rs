@@ -32,9 +32,12 @@ fn rao(body: &Body) -> &RaoMotion {
     }
 }
 
+/// Picks the displacements, rates or accelerations.
+type Pick = fn(&Dofs) -> [f64; 6];
+
 /// Per degree of freedom: (rms of the exact values, rms of the error, largest error),
-/// for the values picked by `f` (displacements, rates or accelerations).
-fn errors(exact: &[Dofs], got: &[Dofs], f: fn(&Dofs) -> [f64; 6]) -> [(f64, f64, f64); 6] {
+/// for the values picked by `f`.
+fn errors(exact: &[Dofs], got: &[Dofs], f: Pick) -> [(f64, f64, f64); 6] {
     std::array::from_fn(|k| {
         let n = exact.len() as f64;
         let (mut s, mut e, mut m) = (0.0, 0.0, 0.0f64);
@@ -60,7 +63,7 @@ fn interpolated_rao_motion_is_within_its_tolerance_of_the_exact_sum() {
     let exact: Vec<Dofs> = ts.iter().map(|&t| m.eval_exact(t)).collect();
     let got: Vec<Dofs> = ts.iter().map(|&t| m.eval(t)).collect();
     let names = ["surge", "sway", "heave", "roll", "pitch", "yaw"];
-    let kinds: [(&str, fn(&Dofs) -> [f64; 6]); 3] = [
+    let kinds: [(&str, Pick); 3] = [
         ("value", |d| d.q),
         ("rate", |d| d.qd),
         ("acceleration", |d| d.qdd),
