@@ -40,6 +40,7 @@ use crate::sea::kinematics::{wave_ramp, wave_ramp_rate, WaveField};
 use crate::sea::{SeaSet, SeaState, Stretching, GPU_DEEP};
 use crate::step::{diverged, Evaluation, StepFailure, WinchStatus};
 use bytemuck::Zeroable;
+use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::marker::PhantomData;
 use std::sync::Arc;
@@ -1148,9 +1149,11 @@ impl<R: GpuReal> GpuEngine<R> {
             return;
         }
         let dt = self.dt64;
+        // Bodies in parallel (a packed study has one per member); each row a function
+        // of its time alone, so the rows do not depend on the thread count.
         let per_body: Vec<Vec<BodyRow<R>>> = host
             .bodies
-            .iter()
+            .par_iter()
             .map(|b| {
                 body_rows(
                     b,
