@@ -17,17 +17,16 @@
 
 use super::passes::implicit_dt;
 use super::water::{node_water, BlockWaves, Water};
-use crate::ale::{mass_flow_forces, AleElem};
-use crate::math::V3;
+use crate::ale::AleElem;
 use crate::model::{Block, Current, Layout, NO_CONSTRAINT};
 use crate::options::{Scheme, SolverOptions};
-use crate::physics::{
-    glmf_element_wet, point_wetted_fraction, wetted_fraction, Coefs, ElementInput,
-};
+use crate::physics::{point_wetted_fraction, wetted_fraction};
 use crate::step::{diverged, StepFailure};
 
 mod net;
+mod winch;
 pub(crate) use net::{advance_net, advance_net_threaded, NetConsts, NetScratch};
+use winch::{ale_constants, ale_mass_flow, ale_mass_flow_clear, ale_tension, AleScratch};
 
 /// Per-block constants of a chain, built once.
 #[derive(Clone, Debug, Default)]
@@ -178,6 +177,77 @@ impl ChainConsts {
 }
 
 impl ChainConsts {
+    /// Makes `self` a copy of `o`, reusing `self`'s arrays (a run of steps of a winch
+    /// cable edits a working copy of its block's constants).
+    fn copy_from(&mut self, o: &ChainConsts) {
+        let ChainConsts {
+            n,
+            l0,
+            il0,
+            ea,
+            eac,
+            comp,
+            drag_n,
+            drag_t,
+            half_wz,
+            half_bz,
+            half_fk,
+            diameter,
+            current,
+            line,
+            uniform,
+            hm,
+            ha,
+            pm,
+            pwz,
+            kl,
+            cl,
+            mukl,
+            constrained,
+            point_drag,
+            point_volume,
+            trib,
+            sb_k,
+            sb_c,
+            sb_mu,
+            zb,
+            friction,
+            v_eps,
+        } = self;
+        *n = o.n;
+        for (d, s) in [
+            (l0, &o.l0),
+            (il0, &o.il0),
+            (ea, &o.ea),
+            (eac, &o.eac),
+            (comp, &o.comp),
+            (drag_n, &o.drag_n),
+            (drag_t, &o.drag_t),
+            (half_wz, &o.half_wz),
+            (half_bz, &o.half_bz),
+            (half_fk, &o.half_fk),
+            (diameter, &o.diameter),
+            (hm, &o.hm),
+            (ha, &o.ha),
+            (pm, &o.pm),
+            (pwz, &o.pwz),
+            (kl, &o.kl),
+            (cl, &o.cl),
+            (mukl, &o.mukl),
+            (trib, &o.trib),
+        ] {
+            d.clone_from(s);
+        }
+        current.clone_from(&o.current);
+        line.clone_from(&o.line);
+        *uniform = o.uniform;
+        constrained.clone_from(&o.constrained);
+        point_drag.clone_from(&o.point_drag);
+        point_volume.clone_from(&o.point_volume);
+        (*sb_k, *sb_c, *sb_mu, *zb, *friction, *v_eps) =
+            (o.sb_k, o.sb_c, o.sb_mu, o.zb, o.friction, o.v_eps);
+    }
+
     /// Re-reads the constraint numbers of block `b` of `lay` (the same chain as the one
     /// these constants were made for, possibly renumbered by a rebuild).
     pub(crate) fn refresh_constraints(&mut self, lay: &Layout, b: &Block) {
@@ -202,6 +272,10 @@ pub(crate) struct ChainScratch {
     sum: [Vec<f64>; 6],
     a: [Vec<f64>; 3],
     w: Work,
+    /// Winch cables: the working copy of the block's constants that the variable
+    /// elements change every stage, and what the run keeps about them.
+    wc: ChainConsts,
+    ale: AleScratch,
 }
 
 /// What one evaluation writes.
@@ -222,12 +296,9 @@ struct Work {
     // partly out of the water loses.
     pm: Vec<f64>,
     pwz: Vec<f64>,
-    // Working copies of the half masses (padded) and seabed constants per node, which
-    // the ALE variable element changes every stage.
-    hm: Vec<f64>,
-    kl: Vec<f64>,
-    cl: Vec<f64>,
-    mukl: Vec<f64>,
+    // Per node: the extra forces (point drag, water acceleration of a point, mass flow)
+    // that the node loop adds before its solve; zero but at the few nodes that have them.
+    xf: [Vec<f64>; 3],
 }
 
 fn resize(v: &mut [Vec<f64>], n: usize) {
@@ -473,8 +544,10 @@ pub(super) fn seabed_load<const FRICTION: bool>(
     ([-(ch * v[0]), -(ch * v[1]), gz], ch, cz)
 }
 
-/// Node pass: accelerations of every node into `a`, with constraints and point drag
-/// fixed up afterwards. `p` is the state the element pass used.
+/// Node pass: accelerations of every node into `a`, with constraints fixed up
+/// afterwards. `p` is the state the element pass used. The few nodes with extra forces
+/// (point drag, a point's water-acceleration load, mass flow) have them added to their
+/// force before the solve, as on the general path.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn nodes<const FRICTION: bool>(
@@ -488,67 +561,57 @@ fn nodes<const FRICTION: bool>(
     fv: &[Vec<f64>; 3],
     m: &Masses,
     ale: &[AleElem],
+    asc: &AleScratch,
+    xf: &mut [Vec<f64>; 3],
     a: &mut [Vec<f64>; 3],
 ) {
-    let [ax, ay, az] = a;
-    // The symplectic scheme takes the seabed's damping implicitly (passes::implicit_dt).
-    let h = implicit_dt(opts);
-    node_kernel::<FRICTION>(
-        c, h, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2],
-        m.pm, m.pwz, m.hm, m.ha, m.kl, m.cl, m.mukl, ax, ay, az,
-    );
-    // The solve is linear: a node's extra force F adds M^-1 F to its acceleration
-    // (M with the same implicit damping as the node loop's).
-    let add = |a: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
-        let s = m.pm[i] + m.hm[i] + m.hm[i + 1] + m.ha[i] + m.ha[i + 1];
-        let (ch, cz) = contact_slopes::<FRICTION>(
-            c.zb - p[2][i],
-            p[3][i],
-            p[4][i],
-            m.cl[i],
-            m.mukl[i],
-            c.v_eps,
-        );
-        let d = solve_mass(
-            [s + h * ch, s + h * ch, s + h * cz],
-            m.ha[i],
-            m.ha[i + 1],
-            [tv[0][i], tv[1][i], tv[2][i]],
-            [tv[0][i + 1], tv[1][i + 1], tv[2][i + 1]],
-            f,
-        );
-        a[0][i] += d[0];
-        a[1][i] += d[1];
-        a[2][i] += d[2];
-    };
-    // Winch cables: the mass-flow forces of Eq. 39 on the variable element's two nodes
-    // (crate::ale; the winch node's is overwritten by its constraint below).
-    for ae in ale {
-        let pay = ae.sched.eval(time);
-        if pay.rate != 0.0 || pay.accel != 0.0 {
-            let node = |i: usize| {
-                (
-                    V3::new(p[0][i], p[1][i], p[2][i]),
-                    V3::new(p[3][i], p[4][i], p[5][i]),
-                )
-            };
-            let ((rm, vm), (rw, vw)) = (node(ae.m), node(ae.w));
-            let (fm, fw) =
-                mass_flow_forces(ae.mass, ae.l0(pay.dl), pay.rate, pay.accel, rm, rw, vm, vw);
-            add(a, ae.m, fm.to_f64());
-            add(a, ae.w, fw.to_f64());
+    // Winch cables: the mass-flow forces of Eq. 39 on the variable element's free nodes
+    // (crate::ale; a held winch node's acceleration is its route's).
+    let mut extra = ale_mass_flow(ale, asc, p, xf);
+    let mut add = |xf: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
+        for (x, fq) in xf.iter_mut().zip(f) {
+            x[i] += fq;
         }
-    }
+        extra = true;
+    };
     for pd in &c.point_drag {
         let i = pd.0;
         let f = point_drag_force(lay, pd, p[2][i], [p[3][i], p[4][i], p[5][i]], m.eta[i], m.w);
-        add(a, i, f);
+        add(xf, i, f);
     }
     if !m.w.is_empty() {
         for pv in &c.point_volume {
             let i = pv.0;
-            add(a, i, point_water_accel_force(pv, p[2][i], m.eta[i], m.w));
+            add(xf, i, point_water_accel_force(pv, p[2][i], m.eta[i], m.w));
         }
+    }
+    let [ax, ay, az] = a;
+    // The symplectic scheme takes the seabed's damping implicitly (passes::implicit_dt).
+    let h = implicit_dt(opts);
+    macro_rules! kernel {
+        ($extra:literal) => {
+            node_kernel::<FRICTION, $extra>(
+                c, h, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1],
+                &fv[2], &xf[0], &xf[1], &xf[2], m.pm, m.pwz, m.hm, m.ha, m.kl, m.cl, m.mukl, ax,
+                ay, az,
+            )
+        };
+    }
+    if extra {
+        kernel!(true);
+        ale_mass_flow_clear(ale, xf);
+        for i in c
+            .point_drag
+            .iter()
+            .map(|pd| pd.0)
+            .chain(c.point_volume.iter().map(|pv| pv.0))
+        {
+            for x in xf.iter_mut() {
+                x[i] = 0.0;
+            }
+        }
+    } else {
+        kernel!(false);
     }
     for &(i, ri) in &c.constrained {
         let d = route_accel(lay, opts, time, ri, |q| (p[q][i], p[3 + q][i]));
@@ -617,7 +680,7 @@ pub(super) fn route_accel(
 /// The node loop (see [`element_kernel`] for why every array is a parameter).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn node_kernel<const FRICTION: bool>(
+fn node_kernel<const FRICTION: bool, const EXTRA: bool>(
     c: &ChainConsts,
     h: f64,
     z: &[f64],
@@ -631,6 +694,9 @@ fn node_kernel<const FRICTION: bool>(
     fx: &[f64],
     fy: &[f64],
     fz: &[f64],
+    xfx: &[f64],
+    xfy: &[f64],
+    xfz: &[f64],
     pm: &[f64],
     pwz: &[f64],
     hm: &[f64],
@@ -646,6 +712,7 @@ fn node_kernel<const FRICTION: bool>(
     let (z, vx, vy, vz) = (&z[..n], &vx[..n], &vy[..n], &vz[..n]);
     let (tx, ty, tz, tn) = (&tx[..n + 1], &ty[..n + 1], &tz[..n + 1], &tn[..n + 1]);
     let (fx, fy, fz) = (&fx[..n + 1], &fy[..n + 1], &fz[..n + 1]);
+    let (xfx, xfy, xfz) = (&xfx[..n], &xfy[..n], &xfz[..n]);
     let (hm, ha) = (&hm[..n + 1], &ha[..n + 1]);
     let (pm, pwz, kl, cl, mukl) = (&pm[..n], &pwz[..n], &kl[..n], &cl[..n], &mukl[..n]);
     let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
@@ -656,6 +723,11 @@ fn node_kernel<const FRICTION: bool>(
         let mut gx = fx[j] + fx[k] - tn[j] * tx[j] + tn[k] * tx[k];
         let mut gy = fy[j] + fy[k] - tn[j] * ty[j] + tn[k] * ty[k];
         let mut gz = fz[j] + fz[k] - tn[j] * tz[j] + tn[k] * tz[k] + pwz[i];
+        if EXTRA {
+            gx += xfx[i];
+            gy += xfy[i];
+            gz += xfz[i];
+        }
         let (sb, ch, cz) = seabed_load::<FRICTION>(
             zb - z[i],
             [vx[i], vy[i], vz[i]],
@@ -718,78 +790,6 @@ struct Masses<'a> {
     kl: &'a [f64],
     cl: &'a [f64],
     mukl: &'a [f64],
-}
-
-/// Winch cables (ALE-GLMF, [`crate::ale`]): the variable element at time `time`, as the
-/// general path evaluates it. When nothing has been paid out since the last remeshing
-/// its `l0` is the layout's and the element loop's result stands (bitwise the plain
-/// GLMF); otherwise the element is re-evaluated with its current `l0` (internal damping
-/// on the material strain rate), and its half masses and its nodes' seabed tributary
-/// lengths follow.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn ale_patch(
-    c: &ChainConsts,
-    lay: &Layout,
-    ale: &[AleElem],
-    time: f64,
-    p: &[Vec<f64>; 6],
-    u: &[Vec<f64>; 3],
-    aw: &[Vec<f64>; 3],
-    eta: &[f64],
-    t: &mut [Vec<f64>; 3],
-    ten: &mut [f64],
-    f: &mut [Vec<f64>; 3],
-    hm: &mut [f64],
-    ha: &mut [f64],
-    kl: &mut [f64],
-    cl: &mut [f64],
-    mukl: &mut [f64],
-) {
-    for ae in ale {
-        let pay = ae.sched.eval(time);
-        let l0 = ae.l0(pay.dl);
-        let k = ae.elem;
-        let lc = Coefs::<f64>::from_line(&lay.line_coefs[c.line[k] as usize]);
-        let node = |i: usize| {
-            (
-                V3::new(p[0][i], p[1][i], p[2][i]),
-                V3::new(p[3][i], p[4][i], p[5][i]),
-            )
-        };
-        let ((ra, va), (rb, vb)) = (node(k), node(k + 1));
-        if l0 != ae.base_l0 || pay.rate != 0.0 {
-            let input = ElementInput {
-                ra,
-                rb,
-                va,
-                vb,
-                l0,
-                current: V3::new(u[0][k], u[1][k], u[2][k]),
-                water_accel: V3::new(aw[0][k], aw[1][k], aw[2][k]),
-            };
-            let wet = wetted_fraction(eta[k] - ra.z, eta[k + 1] - rb.z, c.diameter[k]);
-            let mut el = glmf_element_wet(&lc, &input, wet, lay.env.gravity);
-            if pay.rate != 0.0 {
-                // epsdot = (t . dv - (l / l0) Ldot) / l0 (crate::ale).
-                let l = (rb - ra).norm();
-                el.tension -= lc.ea_c * l * pay.rate / (l0 * l0);
-            }
-            let j = k + 1;
-            (t[0][j], t[1][j], t[2][j]) = (el.t.x, el.t.y, el.t.z);
-            ten[j] = el.tension;
-            (f[0][j], f[1][j], f[2][j]) = (el.f_half.x, el.f_half.y, el.f_half.z);
-            hm[j] = el.half_mass;
-            ha[j] = el.half_added;
-        }
-        for i in [ae.m, ae.w] {
-            // Without a seabed `sb_k = sb_c = 0`, so the tributary length does not matter.
-            let lt = c.trib[i] + 0.5 * (l0 - ae.base_l0);
-            kl[i] = c.sb_k * lt;
-            cl[i] = c.sb_c * lt;
-            mukl[i] = c.sb_mu * c.sb_k * lt;
-        }
-    }
 }
 
 /// The point masses and weights of the nodes whose point has a volume, less what the
@@ -1013,11 +1013,10 @@ fn advance_chain_scheme<const FRICTION: bool>(
         sc.x[4][i] = v[i].y;
         sc.x[5][i] = v[i].z;
     }
+    resize(&mut sc.w.xf, n);
     if !ale.is_empty() {
-        sc.w.hm.clone_from(&c.hm);
-        sc.w.kl.clone_from(&c.kl);
-        sc.w.cl.clone_from(&c.cl);
-        sc.w.mukl.clone_from(&c.mukl);
+        sc.wc.copy_from(c);
+        sc.ale.prepare(c, ale);
     }
     let ChainScratch {
         x,
@@ -1026,6 +1025,8 @@ fn advance_chain_scheme<const FRICTION: bool>(
         sum,
         a,
         w: wk,
+        wc,
+        ale: asc,
     } = sc;
     // A function, not a closure: closures are not inlined into the AVX2 caller and
     // would be compiled for the baseline target.
@@ -1033,6 +1034,8 @@ fn advance_chain_scheme<const FRICTION: bool>(
     #[allow(clippy::too_many_arguments)]
     fn eval<const FRICTION: bool>(
         c: &ChainConsts,
+        wc: &mut ChainConsts,
+        asc: &mut AleScratch,
         lay: &Layout,
         opts: &SolverOptions,
         ale: &[AleElem],
@@ -1053,11 +1056,15 @@ fn advance_chain_scheme<const FRICTION: bool>(
             haw,
             pm,
             pwz,
-            hm,
-            kl,
-            cl,
-            mukl,
+            xf,
         } = sc;
+        // Winch cables: the variable elements' constants at this time.
+        let c = if ale.is_empty() {
+            c
+        } else {
+            ale_constants(c, lay, ale, time, &mut asc.stage, wc);
+            &*wc
+        };
         currents(c, &lay.currents, state, u);
         if let Some(wb) = waves.as_deref_mut() {
             let st = |i: usize| {
@@ -1081,44 +1088,27 @@ fn advance_chain_scheme<const FRICTION: bool>(
         } else {
             elements::<false>(c, state, u, aw, eta, t, ten, f, haw);
         }
+        ale_tension(c, ale, &asc.stage, state, ten);
         point_surface(c, state, eta, pm, pwz);
-        if ale.is_empty() {
-            let m = Masses {
-                eta,
-                w: wbuf,
-                pm,
-                pwz,
-                hm: &c.hm,
-                ha: haw,
-                kl: &c.kl,
-                cl: &c.cl,
-                mukl: &c.mukl,
-            };
-            nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, a);
-        } else {
-            ale_patch(
-                c, lay, ale, time, state, u, aw, eta, t, ten, f, hm, haw, kl, cl, mukl,
-            );
-            let m = Masses {
-                eta,
-                w: wbuf,
-                pm,
-                pwz,
-                hm,
-                ha: haw,
-                kl,
-                cl,
-                mukl,
-            };
-            nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, a);
-        }
+        let m = Masses {
+            eta,
+            w: wbuf,
+            pm,
+            pwz,
+            hm: &c.hm,
+            ha: haw,
+            kl: &c.kl,
+            cl: &c.cl,
+            mukl: &c.mukl,
+        };
+        nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, asc, xf, a);
     }
     let mut result = Ok(());
     for k in 0..nsteps {
         let time = (step0 + k) as f64 * dt;
         match opts.scheme {
             Scheme::Symplectic => {
-                eval::<FRICTION>(c, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
+                eval::<FRICTION>(c, wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
                 let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
                     axpy(&mut vel[q][..n], &a[q], dt);
@@ -1127,12 +1117,25 @@ fn advance_chain_scheme<const FRICTION: bool>(
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
-                eval::<FRICTION>(c, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
+                eval::<FRICTION>(c, wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
                 for q in 0..3 {
                     xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
                     xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
                 }
-                eval::<FRICTION>(c, lay, opts, ale, xs, time + h, &mut waves, wbuf, wk, a);
+                eval::<FRICTION>(
+                    c,
+                    wc,
+                    asc,
+                    lay,
+                    opts,
+                    ale,
+                    xs,
+                    time + h,
+                    &mut waves,
+                    wbuf,
+                    wk,
+                    a,
+                );
                 let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
                     axpy(&mut pos[q][..n], &xs[3 + q], dt);
@@ -1151,7 +1154,20 @@ fn advance_chain_scheme<const FRICTION: bool>(
                         .into_iter()
                         .enumerate()
                 {
-                    eval::<FRICTION>(c, lay, opts, ale, xs, time + tau, &mut waves, wbuf, wk, a);
+                    eval::<FRICTION>(
+                        c,
+                        wc,
+                        asc,
+                        lay,
+                        opts,
+                        ale,
+                        xs,
+                        time + tau,
+                        &mut waves,
+                        wbuf,
+                        wk,
+                        a,
+                    );
                     let (spos, svel) = xs.split_at_mut(3);
                     for q in 0..3 {
                         axpy(&mut sum[q][..n], &svel[q], w);
