@@ -189,6 +189,8 @@ impl PayoutSchedule {
     }
 
     /// Payout at time `t`: length paid out since `t = 0`, rate and acceleration.
+    /// (Inlined: the steppers call it every stage.)
+    #[inline]
     pub fn eval(&self, t: f64) -> Payout {
         match &self.kind {
             Kind::Constant { rate } => Payout {

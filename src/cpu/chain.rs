@@ -408,8 +408,27 @@ pub(super) fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
     haw: &mut [f64],
 ) {
     let ne = tx.len();
-    let [xa, ya, za, vxa, vya, vza, eta_a] = a.map(|q| &q[..ne]);
-    let [xb, yb, zb, vxb, vyb, vzb, eta_b] = b.map(|q| &q[..ne]);
+    // Slices cut one by one: `array::map` here is a call per stage (not inlined).
+    let [xa, ya, za, vxa, vya, vza, eta_a] = a;
+    let [xb, yb, zb, vxb, vyb, vzb, eta_b] = b;
+    let (xa, ya, za, vxa, vya, vza, eta_a) = (
+        &xa[..ne],
+        &ya[..ne],
+        &za[..ne],
+        &vxa[..ne],
+        &vya[..ne],
+        &vza[..ne],
+        &eta_a[..ne],
+    );
+    let (xb, yb, zb, vxb, vyb, vzb, eta_b) = (
+        &xb[..ne],
+        &yb[..ne],
+        &zb[..ne],
+        &vxb[..ne],
+        &vyb[..ne],
+        &vzb[..ne],
+        &eta_b[..ne],
+    );
     let (ux, uy, uz) = (&ux[..ne], &uy[..ne], &uz[..ne]);
     let haw = &mut haw[..ne];
     let e1 = e0 + ne;
@@ -599,7 +618,7 @@ fn nodes<const FRICTION: bool>(
     }
     if extra {
         kernel!(true);
-        ale_mass_flow_clear(ale, xf);
+        ale_mass_flow_clear(asc, xf);
         for i in c
             .point_drag
             .iter()
@@ -1016,7 +1035,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
     resize(&mut sc.w.xf, n);
     if !ale.is_empty() {
         sc.wc.copy_from(c);
-        sc.ale.prepare(c, ale);
+        sc.ale.prepare(c, lay, ale);
     }
     let ChainScratch {
         x,
@@ -1062,7 +1081,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
         let c = if ale.is_empty() {
             c
         } else {
-            ale_constants(c, lay, ale, time, &mut asc.stage, wc);
+            ale_constants(ale, asc, time, wc);
             &*wc
         };
         currents(c, &lay.currents, state, u);
@@ -1088,7 +1107,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
         } else {
             elements::<false>(c, state, u, aw, eta, t, ten, f, haw);
         }
-        ale_tension(c, ale, &asc.stage, state, ten);
+        ale_tension(asc, state, ten);
         point_surface(c, state, eta, pm, pwz);
         let m = Masses {
             eta,

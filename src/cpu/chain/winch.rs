@@ -22,11 +22,31 @@ pub(super) struct AleStage {
     pub l0: f64,
 }
 
+/// What a run of steps keeps about one variable element: its indices, whether its
+/// nodes are free, and its constants folded once (per unit `l0`, and the block's own
+/// values at the last remeshing).
+#[derive(Clone, Copy, Default)]
+struct AleRun {
+    k: usize,
+    m: usize,
+    w: usize,
+    m_free: bool,
+    w_free: bool,
+    /// `EA c` of its line.
+    eac: f64,
+    /// Per unit `l0`: half the weight less buoyancy, half the buoyancy, half the
+    /// water-acceleration coefficient, half the mass, half the normal added mass.
+    per_l0: [f64; 5],
+    /// The block's `1/l0`, `half_wz`, `half_bz`, `half_fk`, `hm`, `ha` of the element.
+    base: [f64; 6],
+    /// Tributary lengths of `m` and `w` at the last remeshing, m.
+    trib: [f64; 2],
+}
+
 /// What one run of steps keeps about its block's variable elements.
 #[derive(Default)]
 pub(super) struct AleScratch {
-    /// Per variable element: whether its material node and its winch node are held.
-    held: Vec<(bool, bool)>,
+    runs: Vec<AleRun>,
     /// Per variable element: its payout and `l0` at the current stage.
     pub stage: Vec<AleStage>,
 }
@@ -34,56 +54,80 @@ pub(super) struct AleScratch {
 impl AleScratch {
     /// Sets up a run of steps of a block with the constants `c` and variable elements
     /// `ale`.
-    pub fn prepare(&mut self, c: &ChainConsts, ale: &[AleElem]) {
+    pub fn prepare(&mut self, c: &ChainConsts, lay: &Layout, ale: &[AleElem]) {
         let held = |i: usize| c.constrained.iter().any(|&(j, _)| j == i);
-        self.held.clear();
-        self.held
-            .extend(ale.iter().map(|ae| (held(ae.m), held(ae.w))));
+        self.runs.clear();
+        self.runs.extend(ale.iter().map(|ae| {
+            let k = ae.elem;
+            let lc = &lay.line_coefs[c.line[k] as usize];
+            AleRun {
+                k,
+                m: ae.m,
+                w: ae.w,
+                m_free: !held(ae.m),
+                w_free: !held(ae.w),
+                eac: c.eac[k],
+                // The products of `ChainConsts::new`, `0.5 * x * l0`, as `(0.5 * x) * l0`.
+                per_l0: [
+                    0.5 * lc.wet_weight_z,
+                    0.5 * (lc.wet_weight_z + lc.mass * lay.env.gravity),
+                    0.5 * lc.froude_krylov,
+                    0.5 * lc.mass,
+                    0.5 * lc.added_mass,
+                ],
+                base: [
+                    c.il0[k],
+                    c.half_wz[k],
+                    c.half_bz[k],
+                    c.half_fk[k],
+                    c.hm[k + 1],
+                    c.ha[k + 1],
+                ],
+                trib: [c.trib[ae.m], c.trib[ae.w]],
+            }
+        }));
         self.stage.clear();
         self.stage.resize(ale.len(), AleStage::default());
     }
 }
 
 /// Sets the variable elements' entries of the working constants `wc` (a copy of the
-/// block's `c`) for time `time`. When nothing has been paid out since the last
+/// block's constants) for time `time`. When nothing has been paid out since the last
 /// remeshing and the rate is zero, they are the block's own, bit for bit (the plain
 /// GLMF); otherwise they follow the current `l0`, with the formulas of
 /// [`ChainConsts::new`].
-pub(super) fn ale_constants(
-    c: &ChainConsts,
-    lay: &Layout,
-    ale: &[AleElem],
-    time: f64,
-    stage: &mut [AleStage],
-    wc: &mut ChainConsts,
-) {
-    for (ae, st) in ale.iter().zip(stage.iter_mut()) {
+#[inline(always)]
+pub(super) fn ale_constants(ale: &[AleElem], sc: &mut AleScratch, time: f64, wc: &mut ChainConsts) {
+    for ((ae, r), st) in ale.iter().zip(&sc.runs).zip(sc.stage.iter_mut()) {
         let pay = ae.sched.eval(time);
         let l0 = ae.l0(pay.dl);
         *st = AleStage { pay, l0 };
-        let k = ae.elem;
-        if l0 != ae.base_l0 || pay.rate != 0.0 {
-            let lc = &lay.line_coefs[c.line[k] as usize];
-            wc.il0[k] = 1.0 / l0;
-            wc.half_wz[k] = 0.5 * lc.wet_weight_z * l0;
-            wc.half_bz[k] = 0.5 * (lc.wet_weight_z + lc.mass * lay.env.gravity) * l0;
-            wc.half_fk[k] = 0.5 * lc.froude_krylov * l0;
-            wc.hm[k + 1] = 0.5 * lc.mass * l0;
-            wc.ha[k + 1] = 0.5 * lc.added_mass * l0;
+        let [il0, hw, hb, hfk, hm, ha] = if l0 != ae.base_l0 || pay.rate != 0.0 {
+            let q = r.per_l0;
+            [
+                1.0 / l0,
+                q[0] * l0,
+                q[1] * l0,
+                q[2] * l0,
+                q[3] * l0,
+                q[4] * l0,
+            ]
         } else {
-            wc.il0[k] = c.il0[k];
-            wc.half_wz[k] = c.half_wz[k];
-            wc.half_bz[k] = c.half_bz[k];
-            wc.half_fk[k] = c.half_fk[k];
-            wc.hm[k + 1] = c.hm[k + 1];
-            wc.ha[k + 1] = c.ha[k + 1];
-        }
-        for i in [ae.m, ae.w] {
+            r.base
+        };
+        let k = r.k;
+        wc.il0[k] = il0;
+        wc.half_wz[k] = hw;
+        wc.half_bz[k] = hb;
+        wc.half_fk[k] = hfk;
+        wc.hm[k + 1] = hm;
+        wc.ha[k + 1] = ha;
+        for (i, trib) in [(r.m, r.trib[0]), (r.w, r.trib[1])] {
             // Without a seabed `sb_k = sb_c = 0`, so the tributary length does not matter.
-            let lt = c.trib[i] + 0.5 * (l0 - ae.base_l0);
-            wc.kl[i] = c.sb_k * lt;
-            wc.cl[i] = c.sb_c * lt;
-            wc.mukl[i] = c.sb_mu * c.sb_k * lt;
+            let lt = trib + 0.5 * (l0 - ae.base_l0);
+            wc.kl[i] = wc.sb_k * lt;
+            wc.cl[i] = wc.sb_c * lt;
+            wc.mukl[i] = wc.sb_mu * wc.sb_k * lt;
         }
     }
 }
@@ -91,30 +135,26 @@ pub(super) fn ale_constants(
 /// After the element loop: the damping of a paid-out variable element acts on the
 /// material strain rate, `epsdot = (t . dv - (l / l0) Ldot) / l0` (crate::ale), so
 /// its tension (padded array `ten`) loses `EA c l Ldot / l0^2`.
-pub(super) fn ale_tension(
-    c: &ChainConsts,
-    ale: &[AleElem],
-    stage: &[AleStage],
-    p: &[Vec<f64>; 6],
-    ten: &mut [f64],
-) {
-    for (ae, st) in ale.iter().zip(stage) {
+#[inline(always)]
+pub(super) fn ale_tension(sc: &AleScratch, p: &[Vec<f64>; 6], ten: &mut [f64]) {
+    for (r, st) in sc.runs.iter().zip(&sc.stage) {
         let rate = st.pay.rate;
         if rate != 0.0 {
-            let k = ae.elem;
+            let k = r.k;
             let (dx, dy, dz) = (
                 p[0][k + 1] - p[0][k],
                 p[1][k + 1] - p[1][k],
                 p[2][k + 1] - p[2][k],
             );
             let l = (dx * dx + dy * dy + dz * dz).sqrt();
-            ten[k + 1] -= c.eac[k] * l * rate / (st.l0 * st.l0);
+            ten[k + 1] -= r.eac * l * rate / (st.l0 * st.l0);
         }
     }
 }
 
 /// The mass-flow forces of Eq. 39 on the variable elements' free nodes, added to the
 /// per-node extra forces `xf`; returns whether any was added.
+#[inline(always)]
 pub(super) fn ale_mass_flow(
     ale: &[AleElem],
     sc: &AleScratch,
@@ -122,38 +162,45 @@ pub(super) fn ale_mass_flow(
     xf: &mut [Vec<f64>; 3],
 ) -> bool {
     let mut any = false;
-    for ((ae, st), &(m_held, w_held)) in ale.iter().zip(&sc.stage).zip(&sc.held) {
+    for ((ae, r), st) in ale.iter().zip(&sc.runs).zip(&sc.stage) {
         let pay = st.pay;
         if pay.rate == 0.0 && pay.accel == 0.0 {
             continue;
         }
-        let node = |i: usize| {
-            (
-                V3::new(p[0][i], p[1][i], p[2][i]),
-                V3::new(p[3][i], p[4][i], p[5][i]),
-            )
-        };
-        let ((rm, vm), (rw, vw)) = (node(ae.m), node(ae.w));
-        let (fm, fw) = mass_flow_forces(ae.mass, st.l0, pay.rate, pay.accel, rm, rw, vm, vw);
-        for (i, f, held) in [(ae.m, fm, m_held), (ae.w, fw, w_held)] {
-            if !held {
-                xf[0][i] += f.x;
-                xf[1][i] += f.y;
-                xf[2][i] += f.z;
-                any = true;
-            }
+        let (m, w) = (r.m, r.w);
+        let (fm, fw) = mass_flow_forces(
+            ae.mass,
+            st.l0,
+            pay.rate,
+            pay.accel,
+            V3::new(p[0][m], p[1][m], p[2][m]),
+            V3::new(p[0][w], p[1][w], p[2][w]),
+            V3::new(p[3][m], p[4][m], p[5][m]),
+            V3::new(p[3][w], p[4][w], p[5][w]),
+        );
+        if r.m_free {
+            xf[0][m] += fm.x;
+            xf[1][m] += fm.y;
+            xf[2][m] += fm.z;
+            any = true;
+        }
+        if r.w_free {
+            xf[0][w] += fw.x;
+            xf[1][w] += fw.y;
+            xf[2][w] += fw.z;
+            any = true;
         }
     }
     any
 }
 
 /// Clears the entries [`ale_mass_flow`] wrote.
-pub(super) fn ale_mass_flow_clear(ale: &[AleElem], xf: &mut [Vec<f64>; 3]) {
-    for ae in ale {
-        for i in [ae.m, ae.w] {
-            for x in xf.iter_mut() {
-                x[i] = 0.0;
-            }
+#[inline(always)]
+pub(super) fn ale_mass_flow_clear(sc: &AleScratch, xf: &mut [Vec<f64>; 3]) {
+    for r in &sc.runs {
+        for x in xf.iter_mut() {
+            x[r.m] = 0.0;
+            x[r.w] = 0.0;
         }
     }
 }
