@@ -607,13 +607,24 @@ fn nodes<const FRICTION: bool>(
     let [ax, ay, az] = a;
     // The symplectic scheme takes the seabed's damping implicitly (passes::implicit_dt).
     let h = implicit_dt(opts);
-    macro_rules! kernel {
-        ($extra:literal) => {
-            node_kernel::<FRICTION, $extra>(
+    macro_rules! kernel_of {
+        ($extra:literal, $seabed:literal) => {
+            node_kernel::<FRICTION, $extra, $seabed>(
                 c, h, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1],
                 &fv[2], &xf[0], &xf[1], &xf[2], m.pm, m.pwz, m.hm, m.ha, m.kl, m.cl, m.mukl, ax,
                 ay, az,
             )
+        };
+    }
+    // Without a seabed (friction needs one) the node loop skips the contact terms.
+    let seabed = FRICTION || c.zb.is_finite();
+    macro_rules! kernel {
+        ($extra:literal) => {
+            if seabed {
+                kernel_of!($extra, true)
+            } else {
+                kernel_of!($extra, false)
+            }
         };
     }
     if extra {
@@ -699,7 +710,7 @@ pub(super) fn route_accel(
 /// The node loop (see [`element_kernel`] for why every array is a parameter).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn node_kernel<const FRICTION: bool, const EXTRA: bool>(
+fn node_kernel<const FRICTION: bool, const EXTRA: bool, const SEABED: bool>(
     c: &ChainConsts,
     h: f64,
     z: &[f64],
@@ -747,23 +758,29 @@ fn node_kernel<const FRICTION: bool, const EXTRA: bool>(
             gy += xfy[i];
             gz += xfz[i];
         }
-        let (sb, ch, cz) = seabed_load::<FRICTION>(
-            zb - z[i],
-            [vx[i], vy[i], vz[i]],
-            kl[i],
-            cl[i],
-            mukl[i],
-            v_eps,
-        );
-        gz += sb[2];
-        if FRICTION {
-            gx += sb[0];
-            gy += sb[1];
-        }
-        // Seabed damping and friction implicit: (M + h diag(c_h, c_h, c_z)) a = F.
         let s = pm[i] + hm[j] + hm[k] + ha[j] + ha[k];
+        // Seabed damping and friction implicit: (M + h diag(c_h, c_h, c_z)) a = F.
+        // Without a seabed the diagonal is `s` (what `s + h 0` is, bit for bit).
+        let d = if SEABED {
+            let (sb, ch, cz) = seabed_load::<FRICTION>(
+                zb - z[i],
+                [vx[i], vy[i], vz[i]],
+                kl[i],
+                cl[i],
+                mukl[i],
+                v_eps,
+            );
+            gz += sb[2];
+            if FRICTION {
+                gx += sb[0];
+                gy += sb[1];
+            }
+            [s + h * ch, s + h * ch, s + h * cz]
+        } else {
+            [s, s, s]
+        };
         let acc = solve_mass(
-            [s + h * ch, s + h * ch, s + h * cz],
+            d,
             ha[j],
             ha[k],
             [tx[j], ty[j], tz[j]],
@@ -774,6 +791,42 @@ fn node_kernel<const FRICTION: bool, const EXTRA: bool>(
         ay[i] = acc[1];
         az[i] = acc[2];
     }
+}
+
+/// The symplectic Euler update `v += a dt`, then `x += v dt`, of the first `n` nodes
+/// of the SoA state `x`, and the number of them whose new state is non-finite or over
+/// the limits ([`count_bad`]'s test), in one loop.
+#[inline(always)]
+fn symplectic_update(
+    x: &mut [Vec<f64>; 6],
+    a: &[Vec<f64>; 3],
+    n: usize,
+    dt: f64,
+    vmax: f64,
+    rmax: f64,
+) -> usize {
+    let [px, py, pz, vx, vy, vz] = x;
+    let (px, py, pz) = (&mut px[..n], &mut py[..n], &mut pz[..n]);
+    let (vx, vy, vz) = (&mut vx[..n], &mut vy[..n], &mut vz[..n]);
+    let (ax, ay, az) = (&a[0][..n], &a[1][..n], &a[2][..n]);
+    let mut bad = 0usize;
+    for i in 0..n {
+        vx[i] += ax[i] * dt;
+        vy[i] += ay[i] * dt;
+        vz[i] += az[i] * dt;
+        px[i] += vx[i] * dt;
+        py[i] += vy[i] * dt;
+        pz[i] += vz[i] * dt;
+        // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
+        let ok = (px[i].abs() < rmax)
+            & (py[i].abs() < rmax)
+            & (pz[i].abs() < rmax)
+            & (vx[i].abs() < vmax)
+            & (vy[i].abs() < vmax)
+            & (vz[i].abs() < vmax);
+        bad += (!ok) as usize;
+    }
+    bad
 }
 
 /// `x += v h` elementwise.
@@ -1123,16 +1176,13 @@ fn advance_chain_scheme<const FRICTION: bool>(
         nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, asc, xf, a);
     }
     let mut result = Ok(());
+    let mut bad = 0;
     for k in 0..nsteps {
         let time = (step0 + k) as f64 * dt;
         match opts.scheme {
             Scheme::Symplectic => {
                 eval::<FRICTION>(c, wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
-                let (pos, vel) = x.split_at_mut(3);
-                for q in 0..3 {
-                    axpy(&mut vel[q][..n], &a[q], dt);
-                    axpy(&mut pos[q][..n], &vel[q], dt);
-                }
+                bad = symplectic_update(x, a, n, dt, opts.max_speed, opts.max_distance);
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
@@ -1202,7 +1252,10 @@ fn advance_chain_scheme<const FRICTION: bool>(
                 }
             }
         }
-        if count_bad(x, n, opts.max_speed, opts.max_distance) > 0 {
+        if opts.scheme != Scheme::Symplectic {
+            bad = count_bad(x, n, opts.max_speed, opts.max_distance);
+        }
+        if bad > 0 {
             let i = (0..n)
                 .find(|&i| {
                     !(x[0][i].abs() < opts.max_distance
