@@ -142,6 +142,11 @@ impl PayoutSchedule {
         }
     }
 
+    /// True for a constant rate: the paid-out length is then monotone in time.
+    pub fn is_constant(&self) -> bool {
+        matches!(self.kind, Kind::Constant { .. })
+    }
+
     /// True when the schedule never changes the length (zero rates, a flat table).
     pub fn is_still(&self) -> bool {
         match &self.kind {

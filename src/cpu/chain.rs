@@ -1086,6 +1086,9 @@ fn advance_chain_scheme<const FRICTION: bool>(
         sc.x[5][i] = v[i].z;
     }
     resize(&mut sc.w.xf, n);
+    if c.uniform.is_some() && waves.is_none() {
+        currents(c, &lay.currents, &sc.x, &mut sc.w.u);
+    }
     if !ale.is_empty() {
         sc.wc.copy_from(c);
         sc.ale.prepare(c, lay, ale);
@@ -1137,7 +1140,10 @@ fn advance_chain_scheme<const FRICTION: bool>(
             ale_constants(ale, asc, time, wc);
             &*wc
         };
-        currents(c, &lay.currents, state, u);
+        // A uniform current in still water was filled once for the run.
+        if c.uniform.is_none() || waves.is_some() {
+            currents(c, &lay.currents, state, u);
+        }
         if let Some(wb) = waves.as_deref_mut() {
             let st = |i: usize| {
                 (
