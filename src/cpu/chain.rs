@@ -579,14 +579,13 @@ fn nodes<const FRICTION: bool>(
     ten: &[f64],
     fv: &[Vec<f64>; 3],
     m: &Masses,
-    ale: &[AleElem],
     asc: &AleScratch,
     xf: &mut [Vec<f64>; 3],
     a: &mut [Vec<f64>; 3],
 ) {
     // Winch cables: the mass-flow forces of Eq. 39 on the variable element's free nodes
     // (crate::ale; a held winch node's acceleration is its route's).
-    let mut extra = ale_mass_flow(ale, asc, p, xf);
+    let mut extra = ale_mass_flow(asc, p, xf);
     let mut add = |xf: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
         for (x, fq) in xf.iter_mut().zip(f) {
             x[i] += fq;
@@ -1089,9 +1088,10 @@ fn advance_chain_scheme<const FRICTION: bool>(
     if c.uniform.is_some() && waves.is_none() {
         currents(c, &lay.currents, &sc.x, &mut sc.w.u);
     }
+    // Always: the scratch may hold the previous block's variable elements.
+    sc.ale.prepare(c, lay, ale);
     if !ale.is_empty() {
         sc.wc.copy_from(c);
-        sc.ale.prepare(c, lay, ale);
     }
     let ChainScratch {
         x,
@@ -1137,7 +1137,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
         let c = if ale.is_empty() {
             c
         } else {
-            ale_constants(ale, asc, time, wc);
+            ale_constants(asc, time, wc);
             &*wc
         };
         // A uniform current in still water was filled once for the run.
@@ -1179,7 +1179,7 @@ fn advance_chain_scheme<const FRICTION: bool>(
             cl: &c.cl,
             mukl: &c.mukl,
         };
-        nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, asc, xf, a);
+        nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, asc, xf, a);
     }
     let mut result = Ok(());
     let mut bad = 0;

@@ -26,3 +26,4 @@ mod study;
 mod study_validation;
 mod water_surface;
 mod waves_steppers;
+mod winch_kernel;

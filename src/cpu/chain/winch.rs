@@ -11,27 +11,28 @@
 //! acceleration is its route's, so its mass-flow force is not needed there).
 
 use super::ChainConsts;
-use crate::ale::{mass_flow_forces, AleElem, Payout};
+use crate::ale::{mass_flow_forces, AleElem, Payout, PayoutSchedule};
 use crate::math::V3;
 use crate::model::Layout;
-
-/// A variable element's payout and `l0` at the time of one stage.
-#[derive(Clone, Copy, Default)]
-pub(super) struct AleStage {
-    pub pay: Payout,
-    pub l0: f64,
-}
+use std::sync::Arc;
 
 /// What a run of steps keeps about one variable element: its indices, whether its
-/// nodes are free, and its constants folded once (per unit `l0`, and the block's own
-/// values at the last remeshing).
-#[derive(Clone, Copy, Default)]
+/// nodes are free, its constants folded once (per unit `l0`, and the block's own
+/// values at the last remeshing), and its payout and `l0` at the current stage.
+#[derive(Clone, Default)]
 struct AleRun {
     k: usize,
     m: usize,
     w: usize,
     m_free: bool,
     w_free: bool,
+    /// The rate of a constant-rate schedule (evaluated here, inline).
+    rate: Option<f64>,
+    sched: Option<Arc<PayoutSchedule>>,
+    base_l0: f64,
+    base_dl: f64,
+    /// `mbar`, kg/m.
+    mass: f64,
     /// `EA c` of its line.
     eac: f64,
     /// Per unit `l0`: half the weight less buoyancy, half the buoyancy, half the
@@ -41,14 +42,15 @@ struct AleRun {
     base: [f64; 6],
     /// Tributary lengths of `m` and `w` at the last remeshing, m.
     trib: [f64; 2],
+    /// Payout and `l0` at the current stage.
+    pay: Payout,
+    l0: f64,
 }
 
 /// What one run of steps keeps about its block's variable elements.
 #[derive(Default)]
 pub(super) struct AleScratch {
     runs: Vec<AleRun>,
-    /// Per variable element: its payout and `l0` at the current stage.
-    pub stage: Vec<AleStage>,
 }
 
 impl AleScratch {
@@ -66,6 +68,11 @@ impl AleScratch {
                 w: ae.w,
                 m_free: !held(ae.m),
                 w_free: !held(ae.w),
+                rate: ae.sched.constant_rate(),
+                sched: Some(ae.sched.clone()),
+                base_l0: ae.base_l0,
+                base_dl: ae.base_dl,
+                mass: ae.mass,
                 eac: c.eac[k],
                 // The products of `ChainConsts::new`, `0.5 * x * l0`, as `(0.5 * x) * l0`.
                 per_l0: [
@@ -84,10 +91,10 @@ impl AleScratch {
                     c.ha[k + 1],
                 ],
                 trib: [c.trib[ae.m], c.trib[ae.w]],
+                pay: Payout::default(),
+                l0: ae.base_l0,
             }
         }));
-        self.stage.clear();
-        self.stage.resize(ale.len(), AleStage::default());
     }
 }
 
@@ -97,21 +104,19 @@ impl AleScratch {
 /// GLMF); otherwise they follow the current `l0`, with the formulas of
 /// [`ChainConsts::new`].
 #[inline(always)]
-pub(super) fn ale_constants(ale: &[AleElem], sc: &mut AleScratch, time: f64, wc: &mut ChainConsts) {
-    for ((ae, r), st) in ale.iter().zip(&sc.runs).zip(sc.stage.iter_mut()) {
-        let pay = ae.sched.eval(time);
-        let l0 = ae.l0(pay.dl);
-        *st = AleStage { pay, l0 };
-        let [il0, hw, hb, hfk, hm, ha] = if l0 != ae.base_l0 || pay.rate != 0.0 {
+pub(super) fn ale_constants(sc: &mut AleScratch, time: f64, wc: &mut ChainConsts) {
+    for r in sc.runs.iter_mut() {
+        let pay = match (r.rate, &r.sched) {
+            (Some(rate), _) => Payout::of_constant(rate, time),
+            (None, Some(s)) => s.eval(time),
+            (None, None) => Payout::default(),
+        };
+        // `AleElem::l0`.
+        let l0 = r.base_l0 + (pay.dl - r.base_dl);
+        (r.pay, r.l0) = (pay, l0);
+        let [il0, hw, hb, hfk, hm, ha] = if l0 != r.base_l0 || pay.rate != 0.0 {
             let q = r.per_l0;
-            [
-                1.0 / l0,
-                q[0] * l0,
-                q[1] * l0,
-                q[2] * l0,
-                q[3] * l0,
-                q[4] * l0,
-            ]
+            [1.0 / l0, q[0] * l0, q[1] * l0, q[2] * l0, q[3] * l0, q[4] * l0]
         } else {
             r.base
         };
@@ -124,7 +129,7 @@ pub(super) fn ale_constants(ale: &[AleElem], sc: &mut AleScratch, time: f64, wc:
         wc.ha[k + 1] = ha;
         for (i, trib) in [(r.m, r.trib[0]), (r.w, r.trib[1])] {
             // Without a seabed `sb_k = sb_c = 0`, so the tributary length does not matter.
-            let lt = trib + 0.5 * (l0 - ae.base_l0);
+            let lt = trib + 0.5 * (l0 - r.base_l0);
             wc.kl[i] = wc.sb_k * lt;
             wc.cl[i] = wc.sb_c * lt;
             wc.mukl[i] = wc.sb_mu * wc.sb_k * lt;
@@ -137,8 +142,8 @@ pub(super) fn ale_constants(ale: &[AleElem], sc: &mut AleScratch, time: f64, wc:
 /// its tension (padded array `ten`) loses `EA c l Ldot / l0^2`.
 #[inline(always)]
 pub(super) fn ale_tension(sc: &AleScratch, p: &[Vec<f64>; 6], ten: &mut [f64]) {
-    for (r, st) in sc.runs.iter().zip(&sc.stage) {
-        let rate = st.pay.rate;
+    for r in &sc.runs {
+        let rate = r.pay.rate;
         if rate != 0.0 {
             let k = r.k;
             let (dx, dy, dz) = (
@@ -147,7 +152,7 @@ pub(super) fn ale_tension(sc: &AleScratch, p: &[Vec<f64>; 6], ten: &mut [f64]) {
                 p[2][k + 1] - p[2][k],
             );
             let l = (dx * dx + dy * dy + dz * dz).sqrt();
-            ten[k + 1] -= r.eac * l * rate / (st.l0 * st.l0);
+            ten[k + 1] -= r.eac * l * rate / (r.l0 * r.l0);
         }
     }
 }
@@ -155,22 +160,17 @@ pub(super) fn ale_tension(sc: &AleScratch, p: &[Vec<f64>; 6], ten: &mut [f64]) {
 /// The mass-flow forces of Eq. 39 on the variable elements' free nodes, added to the
 /// per-node extra forces `xf`; returns whether any was added.
 #[inline(always)]
-pub(super) fn ale_mass_flow(
-    ale: &[AleElem],
-    sc: &AleScratch,
-    p: &[Vec<f64>; 6],
-    xf: &mut [Vec<f64>; 3],
-) -> bool {
+pub(super) fn ale_mass_flow(sc: &AleScratch, p: &[Vec<f64>; 6], xf: &mut [Vec<f64>; 3]) -> bool {
     let mut any = false;
-    for ((ae, r), st) in ale.iter().zip(&sc.runs).zip(&sc.stage) {
-        let pay = st.pay;
+    for r in &sc.runs {
+        let pay = r.pay;
         if pay.rate == 0.0 && pay.accel == 0.0 {
             continue;
         }
         let (m, w) = (r.m, r.w);
         let (fm, fw) = mass_flow_forces(
-            ae.mass,
-            st.l0,
+            r.mass,
+            r.l0,
             pay.rate,
             pay.accel,
             V3::new(p[0][m], p[1][m], p[2][m]),
