@@ -116,7 +116,14 @@ pub(super) fn ale_constants(sc: &mut AleScratch, time: f64, wc: &mut ChainConsts
         (r.pay, r.l0) = (pay, l0);
         let [il0, hw, hb, hfk, hm, ha] = if l0 != r.base_l0 || pay.rate != 0.0 {
             let q = r.per_l0;
-            [1.0 / l0, q[0] * l0, q[1] * l0, q[2] * l0, q[3] * l0, q[4] * l0]
+            [
+                1.0 / l0,
+                q[0] * l0,
+                q[1] * l0,
+                q[2] * l0,
+                q[3] * l0,
+                q[4] * l0,
+            ]
         } else {
             r.base
         };
