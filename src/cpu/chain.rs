@@ -17,17 +17,16 @@
 
 use super::passes::implicit_dt;
 use super::water::{node_water, BlockWaves, Water};
-use crate::ale::{mass_flow_forces, AleElem};
-use crate::math::V3;
+use crate::ale::AleElem;
 use crate::model::{Block, Current, Layout, NO_CONSTRAINT};
 use crate::options::{Scheme, SolverOptions};
-use crate::physics::{
-    glmf_element_wet, point_wetted_fraction, wetted_fraction, Coefs, ElementInput,
-};
+use crate::physics::{point_wetted_fraction, wetted_fraction};
 use crate::step::{diverged, StepFailure};
 
 mod net;
+mod winch;
 pub(crate) use net::{advance_net, advance_net_threaded, NetConsts, NetScratch};
+use winch::{ale_constants, ale_mass_flow, ale_mass_flow_clear, ale_tension, AleScratch};
 
 /// Per-block constants of a chain, built once.
 #[derive(Clone, Debug, Default)]
@@ -178,6 +177,77 @@ impl ChainConsts {
 }
 
 impl ChainConsts {
+    /// Makes `self` a copy of `o`, reusing `self`'s arrays (a run of steps of a winch
+    /// cable edits a working copy of its block's constants).
+    fn copy_from(&mut self, o: &ChainConsts) {
+        let ChainConsts {
+            n,
+            l0,
+            il0,
+            ea,
+            eac,
+            comp,
+            drag_n,
+            drag_t,
+            half_wz,
+            half_bz,
+            half_fk,
+            diameter,
+            current,
+            line,
+            uniform,
+            hm,
+            ha,
+            pm,
+            pwz,
+            kl,
+            cl,
+            mukl,
+            constrained,
+            point_drag,
+            point_volume,
+            trib,
+            sb_k,
+            sb_c,
+            sb_mu,
+            zb,
+            friction,
+            v_eps,
+        } = self;
+        *n = o.n;
+        for (d, s) in [
+            (l0, &o.l0),
+            (il0, &o.il0),
+            (ea, &o.ea),
+            (eac, &o.eac),
+            (comp, &o.comp),
+            (drag_n, &o.drag_n),
+            (drag_t, &o.drag_t),
+            (half_wz, &o.half_wz),
+            (half_bz, &o.half_bz),
+            (half_fk, &o.half_fk),
+            (diameter, &o.diameter),
+            (hm, &o.hm),
+            (ha, &o.ha),
+            (pm, &o.pm),
+            (pwz, &o.pwz),
+            (kl, &o.kl),
+            (cl, &o.cl),
+            (mukl, &o.mukl),
+            (trib, &o.trib),
+        ] {
+            d.clone_from(s);
+        }
+        current.clone_from(&o.current);
+        line.clone_from(&o.line);
+        *uniform = o.uniform;
+        constrained.clone_from(&o.constrained);
+        point_drag.clone_from(&o.point_drag);
+        point_volume.clone_from(&o.point_volume);
+        (*sb_k, *sb_c, *sb_mu, *zb, *friction, *v_eps) =
+            (o.sb_k, o.sb_c, o.sb_mu, o.zb, o.friction, o.v_eps);
+    }
+
     /// Re-reads the constraint numbers of block `b` of `lay` (the same chain as the one
     /// these constants were made for, possibly renumbered by a rebuild).
     pub(crate) fn refresh_constraints(&mut self, lay: &Layout, b: &Block) {
@@ -202,6 +272,10 @@ pub(crate) struct ChainScratch {
     sum: [Vec<f64>; 6],
     a: [Vec<f64>; 3],
     w: Work,
+    /// Winch cables: the working copy of the block's constants that the variable
+    /// elements change every stage, and what the run keeps about them.
+    wc: ChainConsts,
+    ale: AleScratch,
 }
 
 /// What one evaluation writes.
@@ -222,12 +296,9 @@ struct Work {
     // partly out of the water loses.
     pm: Vec<f64>,
     pwz: Vec<f64>,
-    // Working copies of the half masses (padded) and seabed constants per node, which
-    // the ALE variable element changes every stage.
-    hm: Vec<f64>,
-    kl: Vec<f64>,
-    cl: Vec<f64>,
-    mukl: Vec<f64>,
+    // Per node: the extra forces (point drag, water acceleration of a point, mass flow)
+    // that the node loop adds before its solve; zero but at the few nodes that have them.
+    xf: [Vec<f64>; 3],
 }
 
 fn resize(v: &mut [Vec<f64>], n: usize) {
@@ -337,8 +408,27 @@ pub(super) fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
     haw: &mut [f64],
 ) {
     let ne = tx.len();
-    let [xa, ya, za, vxa, vya, vza, eta_a] = a.map(|q| &q[..ne]);
-    let [xb, yb, zb, vxb, vyb, vzb, eta_b] = b.map(|q| &q[..ne]);
+    // Slices cut one by one: `array::map` here is a call per stage (not inlined).
+    let [xa, ya, za, vxa, vya, vza, eta_a] = a;
+    let [xb, yb, zb, vxb, vyb, vzb, eta_b] = b;
+    let (xa, ya, za, vxa, vya, vza, eta_a) = (
+        &xa[..ne],
+        &ya[..ne],
+        &za[..ne],
+        &vxa[..ne],
+        &vya[..ne],
+        &vza[..ne],
+        &eta_a[..ne],
+    );
+    let (xb, yb, zb, vxb, vyb, vzb, eta_b) = (
+        &xb[..ne],
+        &yb[..ne],
+        &zb[..ne],
+        &vxb[..ne],
+        &vyb[..ne],
+        &vzb[..ne],
+        &eta_b[..ne],
+    );
     let (ux, uy, uz) = (&ux[..ne], &uy[..ne], &uz[..ne]);
     let haw = &mut haw[..ne];
     let e1 = e0 + ne;
@@ -473,8 +563,10 @@ pub(super) fn seabed_load<const FRICTION: bool>(
     ([-(ch * v[0]), -(ch * v[1]), gz], ch, cz)
 }
 
-/// Node pass: accelerations of every node into `a`, with constraints and point drag
-/// fixed up afterwards. `p` is the state the element pass used.
+/// Node pass: accelerations of every node into `a`, with constraints fixed up
+/// afterwards. `p` is the state the element pass used. The few nodes with extra forces
+/// (point drag, a point's water-acceleration load, mass flow) have them added to their
+/// force before the solve, as on the general path.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn nodes<const FRICTION: bool>(
@@ -487,68 +579,68 @@ fn nodes<const FRICTION: bool>(
     ten: &[f64],
     fv: &[Vec<f64>; 3],
     m: &Masses,
-    ale: &[AleElem],
+    asc: &AleScratch,
+    xf: &mut [Vec<f64>; 3],
     a: &mut [Vec<f64>; 3],
 ) {
-    let [ax, ay, az] = a;
-    // The symplectic scheme takes the seabed's damping implicitly (passes::implicit_dt).
-    let h = implicit_dt(opts);
-    node_kernel::<FRICTION>(
-        c, h, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1], &fv[2],
-        m.pm, m.pwz, m.hm, m.ha, m.kl, m.cl, m.mukl, ax, ay, az,
-    );
-    // The solve is linear: a node's extra force F adds M^-1 F to its acceleration
-    // (M with the same implicit damping as the node loop's).
-    let add = |a: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
-        let s = m.pm[i] + m.hm[i] + m.hm[i + 1] + m.ha[i] + m.ha[i + 1];
-        let (ch, cz) = contact_slopes::<FRICTION>(
-            c.zb - p[2][i],
-            p[3][i],
-            p[4][i],
-            m.cl[i],
-            m.mukl[i],
-            c.v_eps,
-        );
-        let d = solve_mass(
-            [s + h * ch, s + h * ch, s + h * cz],
-            m.ha[i],
-            m.ha[i + 1],
-            [tv[0][i], tv[1][i], tv[2][i]],
-            [tv[0][i + 1], tv[1][i + 1], tv[2][i + 1]],
-            f,
-        );
-        a[0][i] += d[0];
-        a[1][i] += d[1];
-        a[2][i] += d[2];
-    };
-    // Winch cables: the mass-flow forces of Eq. 39 on the variable element's two nodes
-    // (crate::ale; the winch node's is overwritten by its constraint below).
-    for ae in ale {
-        let pay = ae.sched.eval(time);
-        if pay.rate != 0.0 || pay.accel != 0.0 {
-            let node = |i: usize| {
-                (
-                    V3::new(p[0][i], p[1][i], p[2][i]),
-                    V3::new(p[3][i], p[4][i], p[5][i]),
-                )
-            };
-            let ((rm, vm), (rw, vw)) = (node(ae.m), node(ae.w));
-            let (fm, fw) =
-                mass_flow_forces(ae.mass, ae.l0(pay.dl), pay.rate, pay.accel, rm, rw, vm, vw);
-            add(a, ae.m, fm.to_f64());
-            add(a, ae.w, fw.to_f64());
+    // Winch cables: the mass-flow forces of Eq. 39 on the variable element's free nodes
+    // (crate::ale; a held winch node's acceleration is its route's).
+    let mut extra = ale_mass_flow(asc, p, xf);
+    let mut add = |xf: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
+        for (x, fq) in xf.iter_mut().zip(f) {
+            x[i] += fq;
         }
-    }
+        extra = true;
+    };
     for pd in &c.point_drag {
         let i = pd.0;
         let f = point_drag_force(lay, pd, p[2][i], [p[3][i], p[4][i], p[5][i]], m.eta[i], m.w);
-        add(a, i, f);
+        add(xf, i, f);
     }
     if !m.w.is_empty() {
         for pv in &c.point_volume {
             let i = pv.0;
-            add(a, i, point_water_accel_force(pv, p[2][i], m.eta[i], m.w));
+            add(xf, i, point_water_accel_force(pv, p[2][i], m.eta[i], m.w));
         }
+    }
+    let [ax, ay, az] = a;
+    // The symplectic scheme takes the seabed's damping implicitly (passes::implicit_dt).
+    let h = implicit_dt(opts);
+    macro_rules! kernel_of {
+        ($extra:literal, $seabed:literal) => {
+            node_kernel::<FRICTION, $extra, $seabed>(
+                c, h, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1],
+                &fv[2], &xf[0], &xf[1], &xf[2], m.pm, m.pwz, m.hm, m.ha, m.kl, m.cl, m.mukl, ax,
+                ay, az,
+            )
+        };
+    }
+    // Without a seabed (friction needs one) the node loop skips the contact terms.
+    let seabed = FRICTION || c.zb.is_finite();
+    macro_rules! kernel {
+        ($extra:literal) => {
+            if seabed {
+                kernel_of!($extra, true)
+            } else {
+                kernel_of!($extra, false)
+            }
+        };
+    }
+    if extra {
+        kernel!(true);
+        ale_mass_flow_clear(asc, xf);
+        for i in c
+            .point_drag
+            .iter()
+            .map(|pd| pd.0)
+            .chain(c.point_volume.iter().map(|pv| pv.0))
+        {
+            for x in xf.iter_mut() {
+                x[i] = 0.0;
+            }
+        }
+    } else {
+        kernel!(false);
     }
     for &(i, ri) in &c.constrained {
         let d = route_accel(lay, opts, time, ri, |q| (p[q][i], p[3 + q][i]));
@@ -617,7 +709,7 @@ pub(super) fn route_accel(
 /// The node loop (see [`element_kernel`] for why every array is a parameter).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn node_kernel<const FRICTION: bool>(
+fn node_kernel<const FRICTION: bool, const EXTRA: bool, const SEABED: bool>(
     c: &ChainConsts,
     h: f64,
     z: &[f64],
@@ -631,6 +723,9 @@ fn node_kernel<const FRICTION: bool>(
     fx: &[f64],
     fy: &[f64],
     fz: &[f64],
+    xfx: &[f64],
+    xfy: &[f64],
+    xfz: &[f64],
     pm: &[f64],
     pwz: &[f64],
     hm: &[f64],
@@ -646,6 +741,7 @@ fn node_kernel<const FRICTION: bool>(
     let (z, vx, vy, vz) = (&z[..n], &vx[..n], &vy[..n], &vz[..n]);
     let (tx, ty, tz, tn) = (&tx[..n + 1], &ty[..n + 1], &tz[..n + 1], &tn[..n + 1]);
     let (fx, fy, fz) = (&fx[..n + 1], &fy[..n + 1], &fz[..n + 1]);
+    let (xfx, xfy, xfz) = (&xfx[..n], &xfy[..n], &xfz[..n]);
     let (hm, ha) = (&hm[..n + 1], &ha[..n + 1]);
     let (pm, pwz, kl, cl, mukl) = (&pm[..n], &pwz[..n], &kl[..n], &cl[..n], &mukl[..n]);
     let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
@@ -656,23 +752,34 @@ fn node_kernel<const FRICTION: bool>(
         let mut gx = fx[j] + fx[k] - tn[j] * tx[j] + tn[k] * tx[k];
         let mut gy = fy[j] + fy[k] - tn[j] * ty[j] + tn[k] * ty[k];
         let mut gz = fz[j] + fz[k] - tn[j] * tz[j] + tn[k] * tz[k] + pwz[i];
-        let (sb, ch, cz) = seabed_load::<FRICTION>(
-            zb - z[i],
-            [vx[i], vy[i], vz[i]],
-            kl[i],
-            cl[i],
-            mukl[i],
-            v_eps,
-        );
-        gz += sb[2];
-        if FRICTION {
-            gx += sb[0];
-            gy += sb[1];
+        if EXTRA {
+            gx += xfx[i];
+            gy += xfy[i];
+            gz += xfz[i];
         }
-        // Seabed damping and friction implicit: (M + h diag(c_h, c_h, c_z)) a = F.
         let s = pm[i] + hm[j] + hm[k] + ha[j] + ha[k];
+        // Seabed damping and friction implicit: (M + h diag(c_h, c_h, c_z)) a = F.
+        // Without a seabed the diagonal is `s` (what `s + h 0` is, bit for bit).
+        let d = if SEABED {
+            let (sb, ch, cz) = seabed_load::<FRICTION>(
+                zb - z[i],
+                [vx[i], vy[i], vz[i]],
+                kl[i],
+                cl[i],
+                mukl[i],
+                v_eps,
+            );
+            gz += sb[2];
+            if FRICTION {
+                gx += sb[0];
+                gy += sb[1];
+            }
+            [s + h * ch, s + h * ch, s + h * cz]
+        } else {
+            [s, s, s]
+        };
         let acc = solve_mass(
-            [s + h * ch, s + h * ch, s + h * cz],
+            d,
             ha[j],
             ha[k],
             [tx[j], ty[j], tz[j]],
@@ -683,6 +790,42 @@ fn node_kernel<const FRICTION: bool>(
         ay[i] = acc[1];
         az[i] = acc[2];
     }
+}
+
+/// The symplectic Euler update `v += a dt`, then `x += v dt`, of the first `n` nodes
+/// of the SoA state `x`, and the number of them whose new state is non-finite or over
+/// the limits ([`count_bad`]'s test), in one loop.
+#[inline(always)]
+fn symplectic_update(
+    x: &mut [Vec<f64>; 6],
+    a: &[Vec<f64>; 3],
+    n: usize,
+    dt: f64,
+    vmax: f64,
+    rmax: f64,
+) -> usize {
+    let [px, py, pz, vx, vy, vz] = x;
+    let (px, py, pz) = (&mut px[..n], &mut py[..n], &mut pz[..n]);
+    let (vx, vy, vz) = (&mut vx[..n], &mut vy[..n], &mut vz[..n]);
+    let (ax, ay, az) = (&a[0][..n], &a[1][..n], &a[2][..n]);
+    let mut bad = 0usize;
+    for i in 0..n {
+        vx[i] += ax[i] * dt;
+        vy[i] += ay[i] * dt;
+        vz[i] += az[i] * dt;
+        px[i] += vx[i] * dt;
+        py[i] += vy[i] * dt;
+        pz[i] += vz[i] * dt;
+        // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
+        let ok = (px[i].abs() < rmax)
+            & (py[i].abs() < rmax)
+            & (pz[i].abs() < rmax)
+            & (vx[i].abs() < vmax)
+            & (vy[i].abs() < vmax)
+            & (vz[i].abs() < vmax);
+        bad += (!ok) as usize;
+    }
+    bad
 }
 
 /// `x += v h` elementwise.
@@ -718,78 +861,6 @@ struct Masses<'a> {
     kl: &'a [f64],
     cl: &'a [f64],
     mukl: &'a [f64],
-}
-
-/// Winch cables (ALE-GLMF, [`crate::ale`]): the variable element at time `time`, as the
-/// general path evaluates it. When nothing has been paid out since the last remeshing
-/// its `l0` is the layout's and the element loop's result stands (bitwise the plain
-/// GLMF); otherwise the element is re-evaluated with its current `l0` (internal damping
-/// on the material strain rate), and its half masses and its nodes' seabed tributary
-/// lengths follow.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn ale_patch(
-    c: &ChainConsts,
-    lay: &Layout,
-    ale: &[AleElem],
-    time: f64,
-    p: &[Vec<f64>; 6],
-    u: &[Vec<f64>; 3],
-    aw: &[Vec<f64>; 3],
-    eta: &[f64],
-    t: &mut [Vec<f64>; 3],
-    ten: &mut [f64],
-    f: &mut [Vec<f64>; 3],
-    hm: &mut [f64],
-    ha: &mut [f64],
-    kl: &mut [f64],
-    cl: &mut [f64],
-    mukl: &mut [f64],
-) {
-    for ae in ale {
-        let pay = ae.sched.eval(time);
-        let l0 = ae.l0(pay.dl);
-        let k = ae.elem;
-        let lc = Coefs::<f64>::from_line(&lay.line_coefs[c.line[k] as usize]);
-        let node = |i: usize| {
-            (
-                V3::new(p[0][i], p[1][i], p[2][i]),
-                V3::new(p[3][i], p[4][i], p[5][i]),
-            )
-        };
-        let ((ra, va), (rb, vb)) = (node(k), node(k + 1));
-        if l0 != ae.base_l0 || pay.rate != 0.0 {
-            let input = ElementInput {
-                ra,
-                rb,
-                va,
-                vb,
-                l0,
-                current: V3::new(u[0][k], u[1][k], u[2][k]),
-                water_accel: V3::new(aw[0][k], aw[1][k], aw[2][k]),
-            };
-            let wet = wetted_fraction(eta[k] - ra.z, eta[k + 1] - rb.z, c.diameter[k]);
-            let mut el = glmf_element_wet(&lc, &input, wet, lay.env.gravity);
-            if pay.rate != 0.0 {
-                // epsdot = (t . dv - (l / l0) Ldot) / l0 (crate::ale).
-                let l = (rb - ra).norm();
-                el.tension -= lc.ea_c * l * pay.rate / (l0 * l0);
-            }
-            let j = k + 1;
-            (t[0][j], t[1][j], t[2][j]) = (el.t.x, el.t.y, el.t.z);
-            ten[j] = el.tension;
-            (f[0][j], f[1][j], f[2][j]) = (el.f_half.x, el.f_half.y, el.f_half.z);
-            hm[j] = el.half_mass;
-            ha[j] = el.half_added;
-        }
-        for i in [ae.m, ae.w] {
-            // Without a seabed `sb_k = sb_c = 0`, so the tributary length does not matter.
-            let lt = c.trib[i] + 0.5 * (l0 - ae.base_l0);
-            kl[i] = c.sb_k * lt;
-            cl[i] = c.sb_c * lt;
-            mukl[i] = c.sb_mu * c.sb_k * lt;
-        }
-    }
 }
 
 /// The point masses and weights of the nodes whose point has a volume, less what the
@@ -1013,11 +1084,14 @@ fn advance_chain_scheme<const FRICTION: bool>(
         sc.x[4][i] = v[i].y;
         sc.x[5][i] = v[i].z;
     }
+    resize(&mut sc.w.xf, n);
+    if c.uniform.is_some() && waves.is_none() {
+        currents(c, &lay.currents, &sc.x, &mut sc.w.u);
+    }
+    // Always: the scratch may hold the previous block's variable elements.
+    sc.ale.prepare(c, lay, ale);
     if !ale.is_empty() {
-        sc.w.hm.clone_from(&c.hm);
-        sc.w.kl.clone_from(&c.kl);
-        sc.w.cl.clone_from(&c.cl);
-        sc.w.mukl.clone_from(&c.mukl);
+        sc.wc.copy_from(c);
     }
     let ChainScratch {
         x,
@@ -1026,6 +1100,8 @@ fn advance_chain_scheme<const FRICTION: bool>(
         sum,
         a,
         w: wk,
+        wc,
+        ale: asc,
     } = sc;
     // A function, not a closure: closures are not inlined into the AVX2 caller and
     // would be compiled for the baseline target.
@@ -1033,6 +1109,8 @@ fn advance_chain_scheme<const FRICTION: bool>(
     #[allow(clippy::too_many_arguments)]
     fn eval<const FRICTION: bool>(
         c: &ChainConsts,
+        wc: &mut ChainConsts,
+        asc: &mut AleScratch,
         lay: &Layout,
         opts: &SolverOptions,
         ale: &[AleElem],
@@ -1053,12 +1131,19 @@ fn advance_chain_scheme<const FRICTION: bool>(
             haw,
             pm,
             pwz,
-            hm,
-            kl,
-            cl,
-            mukl,
+            xf,
         } = sc;
-        currents(c, &lay.currents, state, u);
+        // Winch cables: the variable elements' constants at this time.
+        let c = if ale.is_empty() {
+            c
+        } else {
+            ale_constants(asc, time, wc);
+            &*wc
+        };
+        // A uniform current in still water was filled once for the run.
+        if c.uniform.is_none() || waves.is_some() {
+            currents(c, &lay.currents, state, u);
+        }
         if let Some(wb) = waves.as_deref_mut() {
             let st = |i: usize| {
                 (
@@ -1081,58 +1166,51 @@ fn advance_chain_scheme<const FRICTION: bool>(
         } else {
             elements::<false>(c, state, u, aw, eta, t, ten, f, haw);
         }
+        ale_tension(asc, state, ten);
         point_surface(c, state, eta, pm, pwz);
-        if ale.is_empty() {
-            let m = Masses {
-                eta,
-                w: wbuf,
-                pm,
-                pwz,
-                hm: &c.hm,
-                ha: haw,
-                kl: &c.kl,
-                cl: &c.cl,
-                mukl: &c.mukl,
-            };
-            nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, a);
-        } else {
-            ale_patch(
-                c, lay, ale, time, state, u, aw, eta, t, ten, f, hm, haw, kl, cl, mukl,
-            );
-            let m = Masses {
-                eta,
-                w: wbuf,
-                pm,
-                pwz,
-                hm,
-                ha: haw,
-                kl,
-                cl,
-                mukl,
-            };
-            nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, ale, a);
-        }
+        let m = Masses {
+            eta,
+            w: wbuf,
+            pm,
+            pwz,
+            hm: &c.hm,
+            ha: haw,
+            kl: &c.kl,
+            cl: &c.cl,
+            mukl: &c.mukl,
+        };
+        nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, asc, xf, a);
     }
     let mut result = Ok(());
+    let mut bad = 0;
     for k in 0..nsteps {
         let time = (step0 + k) as f64 * dt;
         match opts.scheme {
             Scheme::Symplectic => {
-                eval::<FRICTION>(c, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
-                let (pos, vel) = x.split_at_mut(3);
-                for q in 0..3 {
-                    axpy(&mut vel[q][..n], &a[q], dt);
-                    axpy(&mut pos[q][..n], &vel[q], dt);
-                }
+                eval::<FRICTION>(c, wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
+                bad = symplectic_update(x, a, n, dt, opts.max_speed, opts.max_distance);
             }
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
-                eval::<FRICTION>(c, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
+                eval::<FRICTION>(c, wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
                 for q in 0..3 {
                     xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
                     xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
                 }
-                eval::<FRICTION>(c, lay, opts, ale, xs, time + h, &mut waves, wbuf, wk, a);
+                eval::<FRICTION>(
+                    c,
+                    wc,
+                    asc,
+                    lay,
+                    opts,
+                    ale,
+                    xs,
+                    time + h,
+                    &mut waves,
+                    wbuf,
+                    wk,
+                    a,
+                );
                 let (pos, vel) = x.split_at_mut(3);
                 for q in 0..3 {
                     axpy(&mut pos[q][..n], &xs[3 + q], dt);
@@ -1151,7 +1229,20 @@ fn advance_chain_scheme<const FRICTION: bool>(
                         .into_iter()
                         .enumerate()
                 {
-                    eval::<FRICTION>(c, lay, opts, ale, xs, time + tau, &mut waves, wbuf, wk, a);
+                    eval::<FRICTION>(
+                        c,
+                        wc,
+                        asc,
+                        lay,
+                        opts,
+                        ale,
+                        xs,
+                        time + tau,
+                        &mut waves,
+                        wbuf,
+                        wk,
+                        a,
+                    );
                     let (spos, svel) = xs.split_at_mut(3);
                     for q in 0..3 {
                         axpy(&mut sum[q][..n], &svel[q], w);
@@ -1167,7 +1258,10 @@ fn advance_chain_scheme<const FRICTION: bool>(
                 }
             }
         }
-        if count_bad(x, n, opts.max_speed, opts.max_distance) > 0 {
+        if opts.scheme != Scheme::Symplectic {
+            bad = count_bad(x, n, opts.max_speed, opts.max_distance);
+        }
+        if bad > 0 {
             let i = (0..n)
                 .find(|&i| {
                     !(x[0][i].abs() < opts.max_distance

@@ -28,3 +28,4 @@ mod study_validation;
 mod water_surface;
 mod waves_output;
 mod waves_steppers;
+mod winch_kernel;
