@@ -46,6 +46,7 @@ pub mod dispersion;
 pub mod irregular;
 pub mod kinematics;
 pub mod poly;
+pub mod schedule;
 pub mod set;
 pub mod spectrum;
 

@@ -19,6 +19,10 @@ pub struct SeaSet {
     /// Per cable (layout order): its index into `seas`; empty when every cable is in
     /// `seas[0]`.
     pub cable_sea: Vec<u32>,
+    /// Per sea: the highest height its nodes reach over the run, m, for the cache's
+    /// refresh interval (`sea::schedule::refresh_plan`; set by `sim::reach`); empty
+    /// when unknown (infinite: the interval for nodes at the surface).
+    pub reach: Vec<f64>,
 }
 
 impl SeaSet {
@@ -27,7 +31,19 @@ impl SeaSet {
         Self {
             seas: vec![sea.clone()],
             cable_sea: Vec::new(),
+            reach: Vec::new(),
         }
+    }
+
+    /// The highest height sea `q`'s nodes reach, m (infinite when unknown).
+    pub fn reach_of(&self, q: usize) -> f64 {
+        self.reach.get(q).copied().unwrap_or(f64::INFINITY)
+    }
+
+    /// The refresh plan of sea `q` stepping by `dt` (`sea::schedule::refresh_plan` at
+    /// its reach): what both paths refresh by.
+    pub fn plan(&self, q: usize, dt: f64) -> super::schedule::RefreshPlan {
+        super::schedule::refresh_plan(&self.seas[q], self.reach_of(q), dt)
     }
 
     /// The sea index of cable `c`.
