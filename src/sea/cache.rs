@@ -20,10 +20,13 @@
 //! each component by its share of the water acceleration (the most demanding value,
 //! `A w^2`) in the root-mean-square sense, the interval for a relative tolerance `eps`
 //! at a fixed point is `(384^2 eps^2 m4 / m12)^(1/8)` with the discrete moments
-//! `m_n = sum A^2 w^n / 2` ([`hermite_rule_interval`]). The cache uses
-//! [`HERMITE_INTERVAL_FACTOR`] of it (see there why). The rule does not see the
-//! nodes' motion: the error of the predicted path adds to it (third order in the
-//! interval with the acceleration estimate; the tests below measure both).
+//! `m_n = sum A^2 w^n / 2` ([`hermite_rule_interval`]). At the mean level the cache
+//! uses [`HERMITE_INTERVAL_FACTOR`] of it (see there why); the solvers refresh by the
+//! plan of [`super::schedule`] (the rule with the amplitudes decayed to the depth the
+//! nodes stay at, a larger factor for lines well under the troughs, rounded down to a
+//! common grid of refresh times). The rule does not see the nodes' motion: the error
+//! of the predicted path adds to it (third order in the interval with the
+//! acceleration estimate; the tests below measure both).
 //!
 //! Layout: four arrays of [`CACHE_STRIDE`] values per node, `eta, u_x, u_y, u_z, a_x,
 //! a_y, a_z` (m, m/s, m/s^2) at `t0`, their rates at `t0` (m/s, m/s^2, m/s^3), values
@@ -45,7 +48,8 @@ pub const CACHE_STRIDE: usize = 7;
 /// 1e-3, ten times the kinematics' tolerance, and by 1e-3 at 0.32 of it; the error
 /// falls as the interval squared, not to the fourth power, and its cause is not found
 /// (not the path prediction: predicting with or without the nodes' velocity gave the
-/// same force). Until it is, the cache refreshes at this fraction of the rule.
+/// same force). Until it is, the cache refreshes at this fraction of the rule when its
+/// nodes may come near the surface (`super::schedule::SUBMERGED_FACTOR` otherwise).
 pub const HERMITE_INTERVAL_FACTOR: f64 = 0.3;
 
 /// The refresh interval, s: [`HERMITE_INTERVAL_FACTOR`] times the interval that keeps

@@ -6,8 +6,10 @@
 //! path gives each block the kinematics cache of its cable's sea, and the GPU path
 //! stores the seas' components back to back and gives each block the rows of its
 //! sea. Each sea keeps its own refresh schedule (its own interval, from its own
-//! components and tolerance), so a cable sees exactly the waves it sees in a run of
-//! its member alone, whatever else is packed with it.
+//! components, tolerance and reach, on the fixed ladder of the common refresh grid:
+//! `sea::schedule`), so a cable sees exactly the waves it sees in a run of its member
+//! alone, whatever else is packed with it (the reach of a member's sea comes from its
+//! own nodes and ends).
 
 use super::SeaState;
 

@@ -23,20 +23,26 @@ pub const REACH_MARGIN: f64 = 2.0;
 /// Spacing of the samples of a held end's route over the run, s.
 pub const ROUTE_SAMPLE: f64 = 1.0;
 
-/// The highest height `route` reaches over `[0, duration]`, m: samples every
+/// The highest heights `routes` reach over `[0, duration]`, m: samples every
 /// [`ROUTE_SAMPLE`] s, each raised by `|v_z| h / 2 + |a_z| h^2 / 8` (what the motion
-/// could add between samples), and a table's rows.
-pub fn route_top(route: &Route, duration: f64) -> f64 {
+/// could add between samples), and a table's rows. All routes at each time in turn:
+/// the ends on one body then share its state at that time (`Body::state` keeps it),
+/// one RAO evaluation per body and sample.
+pub fn route_tops(routes: &[&Route], duration: f64) -> Vec<f64> {
     let h = ROUTE_SAMPLE;
     let n = (duration / h).ceil().max(0.0) as u64;
-    let mut top = f64::NEG_INFINITY;
+    let mut top = vec![f64::NEG_INFINITY; routes.len()];
     for k in 0..=n {
         let t = (k as f64 * h).min(duration);
-        let s = route.eval(t);
-        top = top.max(s.r[2] + s.v[2].abs() * h / 2.0 + s.a[2].abs() * h * h / 8.0);
+        for (top, route) in top.iter_mut().zip(routes) {
+            let s = route.eval(t);
+            *top = top.max(s.r[2] + s.v[2].abs() * h / 2.0 + s.a[2].abs() * h * h / 8.0);
+        }
     }
-    if let Route::Table { p, .. } = route {
-        top = p.iter().map(|p| p[2]).fold(top, f64::max);
+    for (top, route) in top.iter_mut().zip(routes) {
+        if let Route::Table { p, .. } = route {
+            *top = p.iter().map(|p| p[2]).fold(*top, f64::max);
+        }
     }
     top
 }
@@ -46,15 +52,24 @@ pub fn route_top(route: &Route, duration: f64) -> f64 {
 /// (unknown) for a sea with no nodes.
 pub fn sea_reach(lay: &Layout, pos: &[[f64; 3]], seas: &SeaSet, duration: f64) -> Vec<f64> {
     let mut reach = vec![f64::NEG_INFINITY; seas.seas.len()];
-    let mut route_tops: Vec<Option<f64>> = vec![None; lay.routes.len()];
+    // Only the routes that hold a node of a sea with waves.
+    let in_waves = |i: usize| !seas.seas[seas.sea_of_cable(lay.node_cable[i] as usize)].is_still();
+    let mut held: Vec<usize> = (0..pos.len())
+        .filter(|&i| in_waves(i) && lay.node_constraint[i] != NO_CONSTRAINT)
+        .map(|i| lay.node_constraint[i] as usize)
+        .collect();
+    held.sort_unstable();
+    held.dedup();
+    let routes: Vec<&Route> = held.iter().map(|&k| &lay.routes[k]).collect();
+    let tops = route_tops(&routes, duration);
     for (i, p) in pos.iter().enumerate() {
         let q = seas.sea_of_cable(lay.node_cable[i] as usize);
         let mut z = p[2];
         let k = lay.node_constraint[i];
         if k != NO_CONSTRAINT {
-            let k = k as usize;
-            let top = *route_tops[k].get_or_insert_with(|| route_top(&lay.routes[k], duration));
-            z = z.max(top);
+            if let Ok(j) = held.binary_search(&(k as usize)) {
+                z = z.max(tops[j]);
+            }
         }
         reach[q] = reach[q].max(z);
     }
@@ -130,5 +145,46 @@ impl ReachWatch {
                 self.cable_reach[c]
             );
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::TAU;
+
+    /// A fixed end reaches its own height; an end on a vertical circle at least the
+    /// circle's top and no more than the sampling's allowance above it; a table at
+    /// least its highest row.
+    #[test]
+    fn route_tops_bound_the_ends_heights() {
+        let fixed = Route::Fixed {
+            position: [1.0, 2.0, -18.0],
+        };
+        let (r, period) = (3.0, 7.3);
+        let circle = Route::Circle {
+            center: [0.0, 0.0, -20.0],
+            radius: r,
+            period,
+            axis: [0.0, 1.0, 0.0],
+            phase: 0.4,
+            advance: 0.0,
+        };
+        let table = Route::Table {
+            t: vec![0.0, 10.0, 20.0],
+            p: vec![[0.0, 0.0, -5.0], [0.0, 0.0, -2.5], [0.0, 0.0, -6.0]],
+        };
+        let tops = route_tops(&[&fixed, &circle, &table], 100.0);
+        assert_eq!(tops[0], -18.0);
+        let w = TAU / period;
+        let h = ROUTE_SAMPLE;
+        assert!(tops[1] >= -20.0 + r, "{}", tops[1]);
+        assert!(tops[1] <= -20.0 + r + r * w * h / 2.0 + r * w * w * h * h / 8.0);
+        // The highest row, raised by at most the steeper slope's half sample.
+        assert!(
+            tops[2] >= -2.5 && tops[2] <= -2.5 + 0.35 * h / 2.0 + 1e-12,
+            "{}",
+            tops[2]
+        );
     }
 }
