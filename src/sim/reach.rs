@@ -151,7 +151,62 @@ impl ReachWatch {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::output::{CableState, EndForces};
+    use crate::sea::{SeaState, WaveComponent};
     use std::f64::consts::TAU;
+
+    fn cable(name: &str, z: &[f64]) -> CableState {
+        CableState {
+            name: name.into(),
+            output_positions: false,
+            positions: z.iter().map(|&z| [0.0, 0.0, z]).collect(),
+            velocities: vec![[0.0; 3]; z.len()],
+            tensions: Vec::new(),
+            end_forces: EndForces {
+                start: [0.0; 3],
+                end: [0.0; 3],
+            },
+            winch: None,
+        }
+    }
+
+    /// The watch finds the first node above its sea's reach (cables in still water
+    /// are not watched), and none when all stay under.
+    #[test]
+    fn the_watch_finds_a_node_above_the_reach() {
+        let wave = SeaState {
+            components: vec![WaveComponent {
+                amplitude: 1.0,
+                omega: 0.6,
+                k: 0.6 * 0.6 / 9.81,
+                direction: 0.0,
+                phase: 0.0,
+            }],
+            ..SeaState::still(100.0)
+        };
+        let seas = SeaSet {
+            seas: vec![wave, SeaState::still(100.0)],
+            cable_sea: vec![0, 0, 1],
+            reach: vec![-10.0, f64::INFINITY],
+        };
+        let mut w = ReachWatch::new(&seas, 3).expect("a watch in waves");
+        let snap = |z1: f64| Snapshot {
+            time: 1.0,
+            steps: 10,
+            cables: vec![
+                cable("a", &[-30.0, -12.0]),
+                cable("b", &[-30.0, z1, -11.0]),
+                cable("c", &[5.0]),
+            ],
+            bodies: Vec::new(),
+            points: Vec::new(),
+        };
+        assert_eq!(w.breach(&snap(-10.5)), None);
+        assert_eq!(w.breach(&snap(-9.0)), Some((1, 1, -9.0)));
+        w.check(&snap(-9.0));
+        assert!(w.warned);
+        assert!(ReachWatch::new(&SeaSet::single(&SeaState::still(1.0)), 1).is_none());
+    }
 
     /// A fixed end reaches its own height; an end on a vertical circle at least the
     /// circle's top and no more than the sampling's allowance above it; a table at
