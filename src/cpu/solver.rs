@@ -212,8 +212,10 @@ impl CpuSolver {
                 .blocks
                 .iter()
                 .map(|b| {
-                    let sea = &seas.seas[self.block_sea(seas, b.node_start as usize)];
-                    BlockWaves::new(sea, (b.node_end - b.node_start) as usize, self.exact_waves)
+                    let q = self.block_sea(seas, b.node_start as usize);
+                    let plan = seas.plan(q, self.opts.dt);
+                    let n = (b.node_end - b.node_start) as usize;
+                    BlockWaves::new(&seas.seas[q], n, self.exact_waves, &plan)
                 })
                 .collect(),
         };

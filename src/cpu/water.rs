@@ -15,6 +15,7 @@
 //! linear in the cached values and rates, so this is the same value up to round-off.
 
 use crate::sea::cache::{evaluate_nodes, wave_cache_hermite, WaveCache, CACHE_STRIDE};
+use crate::sea::schedule::{RefreshClock, RefreshPlan};
 use crate::sea::SeaState;
 
 /// Per-node water values: `eta, u (3), a (3)` ([`CACHE_STRIDE`] per node), m, m/s,
@@ -48,10 +49,10 @@ struct ChainColumns {
 }
 
 impl BlockWaves {
-    /// Waves of `sea` for a block of `n` nodes.
-    pub(crate) fn new(sea: &SeaState, n: usize, exact: bool) -> Self {
+    /// Waves of `sea` for a block of `n` nodes, refreshed on the grid of `plan`.
+    pub(crate) fn new(sea: &SeaState, n: usize, exact: bool, plan: &RefreshPlan) -> Self {
         Self {
-            cache: WaveCache::new(sea, n),
+            cache: WaveCache::with_clock(sea, n, RefreshClock::on_grid(plan)),
             exact,
             pos: vec![0.0; 3 * n],
             vel: vec![0.0; 3 * n],
@@ -91,8 +92,7 @@ impl BlockWaves {
         n: usize,
         state: impl Fn(usize) -> ([f64; 3], [f64; 3]),
     ) {
-        let c = &self.cache;
-        if !(c.t1 > c.t0 && t >= c.t0 && t <= c.t1) {
+        if !self.cache.clock.covers(t) {
             self.read_state(n, &state);
             self.cache.refresh_if_due(t, &self.pos, &self.vel);
         }
@@ -135,9 +135,10 @@ impl BlockWaves {
         debug_assert!(!self.exact);
         self.cover(t, n, state);
         let c = &self.cache;
-        if self.cols.times != Some((c.t0, c.t1)) {
+        let times = (c.t0(), c.t1());
+        if self.cols.times != Some(times) {
             self.cols.form([&c.v0, &c.d0, &c.v1, &c.d1], n);
-            self.cols.times = Some((c.t0, c.t1));
+            self.cols.times = Some(times);
         }
         let w = c.weights(t);
         let ne = n - 1;

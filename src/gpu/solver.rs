@@ -35,8 +35,9 @@ use crate::math::V3;
 use crate::model::{circle_basis, Layout, ModelDef, Route};
 use crate::options::Precision;
 use crate::options::{Formulation, Scheme, SolverOptions};
-use crate::sea::cache::{hermite_weights, refresh_interval};
+use crate::sea::cache::hermite_weights;
 use crate::sea::kinematics::{wave_ramp, wave_ramp_rate, WaveField};
+use crate::sea::schedule::{RefreshClock, RefreshPlan};
 use crate::sea::{SeaSet, SeaState, Stretching, GPU_DEEP};
 use crate::step::{diverged, Evaluation, StepFailure, WinchStatus};
 use bytemuck::Zeroable;
@@ -533,37 +534,26 @@ struct Buffers {
 const WAVE_CACHE_STRIDE: usize = 14;
 
 /// The host's side of the waves' kinematics cache: the components (rebased at each
-/// submission) and when the cache's two times are, kept exactly as the CPU path's
-/// `sea::cache::WaveCache::refresh_if_due` keeps them, so that both refresh at the
-/// same steps and interpolate with the same Hermite weights.
+/// submission) and when the cache's two times are: the same [`RefreshClock`] as the
+/// CPU path's `sea::cache::WaveCache`, on the same grid (`sea::schedule`), so that
+/// both refresh at the same steps and interpolate with the same Hermite weights.
 struct WaveSchedule {
     field: WaveField,
     /// Its first component in the components buffer.
     first: u32,
-    /// Refresh interval, s.
-    interval: f64,
-    started: bool,
-    /// Times of the older and newer values, s.
-    t0: f64,
-    t1: f64,
+    /// The cache's times and refresh grid.
+    clock: RefreshClock,
     /// Cache slot of the older values (0 or 1).
     slot0: u32,
-    /// Time of the last refresh, s (NaN before the first): the nodes' acceleration
-    /// for the path prediction is their velocity change since then over this span.
-    last_t: f64,
 }
 
 impl WaveSchedule {
-    fn new(sea: &SeaState, first: u32) -> Self {
+    fn new(sea: &SeaState, first: u32, plan: &RefreshPlan) -> Self {
         Self {
             field: WaveField::new(sea),
             first,
-            interval: refresh_interval(&sea.components, sea.cache_tolerance),
-            started: false,
-            t0: 0.0,
-            t1: 0.0,
+            clock: RefreshClock::on_grid(plan),
             slot0: 0,
-            last_t: f64::NAN,
         }
     }
 
@@ -590,37 +580,29 @@ impl WaveSchedule {
     fn step<R: GpuReal>(&mut self, t: f64, t_ref: f64) -> WaveStep<R> {
         let mut row = self.base::<R>();
         let ramp = self.field.ramp_duration;
-        let covered = self.t1 > self.t0 && t >= self.t0 && t <= self.t1;
-        if !covered {
+        if let Some(tick) = self.clock.tick(t) {
             row.refresh = 1;
             row.track = 1;
-            let restart = !self.started || t < self.t0 || t > self.t1 + self.interval;
-            let span = t - self.last_t;
-            if !restart && span > 0.0 {
-                row.acc_rate = R::c(1.0 / span);
-            }
-            self.last_t = t;
-            if restart {
-                self.t0 = t;
-                self.started = true;
+            row.acc_rate = R::c(tick.acc_rate);
+            if tick.restart {
                 row.restart = 1;
                 row.tau0 = R::c(t - t_ref);
                 row.ramp0 = R::c(wave_ramp(t, ramp));
                 row.ramp_rate0 = R::c(wave_ramp_rate(t, ramp));
             } else {
                 self.slot0 = 1 - self.slot0;
-                self.t0 = self.t1;
             }
-            self.t1 = self.t0 + self.interval;
-            row.ahead = R::c(self.t1 - t);
-            row.tau1 = R::c(self.t1 - t_ref);
-            row.ramp1 = R::c(wave_ramp(self.t1, ramp));
-            row.ramp_rate1 = R::c(wave_ramp_rate(self.t1, ramp));
+            let t1 = self.clock.t1;
+            row.ahead = R::c(tick.ahead);
+            row.tau1 = R::c(t1 - t_ref);
+            row.ramp1 = R::c(wave_ramp(t1, ramp));
+            row.ramp_rate1 = R::c(wave_ramp_rate(t1, ramp));
         }
         row.slot0 = self.slot0;
         row.slot1 = 1 - self.slot0;
-        let delta = self.t1 - self.t0;
-        let s = ((t - self.t0) / delta).clamp(0.0, 1.0);
+        let (t0, t1) = (self.clock.t0, self.clock.t1);
+        let delta = t1 - t0;
+        let s = ((t - t0) / delta).clamp(0.0, 1.0);
         let w = hermite_weights(s, delta);
         (row.w0, row.w1, row.w2, row.w3) = (R::c(w[0]), R::c(w[1]), R::c(w[2]), R::c(w[3]));
         row
@@ -641,14 +623,17 @@ struct SeaSchedules {
 }
 
 impl SeaSchedules {
-    fn new(set: &SeaSet) -> Self {
+    /// The schedules of `set`'s seas stepping by `dt` (each on its own
+    /// [`SeaSet::plan`], as the CPU path's caches).
+    fn new(set: &SeaSet, dt: f64) -> Self {
         let mut first = 0u32;
         let seas = set
             .seas
             .iter()
-            .map(|sea| {
+            .enumerate()
+            .map(|(q, sea)| {
                 (!sea.is_still()).then(|| {
-                    let w = WaveSchedule::new(sea, first);
+                    let w = WaveSchedule::new(sea, first, &set.plan(q, dt));
                     first += sea.components.len() as u32;
                     w
                 })
@@ -670,9 +655,7 @@ impl SeaSchedules {
     /// Starts every cache afresh (after a remesh, as the CPU path's caches do).
     fn restart(&mut self) {
         for w in self.seas.iter_mut().flatten() {
-            w.started = false;
-            w.t0 = 0.0;
-            w.t1 = 0.0;
+            w.clock.reset();
         }
     }
 }
@@ -1527,7 +1510,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
     }
 
     fn set_seas(&mut self, lay: &Layout, host: &Host, seas: &SeaSet) -> Result<(), Error> {
-        self.waves = (!seas.is_still()).then(|| SeaSchedules::new(seas));
+        self.waves = (!seas.is_still()).then(|| SeaSchedules::new(seas, self.dt64));
         let scope = self
             .ctx
             .device
@@ -2069,7 +2052,78 @@ pub fn unsupported_winches(def: &ModelDef, winches: &[Winch]) -> Option<String> 
 
 #[cfg(test)]
 mod tests {
-    use super::fused_segments;
+    use super::{fused_segments, SeaSchedules, STEPS_PER_SUBMISSION};
+    use crate::sea::irregular::{discretise, Discretisation};
+    use crate::sea::spectrum::{dnv_peak_factor, Spectrum};
+    use crate::sea::{SeaSet, SeaState};
+
+    /// A packed study's seas on the common refresh grid (`sea::schedule`): the three
+    /// sea states of `examples/study_design_check.toml` (refreshes every 16, 24 and 32
+    /// steps of 1/150 s at the mean level), ten seeds each. Submission by submission as
+    /// `write_waves` forms them, the fused dispatch is cut only at the refresh steps
+    /// of the shortest interval's family and of the threes' (the union of every 16th
+    /// and every 24th step: one in twelve), not at most steps as when each sea kept
+    /// its own unrounded interval.
+    #[test]
+    fn packed_seas_on_the_grid_cut_the_fused_dispatch_rarely() {
+        let dt = 1.0 / 150.0;
+        let mut seas = Vec::new();
+        for (hs, tp, gamma) in [
+            (4.0, 9.0, dnv_peak_factor(4.0, 9.0)),
+            (9.0, 13.0, 2.5),
+            (13.0, 15.5, 3.3),
+        ] {
+            for seed in 0..10 {
+                let d = Discretisation {
+                    components: 200,
+                    direction: 0.0,
+                    spreading: None,
+                    seed,
+                    stream: 0,
+                };
+                seas.push(SeaState {
+                    components: discretise(&Spectrum::Jonswap { hs, tp, gamma }, &d, 320.0, 9.81),
+                    ..SeaState::still(320.0)
+                });
+            }
+        }
+        let set = SeaSet {
+            cable_sea: (0..seas.len() as u32).collect(),
+            seas,
+            reach: Vec::new(),
+        };
+        let mut steps: Vec<u64> = (0..set.seas.len()).map(|q| set.plan(q, dt).steps).collect();
+        steps.sort();
+        steps.dedup();
+        assert_eq!(steps, vec![16, 24, 32]);
+        let mut w = SeaSchedules::new(&set, dt);
+        let (n, per) = (48 * 512u64, STEPS_PER_SUBMISSION as u64);
+        let (mut segments, mut refreshes) = (0usize, 0u64);
+        for step0 in (0..n).step_by(per as usize) {
+            let refresh: Vec<bool> = (0..per)
+                .map(|k| {
+                    let t = (step0 + k) as f64 * dt;
+                    w.seas
+                        .iter_mut()
+                        .flatten()
+                        .fold(false, |any, s| s.step::<f64>(t, 0.0).refresh != 0 || any)
+                })
+                .collect();
+            for (k, &r) in refresh.iter().enumerate() {
+                let i = step0 + k as u64;
+                let want = i == 0 || (i > 1 && ((i - 1) % 16 == 0 || (i - 1) % 24 == 0));
+                assert_eq!(r, want, "step {i}");
+            }
+            refreshes += refresh.iter().filter(|&&r| r).count() as u64;
+            segments += fused_segments(&refresh, 512).len();
+        }
+        // One in twelve steps refreshes (16 and 24 meet every 48), and a segment
+        // starts at each of them or at a submission's first step.
+        let m = n - 2;
+        assert_eq!(refreshes, 1 + m / 16 + m / 24 - m / 48);
+        assert!(segments as u64 <= refreshes + n / per, "{segments}");
+        assert!(segments as u64 >= refreshes, "{segments}");
+    }
 
     #[test]
     fn fused_segments_cut_at_refresh_steps_and_at_the_longest() {
