@@ -126,7 +126,7 @@ struct Installed<R: GpuReal> {
     n_elems: usize,
     n_routes: usize,
     n_blocks: usize,
-    /// The most steps of one fused dispatch ([`fused_max_steps`]).
+    /// The most steps of one fused dispatch ([`fused_max_steps`](super::wave_schedule::fused_max_steps)).
     fused_max_steps: u64,
 }
 

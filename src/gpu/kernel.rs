@@ -31,7 +31,7 @@ pub(super) fn fused_bytes_per_lane(p: Precision) -> u32 {
     2 * 9 * r
 }
 
-/// How [`GpuSolver::advance`] steps the layout.
+/// How [`GpuSolver::advance`](super::solver::GpuSolver::advance) steps the layout.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GpuKernel {
     /// One workgroup per block advances it through a whole submission in one

@@ -13,13 +13,13 @@
 //! the shaders through a dynamic-offset uniform (one 16-byte `StepInfo` per step,
 //! written once; the fused kernel's end step is written at each of its dispatches'
 //! first step), so nothing is written between steps. Before each submission the
-//! routes are rebased to its start time (see [`RouteParams`]): the shaders evaluate
+//! routes are rebased to its start time (see [`RouteParams`](super::layout::RouteParams)): the shaders evaluate
 //! `r_d(t0 + tau)` with a small `tau`, which keeps f32 route positions and angles
 //! accurate over long runs. Nothing is read back while stepping except, at the end of
 //! an [`GpuSolver::advance`] call, the 16-byte status; state, tensions and reactions
 //! come back only when asked for, through one staging buffer created once per layout.
 //!
-//! Winch cables: per submission the host also writes the `payout` rows (one [`Payout`]
+//! Winch cables: per submission the host also writes the `payout` rows (one [`Payout`](super::layout::Payout)
 //! per winch and step), and an `advance` call stops its submissions at each step after
 //! which a winch cable must be remeshed, reads the state back, remeshes on the host
 //! (`ale::AleState::remesh_in_place`, the CPU path's code), rebuilds the layout's buffers
