@@ -16,7 +16,7 @@
 //! solvers do) and, for comparison, at the plan's unrounded interval from the first
 //! step (what they did before the grid), and counts the steps at which *some* sea
 //! refreshes: in waves the GPU path starts a new fused dispatch (after a
-//! `wave_refresh` dispatch) at each such step (`gpu::solver::fused_segments`), so the
+//! `wave_refresh` dispatch) at each such step (`gpu::wave_schedule::fused_segments`), so the
 //! count is the number of dispatch pairs for the packed batch of the first `n`
 //! members, for several `n`.
 //!

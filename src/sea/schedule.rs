@@ -1,7 +1,7 @@
 //! When the kinematics cache refreshes: the refresh interval of a sea for the nodes
 //! it acts on (how deep they stay), and the common grid of refresh times that the CPU
 //! path's caches ([`super::cache::WaveCache`]) and the GPU path's schedules
-//! (`gpu::solver::WaveSchedule`) both follow, through one [`RefreshClock`].
+//! (`gpu::wave_schedule::WaveSchedule`) both follow, through one [`RefreshClock`].
 //!
 //! The interval ([`refresh_plan`]): the interpolation rule
 //! ([`super::cache::hermite_rule_interval`]) is written for a point at the mean level.
@@ -26,7 +26,7 @@
 //! step times (`(steps as f64) * dt`). Two seas whose `p` are both powers of two (or
 //! both three times one) refresh at nested steps: every refresh step of the longer is
 //! one of the shorter, so the GPU path's fused dispatch of a packed study is cut only at
-//! the shortest interval's refreshes (`gpu::solver::fused_segments`); seas of the two
+//! the shortest interval's refreshes (`gpu::wave_schedule::fused_segments`); seas of the two
 //! families cut it at both of theirs, all at multiples of the smaller power of two.
 //! Why not powers of two alone: rounding down to them loses up to half the interval
 //! (a third of it on average), and the refresh is a third of a wave step's cost on
