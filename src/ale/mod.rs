@@ -130,11 +130,13 @@
 //! `l0_v` is bitwise the plain element's `l0`, the tributary lengths are unchanged,
 //! the mass-flow force is skipped and no remeshing happens.
 
+mod drive;
 mod mass_flow;
 mod mesh;
 mod schedule;
 mod winch;
 
+pub(crate) use drive::{advance_with_winches, MeshStepper};
 pub use mass_flow::{mass_flow_forces, material_velocity};
 pub(crate) use mesh::{AleElem, AleState};
 pub use schedule::{Payout, PayoutSchedule};

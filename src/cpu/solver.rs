@@ -17,7 +17,7 @@ use super::passes::{
 };
 use super::threaded::{advance_block_threaded, THREADED_MIN_NODES};
 use super::water::{node_water, BlockWaves, Water};
-use crate::ale::{AleElem, AleState, Winch};
+use crate::ale::{advance_with_winches, AleElem, AleState, MeshStepper, Winch};
 use crate::error::Error;
 use crate::math::V3;
 use crate::model::{Block, Layout, ModelDef, Route, NO_CONSTRAINT};
@@ -369,33 +369,7 @@ impl CpuSolver {
     /// winch cable must be remeshed (or passes a limit of its winch), which is done
     /// between steps.
     pub fn advance(&mut self, nsteps: u64) -> Result<(), Error> {
-        if self.ale.is_none() {
-            return self.advance_fixed(nsteps);
-        }
-        let dt = self.opts.dt;
-        let mut left = nsteps;
-        while left > 0 {
-            let ale = self.ale.as_deref().expect("winches");
-            let k = ale.steps_on_this_mesh(self.steps, left, dt);
-            self.advance_fixed(k)?;
-            left -= k;
-            let ale = self.ale.as_deref_mut().expect("winches");
-            let mut lay = std::mem::take(&mut self.layout);
-            let (mut r, mut v) = (std::mem::take(&mut self.r), std::mem::take(&mut self.v));
-            let changed = ale.remesh_in_place(self.t, &mut lay, &mut r, &mut v);
-            let cables = ale.last_changed.clone();
-            match changed {
-                Ok(true) => self.install_remeshed(lay, r, v, &cables),
-                Ok(false) => (self.layout, self.r, self.v) = (lay, r, v),
-                Err(e) => {
-                    // The description moved on, the layout may be half spliced: the
-                    // run ends here (a limit of the winch was passed).
-                    (self.layout, self.r, self.v) = (lay, r, v);
-                    return Err(e);
-                }
-            }
-        }
-        Ok(())
+        advance_with_winches(self, nsteps)
     }
 
     fn ctx(&self) -> Ctx<'_> {
@@ -762,6 +736,43 @@ impl CpuSolver {
     }
 }
 /// The variable elements of block `bi` under `ale` (none without winches).
+impl MeshStepper for CpuSolver {
+    fn ale(&self) -> Option<&AleState> {
+        self.ale.as_deref()
+    }
+
+    fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    fn dt(&self) -> f64 {
+        self.opts.dt
+    }
+
+    fn advance_fixed(&mut self, nsteps: u64) -> Result<(), Error> {
+        CpuSolver::advance_fixed(self, nsteps)
+    }
+
+    fn remesh(&mut self) -> Result<(), Error> {
+        let ale = self.ale.as_deref_mut().expect("winches");
+        let mut lay = std::mem::take(&mut self.layout);
+        let (mut r, mut v) = (std::mem::take(&mut self.r), std::mem::take(&mut self.v));
+        let changed = ale.remesh_in_place(self.t, &mut lay, &mut r, &mut v);
+        let cables = ale.last_changed.clone();
+        match changed {
+            Ok(true) => self.install_remeshed(lay, r, v, &cables),
+            Ok(false) => (self.layout, self.r, self.v) = (lay, r, v),
+            Err(e) => {
+                // The description moved on, the layout may be half spliced: the run
+                // ends here (a limit of the winch was passed).
+                (self.layout, self.r, self.v) = (lay, r, v);
+                return Err(e);
+            }
+        }
+        Ok(())
+    }
+}
+
 fn ale_of(ale: Option<&AleState>, bi: usize) -> &[AleElem] {
     ale.map_or(&[], |a| &a.blocks[bi][..])
 }

@@ -33,7 +33,7 @@ use super::context::GpuContext;
 use super::engine::{Engine, GpuEngine};
 use super::host::Host;
 use super::kernel::{kernel_from_env, WORKGROUP};
-use crate::ale::{AleState, Winch};
+use crate::ale::{advance_with_winches, AleState, MeshStepper, Winch};
 use crate::error::Error;
 use crate::math::V3;
 use crate::model::{Layout, ModelDef};
@@ -292,21 +292,7 @@ impl GpuSolver {
     /// cable must be remeshed (known in advance from the schedules); the state is read
     /// back, remeshed on the host as on the CPU path, and uploaded with the new layout.
     pub fn advance(&mut self, nsteps: u64) -> Result<(), Error> {
-        if self.ale.is_none() {
-            return self.advance_fixed(nsteps);
-        }
-        let dt = self.opts.dt;
-        let mut left = nsteps;
-        while left > 0 {
-            let ale = self.ale.as_deref().expect("winches");
-            let k = ale.steps_on_this_mesh(self.steps, left, dt);
-            self.advance_fixed(k)?;
-            left -= k;
-            if self.ale.as_deref().expect("winches").needs_action(self.t) {
-                self.remesh()?;
-            }
-        }
-        Ok(())
+        advance_with_winches(self, nsteps)
     }
 
     /// Reads the state back, remeshes the winch cables at the current time and
@@ -440,6 +426,28 @@ impl GpuSolver {
     /// it, as on the CPU path ([`crate::cpu::CpuSolver::evaluate`]).
     pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
         self.engine.evaluate(&self.layout, &self.host, self.steps)
+    }
+}
+
+impl MeshStepper for GpuSolver {
+    fn ale(&self) -> Option<&AleState> {
+        self.ale.as_deref()
+    }
+
+    fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    fn dt(&self) -> f64 {
+        self.opts.dt
+    }
+
+    fn advance_fixed(&mut self, nsteps: u64) -> Result<(), Error> {
+        GpuSolver::advance_fixed(self, nsteps)
+    }
+
+    fn remesh(&mut self) -> Result<(), Error> {
+        GpuSolver::remesh(self)
     }
 }
 
