@@ -3,7 +3,8 @@
 //!
 //! It runs the same two passes as the general path ([`super::passes`]), on the same
 //! physics, but over structure-of-arrays scratch and without branches in the loops,
-//! so the compiler vectorises them (4 lanes of f64 with AVX2, chosen at run time):
+//! so the compiler vectorises them (8 lanes of f64 with AVX-512 or 4 with AVX2, chosen
+//! at run time; the columns padded to whole chunks of lanes, [`lanes`]):
 //! - the element pass reads node `k` and `k+1` for element `k` (no index arrays);
 //! - element results are stored with a zero "ghost" element at each end, so node `i`
 //!   always gathers padded elements `i` (element `i-1`, as its node b) and `i+1`
@@ -15,14 +16,15 @@
 //!
 //! A test checks it against the general path (`tests/cpu/chain_kernel.rs`).
 //!
-//! Its parts: [`consts`] (the block's constants as columns), [`elements`] (the element
-//! pass), [`nodes`] (the node pass and its mass solve), [`advance`] (scratch, AVX2
-//! dispatch, time schemes), [`winch`] (winch cables' variable elements), [`net`] (the
+//! Its parts: [`consts`] (the block's constants as columns), [`lanes`] (the columns as
+//! whole chunks of lanes), [`elements`] (the element pass), [`nodes`] (the node pass
+//! and its mass solve), [`advance`] (scratch, AVX-512 / AVX2 dispatch, time schemes), [`winch`] (winch cables' variable elements), [`net`] (the
 //! same kernels over a network's blocks).
 
 mod advance;
 mod consts;
 mod elements;
+mod lanes;
 mod net;
 mod nodes;
 mod winch;

@@ -116,3 +116,59 @@ fn step_above_the_bound_warns_and_blow_up_is_named() {
     let csv = std::fs::read_to_string(dir.path().join("end_forces.csv")).unwrap();
     assert!(csv.lines().count() >= 3, "the t = 0 rows at least");
 }
+
+/// The chain fast path runs whole chunks of 8 lanes where the CPU has AVX-512 and of 4
+/// with `CABLESIM_CHAIN_LANES=4` (AVX2); every lane does a scalar loop's arithmetic, so
+/// the output files are the same bytes: a winch cable with an end mass towed along a
+/// route (Case 2), a line on the seabed (the catenary), and lines with seabed friction
+/// in waves.
+#[test]
+fn chain_lanes_4_and_8_give_the_same_bytes() {
+    let avx512 = {
+        #[cfg(target_arch = "x86_64")]
+        {
+            std::arch::is_x86_feature_detected!("avx512f")
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            false
+        }
+    };
+    if !avx512 {
+        eprintln!("no AVX-512 here: both runs take 4 lanes");
+    }
+    for (scenario, duration) in [
+        ("examples/case2_straight.toml", "20"),
+        ("examples/catenary.toml", "5"),
+        ("examples/spread_mooring_waves.toml", "2"),
+    ] {
+        let run = |lanes: &str| {
+            let dir = tempfile::tempdir().unwrap();
+            let out = Command::new(BIN)
+                .args(["run", scenario, "--backend", "cpu", "--duration", duration])
+                .args(["-q", "--out"])
+                .arg(dir.path())
+                .env("CABLESIM_CHAIN_LANES", lanes)
+                .output()
+                .unwrap();
+            assert!(
+                out.status.success(),
+                "{scenario}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            ["positions.csv", "tensions.csv", "end_forces.csv"]
+                .map(|f| std::fs::read(dir.path().join(f)).unwrap())
+        };
+        let (four, eight) = (run("4"), run("8"));
+        for (k, f) in ["positions.csv", "tensions.csv", "end_forces.csv"]
+            .iter()
+            .enumerate()
+        {
+            assert!(!four[k].is_empty(), "{scenario}: {f} is empty");
+            assert!(
+                four[k] == eight[k],
+                "{scenario}: {f} differs between 4 and 8 lanes"
+            );
+        }
+    }
+}

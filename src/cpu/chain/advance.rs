@@ -6,6 +6,7 @@
 
 use super::consts::ChainConsts;
 use super::elements::{add_waves, currents, elements};
+use super::lanes::{chunks_for, keep_chunks, lanes, lanes_mut, padded_len};
 use super::nodes::{nodes, point_surface, Masses};
 use super::winch::{ale_constants, ale_tension, AleScratch};
 use crate::ale::AleElem;
@@ -24,8 +25,9 @@ pub(crate) struct ChainScratch {
     sum: [Vec<f64>; 6],
     a: [Vec<f64>; 3],
     w: Work,
-    /// Winch cables: the working copy of the block's constants that the variable
-    /// elements change every stage, and what the run keeps about them.
+    /// The block's constants with their columns padded to whole chunks of lanes,
+    /// which a winch cable's variable elements change every stage; and what the run
+    /// keeps about those.
     wc: ChainConsts,
     ale: AleScratch,
 }
@@ -60,40 +62,61 @@ fn resize(v: &mut [Vec<f64>], n: usize) {
     }
 }
 
-/// The symplectic Euler update `v += a dt`, then `x += v dt`, of the first `n` nodes
-/// of the SoA state `x`, and the number of them whose new state is non-finite or over
-/// the limits ([`count_bad`]'s test), in one loop.
+/// The symplectic Euler update `v += a dt`, then `x += v dt`, of the first `nc`
+/// chunks of nodes of the padded SoA state `x` (module [`super::lanes`]; the padding
+/// nodes stay at rest at zero), and the number of nodes whose new state is non-finite
+/// or over the limits ([`count_bad`]'s test), in one loop.
+///
+/// # Safety
+/// Every column of `x` and `a` has at least `nc * L` entries.
 #[inline(always)]
-fn symplectic_update(
+unsafe fn symplectic_update<const L: usize>(
     x: &mut [Vec<f64>; 6],
     a: &[Vec<f64>; 3],
-    n: usize,
+    nc: usize,
     dt: f64,
     vmax: f64,
     rmax: f64,
 ) -> usize {
-    let [px, py, pz, vx, vy, vz] = x;
-    let (px, py, pz) = (&mut px[..n], &mut py[..n], &mut pz[..n]);
-    let (vx, vy, vz) = (&mut vx[..n], &mut vy[..n], &mut vz[..n]);
-    let (ax, ay, az) = (&a[0][..n], &a[1][..n], &a[2][..n]);
-    let mut bad = 0usize;
-    for i in 0..n {
-        vx[i] += ax[i] * dt;
-        vy[i] += ay[i] * dt;
-        vz[i] += az[i] * dt;
-        px[i] += vx[i] * dt;
-        py[i] += vy[i] * dt;
-        pz[i] += vz[i] * dt;
-        // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
-        let ok = (px[i].abs() < rmax)
-            & (py[i].abs() < rmax)
-            & (pz[i].abs() < rmax)
-            & (vx[i].abs() < vmax)
-            & (vy[i].abs() < vmax)
-            & (vz[i].abs() < vmax);
-        bad += (!ok) as usize;
+    // SAFETY (every use): the caller's columns.
+    macro_rules! at {
+        ($s:expr) => {
+            unsafe { lanes::<L>($s, nc) }
+        };
     }
-    bad
+    macro_rules! out {
+        ($s:expr) => {
+            unsafe { lanes_mut::<L>($s, 0, nc) }
+        };
+    }
+    let [px, py, pz, vx, vy, vz] = x;
+    let (px, py, pz) = (out!(px), out!(py), out!(pz));
+    let (vx, vy, vz) = (out!(vx), out!(vy), out!(vz));
+    let (ax, ay, az) = (at!(&a[0]), at!(&a[1]), at!(&a[2]));
+    let mut bad = [0usize; L];
+    for i in 0..nc {
+        keep_chunks();
+        // Every input into locals first, then every output: no overlap to check.
+        let (mut p, mut v) = ([px[i], py[i], pz[i]], [vx[i], vy[i], vz[i]]);
+        let acc = [ax[i], ay[i], az[i]];
+        for l in 0..L {
+            for q in 0..3 {
+                v[q][l] += acc[q][l] * dt;
+                p[q][l] += v[q][l] * dt;
+            }
+            // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
+            let ok = (p[0][l].abs() < rmax)
+                & (p[1][l].abs() < rmax)
+                & (p[2][l].abs() < rmax)
+                & (v[0][l].abs() < vmax)
+                & (v[1][l].abs() < vmax)
+                & (v[2][l].abs() < vmax);
+            bad[l] += (!ok) as usize;
+        }
+        [px[i], py[i], pz[i]] = p;
+        [vx[i], vy[i], vz[i]] = v;
+    }
+    bad.iter().sum()
 }
 
 /// `x += v h` elementwise.
@@ -159,6 +182,18 @@ pub(crate) fn advance_chain(
 ) -> Result<(), StepFailure> {
     #[cfg(target_arch = "x86_64")]
     {
+        if lanes_wanted() == 8
+            && std::arch::is_x86_feature_detected!("avx512f")
+            && std::arch::is_x86_feature_detected!("avx512dq")
+            && std::arch::is_x86_feature_detected!("avx512vl")
+        {
+            // SAFETY: the CPU has AVX-512 (F, DQ, VL), checked just above.
+            return unsafe {
+                advance_chain_avx512(
+                    c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+                )
+            };
+        }
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above.
             return unsafe {
@@ -168,9 +203,20 @@ pub(crate) fn advance_chain(
             };
         }
     }
-    advance_chain_body(
+    advance_chain_body::<4>(
         c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
     )
+}
+
+/// The lanes the chain loops should use where the CPU has them: 8 (AVX-512), or 4
+/// when the environment variable `CABLESIM_CHAIN_LANES` is `4` (to compare the two;
+/// the results are the same bits).
+fn lanes_wanted() -> usize {
+    static WANTED: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    *WANTED.get_or_init(|| match std::env::var("CABLESIM_CHAIN_LANES").as_deref() {
+        Ok("4") => 4,
+        _ => 8,
+    })
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -191,14 +237,38 @@ unsafe fn advance_chain_avx2(
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
-    advance_chain_body(
+    advance_chain_body::<4>(
+        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+    )
+}
+
+/// The same, 8 lanes to a chunk (one AVX-512 register).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f,avx512dq,avx512vl")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn advance_chain_avx512(
+    c: &ChainConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut ChainScratch,
+    ale: &[AleElem],
+    r: &mut [crate::math::V3<f64>],
+    v: &mut [crate::math::V3<f64>],
+    n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    advance_chain_body::<8>(
         c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
     )
 }
 
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn advance_chain_body(
+fn advance_chain_body<const L: usize>(
     c: &ChainConsts,
     lay: &Layout,
     opts: &SolverOptions,
@@ -214,11 +284,11 @@ fn advance_chain_body(
     nsteps: u64,
 ) -> Result<(), StepFailure> {
     if c.friction {
-        advance_chain_scheme::<true>(
+        advance_chain_scheme::<true, L>(
             c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
         )
     } else {
-        advance_chain_scheme::<false>(
+        advance_chain_scheme::<false, L>(
             c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
         )
     }
@@ -226,7 +296,7 @@ fn advance_chain_body(
 
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn advance_chain_scheme<const FRICTION: bool>(
+fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
     c: &ChainConsts,
     lay: &Layout,
     opts: &SolverOptions,
@@ -242,29 +312,31 @@ fn advance_chain_scheme<const FRICTION: bool>(
     nsteps: u64,
 ) -> Result<(), StepFailure> {
     let n = c.n;
-    let ne = c.l0.len();
+    let nc = chunks_for::<L>(n);
     let mut waves = waves;
     if waves.is_none() {
         wbuf.clear();
     }
-    resize(&mut sc.x, n);
-    resize(&mut sc.a, n);
-    resize(&mut sc.w.t, ne + 2);
-    resize(&mut sc.w.f, ne + 2);
-    sc.w.ten.clear();
-    sc.w.ten.resize(ne + 2, 0.0);
-    resize(&mut sc.w.u, ne);
-    resize(&mut sc.w.aw, ne);
-    sc.w.eta.clear();
-    sc.w.eta.resize(n, 0.0);
-    sc.w.haw.clear();
-    sc.w.haw.resize(ne + 2, 0.0);
-    sc.w.pm.clone_from(&c.pm);
-    sc.w.pwz.clone_from(&c.pwz);
+    // Every column padded to whole chunks of lanes (module `lanes`), with zeros.
+    let len = padded_len(n);
+    sc.wc.copy_padded_from(c, len);
+    resize(&mut sc.x, len);
+    resize(&mut sc.a, len);
+    resize(&mut sc.w.t, len);
+    resize(&mut sc.w.f, len);
+    resize(&mut sc.w.u, len);
+    resize(&mut sc.w.aw, len);
+    resize(&mut sc.w.xf, len);
+    for v in [&mut sc.w.ten, &mut sc.w.eta, &mut sc.w.haw] {
+        v.clear();
+        v.resize(len, 0.0);
+    }
+    sc.w.pm.clone_from(&sc.wc.pm);
+    sc.w.pwz.clone_from(&sc.wc.pwz);
     if opts.scheme != Scheme::Symplectic {
-        resize(&mut sc.xs, n);
-        resize(&mut sc.x0, n);
-        resize(&mut sc.sum, n);
+        resize(&mut sc.xs, len);
+        resize(&mut sc.x0, len);
+        resize(&mut sc.sum, len);
     }
     for i in 0..n {
         sc.x[0][i] = r[i].x;
@@ -274,15 +346,11 @@ fn advance_chain_scheme<const FRICTION: bool>(
         sc.x[4][i] = v[i].y;
         sc.x[5][i] = v[i].z;
     }
-    resize(&mut sc.w.xf, n);
     if c.uniform.is_some() && waves.is_none() {
         currents(c, &lay.currents, &sc.x, &mut sc.w.u);
     }
     // Always: the scratch may hold the previous block's variable elements.
     sc.ale.prepare(c, lay, ale);
-    if !ale.is_empty() {
-        sc.wc.copy_from(c);
-    }
     let ChainScratch {
         x,
         xs,
@@ -295,10 +363,12 @@ fn advance_chain_scheme<const FRICTION: bool>(
     } = sc;
     // A function, not a closure: closures are not inlined into the AVX2 caller and
     // would be compiled for the baseline target.
+    //
+    // Safety: every column of `wc`, `state`, `sc` and `a` has at least
+    // `padded_len(wc.n)` entries.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn eval<const FRICTION: bool>(
-        c: &ChainConsts,
+    unsafe fn eval<const FRICTION: bool, const L: usize>(
         wc: &mut ChainConsts,
         asc: &mut AleScratch,
         lay: &Layout,
@@ -324,12 +394,10 @@ fn advance_chain_scheme<const FRICTION: bool>(
             xf,
         } = sc;
         // Winch cables: the variable elements' constants at this time.
-        let c = if ale.is_empty() {
-            c
-        } else {
+        if !ale.is_empty() {
             ale_constants(asc, time, wc);
-            &*wc
-        };
+        }
+        let c = &*wc;
         // A uniform current in still water was filled once for the run.
         if c.uniform.is_none() || waves.is_some() {
             currents(c, &lay.currents, state, u);
@@ -352,9 +420,9 @@ fn advance_chain_scheme<const FRICTION: bool>(
                 }
                 wb.fill_chain(time, c.n, st, eta, u, aw);
             }
-            elements::<true>(c, state, u, aw, eta, t, ten, f, haw);
+            elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw);
         } else {
-            elements::<false>(c, state, u, aw, eta, t, ten, f, haw);
+            elements::<false, L>(c, state, u, aw, eta, t, ten, f, haw);
         }
         ale_tension(asc, state, ten);
         point_surface(c, state, eta, pm, pwz);
@@ -369,101 +437,103 @@ fn advance_chain_scheme<const FRICTION: bool>(
             cl: &c.cl,
             mukl: &c.mukl,
         };
-        nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, asc, xf, a);
+        nodes::<FRICTION, L>(c, lay, opts, time, state, t, ten, f, &m, asc, xf, a);
     }
     let mut result = Ok(());
     let mut bad = 0;
-    for k in 0..nsteps {
-        let time = (step0 + k) as f64 * dt;
-        match opts.scheme {
-            Scheme::Symplectic => {
-                eval::<FRICTION>(c, wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
-                bad = symplectic_update(x, a, n, dt, opts.max_speed, opts.max_distance);
-            }
-            Scheme::Rk2 => {
-                let h = 0.5 * dt;
-                eval::<FRICTION>(c, wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
-                for q in 0..3 {
-                    xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
-                    xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
+    // SAFETY: the stages' columns (`x`, `xs`, `wc`, `wk`, `a`) were made
+    // `padded_len(n)` long above, and nothing in the loop resizes them.
+    unsafe {
+        for k in 0..nsteps {
+            let time = (step0 + k) as f64 * dt;
+            match opts.scheme {
+                Scheme::Symplectic => {
+                    eval::<FRICTION, L>(wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
+                    bad = symplectic_update::<L>(x, a, nc, dt, opts.max_speed, opts.max_distance);
                 }
-                eval::<FRICTION>(
-                    c,
-                    wc,
-                    asc,
-                    lay,
-                    opts,
-                    ale,
-                    xs,
-                    time + h,
-                    &mut waves,
-                    wbuf,
-                    wk,
-                    a,
-                );
-                let (pos, vel) = x.split_at_mut(3);
-                for q in 0..3 {
-                    axpy(&mut pos[q][..n], &xs[3 + q], dt);
-                    axpy(&mut vel[q][..n], &a[q], dt);
-                }
-            }
-            Scheme::Rk4 => {
-                let h = 0.5 * dt;
-                for q in 0..6 {
-                    x0[q].copy_from_slice(&x[q]);
-                    xs[q].copy_from_slice(&x[q]);
-                    sum[q].fill(0.0);
-                }
-                for (stage, (tau, w, next)) in
-                    [(0.0, 1.0, h), (h, 2.0, h), (h, 2.0, dt), (dt, 1.0, 0.0)]
-                        .into_iter()
-                        .enumerate()
-                {
-                    eval::<FRICTION>(
-                        c,
+                Scheme::Rk2 => {
+                    let h = 0.5 * dt;
+                    eval::<FRICTION, L>(wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
+                    for q in 0..3 {
+                        xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
+                        xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
+                    }
+                    eval::<FRICTION, L>(
                         wc,
                         asc,
                         lay,
                         opts,
                         ale,
                         xs,
-                        time + tau,
+                        time + h,
                         &mut waves,
                         wbuf,
                         wk,
                         a,
                     );
-                    let (spos, svel) = xs.split_at_mut(3);
+                    let (pos, vel) = x.split_at_mut(3);
                     for q in 0..3 {
-                        axpy(&mut sum[q][..n], &svel[q], w);
-                        axpy(&mut sum[3 + q][..n], &a[q], w);
-                        if stage < 3 {
-                            xpvh(&mut spos[q][..n], &x0[q], &svel[q], next);
-                            xpvh(&mut svel[q][..n], &x0[3 + q], &a[q], next);
-                        }
+                        axpy(&mut pos[q][..n], &xs[3 + q], dt);
+                        axpy(&mut vel[q][..n], &a[q], dt);
                     }
                 }
-                for q in 0..6 {
-                    xpvh(&mut x[q][..n], &x0[q], &sum[q], dt / 6.0);
+                Scheme::Rk4 => {
+                    let h = 0.5 * dt;
+                    for q in 0..6 {
+                        x0[q].copy_from_slice(&x[q]);
+                        xs[q].copy_from_slice(&x[q]);
+                        sum[q].fill(0.0);
+                    }
+                    for (stage, (tau, w, next)) in
+                        [(0.0, 1.0, h), (h, 2.0, h), (h, 2.0, dt), (dt, 1.0, 0.0)]
+                            .into_iter()
+                            .enumerate()
+                    {
+                        eval::<FRICTION, L>(
+                            wc,
+                            asc,
+                            lay,
+                            opts,
+                            ale,
+                            xs,
+                            time + tau,
+                            &mut waves,
+                            wbuf,
+                            wk,
+                            a,
+                        );
+                        let (spos, svel) = xs.split_at_mut(3);
+                        for q in 0..3 {
+                            axpy(&mut sum[q][..n], &svel[q], w);
+                            axpy(&mut sum[3 + q][..n], &a[q], w);
+                            if stage < 3 {
+                                xpvh(&mut spos[q][..n], &x0[q], &svel[q], next);
+                                xpvh(&mut svel[q][..n], &x0[3 + q], &a[q], next);
+                            }
+                        }
+                    }
+                    for q in 0..6 {
+                        xpvh(&mut x[q][..n], &x0[q], &sum[q], dt / 6.0);
+                    }
                 }
             }
-        }
-        if opts.scheme != Scheme::Symplectic {
-            bad = count_bad(x, n, opts.max_speed, opts.max_distance);
-        }
-        if bad > 0 {
-            let i = (0..n)
-                .find(|&i| {
-                    !(x[0][i].abs() < opts.max_distance
-                        && x[1][i].abs() < opts.max_distance
-                        && x[2][i].abs() < opts.max_distance
-                        && x[3][i].abs() < opts.max_speed
-                        && x[4][i].abs() < opts.max_speed
-                        && x[5][i].abs() < opts.max_speed)
-                })
-                .unwrap_or(0);
-            result = Err((i, time + dt));
-            break;
+            if opts.scheme != Scheme::Symplectic {
+                bad = count_bad(x, n, opts.max_speed, opts.max_distance);
+            }
+            if bad > 0 {
+                let i = (0..n)
+                    .find(|&i| {
+                        !(x[0][i].abs() < opts.max_distance
+                            && x[1][i].abs() < opts.max_distance
+                            && x[2][i].abs() < opts.max_distance
+                            && x[3][i].abs() < opts.max_speed
+                            && x[4][i].abs() < opts.max_speed
+                            && x[5][i].abs() < opts.max_speed)
+                    })
+                    .unwrap_or(0);
+                result = Err((i, time + dt));
+                break;
+            }
         }
     }
     for i in 0..n {

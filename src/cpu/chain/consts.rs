@@ -227,6 +227,37 @@ impl ChainConsts {
             (o.sb_k, o.sb_c, o.sb_mu, o.zb, o.friction, o.v_eps);
     }
 
+    /// Makes `self` a copy of `o` with its per-element, per-padded-element and per-node
+    /// columns padded with zeros to `len` entries (the chain loops' whole chunks of
+    /// lanes, [`super::lanes`]); `l0`, `current` and `line` keep their length (the
+    /// element count).
+    pub(super) fn copy_padded_from(&mut self, o: &ChainConsts, len: usize) {
+        self.copy_from(o);
+        for v in [
+            &mut self.il0,
+            &mut self.ea,
+            &mut self.eac,
+            &mut self.comp,
+            &mut self.drag_n,
+            &mut self.drag_t,
+            &mut self.half_wz,
+            &mut self.half_bz,
+            &mut self.half_fk,
+            &mut self.diameter,
+            &mut self.hm,
+            &mut self.ha,
+            &mut self.pm,
+            &mut self.pwz,
+            &mut self.kl,
+            &mut self.cl,
+            &mut self.mukl,
+            &mut self.trib,
+        ] {
+            debug_assert!(v.len() <= len);
+            v.resize(len, 0.0);
+        }
+    }
+
     /// Re-reads the constraint numbers of block `b` of `lay` (the same chain as the one
     /// these constants were made for, possibly renumbered by a rebuild).
     pub(crate) fn refresh_constraints(&mut self, lay: &Layout, b: &Block) {

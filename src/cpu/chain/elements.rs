@@ -4,14 +4,19 @@
 //! buoyancy, and the wetted half added masses into the padded element columns.
 
 use super::consts::ChainConsts;
+use super::lanes::{chunks_for, keep_chunks, lanes, lanes_mut, lanes_next};
 use crate::cpu::water::node_water;
 use crate::model::Current;
 use crate::physics::wetted_fraction;
 
 /// Element pass over SoA positions and velocities `p`, currents `u`.
+///
+/// # Safety
+/// Every column of `c`, `p`, `u`, `aw`, `eta`, `t`, `ten`, `f` and `haw` has at
+/// least [`super::lanes::padded_len`]`(c.n)` entries (module [`super::lanes`]), and `L` is 4 or 8.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn elements<const WAVES: bool>(
+pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
@@ -23,60 +28,63 @@ pub(super) fn elements<const WAVES: bool>(
     haw: &mut [f64],
 ) {
     let ne = c.l0.len();
-    let [tx, ty, tz] = t;
-    let [fx, fy, fz] = f;
     // Every node at or below the surface (the common case: a line in still water, or
     // deep in waves) makes every wetted fraction exactly 1 (`wetted_fraction`'s first
-    // case), so the loop without it gives the same bits, and stays vectorised.
-    let submerged = eta[..ne + 1]
-        .iter()
-        .zip(&p[2][..ne + 1])
-        .fold(true, |all, (e, z)| all & (e - z >= 0.0));
-    macro_rules! kernel {
-        ($submerged:literal) => {
-            element_kernel::<WAVES, $submerged>(
-                [
-                    &p[0][..ne],
-                    &p[1][..ne],
-                    &p[2][..ne],
-                    &p[3][..ne],
-                    &p[4][..ne],
-                    &p[5][..ne],
-                    &eta[..ne],
-                ],
-                [
-                    &p[0][1..ne + 1],
-                    &p[1][1..ne + 1],
-                    &p[2][1..ne + 1],
-                    &p[3][1..ne + 1],
-                    &p[4][1..ne + 1],
-                    &p[5][1..ne + 1],
-                    &eta[1..ne + 1],
-                ],
-                &u[0][..ne],
-                &u[1][..ne],
-                &u[2][..ne],
-                &aw[0][..ne],
-                &aw[1][..ne],
-                &aw[2][..ne],
-                c,
-                0,
-                &mut tx[1..ne + 1],
-                &mut ty[1..ne + 1],
-                &mut tz[1..ne + 1],
-                &mut ten[1..ne + 1],
-                &mut fx[1..ne + 1],
-                &mut fy[1..ne + 1],
-                &mut fz[1..ne + 1],
-                &mut haw[1..ne + 1],
-            )
-        };
+    // case), so the loop without it gives the same bits, and stays vectorised. (The
+    // padding nodes, at zero under a zero surface, count as under it.)
+    let nn = chunks_for::<L>(ne + 1);
+    // SAFETY: the caller's columns hold `padded_len(c.n) >= nn * L` entries.
+    let (eta_c, z_c) = unsafe { (lanes::<L>(eta, nn), lanes::<L>(&p[2], nn)) };
+    let mut under = [true; L];
+    for j in 0..nn {
+        keep_chunks();
+        for l in 0..L {
+            under[l] &= eta_c[j][l] - z_c[j][l] >= 0.0;
+        }
     }
-    if submerged {
-        kernel!(true)
-    } else {
-        kernel!(false)
+    if under.iter().all(|&x| x) {
+        // SAFETY: the caller's columns, as this function's.
+        unsafe { element_chunks::<WAVES, L>(c, p, u, aw, t, ten, f, haw) };
+        return;
     }
+    let [tx, ty, tz] = t;
+    let [fx, fy, fz] = f;
+    element_kernel::<WAVES, false>(
+        [
+            &p[0][..ne],
+            &p[1][..ne],
+            &p[2][..ne],
+            &p[3][..ne],
+            &p[4][..ne],
+            &p[5][..ne],
+            &eta[..ne],
+        ],
+        [
+            &p[0][1..ne + 1],
+            &p[1][1..ne + 1],
+            &p[2][1..ne + 1],
+            &p[3][1..ne + 1],
+            &p[4][1..ne + 1],
+            &p[5][1..ne + 1],
+            &eta[1..ne + 1],
+        ],
+        &u[0][..ne],
+        &u[1][..ne],
+        &u[2][..ne],
+        &aw[0][..ne],
+        &aw[1][..ne],
+        &aw[2][..ne],
+        c,
+        0,
+        &mut tx[1..ne + 1],
+        &mut ty[1..ne + 1],
+        &mut tz[1..ne + 1],
+        &mut ten[1..ne + 1],
+        &mut fx[1..ne + 1],
+        &mut fy[1..ne + 1],
+        &mut fz[1..ne + 1],
+        &mut haw[1..ne + 1],
+    );
 }
 
 /// The element loop over elements `e0..e0 + tx.len()` of the block's constants `c`.
@@ -151,46 +159,234 @@ pub(super) fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
     );
     let (dn, dt, hw) = (&c.drag_n[e0..e1], &c.drag_t[e0..e1], &c.half_wz[e0..e1]);
     for k in 0..ne {
-        let (dx, dy, dz) = (xb[k] - xa[k], yb[k] - ya[k], zb[k] - za[k]);
-        let l = (dx * dx + dy * dy + dz * dz).sqrt();
-        let il = 1.0 / l;
-        let (ex, ey, ez) = (dx * il, dy * il, dz * il);
-        let eps = l * il0[k] - 1.0;
-        let epsdot =
-            (ex * (vxb[k] - vxa[k]) + ey * (vyb[k] - vya[k]) + ez * (vzb[k] - vza[k])) * il0[k];
-        // Slack: the elastic part vanishes in compression unless the line is a rod.
-        let elastic = ea[k] * eps * if eps > 0.0 { 1.0 } else { comp[k] };
-        let tension = elastic + eac[k] * epsdot;
-        let rx = ux[k] - 0.5 * (vxa[k] + vxb[k]);
-        let ry = uy[k] - 0.5 * (vya[k] + vyb[k]);
-        let rz = uz[k] - 0.5 * (vza[k] + vzb[k]);
-        let vt = ex * rx + ey * ry + ez * rz;
-        let (nx, ny, nz) = (rx - ex * vt, ry - ey * vt, rz - ez * vt);
-        // Water terms times the wetted fraction; the dry part loses its buoyancy.
-        let wet = if SUBMERGED {
-            1.0
-        } else {
-            wetted_fraction(eta_a[k] - za[k], eta_b[k] - zb[k], diam[k])
+        let o = element_lane::<WAVES, SUBMERGED>(
+            [xa[k], ya[k], za[k], vxa[k], vya[k], vza[k], eta_a[k]],
+            [xb[k], yb[k], zb[k], vxb[k], vyb[k], vzb[k], eta_b[k]],
+            [ux[k], uy[k], uz[k]],
+            [awx[k], awy[k], awz[k]],
+            ElemConsts {
+                il0: il0[k],
+                ea: ea[k],
+                eac: eac[k],
+                comp: comp[k],
+                dn: dn[k],
+                dt: dt[k],
+                hw: hw[k],
+                hb: hb[k],
+                hfk: hfk[k],
+                ha: ha[k],
+                diam: diam[k],
+            },
+        );
+        fx[k] = o.f[0];
+        fy[k] = o.f[1];
+        fz[k] = o.f[2];
+        haw[k] = o.haw;
+        tx[k] = o.t[0];
+        ty[k] = o.t[1];
+        tz[k] = o.t[2];
+        ten[k] = o.ten;
+    }
+}
+
+/// One element's constants (see [`ChainConsts`]); `ha` is its half normal added mass.
+#[derive(Clone, Copy)]
+pub(super) struct ElemConsts {
+    il0: f64,
+    ea: f64,
+    eac: f64,
+    comp: f64,
+    dn: f64,
+    dt: f64,
+    hw: f64,
+    hb: f64,
+    hfk: f64,
+    ha: f64,
+    diam: f64,
+}
+
+/// What the element loop writes for one element.
+pub(super) struct ElemOut {
+    /// Unit tangent.
+    t: [f64; 3],
+    /// Tension, N.
+    ten: f64,
+    /// Half drag plus half the weight less buoyancy (and, in waves, half the
+    /// water-acceleration load), N.
+    f: [f64; 3],
+    /// Half normal added mass times the wetted fraction, kg.
+    haw: f64,
+}
+
+/// The element loop's arithmetic for one element with ends `a`, `b` (`[x, y, z, vx,
+/// vy, vz, eta]`), water velocity `u` and wave acceleration `aw`: one definition for
+/// the loop over elements ([`element_kernel`]) and the loop over whole chunks of
+/// lanes ([`element_chunks`]), so both give the same bits.
+#[inline(always)]
+fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
+    a: [f64; 7],
+    b: [f64; 7],
+    u: [f64; 3],
+    aw: [f64; 3],
+    k: ElemConsts,
+) -> ElemOut {
+    let (dx, dy, dz) = (b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+    let l = (dx * dx + dy * dy + dz * dz).sqrt();
+    let il = 1.0 / l;
+    let (ex, ey, ez) = (dx * il, dy * il, dz * il);
+    let eps = l * k.il0 - 1.0;
+    let epsdot = (ex * (b[3] - a[3]) + ey * (b[4] - a[4]) + ez * (b[5] - a[5])) * k.il0;
+    // Slack: the elastic part vanishes in compression unless the line is a rod.
+    let elastic = k.ea * eps * if eps > 0.0 { 1.0 } else { k.comp };
+    let tension = elastic + k.eac * epsdot;
+    let rx = u[0] - 0.5 * (a[3] + b[3]);
+    let ry = u[1] - 0.5 * (a[4] + b[4]);
+    let rz = u[2] - 0.5 * (a[5] + b[5]);
+    let vt = ex * rx + ey * ry + ez * rz;
+    let (nx, ny, nz) = (rx - ex * vt, ry - ey * vt, rz - ez * vt);
+    // Water terms times the wetted fraction; the dry part loses its buoyancy.
+    let wet = if SUBMERGED {
+        1.0
+    } else {
+        wetted_fraction(a[6] - a[2], b[6] - b[2], k.diam)
+    };
+    let kn = k.dn * l * (nx * nx + ny * ny + nz * nz).sqrt() * wet;
+    let kt = k.dt * l * vt.abs() * vt * wet;
+    // Half of drag, plus half the weight less buoyancy (no water acceleration yet).
+    let mut f = [
+        0.5 * (nx * kn + ex * kt),
+        0.5 * (ny * kn + ey * kt),
+        0.5 * (nz * kn + ez * kt) + (k.hw - (1.0 - wet) * k.hb),
+    ];
+    if WAVES {
+        // Froude-Krylov and added mass on the normal wave acceleration P a_w.
+        let an = ex * aw[0] + ey * aw[1] + ez * aw[2];
+        let kf = k.hfk * wet;
+        f[0] += kf * (aw[0] - ex * an);
+        f[1] += kf * (aw[1] - ey * an);
+        f[2] += kf * (aw[2] - ez * an);
+    }
+    ElemOut {
+        t: [ex, ey, ez],
+        ten: tension,
+        f,
+        haw: k.ha * wet,
+    }
+}
+
+/// The element loop of a chain whose every node is under the surface, over `nc`
+/// whole chunks of elements of the padded columns (module [`super::lanes`]):
+/// element `k` reads nodes `k` and `k + 1` of `p` and writes padded element `k + 1`.
+/// The lanes past the last element write padded elements past it, the end ghost
+/// included (reset by the caller).
+///
+/// # Safety
+/// As [`elements`].
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+unsafe fn element_chunks<const WAVES: bool, const L: usize>(
+    c: &ChainConsts,
+    p: &[Vec<f64>; 6],
+    u: &[Vec<f64>; 3],
+    aw: &[Vec<f64>; 3],
+    t: &mut [Vec<f64>; 3],
+    ten: &mut [f64],
+    f: &mut [Vec<f64>; 3],
+    haw: &mut [f64],
+) {
+    let ne = c.l0.len();
+    let nc = chunks_for::<L>(ne);
+    // SAFETY (every use): the caller's columns hold `padded_len(c.n) >= nc * L + 1`
+    // entries.
+    macro_rules! at {
+        ($s:expr) => {
+            unsafe { lanes::<L>($s, nc) }
         };
-        let kn = dn[k] * l * (nx * nx + ny * ny + nz * nz).sqrt() * wet;
-        let kt = dt[k] * l * vt.abs() * vt * wet;
-        // Half of drag, plus half the weight less buoyancy (no water acceleration yet).
-        fx[k] = 0.5 * (nx * kn + ex * kt);
-        fy[k] = 0.5 * (ny * kn + ey * kt);
-        fz[k] = 0.5 * (nz * kn + ez * kt) + (hw[k] - (1.0 - wet) * hb[k]);
-        if WAVES {
-            // Froude-Krylov and added mass on the normal wave acceleration P a_w.
-            let an = ex * awx[k] + ey * awy[k] + ez * awz[k];
-            let kf = hfk[k] * wet;
-            fx[k] += kf * (awx[k] - ex * an);
-            fy[k] += kf * (awy[k] - ey * an);
-            fz[k] += kf * (awz[k] - ez * an);
+    }
+    macro_rules! next {
+        ($s:expr) => {
+            unsafe { lanes_next::<L>($s, nc) }
+        };
+    }
+    macro_rules! out {
+        ($s:expr) => {
+            unsafe { lanes_mut::<L>($s, 1, nc) }
+        };
+    }
+    let (xa, ya, za, vxa, vya, vza) = (
+        at!(&p[0]),
+        at!(&p[1]),
+        at!(&p[2]),
+        at!(&p[3]),
+        at!(&p[4]),
+        at!(&p[5]),
+    );
+    let (xb, yb, zb, vxb, vyb, vzb) = (
+        next!(&p[0]),
+        next!(&p[1]),
+        next!(&p[2]),
+        next!(&p[3]),
+        next!(&p[4]),
+        next!(&p[5]),
+    );
+    let (ux, uy, uz) = (at!(&u[0]), at!(&u[1]), at!(&u[2]));
+    let (awx, awy, awz) = (at!(&aw[0]), at!(&aw[1]), at!(&aw[2]));
+    let (il0, ea, eac, comp) = (at!(&c.il0), at!(&c.ea), at!(&c.eac), at!(&c.comp));
+    let (dn, dt, hw, hb) = (
+        at!(&c.drag_n),
+        at!(&c.drag_t),
+        at!(&c.half_wz),
+        at!(&c.half_bz),
+    );
+    let (hfk, ha) = (at!(&c.half_fk), next!(&c.ha));
+    let [tx, ty, tz] = t;
+    let [fx, fy, fz] = f;
+    let (tx, ty, tz) = (out!(tx), out!(ty), out!(tz));
+    let (fx, fy, fz) = (out!(fx), out!(fy), out!(fz));
+    let (ten, haw) = (out!(ten), out!(haw));
+    for j in 0..nc {
+        keep_chunks();
+        // Every input into locals first, then every output: no overlap to check.
+        let (xa, ya, za, vxa, vya, vza) = (xa[j], ya[j], za[j], vxa[j], vya[j], vza[j]);
+        let (xb, yb, zb, vxb, vyb, vzb) = (xb[j], yb[j], zb[j], vxb[j], vyb[j], vzb[j]);
+        let (ux, uy, uz, awx, awy, awz) = (ux[j], uy[j], uz[j], awx[j], awy[j], awz[j]);
+        let (il0, ea, eac, comp, dn, dt) = (il0[j], ea[j], eac[j], comp[j], dn[j], dt[j]);
+        let (hw, hb, hfk, ha) = (hw[j], hb[j], hfk[j], ha[j]);
+        let mut o = [[0.0; L]; 8];
+        for l in 0..L {
+            let e = element_lane::<WAVES, true>(
+                [xa[l], ya[l], za[l], vxa[l], vya[l], vza[l], 0.0],
+                [xb[l], yb[l], zb[l], vxb[l], vyb[l], vzb[l], 0.0],
+                [ux[l], uy[l], uz[l]],
+                [awx[l], awy[l], awz[l]],
+                ElemConsts {
+                    il0: il0[l],
+                    ea: ea[l],
+                    eac: eac[l],
+                    comp: comp[l],
+                    dn: dn[l],
+                    dt: dt[l],
+                    hw: hw[l],
+                    hb: hb[l],
+                    hfk: hfk[l],
+                    ha: ha[l],
+                    diam: 0.0,
+                },
+            );
+            [o[0][l], o[1][l], o[2][l]] = e.t;
+            o[3][l] = e.ten;
+            [o[4][l], o[5][l], o[6][l]] = e.f;
+            o[7][l] = e.haw;
         }
-        haw[k] = ha[k] * wet;
-        tx[k] = ex;
-        ty[k] = ey;
-        tz[k] = ez;
-        ten[k] = tension;
+        [tx[j], ty[j], tz[j], ten[j], fx[j], fy[j], fz[j], haw[j]] = o;
+    }
+    // The lanes past the last element wrote the end ghost (padded element `ne + 1`)
+    // unless the elements fill their chunks: zero again.
+    let (j, l) = (ne / L, ne % L);
+    if j < nc {
+        for q in [tx, ty, tz, ten, fx, fy, fz, haw] {
+            q[j][l] = 0.0;
+        }
     }
 }
 
@@ -230,7 +426,7 @@ pub(super) fn add_waves(
     aw: &mut [Vec<f64>; 3],
     eta: &mut [f64],
 ) {
-    for (i, e) in eta.iter_mut().enumerate() {
+    for (i, e) in eta[..ne + 1].iter_mut().enumerate() {
         *e = node_water(w, i).0;
     }
     for k in 0..ne {

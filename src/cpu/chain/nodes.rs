@@ -6,6 +6,7 @@
 //! masses ([`Masses`]) and the point-mass helpers that the network path shares.
 
 use super::consts::ChainConsts;
+use super::lanes::{chunks_for, keep_chunks, lanes, lanes_mut, lanes_next};
 use super::winch::{ale_mass_flow, ale_mass_flow_clear, AleScratch};
 use crate::cpu::passes::implicit_dt;
 use crate::cpu::water::node_water;
@@ -56,8 +57,14 @@ fn contact_slopes<const FRICTION: bool>(
 ) -> (f64, f64) {
     let on = pen > 0.0;
     let cz = if on { cl } else { 0.0 };
-    let ch = if FRICTION && on {
-        mukl * pen / (vx * vx + vy * vy).sqrt().max(v_eps)
+    // Computed off the seabed too, then dropped: no branch, so the loops vectorise.
+    let ch = if FRICTION {
+        let ch = mukl * pen / (vx * vx + vy * vy).sqrt().max(v_eps);
+        if on {
+            ch
+        } else {
+            0.0
+        }
     } else {
         0.0
     };
@@ -86,9 +93,13 @@ pub(super) fn seabed_load<const FRICTION: bool>(
 /// afterwards. `p` is the state the element pass used. The few nodes with extra forces
 /// (point drag, a point's water-acceleration load, mass flow) have them added to their
 /// force before the solve, as on the general path.
+///
+/// # Safety
+/// Every column of `c`, `p`, `tv`, `ten`, `fv`, `m`, `xf` and `a` has at least
+/// [`super::lanes::padded_len`]`(c.n)` entries, and `L` is 4 or 8.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn nodes<const FRICTION: bool>(
+pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
     c: &ChainConsts,
     lay: &Layout,
     opts: &SolverOptions,
@@ -122,16 +133,12 @@ pub(super) fn nodes<const FRICTION: bool>(
             add(xf, i, point_water_accel_force(pv, p[2][i], m.eta[i], m.w));
         }
     }
-    let [ax, ay, az] = a;
     // The symplectic scheme takes the seabed's damping implicitly (passes::implicit_dt).
     let h = implicit_dt(opts);
+    // SAFETY: the caller's columns, as this function's.
     macro_rules! kernel_of {
         ($extra:literal, $seabed:literal) => {
-            node_kernel::<FRICTION, $extra, $seabed>(
-                c, h, &p[2], &p[3], &p[4], &p[5], &tv[0], &tv[1], &tv[2], ten, &fv[0], &fv[1],
-                &fv[2], &xf[0], &xf[1], &xf[2], m.pm, m.pwz, m.hm, m.ha, m.kl, m.cl, m.mukl, ax,
-                ay, az,
-            )
+            unsafe { node_kernel::<FRICTION, $extra, $seabed, L>(c, h, p, tv, ten, fv, xf, m, a) }
         };
     }
     // Without a seabed (friction needs one) the node loop skips the contact terms.
@@ -225,89 +232,119 @@ pub(super) fn route_accel(
     })
 }
 
-/// The node loop (see [`super::elements::element_kernel`] for why every array is a parameter).
+/// The node loop over `nc` whole chunks of nodes of the padded columns (module
+/// [`super::lanes`]): node `i` gathers padded elements `i` and `i + 1`. The padding
+/// nodes' accelerations are set to zero.
+///
+/// # Safety
+/// As [`nodes`].
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn node_kernel<const FRICTION: bool, const EXTRA: bool, const SEABED: bool>(
+unsafe fn node_kernel<
+    const FRICTION: bool,
+    const EXTRA: bool,
+    const SEABED: bool,
+    const L: usize,
+>(
     c: &ChainConsts,
     h: f64,
-    z: &[f64],
-    vx: &[f64],
-    vy: &[f64],
-    vz: &[f64],
-    tx: &[f64],
-    ty: &[f64],
-    tz: &[f64],
-    tn: &[f64],
-    fx: &[f64],
-    fy: &[f64],
-    fz: &[f64],
-    xfx: &[f64],
-    xfy: &[f64],
-    xfz: &[f64],
-    pm: &[f64],
-    pwz: &[f64],
-    hm: &[f64],
-    ha: &[f64],
-    kl: &[f64],
-    cl: &[f64],
-    mukl: &[f64],
-    ax: &mut [f64],
-    ay: &mut [f64],
-    az: &mut [f64],
+    p: &[Vec<f64>; 6],
+    t: &[Vec<f64>; 3],
+    ten: &[f64],
+    f: &[Vec<f64>; 3],
+    xf: &[Vec<f64>; 3],
+    m: &Masses,
+    a: &mut [Vec<f64>; 3],
 ) {
-    let n = c.n;
-    let (z, vx, vy, vz) = (&z[..n], &vx[..n], &vy[..n], &vz[..n]);
-    let (tx, ty, tz, tn) = (&tx[..n + 1], &ty[..n + 1], &tz[..n + 1], &tn[..n + 1]);
-    let (fx, fy, fz) = (&fx[..n + 1], &fy[..n + 1], &fz[..n + 1]);
-    let (xfx, xfy, xfz) = (&xfx[..n], &xfy[..n], &xfz[..n]);
-    let (hm, ha) = (&hm[..n + 1], &ha[..n + 1]);
-    let (pm, pwz, kl, cl, mukl) = (&pm[..n], &pwz[..n], &kl[..n], &cl[..n], &mukl[..n]);
-    let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
-    let (zb, v_eps) = (c.zb, c.v_eps);
-    for i in 0..n {
-        // Padded element i is element i-1 (this node is its b end: -T t), i+1 is element i.
-        let (j, k) = (i, i + 1);
-        let mut gx = fx[j] + fx[k] - tn[j] * tx[j] + tn[k] * tx[k];
-        let mut gy = fy[j] + fy[k] - tn[j] * ty[j] + tn[k] * ty[k];
-        let mut gz = fz[j] + fz[k] - tn[j] * tz[j] + tn[k] * tz[k] + pwz[i];
-        if EXTRA {
-            gx += xfx[i];
-            gy += xfy[i];
-            gz += xfz[i];
-        }
-        let s = pm[i] + hm[j] + hm[k] + ha[j] + ha[k];
-        // Seabed damping and friction implicit: (M + h diag(c_h, c_h, c_z)) a = F.
-        // Without a seabed the diagonal is `s` (what `s + h 0` is, bit for bit).
-        let d = if SEABED {
-            let (sb, ch, cz) = seabed_load::<FRICTION>(
-                zb - z[i],
-                [vx[i], vy[i], vz[i]],
-                kl[i],
-                cl[i],
-                mukl[i],
-                v_eps,
-            );
-            gz += sb[2];
-            if FRICTION {
-                gx += sb[0];
-                gy += sb[1];
-            }
-            [s + h * ch, s + h * ch, s + h * cz]
-        } else {
-            [s, s, s]
+    let nc = chunks_for::<L>(c.n);
+    // SAFETY (every use): the caller's columns hold `padded_len(c.n) >= nc * L + 1`
+    // entries.
+    macro_rules! at {
+        ($s:expr) => {
+            unsafe { lanes::<L>($s, nc) }
         };
-        let acc = solve_mass(
-            d,
-            ha[j],
-            ha[k],
-            [tx[j], ty[j], tz[j]],
-            [tx[k], ty[k], tz[k]],
-            [gx, gy, gz],
-        );
-        ax[i] = acc[0];
-        ay[i] = acc[1];
-        az[i] = acc[2];
+    }
+    macro_rules! next {
+        ($s:expr) => {
+            unsafe { lanes_next::<L>($s, nc) }
+        };
+    }
+    macro_rules! out {
+        ($s:expr) => {
+            unsafe { lanes_mut::<L>($s, 0, nc) }
+        };
+    }
+    let (z, vx, vy, vz) = (at!(&p[2]), at!(&p[3]), at!(&p[4]), at!(&p[5]));
+    let (txj, tyj, tzj, tnj) = (at!(&t[0]), at!(&t[1]), at!(&t[2]), at!(ten));
+    let (txk, tyk, tzk, tnk) = (next!(&t[0]), next!(&t[1]), next!(&t[2]), next!(ten));
+    let (fxj, fyj, fzj) = (at!(&f[0]), at!(&f[1]), at!(&f[2]));
+    let (fxk, fyk, fzk) = (next!(&f[0]), next!(&f[1]), next!(&f[2]));
+    let (xfx, xfy, xfz) = (at!(&xf[0]), at!(&xf[1]), at!(&xf[2]));
+    let (hmj, hmk, haj, hak) = (at!(m.hm), next!(m.hm), at!(m.ha), next!(m.ha));
+    let (pm, pwz, kl, cl, mukl) = (at!(m.pm), at!(m.pwz), at!(m.kl), at!(m.cl), at!(m.mukl));
+    let [ax, ay, az] = a;
+    let (ax, ay, az) = (out!(ax), out!(ay), out!(az));
+    let (zb, v_eps) = (c.zb, c.v_eps);
+    for i in 0..nc {
+        keep_chunks();
+        // Every input into locals first, then every output: no overlap to check.
+        let (z, vx, vy, vz) = (z[i], vx[i], vy[i], vz[i]);
+        let (txj, tyj, tzj, tnj) = (txj[i], tyj[i], tzj[i], tnj[i]);
+        let (txk, tyk, tzk, tnk) = (txk[i], tyk[i], tzk[i], tnk[i]);
+        let (fxj, fyj, fzj, fxk, fyk, fzk) = (fxj[i], fyj[i], fzj[i], fxk[i], fyk[i], fzk[i]);
+        let (xfx, xfy, xfz) = (xfx[i], xfy[i], xfz[i]);
+        let (hmj, hmk, haj, hak) = (hmj[i], hmk[i], haj[i], hak[i]);
+        let (pm, pwz, kl, cl, mukl) = (pm[i], pwz[i], kl[i], cl[i], mukl[i]);
+        let mut o = [[0.0; L]; 3];
+        for l in 0..L {
+            // Padded element i is element i-1 (this node is its b end: -T t), i+1 is
+            // element i.
+            let (tj, tk) = ([txj[l], tyj[l], tzj[l]], [txk[l], tyk[l], tzk[l]]);
+            let (fj, fk) = ([fxj[l], fyj[l], fzj[l]], [fxk[l], fyk[l], fzk[l]]);
+            let (tnj, tnk) = (tnj[l], tnk[l]);
+            let mut g = [
+                fj[0] + fk[0] - tnj * tj[0] + tnk * tk[0],
+                fj[1] + fk[1] - tnj * tj[1] + tnk * tk[1],
+                fj[2] + fk[2] - tnj * tj[2] + tnk * tk[2],
+            ];
+            g[2] += pwz[l];
+            if EXTRA {
+                g[0] += xfx[l];
+                g[1] += xfy[l];
+                g[2] += xfz[l];
+            }
+            let s = pm[l] + hmj[l] + hmk[l] + haj[l] + hak[l];
+            // Seabed damping and friction implicit: (M + h diag(c_h, c_h, c_z)) a = F.
+            // Without a seabed the diagonal is `s` (what `s + h 0` is, bit for bit).
+            let d = if SEABED {
+                let (sb, ch, cz) = seabed_load::<FRICTION>(
+                    zb - z[l],
+                    [vx[l], vy[l], vz[l]],
+                    kl[l],
+                    cl[l],
+                    mukl[l],
+                    v_eps,
+                );
+                g[2] += sb[2];
+                if FRICTION {
+                    g[0] += sb[0];
+                    g[1] += sb[1];
+                }
+                [s + h * ch, s + h * ch, s + h * cz]
+            } else {
+                [s, s, s]
+            };
+            let acc = solve_mass(d, haj[l], hak[l], tj, tk, g);
+            [o[0][l], o[1][l], o[2][l]] = acc;
+        }
+        [ax[i], ay[i], az[i]] = o;
+    }
+    // The padding nodes stay at rest at zero (the symplectic update's check reads them).
+    let last = nc - 1;
+    for l in 0..L {
+        if last * L + l >= c.n {
+            (ax[last][l], ay[last][l], az[last][l]) = (0.0, 0.0, 0.0);
+        }
     }
 }
 
