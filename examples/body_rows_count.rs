@@ -12,6 +12,9 @@
 //! body state: what every row cost before the knots), and the steps; the difference of
 //! two counts over the difference of their steps is the cost per member-step, the
 //! scenario's loading cancelling out).
+//!
+//! Built with `cargo build --release --features bench --example body_rows_count`: the
+//! examples/*.rs are behind the `bench` feature, so `cargo test` does not build them.
 
 use cablesim::body::{kinematics::body_state, Body, Motion};
 use cablesim::gpu::solver::body_rows;

@@ -6,6 +6,9 @@
 //! `valgrind --tool=callgrind target/release/examples/refresh_count rates 2000`
 //! (arguments: `values` or `rates`, node evaluations; the instructions of
 //! `wave_kinematics_*columns` over the evaluations are the cost per node).
+//!
+//! Built with `cargo build --release --features bench --example refresh_count`: the
+//! examples/*.rs are behind the `bench` feature, so `cargo test` does not build them.
 
 use cablesim::sea::irregular::{discretise, Discretisation};
 use cablesim::sea::kinematics::{KinematicsScratch, WaveField};

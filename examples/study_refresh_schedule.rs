@@ -22,6 +22,9 @@
 //!
 //! The base scenario is assumed to be the design check's (320 m of water, g = 9.81,
 //! no `cache_tolerance`, long-crested); the example checks the depth it reads.
+//!
+//! Built with `cargo build --release --features bench --example study_refresh_schedule`: the
+//! examples/*.rs are behind the `bench` feature, so `cargo test` does not build them.
 
 use cablesim::sea::irregular::{discretise, Discretisation, DEFAULT_COMPONENTS};
 use cablesim::sea::schedule::{refresh_plan, RefreshClock, RefreshPlan};

@@ -4,6 +4,9 @@
 //! `valgrind --tool=callgrind target/release/examples/wave_step_count still 1 20000`
 //! and the same with `waves` (arguments: sea, cables, steps). The difference of the
 //! two counts over the node-steps is the cost of the waves.
+//!
+//! Built with `cargo build --release --features bench --example wave_step_count`: the
+//! examples/*.rs are behind the `bench` feature, so `cargo test` does not build them.
 
 #[path = "../benches/common/mod.rs"]
 mod common;

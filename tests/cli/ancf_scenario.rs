@@ -4,7 +4,7 @@
 //! vertical deployment both must agree on, and clear errors for what the ANCF path
 //! does not take.
 
-use crate::common::dist;
+use super::common::dist;
 use cablesim::options::CableModel;
 use cablesim::output::Summary;
 use cablesim::scenario::Scenario;

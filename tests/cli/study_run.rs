@@ -4,7 +4,7 @@
 //! and directory arguments are refused by name; the same for a short copy of the
 //! design-check study, whose RAO-driven platform moves by knots shared across threads.
 
-use crate::common::study_with_a_failing_member;
+use super::common::study_with_a_failing_member;
 use std::path::Path;
 use std::process::{Command, Output};
 

@@ -3,7 +3,7 @@
 //! the top tension of a slow vertical deployment, the mass-flow force against the
 //! material acceleration it stands for, and the errors of impossible schedules.
 
-use crate::common::*;
+use super::common::*;
 use cablesim::ale::{mass_flow_forces, PayoutSchedule, Winch, WinchEnd};
 use cablesim::cpu::CpuSolver;
 use cablesim::error::Error;

@@ -2,7 +2,7 @@
 //! (Euler-Bernoulli cantilever, elastic catenary), against the GLMF on a driven
 //! dynamic case, and its integrator's energy behaviour and stable step.
 
-use crate::common::*;
+use super::common::*;
 use cablesim::ancf::{AncfCable, AncfConfig, AncfEnd, StaticOptions};
 use cablesim::cpu::CpuSolver;
 use cablesim::math::V3;

@@ -3,7 +3,7 @@
 //! `bodies.csv` (with the body's load against the cable's end force), and the errors
 //! of bad input.
 
-use crate::common::*;
+use super::common::*;
 use cablesim::body::rao::RAO_KNOT_TOLERANCE;
 use cablesim::body::{Body, MeanPose, Motion, RaoMotion, RaoTable};
 use cablesim::cpu::CpuSolver;

@@ -10,7 +10,7 @@
 //! difference in the loads (say 1e-6 relative in the drag) acts from the first step
 //! with a force, not a 1e-12 m offset, and lands far outside.
 
-use crate::common::dist;
+use super::common::dist;
 use cablesim::cpu::CpuSolver;
 use cablesim::options::{Formulation, SolverOptions};
 use cablesim::physics::frames::Frame;

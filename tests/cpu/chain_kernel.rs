@@ -7,7 +7,7 @@
 //! path fixes up (route-driven node, point mass with drag, seabed friction, a current
 //! profile).
 
-use crate::common::*;
+use super::common::*;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{Current, Environment, Layout, PointMass, Route, Seabed};
 use cablesim::options::{Scheme, SolverOptions};

@@ -1,6 +1,6 @@
 //! Dynamics of the f64 reference stepper against closed-form physics.
 
-use crate::common::*;
+use super::common::*;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{Layout, PointMass, Route};
 use cablesim::options::{Scheme, SolverOptions};

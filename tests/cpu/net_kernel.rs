@@ -9,7 +9,7 @@
 //! (nodes of 2, 3 and 4 elements); in still water, through the water surface, and in
 //! waves. On one thread and, for a block big enough to be split, on two.
 
-use crate::common::wire;
+use super::common::wire;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{
     add_net, Current, Environment, Layout, ModelDef, NetShape, NetSpec, PointMass, Route, Seabed,

@@ -4,7 +4,7 @@
 //! size; a member that blows up in a packed run (run again alone, the others again
 //! without it) counts once in the progress.
 
-use crate::common::{short_study, study_with_a_failing_member, wave_members};
+use super::common::{short_study, study_with_a_failing_member, wave_members};
 use cablesim::options::{Backend, Overrides};
 use cablesim::sim::pack::{pack, packed_name};
 use cablesim::sim::Simulation;

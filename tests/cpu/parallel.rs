@@ -2,7 +2,7 @@
 //! steps split across threads. The split changes nothing: the result equals the
 //! single-thread one bit for bit, and a blow-up names the same node and time.
 
-use crate::common::wire;
+use super::common::wire;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{
     add_net, Current, Environment, Layout, ModelDef, NetShape, NetSpec, PointMass, Route,

@@ -1,7 +1,7 @@
 //! Static equilibrium of the discrete model: relaxed lines stay still under the dynamic
 //! solver, and the relaxed mooring line converges to the analytic catenary.
 
-use crate::common::dist;
+use super::common::dist;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{
     CableDef, Current, Environment, Layout, LineType, ModelDef, NodeDef, PointMass, Route, Seabed,

@@ -3,7 +3,7 @@
 //! the surface takes the water terms times its wetted fraction, a point mass times the
 //! submerged share of its sphere.
 
-use crate::common::*;
+use super::common::*;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{Environment, Layout, LineType, ModelDef, PointMass, Route, Seabed};
 use cablesim::options::{Scheme, SolverOptions};

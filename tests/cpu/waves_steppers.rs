@@ -1,7 +1,7 @@
 //! Waves in the CPU stepper: the kinematics cache against exact evaluation, the chain
 //! fast path against the general path, and a point mass moving with the water.
 
-use crate::common::*;
+use super::common::*;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{Environment, Layout, LineType, ModelDef, PointMass, Route, Seabed};
 use cablesim::options::{Scheme, SolverOptions};

@@ -3,8 +3,8 @@
 //! loop, its damping on the material strain rate, the mass-flow forces added to the
 //! node force before the solve, and the insertions and deletions of nodes.
 
-use crate::ale::{clump, hanging, out_and_back, solver, winch};
-use crate::common::*;
+use super::ale::{clump, hanging, out_and_back, solver, winch};
+use super::common::*;
 use cablesim::ale::WinchEnd;
 use cablesim::options::Scheme;
 

@@ -2,7 +2,7 @@
 //! in summary.json; `--backend gpu` without an adapter is a clear error; `--backend
 //! auto` without one falls back to the CPU path with a logged reason.
 
-use crate::common::*;
+use super::common::*;
 use std::process::Command;
 
 fn run_cli(args: &[&str], backend_env: Option<&str>) -> (bool, String, Option<serde_json::Value>) {

@@ -15,7 +15,7 @@
 //!    f32 contract of tests/gpu_f32.rs (nodes within `1e-4` of the cable's length,
 //!    tensions within 1% plus 0.1% of the largest).
 
-use crate::common::*;
+use super::common::*;
 use cablesim::body::{attachment, Body, MeanPose, Motion, MotionTable, RaoMotion, RaoTable};
 use cablesim::cpu::CpuSolver;
 use cablesim::gpu::layout::*;

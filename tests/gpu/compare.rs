@@ -83,7 +83,7 @@ impl Value for [f64; 3] {
     }
 }
 
-pub use crate::common::dist;
+pub use super::common::dist;
 
 /// Euclidean norm.
 pub fn norm(a: [f64; 3]) -> f64 {

@@ -37,8 +37,8 @@
 //! differs, f32 or f64: `compare` runs a second CPU f64 twin from positions moved by
 //! 1e-9 m and reports how far its forces stray, which shows where that is the case.
 
-use crate::common::*;
-use crate::compare::{cable_lengths, dist, nodes_within_length, norm, Check, Place, Snapshot};
+use super::common::*;
+use super::compare::{cable_lengths, dist, nodes_within_length, norm, Check, Place, Snapshot};
 use cablesim::cpu::{CpuSolver, Evaluation};
 use cablesim::gpu::{GpuContext, GpuKernel, GpuSolver, Precision};
 use cablesim::model::{

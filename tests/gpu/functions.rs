@@ -9,7 +9,7 @@
 //! cancellation is allowed for, and a missing or wrong term is not: it is of the size
 //! of `scale`).
 
-use crate::common::*;
+use super::common::*;
 use cablesim::gpu::layout::*;
 use cablesim::gpu::solver::{rebased_route, route_samples};
 use cablesim::gpu::{shaders, GpuContext, Precision};

@@ -16,8 +16,8 @@
 //! within 1% plus 0.1% of the cable's largest), and the f64 bound with f32's `eps` as
 //! well.
 
-use crate::common::*;
-use crate::compare::{dist, nodes_within_length, Check, Place, RoundOff, Snapshot};
+use super::common::*;
+use super::compare::{dist, nodes_within_length, Check, Place, RoundOff, Snapshot};
 use cablesim::gpu::{GpuKernel, GpuSolver, Precision};
 use cablesim::model::{
     CableDef, Current, Environment, Layout, LineType, ModelDef, NodeDef, PointMass, Route, Seabed,

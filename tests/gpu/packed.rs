@@ -4,7 +4,7 @@
 //! study run packed on the GPU against the CPU's one run per member, for two batch
 //! sizes.
 
-use crate::common::{dist, gpu_context, short_study, wave_members};
+use super::common::{dist, gpu_context, short_study, wave_members};
 use cablesim::cpu::CpuSolver;
 use cablesim::gpu::{GpuKernel, GpuSolver, Precision};
 use cablesim::options::{Backend, Overrides, SolverOptions};

@@ -22,8 +22,8 @@
 //! `EA dr / l0_min`, plus the strain's own round-off `eps EA` and `eps T_max`.
 //! Reactions (`F - M a` at driven nodes) get the tension tolerance.
 
-use crate::common::*;
-use crate::compare::{dist, RoundOff, Snapshot};
+use super::common::*;
+use super::compare::{dist, RoundOff, Snapshot};
 use cablesim::cpu::CpuSolver;
 use cablesim::gpu::{GpuKernel, GpuSolver, Precision};
 use cablesim::model::{

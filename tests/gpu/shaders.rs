@@ -1,7 +1,7 @@
 //! Every WGSL stage parses and validates (naga, both precisions, no GPU needed), and
 //! builds into compute pipelines on the adapter when there is one.
 
-use crate::common::*;
+use super::common::*;
 use cablesim::gpu::shaders::{self, Stage};
 use cablesim::gpu::{GpuSolver, Precision};
 use cablesim::model::{Layout, PointMass, Route};

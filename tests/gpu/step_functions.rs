@@ -15,8 +15,8 @@
 //! the shader forms itself costs), so a missing, doubled or wrong-signed term, of the
 //! size of its own magnitude, fails.
 
-use crate::common::*;
-use crate::functions::{run_kernels, rv, to_r, Worst};
+use super::common::*;
+use super::functions::{run_kernels, rv, to_r, Worst};
 use cablesim::gpu::layout::*;
 use cablesim::gpu::solver::rebased_route;
 use cablesim::gpu::{GpuContext, Precision};

@@ -13,8 +13,8 @@
 //! tests/gpu_f32.rs: nodes within `1e-4` of the line's length, tensions within 1%
 //! plus 0.1% of the largest.
 
-use crate::common::*;
-use crate::functions::{element_case, run_kernels, rv, to_r, Worst};
+use super::common::*;
+use super::functions::{element_case, run_kernels, rv, to_r, Worst};
 use cablesim::cpu::CpuSolver;
 use cablesim::gpu::layout::*;
 use cablesim::gpu::{GpuContext, GpuKernel, GpuSolver, Precision};

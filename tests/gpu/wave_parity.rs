@@ -12,7 +12,7 @@ use cablesim::sea::irregular::{discretise, Discretisation};
 use cablesim::sea::spectrum::Spectrum;
 use cablesim::sea::SeaState;
 
-use crate::common::*;
+use super::common::*;
 
 /// Hs 3 m, Tp 9 s, 200 components travelling along +x with 20 degrees of spreading
 /// off it, in 30 m of water, no ramp (the waves act from the first step).

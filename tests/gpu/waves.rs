@@ -8,8 +8,8 @@
 //! its arguments (a phase `theta` carries `eps |theta|`, an exponent `eps |x|`), so a
 //! missing or wrong term, of the size of `scale`, is caught.
 
-use crate::common::*;
-use crate::functions::{run_kernels, to_r, Worst};
+use super::common::*;
+use super::functions::{run_kernels, to_r, Worst};
 use cablesim::gpu::layout::{GpuReal, WaveComp};
 use cablesim::gpu::{GpuContext, Precision};
 use cablesim::math::V3;

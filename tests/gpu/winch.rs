@@ -18,8 +18,8 @@
 //! - `cablesim run examples/winch_deploy.toml --backend gpu` runs on the GPU and agrees
 //!   with `--backend cpu`; `--backend auto` still picks the CPU on a software adapter.
 
-use crate::common::*;
-use crate::compare::{dist, end_forces, norm, Check, Place, RoundOff, Snapshot};
+use super::common::*;
+use super::compare::{dist, end_forces, norm, Check, Place, RoundOff, Snapshot};
 use cablesim::ale::{PayoutSchedule, Winch, WinchEnd};
 use cablesim::cpu::{CpuSolver, Evaluation};
 use cablesim::gpu::{GpuContext, GpuSolver, Precision};

@@ -3,7 +3,7 @@
 //! state of then), installs that mesh again and replays to the step before the failure,
 //! so the summary and the last frame hold the state at that step, as on the CPU path.
 
-use crate::common::{dist, gpu_context};
+use super::common::{dist, gpu_context};
 use cablesim::gpu::Precision;
 use cablesim::options::{Backend, Overrides};
 use cablesim::output::Summary;
