@@ -42,6 +42,7 @@
 //! the buffers. Infinite depth goes to the GPU as
 //! [`GPU_DEEP`] m.
 
+pub mod bands;
 pub mod cache;
 pub mod columns;
 pub mod cut;

@@ -161,6 +161,7 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
             seas,
             cable_sea,
             reach: Vec::new(),
+            banded: false,
         }),
         points,
         vtk: false,
