@@ -42,8 +42,8 @@ struct ChainColumns {
     /// The cache's refresh count ([`WaveCache::generation`]) these columns were
     /// formed for.
     generation: Option<u64>,
-    /// With several bands: the time the power-basis columns are referred to (band
-    /// 0's `t0`); `None`: Hermite columns of one band.
+    /// With several bands: the time the power-basis columns are referred to (the
+    /// coarsest band's `t0`); `None`: Hermite columns of one band.
     power_ref: Option<f64>,
     /// Scratch: the nodes' power-basis coefficients.
     power: [Vec<f64>; 4],
@@ -176,22 +176,45 @@ impl BlockWaves {
 impl ChainColumns {
     /// Forms the columns of `n` nodes from the cache: with one band, its four arrays
     /// (values and rates at its two times, interpolated with the band's Hermite
-    /// weights); with several, each node's cubic in the power basis of `t - t0` of
-    /// band 0 ([`WaveCache::power_coefficients`]), so that every node, whatever its
-    /// band, interpolates with the same weights `1, tau, tau^2, tau^3` (an element
-    /// between two bands too: its midpoint is the mean of its nodes' cubics).
+    /// weights); with several, each node's cubic in the power basis of `t - t_ref`
+    /// ([`WaveCache::power_node`], `t_ref` the coarsest band's `t0`), so that every
+    /// node, whatever its band, interpolates with the same weights `1, tau, tau^2,
+    /// tau^3` (an element between two bands too: its midpoint is the mean of its
+    /// nodes' cubics). Between decisions only the nodes the last refresh touched
+    /// change, and only their entries are formed again.
     fn form(&mut self, cache: &WaveCache, n: usize) {
         if cache.clocks.len() == 1 {
             self.power_ref = None;
             self.from_arrays([&cache.v0, &cache.d0, &cache.v1, &cache.d1], n);
+            return;
+        }
+        let t_ref = cache.power_ref();
+        let mut p = std::mem::take(&mut self.power);
+        let follows = self.generation.map(|g| g + 1) == Some(cache.generation);
+        if self.power_ref == Some(t_ref) && follows && p[0].len() == n * CACHE_STRIDE {
+            // Only the refreshed nodes, their elevations and their elements.
+            for (i, due) in cache.due().iter().enumerate().take(n) {
+                if due.is_nan() {
+                    continue;
+                }
+                cache.power_node(i, t_ref, &mut p);
+                for side in 0..4 {
+                    let v = &p[side];
+                    self.eta[side][i] = v[i * CACHE_STRIDE];
+                    for k in i.saturating_sub(1)..(i + 1).min(n - 1) {
+                        let (a, b) = (&v[k * CACHE_STRIDE..], &v[(k + 1) * CACHE_STRIDE..]);
+                        for q in 0..6 {
+                            self.mid[side][q][k] = 0.5 * (a[1 + q] + b[1 + q]);
+                        }
+                    }
+                }
+            }
         } else {
-            let t_ref = cache.t0();
             self.power_ref = Some(t_ref);
-            let mut p = std::mem::take(&mut self.power);
             cache.power_coefficients(t_ref, &mut p);
             self.from_arrays([&p[0], &p[1], &p[2], &p[3]], n);
-            self.power = p;
         }
+        self.power = p;
     }
 
     /// Forms the columns from four arrays of [`CACHE_STRIDE`] per node.

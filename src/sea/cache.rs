@@ -24,7 +24,9 @@
 //! uses [`HERMITE_INTERVAL_FACTOR`] of it (see there why); the solvers refresh by the
 //! plan of [`super::schedule`] (the rule with the amplitudes decayed to the depth the
 //! nodes stay at, a larger factor for lines well under the troughs, rounded down to a
-//! common grid of refresh times). The rule does not see the nodes' motion: the error
+//! common grid of refresh times), per depth band of nodes on the CPU path
+//! ([`super::bands`]: each node refreshes at the interval of the band its height
+//! allows). The rule does not see the nodes' motion: the error
 //! of the predicted path adds to it (third order in the interval with the
 //! acceleration estimate; the tests below measure both).
 //!
@@ -203,6 +205,8 @@ pub struct WaveCache {
     /// The nodes' velocities at their previous refresh: the acceleration of the path
     /// prediction is the velocity change since then.
     last_vel: Vec<f64>,
+    /// For the refresh of a few nodes, one after another.
+    scratch: KinematicsScratch,
 }
 
 impl WaveCache {
@@ -239,6 +243,7 @@ impl WaveCache {
             predicted_vel: vec![0.0; n_nodes * 3],
             due: vec![f64::NAN; n_nodes],
             last_vel: vec![0.0; n_nodes * 3],
+            scratch: KinematicsScratch::default(),
         }
     }
 
@@ -341,10 +346,11 @@ impl WaveCache {
                 continue;
             };
             self.due[i] = self.clocks[new].t1;
-            let r = i * CACHE_STRIDE..(i + 1) * CACHE_STRIDE;
             if !restart {
-                self.v0[r.clone()].copy_from_slice(&self.v1[r.clone()]);
-                self.d0[r.clone()].copy_from_slice(&self.d1[r]);
+                for j in i * CACHE_STRIDE..(i + 1) * CACHE_STRIDE {
+                    self.v0[j] = self.v1[j];
+                    self.d0[j] = self.d1[j];
+                }
             }
             let ahead = tick.ahead;
             for d in 0..3 {
@@ -366,6 +372,25 @@ impl WaveCache {
                 &mut self.v1,
                 &mut self.d1,
             );
+        } else if self.due.iter().filter(|t| !t.is_nan()).count() < 32 {
+            // Few nodes due (a band's rung between decisions): one after another with
+            // the cache's own scratch, no parallel split (each split allocates one).
+            let s = &mut self.scratch;
+            for (i, &t1) in self.due.iter().enumerate() {
+                if t1.is_nan() {
+                    continue;
+                }
+                let (p, v) = (
+                    &self.predicted[3 * i..3 * i + 3],
+                    &self.predicted_vel[3 * i..3 * i + 3],
+                );
+                let (k, dk) =
+                    self.field
+                        .kinematics_rates_with([p[0], p[1], p[2]], [v[0], v[1], v[2]], t1, s);
+                let r = i * CACHE_STRIDE..(i + 1) * CACHE_STRIDE;
+                write_node(&mut self.v1[r.clone()], &k);
+                write_node(&mut self.d1[r], &dk);
+            }
         } else {
             evaluate_due_nodes(
                 &self.field,
@@ -462,34 +487,69 @@ impl WaveCache {
 }
 
 impl WaveCache {
+    /// The time the power-basis cubics are referred to ([`Self::power_coefficients`]):
+    /// the coarsest band's `t0`, which moves only when every band refreshes.
+    pub fn power_ref(&self) -> f64 {
+        self.clocks[self.clocks.len() - 1].t0
+    }
+
+    /// Per node: the time its values were refreshed for at the last refresh (NaN:
+    /// not refreshed then).
+    pub fn due(&self) -> &[f64] {
+        &self.due
+    }
+
     /// Every node's interpolant as a cubic in `tau = t - t_ref` (power basis,
     /// `p[0] + p[1] tau + p[2] tau^2 + p[3] tau^3`, [`CACHE_STRIDE`] per node in each
-    /// of `p`), from its band's Hermite data over `[t0, t1]`: in `sigma = t - t0`,
-    /// `a0 = v0`, `a1 = d0`, `a2 = (3 (v1 - v0) / delta - 2 d0 - d1) / delta`, `a3 =
-    /// (2 (v0 - v1) / delta + d0 + d1) / delta^2`, then shifted by `e = t_ref - t0`.
-    /// Why: with `t_ref` band 0's `t0` every node, whatever its band, interpolates
-    /// with the weights `1, tau, tau^2, tau^3` (`tau` within band 0's interval, so the
-    /// power basis is well conditioned), and an element's midpoint is the mean of its
-    /// nodes' cubics: one set of weights per stage, as with one band.
+    /// of `p`; [`Self::power_node`] per node).
     pub fn power_coefficients(&self, t_ref: f64, p: &mut [Vec<f64>; 4]) {
         let len = self.v0.len();
         for q in p.iter_mut() {
             q.resize(len, 0.0);
         }
+        for i in 0..self.band.len() {
+            self.power_node(i, t_ref, p);
+        }
+    }
+
+    /// Node `i`'s interpolant as a cubic in `tau = t - t_ref` into `p` (sized), from
+    /// its band's Hermite data over `[t0, t1]`: in `sigma = t - t0`, `a0 = v0`, `a1 =
+    /// d0`, `a2 = (3 (v1 - v0) / delta - 2 d0 - d1) / delta`, `a3 = (2 (v0 - v1) /
+    /// delta + d0 + d1) / delta^2`, then shifted by `e = t_ref - t0`. Why: every node,
+    /// whatever its band, then interpolates with the weights `1, tau, tau^2, tau^3`,
+    /// and an element's midpoint is the mean of its nodes' cubics: one set of weights
+    /// per stage, as with one band. With `t_ref` the coarsest band's `t0` only the
+    /// nodes a refresh touched change between decisions; `tau` stays within the
+    /// coarsest interval (a second or two), and the coefficients are bounded by the
+    /// values' time derivatives, so the power basis loses nothing that matters.
+    #[inline]
+    pub fn power_node(&self, i: usize, t_ref: f64, p: &mut [Vec<f64>; 4]) {
+        let clock = &self.clocks[self.band[i] as usize];
+        let delta = clock.t1 - clock.t0;
+        let (inv, inv2) = (1.0 / delta, 1.0 / (delta * delta));
+        let e = t_ref - clock.t0;
         let [p0, p1, p2, p3] = p;
-        for (i, &b) in self.band.iter().enumerate() {
-            let clock = &self.clocks[b as usize];
-            let delta = clock.t1 - clock.t0;
-            let e = t_ref - clock.t0;
-            for j in i * CACHE_STRIDE..(i + 1) * CACHE_STRIDE {
-                let (v0, d0, v1, d1) = (self.v0[j], self.d0[j], self.v1[j], self.d1[j]);
-                let a2 = (3.0 * (v1 - v0) / delta - 2.0 * d0 - d1) / delta;
-                let a3 = (2.0 * (v0 - v1) / delta + d0 + d1) / (delta * delta);
-                p0[j] = v0 + e * (d0 + e * (a2 + e * a3));
-                p1[j] = d0 + e * (2.0 * a2 + 3.0 * a3 * e);
-                p2[j] = a2 + 3.0 * a3 * e;
-                p3[j] = a3;
-            }
+        let r = i * CACHE_STRIDE..(i + 1) * CACHE_STRIDE;
+        let (v0, d0, v1, d1) = (
+            &self.v0[r.clone()],
+            &self.d0[r.clone()],
+            &self.v1[r.clone()],
+            &self.d1[r.clone()],
+        );
+        let (p0, p1, p2, p3) = (
+            &mut p0[r.clone()],
+            &mut p1[r.clone()],
+            &mut p2[r.clone()],
+            &mut p3[r],
+        );
+        for j in 0..CACHE_STRIDE {
+            let (v0, d0, v1, d1) = (v0[j], d0[j], v1[j], d1[j]);
+            let a2 = (3.0 * (v1 - v0) * inv - 2.0 * d0 - d1) * inv;
+            let a3 = (2.0 * (v0 - v1) * inv + d0 + d1) * inv2;
+            p0[j] = v0 + e * (d0 + e * (a2 + e * a3));
+            p1[j] = d0 + e * (2.0 * a2 + 3.0 * a3 * e);
+            p2[j] = a2 + 3.0 * a3 * e;
+            p3[j] = a3;
         }
     }
 }
@@ -705,8 +765,8 @@ mod tests {
             one.refresh_if_due(t, &pos, &vel);
             let mut out = vec![0.0; n * CACHE_STRIDE];
             banded.interpolate(t, &mut out);
-            banded.power_coefficients(banded.t0(), &mut p);
-            let tau = t - banded.t0();
+            banded.power_coefficients(banded.power_ref(), &mut p);
+            let tau = t - banded.power_ref();
             for i in 0..n {
                 let b = banded.band_of(i);
                 seen[b] = true;

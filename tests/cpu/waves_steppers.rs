@@ -535,3 +535,51 @@ fn depth_bands_keep_the_end_force_of_a_deep_line() {
     };
     assert_eq!(on_threads(1), on_threads(3));
 }
+
+/// With refresh per depth band the chain fast path (the nodes' cubics in the power
+/// basis, formed again only where a refresh touched them) and the general path (each
+/// node with its band's Hermite weights) agree on the deep catenary of
+/// [`depth_bands_keep_the_end_force_of_a_deep_line`], for every scheme, over 20 s
+/// (several band decisions).
+#[test]
+fn depth_bands_chain_kernel_matches_the_general_path() {
+    let (lay, pos) = deep_catenary();
+    let sea = jonswap_in(300.0);
+    let mut set = SeaSet::single(&sea);
+    set.reach = sea_reach(&lay, &pos, &set, 20.0);
+    set.banded = true;
+    let dt = 0.5 * stable_step(&lay, Scheme::Symplectic, Default::default()).dt;
+    for scheme in [Scheme::Symplectic, Scheme::Rk2, Scheme::Rk4] {
+        let opts = SolverOptions {
+            dt: if scheme == Scheme::Symplectic {
+                dt
+            } else {
+                0.5 * dt
+            },
+            scheme,
+            ..SolverOptions::default()
+        };
+        let steps = (20.0 / opts.dt) as u64;
+        let mut fast = CpuSolver::new(lay.clone(), &pos, opts);
+        let mut general = CpuSolver::new(lay.clone(), &pos, opts);
+        fast.set_seas(&set, false);
+        general.set_seas(&set, false);
+        general.use_chain_kernel = false;
+        fast.advance(steps).unwrap();
+        general.advance(steps).unwrap();
+        let dr = fast
+            .r
+            .iter()
+            .zip(&general.r)
+            .map(|(a, b)| (*a - *b).norm())
+            .fold(0.0f64, f64::max);
+        let (census, breaches) = fast.wave_band_census();
+        println!("{scheme:?}: |dr| {dr:.2e} m; nodes per band {census:?}");
+        assert!(census.iter().filter(|&&n| n > 0).count() >= 2, "{census:?}");
+        assert_eq!(breaches, 0);
+        assert!(
+            dr < 1e-8,
+            "{scheme:?}: fast and general paths differ by {dr} m"
+        );
+    }
+}
