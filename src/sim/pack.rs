@@ -163,6 +163,7 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
             reach: Vec::new(),
             banded: false,
         }),
+        depth_bands: first.depth_bands,
         points,
         vtk: false,
         // Each member passed its own budget; the packed run is their sum.
