@@ -34,9 +34,17 @@
 //! is noticed at every refresh of band 0: the cache counts it, warns once, and the
 //! next decision puts the node in the band its height then allows.
 //!
-//! The plan option ([`super::SeaSet::banded`]): banding is on for runs on the CPU path;
-//! the GPU path refreshes every node in band 0 (one band on both sides when the GPU
-//! backend runs, so the GPU-vs-CPU parity holds).
+//! The plan option ([`super::SeaSet::banded`]): banding is on for runs on the CPU path
+//! unless the scenario sets `environment.waves.depth_bands = false`; the GPU path
+//! refreshes every node in band 0 (one band on both sides when the GPU backend runs,
+//! so the GPU-vs-CPU parity holds). The GPU side of the bands is not written yet.
+//!
+//! How the CPU path reads a banded cache: the general path interpolates each node
+//! with its band's Hermite weights (`WaveCache::interpolate`, runs of nodes of one
+//! band); the chain kernel reads each node's interpolant as a cubic in the power
+//! basis of `t - t_ref`, `t_ref` the coarsest band's `t0`
+//! (`WaveCache::power_node`), so that a stage interpolates every node, whatever its
+//! band, with the one set of weights `1, tau, tau^2, tau^3`.
 
 use super::schedule::{refresh_plan, RefreshPlan};
 use super::SeaState;
