@@ -3,7 +3,10 @@
 //!
 //! `valgrind --tool=callgrind target/release/examples/wave_step_count still 1 20000`
 //! and the same with `waves` (arguments: sea, cables, steps). The difference of the
-//! two counts over the node-steps is the cost of the waves.
+//! two counts over the node-steps is the cost of the waves. `waves` plans the cache's
+//! refresh as a CPU run does (the sea's reach from the fleet's ends, refresh per depth
+//! band: `sea::bands`); `waves-flat` refreshes every node at the interval of the
+//! mean level, as before the plan knew the nodes' depth.
 //!
 //! Built with `cargo build --release --features bench --example wave_step_count`: the
 //! examples/*.rs are behind the `bench` feature, so `cargo test` does not build them.
@@ -15,16 +18,18 @@ use cablesim::cpu::CpuSolver;
 use cablesim::options::{Scheme, SolverOptions};
 use cablesim::sea::irregular::{discretise, Discretisation};
 use cablesim::sea::spectrum::Spectrum;
-use cablesim::sea::{SeaState, Stretching};
+use cablesim::sea::{SeaSet, SeaState, Stretching};
+use cablesim::sim::reach::sea_reach;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let waves = args.get(1).map(String::as_str) == Some("waves");
+    let mode = args.get(1).map(String::as_str).unwrap_or("still");
+    let waves = mode.starts_with("waves");
     let cables: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(1);
     let steps: u64 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(20_000);
     let (lay, pos) = common::fleet(cables, 50);
     let mut s = CpuSolver::new(
-        lay,
+        lay.clone(),
         &pos,
         SolverOptions {
             dt: 1e-4,
@@ -53,8 +58,15 @@ fn main() {
             ramp_duration: 0.0,
             cache_tolerance: 1e-3,
         };
-        s.set_sea(&sea, false);
+        if mode == "waves-flat" {
+            s.set_sea(&sea, false);
+        } else {
+            let mut set = SeaSet::single(&sea);
+            set.reach = sea_reach(&lay, &pos, &set, steps as f64 * 1e-4);
+            set.banded = true;
+            s.set_seas(&set, false);
+        }
     }
     s.advance(steps).unwrap();
-    println!("{} steps, {}", steps, if waves { "waves" } else { "still" });
+    println!("{steps} steps, {mode}");
 }

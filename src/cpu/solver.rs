@@ -198,6 +198,25 @@ impl CpuSolver {
         self.install_waves();
     }
 
+    /// Where the waves' caches stand (`sea::bands`): per band, how many nodes refresh
+    /// in it now, and how many times a node was found above its band's top.
+    pub fn wave_band_census(&self) -> (Vec<usize>, u64) {
+        let mut count = Vec::new();
+        let mut breaches = 0;
+        for w in &self.wave_blocks {
+            let c = w.cache();
+            breaches += c.breaches;
+            for i in 0..c.v0.len() / crate::sea::cache::CACHE_STRIDE {
+                let b = c.band_of(i);
+                if count.len() <= b {
+                    count.resize(b + 1, 0);
+                }
+                count[b] += 1;
+            }
+        }
+        (count, breaches)
+    }
+
     /// The sea index of the block starting at packed node `n0`.
     fn block_sea(&self, seas: &SeaSet, n0: usize) -> usize {
         seas.sea_of_cable(self.layout.node_cable[n0] as usize)
@@ -207,17 +226,21 @@ impl CpuSolver {
     fn install_waves(&mut self) {
         self.wave_blocks = match &self.seas {
             None => Vec::new(),
-            Some(seas) => self
-                .layout
-                .blocks
-                .iter()
-                .map(|b| {
-                    let q = self.block_sea(seas, b.node_start as usize);
-                    let plan = seas.plan(q, self.opts.dt);
-                    let n = (b.node_end - b.node_start) as usize;
-                    BlockWaves::new(&seas.seas[q], n, self.exact_waves, &plan)
-                })
-                .collect(),
+            Some(seas) => {
+                // Each sea's bands once (a bisection per band), shared by its blocks.
+                let plans: Vec<_> = (0..seas.seas.len())
+                    .map(|q| seas.band_plan(q, self.opts.dt))
+                    .collect();
+                self.layout
+                    .blocks
+                    .iter()
+                    .map(|b| {
+                        let q = self.block_sea(seas, b.node_start as usize);
+                        let n = (b.node_end - b.node_start) as usize;
+                        BlockWaves::new(&seas.seas[q], n, self.exact_waves, &plans[q])
+                    })
+                    .collect()
+            }
         };
     }
 

@@ -14,8 +14,8 @@
 //! inputs instead of interpolating per node and then averaging. Interpolation is
 //! linear in the cached values and rates, so this is the same value up to round-off.
 
+use crate::sea::bands::BandPlan;
 use crate::sea::cache::{evaluate_nodes, wave_cache_hermite, WaveCache, CACHE_STRIDE};
-use crate::sea::schedule::{RefreshClock, RefreshPlan};
 use crate::sea::SeaState;
 
 /// Per-node water values: `eta, u (3), a (3)` ([`CACHE_STRIDE`] per node), m, m/s,
@@ -30,8 +30,8 @@ pub(crate) struct BlockWaves {
     exact: bool,
     pos: Vec<f64>,
     vel: Vec<f64>,
-    /// The chain kernel's columns of the cache, for the cache's `(t0, t1)` they were
-    /// formed at.
+    /// The chain kernel's columns of the cache, for the cache's refresh they were
+    /// formed after.
     cols: ChainColumns,
 }
 
@@ -39,8 +39,14 @@ pub(crate) struct BlockWaves {
 /// arguments: values at `t0`, rates at `t0`, values at `t1`, rates at `t1`.
 #[derive(Clone, Debug, Default)]
 struct ChainColumns {
-    /// The cache times these columns were formed for.
-    times: Option<(f64, f64)>,
+    /// The cache's refresh count ([`WaveCache::generation`]) these columns were
+    /// formed for.
+    generation: Option<u64>,
+    /// With several bands: the time the power-basis columns are referred to (the
+    /// coarsest band's `t0`); `None`: Hermite columns of one band.
+    power_ref: Option<f64>,
+    /// Scratch: the nodes' power-basis coefficients.
+    power: [Vec<f64>; 4],
     /// Elevation over each node, m (rates: m/s).
     eta: [Vec<f64>; 4],
     /// Per element (between nodes `k` and `k + 1`): the mean of its nodes' wave
@@ -49,10 +55,11 @@ struct ChainColumns {
 }
 
 impl BlockWaves {
-    /// Waves of `sea` for a block of `n` nodes, refreshed on the grid of `plan`.
-    pub(crate) fn new(sea: &SeaState, n: usize, exact: bool, plan: &RefreshPlan) -> Self {
+    /// Waves of `sea` for a block of `n` nodes, refreshed per depth band on the grid
+    /// of `plan`.
+    pub(crate) fn new(sea: &SeaState, n: usize, exact: bool, plan: &BandPlan) -> Self {
         Self {
-            cache: WaveCache::with_clock(sea, n, RefreshClock::on_grid(plan)),
+            cache: WaveCache::with_bands(sea, n, plan),
             exact,
             pos: vec![0.0; 3 * n],
             vel: vec![0.0; 3 * n],
@@ -92,7 +99,7 @@ impl BlockWaves {
         n: usize,
         state: impl Fn(usize) -> ([f64; 3], [f64; 3]),
     ) {
-        if !self.cache.clock.covers(t) {
+        if !self.cache.covers(t) {
             self.read_state(n, &state);
             self.cache.refresh_if_due(t, &self.pos, &self.vel);
         }
@@ -111,6 +118,11 @@ impl BlockWaves {
             self.pos[3 * i..3 * i + 3].copy_from_slice(&r);
             self.vel[3 * i..3 * i + 3].copy_from_slice(&v);
         }
+    }
+
+    /// The block's kinematics cache.
+    pub(crate) fn cache(&self) -> &WaveCache {
+        &self.cache
     }
 
     /// Whether the sum is evaluated at every stage (no interpolation).
@@ -135,12 +147,17 @@ impl BlockWaves {
         debug_assert!(!self.exact);
         self.cover(t, n, state);
         let c = &self.cache;
-        let times = (c.t0(), c.t1());
-        if self.cols.times != Some(times) {
-            self.cols.form([&c.v0, &c.d0, &c.v1, &c.d1], n);
-            self.cols.times = Some(times);
+        if self.cols.generation != Some(c.generation) {
+            self.cols.form(c, n);
+            self.cols.generation = Some(c.generation);
         }
-        let w = c.weights(t);
+        let w = match self.cols.power_ref {
+            Some(t_ref) => {
+                let tau = t - t_ref;
+                [1.0, tau, tau * tau, tau * tau * tau]
+            }
+            None => c.weights(t),
+        };
         let ne = n - 1;
         let cols = &self.cols;
         let e = &cols.eta;
@@ -157,9 +174,51 @@ impl BlockWaves {
 }
 
 impl ChainColumns {
-    /// Forms the columns of `n` nodes from the cache's four arrays (values and rates
-    /// at its two times).
-    fn form(&mut self, v: [&[f64]; 4], n: usize) {
+    /// Forms the columns of `n` nodes from the cache: with one band, its four arrays
+    /// (values and rates at its two times, interpolated with the band's Hermite
+    /// weights); with several, each node's cubic in the power basis of `t - t_ref`
+    /// ([`WaveCache::power_node`], `t_ref` the coarsest band's `t0`), so that every
+    /// node, whatever its band, interpolates with the same weights `1, tau, tau^2,
+    /// tau^3` (an element between two bands too: its midpoint is the mean of its
+    /// nodes' cubics). Between decisions only the nodes the last refresh touched
+    /// change, and only their entries are formed again.
+    fn form(&mut self, cache: &WaveCache, n: usize) {
+        if cache.clocks.len() == 1 {
+            self.power_ref = None;
+            self.from_arrays([&cache.v0, &cache.d0, &cache.v1, &cache.d1], n);
+            return;
+        }
+        let t_ref = cache.power_ref();
+        let mut p = std::mem::take(&mut self.power);
+        let follows = self.generation.map(|g| g + 1) == Some(cache.generation);
+        if self.power_ref == Some(t_ref) && follows && p[0].len() == n * CACHE_STRIDE {
+            // Only the refreshed nodes, their elevations and their elements.
+            for (i, due) in cache.due().iter().enumerate().take(n) {
+                if due.is_nan() {
+                    continue;
+                }
+                cache.power_node(i, t_ref, &mut p);
+                for side in 0..4 {
+                    let v = &p[side];
+                    self.eta[side][i] = v[i * CACHE_STRIDE];
+                    for k in i.saturating_sub(1)..(i + 1).min(n - 1) {
+                        let (a, b) = (&v[k * CACHE_STRIDE..], &v[(k + 1) * CACHE_STRIDE..]);
+                        for q in 0..6 {
+                            self.mid[side][q][k] = 0.5 * (a[1 + q] + b[1 + q]);
+                        }
+                    }
+                }
+            }
+        } else {
+            self.power_ref = Some(t_ref);
+            cache.power_coefficients(t_ref, &mut p);
+            self.from_arrays([&p[0], &p[1], &p[2], &p[3]], n);
+        }
+        self.power = p;
+    }
+
+    /// Forms the columns from four arrays of [`CACHE_STRIDE`] per node.
+    fn from_arrays(&mut self, v: [&[f64]; 4], n: usize) {
         for (side, v) in v.into_iter().enumerate() {
             let eta = &mut self.eta[side];
             eta.clear();

@@ -242,6 +242,7 @@ mod tests {
             cable_sea: (0..seas.len() as u32).collect(),
             seas,
             reach: Vec::new(),
+            banded: false,
         };
         let mut steps: Vec<u64> = (0..set.seas.len()).map(|q| set.plan(q, dt).steps).collect();
         steps.sort();

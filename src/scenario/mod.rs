@@ -92,6 +92,9 @@ pub struct Scenario {
     /// in its member's; `None` for a scenario read from a file, whose every cable is
     /// in `sea`.
     pub member_seas: Option<crate::sea::SeaSet>,
+    /// `environment.waves.depth_bands`: whether the CPU path's kinematics cache
+    /// refreshes per depth band (`sea::bands`; default true).
+    pub depth_bands: bool,
     /// The `[[points]]`, in scenario order: each name and its node (index into
     /// `model.nodes`), for `points.csv`.
     pub points: Vec<NamedPoint>,
@@ -736,6 +739,7 @@ impl Scenario {
             ancf: ancf_settings(p, &raw.ancf)?,
             sea,
             member_seas: None,
+            depth_bands: e.waves.as_ref().and_then(|w| w.depth_bands).unwrap_or(true),
             points: named_points,
             vtk: raw.output.vtk.unwrap_or(false),
             limits,

@@ -7,6 +7,7 @@
 //! ramp = 20.0              # start-up ramp, s (default 0: none)
 //! seed = 1                 # random phases (default 0)
 //! cache_tolerance = 1e-3   # kinematics cache interpolation tolerance (default 1e-3)
+//! depth_bands = true       # CPU path: refresh the cache per depth band (default true)
 //!
 //! [[environment.waves.trains]]
 //! type = "jonswap"         # "jonswap" | "pierson_moskowitz" | "table" | "regular"
@@ -48,6 +49,8 @@ pub struct RawWaves {
     pub seed: Option<i64>,
     /// Relative tolerance of the kinematics cache.
     pub cache_tolerance: Option<f64>,
+    /// Whether the CPU path's cache refreshes per depth band (`sea::bands`).
+    pub depth_bands: Option<bool>,
     #[serde(default)]
     /// The wave trains, summed.
     pub trains: Vec<RawTrain>,

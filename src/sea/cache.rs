@@ -24,7 +24,9 @@
 //! uses [`HERMITE_INTERVAL_FACTOR`] of it (see there why); the solvers refresh by the
 //! plan of [`super::schedule`] (the rule with the amplitudes decayed to the depth the
 //! nodes stay at, a larger factor for lines well under the troughs, rounded down to a
-//! common grid of refresh times). The rule does not see the nodes' motion: the error
+//! common grid of refresh times), per depth band of nodes on the CPU path
+//! ([`super::bands`]: each node refreshes at the interval of the band its height
+//! allows). The rule does not see the nodes' motion: the error
 //! of the predicted path adds to it (third order in the interval with the
 //! acceleration estimate; the tests below measure both).
 //!
@@ -33,8 +35,9 @@
 //! at `t1`, rates at `t1`; nodes one after another; positions and velocities three per
 //! node.
 
+use super::bands::{wave_band, BandPlan, BAND_MARGIN};
 use super::kinematics::{Kinematics, KinematicsScratch, WaveField};
-use super::schedule::RefreshClock;
+use super::schedule::{RefreshClock, Tick};
 use super::{SeaState, WaveComponent};
 use rayon::prelude::*;
 
@@ -164,15 +167,29 @@ pub fn evaluate_nodes_rates(
 /// The rolling cache of one run: values and rates at `t0` and `t1` for every node.
 ///
 /// Four arrays of [`CACHE_STRIDE`] per node (values at `t0`, rates at `t0`, values at
-/// `t1`, rates at `t1`), so that interpolation reads four aligned streams. Its two
-/// times and when it refreshes are its [`RefreshClock`] (`sea::schedule`), which the
-/// GPU path's schedules share.
+/// `t1`, rates at `t1`), so that interpolation reads four aligned streams. Each node
+/// is in a depth band (`super::bands`; one band unless built with
+/// [`Self::with_bands`]) whose two times and refresh steps are its band's
+/// [`RefreshClock`] (`sea::schedule`), which the GPU path's schedules share.
 #[derive(Clone, Debug)]
 pub struct WaveCache {
     /// The sea, packed for evaluation.
     pub field: WaveField,
-    /// The cache's times `t0, t1` and refresh interval.
-    pub clock: RefreshClock,
+    /// Per band: the band's times `t0, t1` and refresh interval (nested rungs of one
+    /// grid: band `m` every `2^m` refreshes of band 0).
+    pub clocks: Vec<RefreshClock>,
+    /// Per band: the highest height, m, its nodes may reach (`tops[0]` infinite).
+    tops: Vec<f64>,
+    /// The coarsest band's interval, s: how far ahead a band decision looks.
+    horizon: f64,
+    /// Per node: its band.
+    band: Vec<u8>,
+    /// Runs of consecutive nodes of one band: `(first, end, band)`.
+    runs: Vec<(usize, usize, usize)>,
+    /// Counts the refreshes (any band): what the values were formed by.
+    pub generation: u64,
+    /// How many times a node was found above its band's top at a refresh of band 0.
+    pub breaches: u64,
     /// Values at `t0`, [`CACHE_STRIDE`] per node.
     pub v0: Vec<f64>,
     /// Rates at `t0` along the node's path, [`CACHE_STRIDE`] per node.
@@ -183,15 +200,19 @@ pub struct WaveCache {
     pub d1: Vec<f64>,
     predicted: Vec<f64>,
     predicted_vel: Vec<f64>,
-    /// The nodes' velocities at the previous refresh: the acceleration of the path
+    /// Per node: the time its new values are for at this refresh (NaN: not due).
+    due: Vec<f64>,
+    /// The nodes' velocities at their previous refresh: the acceleration of the path
     /// prediction is the velocity change since then.
     last_vel: Vec<f64>,
+    /// For the refresh of a few nodes, one after another.
+    scratch: KinematicsScratch,
 }
 
 impl WaveCache {
     /// A cache for `n_nodes` nodes in `sea`, refreshed at the interval of
     /// [`refresh_interval`] for the sea's `cache_tolerance`, from wherever it starts
-    /// (the solvers use [`Self::with_clock`] and a [`crate::sea::schedule::refresh_plan`]).
+    /// (the solvers use [`Self::with_bands`] and a [`crate::sea::bands::band_plan`]).
     pub fn new(sea: &SeaState, n_nodes: usize) -> Self {
         let interval = refresh_interval(&sea.components, sea.cache_tolerance);
         Self::with_interval(sea, n_nodes, interval)
@@ -202,45 +223,90 @@ impl WaveCache {
         Self::with_clock(sea, n_nodes, RefreshClock::free(interval))
     }
 
-    /// A cache refreshed as `clock` says.
+    /// A cache of one band refreshed as `clock` says.
     pub fn with_clock(sea: &SeaState, n_nodes: usize, clock: RefreshClock) -> Self {
         let zeros = || vec![0.0; n_nodes * CACHE_STRIDE];
         Self {
             field: WaveField::new(sea),
-            clock,
+            horizon: clock.interval,
+            clocks: vec![clock],
+            tops: vec![f64::INFINITY],
+            band: vec![0; n_nodes],
+            runs: vec![(0, n_nodes, 0)],
+            generation: 0,
+            breaches: 0,
             v0: zeros(),
             d0: zeros(),
             v1: zeros(),
             d1: zeros(),
             predicted: vec![0.0; n_nodes * 3],
             predicted_vel: vec![0.0; n_nodes * 3],
+            due: vec![f64::NAN; n_nodes],
             last_vel: vec![0.0; n_nodes * 3],
+            scratch: KinematicsScratch::default(),
         }
     }
 
-    /// Time of the older values, s.
-    pub fn t0(&self) -> f64 {
-        self.clock.t0
+    /// A cache refreshed per depth band as `plan` says (`super::bands`), on the
+    /// common grid.
+    pub fn with_bands(sea: &SeaState, n_nodes: usize, plan: &BandPlan) -> Self {
+        let mut c = Self::with_clock(sea, n_nodes, RefreshClock::on_grid(&plan.base));
+        c.clocks = (0..plan.len())
+            .map(|m| RefreshClock::on_grid(&plan.band(m)))
+            .collect();
+        c.tops = plan.tops.clone();
+        c.horizon = plan.horizon();
+        c
     }
 
-    /// Time of the newer values, s.
+    /// Time of the older values of band 0, s.
+    pub fn t0(&self) -> f64 {
+        self.clocks[0].t0
+    }
+
+    /// Time of the newer values of band 0, s.
     pub fn t1(&self) -> f64 {
-        self.clock.t1
+        self.clocks[0].t1
+    }
+
+    /// Whether every band covers `t` (no refresh due): band 0's interval is within
+    /// every deeper band's.
+    pub fn covers(&self, t: f64) -> bool {
+        self.clocks[0].covers(t)
+    }
+
+    /// Node `i`'s band.
+    pub fn band_of(&self, i: usize) -> usize {
+        self.band[i] as usize
+    }
+
+    /// Runs of consecutive nodes of one band, `(first, end, band)`, in node order.
+    pub fn runs(&self) -> &[(usize, usize, usize)] {
+        &self.runs
     }
 
     /// Makes the cache cover time `t`, given the nodes' positions and velocities at
     /// `t` (three per node). Returns whether it refreshed. The first call (or a `t`
-    /// before `t0`, or more than one interval past `t1`) evaluates values and rates at
-    /// `t` and at `t1` ([`RefreshClock::tick`]); otherwise, once `t` passes `t1`, the
-    /// `t1` values and rates become the `t0` ones (the interpolant stays continuous
-    /// with a continuous derivative: no jump in the loads at a refresh) and new `t1`
-    /// ones are evaluated at the predicted positions `x + v (t1 - t) + a (t1 - t)^2 /
-    /// 2`, with velocity `v + a (t1 - t)`.
+    /// before `t0`, or more than one interval past band 0's `t1`) restarts every band
+    /// ([`RefreshClock::tick`]): values and rates at `t`, every node in band 0.
+    /// Otherwise each band whose `t1` `t` passed refreshes its nodes: the `t1` values
+    /// and rates become the `t0` ones (the interpolant stays continuous with a
+    /// continuous derivative: no jump in the loads at a refresh) and new `t1` ones are
+    /// evaluated at the predicted positions `x + v (t1 - t) + a (t1 - t)^2 / 2`, with
+    /// velocity `v + a (t1 - t)`. When the coarsest band refreshes (every band does),
+    /// each node's band is decided anew (`super::bands::wave_band`).
     pub fn refresh_if_due(&mut self, t: f64, positions: &[f64], velocities: &[f64]) -> bool {
-        let Some(tick) = self.clock.tick(t) else {
+        if self.covers(t) {
             return false;
-        };
-        if tick.restart {
+        }
+        if self.clocks[0].would_restart(t) {
+            self.clocks.iter_mut().for_each(RefreshClock::reset);
+        }
+        let ticks: Vec<Option<Tick>> = self.clocks.iter_mut().map(|c| c.tick(t)).collect();
+        let restart = ticks[0].is_some_and(|k| k.restart);
+        let nb = self.clocks.len();
+        let decide = nb > 1 && !restart && ticks[nb - 1].is_some();
+        if restart {
             evaluate_nodes_rates(
                 &self.field,
                 positions,
@@ -249,45 +315,162 @@ impl WaveCache {
                 &mut self.v0,
                 &mut self.d0,
             );
+            self.band.iter_mut().for_each(|b| *b = 0);
+        } else if nb > 1 {
+            // A node above its band's top: noticed here, re-banded at the next
+            // decision (or now, when this is one).
+            self.watch(t, positions);
+        }
+        let mut all_due = true;
+        for i in 0..self.band.len() {
+            let old = self.band[i] as usize;
+            let (p, v) = (&positions[3 * i..3 * i + 3], &velocities[3 * i..3 * i + 3]);
+            let lv = &self.last_vel[3 * i..3 * i + 3];
+            // The acceleration since the node's previous refresh (a band that ticks
+            // now: the node's old band ticks whenever its new one does).
+            let rate = ticks[old].map_or(0.0, |k| k.acc_rate);
+            let acc = [
+                (v[0] - lv[0]) * rate,
+                (v[1] - lv[1]) * rate,
+                (v[2] - lv[2]) * rate,
+            ];
+            let new = if decide {
+                wave_band(p[2], v[2], acc[2], self.horizon, BAND_MARGIN, &self.tops)
+            } else {
+                old
+            };
+            self.band[i] = new as u8;
+            let Some(tick) = ticks[new] else {
+                self.due[i] = f64::NAN;
+                all_due = false;
+                continue;
+            };
+            self.due[i] = self.clocks[new].t1;
+            if !restart {
+                for j in i * CACHE_STRIDE..(i + 1) * CACHE_STRIDE {
+                    self.v0[j] = self.v1[j];
+                    self.d0[j] = self.d1[j];
+                }
+            }
+            let ahead = tick.ahead;
+            for d in 0..3 {
+                let k = 3 * i + d;
+                self.predicted[k] = p[d] + v[d] * ahead + 0.5 * acc[d] * ahead * ahead;
+                self.predicted_vel[k] = v[d] + acc[d] * ahead;
+                self.last_vel[k] = v[d];
+            }
+        }
+        if decide || restart {
+            self.form_runs();
+        }
+        if all_due && nb == 1 {
+            evaluate_nodes_rates(
+                &self.field,
+                &self.predicted,
+                &self.predicted_vel,
+                self.clocks[0].t1,
+                &mut self.v1,
+                &mut self.d1,
+            );
+        } else if self.due.iter().filter(|t| !t.is_nan()).count() < 32 {
+            // Few nodes due (a band's rung between decisions): one after another with
+            // the cache's own scratch, no parallel split (each split allocates one).
+            let s = &mut self.scratch;
+            for (i, &t1) in self.due.iter().enumerate() {
+                if t1.is_nan() {
+                    continue;
+                }
+                let (p, v) = (
+                    &self.predicted[3 * i..3 * i + 3],
+                    &self.predicted_vel[3 * i..3 * i + 3],
+                );
+                let (k, dk) =
+                    self.field
+                        .kinematics_rates_with([p[0], p[1], p[2]], [v[0], v[1], v[2]], t1, s);
+                let r = i * CACHE_STRIDE..(i + 1) * CACHE_STRIDE;
+                write_node(&mut self.v1[r.clone()], &k);
+                write_node(&mut self.d1[r], &dk);
+            }
         } else {
-            std::mem::swap(&mut self.v0, &mut self.v1);
-            std::mem::swap(&mut self.d0, &mut self.d1);
+            evaluate_due_nodes(
+                &self.field,
+                &self.predicted,
+                &self.predicted_vel,
+                &self.due,
+                &mut self.v1,
+                &mut self.d1,
+            );
         }
-        let ahead = tick.ahead;
-        // The acceleration since the previous refresh (none on a restart).
-        let rate = tick.acc_rate;
-        for i in 0..positions.len() {
-            let (x, v) = (positions[i], velocities[i]);
-            let acc = (v - self.last_vel[i]) * rate;
-            self.predicted[i] = x + v * ahead + 0.5 * acc * ahead * ahead;
-            self.predicted_vel[i] = v + acc * ahead;
-        }
-        self.last_vel.copy_from_slice(velocities);
-        evaluate_nodes_rates(
-            &self.field,
-            &self.predicted,
-            &self.predicted_vel,
-            self.clock.t1,
-            &mut self.v1,
-            &mut self.d1,
-        );
+        self.generation += 1;
         true
     }
 
-    /// The Hermite weights of time `t` ([`hermite_weights`]; `t` clamped to
-    /// `[t0, t1]`).
-    pub fn weights(&self, t: f64) -> [f64; 4] {
-        let (t0, t1) = (self.clock.t0, self.clock.t1);
+    /// Counts (and warns once of) nodes above their band's top at `t`.
+    fn watch(&mut self, t: f64, positions: &[f64]) {
+        for (i, &b) in self.band.iter().enumerate() {
+            let z = positions[3 * i + 2];
+            if z > self.tops[b as usize] {
+                if self.breaches == 0 {
+                    log::warn!(
+                        "waves: a node is at z = {z:.2} m at t = {t:.2} s, above the top \
+                         {:.2} m of the depth band it refreshes in (decided from its height, \
+                         velocity and acceleration plus {BAND_MARGIN} m): its wave loads \
+                         are less accurate than the cache tolerance until the next band \
+                         decision (docs/src/sea_states.md, \"Refresh per depth band\"); \
+                         warned once per cache",
+                        self.tops[b as usize]
+                    );
+                }
+                self.breaches += 1;
+            }
+        }
+    }
+
+    /// The runs of consecutive nodes of one band.
+    fn form_runs(&mut self) {
+        self.runs.clear();
+        let mut a = 0;
+        for i in 1..=self.band.len() {
+            if i == self.band.len() || self.band[i] != self.band[a] {
+                self.runs.push((a, i, self.band[a] as usize));
+                a = i;
+            }
+        }
+    }
+
+    /// The Hermite weights of time `t` in band `b` ([`hermite_weights`]; `t` clamped
+    /// to the band's `[t0, t1]`).
+    pub fn band_weights(&self, b: usize, t: f64) -> [f64; 4] {
+        let (t0, t1) = (self.clocks[b].t0, self.clocks[b].t1);
         let delta = t1 - t0;
         hermite_weights(((t - t0) / delta).clamp(0.0, 1.0), delta)
     }
 
-    /// Every node's values at `t` (within `[t0, t1]`) into `out`.
-    pub fn interpolate(&self, t: f64, out: &mut [f64]) {
-        wave_cache_hermite(&self.v0, &self.d0, &self.v1, &self.d1, self.weights(t), out);
+    /// The Hermite weights of time `t` in band 0.
+    pub fn weights(&self, t: f64) -> [f64; 4] {
+        self.band_weights(0, t)
     }
 
-    /// One node's values at `t` (within `[t0, t1]`).
+    /// Every node's values at `t` (within its band's `[t0, t1]`) into `out`.
+    pub fn interpolate(&self, t: f64, out: &mut [f64]) {
+        let n = out.len() / CACHE_STRIDE;
+        for &(a, e, b) in &self.runs {
+            if a >= n {
+                break;
+            }
+            let r = a * CACHE_STRIDE..e.min(n) * CACHE_STRIDE;
+            wave_cache_hermite(
+                &self.v0[r.clone()],
+                &self.d0[r.clone()],
+                &self.v1[r.clone()],
+                &self.d1[r.clone()],
+                self.band_weights(b, t),
+                &mut out[r],
+            );
+        }
+    }
+
+    /// One node's values at `t` (within its band's `[t0, t1]`).
     pub fn node(&self, i: usize, t: f64) -> Kinematics {
         let r = i * CACHE_STRIDE..(i + 1) * CACHE_STRIDE;
         let mut o = [0.0; CACHE_STRIDE];
@@ -296,11 +479,109 @@ impl WaveCache {
             &self.d0[r.clone()],
             &self.v1[r.clone()],
             &self.d1[r],
-            self.weights(t),
+            self.band_weights(self.band[i] as usize, t),
             &mut o,
         );
         read_node(&o)
     }
+}
+
+impl WaveCache {
+    /// The time the power-basis cubics are referred to ([`Self::power_coefficients`]):
+    /// the coarsest band's `t0`, which moves only when every band refreshes.
+    pub fn power_ref(&self) -> f64 {
+        self.clocks[self.clocks.len() - 1].t0
+    }
+
+    /// Per node: the time its values were refreshed for at the last refresh (NaN:
+    /// not refreshed then).
+    pub fn due(&self) -> &[f64] {
+        &self.due
+    }
+
+    /// Every node's interpolant as a cubic in `tau = t - t_ref` (power basis,
+    /// `p[0] + p[1] tau + p[2] tau^2 + p[3] tau^3`, [`CACHE_STRIDE`] per node in each
+    /// of `p`; [`Self::power_node`] per node).
+    pub fn power_coefficients(&self, t_ref: f64, p: &mut [Vec<f64>; 4]) {
+        let len = self.v0.len();
+        for q in p.iter_mut() {
+            q.resize(len, 0.0);
+        }
+        for i in 0..self.band.len() {
+            self.power_node(i, t_ref, p);
+        }
+    }
+
+    /// Node `i`'s interpolant as a cubic in `tau = t - t_ref` into `p` (sized), from
+    /// its band's Hermite data over `[t0, t1]`: in `sigma = t - t0`, `a0 = v0`, `a1 =
+    /// d0`, `a2 = (3 (v1 - v0) / delta - 2 d0 - d1) / delta`, `a3 = (2 (v0 - v1) /
+    /// delta + d0 + d1) / delta^2`, then shifted by `e = t_ref - t0`. Why: every node,
+    /// whatever its band, then interpolates with the weights `1, tau, tau^2, tau^3`,
+    /// and an element's midpoint is the mean of its nodes' cubics: one set of weights
+    /// per stage, as with one band. With `t_ref` the coarsest band's `t0` only the
+    /// nodes a refresh touched change between decisions; `tau` stays within the
+    /// coarsest interval (a second or two), and the coefficients are bounded by the
+    /// values' time derivatives, so the power basis loses nothing that matters.
+    #[inline]
+    pub fn power_node(&self, i: usize, t_ref: f64, p: &mut [Vec<f64>; 4]) {
+        let clock = &self.clocks[self.band[i] as usize];
+        let delta = clock.t1 - clock.t0;
+        let (inv, inv2) = (1.0 / delta, 1.0 / (delta * delta));
+        let e = t_ref - clock.t0;
+        let [p0, p1, p2, p3] = p;
+        let r = i * CACHE_STRIDE..(i + 1) * CACHE_STRIDE;
+        let (v0, d0, v1, d1) = (
+            &self.v0[r.clone()],
+            &self.d0[r.clone()],
+            &self.v1[r.clone()],
+            &self.d1[r.clone()],
+        );
+        let (p0, p1, p2, p3) = (
+            &mut p0[r.clone()],
+            &mut p1[r.clone()],
+            &mut p2[r.clone()],
+            &mut p3[r],
+        );
+        for j in 0..CACHE_STRIDE {
+            let (v0, d0, v1, d1) = (v0[j], d0[j], v1[j], d1[j]);
+            let a2 = (3.0 * (v1 - v0) * inv - 2.0 * d0 - d1) * inv;
+            let a3 = (2.0 * (v0 - v1) * inv + d0 + d1) * inv2;
+            p0[j] = v0 + e * (d0 + e * (a2 + e * a3));
+            p1[j] = d0 + e * (2.0 * a2 + 3.0 * a3 * e);
+            p2[j] = a2 + 3.0 * a3 * e;
+            p3[j] = a3;
+        }
+    }
+}
+
+/// [`evaluate_nodes_rates`] at the nodes that are due (`due[i]`: the time of node
+/// `i`'s new values; NaN: leave it), each at its own time. Nodes in parallel.
+fn evaluate_due_nodes(
+    field: &WaveField,
+    positions: &[f64],
+    velocities: &[f64],
+    due: &[f64],
+    values: &mut [f64],
+    rates: &mut [f64],
+) {
+    values
+        .par_chunks_mut(CACHE_STRIDE)
+        .zip(rates.par_chunks_mut(CACHE_STRIDE))
+        .zip(positions.par_chunks(3).zip(velocities.par_chunks(3)))
+        .zip(due.par_iter())
+        .with_min_len(16)
+        .for_each_init(
+            KinematicsScratch::default,
+            |scratch, (((o, d), (p, v)), &t)| {
+                if t.is_nan() {
+                    return;
+                }
+                let (k, dk) =
+                    field.kinematics_rates_with([p[0], p[1], p[2]], [v[0], v[1], v[2]], t, scratch);
+                write_node(o, &k);
+                write_node(d, &dk);
+            },
+        );
 }
 
 #[cfg(test)]
@@ -444,6 +725,91 @@ mod tests {
                 assert!((2.5..3.5).contains(&order), "observed order {order}");
             }
         }
+    }
+
+    /// Refresh per depth band (`sea::bands`) on the line of [`node_path`] (nodes from
+    /// 75 m down to the troughs, on circles): after the first decision the nodes are
+    /// in several bands, each refreshing on its own rung; a node's interpolant stays
+    /// within its band's `[t0, t1]` and is continuous across refreshes and band
+    /// changes; the power-basis cubics the chain kernel reads
+    /// ([`WaveCache::power_coefficients`]) equal the Hermite interpolation to
+    /// round-off; and the acceleration's error against exact evaluation is of the
+    /// order of the tolerance (each band refreshes near the rule's interval at its
+    /// top, so its error is the rule's plus the path's, as in
+    /// `moving_nodes_add_the_path_prediction_error`), where the one band at the
+    /// surface's interval is far inside it.
+    #[test]
+    fn banded_cache_follows_its_bands_and_its_cubics() {
+        let sea = broad_sea();
+        let dt = 0.002;
+        let plan = crate::sea::bands::band_plan(&sea, f64::INFINITY, dt);
+        assert!(plan.len() >= 3, "{plan:?}");
+        let n = 20;
+        let mut banded = WaveCache::with_bands(&sea, n, &plan);
+        let mut one =
+            WaveCache::with_bands(&sea, n, &crate::sea::bands::BandPlan::single(plan.base));
+        let exact = WaveField::new(&sea);
+        let (mut pos, mut vel) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
+        let (mut e_b, mut e_1, mut norm) = (0.0, 0.0, 0.0);
+        let mut last: Option<Vec<f64>> = None;
+        let mut p = Default::default();
+        let mut seen = vec![false; plan.len()];
+        for step in 0..(30.0 / dt) as usize {
+            let t = step as f64 * dt;
+            for i in 0..n {
+                let (r, v) = node_path(i, t, 1.0);
+                pos[3 * i..3 * i + 3].copy_from_slice(&r);
+                vel[3 * i..3 * i + 3].copy_from_slice(&v);
+            }
+            banded.refresh_if_due(t, &pos, &vel);
+            one.refresh_if_due(t, &pos, &vel);
+            let mut out = vec![0.0; n * CACHE_STRIDE];
+            banded.interpolate(t, &mut out);
+            banded.power_coefficients(banded.power_ref(), &mut p);
+            let tau = t - banded.power_ref();
+            for i in 0..n {
+                let b = banded.band_of(i);
+                seen[b] = true;
+                let c = &banded.clocks[b];
+                assert!(t >= c.t0 && t <= c.t1, "node {i} band {b} at {t}: {c:?}");
+                let e = exact.kinematics([pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]], t);
+                let (kb, k1) = (banded.node(i, t), one.node(i, t));
+                for d in 0..3 {
+                    e_b += (kb.a[d] - e.a[d]).powi(2);
+                    e_1 += (k1.a[d] - e.a[d]).powi(2);
+                    norm += e.a[d].powi(2);
+                }
+                for j in i * CACHE_STRIDE..(i + 1) * CACHE_STRIDE {
+                    let cubic = p[0][j] + tau * (p[1][j] + tau * (p[2][j] + tau * p[3][j]));
+                    assert!(
+                        (cubic - out[j]).abs() <= 1e-9 * (1.0 + out[j].abs()),
+                        "node {i} value {j}: cubic {cubic} against {}",
+                        out[j]
+                    );
+                }
+            }
+            // Continuous in time: no jump at a refresh or a band change (a step of
+            // 2 ms moves the values by little).
+            if let Some(prev) = &last {
+                for (j, (a, b)) in out.iter().zip(prev).enumerate() {
+                    assert!(
+                        (a - b).abs() < 0.05,
+                        "jump at t = {t} in value {j}: {b} to {a}"
+                    );
+                }
+            }
+            last = Some(out);
+        }
+        assert_eq!(banded.breaches, 0);
+        let (e_b, e_1) = ((e_b / norm).sqrt(), (e_1 / norm).sqrt());
+        eprintln!(
+            "bands {:?}, tops {:?}; rms error of a: banded {e_b:.3e}, one band {e_1:.3e}",
+            plan.steps, plan.tops
+        );
+        assert!(seen.iter().filter(|&&s| s).count() >= 3, "{seen:?}");
+        let tol = sea.cache_tolerance;
+        assert!(e_b <= 3.0 * tol, "banded {e_b:e} against tolerance {tol:e}");
+        assert!(e_1 < e_b, "one band {e_1:e}, banded {e_b:e}");
     }
 
     /// A regular wave: the interval is `(384 eps)^(1/4) / w`, and the cache is exact at the

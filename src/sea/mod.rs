@@ -16,7 +16,9 @@
 //!    (refresh interval from [`cache::refresh_interval`] and `sea.cache_tolerance`),
 //!    or, as the solvers do, `WaveCache::with_clock(&sea, n_nodes,
 //!    RefreshClock::on_grid(&plan))` with the [`schedule::refresh_plan`] of the sea
-//!    for the height its nodes reach and the step (the common refresh grid);
+//!    for the height its nodes reach and the step (the common refresh grid), or,
+//!    as the CPU solver does, `WaveCache::with_bands(&sea, n_nodes, &bands)` with the
+//!    [`bands::band_plan`] (a refresh interval per depth band of nodes);
 //! 2. before each force evaluation at time `t` (every stage of a multi-stage scheme;
 //!    times must not go backwards except to restart), calls
 //!    `cache.refresh_if_due(t, &positions, &velocities)` with the nodes' positions and
@@ -42,6 +44,7 @@
 //! the buffers. Infinite depth goes to the GPU as
 //! [`GPU_DEEP`] m.
 
+pub mod bands;
 pub mod cache;
 pub mod columns;
 pub mod cut;

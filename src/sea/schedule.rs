@@ -252,6 +252,12 @@ impl RefreshClock {
         (j * p) as f64 * dt
     }
 
+    /// Whether [`Self::tick`] at `t` would restart: not started, `t` before `t0`, or
+    /// more than an interval past `t1`.
+    pub fn would_restart(&self, t: f64) -> bool {
+        !self.started || t < self.t0 || t > self.t1 + self.interval
+    }
+
     /// Makes the clock cover `t`: `None` when it does; otherwise moves `t0, t1` on
     /// (the old `t1` becomes `t0`; a restart when not started, when `t` is before `t0`
     /// or more than an interval past `t1`) and says what the refresh does.
@@ -259,7 +265,7 @@ impl RefreshClock {
         if self.covers(t) {
             return None;
         }
-        let restart = !self.started || t < self.t0 || t > self.t1 + self.interval;
+        let restart = self.would_restart(t);
         let span = t - self.last_t;
         let acc_rate = if !restart && span > 0.0 {
             1.0 / span

@@ -25,6 +25,9 @@ pub struct SeaSet {
     /// refresh interval (`sea::schedule::refresh_plan`; set by `sim::reach`); empty
     /// when unknown (infinite: the interval for nodes at the surface).
     pub reach: Vec<f64>,
+    /// Whether the CPU path's caches refresh per depth band (`sea::bands`); off: every
+    /// node in band 0, as the GPU path (the run turns it on for the CPU backend).
+    pub banded: bool,
 }
 
 impl SeaSet {
@@ -34,6 +37,7 @@ impl SeaSet {
             seas: vec![sea.clone()],
             cable_sea: Vec::new(),
             reach: Vec::new(),
+            banded: false,
         }
     }
 
@@ -46,6 +50,16 @@ impl SeaSet {
     /// its reach): what both paths refresh by.
     pub fn plan(&self, q: usize, dt: f64) -> super::schedule::RefreshPlan {
         super::schedule::refresh_plan(&self.seas[q], self.reach_of(q), dt)
+    }
+
+    /// The bands of sea `q` stepping by `dt` (`sea::bands::band_plan` at its reach;
+    /// band 0 alone when not [`Self::banded`]).
+    pub fn band_plan(&self, q: usize, dt: f64) -> super::bands::BandPlan {
+        if self.banded {
+            super::bands::band_plan(&self.seas[q], self.reach_of(q), dt)
+        } else {
+            super::bands::BandPlan::single(self.plan(q, dt))
+        }
     }
 
     /// The sea index of cable `c`.

@@ -212,6 +212,10 @@ impl Simulation {
                 let mut seas = sc.sea_set();
                 if !seas.is_still() {
                     seas.reach = reach::sea_reach(&lay, &pos, &seas, duration);
+                    // Refresh per depth band on the CPU path (`sea::bands`) unless
+                    // the scenario says not to; the GPU path refreshes every node in
+                    // band 0.
+                    seas.banded = sc.depth_bands && matches!(choice, BackendChoice::Cpu);
                     log_refresh_plans(&seas, opts.dt);
                     reach_watch = ReachWatch::new(&seas, lay.cables.len());
                 }
@@ -679,7 +683,8 @@ fn log_refresh_plans(seas: &crate::sea::SeaSet, dt: f64) {
         if sea.is_still() {
             continue;
         }
-        let p = seas.plan(q, dt);
+        let bands = seas.band_plan(q, dt);
+        let p = bands.base;
         log::info!(
             "waves, sea {q}: nodes reach z = {:.2} m, lowest trough assumed {:.2} m, \
              evaluation depth {:.2} m; refresh every {} steps ({:.4} s: {} x the rule at \
@@ -692,6 +697,16 @@ fn log_refresh_plans(seas: &crate::sea::SeaSet, dt: f64) {
             p.factor,
             p.unrounded
         );
+        if bands.len() > 1 {
+            let rungs: Vec<String> = (1..bands.len())
+                .map(|m| format!("{} steps under z = {:.1} m", bands.steps[m], bands.tops[m]))
+                .collect();
+            log::info!(
+                "waves, sea {q}: refresh per depth band, decided every {:.3} s: {}",
+                bands.horizon(),
+                rungs.join(", ")
+            );
+        }
     }
 }
 

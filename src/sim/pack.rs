@@ -161,7 +161,9 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
             seas,
             cable_sea,
             reach: Vec::new(),
+            banded: false,
         }),
+        depth_bands: first.depth_bands,
         points,
         vtk: false,
         // Each member passed its own budget; the packed run is their sum.

@@ -188,6 +188,7 @@ mod tests {
             seas: vec![wave, SeaState::still(100.0)],
             cable_sea: vec![0, 0, 1],
             reach: vec![-10.0, f64::INFINITY],
+            banded: false,
         };
         let mut w = ReachWatch::new(&seas, 3).expect("a watch in waves");
         let snap = |z1: f64| Snapshot {

@@ -12,6 +12,7 @@ use cablesim::sea::schedule::{SUBMERGED_FACTOR, SURFACE_MARGIN};
 use cablesim::sea::spectrum::Spectrum;
 use cablesim::sea::{SeaSet, SeaState, Stretching, WaveComponent};
 use cablesim::sim::reach::sea_reach;
+use cablesim::stability::stable_step;
 use cablesim::statics::{relax, RelaxOptions};
 
 const DEPTH: f64 = 50.0;
@@ -386,4 +387,199 @@ fn submerged_line_keeps_the_end_force_at_the_planned_interval() {
         d / fmax
     );
     assert!(d < 1e-3 * fmax, "cache off by {d} N of {fmax} N");
+}
+
+/// The JONSWAP sea of [`jonswap`] in `depth` m of water.
+fn jonswap_in(depth: f64) -> SeaState {
+    let mut sea = jonswap();
+    let d = Discretisation {
+        components: 200,
+        direction: 0.3,
+        spreading: None,
+        seed: 7,
+        stream: 0,
+    };
+    let spectrum = Spectrum::Jonswap {
+        hs: 4.0,
+        tp: 9.0,
+        gamma: 3.3,
+    };
+    sea.components = discretise(&spectrum, &d, depth, 9.81);
+    sea.depth = depth;
+    sea
+}
+
+/// A deep catenary: anchored 300 m down (on the seabed of 300 m of water), 640 m of
+/// rope in 32 segments to a fairlead 6 m under the mean level on a vertical circle of
+/// 2 m (period 7 s), in static equilibrium.
+fn deep_catenary() -> (Layout, Vec<[f64; 3]>) {
+    let depth = 300.0;
+    let env = Environment {
+        depth,
+        seabed: Seabed::default(),
+        ..water()
+    };
+    let lt = LineType {
+        diameter: 0.05,
+        ..rope()
+    };
+    let (a, b) = ([-560.0, 0.0, -depth], [0.0, 0.0, -6.0]);
+    let def: ModelDef = straight_cable(
+        env,
+        lt,
+        a,
+        b,
+        640.0,
+        32,
+        Some(Route::Fixed { position: a }),
+        Some(Route::Circle {
+            center: [0.0, 0.0, -8.0],
+            radius: 2.0,
+            period: 7.0,
+            axis: [0.0, 1.0, 0.0],
+            phase: 0.0,
+            advance: 0.0,
+        }),
+        PointMass::default(),
+        [0.0; 3],
+    );
+    let (lay, mut pos) = Layout::build(&def).unwrap();
+    relax(&lay, &mut pos, &RelaxOptions::default()).unwrap();
+    (lay, pos)
+}
+
+/// Refresh per depth band (`sea::bands`) on a line that crosses the bands' tops: a
+/// 300 m-deep catenary whose fairlead moves near the surface. Its nodes spread over
+/// at least three bands, none is ever found above its band's top, and the fairlead
+/// force over 40 s stays within 1e-3 of its largest value against exact evaluation;
+/// the result is the same (bit for bit) on one thread as on several, and the same
+/// when the line is packed with another cable in another sea.
+#[test]
+fn depth_bands_keep_the_end_force_of_a_deep_line() {
+    let (lay, pos) = deep_catenary();
+    let sea = jonswap_in(300.0);
+    let mut set = SeaSet::single(&sea);
+    set.reach = sea_reach(&lay, &pos, &set, 40.0);
+    set.banded = true;
+    let dt = 0.5 * stable_step(&lay, Scheme::Symplectic, Default::default()).dt;
+    let opts = SolverOptions {
+        dt,
+        ..SolverOptions::default()
+    };
+    let bands = set.band_plan(0, dt);
+    println!(
+        "deep line: dt {dt:.3e} s, reach {:.2} m, bands every {:?} steps under {:?} m, \
+         decided every {:.3} s",
+        bands.base.reach,
+        bands.steps,
+        bands.tops,
+        bands.horizon()
+    );
+    assert!(bands.len() >= 3, "{bands:?}");
+    let every = 40;
+    let steps = (40.0 / dt) as u64 / every * every;
+    let run = |exact: bool, banded: bool| {
+        let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+        let mut set = set.clone();
+        set.banded = banded;
+        s.set_seas(&set, exact);
+        let mut census = vec![0usize; 0];
+        let mut out = Vec::new();
+        let mut done = 0;
+        while done < steps {
+            s.advance(every).unwrap();
+            done += every;
+            out.push(s.evaluate().unwrap().reaction[1]);
+            let (c, breaches) = s.wave_band_census();
+            assert_eq!(breaches, 0, "a node above its band's top at step {done}");
+            if c.iter().filter(|&&n| n > 0).count() > census.iter().filter(|&&n| n > 0).count() {
+                census = c;
+            }
+        }
+        (out, census)
+    };
+    let (exact, _) = run(true, false);
+    let (banded, census) = run(false, true);
+    let (one, _) = run(false, false);
+    println!("nodes per band (the most bands in use): {census:?}");
+    assert!(census.iter().filter(|&&n| n > 0).count() >= 3, "{census:?}");
+    let fmax = exact.iter().map(|f| norm(*f)).fold(0.0f64, f64::max);
+    let diff = |a: &[[f64; 3]]| {
+        a.iter()
+            .zip(&exact)
+            .map(|(x, y)| norm([x[0] - y[0], x[1] - y[1], x[2] - y[2]]))
+            .fold(0.0f64, f64::max)
+    };
+    let (d_banded, d_one) = (diff(&banded), diff(&one));
+    println!(
+        "fairlead force {fmax:.1} N; against exact: banded {:.3e}, one band {:.3e} relative",
+        d_banded / fmax,
+        d_one / fmax
+    );
+    assert!(
+        d_banded < 1e-3 * fmax,
+        "banded cache off by {d_banded} N of {fmax} N"
+    );
+    // One thread against several, and packed with another cable in another sea.
+    let on_threads = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+            s.set_seas(&set, false);
+            s.advance(steps / 4).unwrap();
+            s.r.iter().map(|r| r.to_f64()).collect::<Vec<_>>()
+        })
+    };
+    assert_eq!(on_threads(1), on_threads(3));
+}
+
+/// With refresh per depth band the chain fast path (the nodes' cubics in the power
+/// basis, formed again only where a refresh touched them) and the general path (each
+/// node with its band's Hermite weights) agree on the deep catenary of
+/// [`depth_bands_keep_the_end_force_of_a_deep_line`], for every scheme, over 20 s
+/// (several band decisions).
+#[test]
+fn depth_bands_chain_kernel_matches_the_general_path() {
+    let (lay, pos) = deep_catenary();
+    let sea = jonswap_in(300.0);
+    let mut set = SeaSet::single(&sea);
+    set.reach = sea_reach(&lay, &pos, &set, 20.0);
+    set.banded = true;
+    let dt = 0.5 * stable_step(&lay, Scheme::Symplectic, Default::default()).dt;
+    for scheme in [Scheme::Symplectic, Scheme::Rk2, Scheme::Rk4] {
+        let opts = SolverOptions {
+            dt: if scheme == Scheme::Symplectic {
+                dt
+            } else {
+                0.5 * dt
+            },
+            scheme,
+            ..SolverOptions::default()
+        };
+        let steps = (20.0 / opts.dt) as u64;
+        let mut fast = CpuSolver::new(lay.clone(), &pos, opts);
+        let mut general = CpuSolver::new(lay.clone(), &pos, opts);
+        fast.set_seas(&set, false);
+        general.set_seas(&set, false);
+        general.use_chain_kernel = false;
+        fast.advance(steps).unwrap();
+        general.advance(steps).unwrap();
+        let dr = fast
+            .r
+            .iter()
+            .zip(&general.r)
+            .map(|(a, b)| (*a - *b).norm())
+            .fold(0.0f64, f64::max);
+        let (census, breaches) = fast.wave_band_census();
+        println!("{scheme:?}: |dr| {dr:.2e} m; nodes per band {census:?}");
+        assert!(census.iter().filter(|&&n| n > 0).count() >= 2, "{census:?}");
+        assert_eq!(breaches, 0);
+        assert!(
+            dr < 1e-8,
+            "{scheme:?}: fast and general paths differ by {dr} m"
+        );
+    }
 }

@@ -1,0 +1,229 @@
+//! Refresh per depth band: the kinematics cache refreshes a node at an interval set by
+//! how high that node can be, not by the highest node of its sea.
+//!
+//! Why: a mooring chain's fairlead may come near the surface, where the short waves
+//! set a short refresh interval ([`super::schedule::refresh_plan`]), while most of the
+//! chain lies tens to hundreds of metres down, where only the long swell reaches
+//! (decay `e^{k z}`) and the rule's interval is many times longer. With one interval
+//! for all the nodes of a sea, every node pays the surface's.
+//!
+//! The bands ([`band_plan`]): band 0 is the sea's plan for its nodes' reach, as
+//! before (`steps_0` steps per refresh on the common grid). Band `m` refreshes every
+//! `steps_0 2^m` steps (nested rungs of the grid: a band's refresh times are refresh
+//! times of every shallower band, and all bands refresh together at the coarsest
+//! band's times); its top `tops[m]` is the highest node height at which the plan's
+//! interval (the decayed rule at that height's evaluation depth, times the factor of
+//! [`super::schedule`]: 0.3 near the surface, 0.8 five metres under the lowest
+//! trough) is still at least `steps_0 2^m dt`. At most [`MAX_BANDS`] bands; a band
+//! exists only if its interval is reached above the seabed.
+//!
+//! Which band a node is in ([`wave_band`]): decided at the coarsest band's refresh
+//! times (the only times at which every band starts a new interval, so a node can
+//! change band with its values and rates at that time kept: no jump in the loads), from
+//! the node's height `z`, vertical velocity `v_z` and acceleration estimate `a_z` (its
+//! velocity change since its previous refresh): the highest it could rise before the
+//! next decision, one coarsest interval `H` later, is taken as `z + max(v_z, 0) H +
+//! |a_z| H^2 / 2 + BAND_MARGIN`, and the node goes to the deepest band whose top is
+//! not under that. Why this and not a per-node bound over the run: a node's motion is
+//! known only as the run goes (a chain's fairlead region follows its vessel, its
+//! bottom lies still), and the decision is cheap (once per coarsest interval, a few
+//! comparisons per node). After a restart (the first refresh, a remesh) the
+//! acceleration is not known: every node starts in band 0 until the first decision.
+//!
+//! A node that rises above its band's top anyway (a motion the bound did not foresee)
+//! is noticed at every refresh of band 0: the cache counts it, warns once, and the
+//! next decision puts the node in the band its height then allows.
+//!
+//! The plan option ([`super::SeaSet::banded`]): banding is on for runs on the CPU path
+//! unless the scenario sets `environment.waves.depth_bands = false`; the GPU path
+//! refreshes every node in band 0 (one band on both sides when the GPU backend runs,
+//! so the GPU-vs-CPU parity holds). The GPU side of the bands is not written yet.
+//!
+//! How the CPU path reads a banded cache: the general path interpolates each node
+//! with its band's Hermite weights (`WaveCache::interpolate`, runs of nodes of one
+//! band); the chain kernel reads each node's interpolant as a cubic in the power
+//! basis of `t - t_ref`, `t_ref` the coarsest band's `t0`
+//! (`WaveCache::power_node`), so that a stage interpolates every node, whatever its
+//! band, with the one set of weights `1, tau, tau^2, tau^3`.
+
+use super::schedule::{refresh_plan, RefreshPlan};
+use super::SeaState;
+
+/// The most bands of a sea (the coarsest refreshes `2^(MAX_BANDS - 1)` times less
+/// often than band 0). Why a cap: the decision's horizon is the coarsest interval,
+/// and the bound on how far a node may rise grows with it.
+pub const MAX_BANDS: usize = 5;
+
+/// Added to a node's bound on how high it may rise before the next decision, m.
+pub const BAND_MARGIN: f64 = 2.0;
+
+/// A sea's bands: band 0 its [`RefreshPlan`], band `m` every `steps_0 2^m` steps for
+/// nodes that stay under `tops[m]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BandPlan {
+    /// Band 0: the sea's plan for its nodes' reach.
+    pub base: RefreshPlan,
+    /// Per band: the highest height, m, a node of it may reach (`tops[0]` infinite);
+    /// decreasing.
+    pub tops: Vec<f64>,
+    /// Per band: steps per refresh, `steps_0 2^m`.
+    pub steps: Vec<u64>,
+}
+
+impl BandPlan {
+    /// One band: the sea's plan alone.
+    pub fn single(base: RefreshPlan) -> Self {
+        Self {
+            base,
+            tops: vec![f64::INFINITY],
+            steps: vec![base.steps],
+        }
+    }
+
+    /// The number of bands.
+    pub fn len(&self) -> usize {
+        self.tops.len()
+    }
+
+    /// Whether there are no bands (never: band 0 always is).
+    pub fn is_empty(&self) -> bool {
+        self.tops.is_empty()
+    }
+
+    /// The plan of band `m`: the base plan with `steps_0 2^m` steps per refresh.
+    pub fn band(&self, m: usize) -> RefreshPlan {
+        let steps = self.steps[m];
+        RefreshPlan {
+            steps,
+            interval: if steps == u64::MAX {
+                f64::INFINITY
+            } else {
+                steps as f64 * self.base.dt
+            },
+            ..self.base
+        }
+    }
+
+    /// The coarsest band's interval, s: the horizon of the band decision.
+    pub fn horizon(&self) -> f64 {
+        self.band(self.len() - 1).interval
+    }
+}
+
+/// The bands of `sea` for nodes reaching no higher than `reach` (m; infinite when
+/// unknown), stepping by `dt` (see the module doc); one band in still water.
+pub fn band_plan(sea: &SeaState, reach: f64, dt: f64) -> BandPlan {
+    let base = refresh_plan(sea, reach, dt);
+    let mut plan = BandPlan::single(base);
+    if base.steps == u64::MAX {
+        return plan;
+    }
+    // The plan's unrounded interval for nodes reaching no higher than `z`: not
+    // increasing in `z`.
+    let interval_at = |z: f64| refresh_plan(sea, z, dt).unrounded;
+    let floor = if sea.depth.is_finite() {
+        -sea.depth
+    } else {
+        -2000.0
+    };
+    let ceiling = if reach.is_finite() {
+        reach.min(0.0)
+    } else {
+        0.0
+    };
+    for m in 1..MAX_BANDS {
+        let steps = base.steps << m;
+        let need = steps as f64 * dt;
+        let (mut lo, mut hi) = (floor, *plan.tops.last().unwrap());
+        hi = hi.min(ceiling);
+        if lo >= hi || interval_at(lo) < need {
+            break;
+        }
+        // Bisection for the highest height at which the interval reaches `need`:
+        // `lo` always does, `hi` (a shallower band's top or the reach) does not.
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if interval_at(mid) >= need {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        plan.tops.push(lo);
+        plan.steps.push(steps);
+    }
+    plan
+}
+
+/// The band of a node at height `z` (m) with vertical velocity `vz` (m/s) and
+/// acceleration estimate `az` (m/s^2), for the next `horizon` s: the deepest band
+/// whose top (`tops`, decreasing, `tops[0]` infinite) is not under `z + max(vz, 0)
+/// horizon + |az| horizon^2 / 2 + margin` (see the module doc).
+pub fn wave_band(z: f64, vz: f64, az: f64, horizon: f64, margin: f64, tops: &[f64]) -> usize {
+    let bound = z + vz.max(0.0) * horizon + 0.5 * az.abs() * horizon * horizon + margin;
+    let mut b = 0;
+    while b + 1 < tops.len() && bound <= tops[b + 1] {
+        b += 1;
+    }
+    b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sea::irregular::{discretise, Discretisation};
+    use crate::sea::spectrum::Spectrum;
+
+    fn sea(hs: f64, tp: f64) -> SeaState {
+        let d = Discretisation {
+            components: 200,
+            direction: 0.0,
+            spreading: None,
+            seed: 3,
+            stream: 0,
+        };
+        SeaState {
+            components: discretise(&Spectrum::Jonswap { hs, tp, gamma: 2.5 }, &d, 320.0, 9.81),
+            ..SeaState::still(320.0)
+        }
+    }
+
+    /// Band 0 is the sea's plan; each deeper band doubles the steps and its top is the
+    /// highest height whose planned interval reaches them: just above the top the
+    /// interval is short of them, at the top it is not; tops decrease.
+    #[test]
+    fn band_tops_are_where_the_interval_reaches_the_rung() {
+        let s = sea(9.0, 13.0);
+        let dt = 1.0 / 150.0;
+        let p = band_plan(&s, 2.0, dt);
+        assert_eq!(p.base, refresh_plan(&s, 2.0, dt));
+        assert!(p.len() >= 3, "{p:?}");
+        assert_eq!(p.tops[0], f64::INFINITY);
+        for m in 1..p.len() {
+            assert_eq!(p.steps[m], p.steps[0] << m);
+            assert!(p.tops[m] < p.tops[m - 1]);
+            let need = p.band(m).interval;
+            assert!(refresh_plan(&s, p.tops[m], dt).unrounded >= need);
+            assert!(refresh_plan(&s, p.tops[m] + 0.01, dt).unrounded < need);
+        }
+        assert_eq!(p.horizon(), p.band(p.len() - 1).interval);
+        let still = band_plan(&SeaState::still(50.0), 0.0, dt);
+        assert_eq!(still.len(), 1);
+    }
+
+    /// The decision: the deepest band whose top the node's bound stays under; a node
+    /// rising (or accelerating) goes shallower.
+    #[test]
+    fn the_band_decision_keeps_the_bound_under_the_top() {
+        let tops = [f64::INFINITY, -20.0, -60.0, -150.0];
+        assert_eq!(wave_band(-300.0, 0.0, 0.0, 4.0, 2.0, &tops), 3);
+        assert_eq!(wave_band(-151.5, 0.0, 0.0, 4.0, 2.0, &tops), 2);
+        assert_eq!(wave_band(-152.5, 0.0, 0.0, 4.0, 2.0, &tops), 3);
+        assert_eq!(wave_band(-70.0, 0.0, 0.0, 4.0, 2.0, &tops), 2);
+        assert_eq!(wave_band(-70.0, 2.5, 0.0, 4.0, 2.0, &tops), 1);
+        assert_eq!(wave_band(-70.0, -2.5, 0.0, 4.0, 2.0, &tops), 2);
+        assert_eq!(wave_band(-70.0, 0.0, -1.5, 4.0, 2.0, &tops), 1);
+        assert_eq!(wave_band(-21.0, 0.0, 0.0, 4.0, 2.0, &tops), 0);
+        assert_eq!(wave_band(-5.0, 0.0, 0.0, 4.0, 2.0, &[f64::INFINITY]), 0);
+    }
+}
