@@ -7,14 +7,16 @@
 //!   reads its ends in place, as the chain path does; other elements have their two
 //!   end nodes gathered by index into structure-of-arrays scratch; then the chain's
 //!   element loop runs over them;
-//! - the element pass then folds each element's results into what its two nodes add,
-//!   one record per element: the six entries of its share of their mass block
-//!   (`m/2 I + a (I - t t^T)`), the force on node a (`f/2 + T t`) and on node b
-//!   (`f/2 - T t`);
-//! - the node pass sums those over each node's incident elements through fixed-width
-//!   slot arrays (the incidence lists padded with the zero "ghost" element 0 to 4 or 8
-//!   slots), and solves its 3x3 mass block with the general path's adjugate
-//!   ([`Sym3::solve`]);
+//! - the element pass then folds each element's results into what its two nodes add
+//!   (the six entries of its share of their mass block, `m/2 I + a (I - t t^T)`, and
+//!   the force on the node: `f/2 + T t` on node a, `f/2 - T t` on node b) and writes
+//!   them into the node's *slot*: each node has 4 or 8 slots (its incidence list,
+//!   padded with zeros), each slot 9 columns over the block's nodes, so that the node
+//!   pass reads them contiguously, 4 nodes at a time (a run's elements write their
+//!   slots with vector stores too: the pieces keep one slot per end);
+//! - the node pass sums those slots in incidence order, then solves each node's 3x3
+//!   mass block with the general path's adjugate ([`Sym3::solve`]), vectorised over
+//!   nodes;
 //! - point-mass drag, a point's water-acceleration load and held nodes are done from
 //!   short index lists, as on the chain path.
 //!
@@ -52,11 +54,9 @@ pub(crate) struct NetConsts {
     pieces: Vec<Piece>,
     /// Slots per node: 4 or 8.
     width: usize,
-    /// Slot-major (`slot[s * n + i]`): node `i`'s `s`-th incident element, in the
-    /// order of the layout's incidence list, as `2 p + side`: `p` its padded index
-    /// (element `k` is `k + 1`; 0 is the ghost, all of whose loads are zero), `side` 0
-    /// where the node is its node a, 1 where node b.
-    slot: Vec<u32>,
+    /// Per element: its place (slot) in the incidence list of its node a and of its
+    /// node b, in the layout's order (the order the node pass sums in).
+    eslot: [Vec<u8>; 2],
 }
 
 impl NetConsts {
@@ -71,27 +71,29 @@ impl NetConsts {
             5..=8 => 8,
             _ => return None,
         };
-        let mut slot = vec![0u32; width * n];
-        for i in 0..n {
-            for (s, &inc) in lay.incidence(n0 + i).iter().enumerate() {
-                slot[s * n + i] = 2 * ((inc >> 1) - e0 as u32 + 1) + (inc & 1);
-            }
-        }
         let elems = b.elem_start as usize..b.elem_end as usize;
         let ne = elems.len();
+        // Side 0 of an incidence is the element's node a, side 1 its node b.
+        let mut eslot = [vec![u8::MAX; ne], vec![u8::MAX; ne]];
+        for i in 0..n {
+            for (s, &inc) in lay.incidence(n0 + i).iter().enumerate() {
+                eslot[(inc & 1) as usize][(inc >> 1) as usize - e0] = s as u8;
+            }
+        }
         let ends: [Vec<u32>; 2] = [
             elems.clone().map(|e| lay.elem_a[e] - n0 as u32).collect(),
             elems.map(|e| lay.elem_b[e] - n0 as u32).collect(),
         ];
-        // The passes index by these without bounds checks.
+        // The passes index by these without bounds checks; every element sits in one
+        // slot of each of its nodes.
         assert!(ends.iter().flatten().all(|&i| (i as usize) < n));
-        assert!(slot.iter().all(|&p| (p as usize) < 2 * (ne + 1)));
+        assert!(eslot.iter().flatten().all(|&s| (s as usize) < width));
         Some(Self {
             c: ChainConsts::new(lay, b),
-            pieces: pieces(&ends[0], &ends[1]),
+            pieces: pieces(&ends[0], &ends[1], &eslot[0], &eslot[1]),
             ends,
             width,
-            slot,
+            eslot,
         })
     }
 
@@ -122,16 +124,17 @@ pub(crate) struct NetScratch {
     work: Work,
 }
 
-/// Values per element in [`Loads`].
-const REC: usize = 12;
+/// Columns per slot in [`Loads`].
+const COLS: usize = 9;
 
-/// What each element adds to its nodes (padded: ghost 0, element `k` at `k + 1`), one
-/// record of [`REC`] values per element: its share of its nodes' mass block `xx, yy,
-/// zz, xy, xz, yz` (the same for both), the force on its node a, the force on its node
-/// b. A node's slot reads one record (two cache lines at most), not nine arrays.
+/// What each element adds to each of its nodes, in the node's slot for it: slot `s`
+/// of node `i` is columns `COLS s .. COLS (s + 1)`, column `c` holding node `i`'s
+/// value at `sum[c n + i]` (`n` nodes in the block): the element's share of the
+/// node's mass block `xx, yy, zz, xy, xz, yz`, then its force on the node. Slots past
+/// a node's incidence list stay zero. The node pass reads each column contiguously.
 #[derive(Default)]
 struct Loads {
-    rec: Vec<f64>,
+    sum: Vec<f64>,
 }
 
 /// One thread's scratch: gathered element inputs over its elements, node work over
@@ -156,6 +159,8 @@ struct Work {
     pwz: Vec<f64>,
     ex: [Vec<f64>; 3],
     acc: [Vec<f64>; 3],
+    /// The node pass's slot sums (mass block, force) over a tile of nodes.
+    sums: [Vec<f64>; COLS],
 }
 
 impl Work {
@@ -177,19 +182,47 @@ impl Work {
             v.clear();
             v.resize(nr.len(), 0.0);
         }
+        for v in &mut self.sums {
+            v.clear();
+            v.resize(TILE.min(nr.len()), 0.0);
+        }
     }
 }
 
-/// [`Loads`] of elements `er`, written by the element pass: the records from
-/// `REC (er.start + 1)`.
-struct LoadsOut<'a> {
-    rec: &'a mut [f64],
+/// [`Loads`] as the element pass writes them: each element's two slots, through a raw
+/// pointer because the threads of [`advance_net_threaded`] write into the same columns
+/// (each slot of each node has one element, so one writer).
+#[derive(Clone, Copy)]
+struct LoadsOut {
+    sum: *mut f64,
+    /// Nodes in the block (the columns' length).
+    n: usize,
+}
+
+impl LoadsOut {
+    /// # Safety
+    /// `sum` points at the `width COLS n` values of a block's [`Loads`] (`width` its
+    /// [`NetConsts::width`]), and while this is used nothing else reads or writes the
+    /// slots of the elements it is given.
+    unsafe fn new(sum: *mut f64, n: usize) -> Self {
+        Self { sum, n }
+    }
+
+    /// Column `c` of the nodes `i0 .. i0 + len`.
+    ///
+    /// # Safety
+    /// `i0 + len <= n`, `c` below `width COLS`, and no other live slice covers them.
+    #[inline(always)]
+    unsafe fn column(&self, c: usize, i0: usize, len: usize) -> &mut [f64] {
+        debug_assert!(i0 + len <= self.n);
+        unsafe { std::slice::from_raw_parts_mut(self.sum.add(c * self.n + i0), len) }
+    }
 }
 
 /// [`Loads`] of all elements, read by the node pass.
 #[derive(Clone, Copy)]
 struct LoadsIn<'a> {
-    rec: &'a [f64],
+    sum: &'a [f64],
 }
 
 /// The element pass over elements `er`, piece by piece ([`element_tile`]).
@@ -205,13 +238,8 @@ fn element_pass(
     g: &mut Work,
     out: LoadsOut,
 ) {
-    let rec = out.rec;
     for p in nc.pieces.iter().filter_map(|p| p.clip(&er)) {
-        let (k0, k1) = (p.elems.start - er.start, p.elems.end - er.start);
-        let o = LoadsOut {
-            rec: &mut rec[REC * k0..REC * k1],
-        };
-        element_tile(nc, lay, p, x, eta, w, g, o);
+        element_tile(nc, lay, p, x, eta, w, g, out);
     }
 }
 
@@ -233,7 +261,7 @@ fn element_tile(
     out: LoadsOut,
 ) {
     let c = &nc.c;
-    let er = piece.elems;
+    let er = piece.elems.clone();
     let ne = er.len();
     let (ea, eb) = (&nc.ends[0][er.clone()], &nc.ends[1][er.clone()]);
     let waves = !w.is_empty();
@@ -333,41 +361,108 @@ fn element_tile(
             (false, false) => kernel!(false, false),
         }
     }
-    node_shares(c, er.start, t, ten, f, haw, out);
+    node_shares(nc, &piece, t, ten, f, haw, out);
 }
 
-/// Folds the element loop's results for elements `e0..` into what they add to their
-/// nodes: the general path's `f/2 + (+-1 T) t` per end, and `m/2 I + a (I - t t^T)`.
+/// Folds the element loop's results for the elements of `piece` into what they add to
+/// their nodes (the general path's `m/2 I + a (I - t t^T)`, and `f/2 + (+-1 T) t` per
+/// end), written into each end's slot in `out`: with vector stores for a run (one slot
+/// per end along it), one by one for gathered elements.
 #[inline(always)]
 fn node_shares(
-    c: &ChainConsts,
-    e0: usize,
+    nc: &NetConsts,
+    piece: &Piece,
     t: &[Vec<f64>; 3],
     ten: &[f64],
     f: &[Vec<f64>; 3],
     haw: &[f64],
     out: LoadsOut,
 ) {
+    let e0 = piece.elems.start;
     let ne = ten.len();
     let [tx, ty, tz] = t.each_ref().map(|q| &q[..ne]);
     let [fx, fy, fz] = f.each_ref().map(|q| &q[..ne]);
-    let (haw, hm) = (&haw[..ne], &c.hm[e0 + 1..e0 + 1 + ne]);
-    let rec = &mut out.rec[..REC * ne];
-    for (k, r) in rec.chunks_exact_mut(REC).enumerate().take(ne) {
-        let (tn, ntn) = (ten[k], -ten[k]);
-        let a = haw[k];
-        r[0] = hm[k] + (a - a * tx[k] * tx[k]);
-        r[1] = hm[k] + (a - a * ty[k] * ty[k]);
-        r[2] = hm[k] + (a - a * tz[k] * tz[k]);
-        r[3] = -(a * tx[k] * ty[k]);
-        r[4] = -(a * tx[k] * tz[k]);
-        r[5] = -(a * ty[k] * tz[k]);
-        r[6] = fx[k] + tx[k] * tn;
-        r[7] = fy[k] + ty[k] * tn;
-        r[8] = fz[k] + tz[k] * tn;
-        r[9] = fx[k] + tx[k] * ntn;
-        r[10] = fy[k] + ty[k] * ntn;
-        r[11] = fz[k] + tz[k] * ntn;
+    let (haw, hm) = (&haw[..ne], &nc.c.hm[e0 + 1..e0 + 1 + ne]);
+    let (sa, sb) = (nc.eslot[0][e0] as usize, nc.eslot[1][e0] as usize);
+    match piece.ends {
+        Some((a0, b0)) => {
+            // SAFETY: a run's ends are nodes `a0 ..`, `b0 ..` of the block, in slots
+            // `sa`, `sb` all along (`pieces`), slots that belong to these elements only
+            // (so the two sides' columns do not overlap) and that `out`'s contract
+            // gives this call alone.
+            let (ma, mb): ([&mut [f64]; 6], [&mut [f64]; 6]) = unsafe {
+                (
+                    std::array::from_fn(|q| out.column(COLS * sa + q, a0, ne)),
+                    std::array::from_fn(|q| out.column(COLS * sb + q, b0, ne)),
+                )
+            };
+            for k in 0..ne {
+                let a = haw[k];
+                let m = [
+                    hm[k] + (a - a * tx[k] * tx[k]),
+                    hm[k] + (a - a * ty[k] * ty[k]),
+                    hm[k] + (a - a * tz[k] * tz[k]),
+                    -(a * tx[k] * ty[k]),
+                    -(a * tx[k] * tz[k]),
+                    -(a * ty[k] * tz[k]),
+                ];
+                for q in 0..6 {
+                    ma[q][k] = m[q];
+                    mb[q][k] = m[q];
+                }
+            }
+            // SAFETY: as above; the mass columns' slices are no longer used.
+            let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
+                (
+                    std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a0, ne)),
+                    std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b0, ne)),
+                )
+            };
+            for k in 0..ne {
+                let (tn, ntn) = (ten[k], -ten[k]);
+                fa[0][k] = fx[k] + tx[k] * tn;
+                fa[1][k] = fy[k] + ty[k] * tn;
+                fa[2][k] = fz[k] + tz[k] * tn;
+                fb[0][k] = fx[k] + tx[k] * ntn;
+                fb[1][k] = fy[k] + ty[k] * ntn;
+                fb[2][k] = fz[k] + tz[k] * ntn;
+            }
+        }
+        None => {
+            let (ea, eb) = (&nc.ends[0][e0..e0 + ne], &nc.ends[1][e0..e0 + ne]);
+            let (sa, sb) = (&nc.eslot[0][e0..e0 + ne], &nc.eslot[1][e0..e0 + ne]);
+            for k in 0..ne {
+                let (tn, ntn) = (ten[k], -ten[k]);
+                let a = haw[k];
+                let m = [
+                    hm[k] + (a - a * tx[k] * tx[k]),
+                    hm[k] + (a - a * ty[k] * ty[k]),
+                    hm[k] + (a - a * tz[k] * tz[k]),
+                    -(a * tx[k] * ty[k]),
+                    -(a * tx[k] * tz[k]),
+                    -(a * ty[k] * tz[k]),
+                ];
+                let fa = [fx[k] + tx[k] * tn, fy[k] + ty[k] * tn, fz[k] + tz[k] * tn];
+                let fb = [
+                    fx[k] + tx[k] * ntn,
+                    fy[k] + ty[k] * ntn,
+                    fz[k] + tz[k] * ntn,
+                ];
+                for (i, s, fs) in [(ea[k], sa[k], fa), (eb[k], sb[k], fb)] {
+                    let (i, c0) = (i as usize, COLS * s as usize);
+                    // SAFETY: node `i` is in the block and slot `s` below the width
+                    // (`NetConsts::new`); this element's slot is this call's alone.
+                    unsafe {
+                        for q in 0..6 {
+                            out.column(c0 + q, i, 1)[0] = m[q];
+                        }
+                        for q in 0..3 {
+                            out.column(c0 + 6 + q, i, 1)[0] = fs[q];
+                        }
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -422,24 +517,25 @@ fn node_pass<const FRICTION: bool>(
             }
         }
     }
-    assert_eq!(el.rec.len(), REC * (nc.ne() + 1));
+    assert_eq!(el.sum.len(), nc.width * COLS * c.n);
     let h = implicit_dt(opts);
-    let slots = |s: usize| {
-        let o = s * c.n;
-        &nc.slot[o + nr.start..o + nr.end]
+    // Column `q` of slot `s` over this range's nodes.
+    let col = |s: usize, q: usize| {
+        let o = (COLS * s + q) * c.n;
+        &el.sum[o + nr.start..o + nr.end]
     };
     macro_rules! kernel {
         ($width:literal) => {
             node_kernel::<$width, FRICTION>(
                 c,
                 h,
-                std::array::from_fn(slots),
+                std::array::from_fn(|q| std::array::from_fn(|s| col(s, q))),
                 [&x[2][..], &x[3][..], &x[4][..], &x[5][..]],
                 &g.pm,
                 &g.pwz,
                 [&g.ex[0], &g.ex[1], &g.ex[2]],
                 [&c.kl[nr.clone()], &c.cl[nr.clone()], &c.mukl[nr.clone()]],
-                el,
+                &mut g.sums,
                 &mut g.acc,
             )
         };
@@ -505,89 +601,112 @@ fn first_bad(x: [&[f64]; 6], opts: &SolverOptions) -> Option<usize> {
 /// The node loop: per node, the sum over its `W` slots of what the incident elements
 /// add to its force and mass block (the general path's order: point, then each
 /// incident element, then point loads, then the seabed), the seabed's damping taken
-/// implicitly with step `h`, and the 3x3 solve.
+/// implicitly with step `h`, and the 3x3 solve; `slot[q][s]` is column `q` of slot
+/// `s`. In tiles of nodes: the sums first, column by column into `sums`, then the
+/// rest; both loops run over contiguous columns, 4 nodes at a time.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn node_kernel<const W: usize, const FRICTION: bool>(
     c: &ChainConsts,
     h: f64,
-    slot: [&[u32]; W],
+    slot: [[&[f64]; W]; COLS],
     state: [&[f64]; 4],
     pm: &[f64],
     pwz: &[f64],
     ex: [&[f64]; 3],
     seabed: [&[f64]; 3],
-    el: LoadsIn,
+    sums: &mut [Vec<f64>; COLS],
     acc: &mut [Vec<f64>; 3],
 ) {
     let n = pm.len();
-    let [z, vx, vy, vz] = state.map(|q| &q[..n]);
-    let (pwz, [exx, exy, exz]) = (&pwz[..n], ex.map(|q| &q[..n]));
-    let [kl, cl, mukl] = seabed.map(|q| &q[..n]);
-    let slot = slot.map(|q| &q[..n]);
-    let rec = el.rec;
-    let [ax, ay, az] = acc;
-    let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
     let (zb, v_eps) = (c.zb, c.v_eps);
-    for i in 0..n {
+    for t0 in (0..n).step_by(TILE) {
+        let tr = t0..(t0 + TILE).min(n);
+        let len = tr.len();
         // Mass block `xx, yy, zz, xy, xz, yz` and force, summed entry by entry in slot
-        // order (the general path's order).
-        let mut sm = [pm[i], pm[i], pm[i], 0.0, 0.0, 0.0];
-        let mut sf = [0.0, 0.0, pwz[i]];
-        for sl in &slot {
-            let p = sl[i] as usize;
-            // The element's record: its mass share, then the force on its side.
-            let (mo, fo) = (REC * (p >> 1), REC * (p >> 1) + 6 + 3 * (p & 1));
-            debug_assert!(mo + REC <= rec.len());
-            // SAFETY: every slot is below `2 (ne + 1)` (checked in `NetConsts::new`),
-            // and `rec` holds `REC (ne + 1)` values (checked in `node_pass`).
-            unsafe {
-                let (rm, rf) = (rec.as_ptr().add(mo), rec.as_ptr().add(fo));
-                for (q, s) in sm.iter_mut().enumerate() {
-                    *s += *rm.add(q);
-                }
-                for (q, s) in sf.iter_mut().enumerate() {
-                    *s += *rf.add(q);
-                }
+        // order (the general path's order), starting from the point's mass and weight.
+        for (q, out) in sums.iter_mut().enumerate() {
+            let cols = slot[q].map(|s| &s[tr.clone()]);
+            let out = &mut out[..len];
+            match q {
+                0..=2 => sum_slots(Some(&pm[tr.clone()]), cols, out),
+                8 => sum_slots(Some(&pwz[tr.clone()]), cols, out),
+                _ => sum_slots(None, cols, out),
             }
         }
-        let mut m = Sym3 {
-            xx: sm[0],
-            yy: sm[1],
-            zz: sm[2],
-            xy: sm[3],
-            xz: sm[4],
-            yz: sm[5],
-        };
-        let mut g = V3::new(sf[0], sf[1], sf[2]);
-        g += V3::new(exx[i], exy[i], exz[i]);
-        let (sb, ch, cz) = seabed_load::<FRICTION>(
-            zb - z[i],
-            [vx[i], vy[i], vz[i]],
-            kl[i],
-            cl[i],
-            mukl[i],
-            v_eps,
-        );
-        g.z += sb[2];
-        if FRICTION {
-            g.x += sb[0];
-            g.y += sb[1];
+        let [sxx, syy, szz, sxy, sxz, syz, sfx, sfy, sfz] = sums.each_ref().map(|q| &q[..len]);
+        let [z, vx, vy, vz] = state.map(|q| &q[tr.clone()]);
+        let [exx, exy, exz] = ex.map(|q| &q[tr.clone()]);
+        let [kl, cl, mukl] = seabed.map(|q| &q[tr.clone()]);
+        let [ax, ay, az] = acc.each_mut().map(|q| &mut q[tr.clone()]);
+        for i in 0..len {
+            let mut m = Sym3 {
+                xx: sxx[i],
+                yy: syy[i],
+                zz: szz[i],
+                xy: sxy[i],
+                xz: sxz[i],
+                yz: syz[i],
+            };
+            let mut g = V3::new(sfx[i], sfy[i], sfz[i]);
+            g += V3::new(exx[i], exy[i], exz[i]);
+            let (sb, ch, cz) = seabed_load::<FRICTION>(
+                zb - z[i],
+                [vx[i], vy[i], vz[i]],
+                kl[i],
+                cl[i],
+                mukl[i],
+                v_eps,
+            );
+            g.z += sb[2];
+            if FRICTION {
+                g.x += sb[0];
+                g.y += sb[1];
+            }
+            m.xx += h * ch;
+            m.yy += h * ch;
+            m.zz += h * cz;
+            let a = m.solve(g);
+            ax[i] = a.x;
+            ay[i] = a.y;
+            az[i] = a.z;
         }
-        m.xx += h * ch;
-        m.yy += h * ch;
-        m.zz += h * cz;
-        let a = m.solve(g);
-        ax[i] = a.x;
-        ay[i] = a.y;
-        az[i] = a.z;
+    }
+}
+
+/// `out = init + cols[0] + cols[1] + ...` elementwise, left to right (`init` zero
+/// when `None`).
+#[inline(always)]
+fn sum_slots<const W: usize>(init: Option<&[f64]>, cols: [&[f64]; W], out: &mut [f64]) {
+    let n = out.len();
+    let cols = cols.map(|q| &q[..n]);
+    match init {
+        Some(init) => {
+            let init = &init[..n];
+            for i in 0..n {
+                let mut v = init[i];
+                for col in &cols {
+                    v += col[i];
+                }
+                out[i] = v;
+            }
+        }
+        None => {
+            for i in 0..n {
+                let mut v = 0.0;
+                for col in &cols {
+                    v += col[i];
+                }
+                out[i] = v;
+            }
+        }
     }
 }
 
 /// Copies the block's AoS state into the scratch's SoA arrays and sizes the element
 /// results and surface (zero: still water until the waves fill it).
 fn load(nc: &NetConsts, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
-    let (n, ne) = (nc.n(), nc.ne());
+    let n = nc.n();
     for (q, xq) in sc.x.iter_mut().enumerate() {
         xq.clear();
         xq.extend((0..n).map(|i| {
@@ -600,8 +719,9 @@ fn load(nc: &NetConsts, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
     }
     sc.eta.clear();
     sc.eta.resize(n, 0.0);
-    sc.el.rec.clear();
-    sc.el.rec.resize(REC * (ne + 1), 0.0);
+    // Zero: the slots past a node's incidence list stay so.
+    sc.el.sum.clear();
+    sc.el.sum.resize(nc.width * COLS * n, 0.0);
 }
 
 /// Copies the SoA state back to `r`, `v`.
@@ -696,13 +816,12 @@ fn advance_net_body(
             }
         }
         {
-            let out = LoadsOut {
-                rec: &mut el.rec[REC..],
-            };
+            // SAFETY: `el` is this block's loads (`load`), and this pass alone uses them.
+            let out = unsafe { LoadsOut::new(el.sum.as_mut_ptr(), n) };
             let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
             element_pass(nc, lay, 0..ne, xs, eta, wbuf, work, out);
         }
-        let lin = LoadsIn { rec: &el.rec };
+        let lin = LoadsIn { sum: &el.sum };
         let [x0, x1, x2, x3, x4, x5] = x;
         let xs = [x0, x1, x2, x3, x4, x5].map(|q| &mut q[..]);
         let bad = if nc.c.friction {

@@ -3,7 +3,8 @@
 
 use super::pieces::{owned, Piece};
 use super::{
-    element_tile, load, node_pass, store, LoadsIn, LoadsOut, NetConsts, NetScratch, Work, REC, TILE,
+    element_tile, load, node_pass, store, LoadsIn, LoadsOut, NetConsts, NetScratch, Work, COLS,
+    TILE,
 };
 use crate::cpu::threaded::SpinBarrier;
 use crate::math::V3;
@@ -20,8 +21,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 #[derive(Clone, Copy)]
 struct Shared {
     x: [*mut f64; 6],
-    /// [`Loads`]: `REC (ne + 1)` values.
-    rec: *mut f64,
+    /// [`Loads`]: `width COLS n` values.
+    sum: *mut f64,
 }
 unsafe impl Send for Shared {}
 unsafe impl Sync for Shared {}
@@ -55,7 +56,7 @@ pub(crate) fn advance_net_threaded(
     let NetScratch { x, eta, el, .. } = sc;
     let sh = Shared {
         x: x.each_mut().map(|q| q.as_mut_ptr()),
-        rec: el.rec.as_mut_ptr(),
+        sum: el.sum.as_mut_ptr(),
     };
     let eta: &[f64] = eta;
     let barrier = SpinBarrier::new(threads);
@@ -157,8 +158,8 @@ unsafe fn step_threads_avx2(
 }
 
 /// # Safety
-/// `sh` points at the block's state (`n` nodes) and padded element loads (`ne + 1`),
-/// and every thread of `barrier` runs this with its own disjoint `pieces` and `nr`.
+/// `sh` points at the block's state (`n` nodes) and loads (`load`), and every thread of
+/// `barrier` runs this with its own disjoint `pieces` and `nr`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 unsafe fn step_threads_body(
@@ -181,21 +182,16 @@ unsafe fn step_threads_body(
     for k in 0..nsteps {
         let time = (step0 + k) as f64 * dt;
         {
-            // Phase 1 writes only this thread's elements; the state is only read (its
-            // last writes happened before the barrier).
+            // Phase 1 writes only the slots of this thread's elements (in its own
+            // nodes and in the other threads' nodes across the border); the state is
+            // only read (its last writes happened before the barrier).
             let xs: [&[f64]; 6] =
                 sh.x.map(|p| unsafe { std::slice::from_raw_parts(p as *const f64, n) });
+            // SAFETY: `sh.sum` is the block's loads; the threads' elements are disjoint
+            // and each has its own slots, which nothing reads in this phase.
+            let out = unsafe { LoadsOut::new(sh.sum, n) };
             for p in pieces {
-                let er = &p.elems;
-                assert!(er.end <= ne);
-                let out = LoadsOut {
-                    rec: unsafe {
-                        std::slice::from_raw_parts_mut(
-                            sh.rec.add(REC * (er.start + 1)),
-                            REC * er.len(),
-                        )
-                    },
-                };
+                assert!(p.elems.end <= ne);
                 element_tile(nc, lay, p.clone(), xs, eta, &[], g, out);
             }
         }
@@ -204,7 +200,9 @@ unsafe fn step_threads_body(
             // Phase 2 only reads the element loads (written before the barrier) and
             // reads and writes this thread's own nodes.
             let lin = LoadsIn {
-                rec: unsafe { std::slice::from_raw_parts(sh.rec as *const f64, REC * (ne + 1)) },
+                sum: unsafe {
+                    std::slice::from_raw_parts(sh.sum as *const f64, nc.width * COLS * n)
+                },
             };
             let xs: [&mut [f64]; 6] =
                 sh.x.map(|p| unsafe { std::slice::from_raw_parts_mut(p.add(nr.start), nr.len()) });
