@@ -336,11 +336,18 @@ fn element_tile(
         }
     }
     // Every end at or below the surface makes every wetted fraction exactly 1, as on
-    // the chain path.
+    // the chain path. In still water the surface is at zero (`eta` stays so), where
+    // `0 - z >= 0` is `z <= 0`: the surface's columns need not be read.
     // (A count, not a fold with `&`: it vectorises.)
-    let under: usize = (0..ne)
-        .map(|k| ((a[6][k] - a[2][k] >= 0.0) & (b[6][k] - b[2][k] >= 0.0)) as usize)
-        .sum();
+    let under: usize = if waves {
+        (0..ne)
+            .map(|k| ((a[6][k] - a[2][k] >= 0.0) & (b[6][k] - b[2][k] >= 0.0)) as usize)
+            .sum()
+    } else {
+        (0..ne)
+            .map(|k| ((a[2][k] <= 0.0) & (b[2][k] <= 0.0)) as usize)
+            .sum()
+    };
     let submerged = under == ne;
     let (ten, haw) = (&mut ten[..ne], &mut haw[..ne]);
     {
@@ -396,21 +403,11 @@ fn node_shares(
                     std::array::from_fn(|q| out.column(COLS * sb + q, b0, ne)),
                 )
             };
-            for k in 0..ne {
-                let a = haw[k];
-                let m = [
-                    hm[k] + (a - a * tx[k] * tx[k]),
-                    hm[k] + (a - a * ty[k] * ty[k]),
-                    hm[k] + (a - a * tz[k] * tz[k]),
-                    -(a * tx[k] * ty[k]),
-                    -(a * tx[k] * tz[k]),
-                    -(a * ty[k] * tz[k]),
-                ];
-                for q in 0..6 {
-                    ma[q][k] = m[q];
-                    mb[q][k] = m[q];
-                }
-            }
+            let [xxa, yya, zza, xya, xza, yza] = ma;
+            let [xxb, yyb, zzb, xyb, xzb, yzb] = mb;
+            fold_mass(
+                tx, ty, tz, haw, hm, xxa, yya, zza, xya, xza, yza, xxb, yyb, zzb, xyb, xzb, yzb,
+            );
             // SAFETY: as above; the mass columns' slices are no longer used.
             let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
                 (
@@ -418,15 +415,8 @@ fn node_shares(
                     std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b0, ne)),
                 )
             };
-            for k in 0..ne {
-                let (tn, ntn) = (ten[k], -ten[k]);
-                fa[0][k] = fx[k] + tx[k] * tn;
-                fa[1][k] = fy[k] + ty[k] * tn;
-                fa[2][k] = fz[k] + tz[k] * tn;
-                fb[0][k] = fx[k] + tx[k] * ntn;
-                fb[1][k] = fy[k] + ty[k] * ntn;
-                fb[2][k] = fz[k] + tz[k] * ntn;
-            }
+            let ([fxa, fya, fza], [fxb, fyb, fzb]) = (fa, fb);
+            fold_force(tx, ty, tz, ten, fx, fy, fz, fxa, fya, fza, fxb, fyb, fzb);
         }
         None => {
             let (ea, eb) = (&nc.ends[0][e0..e0 + ne], &nc.ends[1][e0..e0 + ne]);
@@ -463,6 +453,85 @@ fn node_shares(
                 }
             }
         }
+    }
+}
+
+/// A run's share of its nodes' mass blocks, `m/2 I + a (I - t t^T)` entry by entry
+/// (`hm` the half mass, `haw` the added mass `a`), written to both ends' slots (`*a`,
+/// `*b`). Every array is its own parameter, as in [`element_kernel`]: outputs known
+/// not to alias need no run-time overlap checks before the vector loop.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn fold_mass(
+    tx: &[f64],
+    ty: &[f64],
+    tz: &[f64],
+    haw: &[f64],
+    hm: &[f64],
+    xxa: &mut [f64],
+    yya: &mut [f64],
+    zza: &mut [f64],
+    xya: &mut [f64],
+    xza: &mut [f64],
+    yza: &mut [f64],
+    xxb: &mut [f64],
+    yyb: &mut [f64],
+    zzb: &mut [f64],
+    xyb: &mut [f64],
+    xzb: &mut [f64],
+    yzb: &mut [f64],
+) {
+    let ne = tx.len();
+    let (ty, tz, haw, hm) = (&ty[..ne], &tz[..ne], &haw[..ne], &hm[..ne]);
+    let (xxa, yya, zza) = (&mut xxa[..ne], &mut yya[..ne], &mut zza[..ne]);
+    let (xya, xza, yza) = (&mut xya[..ne], &mut xza[..ne], &mut yza[..ne]);
+    let (xxb, yyb, zzb) = (&mut xxb[..ne], &mut yyb[..ne], &mut zzb[..ne]);
+    let (xyb, xzb, yzb) = (&mut xyb[..ne], &mut xzb[..ne], &mut yzb[..ne]);
+    for k in 0..ne {
+        let a = haw[k];
+        let xx = hm[k] + (a - a * tx[k] * tx[k]);
+        let yy = hm[k] + (a - a * ty[k] * ty[k]);
+        let zz = hm[k] + (a - a * tz[k] * tz[k]);
+        let xy = -(a * tx[k] * ty[k]);
+        let xz = -(a * tx[k] * tz[k]);
+        let yz = -(a * ty[k] * tz[k]);
+        (xxa[k], yya[k], zza[k], xya[k], xza[k], yza[k]) = (xx, yy, zz, xy, xz, yz);
+        (xxb[k], yyb[k], zzb[k], xyb[k], xzb[k], yzb[k]) = (xx, yy, zz, xy, xz, yz);
+    }
+}
+
+/// A run's forces on its nodes: `f/2 + T t` on node a (`*a`), `f/2 - T t` on node b
+/// (`*b`); every array its own parameter, as in [`fold_mass`].
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn fold_force(
+    tx: &[f64],
+    ty: &[f64],
+    tz: &[f64],
+    ten: &[f64],
+    fx: &[f64],
+    fy: &[f64],
+    fz: &[f64],
+    fxa: &mut [f64],
+    fya: &mut [f64],
+    fza: &mut [f64],
+    fxb: &mut [f64],
+    fyb: &mut [f64],
+    fzb: &mut [f64],
+) {
+    let ne = tx.len();
+    let (ty, tz, ten) = (&ty[..ne], &tz[..ne], &ten[..ne]);
+    let (fx, fy, fz) = (&fx[..ne], &fy[..ne], &fz[..ne]);
+    let (fxa, fya, fza) = (&mut fxa[..ne], &mut fya[..ne], &mut fza[..ne]);
+    let (fxb, fyb, fzb) = (&mut fxb[..ne], &mut fyb[..ne], &mut fzb[..ne]);
+    for k in 0..ne {
+        let (tn, ntn) = (ten[k], -ten[k]);
+        fxa[k] = fx[k] + tx[k] * tn;
+        fya[k] = fy[k] + ty[k] * tn;
+        fza[k] = fz[k] + tz[k] * tn;
+        fxb[k] = fx[k] + tx[k] * ntn;
+        fyb[k] = fy[k] + ty[k] * ntn;
+        fzb[k] = fz[k] + tz[k] * ntn;
     }
 }
 
