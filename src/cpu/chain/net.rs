@@ -11,12 +11,12 @@
 //!   (the six entries of its share of their mass block, `m/2 I + a (I - t t^T)`, and
 //!   the force on the node: `f/2 + T t` on node a, `f/2 - T t` on node b) and writes
 //!   them into the node's *slot*: each node has 4 or 8 slots (its incidence list,
-//!   padded with zeros), each slot 9 columns over the block's nodes, so that the node
-//!   pass reads them contiguously, 4 nodes at a time (a run's elements write their
-//!   slots with vector stores too: the pieces keep one slot per end);
-//! - the node pass sums those slots in incidence order, then solves each node's 3x3
-//!   mass block with the general path's adjugate ([`Sym3::solve`]), vectorised over
-//!   nodes;
+//!   padded with zeros), each slot 9 columns over tiles of [`NT`] nodes, so that the
+//!   node pass reads them contiguously, 4 nodes at a time (a run's elements write
+//!   their slots with vector stores too: the pieces keep one slot per end);
+//! - the node pass sums those slots in incidence order and solves each node's 3x3
+//!   mass block with the general path's adjugate ([`Sym3::solve`]), in one loop
+//!   vectorised over nodes;
 //! - point-mass drag, a point's water-acceleration load and held nodes are done from
 //!   short index lists, as on the chain path.
 //!
@@ -127,14 +127,25 @@ pub(crate) struct NetScratch {
 /// Columns per slot in [`Loads`].
 const COLS: usize = 9;
 
+/// Nodes per tile of [`Loads`].
+const NT: usize = 256;
+
 /// What each element adds to each of its nodes, in the node's slot for it: slot `s`
-/// of node `i` is columns `COLS s .. COLS (s + 1)`, column `c` holding node `i`'s
-/// value at `sum[c n + i]` (`n` nodes in the block): the element's share of the
-/// node's mass block `xx, yy, zz, xy, xz, yz`, then its force on the node. Slots past
-/// a node's incidence list stay zero. The node pass reads each column contiguously.
+/// of node `i` is columns `COLS s .. COLS (s + 1)`. The nodes go in tiles of [`NT`]
+/// (the last padded), each tile all `width COLS` columns of its nodes one after the
+/// other: node `i`'s column `c` is at `sum[(i / NT) width COLS NT + c NT + i % NT]`,
+/// so that within a tile every column is at a fixed offset from the others (one base
+/// address for all of them in the node loop). A column holds the element's share of
+/// the node's mass block `xx, yy, zz, xy, xz, yz`, then its force on the node. Slots
+/// past a node's incidence list stay zero.
 #[derive(Default)]
 struct Loads {
     sum: Vec<f64>,
+}
+
+/// Values of [`Loads`] for `n` nodes with `width` slots.
+fn loads_len(n: usize, width: usize) -> usize {
+    n.div_ceil(NT) * width * COLS * NT
 }
 
 /// One thread's scratch: gathered element inputs over its elements, node work over
@@ -159,8 +170,6 @@ struct Work {
     pwz: Vec<f64>,
     ex: [Vec<f64>; 3],
     acc: [Vec<f64>; 3],
-    /// The node pass's slot sums (mass block, force) over a tile of nodes.
-    sums: [Vec<f64>; COLS],
 }
 
 impl Work {
@@ -182,10 +191,6 @@ impl Work {
             v.clear();
             v.resize(nr.len(), 0.0);
         }
-        for v in &mut self.sums {
-            v.clear();
-            v.resize(TILE.min(nr.len()), 0.0);
-        }
     }
 }
 
@@ -195,27 +200,32 @@ impl Work {
 #[derive(Clone, Copy)]
 struct LoadsOut {
     sum: *mut f64,
-    /// Nodes in the block (the columns' length).
-    n: usize,
+    /// Values per tile: `width COLS NT`.
+    per_tile: usize,
 }
 
 impl LoadsOut {
     /// # Safety
-    /// `sum` points at the `width COLS n` values of a block's [`Loads`] (`width` its
-    /// [`NetConsts::width`]), and while this is used nothing else reads or writes the
-    /// slots of the elements it is given.
-    unsafe fn new(sum: *mut f64, n: usize) -> Self {
-        Self { sum, n }
+    /// `sum` points at the [`loads_len`] values of a block's [`Loads`] with `width`
+    /// slots ([`NetConsts::width`]), and while this is used nothing else reads or
+    /// writes the slots of the elements it is given.
+    unsafe fn new(sum: *mut f64, width: usize) -> Self {
+        Self {
+            sum,
+            per_tile: width * COLS * NT,
+        }
     }
 
-    /// Column `c` of the nodes `i0 .. i0 + len`.
+    /// Column `c` of the nodes `i0 .. i0 + len`, all in one tile.
     ///
     /// # Safety
-    /// `i0 + len <= n`, `c` below `width COLS`, and no other live slice covers them.
+    /// The nodes are in the block and in one tile (`i0 % NT + len <= NT`), `c` below
+    /// `width COLS`, and no other live slice covers them.
     #[inline(always)]
     unsafe fn column(&self, c: usize, i0: usize, len: usize) -> &mut [f64] {
-        debug_assert!(i0 + len <= self.n);
-        unsafe { std::slice::from_raw_parts_mut(self.sum.add(c * self.n + i0), len) }
+        debug_assert!(i0 % NT + len <= NT && c * NT < self.per_tile);
+        let o = i0 / NT * self.per_tile + c * NT + i0 % NT;
+        unsafe { std::slice::from_raw_parts_mut(self.sum.add(o), len) }
     }
 }
 
@@ -393,30 +403,57 @@ fn node_shares(
     let (sa, sb) = (nc.eslot[0][e0] as usize, nc.eslot[1][e0] as usize);
     match piece.ends {
         Some((a0, b0)) => {
-            // SAFETY: a run's ends are nodes `a0 ..`, `b0 ..` of the block, in slots
-            // `sa`, `sb` all along (`pieces`), slots that belong to these elements only
-            // (so the two sides' columns do not overlap) and that `out`'s contract
-            // gives this call alone.
-            let (ma, mb): ([&mut [f64]; 6], [&mut [f64]; 6]) = unsafe {
-                (
-                    std::array::from_fn(|q| out.column(COLS * sa + q, a0, ne)),
-                    std::array::from_fn(|q| out.column(COLS * sb + q, b0, ne)),
-                )
-            };
-            let [xxa, yya, zza, xya, xza, yza] = ma;
-            let [xxb, yyb, zzb, xyb, xzb, yzb] = mb;
-            fold_mass(
-                tx, ty, tz, haw, hm, xxa, yya, zza, xya, xza, yza, xxb, yyb, zzb, xyb, xzb, yzb,
-            );
-            // SAFETY: as above; the mass columns' slices are no longer used.
-            let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
-                (
-                    std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a0, ne)),
-                    std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b0, ne)),
-                )
-            };
-            let ([fxa, fya, fza], [fxb, fyb, fzb]) = (fa, fb);
-            fold_force(tx, ty, tz, ten, fx, fy, fz, fxa, fya, fza, fxb, fyb, fzb);
+            // In stretches whose two ends' nodes each stay in one tile.
+            let mut k0 = 0;
+            while k0 < ne {
+                let (a, b) = (a0 + k0, b0 + k0);
+                let len = (ne - k0).min(NT - a % NT).min(NT - b % NT);
+                let ks = k0..k0 + len;
+                // SAFETY: a run's ends are nodes `a0 ..`, `b0 ..` of the block, in
+                // slots `sa`, `sb` all along (`pieces`), slots that belong to these
+                // elements only (so the two sides' columns do not overlap) and that
+                // `out`'s contract gives this call alone; `len` keeps each in a tile.
+                let (ma, mb): ([&mut [f64]; 6], [&mut [f64]; 6]) = unsafe {
+                    (
+                        std::array::from_fn(|q| out.column(COLS * sa + q, a, len)),
+                        std::array::from_fn(|q| out.column(COLS * sb + q, b, len)),
+                    )
+                };
+                let [xxa, yya, zza, xya, xza, yza] = ma;
+                let [xxb, yyb, zzb, xyb, xzb, yzb] = mb;
+                let [tx, ty, tz] = [tx, ty, tz].map(|q| &q[ks.clone()]);
+                fold_mass(
+                    tx,
+                    ty,
+                    tz,
+                    &haw[ks.clone()],
+                    &hm[ks.clone()],
+                    xxa,
+                    yya,
+                    zza,
+                    xya,
+                    xza,
+                    yza,
+                    xxb,
+                    yyb,
+                    zzb,
+                    xyb,
+                    xzb,
+                    yzb,
+                );
+                // SAFETY: as above; the mass columns' slices are no longer used.
+                let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
+                    (
+                        std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a, len)),
+                        std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b, len)),
+                    )
+                };
+                let ([fxa, fya, fza], [fxb, fyb, fzb]) = (fa, fb);
+                let [fx, fy, fz] = [fx, fy, fz].map(|q| &q[ks.clone()]);
+                let ten = &ten[ks];
+                fold_force(tx, ty, tz, ten, fx, fy, fz, fxa, fya, fza, fxb, fyb, fzb);
+                k0 += len;
+            }
         }
         None => {
             let (ea, eb) = (&nc.ends[0][e0..e0 + ne], &nc.ends[1][e0..e0 + ne]);
@@ -586,25 +623,20 @@ fn node_pass<const FRICTION: bool>(
             }
         }
     }
-    assert_eq!(el.sum.len(), nc.width * COLS * c.n);
+    assert_eq!(el.sum.len(), loads_len(c.n, nc.width));
     let h = implicit_dt(opts);
-    // Column `q` of slot `s` over this range's nodes.
-    let col = |s: usize, q: usize| {
-        let o = (COLS * s + q) * c.n;
-        &el.sum[o + nr.start..o + nr.end]
-    };
     macro_rules! kernel {
         ($width:literal) => {
             node_kernel::<$width, FRICTION>(
                 c,
                 h,
-                std::array::from_fn(|q| std::array::from_fn(|s| col(s, q))),
+                el.sum,
+                nr.clone(),
                 [&x[2][..], &x[3][..], &x[4][..], &x[5][..]],
                 &g.pm,
                 &g.pwz,
                 [&g.ex[0], &g.ex[1], &g.ex[2]],
                 [&c.kl[nr.clone()], &c.cl[nr.clone()], &c.mukl[nr.clone()]],
-                &mut g.sums,
                 &mut g.acc,
             )
         };
@@ -667,64 +699,72 @@ fn first_bad(x: [&[f64]; 6], opts: &SolverOptions) -> Option<usize> {
     })
 }
 
-/// The node loop: per node, the sum over its `W` slots of what the incident elements
-/// add to its force and mass block (the general path's order: point, then each
-/// incident element, then point loads, then the seabed), the seabed's damping taken
-/// implicitly with step `h`, and the 3x3 solve; `slot[q][s]` is column `q` of slot
-/// `s`. In tiles of nodes: the sums first, column by column into `sums`, then the
-/// rest; both loops run over contiguous columns, 4 nodes at a time.
+/// The node loop over nodes `nr` (their state, point and seabed values from 0): per
+/// node, the sum over its `W` slots in `sum` ([`Loads`]) of what the incident
+/// elements add to its force and mass block (the general path's order: point, then
+/// each incident element, then point loads, then the seabed), the seabed's damping
+/// taken implicitly with step `h`, and the 3x3 solve. One loop per tile of `sum`, 4
+/// nodes at a time.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn node_kernel<const W: usize, const FRICTION: bool>(
     c: &ChainConsts,
     h: f64,
-    slot: [[&[f64]; W]; COLS],
+    sum: &[f64],
+    nr: Range<usize>,
     state: [&[f64]; 4],
     pm: &[f64],
     pwz: &[f64],
     ex: [&[f64]; 3],
     seabed: [&[f64]; 3],
-    sums: &mut [Vec<f64>; COLS],
     acc: &mut [Vec<f64>; 3],
 ) {
-    let n = pm.len();
     let (zb, v_eps) = (c.zb, c.v_eps);
-    for t0 in (0..n).step_by(TILE) {
-        let tr = t0..(t0 + TILE).min(n);
-        let len = tr.len();
-        // Mass block `xx, yy, zz, xy, xz, yz` and force, summed entry by entry in slot
-        // order (the general path's order), starting from the point's mass and weight.
-        for (q, out) in sums.iter_mut().enumerate() {
-            let cols = slot[q].map(|s| &s[tr.clone()]);
-            let out = &mut out[..len];
-            match q {
-                0..=2 => sum_slots(Some(&pm[tr.clone()]), cols, out),
-                8 => sum_slots(Some(&pwz[tr.clone()]), cols, out),
-                _ => sum_slots(None, cols, out),
-            }
-        }
-        let [sxx, syy, szz, sxy, sxz, syz, sfx, sfy, sfz] = sums.each_ref().map(|q| &q[..len]);
+    let per_tile = W * COLS * NT;
+    let mut i = nr.start;
+    while i < nr.end {
+        // Nodes `i .. i + len` of tile `i / NT`, from its node `j0`.
+        let (j0, len) = (i % NT, (nr.end - i).min(NT - i % NT));
+        let tile = &sum[i / NT * per_tile..][..per_tile];
+        // Column `q` of slot `s`: `col[q][s]`, all at fixed offsets from the tile.
+        let col: [[&[f64]; W]; COLS] = std::array::from_fn(|q| {
+            std::array::from_fn(|s| &tile[(COLS * s + q) * NT + j0..][..len])
+        });
+        let tr = i - nr.start..i - nr.start + len;
         let [z, vx, vy, vz] = state.map(|q| &q[tr.clone()]);
+        let (pm, pwz) = (&pm[tr.clone()], &pwz[tr.clone()]);
         let [exx, exy, exz] = ex.map(|q| &q[tr.clone()]);
         let [kl, cl, mukl] = seabed.map(|q| &q[tr.clone()]);
         let [ax, ay, az] = acc.each_mut().map(|q| &mut q[tr.clone()]);
-        for i in 0..len {
+        for k in 0..len {
+            // Mass block `xx, yy, zz, xy, xz, yz` and force, summed entry by entry in
+            // slot order (the general path's order).
+            let mut sm = [pm[k], pm[k], pm[k], 0.0, 0.0, 0.0];
+            let mut sf = [0.0, 0.0, pwz[k]];
+            for s in 0..W {
+                for (q, v) in sm.iter_mut().enumerate() {
+                    *v += col[q][s][k];
+                }
+                for (q, v) in sf.iter_mut().enumerate() {
+                    *v += col[6 + q][s][k];
+                }
+            }
             let mut m = Sym3 {
-                xx: sxx[i],
-                yy: syy[i],
-                zz: szz[i],
-                xy: sxy[i],
-                xz: sxz[i],
-                yz: syz[i],
+                xx: sm[0],
+                yy: sm[1],
+                zz: sm[2],
+                xy: sm[3],
+                xz: sm[4],
+                yz: sm[5],
             };
-            let mut g = V3::new(sfx[i], sfy[i], sfz[i]);
-            g += V3::new(exx[i], exy[i], exz[i]);
+            let mut g = V3::new(sf[0], sf[1], sf[2]);
+            g += V3::new(exx[k], exy[k], exz[k]);
             let (sb, ch, cz) = seabed_load::<FRICTION>(
-                zb - z[i],
-                [vx[i], vy[i], vz[i]],
-                kl[i],
-                cl[i],
-                mukl[i],
+                zb - z[k],
+                [vx[k], vy[k], vz[k]],
+                kl[k],
+                cl[k],
+                mukl[k],
                 v_eps,
             );
             g.z += sb[2];
@@ -736,39 +776,11 @@ fn node_kernel<const W: usize, const FRICTION: bool>(
             m.yy += h * ch;
             m.zz += h * cz;
             let a = m.solve(g);
-            ax[i] = a.x;
-            ay[i] = a.y;
-            az[i] = a.z;
+            ax[k] = a.x;
+            ay[k] = a.y;
+            az[k] = a.z;
         }
-    }
-}
-
-/// `out = init + cols[0] + cols[1] + ...` elementwise, left to right (`init` zero
-/// when `None`).
-#[inline(always)]
-fn sum_slots<const W: usize>(init: Option<&[f64]>, cols: [&[f64]; W], out: &mut [f64]) {
-    let n = out.len();
-    let cols = cols.map(|q| &q[..n]);
-    match init {
-        Some(init) => {
-            let init = &init[..n];
-            for i in 0..n {
-                let mut v = init[i];
-                for col in &cols {
-                    v += col[i];
-                }
-                out[i] = v;
-            }
-        }
-        None => {
-            for i in 0..n {
-                let mut v = 0.0;
-                for col in &cols {
-                    v += col[i];
-                }
-                out[i] = v;
-            }
-        }
+        i += len;
     }
 }
 
@@ -790,7 +802,7 @@ fn load(nc: &NetConsts, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
     sc.eta.resize(n, 0.0);
     // Zero: the slots past a node's incidence list stay so.
     sc.el.sum.clear();
-    sc.el.sum.resize(nc.width * COLS * n, 0.0);
+    sc.el.sum.resize(loads_len(n, nc.width), 0.0);
 }
 
 /// Copies the SoA state back to `r`, `v`.
@@ -886,7 +898,7 @@ fn advance_net_body(
         }
         {
             // SAFETY: `el` is this block's loads (`load`), and this pass alone uses them.
-            let out = unsafe { LoadsOut::new(el.sum.as_mut_ptr(), n) };
+            let out = unsafe { LoadsOut::new(el.sum.as_mut_ptr(), nc.width) };
             let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
             element_pass(nc, lay, 0..ne, xs, eta, wbuf, work, out);
         }

@@ -3,8 +3,8 @@
 
 use super::pieces::{owned, Piece};
 use super::{
-    element_tile, load, node_pass, store, LoadsIn, LoadsOut, NetConsts, NetScratch, Work, COLS,
-    TILE,
+    element_tile, load, loads_len, node_pass, store, LoadsIn, LoadsOut, NetConsts, NetScratch,
+    Work, TILE,
 };
 use crate::cpu::threaded::SpinBarrier;
 use crate::math::V3;
@@ -21,7 +21,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 #[derive(Clone, Copy)]
 struct Shared {
     x: [*mut f64; 6],
-    /// [`Loads`]: `width COLS n` values.
+    /// [`Loads`]: [`loads_len`] values.
     sum: *mut f64,
 }
 unsafe impl Send for Shared {}
@@ -189,7 +189,7 @@ unsafe fn step_threads_body(
                 sh.x.map(|p| unsafe { std::slice::from_raw_parts(p as *const f64, n) });
             // SAFETY: `sh.sum` is the block's loads; the threads' elements are disjoint
             // and each has its own slots, which nothing reads in this phase.
-            let out = unsafe { LoadsOut::new(sh.sum, n) };
+            let out = unsafe { LoadsOut::new(sh.sum, nc.width) };
             for p in pieces {
                 assert!(p.elems.end <= ne);
                 element_tile(nc, lay, p.clone(), xs, eta, &[], g, out);
@@ -201,7 +201,7 @@ unsafe fn step_threads_body(
             // reads and writes this thread's own nodes.
             let lin = LoadsIn {
                 sum: unsafe {
-                    std::slice::from_raw_parts(sh.sum as *const f64, nc.width * COLS * n)
+                    std::slice::from_raw_parts(sh.sum as *const f64, loads_len(n, nc.width))
                 },
             };
             let xs: [&mut [f64]; 6] =
