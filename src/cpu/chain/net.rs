@@ -130,10 +130,17 @@ const COLS: usize = 9;
 /// Nodes per tile of [`Loads`].
 const NT: usize = 256;
 
+/// Distance between two columns of a tile: [`NT`] values and a cache line. At `NT`
+/// (2 KiB) the 36 or 72 columns the node loop reads at once would fall in 2 of the 64
+/// sets of a 48 KiB, 12-way L1 (a set every 4 KiB) and evict each other; 33 lines
+/// apart (odd), 64 columns in a row fall in 64 different sets.
+const CS: usize = NT + 8;
+
 /// What each element adds to each of its nodes, in the node's slot for it: slot `s`
 /// of node `i` is columns `COLS s .. COLS (s + 1)`. The nodes go in tiles of [`NT`]
 /// (the last padded), each tile all `width COLS` columns of its nodes one after the
-/// other: node `i`'s column `c` is at `sum[(i / NT) width COLS NT + c NT + i % NT]`,
+/// other, [`CS`] apart: node `i`'s column `c` is at `sum[(i / NT) width COLS CS + c CS
+/// + i % NT]`,
 /// so that within a tile every column is at a fixed offset from the others (one base
 /// address for all of them in the node loop). A column holds the element's share of
 /// the node's mass block `xx, yy, zz, xy, xz, yz`, then its force on the node. Slots
@@ -145,7 +152,7 @@ struct Loads {
 
 /// Values of [`Loads`] for `n` nodes with `width` slots.
 fn loads_len(n: usize, width: usize) -> usize {
-    n.div_ceil(NT) * width * COLS * NT
+    n.div_ceil(NT) * width * COLS * CS
 }
 
 /// One thread's scratch: gathered element inputs over its elements, node work over
@@ -212,7 +219,7 @@ impl LoadsOut {
     unsafe fn new(sum: *mut f64, width: usize) -> Self {
         Self {
             sum,
-            per_tile: width * COLS * NT,
+            per_tile: width * COLS * CS,
         }
     }
 
@@ -223,8 +230,8 @@ impl LoadsOut {
     /// `width COLS`, and no other live slice covers them.
     #[inline(always)]
     unsafe fn column(&self, c: usize, i0: usize, len: usize) -> &mut [f64] {
-        debug_assert!(i0 % NT + len <= NT && c * NT < self.per_tile);
-        let o = i0 / NT * self.per_tile + c * NT + i0 % NT;
+        debug_assert!(i0 % NT + len <= NT && c * CS < self.per_tile);
+        let o = i0 / NT * self.per_tile + c * CS + i0 % NT;
         unsafe { std::slice::from_raw_parts_mut(self.sum.add(o), len) }
     }
 }
@@ -720,7 +727,7 @@ fn node_kernel<const W: usize, const FRICTION: bool>(
     acc: &mut [Vec<f64>; 3],
 ) {
     let (zb, v_eps) = (c.zb, c.v_eps);
-    let per_tile = W * COLS * NT;
+    let per_tile = W * COLS * CS;
     let mut i = nr.start;
     while i < nr.end {
         // Nodes `i .. i + len` of tile `i / NT`, from its node `j0`.
@@ -728,7 +735,7 @@ fn node_kernel<const W: usize, const FRICTION: bool>(
         let tile = &sum[i / NT * per_tile..][..per_tile];
         // Column `q` of slot `s`: `col[q][s]`, all at fixed offsets from the tile.
         let col: [[&[f64]; W]; COLS] = std::array::from_fn(|q| {
-            std::array::from_fn(|s| &tile[(COLS * s + q) * NT + j0..][..len])
+            std::array::from_fn(|s| &tile[(COLS * s + q) * CS + j0..][..len])
         });
         let tr = i - nr.start..i - nr.start + len;
         let [z, vx, vy, vz] = state.map(|q| &q[tr.clone()]);
