@@ -277,8 +277,7 @@ fn wave_cache_hermite(v0: WaveKin, d0: WaveKin, v1: WaveKin, d1: WaveKin, w: vec
 
 // One step of a submission in one sea. Rust: gpu::layout::WaveStep.
 struct WaveStep {
-    // Cache slots of the t0 values and of the t1 values (0 or 1; 2: the evaluation's
-    // own slot, so that an output-time evaluation leaves the run's cache alone).
+    // Cache slots of the t0 values and of the t1 values (0 or 1).
     slot0: u32,
     slot1: u32,
     // 1 when the t0 values are evaluated afresh at this step (first step, or a jump
@@ -293,7 +292,7 @@ struct WaveStep {
     // The sea's first component in wave_comps (the seas' components are back to back).
     first: u32,
     // 1 when the refresh records each node's velocity for the next refresh's estimate
-    // of its acceleration (0 for an output-time evaluation).
+    // of its acceleration.
     track: u32,
     // The Hermite weights of this step's time, [h00, Delta h10, h01, Delta h11]
     // (wave_cache_hermite; four scalars, not a vec4, whose alignment would pad the row).
@@ -321,7 +320,7 @@ struct WaveStep {
 }
 
 // Fourteen scalars per node and slot: eta, u, a (m, m/s, m/s^2), then their rates
-// along the node's path (m/s, m/s^2, m/s^3); three slots; then three per node: the
+// along the node's path (m/s, m/s^2, m/s^3); two slots; then three per node: the
 // node's velocity at the last refresh (m/s).
 const WAVE_CACHE_STRIDE: u32 = 14u;
 @group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
@@ -388,7 +387,7 @@ fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
     if ws.restart != 0u {
         wave_cache_store(ws.slot0, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp0, ws.ramp_rate0, p, v, ws.tau0));
     }
-    let ov = (3u * params.n_nodes * WAVE_CACHE_STRIDE) + 3u * i;
+    let ov = (2u * params.n_nodes * WAVE_CACHE_STRIDE) + 3u * i;
     var acc = vec3<R>(R(0.0));
     if ws.acc_rate != R(0.0) {
         acc = (v - vec3<R>(wave_cache[ov], wave_cache[ov + 1u], wave_cache[ov + 2u])) * ws.acc_rate;

@@ -11,6 +11,19 @@ pub struct Payout {
     pub accel: f64,
 }
 
+impl Payout {
+    /// The payout of a constant rate `rate` (m/s) at time `t` (what
+    /// [`PayoutSchedule::eval`] gives for [`PayoutSchedule::constant`]).
+    #[inline(always)]
+    pub fn of_constant(rate: f64, t: f64) -> Self {
+        Payout {
+            dl: rate * t,
+            rate,
+            accel: 0.0,
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 enum Kind {
     Constant {
@@ -142,6 +155,19 @@ impl PayoutSchedule {
         }
     }
 
+    /// True for a constant rate: the paid-out length is then monotone in time.
+    pub fn is_constant(&self) -> bool {
+        self.constant_rate().is_some()
+    }
+
+    /// The rate of a constant-rate schedule (`None` for tables).
+    pub fn constant_rate(&self) -> Option<f64> {
+        match self.kind {
+            Kind::Constant { rate } => Some(rate),
+            _ => None,
+        }
+    }
+
     /// True when the schedule never changes the length (zero rates, a flat table).
     pub fn is_still(&self) -> bool {
         match &self.kind {
@@ -189,13 +215,11 @@ impl PayoutSchedule {
     }
 
     /// Payout at time `t`: length paid out since `t = 0`, rate and acceleration.
+    /// (Inlined: the steppers call it every stage.)
+    #[inline]
     pub fn eval(&self, t: f64) -> Payout {
         match &self.kind {
-            Kind::Constant { rate } => Payout {
-                dl: rate * t,
-                rate: *rate,
-                accel: 0.0,
-            },
+            Kind::Constant { rate } => Payout::of_constant(*rate, t),
             Kind::Rates { at0, .. } => {
                 let (f, rate, accel) = self.integral(t);
                 Payout {

@@ -11,8 +11,10 @@
 //! exert on each body (`bodies.csv`).
 //!
 //! On the GPU path the host evaluates each body's state once per step (per body, not
-//! per node) into rows uploaded with each submission, and the shaders apply the
-//! attachment kinematics per end node (`gpu::solver::body_rows`, WGSL `body_point`).
+//! per node; the bodies in parallel) into rows uploaded with each submission, and the
+//! shaders apply the attachment kinematics per end node (`gpu::solver::body_rows`,
+//! WGSL `body_point`). An RAO motion is the same function of time on both paths: the
+//! exact sum at knots, Hermite interpolation between them ([`rao`]).
 
 pub mod kinematics;
 pub mod motion;
@@ -56,9 +58,10 @@ pub struct Body {
     pub motion: Motion,
     /// The states evaluated, keyed by the time's bits: every end on the body asks for
     /// the same times (the CPU path steps each cable through an output interval in
-    /// turn, so the times come round once per cable), and an RAO motion costs a sine
-    /// and cosine per wave component. A pure function of `t`, so a hit returns exactly
-    /// what evaluating again would.
+    /// turn, so the times come round once per cable), and an RAO motion costs a
+    /// Hermite interpolation of 18 values (and, once per knot, a sine and cosine per
+    /// wave component) plus the rigid-body state. A pure function of `t`, so a hit
+    /// returns exactly what evaluating again would.
     cache: Mutex<HashMap<u64, BodyState>>,
 }
 

@@ -26,10 +26,39 @@
 //! that gap, so give the whole circle (a half-circle table of a symmetric vessel is
 //! not mirrored). Below the lowest and above the highest frequency the nearest
 //! frequency's values are held: extend the table to where the response has died out.
+//!
+//! Evaluation ([`RaoMotion::eval`]): the exact sum over the components (a sine and a
+//! cosine each) only at knots `t_k = k dt_b` on a grid fixed from `t = 0`, values and
+//! their first three derivatives, and cubic Hermite interpolation in time between two
+//! knots: the displacements with the rates as slopes, the rates with the
+//! accelerations, the accelerations with the jerks (`w^3`, analytic). So the motion is
+//! a function of `t` alone (not of the order in which times are asked for, nor of the
+//! thread or shard that asks), the same on the CPU path and in the GPU path's host
+//! rows. The knot spacing `dt_b` ([`RaoMotion::knot_interval`]) is the wave cache's
+//! interpolation rule (`sea::cache::hermite_rule_interval`) applied to the body's own
+//! response spectrum, each degree of freedom's components `A_j |H_i(w_j)|`, at the
+//! relative tolerance [`RAO_KNOT_TOLERANCE`], the smallest over the six degrees of
+//! freedom. The ramp is applied exactly to the interpolated motion.
 
 use super::kinematics::Dofs;
+use crate::sea::cache::{hermite_rule_interval, hermite_weights};
 use crate::sea::WaveComponent;
 use std::f64::consts::{PI, TAU};
+use std::sync::Mutex;
+
+/// The relative tolerance of the knot spacing of [`RaoMotion`]: for each degree of
+/// freedom, the root-mean-square cubic Hermite error of the acceleration within this
+/// fraction of its root-mean-square value (the rule of
+/// `sea::cache::hermite_rule_interval`, which weights each component by its largest
+/// error). The displacements and rates are closer still: the rule for them weights the
+/// spectrum's lower moments (`m8 / m0` and `m10 / m2` instead of `m12 / m4`), and the
+/// moments of a spectrum are log-convex, so their intervals are longer.
+/// `tests/cpu/bodies.rs` measures the errors on a real RAO table in a JONSWAP sea.
+pub const RAO_KNOT_TOLERANCE: f64 = 1e-6;
+
+/// How many knots [`RaoMotion`] keeps: two for the interval in use and a few for
+/// threads that ask for times a little apart.
+const KNOT_CACHE_LEN: usize = 8;
 
 /// Amplitude (m/m or rad/m) and phase (rad) of one degree of freedom.
 pub type Response = (f64, f64);
@@ -131,14 +160,52 @@ struct Term {
     s: [f64; 6],
 }
 
+/// The exact motion at a knot: the six degrees of freedom and their first three time
+/// derivatives (the jerk is the slope of the acceleration's interpolant).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Knot {
+    q: [f64; 6],
+    qd: [f64; 6],
+    qdd: [f64; 6],
+    qddd: [f64; 6],
+}
+
+/// The last knots evaluated, by index: every value a pure function of its index, so a
+/// hit returns exactly what evaluating again would.
+#[derive(Default)]
+struct KnotCache {
+    slots: Mutex<Vec<(i64, Knot)>>,
+}
+
+impl Clone for KnotCache {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl std::fmt::Debug for KnotCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("KnotCache")
+    }
+}
+
 /// The motion of a body in given wave components (see the module doc), with an
 /// optional start-up ramp.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct RaoMotion {
     terms: Vec<Term>,
     /// Ramp duration, s (0: none): the motion is multiplied by
     /// `0.5 (1 - cos(pi t / ramp))` for `t < ramp`.
     ramp: f64,
+    /// Knot spacing `dt_b`, s (infinite: no motion, evaluated exactly).
+    interval: f64,
+    knots: KnotCache,
+}
+
+impl PartialEq for RaoMotion {
+    fn eq(&self, o: &Self) -> bool {
+        self.terms == o.terms && self.ramp == o.ramp && self.interval == o.interval
+    }
 }
 
 impl RaoMotion {
@@ -153,7 +220,7 @@ impl RaoMotion {
         heading: f64,
         ramp: f64,
     ) -> Self {
-        let terms = waves
+        let terms: Vec<Term> = waves
             .iter()
             .map(|wc| {
                 let h = rao.at(wc.omega, wc.direction - heading);
@@ -172,23 +239,110 @@ impl RaoMotion {
                 t
             })
             .collect();
-        Self { terms, ramp }
+        let interval = knot_interval(&terms, RAO_KNOT_TOLERANCE);
+        Self {
+            terms,
+            ramp,
+            interval,
+            knots: KnotCache::default(),
+        }
     }
 
-    /// The six degrees of freedom and their rates at time `t`, s.
+    /// The knot spacing `dt_b`, s (see the module doc; infinite without motion).
+    pub fn knot_interval(&self) -> f64 {
+        self.interval
+    }
+
+    /// The six degrees of freedom and their rates at time `t`, s: interpolated between
+    /// knots (see the module doc), the ramp applied exactly.
     pub fn eval(&self, t: f64) -> Dofs {
-        let mut d = Dofs::default();
+        let d = if self.interval.is_finite() {
+            self.interpolated(t)
+        } else {
+            let k = self.exact(t);
+            Dofs {
+                q: k.q,
+                qd: k.qd,
+                qdd: k.qdd,
+            }
+        };
+        self.ramped(t, d)
+    }
+
+    /// The six degrees of freedom and their rates at time `t`, s, from the sum over
+    /// every component at `t` itself (what the knots hold), the ramp applied: the
+    /// reference that [`RaoMotion::eval`] is tested against.
+    pub fn eval_exact(&self, t: f64) -> Dofs {
+        let k = self.exact(t);
+        self.ramped(
+            t,
+            Dofs {
+                q: k.q,
+                qd: k.qd,
+                qdd: k.qdd,
+            },
+        )
+    }
+
+    /// The unramped sum over the components at `t` and its first three derivatives.
+    fn exact(&self, t: f64) -> Knot {
+        let mut d = Knot::default();
         for term in &self.terms {
             let (sn, cs) = (term.w * t).sin_cos();
             let w = term.w;
+            let w2 = w * w;
             for k in 0..6 {
                 // cos(th0 - p - w t) = c cos(w t) + s sin(w t) with (c, s) from th0 - p.
                 let x = term.c[k] * cs + term.s[k] * sn;
+                let v = w * (term.s[k] * cs - term.c[k] * sn);
                 d.q[k] += x;
-                d.qd[k] += w * (term.s[k] * cs - term.c[k] * sn);
-                d.qdd[k] -= w * w * x;
+                d.qd[k] += v;
+                d.qdd[k] -= w2 * x;
+                d.qddd[k] -= w2 * v;
             }
         }
+        d
+    }
+
+    /// Knot `k` (at `k dt_b`), from the cache or evaluated.
+    fn knot(&self, k: i64) -> Knot {
+        let lock = || self.knots.slots.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, v)) = lock().iter().find(|(i, _)| *i == k) {
+            return *v;
+        }
+        // Evaluated outside the lock: other threads go on meanwhile.
+        let v = self.exact(k as f64 * self.interval);
+        let mut slots = lock();
+        if slots.len() >= KNOT_CACHE_LEN {
+            // The knot furthest from this one goes.
+            let far = (0..slots.len())
+                .max_by_key(|&i| (slots[i].0 - k).unsigned_abs())
+                .unwrap_or(0);
+            slots.swap_remove(far);
+        }
+        slots.push((k, v));
+        v
+    }
+
+    /// The unramped motion at `t` by cubic Hermite interpolation between the knots
+    /// around it.
+    fn interpolated(&self, t: f64) -> Dofs {
+        let dt = self.interval;
+        let k = (t / dt).floor() as i64;
+        let (a, b) = (self.knot(k), self.knot(k + 1));
+        let w = hermite_weights(t / dt - k as f64, dt);
+        let h = |v0: &[f64; 6], d0: &[f64; 6], v1: &[f64; 6], d1: &[f64; 6]| {
+            std::array::from_fn(|i| w[0] * v0[i] + w[1] * d0[i] + w[2] * v1[i] + w[3] * d1[i])
+        };
+        Dofs {
+            q: h(&a.q, &a.qd, &b.q, &b.qd),
+            qd: h(&a.qd, &a.qdd, &b.qd, &b.qdd),
+            qdd: h(&a.qdd, &a.qddd, &b.qdd, &b.qddd),
+        }
+    }
+
+    /// `d` with the ramp applied at `t` (unchanged past the ramp).
+    fn ramped(&self, t: f64, mut d: Dofs) -> Dofs {
         if self.ramp > 0.0 && t < self.ramp {
             // r = (1 - cos(pi t / T)) / 2 and its derivatives, applied by the product rule.
             let wr = PI / self.ramp;
@@ -204,6 +358,27 @@ impl RaoMotion {
         }
         d
     }
+}
+
+/// The knot spacing for `tolerance`: the interpolation rule of the wave cache on each
+/// degree of freedom's response spectrum (components of amplitude `A_j |H_i(w_j)|`),
+/// the smallest over the six; infinite when nothing moves.
+fn knot_interval(terms: &[Term], tolerance: f64) -> f64 {
+    (0..6)
+        .map(|i| {
+            let spectrum: Vec<WaveComponent> = terms
+                .iter()
+                .map(|t| WaveComponent {
+                    amplitude: t.c[i].hypot(t.s[i]),
+                    omega: t.w,
+                    k: 0.0,
+                    direction: 0.0,
+                    phase: 0.0,
+                })
+                .collect();
+            hermite_rule_interval(&spectrum, tolerance)
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 #[cfg(test)]
@@ -283,10 +458,53 @@ mod tests {
         // The crest passes (x, y) when theta = 0 (mod 2 pi).
         let t_crest = wc.theta(x, y, 0.0) / wc.omega;
         let t_peak = t_crest - 30f64.to_radians() / wc.omega;
-        let d = m.eval(t_peak);
+        let d = m.eval_exact(t_peak);
         assert!((d.q[2] - 1.2).abs() < 1e-12, "{}", d.q[2]);
         assert!(d.qd[2].abs() < 1e-12);
         assert!((d.qdd[2] + 1.2 * 0.36).abs() < 1e-12);
+        // Interpolated between knots: within the tolerance of the amplitude (one
+        // component: the error of the acceleration is at most `(w dt_b)^4 / 384` of
+        // its amplitude, the rule's tolerance, and so are the others').
+        let d = m.eval(t_peak);
+        let tol = RAO_KNOT_TOLERANCE * 1.2;
+        assert!((d.q[2] - 1.2).abs() < tol, "{}", d.q[2]);
+        assert!(d.qd[2].abs() < tol * 0.6);
+        assert!((d.qdd[2] + 1.2 * 0.36).abs() < tol * 0.36);
+        // One component: `w dt_b = (384 eps)^(1/4)`.
+        let wdt = wc.omega * m.knot_interval();
+        assert!((wdt - (384.0 * RAO_KNOT_TOLERANCE).powf(0.25)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn knots_are_exact_and_the_interpolant_is_a_function_of_t_alone() {
+        let mut v = [(0.0, 0.0); 6];
+        v[0] = (0.5, 0.3);
+        v[5] = (0.01, -1.0);
+        let rao = RaoTable::new(vec![0.4, 1.2], vec![0.0], vec![v, v]);
+        let wave = |a: f64, w: f64, p: f64| WaveComponent {
+            amplitude: a,
+            omega: w,
+            k: w * w / 9.81,
+            direction: 0.0,
+            phase: p,
+        };
+        let waves = [
+            wave(1.0, 0.5, 0.1),
+            wave(0.3, 0.9, 2.0),
+            wave(0.1, 1.1, 4.0),
+        ];
+        let m = RaoMotion::new(&rao, &waves, 5.0, 1.0, 0.0, 0.0);
+        let dt = m.knot_interval();
+        assert!(dt.is_finite() && dt > 0.0);
+        // At a knot, the exact sum.
+        assert_eq!(m.eval(7.0 * dt), m.eval_exact(7.0 * dt));
+        // Asked in another order, or by a clone with an empty cache: the same bits.
+        let ts: Vec<f64> = (0..200).map(|i| 0.37 * i as f64).collect();
+        let fwd: Vec<Dofs> = ts.iter().map(|&t| m.eval(t)).collect();
+        let other = m.clone();
+        for (i, &t) in ts.iter().enumerate().rev() {
+            assert_eq!(other.eval(t), fwd[i]);
+        }
     }
 
     #[test]
@@ -304,10 +522,23 @@ mod tests {
         let m = RaoMotion::new(&rao, &[wc], 0.0, 0.0, 0.0, 10.0);
         assert_eq!(m.eval(0.0).q[4], 0.0);
         let h = 1e-4;
+        // The exact sum, ramped: the ramp's product rule.
         for &t in &[2.0, 7.5, 12.0] {
-            let (a, b, c) = (m.eval(t - h), m.eval(t), m.eval(t + h));
+            let (a, b, c) = (m.eval_exact(t - h), m.eval_exact(t), m.eval_exact(t + h));
             assert!(((c.q[4] - a.q[4]) / (2.0 * h) - b.qd[4]).abs() < 1e-9);
             assert!(((c.qd[4] - a.qd[4]) / (2.0 * h) - b.qdd[4]).abs() < 1e-9);
         }
+        // Between knots the same ramp on the interpolated motion: within the knots'
+        // tolerance of the amplitude (0.04 rad; rates and accelerations times w, w^2,
+        // plus the ramp's rates on the smaller ones).
+        let tol = RAO_KNOT_TOLERANCE * 0.04 * 2.0;
+        for i in 0..400 {
+            let t = 0.0371 * i as f64;
+            let (e, g) = (m.eval_exact(t), m.eval(t));
+            assert!((e.q[4] - g.q[4]).abs() < tol, "t {t}");
+            assert!((e.qd[4] - g.qd[4]).abs() < tol * 0.8, "t {t}");
+            assert!((e.qdd[4] - g.qdd[4]).abs() < tol * 0.64, "t {t}");
+        }
+        assert_eq!(m.eval(0.0).q[4], 0.0);
     }
 }

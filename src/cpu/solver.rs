@@ -4,6 +4,7 @@
 //! energies. Checkpoints are in [`checkpoint`].
 
 mod checkpoint;
+mod waves;
 
 pub use checkpoint::CpuCheckpoint;
 
@@ -22,7 +23,6 @@ use crate::math::V3;
 use crate::model::{Block, Layout, ModelDef, Route, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::{Coefs, ElementLoads, SeabedCoefs};
-use crate::sea::cache::{evaluate_nodes, CACHE_STRIDE};
 use crate::sea::kinematics::WaveField;
 use crate::sea::{SeaSet, SeaState};
 use crate::step::{Evaluation, StepFailure, WinchStatus};
@@ -40,9 +40,10 @@ pub struct CpuSolver {
     t: f64,
     /// Number of steps taken.
     steps: u64,
-    /// Node positions, m.
+    /// Node positions, m. (In a sea, writing them mid-run leaves the kinematics
+    /// cache with values along the old paths: see [`Self::restart_waves`].)
     pub r: Vec<V>,
-    /// Node velocities, m/s.
+    /// Node velocities, m/s (as [`Self::r`]).
     pub v: Vec<V>,
     coefs: Vec<Coefs<f64>>,
     elem_in_cable: Vec<u32>,
@@ -211,24 +212,13 @@ impl CpuSolver {
                 .blocks
                 .iter()
                 .map(|b| {
-                    let sea = &seas.seas[self.block_sea(seas, b.node_start as usize)];
-                    BlockWaves::new(sea, (b.node_end - b.node_start) as usize, self.exact_waves)
+                    let q = self.block_sea(seas, b.node_start as usize);
+                    let plan = seas.plan(q, self.opts.dt);
+                    let n = (b.node_end - b.node_start) as usize;
+                    BlockWaves::new(&seas.seas[q], n, self.exact_waves, &plan)
                 })
                 .collect(),
         };
-    }
-
-    /// The exact water values of the block of nodes `n0..n1` at the current time
-    /// (empty in still water), for evaluations at output times.
-    fn water_now(&self, n0: usize, n1: usize) -> Water {
-        let Some(seas) = &self.seas else {
-            return Water::new();
-        };
-        let field = &self.wave_fields[self.block_sea(seas, n0)];
-        let pos: Vec<f64> = self.r[n0..n1].iter().flat_map(|r| r.to_f64()).collect();
-        let mut out = vec![0.0; (n1 - n0) * CACHE_STRIDE];
-        evaluate_nodes(field, &pos, self.t, &mut out);
-        out
     }
 
     /// Takes `layout` with state `r`, `v` (packed order) and rebuilds what depends on it.
@@ -644,8 +634,13 @@ impl CpuSolver {
         }
     }
 
-    /// Evaluates loads, accelerations and reactions at the current state.
-    pub fn evaluate(&self) -> Result<Evaluation, Error> {
+    /// Evaluates loads, accelerations and reactions at the current state, with the
+    /// water the next step starts from: each block's kinematics cache interpolated at
+    /// the current time (refreshed first where that step would refresh it), or the
+    /// exact sum in exact mode. So the loads reported are those the solver integrates,
+    /// within the cache's tolerance of the exact sum, and outputs do not change the run.
+    pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
+        self.cover_waves_now();
         let ctx = self.ctx();
         let lay = &self.layout;
         let mut ev = Evaluation {
@@ -661,7 +656,7 @@ impl CpuSolver {
             let (n0, n1) = (b.node_start as usize, b.node_end as usize);
             let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
             let topo = GeneralTopo { lay, n0, e0 };
-            let w = self.water_now(n0, n1);
+            let w = self.water_now(bi, n0, n1);
             element_pass(
                 &ctx,
                 &topo,
@@ -721,7 +716,7 @@ impl CpuSolver {
                 ..ctx
             };
             let topo = GeneralTopo { lay, n0, e0 };
-            let w = self.water_now(n0, n1);
+            let w = self.water_exact_now(n0, n1);
             let _ = element_pass(
                 &ctx,
                 &topo,

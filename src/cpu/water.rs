@@ -15,6 +15,7 @@
 //! linear in the cached values and rates, so this is the same value up to round-off.
 
 use crate::sea::cache::{evaluate_nodes, wave_cache_hermite, WaveCache, CACHE_STRIDE};
+use crate::sea::schedule::{RefreshClock, RefreshPlan};
 use crate::sea::SeaState;
 
 /// Per-node water values: `eta, u (3), a (3)` ([`CACHE_STRIDE`] per node), m, m/s,
@@ -48,10 +49,10 @@ struct ChainColumns {
 }
 
 impl BlockWaves {
-    /// Waves of `sea` for a block of `n` nodes.
-    pub(crate) fn new(sea: &SeaState, n: usize, exact: bool) -> Self {
+    /// Waves of `sea` for a block of `n` nodes, refreshed on the grid of `plan`.
+    pub(crate) fn new(sea: &SeaState, n: usize, exact: bool, plan: &RefreshPlan) -> Self {
         Self {
-            cache: WaveCache::new(sea, n),
+            cache: WaveCache::with_clock(sea, n, RefreshClock::on_grid(plan)),
             exact,
             pos: vec![0.0; 3 * n],
             vel: vec![0.0; 3 * n],
@@ -68,24 +69,48 @@ impl BlockWaves {
         state: impl Fn(usize) -> ([f64; 3], [f64; 3]),
         out: &mut Water,
     ) {
-        out.resize(n * CACHE_STRIDE, 0.0);
-        let c = &self.cache;
-        let covered = c.t1 > c.t0 && t >= c.t0 && t <= c.t1;
-        if self.exact || !covered {
-            for i in 0..n {
-                let (r, v) = state(i);
-                self.pos[3 * i..3 * i + 3].copy_from_slice(&r);
-                self.vel[3 * i..3 * i + 3].copy_from_slice(&v);
-            }
-        }
         if self.exact {
+            self.read_state(n, &state);
+            out.resize(n * CACHE_STRIDE, 0.0);
             evaluate_nodes(&self.cache.field, &self.pos, t, out);
             return;
         }
-        if !covered {
+        self.cover(t, n, state);
+        self.interpolate(t, n, out);
+    }
+
+    /// Makes the cache cover time `t`: refreshes it from the nodes' state (`state` as
+    /// in [`Self::fill`]) when `t` is outside it (before the first refresh, past its
+    /// newer time, or before its older one), as every stage does before it
+    /// interpolates. An output-time evaluation calls it too, with the state the next
+    /// step starts from: it refreshes exactly where and how that step would (which
+    /// then finds the cache covering its time), so the run is the same with or without
+    /// outputs.
+    pub(crate) fn cover(
+        &mut self,
+        t: f64,
+        n: usize,
+        state: impl Fn(usize) -> ([f64; 3], [f64; 3]),
+    ) {
+        if !self.cache.clock.covers(t) {
+            self.read_state(n, &state);
             self.cache.refresh_if_due(t, &self.pos, &self.vel);
         }
+    }
+
+    /// The interpolated water values of the `n` nodes at `t` into `out` (the cache
+    /// must cover `t`: [`Self::cover`]).
+    pub(crate) fn interpolate(&self, t: f64, n: usize, out: &mut Water) {
+        out.resize(n * CACHE_STRIDE, 0.0);
         self.cache.interpolate(t, out);
+    }
+
+    fn read_state(&mut self, n: usize, state: &impl Fn(usize) -> ([f64; 3], [f64; 3])) {
+        for i in 0..n {
+            let (r, v) = state(i);
+            self.pos[3 * i..3 * i + 3].copy_from_slice(&r);
+            self.vel[3 * i..3 * i + 3].copy_from_slice(&v);
+        }
     }
 
     /// Whether the sum is evaluated at every stage (no interpolation).
@@ -108,19 +133,12 @@ impl BlockWaves {
         aw: &mut [Vec<f64>; 3],
     ) {
         debug_assert!(!self.exact);
+        self.cover(t, n, state);
         let c = &self.cache;
-        if !(c.t1 > c.t0 && t >= c.t0 && t <= c.t1) {
-            for i in 0..n {
-                let (r, v) = state(i);
-                self.pos[3 * i..3 * i + 3].copy_from_slice(&r);
-                self.vel[3 * i..3 * i + 3].copy_from_slice(&v);
-            }
-            self.cache.refresh_if_due(t, &self.pos, &self.vel);
-        }
-        let c = &self.cache;
-        if self.cols.times != Some((c.t0, c.t1)) {
+        let times = (c.t0(), c.t1());
+        if self.cols.times != Some(times) {
             self.cols.form([&c.v0, &c.d0, &c.v1, &c.d1], n);
-            self.cols.times = Some((c.t0, c.t1));
+            self.cols.times = Some(times);
         }
         let w = c.weights(t);
         let ne = n - 1;

@@ -563,7 +563,7 @@ gpu_struct! {
     /// Hermite weights, and what a refresh at this step evaluates. Times are
     /// relative to the components' reference time `t_ref`, formed in f64 on the host.
     WaveStep {
-        /// Cache slot of the values at `t0` (0 or 1; 2 for an output-time evaluation).
+        /// Cache slot of the values at `t0` (0 or 1).
         slot0: u32,
         /// Cache slot of the values at `t1`.
         slot1: u32,
@@ -579,7 +579,8 @@ gpu_struct! {
         /// run are back to back, `sea::set`).
         first: u32,
         /// 1 when the refresh records each node's velocity for the next refresh's
-        /// acceleration estimate (0: an output-time evaluation).
+        /// acceleration estimate (every refresh does since an output-time evaluation
+        /// refreshes as a step would; kept as a switch of the shader's).
         track: u32,
         /// Hermite weight `h00(s)` of the step's time, `s = (t - t0) / (t1 - t0)`
         /// (`sea::cache::hermite_weights`): of the values at `t0`.

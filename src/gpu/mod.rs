@@ -76,12 +76,22 @@
 //!
 //! Modules: [`context`] (adapter and device), [`layout`] (Rust twins of the WGSL
 //! structs), [`shaders`] (WGSL assembly per precision and fused workgroup size),
-//! [`solver`] (buffers, pipelines, kernel choice, stepping and read-back).
+//! [`solver`] (the public [`GpuSolver`] and its API). Behind it, private modules of
+//! one concept each: `kernel` (kernel choice and the dispatch constants), `host` (the
+//! layout's host-side data and the route and body rows formed in f64),
+//! `wave_schedule` (the waves' cache schedules and where the fused dispatches are
+//! cut), `engine` (the device side at one precision: stepping, read-back, evaluation)
+//! and `engine::install` (pipelines, buffers, bind groups and per-submission writes).
+//! Their public items are re-exported from [`solver`] at the paths they always had.
 
 pub mod context;
+mod engine;
+mod host;
+mod kernel;
 pub mod layout;
 pub mod shaders;
 pub mod solver;
+mod wave_schedule;
 
 pub use crate::options::Precision;
 pub use context::GpuContext;

@@ -20,10 +20,13 @@
 //! each component by its share of the water acceleration (the most demanding value,
 //! `A w^2`) in the root-mean-square sense, the interval for a relative tolerance `eps`
 //! at a fixed point is `(384^2 eps^2 m4 / m12)^(1/8)` with the discrete moments
-//! `m_n = sum A^2 w^n / 2` ([`hermite_rule_interval`]). The cache uses
-//! [`HERMITE_INTERVAL_FACTOR`] of it (see there why). The rule does not see the
-//! nodes' motion: the error of the predicted path adds to it (third order in the
-//! interval with the acceleration estimate; the tests below measure both).
+//! `m_n = sum A^2 w^n / 2` ([`hermite_rule_interval`]). At the mean level the cache
+//! uses [`HERMITE_INTERVAL_FACTOR`] of it (see there why); the solvers refresh by the
+//! plan of [`super::schedule`] (the rule with the amplitudes decayed to the depth the
+//! nodes stay at, a larger factor for lines well under the troughs, rounded down to a
+//! common grid of refresh times). The rule does not see the nodes' motion: the error
+//! of the predicted path adds to it (third order in the interval with the
+//! acceleration estimate; the tests below measure both).
 //!
 //! Layout: four arrays of [`CACHE_STRIDE`] values per node, `eta, u_x, u_y, u_z, a_x,
 //! a_y, a_z` (m, m/s, m/s^2) at `t0`, their rates at `t0` (m/s, m/s^2, m/s^3), values
@@ -31,6 +34,7 @@
 //! node.
 
 use super::kinematics::{Kinematics, KinematicsScratch, WaveField};
+use super::schedule::RefreshClock;
 use super::{SeaState, WaveComponent};
 use rayon::prelude::*;
 
@@ -44,7 +48,8 @@ pub const CACHE_STRIDE: usize = 7;
 /// 1e-3, ten times the kinematics' tolerance, and by 1e-3 at 0.32 of it; the error
 /// falls as the interval squared, not to the fourth power, and its cause is not found
 /// (not the path prediction: predicting with or without the nodes' velocity gave the
-/// same force). Until it is, the cache refreshes at this fraction of the rule.
+/// same force). Until it is, the cache refreshes at this fraction of the rule when its
+/// nodes may come near the surface (`super::schedule::SUBMERGED_FACTOR` otherwise).
 pub const HERMITE_INTERVAL_FACTOR: f64 = 0.3;
 
 /// The refresh interval, s: [`HERMITE_INTERVAL_FACTOR`] times the interval that keeps
@@ -159,17 +164,15 @@ pub fn evaluate_nodes_rates(
 /// The rolling cache of one run: values and rates at `t0` and `t1` for every node.
 ///
 /// Four arrays of [`CACHE_STRIDE`] per node (values at `t0`, rates at `t0`, values at
-/// `t1`, rates at `t1`), so that interpolation reads four aligned streams.
+/// `t1`, rates at `t1`), so that interpolation reads four aligned streams. Its two
+/// times and when it refreshes are its [`RefreshClock`] (`sea::schedule`), which the
+/// GPU path's schedules share.
 #[derive(Clone, Debug)]
 pub struct WaveCache {
     /// The sea, packed for evaluation.
     pub field: WaveField,
-    /// Refresh interval `dt_r`, s.
-    pub interval: f64,
-    /// Time of the older values, s.
-    pub t0: f64,
-    /// Time of the newer values, s.
-    pub t1: f64,
+    /// The cache's times `t0, t1` and refresh interval.
+    pub clock: RefreshClock,
     /// Values at `t0`, [`CACHE_STRIDE`] per node.
     pub v0: Vec<f64>,
     /// Rates at `t0` along the node's path, [`CACHE_STRIDE`] per node.
@@ -178,58 +181,66 @@ pub struct WaveCache {
     pub v1: Vec<f64>,
     /// Rates at `t1` along the node's predicted path, [`CACHE_STRIDE`] per node.
     pub d1: Vec<f64>,
-    started: bool,
     predicted: Vec<f64>,
     predicted_vel: Vec<f64>,
-    /// The nodes' velocities at the previous refresh and its time: the acceleration
-    /// of the path prediction is the velocity change since then.
+    /// The nodes' velocities at the previous refresh: the acceleration of the path
+    /// prediction is the velocity change since then.
     last_vel: Vec<f64>,
-    last_t: f64,
 }
 
 impl WaveCache {
     /// A cache for `n_nodes` nodes in `sea`, refreshed at the interval of
-    /// [`refresh_interval`] for the sea's `cache_tolerance`.
+    /// [`refresh_interval`] for the sea's `cache_tolerance`, from wherever it starts
+    /// (the solvers use [`Self::with_clock`] and a [`crate::sea::schedule::refresh_plan`]).
     pub fn new(sea: &SeaState, n_nodes: usize) -> Self {
         let interval = refresh_interval(&sea.components, sea.cache_tolerance);
         Self::with_interval(sea, n_nodes, interval)
     }
 
-    /// A cache with a given refresh interval, s.
+    /// A cache with a given refresh interval, s, from wherever it starts.
     pub fn with_interval(sea: &SeaState, n_nodes: usize, interval: f64) -> Self {
-        assert!(interval > 0.0);
+        Self::with_clock(sea, n_nodes, RefreshClock::free(interval))
+    }
+
+    /// A cache refreshed as `clock` says.
+    pub fn with_clock(sea: &SeaState, n_nodes: usize, clock: RefreshClock) -> Self {
         let zeros = || vec![0.0; n_nodes * CACHE_STRIDE];
         Self {
             field: WaveField::new(sea),
-            interval,
-            t0: 0.0,
-            t1: 0.0,
+            clock,
             v0: zeros(),
             d0: zeros(),
             v1: zeros(),
             d1: zeros(),
-            started: false,
             predicted: vec![0.0; n_nodes * 3],
             predicted_vel: vec![0.0; n_nodes * 3],
             last_vel: vec![0.0; n_nodes * 3],
-            last_t: f64::NAN,
         }
+    }
+
+    /// Time of the older values, s.
+    pub fn t0(&self) -> f64 {
+        self.clock.t0
+    }
+
+    /// Time of the newer values, s.
+    pub fn t1(&self) -> f64 {
+        self.clock.t1
     }
 
     /// Makes the cache cover time `t`, given the nodes' positions and velocities at
     /// `t` (three per node). Returns whether it refreshed. The first call (or a `t`
     /// before `t0`, or more than one interval past `t1`) evaluates values and rates at
-    /// `t` and at `t + dt_r`; otherwise, once `t` passes `t1`, the `t1` values and rates
-    /// become the `t0` ones (the interpolant stays continuous with a continuous
-    /// derivative: no jump in the loads at a refresh) and new `t1 = t0 + dt_r` ones are
-    /// evaluated at the predicted positions `x + v (t1 - t)`, with velocity `v`.
+    /// `t` and at `t1` ([`RefreshClock::tick`]); otherwise, once `t` passes `t1`, the
+    /// `t1` values and rates become the `t0` ones (the interpolant stays continuous
+    /// with a continuous derivative: no jump in the loads at a refresh) and new `t1`
+    /// ones are evaluated at the predicted positions `x + v (t1 - t) + a (t1 - t)^2 /
+    /// 2`, with velocity `v + a (t1 - t)`.
     pub fn refresh_if_due(&mut self, t: f64, positions: &[f64], velocities: &[f64]) -> bool {
-        if self.started && t >= self.t0 && t <= self.t1 {
+        let Some(tick) = self.clock.tick(t) else {
             return false;
-        }
-        let restart = !self.started || t < self.t0 || t > self.t1 + self.interval;
-        if !self.started || t < self.t0 || t > self.t1 + self.interval {
-            self.t0 = t;
+        };
+        if tick.restart {
             evaluate_nodes_rates(
                 &self.field,
                 positions,
@@ -238,21 +249,13 @@ impl WaveCache {
                 &mut self.v0,
                 &mut self.d0,
             );
-            self.started = true;
         } else {
             std::mem::swap(&mut self.v0, &mut self.v1);
             std::mem::swap(&mut self.d0, &mut self.d1);
-            self.t0 = self.t1;
         }
-        self.t1 = self.t0 + self.interval;
-        let ahead = self.t1 - t;
+        let ahead = tick.ahead;
         // The acceleration since the previous refresh (none on a restart).
-        let span = t - self.last_t;
-        let rate = if !restart && span > 0.0 {
-            1.0 / span
-        } else {
-            0.0
-        };
+        let rate = tick.acc_rate;
         for i in 0..positions.len() {
             let (x, v) = (positions[i], velocities[i]);
             let acc = (v - self.last_vel[i]) * rate;
@@ -260,12 +263,11 @@ impl WaveCache {
             self.predicted_vel[i] = v + acc * ahead;
         }
         self.last_vel.copy_from_slice(velocities);
-        self.last_t = t;
         evaluate_nodes_rates(
             &self.field,
             &self.predicted,
             &self.predicted_vel,
-            self.t1,
+            self.clock.t1,
             &mut self.v1,
             &mut self.d1,
         );
@@ -275,8 +277,9 @@ impl WaveCache {
     /// The Hermite weights of time `t` ([`hermite_weights`]; `t` clamped to
     /// `[t0, t1]`).
     pub fn weights(&self, t: f64) -> [f64; 4] {
-        let delta = self.t1 - self.t0;
-        hermite_weights(((t - self.t0) / delta).clamp(0.0, 1.0), delta)
+        let (t0, t1) = (self.clock.t0, self.clock.t1);
+        let delta = t1 - t0;
+        hermite_weights(((t - t0) / delta).clamp(0.0, 1.0), delta)
     }
 
     /// Every node's values at `t` (within `[t0, t1]`) into `out`.
@@ -467,7 +470,7 @@ mod tests {
         cache.refresh_if_due(1.0, &p, &[0.0; 3]);
         cache.refresh_if_due(1.0 + 1.5 * dt_r, &p, &[0.0; 3]);
         let exact = WaveField::new(&sea);
-        for &t in &[cache.t0, cache.t1] {
+        for &t in &[cache.t0(), cache.t1()] {
             assert_eq!(cache.node(0, t), exact.kinematics(p, t));
         }
         assert!(hermite_rule_interval(&[], 1e-3).is_infinite());

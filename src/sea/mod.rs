@@ -13,7 +13,10 @@
 //! has no components, [`SeaState::is_still`]). A stepper that applies waves:
 //!
 //! 1. builds one [`cache::WaveCache`] for the run: `WaveCache::new(&sea, n_nodes)`
-//!    (refresh interval from [`cache::refresh_interval`] and `sea.cache_tolerance`);
+//!    (refresh interval from [`cache::refresh_interval`] and `sea.cache_tolerance`),
+//!    or, as the solvers do, `WaveCache::with_clock(&sea, n_nodes,
+//!    RefreshClock::on_grid(&plan))` with the [`schedule::refresh_plan`] of the sea
+//!    for the height its nodes reach and the step (the common refresh grid);
 //! 2. before each force evaluation at time `t` (every stage of a multi-stage scheme;
 //!    times must not go backwards except to restart), calls
 //!    `cache.refresh_if_due(t, &positions, &velocities)` with the nodes' positions and
@@ -46,6 +49,7 @@ pub mod dispersion;
 pub mod irregular;
 pub mod kinematics;
 pub mod poly;
+pub mod schedule;
 pub mod set;
 pub mod spectrum;
 

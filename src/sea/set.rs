@@ -6,8 +6,10 @@
 //! path gives each block the kinematics cache of its cable's sea, and the GPU path
 //! stores the seas' components back to back and gives each block the rows of its
 //! sea. Each sea keeps its own refresh schedule (its own interval, from its own
-//! components and tolerance), so a cable sees exactly the waves it sees in a run of
-//! its member alone, whatever else is packed with it.
+//! components, tolerance and reach, on the fixed ladder of the common refresh grid:
+//! `sea::schedule`), so a cable sees exactly the waves it sees in a run of its member
+//! alone, whatever else is packed with it (the reach of a member's sea comes from its
+//! own nodes and ends).
 
 use super::SeaState;
 
@@ -19,6 +21,10 @@ pub struct SeaSet {
     /// Per cable (layout order): its index into `seas`; empty when every cable is in
     /// `seas[0]`.
     pub cable_sea: Vec<u32>,
+    /// Per sea: the highest height its nodes reach over the run, m, for the cache's
+    /// refresh interval (`sea::schedule::refresh_plan`; set by `sim::reach`); empty
+    /// when unknown (infinite: the interval for nodes at the surface).
+    pub reach: Vec<f64>,
 }
 
 impl SeaSet {
@@ -27,7 +33,19 @@ impl SeaSet {
         Self {
             seas: vec![sea.clone()],
             cable_sea: Vec::new(),
+            reach: Vec::new(),
         }
+    }
+
+    /// The highest height sea `q`'s nodes reach, m (infinite when unknown).
+    pub fn reach_of(&self, q: usize) -> f64 {
+        self.reach.get(q).copied().unwrap_or(f64::INFINITY)
+    }
+
+    /// The refresh plan of sea `q` stepping by `dt` (`sea::schedule::refresh_plan` at
+    /// its reach): what both paths refresh by.
+    pub fn plan(&self, q: usize, dt: f64) -> super::schedule::RefreshPlan {
+        super::schedule::refresh_plan(&self.seas[q], self.reach_of(q), dt)
     }
 
     /// The sea index of cable `c`.

@@ -22,6 +22,7 @@ use crate::output::{
     end_forces, BodyState, CableState, CableSummary, EndForces, PointState, WinchSummary,
 };
 use crate::scenario::Scenario;
+use crate::sea::SeaSet;
 use crate::step::{Evaluation, WinchStatus};
 
 /// The backend a lumped-mass run uses.
@@ -131,13 +132,15 @@ pub enum LumpedStepper {
 }
 
 impl LumpedStepper {
-    /// Builds the chosen solver at rest at `pos` (packed order of `lay`).
+    /// Builds the chosen solver at rest at `pos` (packed order of `lay`), in the seas
+    /// `seas` (`Scenario::sea_set`, with the reach of `sim::reach`).
     pub fn new(
         choice: BackendChoice,
         sc: &Scenario,
         lay: Layout,
         pos: &[[f64; 3]],
         opts: SolverOptions,
+        seas: &SeaSet,
     ) -> Result<Self, Error> {
         let mut s = match choice {
             BackendChoice::Cpu if !sc.winches.is_empty() => LumpedStepper::Cpu(
@@ -152,8 +155,8 @@ impl LumpedStepper {
             }
         };
         match &mut s {
-            LumpedStepper::Cpu(c) => c.set_seas(&sc.sea_set(), false),
-            LumpedStepper::Gpu(g) => g.set_seas(&sc.sea_set())?,
+            LumpedStepper::Cpu(c) => c.set_seas(seas, false),
+            LumpedStepper::Gpu(g) => g.set_seas(seas)?,
         }
         if let LumpedStepper::Gpu(g) = &s {
             match g.fused_unavailable() {

@@ -22,6 +22,7 @@ pub mod backend;
 pub mod budget;
 pub mod pack;
 pub mod plan;
+pub mod reach;
 
 pub use crate::initial::prepare;
 pub use crate::options::Overrides;
@@ -36,6 +37,7 @@ use crate::scenario::{Backend, DtSpec, Scenario};
 use ancf::AncfFleet;
 use backend::LumpedStepper;
 use plan::output_time;
+use reach::ReachWatch;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -121,6 +123,8 @@ pub struct Simulation {
     /// The `[[points]]` that cables attach to: `(name, cable, at its start)`, a cable
     /// end on each (cable ends keep their place when a winch remeshes).
     points: Vec<(String, usize, bool)>,
+    /// The check that no node rises above its sea's reach (lumped mass in waves).
+    reach_watch: Option<ReachWatch>,
 }
 
 impl Simulation {
@@ -179,6 +183,7 @@ impl Simulation {
             CableModel::Ancf => None,
         };
         let relax_residual = crate::initial::apply(&sc, &lay, &mut pos)?;
+        let mut reach_watch = None;
         let engine = match model {
             CableModel::Ancf => {
                 budget::check_output(&sc, duration)?;
@@ -204,13 +209,20 @@ impl Simulation {
                 );
                 opts.dt = plan.dt;
                 let choice = choose_backend(backend, precision, &lay, &opts, &sc)?;
-                let stepper = LumpedStepper::new(choice, &sc, lay, &pos, opts)?;
+                let mut seas = sc.sea_set();
+                if !seas.is_still() {
+                    seas.reach = reach::sea_reach(&lay, &pos, &seas, duration);
+                    log_refresh_plans(&seas, opts.dt);
+                    reach_watch = ReachWatch::new(&seas, lay.cables.len());
+                }
+                let stepper = LumpedStepper::new(choice, &sc, lay, &pos, opts, &seas)?;
                 Engine::Lumped(Box::new(stepper), plan)
             }
         };
         let points = point_ends(&sc);
         Ok(Self {
             points,
+            reach_watch,
             scenario: sc,
             engine,
             scheme,
@@ -348,13 +360,17 @@ impl Simulation {
             // The ANCF backend follows body ends but does not report body or point loads.
             Engine::Ancf(f) => (f.cables()?, Vec::new(), Vec::new()),
         };
-        Ok(Snapshot {
+        let snap = Snapshot {
             time,
             steps,
             cables,
             bodies,
             points,
-        })
+        };
+        if let Some(w) = &mut self.reach_watch {
+            w.check(&snap);
+        }
+        Ok(snap)
     }
 
     /// Runs on to the end of the scenario's duration, handing the sink a snapshot now
@@ -656,6 +672,29 @@ fn rewind_to_failure(s: &mut LumpedStepper, saved: backend::Checkpoint, e: &Erro
 
 /// Where each `[[points]]` entry is found in the layout: `(name, cable, at its start)`,
 /// the first cable end attached to it; points no cable attaches to are left out.
+/// Logs each sea's refresh plan (`sea::schedule`): the reach, the trough, the factor
+/// and the interval on the grid.
+fn log_refresh_plans(seas: &crate::sea::SeaSet, dt: f64) {
+    for (q, sea) in seas.seas.iter().enumerate() {
+        if sea.is_still() {
+            continue;
+        }
+        let p = seas.plan(q, dt);
+        log::info!(
+            "waves, sea {q}: nodes reach z = {:.2} m, lowest trough assumed {:.2} m, \
+             evaluation depth {:.2} m; refresh every {} steps ({:.4} s: {} x the rule at \
+             that depth, {:.4} s, rounded down to dt 2^m or 3 dt 2^m)",
+            p.reach,
+            p.trough,
+            p.eval_depth,
+            p.steps,
+            p.interval,
+            p.factor,
+            p.unrounded
+        );
+    }
+}
+
 fn point_ends(sc: &Scenario) -> Vec<(String, usize, bool)> {
     sc.points
         .iter()

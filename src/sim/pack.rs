@@ -157,7 +157,11 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
         winches: Vec::new(),
         ancf: first.ancf.clone(),
         sea: seas[0].clone(),
-        member_seas: Some(SeaSet { seas, cable_sea }),
+        member_seas: Some(SeaSet {
+            seas,
+            cable_sea,
+            reach: Vec::new(),
+        }),
         points,
         vtk: false,
         // Each member passed its own budget; the packed run is their sum.

@@ -353,7 +353,7 @@ ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
 fn converted_static_line_matches_the_analytic_catenary() {
     let (_, sc) = convert(STATIC);
     let (lay, pos, _) = prepare(&sc).unwrap();
-    let s = CpuSolver::new(lay.clone(), &pos, SolverOptions::default());
+    let mut s = CpuSolver::new(lay.clone(), &pos, SolverOptions::default());
     let ev = s.evaluate().unwrap();
     let f = end_forces(&lay, &ev, &lay.cables[0]).end;
     let lt = &sc.model.line_types[0];

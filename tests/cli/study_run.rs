@@ -1,7 +1,8 @@
 //! `cablesim study run | merge` end to end on the example study: shards merged equal
 //! the one-machine run byte for byte, one thread equals two, an interrupted run keeps
 //! its finished members and `--resume` completes it to the same files, and bad shard
-//! and directory arguments are refused by name.
+//! and directory arguments are refused by name; the same for a short copy of the
+//! design-check study, whose RAO-driven platform moves by knots shared across threads.
 
 use crate::common::study_with_a_failing_member;
 use std::path::Path;
@@ -47,6 +48,70 @@ fn same_tables(a: &Path, b: &Path) {
             b.display()
         );
     }
+}
+
+/// The design-check study (`examples/study_design_check.toml`: an RAO-driven platform
+/// with eight lines, its motion interpolated between knots) cut to members of 4 s with
+/// a 2 s wave ramp (the platform in full motion for the last 2 s), two seeds per sea
+/// state, in `dir`; returns its path.
+fn short_design_study(dir: &Path) -> std::path::PathBuf {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let text = std::fs::read_to_string(base.join("study_design_check.toml")).unwrap();
+    let rao = base.join("spread_mooring_rao.csv");
+    let t = text
+        .replace("duration = 10800.0", "duration = 4.0")
+        .replace("transient = 300.0", "transient = 2.0")
+        .replace("ramp = 60.0", "ramp = 2.0")
+        .replace("seeds = 10\n", "seeds = 2\n")
+        .replace(
+            "rao_file = \"spread_mooring_rao.csv\"",
+            &format!("rao_file = {:?}", rao.to_str().unwrap()),
+        );
+    assert_eq!(t.matches("duration = 4.0").count(), 2);
+    assert!(t.contains("ramp = 2.0") && t.contains("seeds = 2\n"));
+    assert!(!t.contains("\"spread_mooring_rao.csv\""));
+    let out = dir.join("design.toml");
+    std::fs::write(&out, t).unwrap();
+    out
+}
+
+#[test]
+fn a_study_with_rao_vessels_gives_the_same_files_on_any_threads_and_shards() {
+    // The platform's motion is shared by its eight fairleads, whose cables step on
+    // several threads: it must not depend on which thread asked first.
+    let tmp = tempfile::tempdir().unwrap();
+    let study = short_design_study(tmp.path());
+    let study = study.to_str().unwrap();
+    let two = tmp.path().join("two");
+    run(2, &["study", "run", study, "-q"], &two);
+    let one = tmp.path().join("one");
+    run(1, &["study", "run", study, "-q"], &one);
+    same_tables(&two, &one);
+    let (s1, s2) = (tmp.path().join("s1"), tmp.path().join("s2"));
+    run(2, &["study", "run", study, "-q", "--shard", "1/2"], &s1);
+    run(1, &["study", "run", study, "-q", "--shard", "2/2"], &s2);
+    let merged = tmp.path().join("merged");
+    ok(cablesim(1, &["study", "merge"])
+        .arg(&s1)
+        .arg(&s2)
+        .arg("--out")
+        .arg(&merged)
+        .output()
+        .unwrap());
+    same_tables(&two, &merged);
+    // Real motion: every member completed, and the two seeds of a sea state see
+    // different fairlead tensions.
+    let members = std::fs::read_to_string(two.join("members.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = members.lines().map(|l| l.split(',').collect()).collect();
+    let col = |n: &str| rows[0].iter().position(|h| *h == n).unwrap();
+    assert!(rows[1..].iter().all(|r| r[col("status")] == "completed"));
+    let maxima: Vec<&str> = rows[1..]
+        .iter()
+        .filter(|r| r[col("sea_state")] == "0" && r[col("channel")] == "line1.tension_max")
+        .map(|r| r[col("max")])
+        .collect();
+    assert_eq!(maxima.len(), 2);
+    assert_ne!(maxima[0], maxima[1]);
 }
 
 #[test]

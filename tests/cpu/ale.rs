@@ -20,7 +20,7 @@ const TOP: [f64; 3] = [0.0, 0.0, -2.0];
 
 /// A vertical cable of `n` elements of `l_s` hanging from a winch held at `TOP`, with
 /// `clump` at the far end. The winch is at the cable's start or end node.
-fn hanging(
+pub(crate) fn hanging(
     lt: LineType,
     n: usize,
     l_s: f64,
@@ -62,7 +62,7 @@ fn hanging(
     }
 }
 
-fn winch(end: WinchEnd, schedule: PayoutSchedule, drum: f64, l_s: f64) -> Winch {
+pub(crate) fn winch(end: WinchEnd, schedule: PayoutSchedule, drum: f64, l_s: f64) -> Winch {
     Winch {
         cable: 0,
         end,
@@ -72,7 +72,7 @@ fn winch(end: WinchEnd, schedule: PayoutSchedule, drum: f64, l_s: f64) -> Winch 
     }
 }
 
-fn clump(mass: f64) -> PointMass {
+pub(crate) fn clump(mass: f64) -> PointMass {
     PointMass {
         mass,
         volume: mass / 7800.0,
@@ -81,7 +81,7 @@ fn clump(mass: f64) -> PointMass {
     }
 }
 
-fn solver(def: ModelDef, w: Winch, dt: f64, scheme: Scheme) -> CpuSolver {
+pub(crate) fn solver(def: ModelDef, w: Winch, dt: f64, scheme: Scheme) -> CpuSolver {
     let (_, pos) = Layout::build(&def).unwrap();
     CpuSolver::with_winches(
         def,
@@ -97,7 +97,7 @@ fn solver(def: ModelDef, w: Winch, dt: f64, scheme: Scheme) -> CpuSolver {
 }
 
 /// Pays out 12 m (ramp to 2 m/s, hold, ramp down) and hauls the same 12 m back in.
-fn out_and_back() -> PayoutSchedule {
+pub(crate) fn out_and_back() -> PayoutSchedule {
     PayoutSchedule::rates(&[
         (0.0, 0.0),
         (1.0, 2.0),

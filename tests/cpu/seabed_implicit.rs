@@ -48,15 +48,15 @@ fn implicit_contact_at_the_axial_step_matches_explicit_contact_at_a_small_step()
     assert!(rk4.term.starts_with("seabed"), "{}", rk4.term);
     assert!(sym.dt > 2.0 * rk4.dt, "{} {}", sym.dt, rk4.dt);
     let duration = 6.0;
-    let reference = run(&lay, &pos, Scheme::Rk4, rk4.dt / 4.0, duration);
-    let implicit = run(
+    let mut reference = run(&lay, &pos, Scheme::Rk4, rk4.dt / 4.0, duration);
+    let mut implicit = run(
         &lay,
         &pos,
         Scheme::Symplectic,
         AUTO_SAFETY * sym.dt,
         duration,
     );
-    let small = run(&lay, &pos, Scheme::Symplectic, rk4.dt / 4.0, duration);
+    let mut small = run(&lay, &pos, Scheme::Symplectic, rk4.dt / 4.0, duration);
     let (er, ei, es) = (
         reference.evaluate().unwrap(),
         implicit.evaluate().unwrap(),

@@ -190,7 +190,7 @@ fn relaxed_line_converges_to_the_analytic_catenary() {
     for n in [10, 20, 50, 100] {
         let (lay, mut pos) = mooring(n, [0.0; 3]);
         let rep = relaxed(&lay, &mut pos);
-        let s = CpuSolver::new(lay.clone(), &pos, SolverOptions::default());
+        let mut s = CpuSolver::new(lay.clone(), &pos, SolverOptions::default());
         let ev = s.evaluate().unwrap();
         // Constraint 1 holds the fairlead (node n): the cable pulls it towards the
         // anchor (-x) and down.
@@ -246,7 +246,7 @@ fn vertical_cable_with_end_mass() {
     let rep = relaxed(&lay, &mut pos);
     let p = (mass - 1025.0 * volume) * 9.81;
     let weight = w * l + p;
-    let s = CpuSolver::new(lay.clone(), &pos, SolverOptions::default());
+    let mut s = CpuSolver::new(lay.clone(), &pos, SolverOptions::default());
     let top_force = s.evaluate().unwrap().reaction[0];
     println!(
         "top reaction {top_force:?}, wet weight {weight:.6} N, residual {:.3e} N",

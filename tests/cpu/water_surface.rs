@@ -45,7 +45,7 @@ fn hung_line(top: f64, length: f64, n: usize) -> (Layout, Vec<[f64; 3]>) {
 
 /// The force the line exerts on its support, N.
 fn support_force(lay: &Layout, pos: &[[f64; 3]]) -> [f64; 3] {
-    let s = CpuSolver::new(lay.clone(), pos, SolverOptions::default());
+    let mut s = CpuSolver::new(lay.clone(), pos, SolverOptions::default());
     s.evaluate().unwrap().reaction[0]
 }
 

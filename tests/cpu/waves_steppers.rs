@@ -5,15 +5,19 @@ use crate::common::*;
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{Environment, Layout, LineType, ModelDef, PointMass, Route, Seabed};
 use cablesim::options::{Scheme, SolverOptions};
+use cablesim::sea::cache::refresh_interval;
 use cablesim::sea::irregular::{discretise, Discretisation};
+use cablesim::sea::kinematics::WaveField;
+use cablesim::sea::schedule::{SUBMERGED_FACTOR, SURFACE_MARGIN};
 use cablesim::sea::spectrum::Spectrum;
-use cablesim::sea::{SeaState, Stretching, WaveComponent};
+use cablesim::sea::{SeaSet, SeaState, Stretching, WaveComponent};
+use cablesim::sim::reach::sea_reach;
 use cablesim::statics::{relax, RelaxOptions};
 
 const DEPTH: f64 = 50.0;
 
 /// A 200-component JONSWAP sea (Hs 4 m, Tp 9 s) in 50 m of water, ramped in over 4 s.
-fn jonswap() -> SeaState {
+pub(crate) fn jonswap() -> SeaState {
     let spectrum = Spectrum::Jonswap {
         hs: 4.0,
         tp: 9.0,
@@ -37,7 +41,12 @@ fn jonswap() -> SeaState {
 
 /// A rope moored on the seabed at 50 m, its fairlead held 1 m under the mean level
 /// (its top elements go through the surface in the troughs), in static equilibrium.
-fn moored_rope() -> (Layout, Vec<[f64; 3]>) {
+pub(crate) fn moored_rope() -> (Layout, Vec<[f64; 3]>) {
+    moored_rope_at(-1.0)
+}
+
+/// The rope of [`moored_rope`] with its fairlead at height `zf`, m.
+fn moored_rope_at(zf: f64) -> (Layout, Vec<[f64; 3]>) {
     let env = Environment {
         depth: DEPTH,
         seabed: Seabed::default(),
@@ -51,14 +60,14 @@ fn moored_rope() -> (Layout, Vec<[f64; 3]>) {
         env,
         lt,
         [-60.0, 0.0, -DEPTH],
-        [0.0, 0.0, -1.0],
+        [0.0, 0.0, zf],
         80.0,
         20,
         Some(Route::Fixed {
             position: [-60.0, 0.0, -DEPTH],
         }),
         Some(Route::Fixed {
-            position: [0.0, 0.0, -1.0],
+            position: [0.0, 0.0, zf],
         }),
         PointMass::default(),
         [0.2, 0.0, 0.0],
@@ -86,7 +95,9 @@ fn norm(f: [f64; 3]) -> f64 {
 
 /// The cached, interpolated kinematics against exact evaluation of the 200-component
 /// sum at every node and stage: the fairlead force over 20 s agrees within 1e-3 of its
-/// largest value, while the waves change it by far more than that.
+/// largest value, while the waves change it by far more than that. Each run reports
+/// its force as it steps (the cached run through the cache, `waves_output`), so this
+/// holds the path's error and the output's together.
 #[test]
 fn cached_kinematics_give_the_exact_end_force() {
     let (lay, pos) = moored_rope();
@@ -290,4 +301,89 @@ fn neutrally_buoyant_sphere_follows_the_water() {
         "the sphere moved only {xmax} m along the wave"
     );
     assert!(worst < 0.01 * radius, "{worst} m off the particle's path");
+}
+
+/// A line that stays well under the troughs: the rope of
+/// `cached_kinematics_give_the_exact_end_force` with its fairlead 25 m down. Its
+/// reach as a run bounds it (`sim::reach::sea_reach`: the fairlead plus the margin)
+/// is [`SURFACE_MARGIN`] under the lowest trough the plan assumes, so the plan takes
+/// [`SUBMERGED_FACTOR`] of the rule with the amplitudes decayed to the nodes' highest
+/// evaluation depth (the step chosen so that the grid leaves it whole): over four
+/// times the interval of the rule at the mean level times 0.3, and the fairlead force
+/// stays within 1e-3 of its largest value against exact evaluation (what justifies
+/// the factor). The nodes do stay under the reach (checked as the forces are
+/// sampled).
+#[test]
+fn submerged_line_keeps_the_end_force_at_the_planned_interval() {
+    let (lay, pos) = moored_rope_at(-25.0);
+    let (steps, every) = (100_000u64, 500u64);
+    let sea = jonswap();
+    let mut set = SeaSet::single(&sea);
+    set.reach = sea_reach(&lay, &pos, &set, 20.0);
+    // A step that puts the grid at the factor's own interval (3072 steps of it, just
+    // under the unrounded interval), so that the test holds the factor itself, not
+    // what rounding down leaves of it.
+    let unrounded = set.plan(0, 2e-4).unrounded;
+    let opts = SolverOptions {
+        dt: unrounded / 3072.0 * (1.0 - 1e-9),
+        ..SolverOptions::default()
+    };
+    let plan = set.plan(0, opts.dt);
+    assert_eq!(plan.steps, 3072);
+    assert!(plan.interval > (1.0 - 1e-6) * plan.unrounded);
+    let surface = refresh_interval(&sea.components, sea.cache_tolerance);
+    println!(
+        "submerged rope: reach {:.2} m, trough {:.2} m, evaluation depth {:.2} m, factor \
+         {}, interval {:.4} s ({} steps; unrounded {:.4} s); at the surface {surface:.4} s",
+        plan.reach,
+        plan.trough,
+        plan.eval_depth,
+        plan.factor,
+        plan.interval,
+        plan.steps,
+        plan.unrounded
+    );
+    assert!(
+        plan.submerged && plan.factor == SUBMERGED_FACTOR,
+        "{plan:?}"
+    );
+    assert!(plan.reach <= plan.trough - SURFACE_MARGIN);
+    assert!(plan.interval > 4.0 * surface, "{plan:?}");
+    let field = WaveField::new(&sea);
+    let run = |exact: bool| {
+        let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+        s.set_seas(&set, exact);
+        let mut out = Vec::new();
+        let mut top = f64::NEG_INFINITY;
+        let mut gap = f64::NEG_INFINITY;
+        for k in 1..=steps / every {
+            s.advance(every).unwrap();
+            out.push(s.evaluate().unwrap().reaction[1]);
+            let t = (k * every) as f64 * opts.dt;
+            for r in &s.r {
+                let r = r.to_f64();
+                top = top.max(r[2]);
+                gap = gap.max(r[2] - field.elevation(r[0], r[1], t));
+            }
+        }
+        (out, top, gap)
+    };
+    let (exact, top, gap) = run(true);
+    let (cached, _, _) = run(false);
+    println!(
+        "highest node {top:.2} m, {:.2} m under the surface at most",
+        -gap
+    );
+    assert!(top <= plan.reach, "a node rose to {top} m, above the reach");
+    let fmax = exact.iter().map(|f| norm(*f)).fold(0.0f64, f64::max);
+    let d = cached
+        .iter()
+        .zip(&exact)
+        .map(|(x, y)| norm([x[0] - y[0], x[1] - y[1], x[2] - y[2]]))
+        .fold(0.0f64, f64::max);
+    println!(
+        "fairlead force {fmax:.1} N, cache against exact {:.3e} relative",
+        d / fmax
+    );
+    assert!(d < 1e-3 * fmax, "cache off by {d} N of {fmax} N");
 }

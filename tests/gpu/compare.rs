@@ -41,7 +41,7 @@ pub struct Snapshot {
 
 impl Snapshot {
     /// The CPU solver's state now.
-    pub fn cpu(label: impl Into<String>, s: &CpuSolver) -> Self {
+    pub fn cpu(label: impl Into<String>, s: &mut CpuSolver) -> Self {
         Snapshot {
             label: label.into(),
             t: s.t(),

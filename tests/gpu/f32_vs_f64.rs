@@ -178,7 +178,7 @@ fn compare(
         gpu_s += t0.elapsed().as_secs_f64();
         let t0 = std::time::Instant::now();
         cpu.advance(target - cpu.steps()).unwrap();
-        let c = Snapshot::cpu("CPU f64", &cpu);
+        let c = Snapshot::cpu("CPU f64", &mut cpu);
         cpu_s += t0.elapsed().as_secs_f64();
         twin.advance(target - twin.steps()).unwrap();
         let et = twin.evaluate().unwrap();

@@ -240,7 +240,7 @@ fn compare_on(
         done += n;
     }
     assert_eq!(gpu.steps(), cpu.steps());
-    let c = Snapshot::cpu("CPU f64", &cpu);
+    let c = Snapshot::cpu("CPU f64", &mut cpu);
     let g = Snapshot::gpu(format!("GPU f64 {}", kernel.name()), &mut gpu);
     let moved =
         c.r.iter()

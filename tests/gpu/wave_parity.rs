@@ -7,6 +7,7 @@ use super::surface::crossing_line;
 use cablesim::cpu::CpuSolver;
 use cablesim::gpu::{GpuKernel, GpuSolver, Precision};
 use cablesim::options::SolverOptions;
+use cablesim::sea::cache::refresh_interval;
 use cablesim::sea::irregular::{discretise, Discretisation};
 use cablesim::sea::spectrum::Spectrum;
 use cablesim::sea::SeaState;
@@ -122,6 +123,111 @@ fn gpu_matches_cpu_in_waves_in_f64() {
 #[test]
 fn gpu_matches_cpu_in_waves_in_f32() {
     parity(Precision::F32);
+}
+
+/// Output times in waves, GPU f64 against the CPU path, both kernels: evaluations (the
+/// loads of a snapshot) at time 0 (where the evaluation does the cache's first
+/// refresh), at every step around the cache's first two refresh times (where some
+/// evaluations find the time past the cache and refresh it, as the next step would)
+/// and at the end agree to the parity's tolerance (tensions within 1e-6 of the
+/// largest, as `gpu_matches_cpu_in_waves_in_f64`; the nodes' forces, which carry the
+/// water loads, within 1e-6 of the largest). The GPU run that evaluates ends where a
+/// CPU run that never evaluates ends (outputs do not change the run), and the exact
+/// sum's node forces at the CPU's states differ by more than that tolerance (the
+/// comparison is of the cache's outputs, not of two exact sums).
+#[test]
+fn gpu_output_times_match_cpu_in_f64() {
+    let name = "gpu_output_times_match_cpu_in_f64";
+    let Some(ctx) = gpu_context(name, true) else {
+        return;
+    };
+    let (lay, pos) = crossing_line();
+    let opts = SolverOptions {
+        dt: 2e-4,
+        ..SolverOptions::default()
+    };
+    let sea = sea();
+    let interval = refresh_interval(&sea.components, sea.cache_tolerance);
+    let near = (interval / opts.dt).floor() as u64;
+    let mut at = vec![0u64];
+    at.extend(near - 2..=near + 3);
+    at.extend(2 * near - 2..=2 * near + 3);
+    at.push(3000);
+    let steps = *at.last().unwrap();
+    let mut quiet = CpuSolver::new(lay.clone(), &pos, opts);
+    quiet.set_sea(&sea, false);
+    quiet.advance(steps).unwrap();
+    let length = 45.0;
+    for kernel in [GpuKernel::TwoPass, GpuKernel::Fused] {
+        let mut cpu = CpuSolver::new(lay.clone(), &pos, opts);
+        cpu.set_sea(&sea, false);
+        let mut gpu = GpuSolver::new(&ctx, lay.clone(), &pos, opts, Precision::F64).unwrap();
+        gpu.set_kernel(kernel).unwrap();
+        gpu.set_sea(&sea).unwrap();
+        // The largest differences relative to the largest value at the same time (the
+        // line starts far from equilibrium: its loads fall by two orders of magnitude).
+        let (mut worst_t, mut worst_f, mut exact_gap) = (0.0f64, 0.0f64, 0.0f64);
+        for &k in &at {
+            let n = k - cpu.steps();
+            if n > 0 {
+                cpu.advance(n).unwrap();
+                gpu.advance(n).unwrap();
+            }
+            let exact = {
+                let mut e = cpu.clone();
+                e.set_sea(&sea, true);
+                e.evaluate().unwrap()
+            };
+            let c = cpu.evaluate().unwrap();
+            let g = gpu.evaluate().unwrap();
+            let largest = |x: &[f64]| x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let tmax = largest(&c.tension);
+            let dt: Vec<f64> = g
+                .tension
+                .iter()
+                .zip(&c.tension)
+                .map(|(a, b)| a - b)
+                .collect();
+            worst_t = worst_t.max(largest(&dt) / tmax);
+            // The nodes' forces carry the water loads (the tensions do not).
+            let fmax = largest(
+                &c.force
+                    .iter()
+                    .map(|f| dist(*f, [0.0; 3]))
+                    .collect::<Vec<_>>(),
+            );
+            let gap = |x: &[[f64; 3]]| {
+                x.iter()
+                    .zip(&c.force)
+                    .fold(0.0f64, |m, (a, b)| m.max(dist(*a, *b)))
+            };
+            worst_f = worst_f.max(gap(&g.force) / fmax);
+            exact_gap = exact_gap.max(gap(&exact.force) / fmax);
+        }
+        let (r, _) = gpu.state().unwrap();
+        let dr = r
+            .iter()
+            .zip(&quiet.r)
+            .map(|(a, b)| dist(*a, b.to_f64()))
+            .fold(0.0f64, f64::max);
+        println!(
+            "{name} {kernel:?}: {} output times to step {steps} (refresh interval \
+             {interval:.4} s), relative to the largest at each time: |dT| {worst_t:.3e}, \
+             node force |dF| {worst_f:.3e}, exact sum against the cache {exact_gap:.3e}; \
+             |dr| against a run without outputs {dr:.3e} m",
+            at.len()
+        );
+        assert!(worst_t < 1e-6, "{kernel:?}: |dT| {worst_t} of the largest");
+        assert!(worst_f < 1e-6, "{kernel:?}: |dF| {worst_f} of the largest");
+        assert!(
+            exact_gap > 1e-6,
+            "{kernel:?}: the exact sum is within the tolerance too ({exact_gap})"
+        );
+        assert!(dr < 1e-9 * length, "{kernel:?}: |dr| {dr} m");
+        for (a, b) in cpu.r.iter().zip(&quiet.r) {
+            assert_eq!(a.to_f64(), b.to_f64(), "outputs changed the CPU run");
+        }
+    }
 }
 
 /// A scenario in a JONSWAP sea runs with `--backend gpu` (it used to be refused

@@ -210,7 +210,7 @@ fn compare_f64(
             }
         }
         // Round-off bounds after `done` steps (`compare`).
-        let c = Snapshot::cpu("CPU f64", &cpu);
+        let c = Snapshot::cpu("CPU f64", &mut cpu);
         let g = Snapshot::gpu("GPU f64", &mut gpu);
         let eg = &g.eval;
         let bounds = RoundOff::new(&cpu.layout(), &c, done, EPS, rope().ea, l0_min, omega);
@@ -374,7 +374,7 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
         let (sc_, sg) = (&cpu.winch_status()[0], &gpu.winch_status()[0]);
         assert_eq!(sc_, sg, "{path}: winch status at t = {} s", cpu.t());
         let l = sg.deployed_length;
-        let c = Snapshot::cpu("CPU f64", &cpu);
+        let c = Snapshot::cpu("CPU f64", &mut cpu);
         let g = Snapshot::gpu("GPU f32", &mut gpu);
         let name = format!("{path} t = {} s (L = {l} m)", cpu.t());
         let check = Check::new(&name, &cpu.layout(), &g, &c);

@@ -27,9 +27,10 @@
 //! A node with more than 8 incident elements sends its block to the general path.
 //! A test checks it against the general path (`tests/cpu/net_kernel.rs`).
 
-use super::{
-    element_kernel, point_drag_force, point_surface_at, point_water_accel_force, route_accel,
-    seabed_load, ChainConsts,
+use super::consts::ChainConsts;
+use super::elements::element_kernel;
+use super::nodes::{
+    point_drag_force, point_surface_at, point_water_accel_force, route_accel, seabed_load,
 };
 use crate::cpu::passes::implicit_dt;
 use crate::cpu::water::{node_water, BlockWaves, Water};

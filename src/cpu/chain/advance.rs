@@ -1,0 +1,474 @@
+//! The advance driver of the chain fast path: the structure-of-arrays state and
+//! scratch ([`ChainScratch`]), the run-time AVX2 dispatch ([`advance_chain`]: the
+//! whole run of steps, kernels inlined, is compiled once for AVX2 and once for the
+//! baseline target), and the time schemes (symplectic Euler, RK2, RK4) over the
+//! element and node passes, with the divergence check after each step.
+
+use super::consts::ChainConsts;
+use super::elements::{add_waves, currents, elements};
+use super::nodes::{nodes, point_surface, Masses};
+use super::winch::{ale_constants, ale_tension, AleScratch};
+use crate::ale::AleElem;
+use crate::cpu::water::{BlockWaves, Water};
+use crate::model::Layout;
+use crate::options::{Scheme, SolverOptions};
+use crate::step::{diverged, StepFailure};
+
+/// Structure-of-arrays state and scratch of one chain, reused across blocks.
+#[derive(Default)]
+pub(crate) struct ChainScratch {
+    x: [Vec<f64>; 6],
+    // Stage state and accumulators of the Runge-Kutta schemes.
+    xs: [Vec<f64>; 6],
+    x0: [Vec<f64>; 6],
+    sum: [Vec<f64>; 6],
+    a: [Vec<f64>; 3],
+    w: Work,
+    /// Winch cables: the working copy of the block's constants that the variable
+    /// elements change every stage, and what the run keeps about them.
+    wc: ChainConsts,
+    ale: AleScratch,
+}
+
+/// What one evaluation writes.
+#[derive(Default)]
+struct Work {
+    // Per-element water velocity (current, plus waves) and wave acceleration.
+    u: [Vec<f64>; 3],
+    aw: [Vec<f64>; 3],
+    // Surface elevation over each node, m (zero in still water).
+    eta: Vec<f64>,
+    // Padded element results; `haw` the half normal added masses times the elements'
+    // wetted fractions.
+    t: [Vec<f64>; 3],
+    ten: Vec<f64>,
+    f: [Vec<f64>; 3],
+    haw: Vec<f64>,
+    // Per node: point mass and point weight less buoyancy, less what a point mass
+    // partly out of the water loses.
+    pm: Vec<f64>,
+    pwz: Vec<f64>,
+    // Per node: the extra forces (point drag, water acceleration of a point, mass flow)
+    // that the node loop adds before its solve; zero but at the few nodes that have them.
+    xf: [Vec<f64>; 3],
+}
+
+fn resize(v: &mut [Vec<f64>], n: usize) {
+    for x in v {
+        x.clear();
+        x.resize(n, 0.0);
+    }
+}
+
+/// The symplectic Euler update `v += a dt`, then `x += v dt`, of the first `n` nodes
+/// of the SoA state `x`, and the number of them whose new state is non-finite or over
+/// the limits ([`count_bad`]'s test), in one loop.
+#[inline(always)]
+fn symplectic_update(
+    x: &mut [Vec<f64>; 6],
+    a: &[Vec<f64>; 3],
+    n: usize,
+    dt: f64,
+    vmax: f64,
+    rmax: f64,
+) -> usize {
+    let [px, py, pz, vx, vy, vz] = x;
+    let (px, py, pz) = (&mut px[..n], &mut py[..n], &mut pz[..n]);
+    let (vx, vy, vz) = (&mut vx[..n], &mut vy[..n], &mut vz[..n]);
+    let (ax, ay, az) = (&a[0][..n], &a[1][..n], &a[2][..n]);
+    let mut bad = 0usize;
+    for i in 0..n {
+        vx[i] += ax[i] * dt;
+        vy[i] += ay[i] * dt;
+        vz[i] += az[i] * dt;
+        px[i] += vx[i] * dt;
+        py[i] += vy[i] * dt;
+        pz[i] += vz[i] * dt;
+        // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
+        let ok = (px[i].abs() < rmax)
+            & (py[i].abs() < rmax)
+            & (pz[i].abs() < rmax)
+            & (vx[i].abs() < vmax)
+            & (vy[i].abs() < vmax)
+            & (vz[i].abs() < vmax);
+        bad += (!ok) as usize;
+    }
+    bad
+}
+
+/// `x += v h` elementwise.
+#[inline(always)]
+fn axpy(x: &mut [f64], v: &[f64], h: f64) {
+    let v = &v[..x.len()];
+    for i in 0..x.len() {
+        x[i] += v[i] * h;
+    }
+}
+
+/// `out = x + v h` elementwise.
+#[inline(always)]
+fn xpvh(out: &mut [f64], x: &[f64], v: &[f64], h: f64) {
+    let (x, v) = (&x[..out.len()], &v[..out.len()]);
+    for i in 0..out.len() {
+        out[i] = x[i] + v[i] * h;
+    }
+}
+
+/// Counts nodes whose new state is non-finite or over the limits.
+#[inline(always)]
+fn count_bad(p: &[Vec<f64>; 6], n: usize, vmax: f64, rmax: f64) -> usize {
+    let mut bad = 0usize;
+    let p: [&[f64]; 6] = [
+        &p[0][..n],
+        &p[1][..n],
+        &p[2][..n],
+        &p[3][..n],
+        &p[4][..n],
+        &p[5][..n],
+    ];
+    #[allow(clippy::needless_range_loop)] // six arrays indexed together
+    for i in 0..n {
+        // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
+        let ok = (p[0][i].abs() < rmax)
+            & (p[1][i].abs() < rmax)
+            & (p[2][i].abs() < rmax)
+            & (p[3][i].abs() < vmax)
+            & (p[4][i].abs() < vmax)
+            & (p[5][i].abs() < vmax);
+        bad += (!ok) as usize;
+    }
+    bad
+}
+
+/// Advances a chain block; `r`, `v` are its AoS state (block-local).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn advance_chain(
+    c: &ChainConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut ChainScratch,
+    ale: &[AleElem],
+    r: &mut [crate::math::V3<f64>],
+    v: &mut [crate::math::V3<f64>],
+    n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2, checked just above.
+            return unsafe {
+                advance_chain_avx2(
+                    c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+                )
+            };
+        }
+    }
+    advance_chain_body(
+        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+    )
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn advance_chain_avx2(
+    c: &ChainConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut ChainScratch,
+    ale: &[AleElem],
+    r: &mut [crate::math::V3<f64>],
+    v: &mut [crate::math::V3<f64>],
+    n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    advance_chain_body(
+        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+    )
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn advance_chain_body(
+    c: &ChainConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut ChainScratch,
+    ale: &[AleElem],
+    r: &mut [crate::math::V3<f64>],
+    v: &mut [crate::math::V3<f64>],
+    n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    if c.friction {
+        advance_chain_scheme::<true>(
+            c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+        )
+    } else {
+        advance_chain_scheme::<false>(
+            c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+        )
+    }
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn advance_chain_scheme<const FRICTION: bool>(
+    c: &ChainConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut ChainScratch,
+    ale: &[AleElem],
+    r: &mut [crate::math::V3<f64>],
+    v: &mut [crate::math::V3<f64>],
+    n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    let n = c.n;
+    let ne = c.l0.len();
+    let mut waves = waves;
+    if waves.is_none() {
+        wbuf.clear();
+    }
+    resize(&mut sc.x, n);
+    resize(&mut sc.a, n);
+    resize(&mut sc.w.t, ne + 2);
+    resize(&mut sc.w.f, ne + 2);
+    sc.w.ten.clear();
+    sc.w.ten.resize(ne + 2, 0.0);
+    resize(&mut sc.w.u, ne);
+    resize(&mut sc.w.aw, ne);
+    sc.w.eta.clear();
+    sc.w.eta.resize(n, 0.0);
+    sc.w.haw.clear();
+    sc.w.haw.resize(ne + 2, 0.0);
+    sc.w.pm.clone_from(&c.pm);
+    sc.w.pwz.clone_from(&c.pwz);
+    if opts.scheme != Scheme::Symplectic {
+        resize(&mut sc.xs, n);
+        resize(&mut sc.x0, n);
+        resize(&mut sc.sum, n);
+    }
+    for i in 0..n {
+        sc.x[0][i] = r[i].x;
+        sc.x[1][i] = r[i].y;
+        sc.x[2][i] = r[i].z;
+        sc.x[3][i] = v[i].x;
+        sc.x[4][i] = v[i].y;
+        sc.x[5][i] = v[i].z;
+    }
+    resize(&mut sc.w.xf, n);
+    if c.uniform.is_some() && waves.is_none() {
+        currents(c, &lay.currents, &sc.x, &mut sc.w.u);
+    }
+    // Always: the scratch may hold the previous block's variable elements.
+    sc.ale.prepare(c, lay, ale);
+    if !ale.is_empty() {
+        sc.wc.copy_from(c);
+    }
+    let ChainScratch {
+        x,
+        xs,
+        x0,
+        sum,
+        a,
+        w: wk,
+        wc,
+        ale: asc,
+    } = sc;
+    // A function, not a closure: closures are not inlined into the AVX2 caller and
+    // would be compiled for the baseline target.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn eval<const FRICTION: bool>(
+        c: &ChainConsts,
+        wc: &mut ChainConsts,
+        asc: &mut AleScratch,
+        lay: &Layout,
+        opts: &SolverOptions,
+        ale: &[AleElem],
+        state: &[Vec<f64>; 6],
+        time: f64,
+        waves: &mut Option<&mut BlockWaves>,
+        wbuf: &mut Water,
+        sc: &mut Work,
+        a: &mut [Vec<f64>; 3],
+    ) {
+        let Work {
+            u,
+            aw,
+            eta,
+            t,
+            ten,
+            f,
+            haw,
+            pm,
+            pwz,
+            xf,
+        } = sc;
+        // Winch cables: the variable elements' constants at this time.
+        let c = if ale.is_empty() {
+            c
+        } else {
+            ale_constants(asc, time, wc);
+            &*wc
+        };
+        // A uniform current in still water was filled once for the run.
+        if c.uniform.is_none() || waves.is_some() {
+            currents(c, &lay.currents, state, u);
+        }
+        if let Some(wb) = waves.as_deref_mut() {
+            let st = |i: usize| {
+                (
+                    [state[0][i], state[1][i], state[2][i]],
+                    [state[3][i], state[4][i], state[5][i]],
+                )
+            };
+            if wb.exact() {
+                wb.fill(time, c.n, st, wbuf);
+                add_waves(c.l0.len(), wbuf, u, aw, eta);
+            } else {
+                // The per-node values are needed only by the point masses' loads
+                // (`nodes`); the elements read the cache's columns.
+                if !c.point_drag.is_empty() || !c.point_volume.is_empty() {
+                    wb.fill(time, c.n, st, wbuf);
+                }
+                wb.fill_chain(time, c.n, st, eta, u, aw);
+            }
+            elements::<true>(c, state, u, aw, eta, t, ten, f, haw);
+        } else {
+            elements::<false>(c, state, u, aw, eta, t, ten, f, haw);
+        }
+        ale_tension(asc, state, ten);
+        point_surface(c, state, eta, pm, pwz);
+        let m = Masses {
+            eta,
+            w: wbuf,
+            pm,
+            pwz,
+            hm: &c.hm,
+            ha: haw,
+            kl: &c.kl,
+            cl: &c.cl,
+            mukl: &c.mukl,
+        };
+        nodes::<FRICTION>(c, lay, opts, time, state, t, ten, f, &m, asc, xf, a);
+    }
+    let mut result = Ok(());
+    let mut bad = 0;
+    for k in 0..nsteps {
+        let time = (step0 + k) as f64 * dt;
+        match opts.scheme {
+            Scheme::Symplectic => {
+                eval::<FRICTION>(c, wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
+                bad = symplectic_update(x, a, n, dt, opts.max_speed, opts.max_distance);
+            }
+            Scheme::Rk2 => {
+                let h = 0.5 * dt;
+                eval::<FRICTION>(c, wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
+                for q in 0..3 {
+                    xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
+                    xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
+                }
+                eval::<FRICTION>(
+                    c,
+                    wc,
+                    asc,
+                    lay,
+                    opts,
+                    ale,
+                    xs,
+                    time + h,
+                    &mut waves,
+                    wbuf,
+                    wk,
+                    a,
+                );
+                let (pos, vel) = x.split_at_mut(3);
+                for q in 0..3 {
+                    axpy(&mut pos[q][..n], &xs[3 + q], dt);
+                    axpy(&mut vel[q][..n], &a[q], dt);
+                }
+            }
+            Scheme::Rk4 => {
+                let h = 0.5 * dt;
+                for q in 0..6 {
+                    x0[q].copy_from_slice(&x[q]);
+                    xs[q].copy_from_slice(&x[q]);
+                    sum[q].fill(0.0);
+                }
+                for (stage, (tau, w, next)) in
+                    [(0.0, 1.0, h), (h, 2.0, h), (h, 2.0, dt), (dt, 1.0, 0.0)]
+                        .into_iter()
+                        .enumerate()
+                {
+                    eval::<FRICTION>(
+                        c,
+                        wc,
+                        asc,
+                        lay,
+                        opts,
+                        ale,
+                        xs,
+                        time + tau,
+                        &mut waves,
+                        wbuf,
+                        wk,
+                        a,
+                    );
+                    let (spos, svel) = xs.split_at_mut(3);
+                    for q in 0..3 {
+                        axpy(&mut sum[q][..n], &svel[q], w);
+                        axpy(&mut sum[3 + q][..n], &a[q], w);
+                        if stage < 3 {
+                            xpvh(&mut spos[q][..n], &x0[q], &svel[q], next);
+                            xpvh(&mut svel[q][..n], &x0[3 + q], &a[q], next);
+                        }
+                    }
+                }
+                for q in 0..6 {
+                    xpvh(&mut x[q][..n], &x0[q], &sum[q], dt / 6.0);
+                }
+            }
+        }
+        if opts.scheme != Scheme::Symplectic {
+            bad = count_bad(x, n, opts.max_speed, opts.max_distance);
+        }
+        if bad > 0 {
+            let i = (0..n)
+                .find(|&i| {
+                    !(x[0][i].abs() < opts.max_distance
+                        && x[1][i].abs() < opts.max_distance
+                        && x[2][i].abs() < opts.max_distance
+                        && x[3][i].abs() < opts.max_speed
+                        && x[4][i].abs() < opts.max_speed
+                        && x[5][i].abs() < opts.max_speed)
+                })
+                .unwrap_or(0);
+            result = Err((i, time + dt));
+            break;
+        }
+    }
+    for i in 0..n {
+        r[i] = crate::math::V3::new(x[0][i], x[1][i], x[2][i]);
+        v[i] = crate::math::V3::new(x[3][i], x[4][i], x[5][i]);
+    }
+    result.map_err(|(i, time)| diverged(opts, r[i], v[i], n0 + i, time))
+}

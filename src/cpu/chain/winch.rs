@@ -1,0 +1,213 @@
+//! Winch cables (ALE-GLMF, [`crate::ale`]) on the chain fast path.
+//!
+//! The variable element goes through the vectorised element loop like every other
+//! element: per stage, its entries of a working copy of the chain constants (`1/l0`,
+//! half weight, buoyancy, water-acceleration coefficient, half masses, its nodes'
+//! seabed constants) are set from its `l0` at that time, and only the damping term of
+//! a paid-out element (`EA c l Ldot / l0^2`, crate::ale) is fixed up after the loop.
+//! The mass-flow forces of Eq. 39 join the per-node extra forces that the node loop
+//! adds before its solve. The schedule is evaluated once per stage, and whether each
+//! variable element's nodes are held is found once per run of steps (a held node's
+//! acceleration is its route's, so its mass-flow force is not needed there).
+
+use super::ChainConsts;
+use crate::ale::{mass_flow_forces, AleElem, Payout, PayoutSchedule};
+use crate::math::V3;
+use crate::model::Layout;
+use std::sync::Arc;
+
+/// What a run of steps keeps about one variable element: its indices, whether its
+/// nodes are free, its constants folded once (per unit `l0`, and the block's own
+/// values at the last remeshing), and its payout and `l0` at the current stage.
+#[derive(Clone, Default)]
+struct AleRun {
+    k: usize,
+    m: usize,
+    w: usize,
+    m_free: bool,
+    w_free: bool,
+    /// The rate of a constant-rate schedule (evaluated here, inline).
+    rate: Option<f64>,
+    sched: Option<Arc<PayoutSchedule>>,
+    base_l0: f64,
+    base_dl: f64,
+    /// `mbar`, kg/m.
+    mass: f64,
+    /// `EA c` of its line.
+    eac: f64,
+    /// Per unit `l0`: half the weight less buoyancy, half the buoyancy, half the
+    /// water-acceleration coefficient, half the mass, half the normal added mass.
+    per_l0: [f64; 5],
+    /// The block's `1/l0`, `half_wz`, `half_bz`, `half_fk`, `hm`, `ha` of the element.
+    base: [f64; 6],
+    /// Tributary lengths of `m` and `w` at the last remeshing, m.
+    trib: [f64; 2],
+    /// Payout and `l0` at the current stage.
+    pay: Payout,
+    l0: f64,
+}
+
+/// What one run of steps keeps about its block's variable elements.
+#[derive(Default)]
+pub(super) struct AleScratch {
+    runs: Vec<AleRun>,
+}
+
+impl AleScratch {
+    /// Sets up a run of steps of a block with the constants `c` and variable elements
+    /// `ale`.
+    pub fn prepare(&mut self, c: &ChainConsts, lay: &Layout, ale: &[AleElem]) {
+        let held = |i: usize| c.constrained.iter().any(|&(j, _)| j == i);
+        self.runs.clear();
+        self.runs.extend(ale.iter().map(|ae| {
+            let k = ae.elem;
+            let lc = &lay.line_coefs[c.line[k] as usize];
+            AleRun {
+                k,
+                m: ae.m,
+                w: ae.w,
+                m_free: !held(ae.m),
+                w_free: !held(ae.w),
+                rate: ae.sched.constant_rate(),
+                sched: Some(ae.sched.clone()),
+                base_l0: ae.base_l0,
+                base_dl: ae.base_dl,
+                mass: ae.mass,
+                eac: c.eac[k],
+                // The products of `ChainConsts::new`, `0.5 * x * l0`, as `(0.5 * x) * l0`.
+                per_l0: [
+                    0.5 * lc.wet_weight_z,
+                    0.5 * (lc.wet_weight_z + lc.mass * lay.env.gravity),
+                    0.5 * lc.froude_krylov,
+                    0.5 * lc.mass,
+                    0.5 * lc.added_mass,
+                ],
+                base: [
+                    c.il0[k],
+                    c.half_wz[k],
+                    c.half_bz[k],
+                    c.half_fk[k],
+                    c.hm[k + 1],
+                    c.ha[k + 1],
+                ],
+                trib: [c.trib[ae.m], c.trib[ae.w]],
+                pay: Payout::default(),
+                l0: ae.base_l0,
+            }
+        }));
+    }
+}
+
+/// Sets the variable elements' entries of the working constants `wc` (a copy of the
+/// block's constants) for time `time`. When nothing has been paid out since the last
+/// remeshing and the rate is zero, they are the block's own, bit for bit (the plain
+/// GLMF); otherwise they follow the current `l0`, with the formulas of
+/// [`ChainConsts::new`].
+#[inline(always)]
+pub(super) fn ale_constants(sc: &mut AleScratch, time: f64, wc: &mut ChainConsts) {
+    for r in sc.runs.iter_mut() {
+        let pay = match (r.rate, &r.sched) {
+            (Some(rate), _) => Payout::of_constant(rate, time),
+            (None, Some(s)) => s.eval(time),
+            (None, None) => Payout::default(),
+        };
+        // `AleElem::l0`.
+        let l0 = r.base_l0 + (pay.dl - r.base_dl);
+        (r.pay, r.l0) = (pay, l0);
+        let [il0, hw, hb, hfk, hm, ha] = if l0 != r.base_l0 || pay.rate != 0.0 {
+            let q = r.per_l0;
+            [
+                1.0 / l0,
+                q[0] * l0,
+                q[1] * l0,
+                q[2] * l0,
+                q[3] * l0,
+                q[4] * l0,
+            ]
+        } else {
+            r.base
+        };
+        let k = r.k;
+        wc.il0[k] = il0;
+        wc.half_wz[k] = hw;
+        wc.half_bz[k] = hb;
+        wc.half_fk[k] = hfk;
+        wc.hm[k + 1] = hm;
+        wc.ha[k + 1] = ha;
+        for (i, trib) in [(r.m, r.trib[0]), (r.w, r.trib[1])] {
+            // Without a seabed `sb_k = sb_c = 0`, so the tributary length does not matter.
+            let lt = trib + 0.5 * (l0 - r.base_l0);
+            wc.kl[i] = wc.sb_k * lt;
+            wc.cl[i] = wc.sb_c * lt;
+            wc.mukl[i] = wc.sb_mu * wc.sb_k * lt;
+        }
+    }
+}
+
+/// After the element loop: the damping of a paid-out variable element acts on the
+/// material strain rate, `epsdot = (t . dv - (l / l0) Ldot) / l0` (crate::ale), so
+/// its tension (padded array `ten`) loses `EA c l Ldot / l0^2`.
+#[inline(always)]
+pub(super) fn ale_tension(sc: &AleScratch, p: &[Vec<f64>; 6], ten: &mut [f64]) {
+    for r in &sc.runs {
+        let rate = r.pay.rate;
+        if rate != 0.0 {
+            let k = r.k;
+            let (dx, dy, dz) = (
+                p[0][k + 1] - p[0][k],
+                p[1][k + 1] - p[1][k],
+                p[2][k + 1] - p[2][k],
+            );
+            let l = (dx * dx + dy * dy + dz * dz).sqrt();
+            ten[k + 1] -= r.eac * l * rate / (r.l0 * r.l0);
+        }
+    }
+}
+
+/// The mass-flow forces of Eq. 39 on the variable elements' free nodes, added to the
+/// per-node extra forces `xf`; returns whether any was added.
+#[inline(always)]
+pub(super) fn ale_mass_flow(sc: &AleScratch, p: &[Vec<f64>; 6], xf: &mut [Vec<f64>; 3]) -> bool {
+    let mut any = false;
+    for r in &sc.runs {
+        let pay = r.pay;
+        if pay.rate == 0.0 && pay.accel == 0.0 {
+            continue;
+        }
+        let (m, w) = (r.m, r.w);
+        let (fm, fw) = mass_flow_forces(
+            r.mass,
+            r.l0,
+            pay.rate,
+            pay.accel,
+            V3::new(p[0][m], p[1][m], p[2][m]),
+            V3::new(p[0][w], p[1][w], p[2][w]),
+            V3::new(p[3][m], p[4][m], p[5][m]),
+            V3::new(p[3][w], p[4][w], p[5][w]),
+        );
+        if r.m_free {
+            xf[0][m] += fm.x;
+            xf[1][m] += fm.y;
+            xf[2][m] += fm.z;
+            any = true;
+        }
+        if r.w_free {
+            xf[0][w] += fw.x;
+            xf[1][w] += fw.y;
+            xf[2][w] += fw.z;
+            any = true;
+        }
+    }
+    any
+}
+
+/// Clears the entries [`ale_mass_flow`] wrote.
+#[inline(always)]
+pub(super) fn ale_mass_flow_clear(sc: &AleScratch, xf: &mut [Vec<f64>; 3]) {
+    for r in &sc.runs {
+        for x in xf.iter_mut() {
+            x[r.m] = 0.0;
+            x[r.w] = 0.0;
+        }
+    }
+}

@@ -1,0 +1,590 @@
+//! Setting a [`GpuEngine`] up and feeding it: the bind group layout and pipelines
+//! (once), the layout's buffers and bind group ([`Installed`], again at each
+//! remeshing), the rows written per submission (payout, bodies, routes, waves) and the
+//! dispatch and read-back helpers that `advance` and `evaluate` use.
+//!
+//! Split out of `engine.rs` to keep each file under ~800 lines: this is the
+//! "what goes on the device" half, `engine.rs` the "how a step runs" half.
+
+use super::{align_up, bytes_or_one, Buffers, Engine, GpuEngine, Installed};
+use crate::error::Error;
+use crate::gpu::context::GpuContext;
+use crate::gpu::host::{body_rows, rebased_route, route_samples, split, Host};
+use crate::gpu::kernel::{fused_workgroup, STEPS_PER_SUBMISSION, WORKGROUP};
+use crate::gpu::layout::*;
+use crate::gpu::shaders::{self, Stage};
+use crate::gpu::solver::GpuTimings;
+use crate::gpu::wave_schedule::{fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE};
+use crate::model::Layout;
+use crate::options::Precision;
+use crate::options::SolverOptions;
+use bytemuck::Zeroable;
+use rayon::prelude::*;
+use std::marker::PhantomData;
+use wgpu::util::DeviceExt;
+
+impl<R: GpuReal> GpuEngine<R> {
+    pub(in crate::gpu) fn new(
+        ctx: &GpuContext,
+        lay: &Layout,
+        host: &Host,
+        positions: &[[f64; 3]],
+        opts: &SolverOptions,
+    ) -> Result<Self, Error> {
+        let dev = &ctx.device;
+        let step_stride = align_up(
+            std::mem::size_of::<StepInfo>() as u64,
+            ctx.limits.min_uniform_buffer_offset_alignment as u64,
+        );
+        let scope = dev.push_error_scope(wgpu::ErrorFilter::Validation);
+        let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let mut entries = vec![storage(0, true)];
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: true,
+                min_binding_size: wgpu::BufferSize::new(16),
+            },
+            count: None,
+        });
+        entries.extend((2..=9).map(|b| storage(b, true)));
+        entries.extend((10..=14).map(|b| storage(b, false)));
+        entries.extend((15..=16).map(|b| storage(b, true)));
+        // The wave components, bodies, the waves' cache and per-step rows.
+        entries.push(storage(17, true));
+        entries.push(storage(18, true));
+        entries.push(storage(19, false));
+        entries.push(storage(20, true));
+        let bgl = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("cablesim"),
+            entries: &entries,
+        });
+        let pl = dev.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("cablesim"),
+            bind_group_layouts: &[Some(&bgl)],
+            immediate_size: 0,
+        });
+        let precision = if R::WGSL == "f64" {
+            Precision::F64
+        } else {
+            Precision::F32
+        };
+        let module = |stage: Stage| {
+            dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(stage.file()),
+                source: wgpu::ShaderSource::Wgsl(shaders::source(stage, precision).into()),
+            })
+        };
+        let m_elem = module(Stage::ElementForces);
+        let m_node = module(Stage::NodeUpdate);
+        let pipeline = |m: &wgpu::ShaderModule, entry: &str| {
+            dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pl),
+                module: m,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let pipe_elem = pipeline(&m_elem, "element_forces");
+        let pipe_node = pipeline(&m_node, "node_update");
+        let pipe_eval = pipeline(&m_node, "node_evaluate");
+        let pipe_refresh = pipeline(&m_node, "wave_refresh");
+        let pipe_fused = fused_workgroup(lay, precision, &ctx.limits, !host.winches.is_empty())
+            .map(|wg| {
+                let m = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(Stage::FusedSteps.file()),
+                    source: wgpu::ShaderSource::Wgsl(
+                        shaders::source_with(Stage::FusedSteps, precision, wg).into(),
+                    ),
+                });
+                (pipeline(&m, "fused_steps"), wg)
+            });
+        let use_fused = pipe_fused.is_ok();
+        let inst = Self::build(ctx, &bgl, step_stride, lay, host, opts, None);
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(Error::Gpu(format!(
+                "building the {} pipelines: {e}",
+                precision.name()
+            )));
+        }
+        let mut engine = Self {
+            ctx: ctx.clone(),
+            opts: *opts,
+            inst,
+            bgl,
+            pipe_elem,
+            pipe_node,
+            pipe_eval,
+            pipe_refresh,
+            waves: None,
+            pipe_fused,
+            use_fused,
+            step_stride,
+            dt64: opts.dt,
+            timings: GpuTimings::default(),
+            _r: PhantomData,
+        };
+        engine.upload(host, positions, &vec![[0.0; 3]; positions.len()]);
+        engine.write_routes(lay, host, 0.0);
+        Ok(engine)
+    }
+
+    /// Creates the layout's buffers and their bind group.
+    pub(super) fn build(
+        ctx: &GpuContext,
+        bgl: &wgpu::BindGroupLayout,
+        step_stride: u64,
+        lay: &Layout,
+        host: &Host,
+        opts: &SolverOptions,
+        waves: Option<&SeaSchedules>,
+    ) -> Installed<R> {
+        let n_comps = waves.map_or(0, |w| w.n_comps);
+        let n_seas = waves.map_or(1, |w| w.seas.len().max(1));
+        let dev = &ctx.device;
+        let env = &lay.env;
+        let seabed = env.depth.is_finite();
+        let n_winch = host.winches.len();
+        let params = Params::<R> {
+            n_nodes: lay.n_nodes() as u32,
+            n_elems: lay.n_elements() as u32,
+            n_routes: lay.routes.len() as u32,
+            seabed: seabed as u32,
+            step_base: 0,
+            n_winch: n_winch as u32,
+            n_steps: 0,
+            n_bodies: host.bodies.len() as u32,
+            dt: R::c(opts.dt),
+            alpha: R::c(opts.baumgarte.alpha),
+            beta: R::c(opts.baumgarte.beta),
+            max_speed: R::c(opts.max_speed),
+            max_distance: R::c(opts.max_distance),
+            seabed_k: R::c(env.seabed.stiffness),
+            seabed_c: R::c(env.seabed.damping),
+            seabed_mu: R::c(env.seabed.friction),
+            seabed_v_eps: R::c(env.seabed.friction_velocity),
+            one: R::c(1.0),
+            gravity: R::c(env.gravity),
+        };
+        let lines: Vec<LineParams<R>> = lay
+            .line_coefs
+            .iter()
+            .map(|c| LineParams {
+                ea: R::c(c.ea),
+                ea_c: R::c(c.ea_c),
+                drag_n: R::c(c.drag_n),
+                drag_t: R::c(c.drag_t),
+                froude_krylov: R::c(c.froude_krylov),
+                mass: R::c(c.mass),
+                added_mass: R::c(c.added_mass),
+                wet_weight_z: R::c(c.wet_weight_z),
+                compression: R::c(c.compression),
+            })
+            .collect();
+        let elems: Vec<ElemParams<R>> = (0..lay.n_elements())
+            .map(|e| ElemParams {
+                a: lay.elem_a[e],
+                b: lay.elem_b[e],
+                line: lay.elem_line[e],
+                current: lay.elem_current[e],
+                block: host.node_block[lay.elem_a[e] as usize],
+                winch: host.elem_winch[e],
+                l0: split::<R>(lay.elem_l0[e]).0,
+                l0_lo: split::<R>(lay.elem_l0[e]).1,
+                diameter: R::c(lay.line_types[lay.elem_line[e] as usize].diameter),
+            })
+            .collect();
+        let nodes: Vec<NodeParams<R>> = (0..lay.n_nodes())
+            .map(|i| NodeParams {
+                inc_start: lay.inc_start[i],
+                inc_end: lay.inc_start[i + 1],
+                constraint: lay.node_constraint[i],
+                block: host.node_block[i],
+                current: lay.node_current[i],
+                winch: host.node_winch[i],
+                point_mass: R::c(lay.node_point_mass[i]),
+                point_weight_z: R::c(lay.node_point_weight_z[i]),
+                point_drag: R::c(lay.node_point_drag[i]),
+                tributary: R::c(lay.node_tributary[i]),
+                point_added: R::c(lay.node_point_added[i]),
+                point_displaced: R::c(lay.node_point_displaced[i]),
+                point_radius: R::c(lay.node_point_radius[i]),
+            })
+            .collect();
+        let blocks: Vec<BlockParams<R>> = host
+            .origin
+            .iter()
+            .zip(&lay.blocks)
+            .map(|(o, b)| BlockParams {
+                ox: R::c(o[0]),
+                oy: R::c(o[1]),
+                oz: R::c(o[2]),
+                zb: R::c(if seabed { -env.depth - o[2] } else { 0.0 }),
+                node_start: b.node_start,
+                node_end: b.node_end,
+                elem_start: b.elem_start,
+                elem_end: b.elem_end,
+                wave_rows: waves.map_or(0, |w| w.block_rows(lay, b.node_start)),
+                pad: 0,
+            })
+            .collect();
+        let mut current_pts = Vec::new();
+        let mut current_ranges = Vec::new();
+        for c in &lay.currents {
+            current_ranges.push(CurrentRange {
+                start: current_pts.len() as u32,
+                len: c.table.len() as u32,
+            });
+            for (z, u) in &c.table {
+                current_pts.push(CurrentPoint {
+                    z: R::c(*z),
+                    ux: R::c(u[0]),
+                    uy: R::c(u[1]),
+                    uz: R::c(u[2]),
+                });
+            }
+        }
+        let n_nodes = lay.n_nodes();
+        let n_elems = lay.n_elements();
+        let n_routes = lay.routes.len();
+        let n_blocks = lay.blocks.len();
+
+        let mut steps = vec![0u8; (step_stride * STEPS_PER_SUBMISSION as u64) as usize];
+        for k in 0..STEPS_PER_SUBMISSION as usize {
+            let s = StepInfo {
+                k: k as u32,
+                ..Default::default()
+            };
+            let off = k * step_stride as usize;
+            steps[off..off + 16].copy_from_slice(bytemuck::bytes_of(&s));
+        }
+
+        use wgpu::BufferUsages as U;
+        let init = |label: &str, contents: &[u8], usage: U| {
+            dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        let ro = U::STORAGE;
+        let rw = U::STORAGE | U::COPY_SRC | U::COPY_DST;
+        let state_bytes = (n_nodes.max(1) * std::mem::size_of::<NodeState<R>>()) as u64;
+        let loads_bytes = (n_elems.max(1) * std::mem::size_of::<ElemLoads<R>>()) as u64;
+        let out_bytes = (n_nodes.max(1) * std::mem::size_of::<NodeOut<R>>()) as u64;
+        let react_bytes = (n_routes.max(1) * std::mem::size_of::<[R; 4]>()) as u64;
+        let payout_bytes = ((STEPS_PER_SUBMISSION as usize * n_winch).max(1)
+            * std::mem::size_of::<Payout<R>>()) as u64;
+        let body_bytes = ((STEPS_PER_SUBMISSION as usize * host.bodies.len()).max(1)
+            * std::mem::size_of::<BodyRow<R>>()) as u64;
+        let staging_bytes = [state_bytes, loads_bytes, out_bytes, react_bytes, 16]
+            .iter()
+            .map(|&b| align_up(b, 256))
+            .sum();
+        let zeros = |n: u64| vec![0u8; n as usize];
+        let buf = Buffers {
+            params: init("params", bytemuck::bytes_of(&params), ro | U::COPY_DST),
+            step: init("step", &steps, U::UNIFORM | U::COPY_DST),
+            routes: init(
+                "routes",
+                &bytes_or_one(&vec![RouteParams::<R>::zeroed(); n_routes]),
+                ro | U::COPY_DST,
+            ),
+            state: init("state", &zeros(state_bytes), rw),
+            elem_loads: init("elem_loads", &zeros(loads_bytes), rw),
+            node_out: init("node_out", &zeros(out_bytes), rw),
+            reactions: init("reactions", &zeros(react_bytes), rw),
+            status: init("status", &zeros(16), rw),
+            payout: init("payout", &zeros(payout_bytes), ro | U::COPY_DST),
+            body_rows: init("body_rows", &zeros(body_bytes), ro | U::COPY_DST),
+            wave_comps: init(
+                "wave_comps",
+                &zeros((n_comps.max(1) * std::mem::size_of::<WaveComp<R>>()) as u64),
+                ro | U::COPY_DST,
+            ),
+            // Still water: rows of zeros (no components) are never rewritten.
+            wave_steps: init(
+                "wave_steps",
+                &zeros(
+                    (n_seas as u64 * STEPS_PER_SUBMISSION as u64)
+                        * std::mem::size_of::<WaveStep<R>>() as u64,
+                ),
+                ro | U::COPY_DST,
+            ),
+            staging: dev.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("staging"),
+                size: staging_bytes,
+                usage: U::MAP_READ | U::COPY_DST,
+                mapped_at_creation: false,
+            }),
+        };
+        let lines_b = init("lines", &bytes_or_one(&lines), ro);
+        let elems_b = init("elems", &bytes_or_one(&elems), ro);
+        let nodes_b = init("nodes", &bytes_or_one(&nodes), ro);
+        let inc_b = init("inc", &bytes_or_one(&lay.inc), ro);
+        let blocks_b = init("blocks", &bytes_or_one(&blocks), ro);
+        let pts_b = init("current_pts", &bytes_or_one(&current_pts), ro);
+        let ranges_b = init("current_ranges", &bytes_or_one(&current_ranges), ro);
+        let samples: Vec<RouteSample<R>> = lay
+            .routes
+            .iter()
+            .enumerate()
+            .flat_map(|(c, r)| route_samples::<R>(r, host.route_origin(lay, c)))
+            .collect();
+        let samples_b = init("route_samples", &bytes_or_one(&samples), ro);
+        // Two slots (t0, t1) of WAVE_CACHE_STRIDE values per node, then each node's
+        // velocity at the last refresh; one value in still water.
+        let cache_len = if n_comps == 0 {
+            1
+        } else {
+            n_nodes * (2 * WAVE_CACHE_STRIDE + 3)
+        };
+        let cache_b = init(
+            "wave_cache",
+            &zeros((cache_len * std::mem::size_of::<R>()) as u64),
+            U::STORAGE,
+        );
+        fn whole(binding: u32, b: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry {
+                binding,
+                resource: b.as_entire_binding(),
+            }
+        }
+        let bind_group = dev.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("cablesim"),
+            layout: bgl,
+            entries: &[
+                whole(0, &buf.params),
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &buf.step,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(16),
+                    }),
+                },
+                whole(2, &lines_b),
+                whole(3, &elems_b),
+                whole(4, &nodes_b),
+                whole(5, &inc_b),
+                whole(6, &buf.routes),
+                whole(7, &blocks_b),
+                whole(8, &pts_b),
+                whole(9, &ranges_b),
+                whole(10, &buf.state),
+                whole(11, &buf.elem_loads),
+                whole(12, &buf.node_out),
+                whole(13, &buf.reactions),
+                whole(14, &buf.status),
+                whole(15, &samples_b),
+                whole(16, &buf.payout),
+                whole(17, &buf.wave_comps),
+                whole(18, &buf.body_rows),
+                whole(19, &cache_b),
+                whole(20, &buf.wave_steps),
+            ],
+        });
+        Installed {
+            params,
+            buf,
+            bind_group,
+            n_nodes,
+            n_elems,
+            n_routes,
+            n_blocks,
+            fused_max_steps: fused_max_steps(lay),
+        }
+    }
+
+    /// Writes the `payout` rows of steps `step0 .. step0 + n` (rows `0 .. n`): the
+    /// variable element of each winch cable at each step's time, from its schedule, in
+    /// f64 exactly as the CPU path forms them (`ale::AleElem::l0`).
+    pub(super) fn write_payout(&self, host: &Host, step0: u64, n: u64) {
+        if host.winches.is_empty() {
+            return;
+        }
+        let mut rows = Vec::with_capacity(n as usize * host.winches.len());
+        for k in 0..n {
+            // Time from the step count, as the CPU path forms it.
+            let t = (step0 + k) as f64 * self.dt64;
+            for ae in &host.winches {
+                let pay = ae.sched.eval(t);
+                let l0 = ae.l0(pay.dl);
+                let (hi, lo) = split::<R>(l0);
+                rows.push(Payout::<R> {
+                    l0: hi,
+                    l0_lo: lo,
+                    rate: R::c(pay.rate),
+                    accel: R::c(pay.accel),
+                    trib: R::c(0.5 * (l0 - ae.base_l0)),
+                });
+            }
+        }
+        self.ctx
+            .queue
+            .write_buffer(&self.inst.buf.payout, 0, bytemuck::cast_slice(&rows));
+    }
+
+    /// Writes the `body_rows` of steps `step0 .. step0 + n` (rows `0 .. n`, one per
+    /// body each), relative to each body's state at `step0` (the routes' rebase time).
+    pub(super) fn write_bodies(&self, host: &Host, step0: u64, n: u64) {
+        if host.bodies.is_empty() {
+            return;
+        }
+        let dt = self.dt64;
+        // Bodies in parallel (a packed study has one per member); each row a function
+        // of its time alone, so the rows do not depend on the thread count.
+        let per_body: Vec<Vec<BodyRow<R>>> = host
+            .bodies
+            .par_iter()
+            .map(|b| {
+                body_rows(
+                    b,
+                    step0 as f64 * dt,
+                    (0..n).map(|k| (step0 + k) as f64 * dt),
+                )
+            })
+            .collect();
+        let rows: Vec<BodyRow<R>> = (0..n as usize)
+            .flat_map(|k| per_body.iter().map(move |b| b[k]))
+            .collect();
+        self.ctx
+            .queue
+            .write_buffer(&self.inst.buf.body_rows, 0, bytemuck::cast_slice(&rows));
+    }
+
+    pub(super) fn write_routes(&self, lay: &Layout, host: &Host, t0: f64) {
+        if lay.routes.is_empty() {
+            return;
+        }
+        let q: Vec<RouteParams<R>> = lay
+            .routes
+            .iter()
+            .enumerate()
+            .map(|(c, r)| {
+                let mut q = rebased_route(
+                    r,
+                    lay.constraint_node[c],
+                    t0,
+                    host.route_origin(lay, c),
+                    host.table_start[c],
+                );
+                q.body = host.route_body[c];
+                q
+            })
+            .collect();
+        self.ctx
+            .queue
+            .write_buffer(&self.inst.buf.routes, 0, bytemuck::cast_slice(&q));
+    }
+
+    /// Rebases every sea's wave components to `t_ref` and writes them, back to back
+    /// (waves only).
+    pub(super) fn write_wave_comps(&mut self, t_ref: f64) {
+        let Some(w) = self.waves.as_mut() else {
+            return;
+        };
+        let mut comps: Vec<WaveComp<R>> = Vec::with_capacity(w.n_comps);
+        for sea in w.seas.iter_mut().flatten() {
+            sea.field.rebase(t_ref);
+            comps.extend(sea.field.comps.iter().map(WaveComp::from_packed));
+        }
+        self.ctx
+            .queue
+            .write_buffer(&self.inst.buf.wave_comps, 0, bytemuck::cast_slice(&comps));
+    }
+
+    /// Writes the `wave_steps` rows of steps `step0 .. step0 + n` of every sea,
+    /// components referred to the time of `step0`; returns which steps refresh the
+    /// cache of some sea (none in still water).
+    pub(super) fn write_waves(&mut self, step0: u64, n: u64) -> Vec<bool> {
+        if self.waves.is_none() {
+            return vec![false; n as usize];
+        }
+        let dt = self.dt64;
+        let t_ref = step0 as f64 * dt;
+        self.write_wave_comps(t_ref);
+        let w = self.waves.as_mut().expect("waves");
+        let per = STEPS_PER_SUBMISSION as usize;
+        let mut rows = vec![WaveStep::<R>::default(); w.seas.len() * per];
+        let mut refresh = vec![false; n as usize];
+        for (q, sea) in w.seas.iter_mut().enumerate() {
+            let Some(sea) = sea else { continue };
+            for k in 0..n as usize {
+                let row = sea.step::<R>((step0 + k as u64) as f64 * dt, t_ref);
+                refresh[k] |= row.refresh != 0;
+                rows[q * per + k] = row;
+            }
+        }
+        self.ctx
+            .queue
+            .write_buffer(&self.inst.buf.wave_steps, 0, bytemuck::cast_slice(&rows));
+        refresh
+    }
+
+    pub(super) fn dispatch(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        pipe: &wgpu::ComputePipeline,
+        n: usize,
+    ) {
+        pass.set_pipeline(pipe);
+        pass.dispatch_workgroups((n as u32).div_ceil(WORKGROUP).max(1), 1, 1);
+    }
+
+    /// Copies `(buffer, bytes)` pairs into the staging buffer, waits, and returns the
+    /// bytes of each.
+    pub(super) fn read_back(&self, parts: &[(&wgpu::Buffer, u64)]) -> Result<Vec<Vec<u8>>, Error> {
+        let ctx = &self.ctx;
+        let mut enc = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("read_back"),
+            });
+        let mut offsets = Vec::new();
+        let mut off = 0u64;
+        for (b, n) in parts {
+            enc.copy_buffer_to_buffer(b, 0, &self.inst.buf.staging, off, *n);
+            offsets.push(off);
+            off = align_up(off + n, 256);
+        }
+        ctx.queue.submit([enc.finish()]);
+        let slice = self.inst.buf.staging.slice(0..off);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        ctx.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| Error::Gpu(format!("waiting for the device: {e}")))?;
+        ctx.take_error()?;
+        rx.recv()
+            .map_err(|e| Error::Gpu(format!("read-back: {e}")))?
+            .map_err(|e| Error::Gpu(format!("read-back: {e}")))?;
+        let out = {
+            let view = slice
+                .get_mapped_range()
+                .map_err(|e| Error::Gpu(format!("read-back: {e}")))?;
+            parts
+                .iter()
+                .zip(&offsets)
+                .map(|((_, n), &o)| view[o as usize..(o + n) as usize].to_vec())
+                .collect()
+        };
+        self.inst.buf.staging.unmap();
+        Ok(out)
+    }
+}

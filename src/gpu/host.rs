@@ -1,0 +1,283 @@
+//! The host's side of a layout: what is computed once per layout in f64 and does not
+//! depend on the shader precision ([`Host`]: per-block origins, winch and body
+//! indices), and the rows the host forms in f64 and uploads at each submission in the
+//! shader precision: routes rebased to the submission's start ([`rebased_route`],
+//! [`route_samples`]) and the bodies' rows ([`body_rows`]).
+//!
+//! Split out of `solver.rs` (one concept per file): these functions are also the
+//! twins the GPU tests compare against (`tests/gpu/functions.rs`, `tests/gpu/bodies.rs`).
+
+use super::layout::*;
+use crate::ale::{AleElem, AleState};
+use crate::body::{attachment, kinematics::mat_vec, Body};
+use crate::error::Error;
+use crate::model::{circle_basis, Layout, Route};
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+/// Node positions (absolute, m) and velocities (m/s), packed order.
+pub type NodeStates = (Vec<[f64; 3]>, Vec<[f64; 3]>);
+
+/// Precision-independent host data, computed once per layout.
+#[derive(Clone)]
+pub(super) struct Host {
+    /// Per block: origin (absolute, m), a whole number of metres (exact in f32).
+    pub(super) origin: Vec<[f64; 3]>,
+    /// Per node: its block.
+    pub(super) node_block: Vec<u32>,
+    /// Per route: where its samples start in the `route_samples` buffer (tables only).
+    pub(super) table_start: Vec<u32>,
+    /// Per element: `ElemParams::winch`.
+    pub(super) elem_winch: Vec<u32>,
+    /// Per node: `NodeParams::winch`.
+    pub(super) node_winch: Vec<u32>,
+    /// The variable elements of the winch cables, in winch index order (the rows of
+    /// the `payout` buffer).
+    pub(super) winches: Vec<AleElem>,
+    /// The bodies that ends are attached to (the columns of the `body_rows` buffer).
+    pub(super) bodies: Vec<Arc<Body>>,
+    /// Per route: its body's index in `bodies` (routes on bodies only; else 0).
+    pub(super) route_body: Vec<u32>,
+}
+
+/// `ElemParams::winch` and `NodeParams::winch` of what is not a variable element.
+pub(super) const NO_WINCH: u32 = u32::MAX;
+
+impl Host {
+    pub(super) fn new(
+        lay: &Layout,
+        positions: &[[f64; 3]],
+        ale: Option<&AleState>,
+    ) -> Result<Self, Error> {
+        let mut origin = Vec::with_capacity(lay.blocks.len());
+        let mut node_block = vec![0u32; lay.n_nodes()];
+        for (bi, b) in lay.blocks.iter().enumerate() {
+            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
+            let mut o = [0.0; 3];
+            for p in &positions[n0..n1] {
+                for d in 0..3 {
+                    o[d] += p[d];
+                }
+            }
+            let n = (n1 - n0).max(1) as f64;
+            origin.push(o.map(|x| (x / n).round()));
+            node_block[n0..n1].iter_mut().for_each(|x| *x = bi as u32);
+        }
+        let mut table_start = Vec::with_capacity(lay.routes.len());
+        let mut next = 0u32;
+        for r in &lay.routes {
+            table_start.push(next);
+            if let Route::Table { t, .. } = r {
+                next += t.len() as u32;
+            }
+        }
+        let mut bodies: Vec<Arc<Body>> = Vec::new();
+        let mut route_body = vec![0u32; lay.routes.len()];
+        for (c, r) in lay.routes.iter().enumerate() {
+            if let Route::Body { body, .. } = r {
+                route_body[c] = match bodies.iter().position(|b| Arc::ptr_eq(b, body)) {
+                    Some(i) => i,
+                    None => {
+                        bodies.push(body.clone());
+                        bodies.len() - 1
+                    }
+                } as u32;
+            }
+        }
+        let mut elem_winch = vec![NO_WINCH; lay.n_elements()];
+        let mut node_winch = vec![NO_WINCH; lay.n_nodes()];
+        let mut winches = Vec::new();
+        if let Some(ale) = ale {
+            for (wi, (e, m, w, ae)) in ale.packed_variable_elements(lay).enumerate() {
+                elem_winch[e] = 2 * wi as u32 + (lay.elem_b[e] as usize == w) as u32;
+                for n in [m, w] {
+                    if node_winch[n] != NO_WINCH {
+                        let (cable, node) = lay.describe_node(n);
+                        return Err(Error::GpuUnsupported(format!(
+                            "node {node} of cable '{cable}' ends the variable elements of two winch cables"
+                        )));
+                    }
+                    node_winch[n] = wi as u32;
+                }
+                winches.push(ae.clone());
+            }
+        }
+        Ok(Self {
+            origin,
+            node_block,
+            table_start,
+            elem_winch,
+            node_winch,
+            winches,
+            bodies,
+            route_body,
+        })
+    }
+
+    /// The origin of the block of the node route `c` drives.
+    pub(super) fn route_origin(&self, lay: &Layout, c: usize) -> [f64; 3] {
+        let n = lay.constraint_node[c] as usize;
+        self.origin[self.node_block[n] as usize]
+    }
+}
+
+pub(super) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// `x` as a compensated pair `(hi, lo)` of `R`: `hi + lo` is `x` to about twice the
+/// precision of `R` (in f64, `lo` is zero).
+pub(super) fn split<R: GpuReal>(x: f64) -> (R, R) {
+    let hi = R::c(x);
+    (hi, R::c(x - hi.f64()))
+}
+
+/// The samples of a table route relative to origin `o` (what [`rebased_route`]'s
+/// `table_start` points at in the `route_samples` buffer); empty for other routes.
+pub fn route_samples<R: GpuReal>(route: &Route, o: [f64; 3]) -> Vec<RouteSample<R>> {
+    let Route::Table { t, p } = route else {
+        return Vec::new();
+    };
+    t.iter()
+        .zip(p)
+        .map(|(&t, p)| {
+            let mut s = RouteSample::<R>::default();
+            (s.t_hi, s.t_lo) = split(t);
+            (s.x_hi, s.x_lo) = split(p[0] - o[0]);
+            (s.y_hi, s.y_lo) = split(p[1] - o[1]);
+            (s.z_hi, s.z_lo) = split(p[2] - o[2]);
+            s
+        })
+        .collect()
+}
+
+/// Route `route` of node `node` rebased to time `t0` and origin `o`: what the shaders'
+/// `route_eval(q, tau)` turns into the target at `t0 + tau`, relative to `o`. A table
+/// route's samples ([`route_samples`]) start at `table_start` in the samples buffer.
+/// A point on a body holds the point at `t0`, `R(t0) at` and `at` (`body` is left 0
+/// for the caller to set); the shaders' `body_point` adds the motion since `t0` from
+/// the body's row of the step ([`body_rows`]).
+pub fn rebased_route<R: GpuReal>(
+    route: &Route,
+    node: u32,
+    t0: f64,
+    o: [f64; 3],
+    table_start: u32,
+) -> RouteParams<R> {
+    let mut q = RouteParams::<R> {
+        node,
+        ..Default::default()
+    };
+    if let Route::Table { t, .. } = route {
+        q.kind = 3;
+        q.table_start = table_start;
+        q.table_len = t.len() as u32;
+        q.cursor = t.partition_point(|&x| x <= t0) as u32;
+        (q.t0_hi, q.t0_lo) = split(t0);
+        return q;
+    }
+    if let Route::Body { body, at } = route {
+        q.kind = 4;
+        let s = body.state(t0);
+        let p = sub(attachment(&s, *at).r, o);
+        (q.p_hi_x, q.p_lo_x) = split(p[0]);
+        (q.p_hi_y, q.p_lo_y) = split(p[1]);
+        (q.p_hi_z, q.p_lo_z) = split(p[2]);
+        let q0 = mat_vec(&s.rot, *at);
+        (q.e1_x, q.e1_y, q.e1_z) = (R::c(q0.x), R::c(q0.y), R::c(q0.z));
+        (q.e2_x, q.e2_y, q.e2_z) = (R::c(at[0]), R::c(at[1]), R::c(at[2]));
+        return q;
+    }
+    let (p, vel) = match route {
+        Route::Fixed { position } => {
+            q.kind = 0;
+            (sub(*position, o), [0.0; 3])
+        }
+        Route::Line { start, velocity } => {
+            q.kind = 1;
+            let p = [0, 1, 2].map(|d| start[d] + velocity[d] * t0);
+            (sub(p, o), *velocity)
+        }
+        Route::Circle {
+            center,
+            radius,
+            period,
+            axis,
+            phase,
+            advance,
+        } => {
+            q.kind = 2;
+            let w = 2.0 * PI / period;
+            let adv = advance / period;
+            let (e1, e2) = circle_basis(*axis);
+            q.e1_x = R::c(radius * e1[0]);
+            q.e1_y = R::c(radius * e1[1]);
+            q.e1_z = R::c(radius * e1[2]);
+            q.e2_x = R::c(radius * e2[0]);
+            q.e2_y = R::c(radius * e2[1]);
+            q.e2_z = R::c(radius * e2[2]);
+            q.w = R::c(w);
+            let th0 = (w * t0 + phase).rem_euclid(2.0 * PI);
+            let (s0, c0) = th0.sin_cos();
+            q.c0 = R::c(c0);
+            q.s0 = R::c(s0);
+            // The point on the circle at t0, in f64: the shader adds the displacement.
+            let p = [0, 1, 2]
+                .map(|d| center[d] + axis[d] * adv * t0 + radius * (c0 * e1[d] + s0 * e2[d]));
+            (sub(p, o), axis.map(|a| a * adv))
+        }
+        Route::Table { .. } | Route::Body { .. } => unreachable!("handled above"),
+    };
+    (q.p_hi_x, q.p_lo_x) = split(p[0]);
+    (q.p_hi_y, q.p_lo_y) = split(p[1]);
+    (q.p_hi_z, q.p_lo_z) = split(p[2]);
+    q.vel_x = R::c(vel[0]);
+    q.vel_y = R::c(vel[1]);
+    q.vel_z = R::c(vel[2]);
+    q
+}
+
+/// The rows of `body` at times `times` (s) relative to its state at the rebase time
+/// `t0` (what the shaders' `body_point` reads): the reference point's displacement
+/// and the change of the rotation since `t0`, formed in f64 so that only small
+/// numbers are rounded to `R`, and the velocities and accelerations at each time.
+pub fn body_rows<R: GpuReal>(
+    body: &Body,
+    t0: f64,
+    times: impl Iterator<Item = f64>,
+) -> Vec<BodyRow<R>> {
+    let s0 = body.state(t0);
+    times
+        .map(|t| {
+            let s = body.evaluate(t);
+            let d = s.x - s0.x;
+            let dr = |i: usize, j: usize| R::c(s.rot[i][j] - s0.rot[i][j]);
+            BodyRow {
+                dx: R::c(d.x),
+                dy: R::c(d.y),
+                dz: R::c(d.z),
+                dr00: dr(0, 0),
+                dr01: dr(0, 1),
+                dr02: dr(0, 2),
+                dr10: dr(1, 0),
+                dr11: dr(1, 1),
+                dr12: dr(1, 2),
+                dr20: dr(2, 0),
+                dr21: dr(2, 1),
+                dr22: dr(2, 2),
+                vx: R::c(s.v.x),
+                vy: R::c(s.v.y),
+                vz: R::c(s.v.z),
+                ax: R::c(s.a.x),
+                ay: R::c(s.a.y),
+                az: R::c(s.a.z),
+                wx: R::c(s.omega.x),
+                wy: R::c(s.omega.y),
+                wz: R::c(s.omega.z),
+                alx: R::c(s.alpha.x),
+                aly: R::c(s.alpha.y),
+                alz: R::c(s.alpha.z),
+            }
+        })
+        .collect()
+}

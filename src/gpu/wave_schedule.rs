@@ -1,0 +1,288 @@
+//! The host's side of the waves on the GPU: one kinematics-cache schedule per sea
+//! ([`WaveSchedule`], [`SeaSchedules`]) on the same refresh grid as the CPU path
+//! (`sea::schedule`), and how a submission of the fused kernel is cut into dispatches
+//! at the refresh steps ([`fused_segments`], [`fused_max_steps`]).
+//!
+//! Split out of `solver.rs` so that the refresh schedule, which decides where the
+//! fused kernel's dispatches end, reads in one place with its unit tests.
+
+use super::kernel::STEPS_PER_SUBMISSION;
+use super::layout::*;
+use crate::model::{Layout, Route};
+use crate::sea::cache::hermite_weights;
+use crate::sea::kinematics::{wave_ramp, wave_ramp_rate, WaveField};
+use crate::sea::schedule::{RefreshClock, RefreshPlan};
+use crate::sea::{SeaSet, SeaState, Stretching, GPU_DEEP};
+
+/// Scalars per node and cache slot on the GPU: the values `eta, u, a` and their rates
+/// along the node's path (`WAVE_CACHE_STRIDE` in `shaders/shared/waves.wgsl`); after
+/// the two slots, three per node: its velocity at the last refresh.
+pub(super) const WAVE_CACHE_STRIDE: usize = 14;
+
+/// The host's side of the waves' kinematics cache: the components (rebased at each
+/// submission) and when the cache's two times are: the same [`RefreshClock`] as the
+/// CPU path's `sea::cache::WaveCache`, on the same grid (`sea::schedule`), so that
+/// both refresh at the same steps and interpolate with the same Hermite weights.
+pub(super) struct WaveSchedule {
+    pub(super) field: WaveField,
+    /// Its first component in the components buffer.
+    pub(super) first: u32,
+    /// The cache's times and refresh grid.
+    pub(super) clock: RefreshClock,
+    /// Cache slot of the older values (0 or 1).
+    pub(super) slot0: u32,
+}
+
+impl WaveSchedule {
+    pub(super) fn new(sea: &SeaState, first: u32, plan: &RefreshPlan) -> Self {
+        Self {
+            field: WaveField::new(sea),
+            first,
+            clock: RefreshClock::on_grid(plan),
+            slot0: 0,
+        }
+    }
+
+    /// The row of constants every step shares.
+    pub(super) fn base<R: GpuReal>(&self) -> WaveStep<R> {
+        WaveStep {
+            n: self.field.comps.len() as u32,
+            first: self.first,
+            stretching: match self.field.stretching {
+                Stretching::Wheeler => 0,
+                Stretching::Constant => 1,
+            },
+            depth: R::c(if self.field.depth.is_finite() {
+                self.field.depth
+            } else {
+                GPU_DEEP
+            }),
+            ..Default::default()
+        }
+    }
+
+    /// The row of the step at time `t` (s; phases referred to `t_ref`), refreshing
+    /// when the CPU path's cache would.
+    pub(super) fn step<R: GpuReal>(&mut self, t: f64, t_ref: f64) -> WaveStep<R> {
+        let mut row = self.base::<R>();
+        let ramp = self.field.ramp_duration;
+        if let Some(tick) = self.clock.tick(t) {
+            row.refresh = 1;
+            row.track = 1;
+            row.acc_rate = R::c(tick.acc_rate);
+            if tick.restart {
+                row.restart = 1;
+                row.tau0 = R::c(t - t_ref);
+                row.ramp0 = R::c(wave_ramp(t, ramp));
+                row.ramp_rate0 = R::c(wave_ramp_rate(t, ramp));
+            } else {
+                self.slot0 = 1 - self.slot0;
+            }
+            let t1 = self.clock.t1;
+            row.ahead = R::c(tick.ahead);
+            row.tau1 = R::c(t1 - t_ref);
+            row.ramp1 = R::c(wave_ramp(t1, ramp));
+            row.ramp_rate1 = R::c(wave_ramp_rate(t1, ramp));
+        }
+        row.slot0 = self.slot0;
+        row.slot1 = 1 - self.slot0;
+        let (t0, t1) = (self.clock.t0, self.clock.t1);
+        let delta = t1 - t0;
+        let s = ((t - t0) / delta).clamp(0.0, 1.0);
+        let w = hermite_weights(s, delta);
+        (row.w0, row.w1, row.w2, row.w3) = (R::c(w[0]), R::c(w[1]), R::c(w[2]), R::c(w[3]));
+        row
+    }
+}
+
+/// The waves of a run: one schedule per sea (`sea::set`), their components back to
+/// back in the components buffer, and `STEPS_PER_SUBMISSION` rows per sea in the rows
+/// buffer (sea `q`'s at `q * STEPS_PER_SUBMISSION`). Each sea refreshes on its own
+/// schedule, as its blocks' caches do on the CPU path.
+pub(super) struct SeaSchedules {
+    /// Per sea: its schedule (`None`: still water, rows of zeros).
+    pub(super) seas: Vec<Option<WaveSchedule>>,
+    /// Per cable: its sea (empty: all in sea 0).
+    pub(super) cable_sea: Vec<u32>,
+    /// Components of every sea.
+    pub(super) n_comps: usize,
+}
+
+impl SeaSchedules {
+    /// The schedules of `set`'s seas stepping by `dt` (each on its own
+    /// [`SeaSet::plan`], as the CPU path's caches).
+    pub(super) fn new(set: &SeaSet, dt: f64) -> Self {
+        let mut first = 0u32;
+        let seas = set
+            .seas
+            .iter()
+            .enumerate()
+            .map(|(q, sea)| {
+                (!sea.is_still()).then(|| {
+                    let w = WaveSchedule::new(sea, first, &set.plan(q, dt));
+                    first += sea.components.len() as u32;
+                    w
+                })
+            })
+            .collect();
+        Self {
+            seas,
+            cable_sea: set.cable_sea.clone(),
+            n_comps: first as usize,
+        }
+    }
+
+    /// The first row of the sea of the block starting at packed node `n0`.
+    pub(super) fn block_rows(&self, lay: &Layout, n0: u32) -> u32 {
+        let c = lay.node_cable.get(n0 as usize).copied().unwrap_or(0) as usize;
+        self.cable_sea.get(c).copied().unwrap_or(0) * STEPS_PER_SUBMISSION
+    }
+
+    /// Starts every cache afresh (after a remesh, as the CPU path's caches do).
+    pub(super) fn restart(&mut self) {
+        for w in self.seas.iter_mut().flatten() {
+            w.clock.reset();
+        }
+    }
+}
+
+/// The fused kernel's dispatches of a submission, as step ranges `a .. b`: a new one
+/// starts at every step that refreshes the waves' cache (`refresh[k]`), after a
+/// `wave_refresh` dispatch, and after at most `max_len` steps. Why: on llvmpipe
+/// (lavapipe) all the loops of a shader invocation share one budget of 65535
+/// iterations, after which each loop stops after one iteration without a word
+/// (`shaders/fused_chain.wgsl`). The refresh's sums over the wave components spent it
+/// within a submission, so the fused kernel does not refresh; `max_len`
+/// ([`fused_max_steps`]) keeps the loops of its steps within it.
+pub(super) fn fused_segments(refresh: &[bool], max_len: u64) -> Vec<(u64, u64)> {
+    let n = refresh.len() as u64;
+    let max_len = max_len.max(1);
+    let mut segs = Vec::new();
+    let mut a = 0;
+    for k in 1..=n {
+        if k == n || refresh[k as usize] || k - a == max_len {
+            segs.push((a, k));
+            a = k;
+        }
+    }
+    segs
+}
+
+/// The most steps one fused dispatch may take on this layout: half of llvmpipe's
+/// budget of 65535 loop iterations per shader invocation over an upper bound of one
+/// step's iterations (the step loop, a node's incidence list, the linear search of the
+/// longest current profile, the binary search of the longest route table). 512 steps
+/// (a whole submission) fit unless a current profile has more than some 50 points.
+pub(super) fn fused_max_steps(lay: &Layout) -> u64 {
+    const LOOP_BUDGET: u64 = 65535 / 2;
+    let incidence = lay
+        .inc_start
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .max()
+        .unwrap_or(0) as u64;
+    let profile = lay
+        .currents
+        .iter()
+        .map(|c| c.table.len())
+        .max()
+        .unwrap_or(0) as u64;
+    let table = lay
+        .routes
+        .iter()
+        .map(|r| match r {
+            Route::Table { t, .. } => t.len(),
+            _ => 0,
+        })
+        .max()
+        .unwrap_or(0) as u64;
+    let search = 64 - table.leading_zeros() as u64 + 1;
+    let per_step = 1 + incidence + profile + search;
+    (LOOP_BUDGET / per_step).max(1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{fused_segments, SeaSchedules, STEPS_PER_SUBMISSION};
+    use crate::sea::irregular::{discretise, Discretisation};
+    use crate::sea::spectrum::{dnv_peak_factor, Spectrum};
+    use crate::sea::{SeaSet, SeaState};
+
+    /// A packed study's seas on the common refresh grid (`sea::schedule`): the three
+    /// sea states of `examples/study_design_check.toml` (refreshes every 16, 24 and 32
+    /// steps of 1/150 s at the mean level), ten seeds each. Submission by submission as
+    /// `write_waves` forms them, the fused dispatch is cut only at the refresh steps
+    /// of the shortest interval's family and of the threes' (the union of every 16th
+    /// and every 24th step: one in twelve), not at most steps as when each sea kept
+    /// its own unrounded interval.
+    #[test]
+    fn packed_seas_on_the_grid_cut_the_fused_dispatch_rarely() {
+        let dt = 1.0 / 150.0;
+        let mut seas = Vec::new();
+        for (hs, tp, gamma) in [
+            (4.0, 9.0, dnv_peak_factor(4.0, 9.0)),
+            (9.0, 13.0, 2.5),
+            (13.0, 15.5, 3.3),
+        ] {
+            for seed in 0..10 {
+                let d = Discretisation {
+                    components: 200,
+                    direction: 0.0,
+                    spreading: None,
+                    seed,
+                    stream: 0,
+                };
+                seas.push(SeaState {
+                    components: discretise(&Spectrum::Jonswap { hs, tp, gamma }, &d, 320.0, 9.81),
+                    ..SeaState::still(320.0)
+                });
+            }
+        }
+        let set = SeaSet {
+            cable_sea: (0..seas.len() as u32).collect(),
+            seas,
+            reach: Vec::new(),
+        };
+        let mut steps: Vec<u64> = (0..set.seas.len()).map(|q| set.plan(q, dt).steps).collect();
+        steps.sort();
+        steps.dedup();
+        assert_eq!(steps, vec![16, 24, 32]);
+        let mut w = SeaSchedules::new(&set, dt);
+        let (n, per) = (48 * 512u64, STEPS_PER_SUBMISSION as u64);
+        let (mut segments, mut refreshes) = (0usize, 0u64);
+        for step0 in (0..n).step_by(per as usize) {
+            let refresh: Vec<bool> = (0..per)
+                .map(|k| {
+                    let t = (step0 + k) as f64 * dt;
+                    w.seas
+                        .iter_mut()
+                        .flatten()
+                        .fold(false, |any, s| s.step::<f64>(t, 0.0).refresh != 0 || any)
+                })
+                .collect();
+            for (k, &r) in refresh.iter().enumerate() {
+                let i = step0 + k as u64;
+                let want = i == 0 || (i > 1 && ((i - 1) % 16 == 0 || (i - 1) % 24 == 0));
+                assert_eq!(r, want, "step {i}");
+            }
+            refreshes += refresh.iter().filter(|&&r| r).count() as u64;
+            segments += fused_segments(&refresh, 512).len();
+        }
+        // One in twelve steps refreshes (16 and 24 meet every 48), and a segment
+        // starts at each of them or at a submission's first step.
+        let m = n - 2;
+        assert_eq!(refreshes, 1 + m / 16 + m / 24 - m / 48);
+        assert!(segments as u64 <= refreshes + n / per, "{segments}");
+        assert!(segments as u64 >= refreshes, "{segments}");
+    }
+
+    #[test]
+    fn fused_segments_cut_at_refresh_steps_and_at_the_longest() {
+        assert_eq!(fused_segments(&[false; 5], 512), vec![(0, 5)]);
+        let r = [true, false, false, true, false, true];
+        assert_eq!(fused_segments(&r, 512), vec![(0, 3), (3, 5), (5, 6)]);
+        assert_eq!(fused_segments(&[false, true], 512), vec![(0, 1), (1, 2)]);
+        assert_eq!(fused_segments(&[false; 5], 2), vec![(0, 2), (2, 4), (4, 5)]);
+        assert_eq!(fused_segments(&r, 2), vec![(0, 2), (2, 3), (3, 5), (5, 6)]);
+    }
+}

@@ -1,0 +1,443 @@
+//! When the kinematics cache refreshes: the refresh interval of a sea for the nodes
+//! it acts on (how deep they stay), and the common grid of refresh times that the CPU
+//! path's caches ([`super::cache::WaveCache`]) and the GPU path's schedules
+//! (`gpu::wave_schedule::WaveSchedule`) both follow, through one [`RefreshClock`].
+//!
+//! The interval ([`refresh_plan`]): the interpolation rule
+//! ([`super::cache::hermite_rule_interval`]) is written for a point at the mean level.
+//! A node at depth sees component `j` decayed by `cosh(k_j (z + h)) / cosh(k_j h)`
+//! (`e^{k_j z}` in deep water), so the short waves that set the rule's `m12` are gone
+//! a few metres down. The plan takes the rule with every amplitude times its decay at
+//! the highest *evaluation* depth the sea's nodes reach: from the highest height they
+//! reach, `reach` (see `sim::reach`: route ends over the run, free nodes' starting
+//! heights, plus a margin), stretched under the lowest trough ([`lowest_trough`]: with
+//! Wheeler stretching a node under a trough is evaluated nearer the mean level). With
+//! `reach` unknown (infinite) that is the rule at the mean level, as before.
+//!
+//! The factor on the rule: [`super::cache::HERMITE_INTERVAL_FACTOR`] (0.3) when a node
+//! may come near the surface (the error of a rope through the surface, cause not
+//! found); [`SUBMERGED_FACTOR`] when every node stays [`SURFACE_MARGIN`] under the
+//! lowest trough (measured: `tests/cpu/waves_steppers.rs`,
+//! `submerged_line_keeps_the_end_force_at_the_planned_interval`).
+//!
+//! The grid ([`grid_steps`]): the interval is rounded down to `p dt` with `p` a power of
+//! two or three times one (`1, 2, 3, 4, 6, 8, 12, 16, 24, ...`), and refresh times are
+//! the multiples of it from `t = 0` (the run's start), formed as the solver forms its
+//! step times (`(steps as f64) * dt`). Two seas whose `p` are both powers of two (or
+//! both three times one) refresh at nested steps: every refresh step of the longer is
+//! one of the shorter, so the GPU path's fused dispatch of a packed study is cut only at
+//! the shortest interval's refreshes (`gpu::wave_schedule::fused_segments`); seas of the two
+//! families cut it at both of theirs, all at multiples of the smaller power of two.
+//! Why not powers of two alone: rounding down to them loses up to half the interval
+//! (a third of it on average), and the refresh is a third of a wave step's cost on
+//! the CPU; with the threes the loss is at most a third, about a sixth on average. Why
+//! a fixed ladder and not one fitted to what is packed: a member's results must not
+//! depend on the other members of its batch.
+
+use super::cache::{hermite_rule_interval, HERMITE_INTERVAL_FACTOR};
+use super::kinematics::wave_depth_decay;
+use super::{SeaState, Stretching, WaveComponent};
+
+/// The factor on the rule's interval when no node comes within [`SURFACE_MARGIN`] of
+/// the lowest trough. Measured on a rope whose highest node stays 5 m or more under the
+/// surface (`tests/cpu/waves_steppers.rs`): its fairlead force within 1e-3 of exact
+/// evaluation at this factor with the decayed rule, rounded down to the grid.
+pub const SUBMERGED_FACTOR: f64 = 0.8;
+
+/// How far under the lowest trough, m, a sea's nodes must stay for
+/// [`SUBMERGED_FACTOR`] (the submerged rope of the test stays 4.9 m or more under the
+/// surface).
+pub const SURFACE_MARGIN: f64 = 5.0;
+
+/// The lowest trough the plan assumes, in standard deviations of the elevation:
+/// `4.8 sqrt(m0) = 1.2 Hs`. Over a three-hour sea of about a thousand waves the
+/// deepest trough of a Gaussian sea is about `3.7 sqrt(m0)` (`sqrt(2 ln 1000)`), and
+/// one deeper than 4.8 comes in about one sea in a hundred; the run warns when a node
+/// rises above its sea's `reach` (the plan's other assumption).
+pub const TROUGH_SIGMAS: f64 = 4.8;
+
+/// The lowest trough the plan assumes, m (negative): [`TROUGH_SIGMAS`] standard
+/// deviations of the elevation, `m0 = sum A^2 / 2`.
+pub fn lowest_trough(components: &[WaveComponent]) -> f64 {
+    let m0: f64 = components
+        .iter()
+        .map(|c| 0.5 * c.amplitude * c.amplitude)
+        .sum();
+    -TROUGH_SIGMAS * m0.sqrt()
+}
+
+/// A component's amplitude factor at evaluation depth `zs` (`<= 0`) relative to the
+/// mean level: the horizontal (the larger) profile `cosh(k (zs + h)) / cosh(k h)`.
+pub fn depth_decay(k: f64, zs: f64, depth: f64) -> f64 {
+    let zs = zs.min(0.0).max(-depth);
+    wave_depth_decay(k, zs, depth).0 / wave_depth_decay(k, 0.0, depth).0
+}
+
+/// The interpolation rule ([`hermite_rule_interval`]) with every component's amplitude
+/// times its decay at evaluation depth `zs`.
+pub fn decayed_rule_interval(
+    components: &[WaveComponent],
+    tolerance: f64,
+    zs: f64,
+    depth: f64,
+) -> f64 {
+    let decayed: Vec<WaveComponent> = components
+        .iter()
+        .map(|c| WaveComponent {
+            amplitude: c.amplitude * depth_decay(c.k, zs, depth),
+            ..*c
+        })
+        .collect();
+    hermite_rule_interval(&decayed, tolerance)
+}
+
+/// A sea's refresh interval for nodes that reach no higher than `reach`, and how it was
+/// found.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RefreshPlan {
+    /// The highest height the nodes reach, m (infinite: unknown, taken at the surface).
+    pub reach: f64,
+    /// The lowest trough assumed, m ([`lowest_trough`]).
+    pub trough: f64,
+    /// The highest evaluation depth, m (`reach` stretched under the trough, `<= 0`).
+    pub eval_depth: f64,
+    /// Whether every node stays [`SURFACE_MARGIN`] under the trough.
+    pub submerged: bool,
+    /// The factor on the rule.
+    pub factor: f64,
+    /// The factor times the decayed rule, s, before rounding to the grid.
+    pub unrounded: f64,
+    /// Steps per refresh ([`grid_steps`]: the largest power of two, or three times
+    /// one, with `steps dt <= unrounded`; at least 1; `u64::MAX` in still water).
+    pub steps: u64,
+    /// The refresh interval, `steps dt`, s (infinite in still water).
+    pub interval: f64,
+    /// The step, s.
+    pub dt: f64,
+}
+
+/// The refresh plan of `sea` for nodes reaching no higher than `reach` (m; infinite
+/// when unknown), stepping by `dt` (see the module doc).
+pub fn refresh_plan(sea: &SeaState, reach: f64, dt: f64) -> RefreshPlan {
+    assert!(dt > 0.0, "the step must be positive");
+    let trough = lowest_trough(&sea.components);
+    let eval_depth = if reach.is_finite() {
+        match sea.stretching {
+            Stretching::Wheeler => (reach - trough) / (1.0 + trough / sea.depth),
+            Stretching::Constant => reach,
+        }
+        .min(0.0)
+    } else {
+        0.0
+    };
+    let submerged = reach <= trough - SURFACE_MARGIN;
+    let factor = if submerged {
+        SUBMERGED_FACTOR
+    } else {
+        HERMITE_INTERVAL_FACTOR
+    };
+    let unrounded =
+        factor * decayed_rule_interval(&sea.components, sea.cache_tolerance, eval_depth, sea.depth);
+    let steps = grid_steps(unrounded, dt);
+    RefreshPlan {
+        reach,
+        trough,
+        eval_depth,
+        submerged,
+        factor,
+        unrounded,
+        steps,
+        interval: if steps == u64::MAX {
+            f64::INFINITY
+        } else {
+            steps as f64 * dt
+        },
+        dt,
+    }
+}
+
+/// The largest `p` of the ladder `2^m, 3 2^m` (`1, 2, 3, 4, 6, 8, ...`) with `p dt <=
+/// interval` (at least 1, at most `2^40`; `u64::MAX` for an infinite interval).
+pub fn grid_steps(interval: f64, dt: f64) -> u64 {
+    if !interval.is_finite() {
+        return u64::MAX;
+    }
+    let mut p = 1u64;
+    while p < (1 << 40) && (2 * p) as f64 * dt <= interval {
+        p *= 2;
+    }
+    // Between p and 2p: 3p / 2 when it fits.
+    if p >= 2 && (3 * p / 2) as f64 * dt <= interval {
+        3 * p / 2
+    } else {
+        p
+    }
+}
+
+/// What a refresh does ([`RefreshClock::tick`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tick {
+    /// A fresh start: values at `t0 = t` too, and no acceleration estimate.
+    pub restart: bool,
+    /// `t1 - t`, s: how far ahead the nodes' paths are predicted.
+    pub ahead: f64,
+    /// `1 / (t - t_last)` for the nodes' acceleration estimate from their velocity
+    /// change since the previous refresh (0 on a restart).
+    pub acc_rate: f64,
+}
+
+/// The cache's two times and when it refreshes, the same on both paths.
+///
+/// With a grid (`steps dt`, [`RefreshClock::on_grid`]) `t1` is always a multiple of
+/// the interval, `(j steps) as f64 * dt` for an integer `j`; a restart at `t` sets
+/// `t0 = t` and `t1` to the first grid time after it. Without one
+/// ([`RefreshClock::free`]) `t1 = t0 + interval` (tests of the cache at arbitrary
+/// times).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RefreshClock {
+    /// Refresh interval, s.
+    pub interval: f64,
+    /// `(dt, steps)` of the grid.
+    grid: Option<(f64, u64)>,
+    started: bool,
+    /// Time of the older values, s.
+    pub t0: f64,
+    /// Time of the newer values, s.
+    pub t1: f64,
+    /// The grid index of `t1`.
+    j1: u64,
+    /// Time of the last refresh, s (NaN before the first).
+    last_t: f64,
+}
+
+impl RefreshClock {
+    /// A clock refreshing every `interval` s from wherever it starts.
+    pub fn free(interval: f64) -> Self {
+        assert!(interval > 0.0);
+        Self {
+            interval,
+            grid: None,
+            started: false,
+            t0: 0.0,
+            t1: 0.0,
+            j1: 0,
+            last_t: f64::NAN,
+        }
+    }
+
+    /// A clock on the grid of `plan` (refresh times `j plan.steps dt`).
+    pub fn on_grid(plan: &RefreshPlan) -> Self {
+        let mut c = Self::free(plan.interval);
+        if plan.steps != u64::MAX {
+            c.grid = Some((plan.dt, plan.steps));
+        }
+        c
+    }
+
+    /// Whether `t` is within `[t0, t1]` (no refresh due).
+    #[inline]
+    pub fn covers(&self, t: f64) -> bool {
+        self.started && self.t1 > self.t0 && t >= self.t0 && t <= self.t1
+    }
+
+    /// Forgets the cache's times: the next [`Self::tick`] restarts.
+    pub fn reset(&mut self) {
+        self.started = false;
+        self.t0 = 0.0;
+        self.t1 = 0.0;
+    }
+
+    fn grid_time(&self, j: u64) -> f64 {
+        let (dt, p) = self.grid.expect("grid");
+        (j * p) as f64 * dt
+    }
+
+    /// Makes the clock cover `t`: `None` when it does; otherwise moves `t0, t1` on
+    /// (the old `t1` becomes `t0`; a restart when not started, when `t` is before `t0`
+    /// or more than an interval past `t1`) and says what the refresh does.
+    pub fn tick(&mut self, t: f64) -> Option<Tick> {
+        if self.covers(t) {
+            return None;
+        }
+        let restart = !self.started || t < self.t0 || t > self.t1 + self.interval;
+        let span = t - self.last_t;
+        let acc_rate = if !restart && span > 0.0 {
+            1.0 / span
+        } else {
+            0.0
+        };
+        self.last_t = t;
+        if restart {
+            self.t0 = t;
+            self.started = true;
+            if let Some((dt, p)) = self.grid {
+                let mut j = (t / (p as f64 * dt)).floor().max(0.0) as u64 + 1;
+                while self.grid_time(j) <= t {
+                    j += 1;
+                }
+                self.j1 = j;
+            }
+        } else {
+            self.t0 = self.t1;
+            self.j1 += 1;
+        }
+        self.t1 = match self.grid {
+            Some(_) => self.grid_time(self.j1),
+            None => self.t0 + self.interval,
+        };
+        Some(Tick {
+            restart,
+            ahead: self.t1 - t,
+            acc_rate,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sea::dispersion::wave_number;
+    use crate::sea::irregular::{discretise, Discretisation};
+    use crate::sea::spectrum::Spectrum;
+
+    fn sea(hs: f64, tp: f64, seed: u64) -> SeaState {
+        let d = Discretisation {
+            components: 200,
+            direction: 0.0,
+            spreading: None,
+            seed,
+            stream: 0,
+        };
+        let spectrum = Spectrum::Jonswap { hs, tp, gamma: 2.5 };
+        SeaState {
+            components: discretise(&spectrum, &d, 320.0, 9.81),
+            ..SeaState::still(320.0)
+        }
+    }
+
+    /// At the mean level the plan is the old rule times 0.3; deeper the interval
+    /// grows and the rule with decayed amplitudes is not longer than the rule of the
+    /// longest component alone; deep enough under the troughs the factor is the
+    /// submerged one. The grid rounds down to the ladder `2^m, 3 2^m` of the step.
+    #[test]
+    fn the_plan_grows_with_depth_and_rounds_down_to_the_grid() {
+        let s = sea(9.0, 13.0, 3);
+        let dt = 1.0 / 150.0;
+        let top = refresh_plan(&s, f64::INFINITY, dt);
+        let rule = hermite_rule_interval(&s.components, 1e-3);
+        assert_eq!(top.unrounded, HERMITE_INTERVAL_FACTOR * rule);
+        assert!(!top.submerged);
+        // Hs 9 m: the trough 1.2 Hs.
+        assert!((top.trough + 1.2 * 9.0).abs() < 0.2, "{}", top.trough);
+        let mut last = top.unrounded;
+        for reach in [-2.0, -10.0, -20.0, -40.0] {
+            let p = refresh_plan(&s, reach, dt);
+            assert!(p.unrounded >= last, "{reach}: {} < {last}", p.unrounded);
+            assert!(p.interval <= p.unrounded && 1.5 * p.interval > p.unrounded);
+            let odd = p.steps >> p.steps.trailing_zeros();
+            assert!(odd == 1 || odd == 3, "{}", p.steps);
+            assert_eq!(p.interval, p.steps as f64 * dt);
+            assert_eq!(p.submerged, reach <= p.trough - SURFACE_MARGIN);
+            last = p.unrounded;
+        }
+        let deep = refresh_plan(&s, -40.0, dt);
+        assert!(deep.submerged && deep.factor == SUBMERGED_FACTOR);
+        let wmin = s
+            .components
+            .iter()
+            .map(|c| c.omega)
+            .fold(f64::MAX, f64::min);
+        assert!(deep.unrounded <= SUBMERGED_FACTOR * (384e-3f64).powf(0.25) / wmin);
+        assert_eq!(grid_steps(f64::INFINITY, dt), u64::MAX);
+        assert_eq!(grid_steps(0.5 * dt, dt), 1);
+        assert_eq!(grid_steps(8.0 * dt, dt), 8);
+        assert_eq!(grid_steps(7.9 * dt, dt), 6);
+        assert_eq!(grid_steps(5.9 * dt, dt), 4);
+        assert_eq!(grid_steps(2.9 * dt, dt), 2);
+        assert_eq!(grid_steps(3.0 * dt, dt), 3);
+        assert_eq!(grid_steps(26.4 * dt, dt), 24);
+        assert_eq!(grid_steps(31.5 * dt, dt), 24);
+        assert_eq!(grid_steps(33.0 * dt, dt), 32);
+    }
+
+    /// The decay is 1 at the mean level, `e^{k z}` in deep water and the cosh ratio in
+    /// finite depth.
+    #[test]
+    fn depth_decay_is_the_horizontal_profile() {
+        let k = wave_number(0.8, 50.0, 9.81);
+        assert!((depth_decay(k, 0.0, 50.0) - 1.0).abs() < 1e-15);
+        let want = (k * (50.0 - 10.0)).cosh() / (k * 50.0).cosh();
+        assert!((depth_decay(k, -10.0, 50.0) - want).abs() < 1e-12);
+        assert!((depth_decay(0.1, -10.0, f64::INFINITY) - (-1.0f64).exp()).abs() < 1e-15);
+    }
+
+    /// Seas with different intervals on the grid of one step refresh at nested steps:
+    /// when one's steps per refresh divide the other's (both powers of two, or both
+    /// three times one), every step at which the longer-interval clock refreshes is one
+    /// at which the shorter one does; and each refreshes every `steps` steps.
+    #[test]
+    fn clocks_on_the_grid_nest() {
+        let dt = 1.0 / 150.0;
+        let seas = [
+            (sea(4.0, 9.0, 1), f64::INFINITY),
+            (sea(4.0, 9.0, 1), -12.0),
+            (sea(9.0, 13.0, 2), f64::INFINITY),
+            (sea(13.0, 15.5, 3), f64::INFINITY),
+        ];
+        let plans: Vec<RefreshPlan> = seas
+            .iter()
+            .map(|(s, reach)| refresh_plan(s, *reach, dt))
+            .collect();
+        let mut clocks: Vec<RefreshClock> = plans.iter().map(RefreshClock::on_grid).collect();
+        let n_steps = 100_000u64;
+        let mut at: Vec<Vec<u64>> = vec![Vec::new(); plans.len()];
+        for n in 0..n_steps {
+            let t = n as f64 * dt;
+            for (q, c) in clocks.iter_mut().enumerate() {
+                if c.tick(t).is_some() {
+                    at[q].push(n);
+                }
+            }
+        }
+        let mut nested = 0;
+        for (a, pa) in plans.iter().enumerate() {
+            // The first refresh at step 0, then one step past each grid time.
+            let want: Vec<u64> = std::iter::once(0)
+                .chain((1..).map(|j| j * pa.steps + 1).take_while(|&n| n < n_steps))
+                .collect();
+            assert_eq!(at[a], want, "sea {a}: {pa:?}");
+            for (b, pb) in plans.iter().enumerate() {
+                if pa.steps < pb.steps && pb.steps % pa.steps == 0 {
+                    nested += 1;
+                    assert!(at[b].iter().all(|n| at[a].binary_search(n).is_ok()));
+                }
+            }
+        }
+        let steps: Vec<u64> = plans.iter().map(|p| p.steps).collect();
+        assert!(nested >= 1, "no nested pair: {steps:?}");
+    }
+
+    /// A restart off the grid goes to the next grid time, then on along the grid.
+    #[test]
+    fn a_restart_joins_the_grid() {
+        let dt = 0.01;
+        let plan = RefreshPlan {
+            steps: 8,
+            interval: 0.08,
+            dt,
+            ..refresh_plan(&SeaState::still(10.0), f64::INFINITY, dt)
+        };
+        let mut c = RefreshClock::on_grid(&plan);
+        let t = 13.0 * dt;
+        let tick = c.tick(t).unwrap();
+        assert!(tick.restart && tick.acc_rate == 0.0);
+        assert_eq!((c.t0, c.t1), (t, 16.0 * dt));
+        assert!(c.tick(16.0 * dt).is_none());
+        let tick = c.tick(17.0 * dt).unwrap();
+        assert!(!tick.restart);
+        assert_eq!((c.t0, c.t1), (16.0 * dt, 24.0 * dt));
+        assert!((tick.acc_rate - 1.0 / (4.0 * dt)).abs() < 1e-9);
+        c.reset();
+        assert!(c.tick(17.0 * dt).unwrap().restart);
+    }
+}
