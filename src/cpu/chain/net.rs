@@ -42,9 +42,11 @@ use std::ops::Range;
 
 mod fold;
 mod pieces;
+mod plan;
 mod threaded;
 use fold::node_shares;
 use pieces::{pieces, Piece, TILE};
+use plan::{plan, Op, Plan};
 pub(crate) use threaded::advance_net_threaded;
 
 /// Per-block constants of a network, built once.
@@ -60,6 +62,8 @@ pub(crate) struct NetConsts {
     /// Per element: its place (slot) in the incidence list of its node a and of its
     /// node b, in the layout's order (the order the node pass sums in).
     eslot: [Vec<u8>; 2],
+    /// The one-thread step's order and tile buffers.
+    plan1: Plan,
 }
 
 impl NetConsts {
@@ -91,12 +95,20 @@ impl NetConsts {
         // slot of each of its nodes.
         assert!(ends.iter().flatten().all(|&i| (i as usize) < n));
         assert!(eslot.iter().flatten().all(|&s| (s as usize) < width));
+        let c = ChainConsts::new(lay, b);
+        // The node pass takes each tile's share of these lists by binary search.
+        assert!(c.constrained.is_sorted_by_key(|p| p.0));
+        assert!(c.point_drag.is_sorted_by_key(|p| p.0));
+        assert!(c.point_volume.is_sorted_by_key(|p| p.0));
+        let pieces = pieces(&ends[0], &ends[1], &eslot[0], &eslot[1]);
+        let plan1 = plan(n, width, &ends[0], &ends[1], &pieces, 1);
         Some(Self {
-            c: ChainConsts::new(lay, b),
-            pieces: pieces(&ends[0], &ends[1], &eslot[0], &eslot[1]),
+            c,
+            pieces,
             ends,
             width,
             eslot,
+            plan1,
         })
     }
 
@@ -141,21 +153,23 @@ const CS: usize = NT + 8;
 
 /// What each element adds to each of its nodes, in the node's slot for it: slot `s`
 /// of node `i` is columns `COLS s .. COLS (s + 1)`. The nodes go in tiles of [`NT`]
-/// (the last padded), each tile all `width COLS` columns of its nodes one after the
-/// other, [`CS`] apart: node `i`'s column `c` is at `sum[(i / NT) width COLS CS + c CS
-/// + i % NT]`,
+/// (the last padded), each tile's slots in a tile buffer ([`Plan::buf`]; tiles whose
+/// slots are not live at once share one) that holds all `width COLS` columns of its
+/// nodes one after the other, [`CS`] apart: node `i`'s column `c` is at
+/// `sum[buf[i / NT] width COLS CS + c CS + i % NT]`,
 /// so that within a tile every column is at a fixed offset from the others (one base
 /// address for all of them in the node loop). A column holds the element's share of
 /// the node's mass block `xx, yy, zz, xy, xz, yz`, then its force on the node. Slots
-/// past a node's incidence list stay zero.
+/// past a node's incidence list are zero when its tile's elements start
+/// ([`Plan::clear`]).
 #[derive(Default)]
 struct Loads {
     sum: Vec<f64>,
 }
 
-/// Values of [`Loads`] for `n` nodes with `width` slots.
-fn loads_len(n: usize, width: usize) -> usize {
-    n.div_ceil(NT) * width * COLS * CS
+/// Values of [`Loads`] with `nbuf` tile buffers of `width` slots.
+fn loads_len(nbuf: usize, width: usize) -> usize {
+    nbuf * width * COLS * CS
 }
 
 /// One thread's scratch: gathered element inputs over its elements, node work over
@@ -174,8 +188,8 @@ struct Work {
     ten: Vec<f64>,
     f: [Vec<f64>; 3],
     haw: Vec<f64>,
-    /// Per node: point mass and weight (less what the dry share of a point loses),
-    /// point loads (drag, water acceleration), acceleration.
+    /// Per node of the tile being updated: point mass and weight (less what the dry
+    /// share of a point loses), point loads (drag, water acceleration), acceleration.
     pm: Vec<f64>,
     pwz: Vec<f64>,
     ex: [Vec<f64>; 3],
@@ -183,8 +197,8 @@ struct Work {
 }
 
 impl Work {
-    /// Sized for `ne` elements and the nodes `nr` of `c`.
-    fn size(&mut self, c: &ChainConsts, ne: usize, nr: &Range<usize>) {
+    /// Sized for `ne` elements.
+    fn size(&mut self, ne: usize) {
         let per_elem = (self.a.iter_mut().chain(&mut self.b).chain(&mut self.u))
             .chain(self.aw.iter_mut().chain(&mut self.t).chain(&mut self.f))
             .chain([&mut self.ten, &mut self.haw]);
@@ -193,6 +207,11 @@ impl Work {
             v.clear();
             v.resize(ne, 0.0);
         }
+    }
+
+    /// Node arrays for the nodes `nr` of `c`: their point masses and weights, no
+    /// point loads yet.
+    fn nodes(&mut self, c: &ChainConsts, nr: &Range<usize>) {
         self.pm.clear();
         self.pm.extend_from_slice(&c.pm[nr.clone()]);
         self.pwz.clear();
@@ -204,25 +223,29 @@ impl Work {
     }
 }
 
-/// [`Loads`] as the element pass writes them: each element's two slots, through a raw
-/// pointer because the threads of [`advance_net_threaded`] write into the same columns
-/// (each slot of each node has one element, so one writer).
+/// A block's [`Loads`] seen through a raw pointer: the element pass writes each
+/// element's two slots, the node pass reads a tile's buffer, while the threads of
+/// [`advance_net_threaded`] do the same in other buffers (each slot of each node has
+/// one element, so one writer).
 #[derive(Clone, Copy)]
-struct LoadsOut {
+struct LoadsOut<'a> {
     sum: *mut f64,
-    /// Values per tile: `width COLS NT`.
+    /// Values per tile buffer: `width COLS CS`.
     per_tile: usize,
+    /// Per tile: its buffer.
+    buf: &'a [u32],
 }
 
-impl LoadsOut {
+impl<'a> LoadsOut<'a> {
     /// # Safety
     /// `sum` points at the [`loads_len`] values of a block's [`Loads`] with `width`
-    /// slots ([`NetConsts::width`]), and while this is used nothing else reads or
-    /// writes the slots of the elements it is given.
-    unsafe fn new(sum: *mut f64, width: usize) -> Self {
+    /// slots ([`NetConsts::width`]) in the buffers of `plan`, and while this is used
+    /// nothing else reads or writes the slots it is used on.
+    unsafe fn new(sum: *mut f64, width: usize, plan: &'a Plan) -> Self {
         Self {
             sum,
             per_tile: width * COLS * CS,
+            buf: &plan.buf,
         }
     }
 
@@ -234,37 +257,38 @@ impl LoadsOut {
     #[inline(always)]
     unsafe fn column(&self, c: usize, i0: usize, len: usize) -> &mut [f64] {
         debug_assert!(i0 % NT + len <= NT && c * CS < self.per_tile);
-        let o = i0 / NT * self.per_tile + c * CS + i0 % NT;
+        let b = unsafe { *self.buf.get_unchecked(i0 / NT) } as usize;
+        let o = b * self.per_tile + c * CS + i0 % NT;
         unsafe { std::slice::from_raw_parts_mut(self.sum.add(o), len) }
     }
-}
 
-/// [`Loads`] of all elements, read by the node pass.
-#[derive(Clone, Copy)]
-struct LoadsIn<'a> {
-    sum: &'a [f64],
-}
+    /// Tile `t`'s buffer, to read.
+    ///
+    /// # Safety
+    /// `t` is a tile of the block and nothing writes its buffer while this lives.
+    #[inline(always)]
+    unsafe fn tile(&self, t: usize) -> &'a [f64] {
+        let o = self.buf[t] as usize * self.per_tile;
+        unsafe { std::slice::from_raw_parts(self.sum.add(o) as *const f64, self.per_tile) }
+    }
 
-/// The element pass over elements `er`, piece by piece ([`element_tile`]).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn element_pass(
-    nc: &NetConsts,
-    lay: &Layout,
-    er: Range<usize>,
-    x: [&[f64]; 6],
-    eta: &[f64],
-    w: &[f64],
-    g: &mut Work,
-    out: LoadsOut,
-) {
-    for p in nc.pieces.iter().filter_map(|p| p.clip(&er)) {
-        element_tile(nc, lay, p, x, eta, w, g, out);
+    /// Zeroes the `(node, slot)` pairs `pads` (all of them in one tile).
+    ///
+    /// # Safety
+    /// As [`LoadsOut::column`] for each of their columns.
+    #[inline(always)]
+    unsafe fn clear(&self, pads: &[(u32, u8)]) {
+        for &(i, s) in pads {
+            for q in 0..COLS {
+                unsafe { self.column(COLS * s as usize + q, i as usize, 1)[0] = 0.0 };
+            }
+        }
     }
 }
 
 /// The element pass over the elements of `piece`: reads their ends' state `x` and
-/// surface `eta` in place (a run) or gathers them, their water velocity and
+/// surface `eta` (both from block node `base` on: the nodes the elements reach) in
+/// place (a run) or gathers them, their water velocity and
 /// acceleration (`w`: per-node water values, empty in still water), runs the chain
 /// path's element loop, and folds its results into what the elements add to their
 /// nodes (`out`).
@@ -275,6 +299,7 @@ fn element_tile(
     lay: &Layout,
     piece: Piece,
     x: [&[f64]; 6],
+    base: usize,
     eta: &[f64],
     w: &[f64],
     g: &mut Work,
@@ -301,19 +326,27 @@ fn element_tile(
     } = g;
     let (a, b): ([&[f64]; 7], [&[f64]; 7]) = match piece.ends {
         // A run: the ends are consecutive nodes, read in place as on the chain path.
-        Some((a0, b0)) => (src.map(|q| &q[a0..a0 + ne]), src.map(|q| &q[b0..b0 + ne])),
+        Some((a0, b0)) => {
+            let (a0, b0) = (a0 - base, b0 - base);
+            (src.map(|q| &q[a0..a0 + ne]), src.map(|q| &q[b0..b0 + ne]))
+        }
         None => {
             // In still water the surface columns stay zero.
             let cols = if waves { 7 } else { 6 };
+            // The elements reach no node outside the view (the gather's safety).
+            assert!(ea
+                .iter()
+                .chain(eb)
+                .all(|&i| (i as usize).wrapping_sub(base) < n));
             {
                 let ga = ga.each_mut().map(|q| &mut q[..ne]);
                 let gb = gb.each_mut().map(|q| &mut q[..ne]);
                 for k in 0..ne {
-                    let (ia, ib) = (ea[k] as usize, eb[k] as usize);
+                    let (ia, ib) = (ea[k] as usize - base, eb[k] as usize - base);
                     for q in 0..cols {
-                        // SAFETY: element ends are below `n` (checked in
-                        // `NetConsts::new`), every column has `n` entries and every
-                        // gathered column `ne`.
+                        // SAFETY: element ends are within the view (checked just
+                        // above), every column has `n` entries and every gathered
+                        // column `ne`.
                         unsafe {
                             *ga[q].get_unchecked_mut(k) = *src[q].get_unchecked(ia);
                             *gb[q].get_unchecked_mut(k) = *src[q].get_unchecked(ib);
@@ -391,9 +424,17 @@ fn element_tile(
     node_shares(nc, &piece, t, ten, f, haw, out);
 }
 
-/// The node pass over nodes `nr` (`x`: their state, updated in place by a symplectic
-/// step of `dt`), reading every element's loads `el`; `eta`, `w` over the whole block.
-/// Returns the block-local index of the first node whose new state is over the limits.
+/// The entries of `list` (sorted by node, its first field) whose node is in `nr`.
+fn listed<'a, T>(list: &'a [T], node: impl Fn(&T) -> usize, nr: &Range<usize>) -> &'a [T] {
+    let lo = list.partition_point(|p| node(p) < nr.start);
+    let hi = list.partition_point(|p| node(p) < nr.end);
+    &list[lo..hi]
+}
+
+/// The node pass over the nodes `nr` of one tile (`x`: their state, updated in place
+/// by a symplectic step of `dt`), reading what the elements add to them from the
+/// tile's buffer `sum` ([`Loads`]); `eta`, `w` over the whole block. Returns the
+/// block-local index of the first node whose new state is over the limits.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn node_pass<const FRICTION: bool>(
@@ -406,26 +447,20 @@ fn node_pass<const FRICTION: bool>(
     x: [&mut [f64]; 6],
     eta: &[f64],
     w: &[f64],
-    el: LoadsIn,
+    sum: &[f64],
     g: &mut Work,
 ) -> Option<usize> {
     let c = &nc.c;
     let n0 = nr.start;
-    let own = |i: usize| nr.contains(&i);
-    // Point loads and the surface's share of points, on this range's listed nodes.
-    for &(i, ..) in c.point_drag.iter().filter(|p| own(p.0)) {
-        for q in 0..3 {
-            g.ex[q][i - n0] = 0.0;
-        }
-    }
-    for pv in c.point_volume.iter().filter(|p| own(p.0)) {
+    g.nodes(c, &nr);
+    let point_drag = listed(&c.point_drag, |p| p.0, &nr);
+    let point_volume = listed(&c.point_volume, |p| p.0, &nr);
+    // The surface's share of points on this range's listed nodes.
+    for pv in point_volume {
         let i = pv.0;
         (g.pm[i - n0], g.pwz[i - n0]) = point_surface_at(c, pv, eta[i] - x[2][i - n0]);
-        for q in 0..3 {
-            g.ex[q][i - n0] = 0.0;
-        }
     }
-    for pd in c.point_drag.iter().filter(|p| own(p.0)) {
+    for pd in point_drag {
         let j = pd.0 - n0;
         let v = [x[3][j], x[4][j], x[5][j]];
         let f = point_drag_force(lay, pd, x[2][j], v, eta[pd.0], w);
@@ -434,7 +469,7 @@ fn node_pass<const FRICTION: bool>(
         }
     }
     if !w.is_empty() {
-        for pv in c.point_volume.iter().filter(|p| own(p.0)) {
+        for pv in point_volume {
             let j = pv.0 - n0;
             let f = point_water_accel_force(pv, x[2][j], eta[pv.0], w);
             for q in 0..3 {
@@ -442,14 +477,14 @@ fn node_pass<const FRICTION: bool>(
             }
         }
     }
-    assert_eq!(el.sum.len(), loads_len(c.n, nc.width));
+    assert_eq!(sum.len(), loads_len(1, nc.width));
     let h = implicit_dt(opts);
     macro_rules! kernel {
         ($width:literal) => {
             node_kernel::<$width, FRICTION>(
                 c,
                 h,
-                el.sum,
+                sum,
                 nr.clone(),
                 [&x[2][..], &x[3][..], &x[4][..], &x[5][..]],
                 &g.pm,
@@ -465,7 +500,7 @@ fn node_pass<const FRICTION: bool>(
     } else {
         kernel!(8)
     }
-    for &(i, ri) in c.constrained.iter().filter(|p| own(p.0)) {
+    for &(i, ri) in listed(&c.constrained, |p| p.0, &nr) {
         let j = i - n0;
         let d = route_accel(lay, opts, time, ri, |q| (x[q][j], x[3 + q][j]));
         for q in 0..3 {
@@ -518,12 +553,12 @@ fn first_bad(x: [&[f64]; 6], opts: &SolverOptions) -> Option<usize> {
     })
 }
 
-/// The node loop over nodes `nr` (their state, point and seabed values from 0): per
-/// node, the sum over its `W` slots in `sum` ([`Loads`]) of what the incident
-/// elements add to its force and mass block (the general path's order: point, then
-/// each incident element, then point loads, then the seabed), the seabed's damping
-/// taken implicitly with step `h`, and the 3x3 solve. One loop per tile of `sum`, 4
-/// nodes at a time.
+/// The node loop over the nodes `nr` of one tile (their state, point and seabed values
+/// from 0): per node, the sum over its `W` slots in the tile's buffer `sum`
+/// ([`Loads`]) of what the incident elements add to its force and mass block (the
+/// general path's order: point, then each incident element, then point loads, then
+/// the seabed), the seabed's damping taken implicitly with step `h`, and the 3x3
+/// solve, 4 nodes at a time.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn node_kernel<const W: usize, const FRICTION: bool>(
@@ -541,10 +576,11 @@ fn node_kernel<const W: usize, const FRICTION: bool>(
     let (zb, v_eps) = (c.zb, c.v_eps);
     let per_tile = W * COLS * CS;
     let mut i = nr.start;
+    assert!(nr.is_empty() || (nr.end - 1) / NT == nr.start / NT);
     while i < nr.end {
         // Nodes `i .. i + len` of tile `i / NT`, from its node `j0`.
         let (j0, len) = (i % NT, (nr.end - i).min(NT - i % NT));
-        let tile = &sum[i / NT * per_tile..][..per_tile];
+        let tile = &sum[..per_tile];
         // Column `q` of slot `s`: `col[q][s]`, all at fixed offsets from the tile.
         let col: [[&[f64]; W]; COLS] = std::array::from_fn(|q| {
             std::array::from_fn(|s| &tile[(COLS * s + q) * CS + j0..][..len])
@@ -604,8 +640,9 @@ fn node_kernel<const W: usize, const FRICTION: bool>(
 }
 
 /// Copies the block's AoS state into the scratch's SoA arrays and sizes the element
-/// results and surface (zero: still water until the waves fill it).
-fn load(nc: &NetConsts, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
+/// results (the tile buffers of `plan`) and surface (zero: still water until the waves
+/// fill it).
+fn load(nc: &NetConsts, plan: &Plan, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
     let n = nc.n();
     for (q, xq) in sc.x.iter_mut().enumerate() {
         xq.clear();
@@ -621,7 +658,7 @@ fn load(nc: &NetConsts, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
     sc.eta.resize(n, 0.0);
     // Zero: the slots past a node's incidence list stay so.
     sc.el.sum.clear();
-    sc.el.sum.resize(loads_len(n, nc.width), 0.0);
+    sc.el.sum.resize(loads_len(plan.nbuf, nc.width), 0.0);
 }
 
 /// Copies the SoA state back to `r`, `v`.
@@ -698,13 +735,14 @@ fn advance_net_body(
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
-    let (n, ne) = (nc.n(), nc.ne());
-    load(nc, sc, r, v);
+    let n = nc.n();
+    let plan = &nc.plan1;
+    load(nc, plan, sc, r, v);
     if waves.is_none() {
         wbuf.clear();
     }
     let NetScratch { x, eta, el, work } = sc;
-    work.size(&nc.c, ne.min(TILE), &(0..n));
+    work.size(nc.ne().min(TILE));
     let mut result = Ok(());
     for k in 0..nsteps {
         let time = (step0 + k) as f64 * dt;
@@ -715,20 +753,59 @@ fn advance_net_body(
                 *e = node_water(wbuf, i).0;
             }
         }
-        {
-            // SAFETY: `el` is this block's loads (`load`), and this pass alone uses them.
-            let out = unsafe { LoadsOut::new(el.sum.as_mut_ptr(), nc.width) };
-            let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
-            element_pass(nc, lay, 0..ne, xs, eta, wbuf, work, out);
+        // SAFETY: `el` is this block's loads in `plan`'s buffers (`load`), and only
+        // this loop uses them, one op at a time.
+        let out = unsafe { LoadsOut::new(el.sum.as_mut_ptr(), nc.width, plan) };
+        // The lowest node over the limits in this step.
+        let mut bad = None::<usize>;
+        for op in &plan.threads[0].ops {
+            match op {
+                Op::Elems(p) => {
+                    let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
+                    element_tile(nc, lay, p.clone(), xs, 0, eta, wbuf, work, out);
+                }
+                &Op::Nodes(t) => {
+                    let nr = t * NT..((t + 1) * NT).min(n);
+                    let xs = x.each_mut().map(|q| &mut q[nr.clone()]);
+                    // SAFETY: nothing writes tile `t`'s buffer during its update.
+                    let sum = unsafe { out.tile(t) };
+                    let b = if nc.c.friction {
+                        node_pass::<true>(
+                            nc,
+                            lay,
+                            opts,
+                            time,
+                            dt,
+                            nr.clone(),
+                            xs,
+                            eta,
+                            wbuf,
+                            sum,
+                            work,
+                        )
+                    } else {
+                        node_pass::<false>(
+                            nc,
+                            lay,
+                            opts,
+                            time,
+                            dt,
+                            nr.clone(),
+                            xs,
+                            eta,
+                            wbuf,
+                            sum,
+                            work,
+                        )
+                    };
+                    // SAFETY: the next user of this buffer has not started.
+                    unsafe { out.clear(&plan.clear[t]) };
+                    if let Some(j) = b {
+                        bad = Some(bad.map_or(nr.start + j, |b| b.min(nr.start + j)));
+                    }
+                }
+            }
         }
-        let lin = LoadsIn { sum: &el.sum };
-        let [x0, x1, x2, x3, x4, x5] = x;
-        let xs = [x0, x1, x2, x3, x4, x5].map(|q| &mut q[..]);
-        let bad = if nc.c.friction {
-            node_pass::<true>(nc, lay, opts, time, dt, 0..n, xs, eta, wbuf, lin, work)
-        } else {
-            node_pass::<false>(nc, lay, opts, time, dt, 0..n, xs, eta, wbuf, lin, work)
-        };
         if let Some(i) = bad {
             result = Err((i, time + dt));
             break;
