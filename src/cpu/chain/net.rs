@@ -188,8 +188,9 @@ struct Work {
     ten: Vec<f64>,
     f: [Vec<f64>; 3],
     haw: Vec<f64>,
-    /// Per node of the tile being updated: point mass and weight (less what the dry
-    /// share of a point loses), point loads (drag, water acceleration), acceleration.
+    /// Per node of the tile being updated ([`NT`] each): point mass and weight (less
+    /// what the dry share of a point loses), point loads (drag, water acceleration;
+    /// zero but at the tile's listed nodes while it is updated), acceleration.
     pm: Vec<f64>,
     pwz: Vec<f64>,
     ex: [Vec<f64>; 3],
@@ -197,7 +198,7 @@ struct Work {
 }
 
 impl Work {
-    /// Sized for `ne` elements.
+    /// Sized for `ne` elements and a tile of nodes.
     fn size(&mut self, ne: usize) {
         let per_elem = (self.a.iter_mut().chain(&mut self.b).chain(&mut self.u))
             .chain(self.aw.iter_mut().chain(&mut self.t).chain(&mut self.f))
@@ -207,18 +208,10 @@ impl Work {
             v.clear();
             v.resize(ne, 0.0);
         }
-    }
-
-    /// Node arrays for the nodes `nr` of `c`: their point masses and weights, no
-    /// point loads yet.
-    fn nodes(&mut self, c: &ChainConsts, nr: &Range<usize>) {
-        self.pm.clear();
-        self.pm.extend_from_slice(&c.pm[nr.clone()]);
-        self.pwz.clear();
-        self.pwz.extend_from_slice(&c.pwz[nr.clone()]);
-        for v in self.ex.iter_mut().chain(&mut self.acc) {
+        let per_node = [&mut self.pm, &mut self.pwz].into_iter();
+        for v in per_node.chain(&mut self.ex).chain(&mut self.acc) {
             v.clear();
-            v.resize(nr.len(), 0.0);
+            v.resize(NT, 0.0);
         }
     }
 }
@@ -452,14 +445,22 @@ fn node_pass<const FRICTION: bool>(
 ) -> Option<usize> {
     let c = &nc.c;
     let n0 = nr.start;
-    g.nodes(c, &nr);
+    let len = nr.len();
     let point_drag = listed(&c.point_drag, |p| p.0, &nr);
     let point_volume = listed(&c.point_volume, |p| p.0, &nr);
-    // The surface's share of points on this range's listed nodes.
-    for pv in point_volume {
-        let i = pv.0;
-        (g.pm[i - n0], g.pwz[i - n0]) = point_surface_at(c, pv, eta[i] - x[2][i - n0]);
-    }
+    // Point masses and weights: the constants, or where a point has a volume, a copy
+    // with the surface's share of it at the listed nodes.
+    let (pm, pwz) = if point_volume.is_empty() {
+        (&c.pm[nr.clone()], &c.pwz[nr.clone()])
+    } else {
+        g.pm[..len].copy_from_slice(&c.pm[nr.clone()]);
+        g.pwz[..len].copy_from_slice(&c.pwz[nr.clone()]);
+        for pv in point_volume {
+            let i = pv.0;
+            (g.pm[i - n0], g.pwz[i - n0]) = point_surface_at(c, pv, eta[i] - x[2][i - n0]);
+        }
+        (&g.pm[..len], &g.pwz[..len])
+    };
     for pd in point_drag {
         let j = pd.0 - n0;
         let v = [x[3][j], x[4][j], x[5][j]];
@@ -479,6 +480,8 @@ fn node_pass<const FRICTION: bool>(
     }
     assert_eq!(sum.len(), loads_len(1, nc.width));
     let h = implicit_dt(opts);
+    // Each its own parameter: the kernel's stores need no run-time overlap checks.
+    let [ax, ay, az] = g.acc.each_mut().map(|q| &mut q[..]);
     macro_rules! kernel {
         ($width:literal) => {
             node_kernel::<$width, FRICTION>(
@@ -487,11 +490,13 @@ fn node_pass<const FRICTION: bool>(
                 sum,
                 nr.clone(),
                 [&x[2][..], &x[3][..], &x[4][..], &x[5][..]],
-                &g.pm,
-                &g.pwz,
-                [&g.ex[0], &g.ex[1], &g.ex[2]],
+                pm,
+                pwz,
+                [&g.ex[0][..len], &g.ex[1][..len], &g.ex[2][..len]],
                 [&c.kl[nr.clone()], &c.cl[nr.clone()], &c.mukl[nr.clone()]],
-                &mut g.acc,
+                ax,
+                ay,
+                az,
             )
         };
     }
@@ -499,6 +504,16 @@ fn node_pass<const FRICTION: bool>(
         kernel!(4)
     } else {
         kernel!(8)
+    }
+    // The point loads back to zero for the next tile.
+    for &i in point_drag
+        .iter()
+        .map(|p| &p.0)
+        .chain(point_volume.iter().map(|p| &p.0))
+    {
+        for q in 0..3 {
+            g.ex[q][i - n0] = 0.0;
+        }
     }
     for &(i, ri) in listed(&c.constrained, |p| p.0, &nr) {
         let j = i - n0;
@@ -571,7 +586,9 @@ fn node_kernel<const W: usize, const FRICTION: bool>(
     pwz: &[f64],
     ex: [&[f64]; 3],
     seabed: [&[f64]; 3],
-    acc: &mut [Vec<f64>; 3],
+    ax: &mut [f64],
+    ay: &mut [f64],
+    az: &mut [f64],
 ) {
     let (zb, v_eps) = (c.zb, c.v_eps);
     let per_tile = W * COLS * CS;
@@ -590,7 +607,11 @@ fn node_kernel<const W: usize, const FRICTION: bool>(
         let (pm, pwz) = (&pm[tr.clone()], &pwz[tr.clone()]);
         let [exx, exy, exz] = ex.map(|q| &q[tr.clone()]);
         let [kl, cl, mukl] = seabed.map(|q| &q[tr.clone()]);
-        let [ax, ay, az] = acc.each_mut().map(|q| &mut q[tr.clone()]);
+        let (ax, ay, az) = (
+            &mut ax[tr.clone()],
+            &mut ay[tr.clone()],
+            &mut az[tr.clone()],
+        );
         for k in 0..len {
             // Mass block `xx, yy, zz, xy, xz, yz` and force, summed entry by entry in
             // slot order (the general path's order).
