@@ -20,7 +20,10 @@
 //! - point-mass drag, a point's water-acceleration load and held nodes are done from
 //!   short index lists, as on the chain path.
 //!
-//! The two passes run over pieces of elements and ranges of nodes, so a big block is
+//! The two passes alternate tile by tile ([`plan`]): the elements whose node a is in
+//! tile `t`, then the update of every tile whose slots are complete, so that a tile's
+//! slots are read while still in the core's cache and a few tile buffers hold them
+//! all. They run over pieces of elements and tiles of nodes, so a big block is
 //! stepped by all the pool's threads with the same arithmetic per element and per node
 //! (the same bits), meeting twice per step at a spinning barrier
 //! ([`advance_net_threaded`]).
