@@ -141,17 +141,14 @@ pub(super) fn plan(
             users.push(vec![t]);
         }
     }
+    // Incident elements per node: the slots past them are empty.
+    let mut deg = vec![0usize; n];
+    for &i in ea.iter().chain(eb) {
+        deg[i as usize] += 1;
+    }
     let pads = |t: usize| -> Vec<(u32, u8)> {
-        let mut deg = vec![0usize; NT];
-        for (&a, &b) in ea.iter().zip(eb) {
-            for i in [a as usize, b as usize] {
-                if nodes(t).contains(&i) {
-                    deg[i - t * NT] += 1;
-                }
-            }
-        }
         nodes(t)
-            .flat_map(|i| (deg[i - t * NT]..width).map(move |s| (i as u32, s as u8)))
+            .flat_map(|i| (deg[i]..width).map(move |s| (i as u32, s as u8)))
             .collect()
     };
     for (u, ts) in users.iter().enumerate() {
