@@ -251,6 +251,8 @@ impl<'a> LoadsOut<'a> {
     /// The nodes are in the block and in one tile (`i0 % NT + len <= NT`), `c` below
     /// `width COLS`, and no other live slice covers them.
     #[inline(always)]
+    // A view through the raw pointer, not a borrow of `self` (the safety contract above).
+    #[allow(clippy::mut_from_ref)]
     unsafe fn column(&self, c: usize, i0: usize, len: usize) -> &mut [f64] {
         debug_assert!(i0 % NT + len <= NT && c * CS < self.per_tile);
         let b = unsafe { *self.buf.get_unchecked(i0 / NT) } as usize;
@@ -468,16 +470,16 @@ fn node_pass<const FRICTION: bool>(
         let j = pd.0 - n0;
         let v = [x[3][j], x[4][j], x[5][j]];
         let f = point_drag_force(lay, pd, x[2][j], v, eta[pd.0], w);
-        for q in 0..3 {
-            g.ex[q][j] += f[q];
+        for (e, fq) in g.ex.iter_mut().zip(f) {
+            e[j] += fq;
         }
     }
     if !w.is_empty() {
         for pv in point_volume {
             let j = pv.0 - n0;
             let f = point_water_accel_force(pv, x[2][j], eta[pv.0], w);
-            for q in 0..3 {
-                g.ex[q][j] += f[q];
+            for (e, fq) in g.ex.iter_mut().zip(f) {
+                e[j] += fq;
             }
         }
     }
@@ -521,8 +523,8 @@ fn node_pass<const FRICTION: bool>(
     for &(i, ri) in listed(&c.constrained, |p| p.0, &nr) {
         let j = i - n0;
         let d = route_accel(lay, opts, time, ri, |q| (x[q][j], x[3 + q][j]));
-        for q in 0..3 {
-            g.acc[q][j] = d[q];
+        for (a, dq) in g.acc.iter_mut().zip(d) {
+            a[j] = dq;
         }
     }
     let [px, py, pz, vx, vy, vz] = x;

@@ -102,11 +102,11 @@ pub(super) fn node_shares(
                     // SAFETY: node `i` is in the block and slot `s` below the width
                     // (`NetConsts::new`); this element's slot is this call's alone.
                     unsafe {
-                        for q in 0..6 {
-                            out.column(c0 + q, i, 1)[0] = m[q];
+                        for (q, &v) in m.iter().enumerate() {
+                            out.column(c0 + q, i, 1)[0] = v;
                         }
-                        for q in 0..3 {
-                            out.column(c0 + 6 + q, i, 1)[0] = fs[q];
+                        for (q, &v) in fs.iter().enumerate() {
+                            out.column(c0 + 6 + q, i, 1)[0] = v;
                         }
                     }
                 }

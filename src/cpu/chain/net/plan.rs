@@ -103,8 +103,7 @@ pub(super) fn plan(
     };
     // Each buffer's tiles, in the order they use it.
     let mut users: Vec<Vec<usize>> = Vec::new();
-    for th in 0..threads {
-        let tp = &mut out.threads[th];
+    for (th, tp) in out.threads.iter_mut().enumerate() {
         // A local tile's slots are written by its own thread's groups only (another
         // thread's element would have it in its reach).
         let local: Vec<usize> = tiles(th).filter(|&t| !late[t]).collect();
