@@ -7,18 +7,23 @@
 //!   reads its ends in place, as the chain path does; other elements have their two
 //!   end nodes gathered by index into structure-of-arrays scratch; then the chain's
 //!   element loop runs over them;
-//! - the element pass then folds each element's results into what its two nodes add,
-//!   one record per element: the six entries of its share of their mass block
-//!   (`m/2 I + a (I - t t^T)`), the force on node a (`f/2 + T t`) and on node b
-//!   (`f/2 - T t`);
-//! - the node pass sums those over each node's incident elements through fixed-width
-//!   slot arrays (the incidence lists padded with the zero "ghost" element 0 to 4 or 8
-//!   slots), and solves its 3x3 mass block with the general path's adjugate
-//!   ([`Sym3::solve`]);
+//! - the element pass then folds each element's results into what its two nodes add
+//!   (the six entries of its share of their mass block, `m/2 I + a (I - t t^T)`, and
+//!   the force on the node: `f/2 + T t` on node a, `f/2 - T t` on node b) and writes
+//!   them into the node's *slot*: each node has 4 or 8 slots (its incidence list,
+//!   padded with zeros), each slot 9 columns over tiles of [`NT`] nodes, so that the
+//!   node pass reads them contiguously, 4 nodes at a time (a run's elements write
+//!   their slots with vector stores too: the pieces keep one slot per end);
+//! - the node pass sums those slots in incidence order and solves each node's 3x3
+//!   mass block with the general path's adjugate ([`Sym3::solve`]), in one loop
+//!   vectorised over nodes;
 //! - point-mass drag, a point's water-acceleration load and held nodes are done from
 //!   short index lists, as on the chain path.
 //!
-//! The two passes run over pieces of elements and ranges of nodes, so a big block is
+//! The two passes alternate tile by tile ([`plan`]): the elements whose node a is in
+//! tile `t`, then the update of every tile whose slots are complete, so that a tile's
+//! slots are read while still in the core's cache and a few tile buffers hold them
+//! all. They run over pieces of elements and tiles of nodes, so a big block is
 //! stepped by all the pool's threads with the same arithmetic per element and per node
 //! (the same bits), meeting twice per step at a spinning barrier
 //! ([`advance_net_threaded`]).
@@ -38,9 +43,13 @@ use crate::options::SolverOptions;
 use crate::step::{diverged, StepFailure};
 use std::ops::Range;
 
+mod fold;
 mod pieces;
+mod plan;
 mod threaded;
+use fold::node_shares;
 use pieces::{pieces, Piece, TILE};
+use plan::{plan, Op, Plan};
 pub(crate) use threaded::advance_net_threaded;
 
 /// Per-block constants of a network, built once.
@@ -53,11 +62,11 @@ pub(crate) struct NetConsts {
     pieces: Vec<Piece>,
     /// Slots per node: 4 or 8.
     width: usize,
-    /// Slot-major (`slot[s * n + i]`): node `i`'s `s`-th incident element, in the
-    /// order of the layout's incidence list, as `2 p + side`: `p` its padded index
-    /// (element `k` is `k + 1`; 0 is the ghost, all of whose loads are zero), `side` 0
-    /// where the node is its node a, 1 where node b.
-    slot: Vec<u32>,
+    /// Per element: its place (slot) in the incidence list of its node a and of its
+    /// node b, in the layout's order (the order the node pass sums in).
+    eslot: [Vec<u8>; 2],
+    /// The one-thread step's order and tile buffers.
+    plan1: Plan,
 }
 
 impl NetConsts {
@@ -72,27 +81,37 @@ impl NetConsts {
             5..=8 => 8,
             _ => return None,
         };
-        let mut slot = vec![0u32; width * n];
-        for i in 0..n {
-            for (s, &inc) in lay.incidence(n0 + i).iter().enumerate() {
-                slot[s * n + i] = 2 * ((inc >> 1) - e0 as u32 + 1) + (inc & 1);
-            }
-        }
         let elems = b.elem_start as usize..b.elem_end as usize;
         let ne = elems.len();
+        // Side 0 of an incidence is the element's node a, side 1 its node b.
+        let mut eslot = [vec![u8::MAX; ne], vec![u8::MAX; ne]];
+        for i in 0..n {
+            for (s, &inc) in lay.incidence(n0 + i).iter().enumerate() {
+                eslot[(inc & 1) as usize][(inc >> 1) as usize - e0] = s as u8;
+            }
+        }
         let ends: [Vec<u32>; 2] = [
             elems.clone().map(|e| lay.elem_a[e] - n0 as u32).collect(),
             elems.map(|e| lay.elem_b[e] - n0 as u32).collect(),
         ];
-        // The passes index by these without bounds checks.
+        // The passes index by these without bounds checks; every element sits in one
+        // slot of each of its nodes.
         assert!(ends.iter().flatten().all(|&i| (i as usize) < n));
-        assert!(slot.iter().all(|&p| (p as usize) < 2 * (ne + 1)));
+        assert!(eslot.iter().flatten().all(|&s| (s as usize) < width));
+        let c = ChainConsts::new(lay, b);
+        // The node pass takes each tile's share of these lists by binary search.
+        assert!(c.constrained.is_sorted_by_key(|p| p.0));
+        assert!(c.point_drag.is_sorted_by_key(|p| p.0));
+        assert!(c.point_volume.is_sorted_by_key(|p| p.0));
+        let pieces = pieces(&ends[0], &ends[1], &eslot[0], &eslot[1]);
+        let plan1 = plan(n, width, &ends[0], &ends[1], &pieces, 1);
         Some(Self {
-            c: ChainConsts::new(lay, b),
-            pieces: pieces(&ends[0], &ends[1]),
+            c,
+            pieces,
             ends,
             width,
-            slot,
+            eslot,
+            plan1,
         })
     }
 
@@ -123,16 +142,37 @@ pub(crate) struct NetScratch {
     work: Work,
 }
 
-/// Values per element in [`Loads`].
-const REC: usize = 12;
+/// Columns per slot in [`Loads`].
+const COLS: usize = 9;
 
-/// What each element adds to its nodes (padded: ghost 0, element `k` at `k + 1`), one
-/// record of [`REC`] values per element: its share of its nodes' mass block `xx, yy,
-/// zz, xy, xz, yz` (the same for both), the force on its node a, the force on its node
-/// b. A node's slot reads one record (two cache lines at most), not nine arrays.
+/// Nodes per tile of [`Loads`].
+const NT: usize = 256;
+
+/// Distance between two columns of a tile: [`NT`] values and a cache line. At `NT`
+/// (2 KiB) the 36 or 72 columns the node loop reads at once would fall in 2 of the 64
+/// sets of a 48 KiB, 12-way L1 (a set every 4 KiB) and evict each other; 33 lines
+/// apart (odd), 64 columns in a row fall in 64 different sets.
+const CS: usize = NT + 8;
+
+/// What each element adds to each of its nodes, in the node's slot for it: slot `s`
+/// of node `i` is columns `COLS s .. COLS (s + 1)`. The nodes go in tiles of [`NT`]
+/// (the last padded), each tile's slots in a tile buffer ([`Plan::buf`]; tiles whose
+/// slots are not live at once share one) that holds all `width COLS` columns of its
+/// nodes one after the other, [`CS`] apart: node `i`'s column `c` is at
+/// `sum[buf[i / NT] width COLS CS + c CS + i % NT]`,
+/// so that within a tile every column is at a fixed offset from the others (one base
+/// address for all of them in the node loop). A column holds the element's share of
+/// the node's mass block `xx, yy, zz, xy, xz, yz`, then its force on the node. Slots
+/// past a node's incidence list are zero when its tile's elements start
+/// ([`Plan::clear`]).
 #[derive(Default)]
 struct Loads {
-    rec: Vec<f64>,
+    sum: Vec<f64>,
+}
+
+/// Values of [`Loads`] with `nbuf` tile buffers of `width` slots.
+fn loads_len(nbuf: usize, width: usize) -> usize {
+    nbuf * width * COLS * CS
 }
 
 /// One thread's scratch: gathered element inputs over its elements, node work over
@@ -151,8 +191,9 @@ struct Work {
     ten: Vec<f64>,
     f: [Vec<f64>; 3],
     haw: Vec<f64>,
-    /// Per node: point mass and weight (less what the dry share of a point loses),
-    /// point loads (drag, water acceleration), acceleration.
+    /// Per node of the tile being updated ([`NT`] each): point mass and weight (less
+    /// what the dry share of a point loses), point loads (drag, water acceleration;
+    /// zero but at the tile's listed nodes while it is updated), acceleration.
     pm: Vec<f64>,
     pwz: Vec<f64>,
     ex: [Vec<f64>; 3],
@@ -160,8 +201,8 @@ struct Work {
 }
 
 impl Work {
-    /// Sized for `ne` elements and the nodes `nr` of `c`.
-    fn size(&mut self, c: &ChainConsts, ne: usize, nr: &Range<usize>) {
+    /// Sized for `ne` elements and a tile of nodes.
+    fn size(&mut self, ne: usize) {
         let per_elem = (self.a.iter_mut().chain(&mut self.b).chain(&mut self.u))
             .chain(self.aw.iter_mut().chain(&mut self.t).chain(&mut self.f))
             .chain([&mut self.ten, &mut self.haw]);
@@ -170,54 +211,82 @@ impl Work {
             v.clear();
             v.resize(ne, 0.0);
         }
-        self.pm.clear();
-        self.pm.extend_from_slice(&c.pm[nr.clone()]);
-        self.pwz.clear();
-        self.pwz.extend_from_slice(&c.pwz[nr.clone()]);
-        for v in self.ex.iter_mut().chain(&mut self.acc) {
+        let per_node = [&mut self.pm, &mut self.pwz].into_iter();
+        for v in per_node.chain(&mut self.ex).chain(&mut self.acc) {
             v.clear();
-            v.resize(nr.len(), 0.0);
+            v.resize(NT, 0.0);
         }
     }
 }
 
-/// [`Loads`] of elements `er`, written by the element pass: the records from
-/// `REC (er.start + 1)`.
-struct LoadsOut<'a> {
-    rec: &'a mut [f64],
-}
-
-/// [`Loads`] of all elements, read by the node pass.
+/// A block's [`Loads`] seen through a raw pointer: the element pass writes each
+/// element's two slots, the node pass reads a tile's buffer, while the threads of
+/// [`advance_net_threaded`] do the same in other buffers (each slot of each node has
+/// one element, so one writer).
 #[derive(Clone, Copy)]
-struct LoadsIn<'a> {
-    rec: &'a [f64],
+struct LoadsOut<'a> {
+    sum: *mut f64,
+    /// Values per tile buffer: `width COLS CS`.
+    per_tile: usize,
+    /// Per tile: its buffer.
+    buf: &'a [u32],
 }
 
-/// The element pass over elements `er`, piece by piece ([`element_tile`]).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn element_pass(
-    nc: &NetConsts,
-    lay: &Layout,
-    er: Range<usize>,
-    x: [&[f64]; 6],
-    eta: &[f64],
-    w: &[f64],
-    g: &mut Work,
-    out: LoadsOut,
-) {
-    let rec = out.rec;
-    for p in nc.pieces.iter().filter_map(|p| p.clip(&er)) {
-        let (k0, k1) = (p.elems.start - er.start, p.elems.end - er.start);
-        let o = LoadsOut {
-            rec: &mut rec[REC * k0..REC * k1],
-        };
-        element_tile(nc, lay, p, x, eta, w, g, o);
+impl<'a> LoadsOut<'a> {
+    /// # Safety
+    /// `sum` points at the [`loads_len`] values of a block's [`Loads`] with `width`
+    /// slots ([`NetConsts::width`]) in the buffers of `plan`, and while this is used
+    /// nothing else reads or writes the slots it is used on.
+    unsafe fn new(sum: *mut f64, width: usize, plan: &'a Plan) -> Self {
+        Self {
+            sum,
+            per_tile: width * COLS * CS,
+            buf: &plan.buf,
+        }
+    }
+
+    /// Column `c` of the nodes `i0 .. i0 + len`, all in one tile.
+    ///
+    /// # Safety
+    /// The nodes are in the block and in one tile (`i0 % NT + len <= NT`), `c` below
+    /// `width COLS`, and no other live slice covers them.
+    #[inline(always)]
+    // A view through the raw pointer, not a borrow of `self` (the safety contract above).
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn column(&self, c: usize, i0: usize, len: usize) -> &mut [f64] {
+        debug_assert!(i0 % NT + len <= NT && c * CS < self.per_tile);
+        let b = unsafe { *self.buf.get_unchecked(i0 / NT) } as usize;
+        let o = b * self.per_tile + c * CS + i0 % NT;
+        unsafe { std::slice::from_raw_parts_mut(self.sum.add(o), len) }
+    }
+
+    /// Tile `t`'s buffer, to read.
+    ///
+    /// # Safety
+    /// `t` is a tile of the block and nothing writes its buffer while this lives.
+    #[inline(always)]
+    unsafe fn tile(&self, t: usize) -> &'a [f64] {
+        let o = self.buf[t] as usize * self.per_tile;
+        unsafe { std::slice::from_raw_parts(self.sum.add(o) as *const f64, self.per_tile) }
+    }
+
+    /// Zeroes the `(node, slot)` pairs `pads` (all of them in one tile).
+    ///
+    /// # Safety
+    /// As [`LoadsOut::column`] for each of their columns.
+    #[inline(always)]
+    unsafe fn clear(&self, pads: &[(u32, u8)]) {
+        for &(i, s) in pads {
+            for q in 0..COLS {
+                unsafe { self.column(COLS * s as usize + q, i as usize, 1)[0] = 0.0 };
+            }
+        }
     }
 }
 
 /// The element pass over the elements of `piece`: reads their ends' state `x` and
-/// surface `eta` in place (a run) or gathers them, their water velocity and
+/// surface `eta` (both from block node `base` on: the nodes the elements reach) in
+/// place (a run) or gathers them, their water velocity and
 /// acceleration (`w`: per-node water values, empty in still water), runs the chain
 /// path's element loop, and folds its results into what the elements add to their
 /// nodes (`out`).
@@ -228,13 +297,14 @@ fn element_tile(
     lay: &Layout,
     piece: Piece,
     x: [&[f64]; 6],
+    base: usize,
     eta: &[f64],
     w: &[f64],
     g: &mut Work,
     out: LoadsOut,
 ) {
     let c = &nc.c;
-    let er = piece.elems;
+    let er = piece.elems.clone();
     let ne = er.len();
     let (ea, eb) = (&nc.ends[0][er.clone()], &nc.ends[1][er.clone()]);
     let waves = !w.is_empty();
@@ -254,19 +324,27 @@ fn element_tile(
     } = g;
     let (a, b): ([&[f64]; 7], [&[f64]; 7]) = match piece.ends {
         // A run: the ends are consecutive nodes, read in place as on the chain path.
-        Some((a0, b0)) => (src.map(|q| &q[a0..a0 + ne]), src.map(|q| &q[b0..b0 + ne])),
+        Some((a0, b0)) => {
+            let (a0, b0) = (a0 - base, b0 - base);
+            (src.map(|q| &q[a0..a0 + ne]), src.map(|q| &q[b0..b0 + ne]))
+        }
         None => {
             // In still water the surface columns stay zero.
             let cols = if waves { 7 } else { 6 };
+            // The elements reach no node outside the view (the gather's safety).
+            assert!(ea
+                .iter()
+                .chain(eb)
+                .all(|&i| (i as usize).wrapping_sub(base) < n));
             {
                 let ga = ga.each_mut().map(|q| &mut q[..ne]);
                 let gb = gb.each_mut().map(|q| &mut q[..ne]);
                 for k in 0..ne {
-                    let (ia, ib) = (ea[k] as usize, eb[k] as usize);
+                    let (ia, ib) = (ea[k] as usize - base, eb[k] as usize - base);
                     for q in 0..cols {
-                        // SAFETY: element ends are below `n` (checked in
-                        // `NetConsts::new`), every column has `n` entries and every
-                        // gathered column `ne`.
+                        // SAFETY: element ends are within the view (checked just
+                        // above), every column has `n` entries and every gathered
+                        // column `ne`.
                         unsafe {
                             *ga[q].get_unchecked_mut(k) = *src[q].get_unchecked(ia);
                             *gb[q].get_unchecked_mut(k) = *src[q].get_unchecked(ib);
@@ -309,11 +387,18 @@ fn element_tile(
         }
     }
     // Every end at or below the surface makes every wetted fraction exactly 1, as on
-    // the chain path.
+    // the chain path. In still water the surface is at zero (`eta` stays so), where
+    // `0 - z >= 0` is `z <= 0`: the surface's columns need not be read.
     // (A count, not a fold with `&`: it vectorises.)
-    let under: usize = (0..ne)
-        .map(|k| ((a[6][k] - a[2][k] >= 0.0) & (b[6][k] - b[2][k] >= 0.0)) as usize)
-        .sum();
+    let under: usize = if waves {
+        (0..ne)
+            .map(|k| ((a[6][k] - a[2][k] >= 0.0) & (b[6][k] - b[2][k] >= 0.0)) as usize)
+            .sum()
+    } else {
+        (0..ne)
+            .map(|k| ((a[2][k] <= 0.0) & (b[2][k] <= 0.0)) as usize)
+            .sum()
+    };
     let submerged = under == ne;
     let (ten, haw) = (&mut ten[..ne], &mut haw[..ne]);
     {
@@ -334,47 +419,20 @@ fn element_tile(
             (false, false) => kernel!(false, false),
         }
     }
-    node_shares(c, er.start, t, ten, f, haw, out);
+    node_shares(nc, &piece, t, ten, f, haw, out);
 }
 
-/// Folds the element loop's results for elements `e0..` into what they add to their
-/// nodes: the general path's `f/2 + (+-1 T) t` per end, and `m/2 I + a (I - t t^T)`.
-#[inline(always)]
-fn node_shares(
-    c: &ChainConsts,
-    e0: usize,
-    t: &[Vec<f64>; 3],
-    ten: &[f64],
-    f: &[Vec<f64>; 3],
-    haw: &[f64],
-    out: LoadsOut,
-) {
-    let ne = ten.len();
-    let [tx, ty, tz] = t.each_ref().map(|q| &q[..ne]);
-    let [fx, fy, fz] = f.each_ref().map(|q| &q[..ne]);
-    let (haw, hm) = (&haw[..ne], &c.hm[e0 + 1..e0 + 1 + ne]);
-    let rec = &mut out.rec[..REC * ne];
-    for (k, r) in rec.chunks_exact_mut(REC).enumerate().take(ne) {
-        let (tn, ntn) = (ten[k], -ten[k]);
-        let a = haw[k];
-        r[0] = hm[k] + (a - a * tx[k] * tx[k]);
-        r[1] = hm[k] + (a - a * ty[k] * ty[k]);
-        r[2] = hm[k] + (a - a * tz[k] * tz[k]);
-        r[3] = -(a * tx[k] * ty[k]);
-        r[4] = -(a * tx[k] * tz[k]);
-        r[5] = -(a * ty[k] * tz[k]);
-        r[6] = fx[k] + tx[k] * tn;
-        r[7] = fy[k] + ty[k] * tn;
-        r[8] = fz[k] + tz[k] * tn;
-        r[9] = fx[k] + tx[k] * ntn;
-        r[10] = fy[k] + ty[k] * ntn;
-        r[11] = fz[k] + tz[k] * ntn;
-    }
+/// The entries of `list` (sorted by node, its first field) whose node is in `nr`.
+fn listed<'a, T>(list: &'a [T], node: impl Fn(&T) -> usize, nr: &Range<usize>) -> &'a [T] {
+    let lo = list.partition_point(|p| node(p) < nr.start);
+    let hi = list.partition_point(|p| node(p) < nr.end);
+    &list[lo..hi]
 }
 
-/// The node pass over nodes `nr` (`x`: their state, updated in place by a symplectic
-/// step of `dt`), reading every element's loads `el`; `eta`, `w` over the whole block.
-/// Returns the block-local index of the first node whose new state is over the limits.
+/// The node pass over the nodes `nr` of one tile (`x`: their state, updated in place
+/// by a symplectic step of `dt`), reading what the elements add to them from the
+/// tile's buffer `sum` ([`Loads`]); `eta`, `w` over the whole block. Returns the
+/// block-local index of the first node whose new state is over the limits.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn node_pass<const FRICTION: bool>(
@@ -387,61 +445,63 @@ fn node_pass<const FRICTION: bool>(
     x: [&mut [f64]; 6],
     eta: &[f64],
     w: &[f64],
-    el: LoadsIn,
+    sum: &[f64],
     g: &mut Work,
 ) -> Option<usize> {
     let c = &nc.c;
     let n0 = nr.start;
-    let own = |i: usize| nr.contains(&i);
-    // Point loads and the surface's share of points, on this range's listed nodes.
-    for &(i, ..) in c.point_drag.iter().filter(|p| own(p.0)) {
-        for q in 0..3 {
-            g.ex[q][i - n0] = 0.0;
+    let len = nr.len();
+    let point_drag = listed(&c.point_drag, |p| p.0, &nr);
+    let point_volume = listed(&c.point_volume, |p| p.0, &nr);
+    // Point masses and weights: the constants, or where a point has a volume, a copy
+    // with the surface's share of it at the listed nodes.
+    let (pm, pwz) = if point_volume.is_empty() {
+        (&c.pm[nr.clone()], &c.pwz[nr.clone()])
+    } else {
+        g.pm[..len].copy_from_slice(&c.pm[nr.clone()]);
+        g.pwz[..len].copy_from_slice(&c.pwz[nr.clone()]);
+        for pv in point_volume {
+            let i = pv.0;
+            (g.pm[i - n0], g.pwz[i - n0]) = point_surface_at(c, pv, eta[i] - x[2][i - n0]);
         }
-    }
-    for pv in c.point_volume.iter().filter(|p| own(p.0)) {
-        let i = pv.0;
-        (g.pm[i - n0], g.pwz[i - n0]) = point_surface_at(c, pv, eta[i] - x[2][i - n0]);
-        for q in 0..3 {
-            g.ex[q][i - n0] = 0.0;
-        }
-    }
-    for pd in c.point_drag.iter().filter(|p| own(p.0)) {
+        (&g.pm[..len], &g.pwz[..len])
+    };
+    for pd in point_drag {
         let j = pd.0 - n0;
         let v = [x[3][j], x[4][j], x[5][j]];
         let f = point_drag_force(lay, pd, x[2][j], v, eta[pd.0], w);
-        for q in 0..3 {
-            g.ex[q][j] += f[q];
+        for (e, fq) in g.ex.iter_mut().zip(f) {
+            e[j] += fq;
         }
     }
     if !w.is_empty() {
-        for pv in c.point_volume.iter().filter(|p| own(p.0)) {
+        for pv in point_volume {
             let j = pv.0 - n0;
             let f = point_water_accel_force(pv, x[2][j], eta[pv.0], w);
-            for q in 0..3 {
-                g.ex[q][j] += f[q];
+            for (e, fq) in g.ex.iter_mut().zip(f) {
+                e[j] += fq;
             }
         }
     }
-    assert_eq!(el.rec.len(), REC * (nc.ne() + 1));
+    assert_eq!(sum.len(), loads_len(1, nc.width));
     let h = implicit_dt(opts);
-    let slots = |s: usize| {
-        let o = s * c.n;
-        &nc.slot[o + nr.start..o + nr.end]
-    };
+    // Each its own parameter: the kernel's stores need no run-time overlap checks.
+    let [ax, ay, az] = g.acc.each_mut().map(|q| &mut q[..]);
     macro_rules! kernel {
         ($width:literal) => {
             node_kernel::<$width, FRICTION>(
                 c,
                 h,
-                std::array::from_fn(slots),
+                sum,
+                nr.clone(),
                 [&x[2][..], &x[3][..], &x[4][..], &x[5][..]],
-                &g.pm,
-                &g.pwz,
-                [&g.ex[0], &g.ex[1], &g.ex[2]],
+                pm,
+                pwz,
+                [&g.ex[0][..len], &g.ex[1][..len], &g.ex[2][..len]],
                 [&c.kl[nr.clone()], &c.cl[nr.clone()], &c.mukl[nr.clone()]],
-                el,
-                &mut g.acc,
+                ax,
+                ay,
+                az,
             )
         };
     }
@@ -450,11 +510,21 @@ fn node_pass<const FRICTION: bool>(
     } else {
         kernel!(8)
     }
-    for &(i, ri) in c.constrained.iter().filter(|p| own(p.0)) {
+    // The point loads back to zero for the next tile.
+    for &i in point_drag
+        .iter()
+        .map(|p| &p.0)
+        .chain(point_volume.iter().map(|p| &p.0))
+    {
+        for q in 0..3 {
+            g.ex[q][i - n0] = 0.0;
+        }
+    }
+    for &(i, ri) in listed(&c.constrained, |p| p.0, &nr) {
         let j = i - n0;
         let d = route_accel(lay, opts, time, ri, |q| (x[q][j], x[3 + q][j]));
-        for q in 0..3 {
-            g.acc[q][j] = d[q];
+        for (a, dq) in g.acc.iter_mut().zip(d) {
+            a[j] = dq;
         }
     }
     let [px, py, pz, vx, vy, vz] = x;
@@ -503,92 +573,103 @@ fn first_bad(x: [&[f64]; 6], opts: &SolverOptions) -> Option<usize> {
     })
 }
 
-/// The node loop: per node, the sum over its `W` slots of what the incident elements
-/// add to its force and mass block (the general path's order: point, then each
-/// incident element, then point loads, then the seabed), the seabed's damping taken
-/// implicitly with step `h`, and the 3x3 solve.
+/// The node loop over the nodes `nr` of one tile (their state, point and seabed values
+/// from 0): per node, the sum over its `W` slots in the tile's buffer `sum`
+/// ([`Loads`]) of what the incident elements add to its force and mass block (the
+/// general path's order: point, then each incident element, then point loads, then
+/// the seabed), the seabed's damping taken implicitly with step `h`, and the 3x3
+/// solve, 4 nodes at a time.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn node_kernel<const W: usize, const FRICTION: bool>(
     c: &ChainConsts,
     h: f64,
-    slot: [&[u32]; W],
+    sum: &[f64],
+    nr: Range<usize>,
     state: [&[f64]; 4],
     pm: &[f64],
     pwz: &[f64],
     ex: [&[f64]; 3],
     seabed: [&[f64]; 3],
-    el: LoadsIn,
-    acc: &mut [Vec<f64>; 3],
+    ax: &mut [f64],
+    ay: &mut [f64],
+    az: &mut [f64],
 ) {
-    let n = pm.len();
-    let [z, vx, vy, vz] = state.map(|q| &q[..n]);
-    let (pwz, [exx, exy, exz]) = (&pwz[..n], ex.map(|q| &q[..n]));
-    let [kl, cl, mukl] = seabed.map(|q| &q[..n]);
-    let slot = slot.map(|q| &q[..n]);
-    let rec = el.rec;
-    let [ax, ay, az] = acc;
-    let (ax, ay, az) = (&mut ax[..n], &mut ay[..n], &mut az[..n]);
     let (zb, v_eps) = (c.zb, c.v_eps);
-    for i in 0..n {
-        // Mass block `xx, yy, zz, xy, xz, yz` and force, summed entry by entry in slot
-        // order (the general path's order).
-        let mut sm = [pm[i], pm[i], pm[i], 0.0, 0.0, 0.0];
-        let mut sf = [0.0, 0.0, pwz[i]];
-        for sl in &slot {
-            let p = sl[i] as usize;
-            // The element's record: its mass share, then the force on its side.
-            let (mo, fo) = (REC * (p >> 1), REC * (p >> 1) + 6 + 3 * (p & 1));
-            debug_assert!(mo + REC <= rec.len());
-            // SAFETY: every slot is below `2 (ne + 1)` (checked in `NetConsts::new`),
-            // and `rec` holds `REC (ne + 1)` values (checked in `node_pass`).
-            unsafe {
-                let (rm, rf) = (rec.as_ptr().add(mo), rec.as_ptr().add(fo));
-                for (q, s) in sm.iter_mut().enumerate() {
-                    *s += *rm.add(q);
+    let per_tile = W * COLS * CS;
+    let mut i = nr.start;
+    assert!(nr.is_empty() || (nr.end - 1) / NT == nr.start / NT);
+    while i < nr.end {
+        // Nodes `i .. i + len` of tile `i / NT`, from its node `j0`.
+        let (j0, len) = (i % NT, (nr.end - i).min(NT - i % NT));
+        let tile = &sum[..per_tile];
+        // Column `q` of slot `s`: `col[q][s]`, all at fixed offsets from the tile.
+        let col: [[&[f64]; W]; COLS] = std::array::from_fn(|q| {
+            std::array::from_fn(|s| &tile[(COLS * s + q) * CS + j0..][..len])
+        });
+        let tr = i - nr.start..i - nr.start + len;
+        let [z, vx, vy, vz] = state.map(|q| &q[tr.clone()]);
+        let (pm, pwz) = (&pm[tr.clone()], &pwz[tr.clone()]);
+        let [exx, exy, exz] = ex.map(|q| &q[tr.clone()]);
+        let [kl, cl, mukl] = seabed.map(|q| &q[tr.clone()]);
+        let (ax, ay, az) = (
+            &mut ax[tr.clone()],
+            &mut ay[tr.clone()],
+            &mut az[tr.clone()],
+        );
+        for k in 0..len {
+            // Mass block `xx, yy, zz, xy, xz, yz` and force, summed entry by entry in
+            // slot order (the general path's order).
+            let mut sm = [pm[k], pm[k], pm[k], 0.0, 0.0, 0.0];
+            let mut sf = [0.0, 0.0, pwz[k]];
+            for s in 0..W {
+                for (q, v) in sm.iter_mut().enumerate() {
+                    *v += col[q][s][k];
                 }
-                for (q, s) in sf.iter_mut().enumerate() {
-                    *s += *rf.add(q);
+                for (q, v) in sf.iter_mut().enumerate() {
+                    *v += col[6 + q][s][k];
                 }
             }
+            let mut m = Sym3 {
+                xx: sm[0],
+                yy: sm[1],
+                zz: sm[2],
+                xy: sm[3],
+                xz: sm[4],
+                yz: sm[5],
+            };
+            let mut g = V3::new(sf[0], sf[1], sf[2]);
+            g += V3::new(exx[k], exy[k], exz[k]);
+            let (sb, ch, cz) = seabed_load::<FRICTION>(
+                zb - z[k],
+                [vx[k], vy[k], vz[k]],
+                kl[k],
+                cl[k],
+                mukl[k],
+                v_eps,
+            );
+            g.z += sb[2];
+            if FRICTION {
+                g.x += sb[0];
+                g.y += sb[1];
+            }
+            m.xx += h * ch;
+            m.yy += h * ch;
+            m.zz += h * cz;
+            let a = m.solve(g);
+            ax[k] = a.x;
+            ay[k] = a.y;
+            az[k] = a.z;
         }
-        let mut m = Sym3 {
-            xx: sm[0],
-            yy: sm[1],
-            zz: sm[2],
-            xy: sm[3],
-            xz: sm[4],
-            yz: sm[5],
-        };
-        let mut g = V3::new(sf[0], sf[1], sf[2]);
-        g += V3::new(exx[i], exy[i], exz[i]);
-        let (sb, ch, cz) = seabed_load::<FRICTION>(
-            zb - z[i],
-            [vx[i], vy[i], vz[i]],
-            kl[i],
-            cl[i],
-            mukl[i],
-            v_eps,
-        );
-        g.z += sb[2];
-        if FRICTION {
-            g.x += sb[0];
-            g.y += sb[1];
-        }
-        m.xx += h * ch;
-        m.yy += h * ch;
-        m.zz += h * cz;
-        let a = m.solve(g);
-        ax[i] = a.x;
-        ay[i] = a.y;
-        az[i] = a.z;
+        i += len;
     }
 }
 
 /// Copies the block's AoS state into the scratch's SoA arrays and sizes the element
-/// results and surface (zero: still water until the waves fill it).
-fn load(nc: &NetConsts, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
-    let (n, ne) = (nc.n(), nc.ne());
+/// results (the tile buffers of `plan`) and surface (zero: still water until the waves
+/// fill it).
+fn load(nc: &NetConsts, plan: &Plan, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
+    let n = nc.n();
     for (q, xq) in sc.x.iter_mut().enumerate() {
         xq.clear();
         xq.extend((0..n).map(|i| {
@@ -601,8 +682,9 @@ fn load(nc: &NetConsts, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
     }
     sc.eta.clear();
     sc.eta.resize(n, 0.0);
-    sc.el.rec.clear();
-    sc.el.rec.resize(REC * (ne + 1), 0.0);
+    // Zero: the slots past a node's incidence list stay so.
+    sc.el.sum.clear();
+    sc.el.sum.resize(loads_len(plan.nbuf, nc.width), 0.0);
 }
 
 /// Copies the SoA state back to `r`, `v`.
@@ -679,13 +761,14 @@ fn advance_net_body(
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
-    let (n, ne) = (nc.n(), nc.ne());
-    load(nc, sc, r, v);
+    let n = nc.n();
+    let plan = &nc.plan1;
+    load(nc, plan, sc, r, v);
     if waves.is_none() {
         wbuf.clear();
     }
     let NetScratch { x, eta, el, work } = sc;
-    work.size(&nc.c, ne.min(TILE), &(0..n));
+    work.size(nc.ne().min(TILE));
     let mut result = Ok(());
     for k in 0..nsteps {
         let time = (step0 + k) as f64 * dt;
@@ -696,21 +779,59 @@ fn advance_net_body(
                 *e = node_water(wbuf, i).0;
             }
         }
-        {
-            let out = LoadsOut {
-                rec: &mut el.rec[REC..],
-            };
-            let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
-            element_pass(nc, lay, 0..ne, xs, eta, wbuf, work, out);
+        // SAFETY: `el` is this block's loads in `plan`'s buffers (`load`), and only
+        // this loop uses them, one op at a time.
+        let out = unsafe { LoadsOut::new(el.sum.as_mut_ptr(), nc.width, plan) };
+        // The lowest node over the limits in this step.
+        let mut bad = None::<usize>;
+        for op in &plan.threads[0].ops {
+            match op {
+                Op::Elems(p) => {
+                    let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
+                    element_tile(nc, lay, p.clone(), xs, 0, eta, wbuf, work, out);
+                }
+                &Op::Nodes(t) => {
+                    let nr = t * NT..((t + 1) * NT).min(n);
+                    let xs = x.each_mut().map(|q| &mut q[nr.clone()]);
+                    // SAFETY: nothing writes tile `t`'s buffer during its update.
+                    let sum = unsafe { out.tile(t) };
+                    let b = if nc.c.friction {
+                        node_pass::<true>(
+                            nc,
+                            lay,
+                            opts,
+                            time,
+                            dt,
+                            nr.clone(),
+                            xs,
+                            eta,
+                            wbuf,
+                            sum,
+                            work,
+                        )
+                    } else {
+                        node_pass::<false>(
+                            nc,
+                            lay,
+                            opts,
+                            time,
+                            dt,
+                            nr.clone(),
+                            xs,
+                            eta,
+                            wbuf,
+                            sum,
+                            work,
+                        )
+                    };
+                    // SAFETY: the next user of this buffer has not started.
+                    unsafe { out.clear(&plan.clear[t]) };
+                    if let Some(j) = b {
+                        bad = Some(bad.map_or(nr.start + j, |b| b.min(nr.start + j)));
+                    }
+                }
+            }
         }
-        let lin = LoadsIn { rec: &el.rec };
-        let [x0, x1, x2, x3, x4, x5] = x;
-        let xs = [x0, x1, x2, x3, x4, x5].map(|q| &mut q[..]);
-        let bad = if nc.c.friction {
-            node_pass::<true>(nc, lay, opts, time, dt, 0..n, xs, eta, wbuf, lin, work)
-        } else {
-            node_pass::<false>(nc, lay, opts, time, dt, 0..n, xs, eta, wbuf, lin, work)
-        };
         if let Some(i) = bad {
             result = Err((i, time + dt));
             break;

@@ -6,7 +6,10 @@
 //! A net's twines come in such runs: the knots of a row are numbered in order, so the
 //! row's twines have ends `i, i + 1`, and the twines between two rows `i, i + columns`
 //! (`model::add_net`); only a cylinder's closing twine per row and the inner nodes of
-//! twines of several elements break them.
+//! twines of several elements break them. A run also keeps each end in one slot of
+//! its nodes (the place in their incidence lists), so that it writes what it adds to
+//! them with vector stores: a net's first twine of a row, whose node a has no twine
+//! before it, starts a new run.
 
 use std::ops::Range;
 
@@ -22,8 +25,8 @@ const MIN_RUN: usize = 16;
 pub(super) struct Piece {
     /// Block-local elements.
     pub(super) elems: Range<usize>,
-    /// `Some((a0, b0))`: element `elems.start + k` has ends `a0 + k` and `b0 + k`;
-    /// `None`: its ends are gathered.
+    /// `Some((a0, b0))`: element `elems.start + k` has ends `a0 + k` and `b0 + k`, in
+    /// the same slots of them as element `elems.start`; `None`: its ends are gathered.
     pub(super) ends: Option<(usize, usize)>,
 }
 
@@ -41,11 +44,14 @@ impl Piece {
     }
 }
 
-/// Cuts elements with block-local ends `ea`, `eb` into pieces, in element order.
-pub(super) fn pieces(ea: &[u32], eb: &[u32]) -> Vec<Piece> {
+/// Cuts elements with block-local ends `ea`, `eb`, in slots `sa`, `sb` of them, into
+/// pieces, in element order.
+pub(super) fn pieces(ea: &[u32], eb: &[u32], sa: &[u8], sb: &[u8]) -> Vec<Piece> {
     let ne = ea.len();
     let next = |j: usize| {
-        ea[j] as usize == ea[j - 1] as usize + 1 && eb[j] as usize == eb[j - 1] as usize + 1
+        ea[j] as usize == ea[j - 1] as usize + 1
+            && eb[j] as usize == eb[j - 1] as usize + 1
+            && (sa[j], sb[j]) == (sa[j - 1], sb[j - 1])
     };
     let mut out = Vec::new();
     // The first element not yet in a piece.
@@ -143,7 +149,11 @@ mod tests {
             ea.push(7 * i);
             eb.push(3 * i);
         }
-        let ps = pieces(&ea, &eb);
+        // Slots: one along each run but the 300's, whose node a changes slot at its
+        // element 100 (runs of 100 and 200).
+        let sa: Vec<u8> = (0..ea.len()).map(|e| (e >= 140) as u8).collect();
+        let sb = vec![0u8; ea.len()];
+        let ps = pieces(&ea, &eb, &sa, &sb);
         let mut k = 0;
         for p in &ps {
             assert_eq!(p.elems.start, k, "{ps:?}");
@@ -152,16 +162,19 @@ mod tests {
                 assert!(p.elems.len() >= MIN_RUN);
                 for (d, e) in p.elems.clone().enumerate() {
                     assert_eq!((ea[e] as usize, eb[e] as usize), (a0 + d, b0 + d));
+                    let e0 = p.elems.start;
+                    assert_eq!((sa[e], sb[e]), (sa[e0], sb[e0]));
                 }
             }
             k = p.elems.end;
         }
         assert_eq!(k, ea.len());
         let direct: Vec<_> = ps.iter().filter(|p| p.ends.is_some()).collect();
-        // The ring's 39 elements in order, then the 300 in two tiles.
+        // The ring's 39 elements in order, then the 300 cut where the slot changes.
         assert_eq!(direct.len(), 3, "{ps:?}");
         assert_eq!(direct[0].elems, 0..39);
-        assert_eq!(direct[1].elems, 40..296);
+        assert_eq!(direct[1].elems, 40..140);
+        assert_eq!(direct[2].elems, 140..340);
         // The closing element and the scattered ones are gathered.
         assert!(ps.contains(&Piece {
             elems: 39..40,
@@ -192,6 +205,7 @@ mod tests {
         // Clipping to a thread's range shifts the ends with it.
         let c = direct[1].clip(&(100..120)).unwrap();
         assert_eq!(c.ends, Some((60, 100)));
+        assert!(direct[1].clip(&(140..150)).is_none());
         assert!(direct[1].clip(&(0..40)).is_none());
     }
 }

@@ -1,16 +1,15 @@
 //! A network block stepped by all the pool's threads together (a net cage: thousands
 //! of nodes), on the network path's passes over each thread's own elements and nodes.
 
-use super::pieces::{owned, Piece};
+use super::plan::{plan, Op, Plan, ThreadPlan};
 use super::{
-    element_tile, load, node_pass, store, LoadsIn, LoadsOut, NetConsts, NetScratch, Work, REC, TILE,
+    element_tile, load, node_pass, store, LoadsOut, NetConsts, NetScratch, Work, NT, TILE,
 };
 use crate::cpu::threaded::SpinBarrier;
 use crate::math::V3;
 use crate::model::Layout;
 use crate::options::SolverOptions;
 use crate::step::{diverged, StepFailure};
-use std::ops::Range;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Raw views of the state and element loads shared by the threads of
@@ -20,22 +19,24 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 #[derive(Clone, Copy)]
 struct Shared {
     x: [*mut f64; 6],
-    /// [`Loads`]: `REC (ne + 1)` values.
-    rec: *mut f64,
+    /// [`super::Loads`]: [`super::loads_len`] values.
+    sum: *mut f64,
 }
 unsafe impl Send for Shared {}
 unsafe impl Sync for Shared {}
 
 /// Steps a network block (still water) by `nsteps` with `threads` threads: each owns a
-/// contiguous range of nodes and the elements whose node a is one of them (so that a
-/// thread mostly reads what it wrote: across the threads go only the state and loads
-/// of the elements that cross the border of two node ranges). Per step, phase 1: each
-/// thread evaluates its elements (reading every node's state, which nobody writes in
-/// this phase);
-/// barrier; phase 2: each thread updates its nodes (reading every element's loads,
-/// which nobody writes now, and its own nodes' state); barrier. The arithmetic per
-/// element and per node is [`advance_net`]'s, so the result is the same bit for bit,
-/// and a blow-up names the lowest failing node of the first failing step, as there.
+/// contiguous range of tiles of nodes and the elements whose node a is in them (so that
+/// a thread mostly reads what it wrote: across the threads go only the state and loads
+/// of the elements that cross the border of two node ranges), in the order of
+/// [`plan`]. Per step, phase 1: each thread evaluates its elements tile by tile and
+/// updates the tiles no other thread's elements reach as soon as their slots are
+/// complete (it reads only nodes nobody updates in this phase: its own, and the other
+/// threads' border tiles); barrier; phase 2: each thread updates its border tiles
+/// (reading their slots, which nobody writes now, and their state); barrier. The
+/// arithmetic per element and per node is [`super::advance_net`]'s, so the result is
+/// the same bit for bit, and a blow-up names the lowest failing node of the first
+/// failing step, as there.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn advance_net_threaded(
     nc: &NetConsts,
@@ -51,30 +52,29 @@ pub(crate) fn advance_net_threaded(
     threads: usize,
 ) -> Result<(), StepFailure> {
     let (n, ne) = (nc.n(), nc.ne());
-    load(nc, sc, r, v);
+    let plan = plan(n, nc.width, &nc.ends[0], &nc.ends[1], &nc.pieces, threads);
+    load(nc, &plan, sc, r, v);
     let NetScratch { x, eta, el, .. } = sc;
     let sh = Shared {
         x: x.each_mut().map(|q| q.as_mut_ptr()),
-        rec: el.rec.as_mut_ptr(),
+        sum: el.sum.as_mut_ptr(),
     };
     let eta: &[f64] = eta;
     let barrier = SpinBarrier::new(threads);
     // Lowest failing node of the current step (usize::MAX: none yet).
     let failed = AtomicUsize::new(usize::MAX);
-    let range = |tid: usize, len: usize| (len * tid / threads)..(len * (tid + 1) / threads);
+    let plan = &plan;
     let work = |tid: usize| {
         // Capture the whole `Shared` (Sync), not its raw-pointer fields one by one.
         #[allow(clippy::redundant_locals)]
         let sh = sh;
-        let nr = range(tid, n);
-        let pieces = owned(&nc.pieces, &nc.ends[0], &nr);
         let mut g = Work::default();
-        g.size(&nc.c, ne.min(TILE), &nr);
-        // SAFETY: `sh` holds this block's scratch, and each thread has its own nodes
-        // and elements (each element has one node a).
+        g.size(ne.min(TILE));
+        // SAFETY: `sh` holds this block's scratch in `plan`'s buffers, and each thread
+        // has its own tiles and elements (each element has one node a).
         unsafe {
             step_threads(
-                nc, lay, opts, sh, &barrier, &failed, &pieces, nr, eta, &mut g, step0, dt, nsteps,
+                nc, lay, opts, sh, &barrier, &failed, plan, tid, eta, &mut g, step0, dt, nsteps,
             )
         }
     };
@@ -109,8 +109,8 @@ unsafe fn step_threads(
     sh: Shared,
     barrier: &SpinBarrier,
     failed: &AtomicUsize,
-    pieces: &[Piece],
-    nr: Range<usize>,
+    plan: &Plan,
+    tid: usize,
     eta: &[f64],
     g: &mut Work,
     step0: u64,
@@ -123,13 +123,13 @@ unsafe fn step_threads(
             // SAFETY: the CPU has AVX2, checked just above; the rest as the body's.
             return unsafe {
                 step_threads_avx2(
-                    nc, lay, opts, sh, barrier, failed, pieces, nr, eta, g, step0, dt, nsteps,
+                    nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
                 )
             };
         }
     }
     step_threads_body(
-        nc, lay, opts, sh, barrier, failed, pieces, nr, eta, g, step0, dt, nsteps,
+        nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
     )
 }
 
@@ -143,8 +143,8 @@ unsafe fn step_threads_avx2(
     sh: Shared,
     barrier: &SpinBarrier,
     failed: &AtomicUsize,
-    pieces: &[Piece],
-    nr: Range<usize>,
+    plan: &Plan,
+    tid: usize,
     eta: &[f64],
     g: &mut Work,
     step0: u64,
@@ -152,13 +152,13 @@ unsafe fn step_threads_avx2(
     nsteps: u64,
 ) -> Option<f64> {
     step_threads_body(
-        nc, lay, opts, sh, barrier, failed, pieces, nr, eta, g, step0, dt, nsteps,
+        nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
     )
 }
 
 /// # Safety
-/// `sh` points at the block's state (`n` nodes) and padded element loads (`ne + 1`),
-/// and every thread of `barrier` runs this with its own disjoint `pieces` and `nr`.
+/// `sh` points at the block's state (`n` nodes) and loads (`load`, in `plan`'s buffers),
+/// and every thread of `barrier` runs this with its own `tid` of `plan`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 unsafe fn step_threads_body(
@@ -168,54 +168,60 @@ unsafe fn step_threads_body(
     sh: Shared,
     barrier: &SpinBarrier,
     failed: &AtomicUsize,
-    pieces: &[Piece],
-    nr: Range<usize>,
+    plan: &Plan,
+    tid: usize,
     eta: &[f64],
     g: &mut Work,
     step0: u64,
     dt: f64,
     nsteps: u64,
 ) -> Option<f64> {
-    let (n, ne) = (nc.n(), nc.ne());
+    let n = nc.n();
+    let ThreadPlan { ops, late, reach } = &plan.threads[tid];
+    // SAFETY: `sh.sum` is the block's loads; the threads' elements are disjoint and
+    // each has its own slots, in buffers of tiles no other thread reads or writes in
+    // the same phase.
+    let out = unsafe { LoadsOut::new(sh.sum, nc.width, plan) };
+    // Updates tile `t` (this thread's alone in this phase) and clears what the next
+    // user of its buffer needs zero.
+    let update = |t: usize, time: f64, g: &mut Work| {
+        let nr = t * NT..((t + 1) * NT).min(n);
+        // SAFETY: tile `t`'s nodes and buffer are this thread's alone in this phase.
+        let xs: [&mut [f64]; 6] =
+            sh.x.map(|p| unsafe { std::slice::from_raw_parts_mut(p.add(nr.start), nr.len()) });
+        let sum = unsafe { out.tile(t) };
+        let bad = if nc.c.friction {
+            node_pass::<true>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], sum, g)
+        } else {
+            node_pass::<false>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], sum, g)
+        };
+        unsafe { out.clear(&plan.clear[t]) };
+        if let Some(j) = bad {
+            failed.fetch_min(nr.start + j, Ordering::AcqRel);
+        }
+    };
     let mut sense = false;
     for k in 0..nsteps {
         let time = (step0 + k) as f64 * dt;
-        {
-            // Phase 1 writes only this thread's elements; the state is only read (its
-            // last writes happened before the barrier).
-            let xs: [&[f64]; 6] =
-                sh.x.map(|p| unsafe { std::slice::from_raw_parts(p as *const f64, n) });
-            for p in pieces {
-                let er = &p.elems;
-                assert!(er.end <= ne);
-                let out = LoadsOut {
-                    rec: unsafe {
-                        std::slice::from_raw_parts_mut(
-                            sh.rec.add(REC * (er.start + 1)),
-                            REC * er.len(),
-                        )
-                    },
-                };
-                element_tile(nc, lay, p.clone(), xs, eta, &[], g, out);
+        for op in ops {
+            match op {
+                Op::Elems(p) => {
+                    // The state of the nodes this thread's elements reach: nobody
+                    // updates them in this phase (`plan`: they are this thread's own
+                    // tiles or the others' border tiles).
+                    // SAFETY: as just said; `reach` is within the block.
+                    let xs: [&[f64]; 6] = sh.x.map(|p| unsafe {
+                        std::slice::from_raw_parts(p.add(reach.start) as *const f64, reach.len())
+                    });
+                    let eta = &eta[reach.clone()];
+                    element_tile(nc, lay, p.clone(), xs, reach.start, eta, &[], g, out);
+                }
+                &Op::Nodes(t) => update(t, time, g),
             }
         }
         barrier.wait(&mut sense);
-        {
-            // Phase 2 only reads the element loads (written before the barrier) and
-            // reads and writes this thread's own nodes.
-            let lin = LoadsIn {
-                rec: unsafe { std::slice::from_raw_parts(sh.rec as *const f64, REC * (ne + 1)) },
-            };
-            let xs: [&mut [f64]; 6] =
-                sh.x.map(|p| unsafe { std::slice::from_raw_parts_mut(p.add(nr.start), nr.len()) });
-            let bad = if nc.c.friction {
-                node_pass::<true>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], lin, g)
-            } else {
-                node_pass::<false>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], lin, g)
-            };
-            if let Some(j) = bad {
-                failed.fetch_min(nr.start + j, Ordering::AcqRel);
-            }
+        for &t in late {
+            update(t, time, g);
         }
         barrier.wait(&mut sense);
         if failed.load(Ordering::Acquire) != usize::MAX {
