@@ -31,7 +31,8 @@
 //! acceleration is not known: every node starts in band 0 until the first decision.
 //!
 //! A node that rises above its band's top anyway (a motion the bound did not foresee)
-//! is noticed at every refresh of band 0: the cache counts it, warns once, and the
+//! is noticed at every refresh of band 0: the cache counts it (and warns once of one
+//! more than [`BAND_MARGIN`] above its band's top), and the
 //! next decision puts the node in the band its height then allows.
 //!
 //! The plan option ([`super::SeaSet::banded`]): banding is on for runs on the CPU path

@@ -405,23 +405,38 @@ impl WaveCache {
         true
     }
 
-    /// Counts (and warns once of) nodes above their band's top at `t`.
+    /// Counts nodes above their band's top at `t`, and warns (once per process: a
+    /// study's members share one log) of a node more than [`BAND_MARGIN`] above it.
+    /// Why not of every breach: a node a little above its band's top refreshes at an
+    /// interval a little longer than the rule allows at its height; the rule's interval
+    /// changes with height through the decay of the components that set it, which over
+    /// a metre or two is a few percent at the depths of the deeper bands (the error
+    /// grows as the fourth power of the interval). The full study of the design check
+    /// (30 members of 3 hours) saw breaches of 0.02 to 0.4 m, at 100 and 250 m down.
     fn watch(&mut self, t: f64, positions: &[f64]) {
+        static WARNED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
         for (i, &b) in self.band.iter().enumerate() {
             let z = positions[3 * i + 2];
-            if z > self.tops[b as usize] {
-                if self.breaches == 0 {
+            let top = self.tops[b as usize];
+            if z > top {
+                self.breaches += 1;
+                if z - top > BAND_MARGIN && !WARNED.swap(true, std::sync::atomic::Ordering::Relaxed)
+                {
                     log::warn!(
-                        "waves: a node is at z = {z:.2} m at t = {t:.2} s, above the top \
-                         {:.2} m of the depth band it refreshes in (decided from its height, \
-                         velocity and acceleration plus {BAND_MARGIN} m): its wave loads \
-                         are less accurate than the cache tolerance until the next band \
-                         decision (docs/src/sea_states.md, \"Refresh per depth band\"); \
-                         warned once per cache",
-                        self.tops[b as usize]
+                        "waves: a node is at z = {z:.2} m at t = {t:.2} s, {:.2} m above the \
+                         top {top:.2} m of the depth band it refreshes in (decided from its \
+                         height, velocity and acceleration plus {BAND_MARGIN} m): its wave \
+                         loads may be less accurate than the cache tolerance until the next \
+                         band decision (docs/src/sea_states.md, \"Refresh per depth band\"); \
+                         warned once",
+                        z - top
+                    );
+                } else {
+                    log::debug!(
+                        "waves: a node at z = {z:.2} m at t = {t:.2} s is above the top \
+                         {top:.2} m of its depth band"
                     );
                 }
-                self.breaches += 1;
             }
         }
     }
