@@ -282,9 +282,8 @@ fn gpu_output_times_match_cpu_in_f64() {
 
 /// A scenario in a JONSWAP sea runs with `--backend gpu` (it used to be refused
 /// there), and its end forces at the last output time match `--backend cpu` to
-/// round-off in f64 (the same cache, the same refresh steps: `depth_bands = false`,
-/// since the GPU path does not refresh per depth band yet and the CPU path does by
-/// default).
+/// round-off in f64 (the same cache, the same refresh steps, per depth band on both
+/// paths by default: `sea::bands`).
 #[test]
 fn wave_scenario_runs_on_the_gpu() {
     let Some(ctx) = gpu_context("wave_scenario_runs_on_the_gpu", true) else {
@@ -295,7 +294,7 @@ fn wave_scenario_runs_on_the_gpu() {
         .unwrap()
         .replace(
             "[environment.seabed]",
-            "[environment.waves]\ndepth_bands = false\n\n[[environment.waves.trains]]\ntype = \"jonswap\"\n\
+            "[environment.waves]\n\n[[environment.waves.trains]]\ntype = \"jonswap\"\n\
              hs = 4.0\ntp = 10.0\ndirection = 20.0\n\n[environment.seabed]",
         );
     assert!(text.contains("jonswap"));
