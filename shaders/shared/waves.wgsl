@@ -278,7 +278,8 @@ fn wave_cache_hermite(v0: WaveKin, d0: WaveKin, v1: WaveKin, d1: WaveKin, w: vec
 
 // One step of a submission in one sea. Rust: gpu::layout::WaveStep.
 struct WaveStep {
-    // Cache slots of the t0 values and of the t1 values (0 or 1).
+    // Cache slots of the t0 values and of the t1 values (0 and 1: a refresh copies a
+    // node's t1 values to slot 0).
     slot0: u32,
     slot1: u32,
     // 1 when the t0 values are evaluated afresh at this step (first step, or a jump

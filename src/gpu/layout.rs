@@ -563,7 +563,9 @@ gpu_struct! {
     /// Hermite weights, and what a refresh at this step evaluates. Times are
     /// relative to the components' reference time `t_ref`, formed in f64 on the host.
     WaveStep {
-        /// Cache slot of the values at `t0` (0 or 1).
+        /// Cache slot of the values at `t0` (always 0 since the depth bands: a
+        /// refresh copies a node's `t1` values to slot 0; kept as a field so that the
+        /// shader names the slot it reads).
         slot0: u32,
         /// Cache slot of the values at `t1`.
         slot1: u32,

@@ -1,7 +1,8 @@
 //! The host's side of the waves on the GPU: one kinematics-cache schedule per sea
-//! ([`WaveSchedule`], [`SeaSchedules`]) on the same refresh grid as the CPU path
-//! (`sea::schedule`), and how a submission of the fused kernel is cut into dispatches
-//! at the refresh steps ([`fused_segments`], [`fused_max_steps`]).
+//! ([`WaveSchedule`], [`SeaSchedules`]) with a clock per depth band (`sea::bands`) on
+//! the same refresh grid as the CPU path (`sea::schedule`), and how a submission of
+//! the fused kernel is cut into dispatches at the refresh steps ([`fused_segments`],
+//! [`fused_max_steps`]).
 //!
 //! Split out of `solver.rs` so that the refresh schedule, which decides where the
 //! fused kernel's dispatches end, reads in one place with its unit tests.
@@ -17,7 +18,8 @@ use crate::sea::{SeaSet, SeaState, Stretching, GPU_DEEP};
 
 /// Scalars per node and cache slot on the GPU: the values `eta, u, a` and their rates
 /// along the node's path (`WAVE_CACHE_STRIDE` in `shaders/shared/waves.wgsl`); after
-/// the two slots, three per node: its velocity at the last refresh.
+/// the two slots, three per node: its velocity at the last refresh; then one per
+/// node: its depth band; then one per node: its breaches (`sea::bands`).
 pub(super) const WAVE_CACHE_STRIDE: usize = 14;
 
 /// The host's side of the waves' kinematics cache: the components (rebased at each
