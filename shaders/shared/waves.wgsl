@@ -271,13 +271,15 @@ fn wave_cache_hermite(v0: WaveKin, d0: WaveKin, v1: WaveKin, d1: WaveKin, w: vec
 // cpu::water::BlockWaves): values and their rates along each node's path at two
 // refresh times t0, t1 per node, interpolated between them (cubic Hermite) at every
 // step. The host decides when a refresh is due, exactly as the CPU path does, and
-// writes one WaveStep row per step of a submission and sea: the rows of sea q are
-// q * STEPS_PER_SUBMISSION + k, and a block reads its sea's from
-// `BlockParams::wave_rows` (a packed run's members each in their own sea, sea::set). ----
+// writes one WaveStep row per step of a submission, sea and depth band (sea::bands):
+// band m's row of step k of a sea is m * band_rows + k after the sea's first, and a
+// block reads its sea's from `BlockParams::wave_rows` (a packed run's members each in
+// their own sea, sea::set); each node reads its band's (its band in the cache). ----
 
 // One step of a submission in one sea. Rust: gpu::layout::WaveStep.
 struct WaveStep {
-    // Cache slots of the t0 values and of the t1 values (0 or 1).
+    // Cache slots of the t0 values and of the t1 values (0 and 1: a refresh copies a
+    // node's t1 values to slot 0).
     slot0: u32,
     slot1: u32,
     // 1 when the t0 values are evaluated afresh at this step (first step, or a jump
@@ -294,6 +296,16 @@ struct WaveStep {
     // 1 when the refresh records each node's velocity for the next refresh's estimate
     // of its acceleration.
     track: u32,
+    // The sea's number of depth bands (sea::bands); band m's row of a step is m *
+    // band_rows rows after band 0's.
+    n_bands: u32,
+    band_rows: u32,
+    // 1 when this step decides each node's band anew (wave_band): the coarsest band
+    // refreshes (so every band does), not a restart.
+    decide: u32,
+    // 1 when this step counts the nodes above their band's top: band 0 refreshes,
+    // not a restart, more than one band.
+    watch: u32,
     // The Hermite weights of this step's time, [h00, Delta h10, h01, Delta h11]
     // (wave_cache_hermite; four scalars, not a vec4, whose alignment would pad the row).
     w0: R,
@@ -317,11 +329,22 @@ struct WaveStep {
     acc_rate: R,
     // Water depth, m (sea::GPU_DEEP for deep water).
     depth: R,
+    // The coarsest band's interval, s: how far ahead the band decision looks.
+    horizon: R,
+    // The tops of bands 1 to 4, m (band 0's is infinite).
+    top1: R,
+    top2: R,
+    top3: R,
+    top4: R,
 }
 
 // Fourteen scalars per node and slot: eta, u, a (m, m/s, m/s^2), then their rates
-// along the node's path (m/s, m/s^2, m/s^3); two slots; then three per node: the
-// node's velocity at the last refresh (m/s).
+// along the node's path (m/s, m/s^2, m/s^3); two slots (slot 0 the values at the
+// node's band's t0, slot 1 at its t1: a refresh copies slot 1 to slot 0, as the CPU
+// cache does, since the bands' refreshes differ from node to node); then three per
+// node: the node's velocity at the last refresh (m/s); then one per node: its depth
+// band (a small whole number, exact in R); then one per node: how many times it was
+// found above its band's top (sea::cache::WaveCache::breaches, summed by the host).
 const WAVE_CACHE_STRIDE: u32 = 14u;
 @group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
 @group(0) @binding(20) var<storage, read> wave_steps: array<WaveStep>;
@@ -350,17 +373,53 @@ fn wave_cache_store(slot: u32, i: u32, w: WaveKinRates) {
     wave_cache_store7(o + 7u, w.rate);
 }
 
-// The row of step k of the submission for the sea of node i's block.
-fn node_wave_step(i: u32, k: u32) -> WaveStep {
-    return wave_steps[blocks[nodes[i].block].wave_rows + k];
+// The band of a node at height z (m) with vertical velocity vz (m/s) and
+// acceleration estimate az (m/s^2), for the next `horizon` s: the deepest band whose
+// top is not under z + max(vz, 0) horizon + |az| horizon^2 / 2 + margin. `tops` are
+// the tops of bands 1 to 4 (band 0's is infinite), `n_bands` the number of bands.
+// Rust twin: sea::bands::wave_band (its `tops[m]` is this `tops[m - 1]`).
+fn wave_band(z: R, vz: R, az: R, horizon: R, margin: R, tops: vec4<R>, n_bands: u32) -> u32 {
+    let bound = z + max(vz, R(0.0)) * horizon + R(0.5) * abs(az) * horizon * horizon + margin;
+    var b = 0u;
+    loop {
+        if b + 1u >= n_bands || b >= 4u || !(bound <= tops[b]) {
+            break;
+        }
+        b = b + 1u;
+    }
+    return b;
+}
+
+// Added to a node's bound in the band decision, m (sea::bands::BAND_MARGIN).
+const WAVE_BAND_MARGIN: R = 2.0;
+
+// Where node i's band is in the cache.
+fn wave_band_at(i: u32) -> u32 {
+    return (2u * WAVE_CACHE_STRIDE + 3u) * params.n_nodes + i;
+}
+
+// The row of step k of the submission for band b of the sea of node i's block.
+fn wave_band_step(i: u32, b: u32, k: u32) -> WaveStep {
+    let r = blocks[nodes[i].block].wave_rows + k;
+    if b == 0u {
+        return wave_steps[r];
+    }
+    return wave_steps[r + b * wave_steps[r].band_rows];
 }
 
 // Node i's elevation, wave velocity and wave acceleration at step k of the
-// submission (all zero in still water). CPU twin: cpu::water::BlockWaves::fill.
+// submission (all zero in still water), interpolated with its band's weights. CPU
+// twin: cpu::water::BlockWaves::fill.
 fn node_waves(i: u32, k: u32) -> WaveKin {
-    let ws = node_wave_step(i, k);
+    let r = blocks[nodes[i].block].wave_rows + k;
+    var ws = wave_steps[r];
     if ws.n == 0u {
         return WaveKin(R(0.0), vec3<R>(R(0.0)), vec3<R>(R(0.0)));
+    }
+    // Still water has no band entries: read only past the test above.
+    let b = u32(wave_cache[wave_band_at(i)]);
+    if b != 0u {
+        ws = wave_steps[r + b * ws.band_rows];
     }
     let o0 = (ws.slot0 * params.n_nodes + i) * WAVE_CACHE_STRIDE;
     let o1 = (ws.slot1 * params.n_nodes + i) * WAVE_CACHE_STRIDE;
@@ -373,24 +432,53 @@ fn node_waves(i: u32, k: u32) -> WaveKin {
     );
 }
 
-// The refresh of node i at step k, at absolute position p (m) with velocity v (m/s):
-// on a restart the t0 values and rates at p along v, then the t1 values and rates at
-// the predicted position p + v h + acc h^2 / 2 along v + acc h (h = t1 - t, acc the
-// velocity change since the previous refresh over its time, 0 on a restart); nothing
-// when the node's sea does not refresh at this step. CPU twin:
+// The refresh of node i at step k, at absolute position p (m) with velocity v (m/s),
+// when the node's band refreshes at this step (nothing otherwise: the node keeps its
+// cache): on a restart the t0 values and rates at p along v and the node back in
+// band 0; else the t1 values and rates become the t0 ones, and at a band decision the
+// node goes to the band `wave_band` gives; then the t1 values and rates of its band
+// at the predicted position p + v h + acc h^2 / 2 along v + acc h (h = t1 - t, acc
+// the velocity change since the previous refresh over its time, 0 on a restart). At
+// a refresh of band 0 a node above its band's top is counted. CPU twin:
 // sea::cache::WaveCache::refresh_if_due.
 fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
-    let ws = node_wave_step(i, k);
+    let ab = wave_band_at(i);
+    let old = u32(wave_cache[ab]);
+    let wo = wave_band_step(i, old, k);
+    if wo.watch != 0u {
+        let tops = vec4<R>(wo.top1, wo.top2, wo.top3, wo.top4);
+        if old > 0u && p.z > tops[old - 1u] {
+            let bi = ab + params.n_nodes;
+            wave_cache[bi] = wave_cache[bi] + R(1.0);
+        }
+    }
+    if wo.refresh == 0u {
+        return;
+    }
+    let ov = (2u * params.n_nodes * WAVE_CACHE_STRIDE) + 3u * i;
+    var acc = vec3<R>(R(0.0));
+    if wo.acc_rate != R(0.0) {
+        acc = (v - vec3<R>(wave_cache[ov], wave_cache[ov + 1u], wave_cache[ov + 2u])) * wo.acc_rate;
+    }
+    var band = old;
+    if wo.restart != 0u {
+        band = 0u;
+    } else if wo.decide != 0u {
+        band = wave_band(p.z, v.z, acc.z, wo.horizon, WAVE_BAND_MARGIN, vec4<R>(wo.top1, wo.top2, wo.top3, wo.top4), wo.n_bands);
+    }
+    wave_cache[ab] = R(band);
+    let ws = wave_band_step(i, band, k);
     if ws.refresh == 0u {
         return;
     }
     if ws.restart != 0u {
         wave_cache_store(ws.slot0, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp0, ws.ramp_rate0, p, v, ws.tau0));
-    }
-    let ov = (2u * params.n_nodes * WAVE_CACHE_STRIDE) + 3u * i;
-    var acc = vec3<R>(R(0.0));
-    if ws.acc_rate != R(0.0) {
-        acc = (v - vec3<R>(wave_cache[ov], wave_cache[ov + 1u], wave_cache[ov + 2u])) * ws.acc_rate;
+    } else {
+        let o0 = (ws.slot0 * params.n_nodes + i) * WAVE_CACHE_STRIDE;
+        let o1 = (ws.slot1 * params.n_nodes + i) * WAVE_CACHE_STRIDE;
+        for (var j = 0u; j < WAVE_CACHE_STRIDE; j = j + 1u) {
+            wave_cache[o0 + j] = wave_cache[o1 + j];
+        }
     }
     if ws.track != 0u {
         wave_cache[ov] = v.x;

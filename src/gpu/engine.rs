@@ -42,6 +42,8 @@ pub(super) trait Engine: Send {
     /// Starts the waves' kinematics cache afresh at the next step (after the state was
     /// put back to an earlier time).
     fn restart_waves(&mut self);
+    /// Per depth band, its nodes now; and the breaches counted (`sea::bands`).
+    fn wave_band_census(&self) -> Result<(Vec<usize>, u64), Error>;
     /// Loads, accelerations and reactions at step `step`.
     fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error>;
     /// Where the host's time went in `advance` so far.
@@ -122,6 +124,8 @@ struct Installed<R: GpuReal> {
     params: Params<R>,
     buf: Buffers,
     bind_group: wgpu::BindGroup,
+    /// The waves' per-node cache (`shaders/shared/waves.wgsl`).
+    wave_cache: wgpu::Buffer,
     n_nodes: usize,
     n_elems: usize,
     n_routes: usize,
@@ -367,6 +371,10 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         }
     }
 
+    fn wave_band_census(&self) -> Result<(Vec<usize>, u64), Error> {
+        self.band_census()
+    }
+
     fn upload(&mut self, host: &Host, r: &[[f64; 3]], v: &[[f64; 3]]) {
         let st: Vec<NodeState<R>> = (0..self.inst.n_nodes)
             .map(|i| {
@@ -399,13 +407,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         // `cpu::water::BlockWaves::cover`).
         self.write_wave_comps(t);
         if let Some(w) = self.waves.as_mut() {
-            let per = STEPS_PER_SUBMISSION as usize;
-            let mut rows = vec![WaveStep::<R>::default(); w.seas.len() * per];
-            for (q, sea) in w.seas.iter_mut().enumerate() {
-                if let Some(sea) = sea {
-                    rows[q * per] = sea.step::<R>(t, t);
-                }
-            }
+            let (rows, _) = w.rows::<R>(1, |_| t, t);
             ctx.queue
                 .write_buffer(&self.inst.buf.wave_steps, 0, bytemuck::cast_slice(&rows));
         }

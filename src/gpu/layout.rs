@@ -563,7 +563,9 @@ gpu_struct! {
     /// Hermite weights, and what a refresh at this step evaluates. Times are
     /// relative to the components' reference time `t_ref`, formed in f64 on the host.
     WaveStep {
-        /// Cache slot of the values at `t0` (0 or 1).
+        /// Cache slot of the values at `t0` (always 0 since the depth bands: a
+        /// refresh copies a node's `t1` values to slot 0; kept as a field so that the
+        /// shader names the slot it reads).
         slot0: u32,
         /// Cache slot of the values at `t1`.
         slot1: u32,
@@ -582,6 +584,17 @@ gpu_struct! {
         /// acceleration estimate (every refresh does since an output-time evaluation
         /// refreshes as a step would; kept as a switch of the shader's).
         track: u32,
+        /// The sea's number of depth bands (`sea::bands`; rows of band `m` are
+        /// `m * band_rows` after band 0's).
+        n_bands: u32,
+        /// Rows between one band's row of a step and the next band's.
+        band_rows: u32,
+        /// 1 when this step decides each node's band anew (`wave_band`; the coarsest
+        /// band refreshes, not a restart).
+        decide: u32,
+        /// 1 when this step counts the nodes above their band's top (band 0
+        /// refreshes, not a restart, more than one band).
+        watch: u32,
         /// Hermite weight `h00(s)` of the step's time, `s = (t - t0) / (t1 - t0)`
         /// (`sea::cache::hermite_weights`): of the values at `t0`.
         w0: R,
@@ -611,6 +624,17 @@ gpu_struct! {
         acc_rate: R,
         /// Water depth, m (`sea::GPU_DEEP` for deep water).
         depth: R,
+        /// The coarsest band's interval, s: the band decision's horizon.
+        horizon: R,
+        /// The tops of bands 1 to 4, m (`sea::bands::BandPlan::tops`; band 0's is
+        /// infinite; those past `n_bands` unused).
+        top1: R,
+        /// Band 2's top, m.
+        top2: R,
+        /// Band 3's top, m.
+        top3: R,
+        /// Band 4's top, m.
+        top4: R,
     }
 }
 

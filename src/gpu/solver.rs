@@ -427,6 +427,13 @@ impl GpuSolver {
     pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
         self.engine.evaluate(&self.layout, &self.host, self.steps)
     }
+
+    /// Where the waves' caches stand (`sea::bands`): per band, how many nodes refresh
+    /// in it now, and how many times a node was found above its band's top, read back
+    /// from the device; as [`crate::cpu::CpuSolver::wave_band_census`].
+    pub fn wave_band_census(&self) -> Result<(Vec<usize>, u64), Error> {
+        self.engine.wave_band_census()
+    }
 }
 
 impl MeshStepper for GpuSolver {

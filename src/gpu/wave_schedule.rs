@@ -1,7 +1,8 @@
 //! The host's side of the waves on the GPU: one kinematics-cache schedule per sea
-//! ([`WaveSchedule`], [`SeaSchedules`]) on the same refresh grid as the CPU path
-//! (`sea::schedule`), and how a submission of the fused kernel is cut into dispatches
-//! at the refresh steps ([`fused_segments`], [`fused_max_steps`]).
+//! ([`WaveSchedule`], [`SeaSchedules`]) with a clock per depth band (`sea::bands`) on
+//! the same refresh grid as the CPU path (`sea::schedule`), and how a submission of
+//! the fused kernel is cut into dispatches at the refresh steps ([`fused_segments`],
+//! [`fused_max_steps`]).
 //!
 //! Split out of `solver.rs` so that the refresh schedule, which decides where the
 //! fused kernel's dispatches end, reads in one place with its unit tests.
@@ -9,42 +10,57 @@
 use super::kernel::STEPS_PER_SUBMISSION;
 use super::layout::*;
 use crate::model::{Layout, Route};
+use crate::sea::bands::{BandPlan, MAX_BANDS};
 use crate::sea::cache::hermite_weights;
 use crate::sea::kinematics::{wave_ramp, wave_ramp_rate, WaveField};
-use crate::sea::schedule::{RefreshClock, RefreshPlan};
+use crate::sea::schedule::{RefreshClock, Tick};
 use crate::sea::{SeaSet, SeaState, Stretching, GPU_DEEP};
 
 /// Scalars per node and cache slot on the GPU: the values `eta, u, a` and their rates
 /// along the node's path (`WAVE_CACHE_STRIDE` in `shaders/shared/waves.wgsl`); after
-/// the two slots, three per node: its velocity at the last refresh.
+/// the two slots, three per node: its velocity at the last refresh; then one per
+/// node: its depth band; then one per node: its breaches (`sea::bands`).
 pub(super) const WAVE_CACHE_STRIDE: usize = 14;
 
 /// The host's side of the waves' kinematics cache: the components (rebased at each
-/// submission) and when the cache's two times are: the same [`RefreshClock`] as the
-/// CPU path's `sea::cache::WaveCache`, on the same grid (`sea::schedule`), so that
-/// both refresh at the same steps and interpolate with the same Hermite weights.
+/// submission) and when each depth band's two times are (`sea::bands`): the same
+/// [`RefreshClock`]s as the CPU path's `sea::cache::WaveCache`, on the same grid
+/// (`sea::schedule`), so that both refresh the same nodes at the same steps and
+/// interpolate with the same Hermite weights, and the same band plan (tops, horizon),
+/// so that the shader's `wave_band` puts each node in the band the CPU path does.
 pub(super) struct WaveSchedule {
     pub(super) field: WaveField,
     /// Its first component in the components buffer.
     pub(super) first: u32,
-    /// The cache's times and refresh grid.
-    pub(super) clock: RefreshClock,
-    /// Cache slot of the older values (0 or 1).
-    pub(super) slot0: u32,
+    /// Per band: the band's times and refresh grid (nested rungs).
+    pub(super) clocks: Vec<RefreshClock>,
+    /// Per band: the highest height its nodes may reach, m (`tops[0]` infinite).
+    tops: Vec<f64>,
+    /// The coarsest band's interval, s: the horizon of the band decision.
+    horizon: f64,
 }
 
 impl WaveSchedule {
-    pub(super) fn new(sea: &SeaState, first: u32, plan: &RefreshPlan) -> Self {
+    pub(super) fn new(sea: &SeaState, first: u32, plan: &BandPlan) -> Self {
         Self {
             field: WaveField::new(sea),
             first,
-            clock: RefreshClock::on_grid(plan),
-            slot0: 0,
+            clocks: (0..plan.len())
+                .map(|m| RefreshClock::on_grid(&plan.band(m)))
+                .collect(),
+            tops: plan.tops.clone(),
+            horizon: plan.horizon(),
         }
     }
 
-    /// The row of constants every step shares.
+    /// The number of depth bands (rows per step).
+    pub(super) fn n_bands(&self) -> usize {
+        self.clocks.len()
+    }
+
+    /// The row of constants every step and band shares.
     pub(super) fn base<R: GpuReal>(&self) -> WaveStep<R> {
+        let top = |m: usize| R::c(self.tops.get(m).copied().unwrap_or(f64::NEG_INFINITY));
         WaveStep {
             n: self.field.comps.len() as u32,
             first: self.first,
@@ -57,48 +73,86 @@ impl WaveSchedule {
             } else {
                 GPU_DEEP
             }),
+            slot0: 0,
+            slot1: 1,
+            n_bands: self.n_bands() as u32,
+            band_rows: STEPS_PER_SUBMISSION,
+            horizon: R::c(if self.horizon.is_finite() {
+                self.horizon
+            } else {
+                0.0
+            }),
+            top1: top(1),
+            top2: top(2),
+            top3: top(3),
+            top4: top(4),
             ..Default::default()
         }
     }
 
-    /// The row of the step at time `t` (s; phases referred to `t_ref`), refreshing
-    /// when the CPU path's cache would.
-    pub(super) fn step<R: GpuReal>(&mut self, t: f64, t_ref: f64) -> WaveStep<R> {
-        let mut row = self.base::<R>();
-        let ramp = self.field.ramp_duration;
-        if let Some(tick) = self.clock.tick(t) {
-            row.refresh = 1;
-            row.track = 1;
-            row.acc_rate = R::c(tick.acc_rate);
-            if tick.restart {
-                row.restart = 1;
-                row.tau0 = R::c(t - t_ref);
-                row.ramp0 = R::c(wave_ramp(t, ramp));
-                row.ramp_rate0 = R::c(wave_ramp_rate(t, ramp));
-            } else {
-                self.slot0 = 1 - self.slot0;
+    /// The rows of the step at time `t` (s; phases referred to `t_ref`), band `m`'s
+    /// at `rows[m * STEPS_PER_SUBMISSION]`, refreshing the bands the CPU path's cache
+    /// would (`sea::cache::WaveCache::refresh_if_due`: nothing while band 0 covers
+    /// `t`; every band restarts when band 0 would; the band decision when the
+    /// coarsest band refreshes). Returns whether some band refreshes.
+    pub(super) fn step<R: GpuReal>(
+        &mut self,
+        t: f64,
+        t_ref: f64,
+        rows: &mut [WaveStep<R>],
+    ) -> bool {
+        let nb = self.n_bands();
+        let mut ticks: [Option<Tick>; MAX_BANDS] = [None; MAX_BANDS];
+        if !self.clocks[0].covers(t) {
+            if self.clocks[0].would_restart(t) {
+                self.clocks.iter_mut().for_each(RefreshClock::reset);
             }
-            let t1 = self.clock.t1;
-            row.ahead = R::c(tick.ahead);
-            row.tau1 = R::c(t1 - t_ref);
-            row.ramp1 = R::c(wave_ramp(t1, ramp));
-            row.ramp_rate1 = R::c(wave_ramp_rate(t1, ramp));
+            for (m, c) in self.clocks.iter_mut().enumerate() {
+                ticks[m] = c.tick(t);
+            }
         }
-        row.slot0 = self.slot0;
-        row.slot1 = 1 - self.slot0;
-        let (t0, t1) = (self.clock.t0, self.clock.t1);
-        let delta = t1 - t0;
-        let s = ((t - t0) / delta).clamp(0.0, 1.0);
-        let w = hermite_weights(s, delta);
-        (row.w0, row.w1, row.w2, row.w3) = (R::c(w[0]), R::c(w[1]), R::c(w[2]), R::c(w[3]));
-        row
+        let restart = ticks[0].is_some_and(|k| k.restart);
+        let decide = nb > 1 && !restart && ticks[nb - 1].is_some();
+        let watch = nb > 1 && !restart && ticks[0].is_some();
+        let ramp = self.field.ramp_duration;
+        let per = STEPS_PER_SUBMISSION as usize;
+        for (m, tick) in ticks.iter().take(nb).enumerate() {
+            let mut row = self.base::<R>();
+            row.decide = decide as u32;
+            row.watch = watch as u32;
+            let clock = &self.clocks[m];
+            if let Some(tick) = tick {
+                row.refresh = 1;
+                row.track = 1;
+                row.acc_rate = R::c(tick.acc_rate);
+                if tick.restart {
+                    row.restart = 1;
+                    row.tau0 = R::c(t - t_ref);
+                    row.ramp0 = R::c(wave_ramp(t, ramp));
+                    row.ramp_rate0 = R::c(wave_ramp_rate(t, ramp));
+                }
+                let t1 = clock.t1;
+                row.ahead = R::c(tick.ahead);
+                row.tau1 = R::c(t1 - t_ref);
+                row.ramp1 = R::c(wave_ramp(t1, ramp));
+                row.ramp_rate1 = R::c(wave_ramp_rate(t1, ramp));
+            }
+            let (t0, t1) = (clock.t0, clock.t1);
+            let delta = t1 - t0;
+            let s = ((t - t0) / delta).clamp(0.0, 1.0);
+            let w = hermite_weights(s, delta);
+            (row.w0, row.w1, row.w2, row.w3) = (R::c(w[0]), R::c(w[1]), R::c(w[2]), R::c(w[3]));
+            rows[m * per] = row;
+        }
+        ticks[0].is_some()
     }
 }
 
 /// The waves of a run: one schedule per sea (`sea::set`), their components back to
-/// back in the components buffer, and `STEPS_PER_SUBMISSION` rows per sea in the rows
-/// buffer (sea `q`'s at `q * STEPS_PER_SUBMISSION`). Each sea refreshes on its own
-/// schedule, as its blocks' caches do on the CPU path.
+/// back in the components buffer, and `STEPS_PER_SUBMISSION` rows per sea and depth
+/// band in the rows buffer (sea `q`'s band `m` at `(row_start[q] + m) *
+/// STEPS_PER_SUBMISSION`). Each sea refreshes on its own schedule, as its blocks'
+/// caches do on the CPU path.
 pub(super) struct SeaSchedules {
     /// Per sea: its schedule (`None`: still water, rows of zeros).
     pub(super) seas: Vec<Option<WaveSchedule>>,
@@ -106,11 +160,15 @@ pub(super) struct SeaSchedules {
     pub(super) cable_sea: Vec<u32>,
     /// Components of every sea.
     pub(super) n_comps: usize,
+    /// Per sea: its first band's row block (in units of `STEPS_PER_SUBMISSION` rows).
+    pub(super) row_start: Vec<u32>,
+    /// Row blocks of every sea and band (at least one).
+    pub(super) n_row_blocks: usize,
 }
 
 impl SeaSchedules {
     /// The schedules of `set`'s seas stepping by `dt` (each on its own
-    /// [`SeaSet::plan`], as the CPU path's caches).
+    /// [`SeaSet::band_plan`], as the CPU path's caches).
     pub(super) fn new(set: &SeaSet, dt: f64) -> Self {
         let mut first = 0u32;
         let seas = set
@@ -119,29 +177,60 @@ impl SeaSchedules {
             .enumerate()
             .map(|(q, sea)| {
                 (!sea.is_still()).then(|| {
-                    let w = WaveSchedule::new(sea, first, &set.plan(q, dt));
+                    let w = WaveSchedule::new(sea, first, &set.band_plan(q, dt));
                     first += sea.components.len() as u32;
                     w
                 })
             })
-            .collect();
+            .collect::<Vec<_>>();
+        let mut row_start = Vec::with_capacity(seas.len());
+        let mut next = 0u32;
+        for w in &seas {
+            row_start.push(next);
+            next += w.as_ref().map_or(1, |w| w.n_bands() as u32);
+        }
         Self {
             seas,
             cable_sea: set.cable_sea.clone(),
             n_comps: first as usize,
+            row_start,
+            n_row_blocks: (next as usize).max(1),
         }
+    }
+
+    /// Rows of every sea and band for `n` steps from time `t_of(0)`: `rows` (of
+    /// `n_row_blocks * STEPS_PER_SUBMISSION`) filled, and which steps refresh some
+    /// band of some sea.
+    pub(super) fn rows<R: GpuReal>(
+        &mut self,
+        n: usize,
+        t_of: impl Fn(usize) -> f64,
+        t_ref: f64,
+    ) -> (Vec<WaveStep<R>>, Vec<bool>) {
+        let per = STEPS_PER_SUBMISSION as usize;
+        let mut rows = vec![WaveStep::<R>::default(); self.n_row_blocks * per];
+        let mut refresh = vec![false; n];
+        for (q, sea) in self.seas.iter_mut().enumerate() {
+            let Some(sea) = sea else { continue };
+            let r0 = self.row_start[q] as usize * per;
+            for (k, r) in refresh.iter_mut().enumerate() {
+                *r |= sea.step::<R>(t_of(k), t_ref, &mut rows[r0 + k..]);
+            }
+        }
+        (rows, refresh)
     }
 
     /// The first row of the sea of the block starting at packed node `n0`.
     pub(super) fn block_rows(&self, lay: &Layout, n0: u32) -> u32 {
         let c = lay.node_cable.get(n0 as usize).copied().unwrap_or(0) as usize;
-        self.cable_sea.get(c).copied().unwrap_or(0) * STEPS_PER_SUBMISSION
+        let q = self.cable_sea.get(c).copied().unwrap_or(0) as usize;
+        self.row_start.get(q).copied().unwrap_or(0) * STEPS_PER_SUBMISSION
     }
 
     /// Starts every cache afresh (after a remesh, as the CPU path's caches do).
     pub(super) fn restart(&mut self) {
         for w in self.seas.iter_mut().flatten() {
-            w.clock.reset();
+            w.clocks.iter_mut().for_each(RefreshClock::reset);
         }
     }
 }
@@ -252,15 +341,7 @@ mod tests {
         let (n, per) = (48 * 512u64, STEPS_PER_SUBMISSION as u64);
         let (mut segments, mut refreshes) = (0usize, 0u64);
         for step0 in (0..n).step_by(per as usize) {
-            let refresh: Vec<bool> = (0..per)
-                .map(|k| {
-                    let t = (step0 + k) as f64 * dt;
-                    w.seas
-                        .iter_mut()
-                        .flatten()
-                        .fold(false, |any, s| s.step::<f64>(t, 0.0).refresh != 0 || any)
-                })
-                .collect();
+            let (_, refresh) = w.rows::<f64>(per as usize, |k| (step0 + k as u64) as f64 * dt, 0.0);
             for (k, &r) in refresh.iter().enumerate() {
                 let i = step0 + k as u64;
                 let want = i == 0 || (i > 1 && ((i - 1) % 16 == 0 || (i - 1) % 24 == 0));

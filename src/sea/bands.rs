@@ -35,10 +35,11 @@
 //! more than [`BAND_MARGIN`] above its band's top), and the
 //! next decision puts the node in the band its height then allows.
 //!
-//! The plan option ([`super::SeaSet::banded`]): banding is on for runs on the CPU path
-//! unless the scenario sets `environment.waves.depth_bands = false`; the GPU path
-//! refreshes every node in band 0 (one band on both sides when the GPU backend runs,
-//! so the GPU-vs-CPU parity holds). The GPU side of the bands is not written yet.
+//! The plan option ([`super::SeaSet::banded`]): banding is on unless the scenario
+//! sets `environment.waves.depth_bands = false`, on both paths: the GPU path
+//! (`gpu::wave_schedule`, `shaders/shared/waves.wgsl`) keeps the same clocks per band,
+//! one `WaveStep` row per band and step, each node's band in its cache, decided by the
+//! WGSL twin of [`wave_band`] at the same steps, and counts breaches per node.
 //!
 //! How the CPU path reads a banded cache: the general path interpolates each node
 //! with its band's Hermite weights (`WaveCache::interpolate`, runs of nodes of one

@@ -212,10 +212,9 @@ impl Simulation {
                 let mut seas = sc.sea_set();
                 if !seas.is_still() {
                     seas.reach = reach::sea_reach(&lay, &pos, &seas, duration);
-                    // Refresh per depth band on the CPU path (`sea::bands`) unless
-                    // the scenario says not to; the GPU path refreshes every node in
-                    // band 0.
-                    seas.banded = sc.depth_bands && matches!(choice, BackendChoice::Cpu);
+                    // Refresh per depth band (`sea::bands`, on both paths) unless the
+                    // scenario says not to.
+                    seas.banded = sc.depth_bands;
                     log_refresh_plans(&seas, opts.dt);
                     reach_watch = ReachWatch::new(&seas, lay.cables.len());
                 }

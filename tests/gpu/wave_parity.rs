@@ -10,7 +10,7 @@ use cablesim::options::SolverOptions;
 use cablesim::sea::cache::refresh_interval;
 use cablesim::sea::irregular::{discretise, Discretisation};
 use cablesim::sea::spectrum::Spectrum;
-use cablesim::sea::SeaState;
+use cablesim::sea::{SeaSet, SeaState};
 
 use super::common::*;
 
@@ -44,8 +44,17 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
-fn parity(p: Precision) {
-    let name = format!("gpu_matches_cpu_in_waves_in_{}", p.name());
+/// The GPU path against the CPU path in [`sea`] on the crossing line; `banded`:
+/// refreshed per depth band (`sea::bands`) on both, over two and a half of the
+/// coarsest band's intervals (two band decisions), and the bands the nodes end in and
+/// the breaches counted must be the same on both paths, with some nodes in a deeper
+/// band than band 0.
+fn parity(p: Precision, banded: bool) {
+    let name = format!(
+        "gpu_matches_cpu_in_waves{}_in_{}",
+        if banded { "_per_depth_band" } else { "" },
+        p.name()
+    );
     let Some(ctx) = gpu_context(&name, p == Precision::F64) else {
         return;
     };
@@ -55,10 +64,31 @@ fn parity(p: Precision) {
         ..SolverOptions::default()
     };
     let sea = sea();
-    let steps = 3000u64;
+    let mut set = SeaSet::single(&sea);
+    set.banded = banded;
+    let plan = set.band_plan(0, opts.dt);
+    let steps = if banded {
+        assert!(plan.len() >= 2, "one band only: {plan:?}");
+        (2.5 * plan.horizon() / opts.dt).ceil() as u64
+    } else {
+        3000u64
+    };
+    println!(
+        "{name}: {} bands, tops {:?}, {steps} steps",
+        plan.len(),
+        plan.tops
+    );
     let mut cpu = CpuSolver::new(lay.clone(), &pos, opts);
-    cpu.set_sea(&sea, false);
+    cpu.set_seas(&set, false);
     cpu.advance(steps).unwrap();
+    let census = cpu.wave_band_census();
+    if banded {
+        println!("{name}: CPU bands {census:?}");
+        assert!(
+            census.0.len() >= 2 && census.0[0] < lay.n_nodes(),
+            "no node in a deeper band: {census:?}"
+        );
+    }
     let cpu_r: Vec<[f64; 3]> = cpu.r.iter().map(|v| v.to_f64()).collect();
     let cpu_t = cpu.evaluate().unwrap().tension;
     // The same run in still water: the waves must move the line by far more than the
@@ -79,10 +109,20 @@ fn parity(p: Precision) {
     for kernel in [GpuKernel::TwoPass, GpuKernel::Fused] {
         let mut gpu = GpuSolver::new(&ctx, lay.clone(), &pos, opts, p).unwrap();
         gpu.set_kernel(kernel).unwrap();
-        gpu.set_sea(&sea).unwrap();
+        gpu.set_seas(&set).unwrap();
         // Uneven calls: refreshes fall inside and at the edges of submissions.
-        for n in [1u64, 999, 600, 1400] {
+        let mut done = 0;
+        for n in [1u64, 999, 600, 1400].into_iter().cycle() {
+            let n = n.min(steps - done);
             gpu.advance(n).unwrap();
+            done += n;
+            if done == steps {
+                break;
+            }
+        }
+        if banded {
+            let g = gpu.wave_band_census().unwrap();
+            assert_eq!(g, census, "{kernel:?}: bands on the GPU against the CPU");
         }
         let (r, _) = gpu.state().unwrap();
         let tension = gpu.evaluate().unwrap().tension;
@@ -117,12 +157,22 @@ fn parity(p: Precision) {
 
 #[test]
 fn gpu_matches_cpu_in_waves_in_f64() {
-    parity(Precision::F64);
+    parity(Precision::F64, false);
 }
 
 #[test]
 fn gpu_matches_cpu_in_waves_in_f32() {
-    parity(Precision::F32);
+    parity(Precision::F32, false);
+}
+
+#[test]
+fn gpu_matches_cpu_in_waves_per_depth_band_in_f64() {
+    parity(Precision::F64, true);
+}
+
+#[test]
+fn gpu_matches_cpu_in_waves_per_depth_band_in_f32() {
+    parity(Precision::F32, true);
 }
 
 /// Output times in waves, GPU f64 against the CPU path, both kernels: evaluations (the
@@ -232,9 +282,8 @@ fn gpu_output_times_match_cpu_in_f64() {
 
 /// A scenario in a JONSWAP sea runs with `--backend gpu` (it used to be refused
 /// there), and its end forces at the last output time match `--backend cpu` to
-/// round-off in f64 (the same cache, the same refresh steps: `depth_bands = false`,
-/// since the GPU path does not refresh per depth band yet and the CPU path does by
-/// default).
+/// round-off in f64 (the same cache, the same refresh steps, per depth band on both
+/// paths by default: `sea::bands`).
 #[test]
 fn wave_scenario_runs_on_the_gpu() {
     let Some(ctx) = gpu_context("wave_scenario_runs_on_the_gpu", true) else {
@@ -245,7 +294,7 @@ fn wave_scenario_runs_on_the_gpu() {
         .unwrap()
         .replace(
             "[environment.seabed]",
-            "[environment.waves]\ndepth_bands = false\n\n[[environment.waves.trains]]\ntype = \"jonswap\"\n\
+            "[environment.waves]\n\n[[environment.waves.trains]]\ntype = \"jonswap\"\n\
              hs = 4.0\ntp = 10.0\ndirection = 20.0\n\n[environment.seabed]",
         );
     assert!(text.contains("jonswap"));

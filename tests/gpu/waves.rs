@@ -13,6 +13,7 @@ use super::functions::{run_kernels, to_r, Worst};
 use cablesim::gpu::layout::{GpuReal, WaveComp};
 use cablesim::gpu::{GpuContext, Precision};
 use cablesim::math::V3;
+use cablesim::sea::bands::wave_band;
 use cablesim::sea::cache::{hermite_weights, wave_cache_hermite};
 use cablesim::sea::cut::wave_decay_prefix;
 use cablesim::sea::irregular::{discretise, Discretisation};
@@ -153,6 +154,18 @@ fn t_hermite(@builtin(global_invocation_id) gid: vec3<u32>) {
     let b = 32u * i;
     let w = vec4<R>(tin[b + 28u], tin[b + 29u], tin[b + 30u], tin[b + 31u]);
     kin_out(7u * i, wave_cache_hermite(kin_in(b), kin_in(b + 7u), kin_in(b + 14u), kin_in(b + 21u), w));
+}
+
+// tin: z, vz, az, horizon, margin, tops[1..5], n_bands per case; tout: the band.
+@compute @workgroup_size(64)
+fn t_band(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 10u {
+        return;
+    }
+    let b = 10u * i;
+    let tops = vec4<R>(tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u]);
+    tout[i] = R(wave_band(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u], tops, u32(tin[b + 9u])));
 }
 "#;
 
@@ -631,6 +644,62 @@ fn check_hermite<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
     w.report(p);
 }
 
+/// The band decision (`sea::bands::wave_band`): random nodes against random
+/// decreasing tops for one to five bands, and nodes whose bound lands exactly on a
+/// top (all terms whole numbers: exact in f32 too), where the node stays in the
+/// deeper band. The bands must be equal, except where the bound is within the
+/// precision's rounding of a top (the f64 twin then may round the other way).
+fn check_band<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 2000;
+    let mut x = Vec::new();
+    for i in 0..n {
+        let n_bands = 1 + i % 5;
+        let mut tops = [f64::NEG_INFINITY; 4];
+        let mut top = 0.0;
+        for t in tops.iter_mut().take(n_bands - 1) {
+            top -= rng.gen_range(5.0..80.0_f64).round();
+            *t = top;
+        }
+        let (z, vz, az, h) = if i % 4 == 0 {
+            // On a top: bound = z + 2 exactly.
+            let m = rng.gen_range(0..n_bands.max(2) - 1);
+            (tops[m].max(-400.0) - 2.0, -1.0, 0.0, 4.0)
+        } else {
+            (
+                rng.gen_range(-400.0..5.0),
+                rng.gen_range(-3.0..3.0),
+                rng.gen_range(-2.0..2.0),
+                rng.gen_range(0.5..8.0),
+            )
+        };
+        x.extend([z, vz, az, h, 2.0]);
+        x.extend(tops.map(|t| if t.is_finite() { t } else { -1e30 }));
+        x.push(n_bands as f64);
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_band", &[], &xr, n, n);
+    let (mut ties, mut deep) = (0, 0);
+    for i in 0..n {
+        let b = &x[10 * i..10 * i + 10];
+        let nb = b[9] as usize;
+        let mut tops = vec![f64::INFINITY];
+        tops.extend(&b[5..5 + nb - 1]);
+        let want = wave_band(b[0], b[1], b[2], b[3], b[4], &tops);
+        let bound = b[0] + b[1].max(0.0) * b[3] + 0.5 * b[2].abs() * b[3] * b[3] + b[4];
+        let scale = b[0].abs() + (b[1] * b[3]).abs() + (b[2] * b[3] * b[3]).abs() + b[4];
+        let near = tops[1..]
+            .iter()
+            .any(|t| (bound - t).abs() <= 16.0 * R::epsilon().f64() * scale && bound != *t);
+        ties += tops[1..].contains(&bound) as usize;
+        deep += (want > 0) as usize;
+        if !near {
+            assert_eq!(out[i].f64() as usize, want, "{p:?} case {i}: {b:?}");
+        }
+    }
+    println!("wave_band {p:?}: {n} cases, {ties} on a top, {deep} in a deeper band");
+    assert!(ties > n / 8 && deep > n / 4, "{ties} ties, {deep} deeper");
+}
+
 fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     let mut rng = ChaCha8Rng::seed_from_u64(8);
     check_exp::<R>(ctx, p, &mut rng);
@@ -643,6 +712,7 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_kinematics_rates::<R>(ctx, p, &mut rng);
     check_decay_prefix::<R>(ctx, p, &mut rng);
     check_hermite::<R>(ctx, p, &mut rng);
+    check_band::<R>(ctx, p, &mut rng);
 }
 
 #[test]

@@ -6,7 +6,7 @@
 //! Split out of `engine.rs` to keep each file under ~800 lines: this is the
 //! "what goes on the device" half, `engine.rs` the "how a step runs" half.
 
-use super::{align_up, bytes_or_one, Buffers, Engine, GpuEngine, Installed};
+use super::{align_up, bytes_or_one, decode, Buffers, Engine, GpuEngine, Installed};
 use crate::error::Error;
 use crate::gpu::context::GpuContext;
 use crate::gpu::host::{body_rows, rebased_route, route_samples, split, Host};
@@ -153,7 +153,7 @@ impl<R: GpuReal> GpuEngine<R> {
         waves: Option<&SeaSchedules>,
     ) -> Installed<R> {
         let n_comps = waves.map_or(0, |w| w.n_comps);
-        let n_seas = waves.map_or(1, |w| w.seas.len().max(1));
+        let n_row_blocks = waves.map_or(1, |w| w.n_row_blocks);
         let dev = &ctx.device;
         let env = &lay.env;
         let seabed = env.depth.is_finite();
@@ -319,7 +319,7 @@ impl<R: GpuReal> GpuEngine<R> {
             wave_steps: init(
                 "wave_steps",
                 &zeros(
-                    (n_seas as u64 * STEPS_PER_SUBMISSION as u64)
+                    (n_row_blocks as u64 * STEPS_PER_SUBMISSION as u64)
                         * std::mem::size_of::<WaveStep<R>>() as u64,
                 ),
                 ro | U::COPY_DST,
@@ -346,16 +346,18 @@ impl<R: GpuReal> GpuEngine<R> {
             .collect();
         let samples_b = init("route_samples", &bytes_or_one(&samples), ro);
         // Two slots (t0, t1) of WAVE_CACHE_STRIDE values per node, then each node's
-        // velocity at the last refresh; one value in still water.
+        // velocity at the last refresh, then per node its depth band and how many
+        // times it was found above its band's top (`shaders/shared/waves.wgsl`); one
+        // value in still water.
         let cache_len = if n_comps == 0 {
             1
         } else {
-            n_nodes * (2 * WAVE_CACHE_STRIDE + 3)
+            n_nodes * (2 * WAVE_CACHE_STRIDE + 5)
         };
         let cache_b = init(
             "wave_cache",
             &zeros((cache_len * std::mem::size_of::<R>()) as u64),
-            U::STORAGE,
+            U::STORAGE | U::COPY_SRC,
         );
         fn whole(binding: u32, b: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
             wgpu::BindGroupEntry {
@@ -400,6 +402,7 @@ impl<R: GpuReal> GpuEngine<R> {
         Installed {
             params,
             buf,
+            wave_cache: cache_b,
             bind_group,
             n_nodes,
             n_elems,
@@ -518,17 +521,7 @@ impl<R: GpuReal> GpuEngine<R> {
         let t_ref = step0 as f64 * dt;
         self.write_wave_comps(t_ref);
         let w = self.waves.as_mut().expect("waves");
-        let per = STEPS_PER_SUBMISSION as usize;
-        let mut rows = vec![WaveStep::<R>::default(); w.seas.len() * per];
-        let mut refresh = vec![false; n as usize];
-        for (q, sea) in w.seas.iter_mut().enumerate() {
-            let Some(sea) = sea else { continue };
-            for k in 0..n as usize {
-                let row = sea.step::<R>((step0 + k as u64) as f64 * dt, t_ref);
-                refresh[k] |= row.refresh != 0;
-                rows[q * per + k] = row;
-            }
-        }
+        let (rows, refresh) = w.rows::<R>(n as usize, |k| (step0 + k as u64) as f64 * dt, t_ref);
         self.ctx
             .queue
             .write_buffer(&self.inst.buf.wave_steps, 0, bytemuck::cast_slice(&rows));
@@ -586,5 +579,61 @@ impl<R: GpuReal> GpuEngine<R> {
         };
         self.inst.buf.staging.unmap();
         Ok(out)
+    }
+
+    /// Per depth band, how many nodes are in it now, and how many times a node was
+    /// found above its band's top (`sea::bands`): the cache's per-node band and
+    /// breach counts (`shaders/shared/waves.wgsl`) read back through a buffer of their
+    /// own (the staging buffer is sized for the state). Empty in still water.
+    pub(super) fn band_census(&self) -> Result<(Vec<usize>, u64), Error> {
+        if self.waves.as_ref().is_none_or(|w| w.n_comps == 0) {
+            return Ok((Vec::new(), 0));
+        }
+        let n = self.inst.n_nodes;
+        let size = std::mem::size_of::<R>() as u64;
+        let from = (2 * WAVE_CACHE_STRIDE + 3) as u64 * n as u64 * size;
+        let bytes = 2 * n as u64 * size;
+        let ctx = &self.ctx;
+        let dst = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("band_census"),
+            size: align_up(bytes.max(4), 4),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("band_census"),
+            });
+        enc.copy_buffer_to_buffer(&self.inst.wave_cache, from, &dst, 0, bytes);
+        ctx.queue.submit([enc.finish()]);
+        let slice = dst.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        ctx.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| Error::Gpu(format!("waiting for the device: {e}")))?;
+        ctx.take_error()?;
+        rx.recv()
+            .map_err(|e| Error::Gpu(format!("read-back: {e}")))?
+            .map_err(|e| Error::Gpu(format!("read-back: {e}")))?;
+        let vals: Vec<R> = {
+            let view = slice
+                .get_mapped_range()
+                .map_err(|e| Error::Gpu(format!("read-back: {e}")))?;
+            decode(&view[..bytes as usize])
+        };
+        let (band, breach) = vals.split_at(n);
+        let mut count = Vec::new();
+        for b in band {
+            let b = b.f64() as usize;
+            if count.len() <= b {
+                count.resize(b + 1, 0);
+            }
+            count[b] += 1;
+        }
+        Ok((count, breach.iter().map(|x| x.f64() as u64).sum()))
     }
 }
