@@ -215,7 +215,14 @@ fn lanes_wanted() -> usize {
     static WANTED: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
     *WANTED.get_or_init(|| match std::env::var("CABLESIM_CHAIN_LANES").as_deref() {
         Ok("4") => 4,
-        _ => 8,
+        Ok("8") | Err(_) => 8,
+        Ok(other) => {
+            log::warn!(
+                "CABLESIM_CHAIN_LANES = {other:?} is neither 4 nor 8: the chain path uses 8 \
+                 lanes where the CPU has AVX-512, else 4"
+            );
+            8
+        }
     })
 }
 
