@@ -730,3 +730,22 @@ fn wgsl_wave_functions_match_their_rust_twins_in_f64() {
     };
     check_all::<f64>(&ctx, Precision::F64);
 }
+
+/// The WGSL band decision's margin is the Rust one (`sea::bands::BAND_MARGIN`): the
+/// shader holds it as a literal constant, which would otherwise drift unseen.
+#[test]
+fn wgsl_band_margin_is_the_rust_one() {
+    let line = cablesim::gpu::shaders::WAVES
+        .lines()
+        .find(|l| l.trim_start().starts_with("const WAVE_BAND_MARGIN"))
+        .expect("const WAVE_BAND_MARGIN in shaders/shared/waves.wgsl");
+    let value: f64 = line
+        .split('=')
+        .nth(1)
+        .expect("a value")
+        .trim()
+        .trim_end_matches(';')
+        .parse()
+        .expect("a number");
+    assert_eq!(value, cablesim::sea::bands::BAND_MARGIN);
+}

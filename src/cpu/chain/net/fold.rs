@@ -117,8 +117,9 @@ pub(super) fn node_shares(
 
 /// A run's share of its nodes' mass blocks, `m/2 I + a (I - t t^T)` entry by entry
 /// (`hm` the half mass, `haw` the added mass `a`), written to both ends' slots (`*a`,
-/// `*b`). Every array is its own parameter, as in [`element_kernel`]: outputs known
-/// not to alias need no run-time overlap checks before the vector loop.
+/// `*b`). Every array is its own parameter, as in
+/// [`element_kernel`](super::super::elements::element_kernel): outputs known not to
+/// alias need no run-time overlap checks before the vector loop.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn fold_mass(
