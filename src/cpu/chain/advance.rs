@@ -64,8 +64,10 @@ fn resize(v: &mut [Vec<f64>], n: usize) {
 
 /// The symplectic Euler update `v += a dt`, then `x += v dt`, of the first `nc`
 /// chunks of nodes of the padded SoA state `x` (module [`super::lanes`]; the padding
-/// nodes stay at rest at zero), and the number of nodes whose new state is non-finite
-/// or over the limits ([`count_bad`]'s test), in one loop.
+/// nodes stay at rest at zero), the number of nodes whose new state is non-finite
+/// or over the limits ([`count_bad`]'s test), and whether every new `z` is at or
+/// below zero (the element loop's test of a flat surface at zero, `0 - z >= 0`, which
+/// it then need not make: [`elements`]), in one loop.
 ///
 /// # Safety
 /// Every column of `x` and `a` has at least `nc * L` entries.
@@ -77,7 +79,7 @@ unsafe fn symplectic_update<const L: usize>(
     dt: f64,
     vmax: f64,
     rmax: f64,
-) -> usize {
+) -> (usize, bool) {
     // SAFETY (every use): the caller's columns.
     macro_rules! at {
         ($s:expr) => {
@@ -94,6 +96,7 @@ unsafe fn symplectic_update<const L: usize>(
     let (vx, vy, vz) = (out!(vx), out!(vy), out!(vz));
     let (ax, ay, az) = (at!(&a[0]), at!(&a[1]), at!(&a[2]));
     let mut bad = [0usize; L];
+    let mut under = [true; L];
     for i in 0..nc {
         keep_chunks();
         // Every input into locals first, then every output: no overlap to check.
@@ -112,11 +115,13 @@ unsafe fn symplectic_update<const L: usize>(
                 & (v[1][l].abs() < vmax)
                 & (v[2][l].abs() < vmax);
             bad[l] += (!ok) as usize;
+            // `0 - z >= 0` exactly when `z <= 0` (NaN fails both).
+            under[l] &= p[2][l] <= 0.0;
         }
         [px[i], py[i], pz[i]] = p;
         [vx[i], vy[i], vz[i]] = v;
     }
-    bad.iter().sum()
+    (bad.iter().sum(), under.iter().all(|&u| u))
 }
 
 /// `x += v h` elementwise.
@@ -383,6 +388,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
         ale: &[AleElem],
         state: &[Vec<f64>; 6],
         time: f64,
+        under: Option<bool>,
         waves: &mut Option<&mut BlockWaves>,
         wbuf: &mut Water,
         sc: &mut Work,
@@ -402,7 +408,8 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
         } = sc;
         // Winch cables: the variable elements' constants at this time.
         if !ale.is_empty() {
-            ale_constants(asc, time, wc);
+            // SAFETY: `asc` was prepared for this block, and `wc`'s columns are padded.
+            unsafe { ale_constants(asc, time, wc) };
         }
         let c = &*wc;
         // A uniform current in still water was filled once for the run.
@@ -427,11 +434,14 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                 }
                 wb.fill_chain(time, c.n, st, eta, u, aw);
             }
-            elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw);
+            // SAFETY: the caller's columns.
+            unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, None) };
         } else {
-            elements::<false, L>(c, state, u, aw, eta, t, ten, f, haw);
+            // SAFETY: the caller's columns.
+            unsafe { elements::<false, L>(c, state, u, aw, eta, t, ten, f, haw, under) };
         }
-        ale_tension(asc, state, ten);
+        // SAFETY: as `ale_constants`.
+        unsafe { ale_tension(asc, state, ten) };
         point_surface(c, state, eta, pm, pwz);
         let m = Masses {
             eta,
@@ -448,6 +458,10 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
     }
     let mut result = Ok(());
     let mut bad = 0;
+    // In still water, whether every node is at or below the surface (z = 0), as the
+    // last symplectic update found; `None`: the element loop finds out.
+    let mut under = None;
+    let still = waves.is_none();
     // SAFETY: the stages' columns (`x`, `xs`, `wc`, `wk`, `a`) were made
     // `padded_len(n)` long above, and nothing in the loop resizes them.
     unsafe {
@@ -455,12 +469,19 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
             let time = (step0 + k) as f64 * dt;
             match opts.scheme {
                 Scheme::Symplectic => {
-                    eval::<FRICTION, L>(wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
-                    bad = symplectic_update::<L>(x, a, nc, dt, opts.max_speed, opts.max_distance);
+                    eval::<FRICTION, L>(
+                        wc, asc, lay, opts, ale, x, time, under, &mut waves, wbuf, wk, a,
+                    );
+                    let (b, u) =
+                        symplectic_update::<L>(x, a, nc, dt, opts.max_speed, opts.max_distance);
+                    bad = b;
+                    under = still.then_some(u);
                 }
                 Scheme::Rk2 => {
                     let h = 0.5 * dt;
-                    eval::<FRICTION, L>(wc, asc, lay, opts, ale, x, time, &mut waves, wbuf, wk, a);
+                    eval::<FRICTION, L>(
+                        wc, asc, lay, opts, ale, x, time, None, &mut waves, wbuf, wk, a,
+                    );
                     for q in 0..3 {
                         xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
                         xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
@@ -473,6 +494,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                         ale,
                         xs,
                         time + h,
+                        None,
                         &mut waves,
                         wbuf,
                         wk,
@@ -504,6 +526,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                             ale,
                             xs,
                             time + tau,
+                            None,
                             &mut waves,
                             wbuf,
                             wk,

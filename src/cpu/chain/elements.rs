@@ -9,7 +9,8 @@ use crate::cpu::water::node_water;
 use crate::model::Current;
 use crate::physics::wetted_fraction;
 
-/// Element pass over SoA positions and velocities `p`, currents `u`.
+/// Element pass over SoA positions and velocities `p`, currents `u`. `under`: whether
+/// every node is known to be at or below the surface `eta` (else found here).
 ///
 /// # Safety
 /// Every column of `c`, `p`, `u`, `aw`, `eta`, `t`, `ten`, `f` and `haw` has at
@@ -26,23 +27,27 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
     ten: &mut [f64],
     f: &mut [Vec<f64>; 3],
     haw: &mut [f64],
+    under: Option<bool>,
 ) {
     let ne = c.l0.len();
     // Every node at or below the surface (the common case: a line in still water, or
     // deep in waves) makes every wetted fraction exactly 1 (`wetted_fraction`'s first
     // case), so the loop without it gives the same bits, and stays vectorised. (The
     // padding nodes, at zero under a zero surface, count as under it.)
-    let nn = chunks_for::<L>(ne + 1);
-    // SAFETY: the caller's columns hold `padded_len(c.n) >= nn * L` entries.
-    let (eta_c, z_c) = unsafe { (lanes::<L>(eta, nn), lanes::<L>(&p[2], nn)) };
-    let mut under = [true; L];
-    for j in 0..nn {
-        keep_chunks();
-        for l in 0..L {
-            under[l] &= eta_c[j][l] - z_c[j][l] >= 0.0;
+    let under = under.unwrap_or_else(|| {
+        let nn = chunks_for::<L>(ne + 1);
+        // SAFETY: the caller's columns hold `padded_len(c.n) >= nn * L` entries.
+        let (eta_c, z_c) = unsafe { (lanes::<L>(eta, nn), lanes::<L>(&p[2], nn)) };
+        let mut under = [true; L];
+        for j in 0..nn {
+            keep_chunks();
+            for l in 0..L {
+                under[l] &= eta_c[j][l] - z_c[j][l] >= 0.0;
+            }
         }
-    }
-    if under.iter().all(|&x| x) {
+        under.iter().all(|&x| x)
+    });
+    if under {
         // SAFETY: the caller's columns, as this function's.
         unsafe { element_chunks::<WAVES, L>(c, p, u, aw, t, ten, f, haw) };
         return;
@@ -252,11 +257,17 @@ fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
     };
     let kn = k.dn * l * (nx * nx + ny * ny + nz * nz).sqrt() * wet;
     let kt = k.dt * l * vt.abs() * vt * wet;
+    // Submerged, `hw - 0 hb` is `hw`, bit for bit: two operations fewer an element.
+    let hw_wet = if SUBMERGED {
+        k.hw
+    } else {
+        k.hw - (1.0 - wet) * k.hb
+    };
     // Half of drag, plus half the weight less buoyancy (no water acceleration yet).
     let mut f = [
         0.5 * (nx * kn + ex * kt),
         0.5 * (ny * kn + ey * kt),
-        0.5 * (nz * kn + ez * kt) + (k.hw - (1.0 - wet) * k.hb),
+        0.5 * (nz * kn + ez * kt) + hw_wet,
     ];
     if WAVES {
         // Froude-Krylov and added mass on the normal wave acceleration P a_w.

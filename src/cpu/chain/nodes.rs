@@ -113,24 +113,39 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
     xf: &mut [Vec<f64>; 3],
     a: &mut [Vec<f64>; 3],
 ) {
+    // SAFETY (every use): the nodes of `c`'s lists and of the variable elements
+    // (checked by `AleScratch::prepare`) are below `c.n`, and the caller's columns
+    // are longer.
+    macro_rules! get {
+        ($col:expr, $i:expr) => {
+            unsafe { *$col.get_unchecked($i) }
+        };
+    }
+    macro_rules! set {
+        ($col:expr, $i:expr) => {
+            unsafe { $col.get_unchecked_mut($i) }
+        };
+    }
     // Winch cables: the mass-flow forces of Eq. 39 on the variable element's free nodes
     // (crate::ale; a held winch node's acceleration is its route's).
-    let mut extra = ale_mass_flow(asc, p, xf);
+    // SAFETY: as above.
+    let mut extra = unsafe { ale_mass_flow(asc, p, xf) };
     let mut add = |xf: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
         for (x, fq) in xf.iter_mut().zip(f) {
-            x[i] += fq;
+            *set!(x, i) += fq;
         }
         extra = true;
     };
     for pd in &c.point_drag {
         let i = pd.0;
-        let f = point_drag_force(lay, pd, p[2][i], [p[3][i], p[4][i], p[5][i]], m.eta[i], m.w);
+        let v = [get!(p[3], i), get!(p[4], i), get!(p[5], i)];
+        let f = point_drag_force(lay, pd, get!(p[2], i), v, get!(m.eta, i), m.w);
         add(xf, i, f);
     }
     if !m.w.is_empty() {
         for pv in &c.point_volume {
             let i = pv.0;
-            add(xf, i, point_water_accel_force(pv, p[2][i], m.eta[i], m.w));
+            add(xf, i, point_water_accel_force(pv, get!(p[2], i), get!(m.eta, i), m.w));
         }
     }
     // The symplectic scheme takes the seabed's damping implicitly (passes::implicit_dt).
@@ -154,7 +169,8 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
     }
     if extra {
         kernel!(true);
-        ale_mass_flow_clear(asc, xf);
+        // SAFETY: as above.
+        unsafe { ale_mass_flow_clear(asc, xf) };
         for i in c
             .point_drag
             .iter()
@@ -162,16 +178,16 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
             .chain(c.point_volume.iter().map(|pv| pv.0))
         {
             for x in xf.iter_mut() {
-                x[i] = 0.0;
+                *set!(x, i) = 0.0;
             }
         }
     } else {
         kernel!(false);
     }
     for &(i, ri) in &c.constrained {
-        let d = route_accel(lay, opts, time, ri, |q| (p[q][i], p[3 + q][i]));
+        let d = route_accel(lay, opts, time, ri, |q| (get!(p[q], i), get!(p[3 + q], i)));
         for (q, aq) in a.iter_mut().enumerate() {
-            aq[i] = d[q];
+            *set!(aq, i) = d[q];
         }
     }
 }
@@ -316,7 +332,7 @@ unsafe fn node_kernel<
             let s = pm[l] + hmj[l] + hmk[l] + haj[l] + hak[l];
             // Seabed damping and friction implicit: (M + h diag(c_h, c_h, c_z)) a = F.
             // Without a seabed the diagonal is `s` (what `s + h 0` is, bit for bit).
-            let d = if SEABED {
+            let acc = if SEABED {
                 let (sb, ch, cz) = seabed_load::<FRICTION>(
                     zb - z[l],
                     [vx[l], vy[l], vz[l]],
@@ -330,21 +346,19 @@ unsafe fn node_kernel<
                     g[0] += sb[0];
                     g[1] += sb[1];
                 }
-                [s + h * ch, s + h * ch, s + h * cz]
+                let d = [s + h * ch, s + h * ch, s + h * cz];
+                solve_mass(d, haj[l], hak[l], tj, tk, g)
             } else {
-                [s, s, s]
+                solve_mass([s, s, s], haj[l], hak[l], tj, tk, g)
             };
-            let acc = solve_mass(d, haj[l], hak[l], tj, tk, g);
             [o[0][l], o[1][l], o[2][l]] = acc;
         }
         [ax[i], ay[i], az[i]] = o;
     }
     // The padding nodes stay at rest at zero (the symplectic update's check reads them).
-    let last = nc - 1;
-    for l in 0..L {
-        if last * L + l >= c.n {
-            (ax[last][l], ay[last][l], az[last][l]) = (0.0, 0.0, 0.0);
-        }
+    for i in c.n..nc * L {
+        let (j, l) = (i / L, i % L);
+        (ax[j][l], ay[j][l], az[j][l]) = (0.0, 0.0, 0.0);
     }
 }
 

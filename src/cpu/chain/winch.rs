@@ -51,16 +51,43 @@ struct AleRun {
 #[derive(Default)]
 pub(super) struct AleScratch {
     runs: Vec<AleRun>,
+    /// Whether the block has a seabed (only then do the variable element's nodes'
+    /// seabed constants, read by the node loop's contact terms, need updating).
+    seabed: bool,
+    /// The nodes whose per-node extra forces [`ale_mass_flow`] writes (the free ends of
+    /// the variable elements), what [`ale_mass_flow_clear`] zeroes again.
+    flow_nodes: Vec<usize>,
 }
 
 impl AleScratch {
     /// Sets up a run of steps of a block with the constants `c` and variable elements
     /// `ale`.
+    ///
+    /// # Panics
+    /// If a variable element or one of its nodes is not in the block: the per-stage
+    /// functions below index the block's columns without checks on that ground.
     pub fn prepare(&mut self, c: &ChainConsts, lay: &Layout, ale: &[AleElem]) {
         let held = |i: usize| c.constrained.iter().any(|&(j, _)| j == i);
+        // Friction needs a seabed; the node loop's own test (`nodes`).
+        self.seabed = c.friction || c.zb.is_finite();
+        self.flow_nodes.clear();
+        for ae in ale {
+            for i in [ae.m, ae.w] {
+                if !held(i) && !self.flow_nodes.contains(&i) {
+                    self.flow_nodes.push(i);
+                }
+            }
+        }
         self.runs.clear();
         self.runs.extend(ale.iter().map(|ae| {
             let k = ae.elem;
+            assert!(
+                k + 1 < c.n && ae.m < c.n && ae.w < c.n,
+                "variable element {k} (nodes {}, {}) outside its chain of {} nodes",
+                ae.m,
+                ae.w,
+                c.n
+            );
             let lc = &lay.line_coefs[c.line[k] as usize];
             AleRun {
                 k,
@@ -103,8 +130,19 @@ impl AleScratch {
 /// remeshing and the rate is zero, they are the block's own, bit for bit (the plain
 /// GLMF); otherwise they follow the current `l0`, with the formulas of
 /// [`ChainConsts::new`].
+///
+/// # Safety
+/// `sc` was prepared for `wc`'s block ([`AleScratch::prepare`] checked the indices
+/// against its `n`), and every column of `wc` has at least `wc.n + 1` entries (the
+/// padded columns of a run of steps: [`super::lanes::padded_len`]).
 #[inline(always)]
-pub(super) fn ale_constants(sc: &mut AleScratch, time: f64, wc: &mut ChainConsts) {
+pub(super) unsafe fn ale_constants(sc: &mut AleScratch, time: f64, wc: &mut ChainConsts) {
+    // SAFETY (every use): indices below `wc.n + 1`, as the contract says.
+    macro_rules! set {
+        ($col:expr, $i:expr, $v:expr) => {
+            unsafe { *$col.get_unchecked_mut($i) = $v }
+        };
+    }
     for r in sc.runs.iter_mut() {
         let pay = match (r.rate, &r.sched) {
             (Some(rate), _) => Payout::of_constant(rate, time),
@@ -128,18 +166,20 @@ pub(super) fn ale_constants(sc: &mut AleScratch, time: f64, wc: &mut ChainConsts
             r.base
         };
         let k = r.k;
-        wc.il0[k] = il0;
-        wc.half_wz[k] = hw;
-        wc.half_bz[k] = hb;
-        wc.half_fk[k] = hfk;
-        wc.hm[k + 1] = hm;
-        wc.ha[k + 1] = ha;
-        for (i, trib) in [(r.m, r.trib[0]), (r.w, r.trib[1])] {
-            // Without a seabed `sb_k = sb_c = 0`, so the tributary length does not matter.
-            let lt = trib + 0.5 * (l0 - r.base_l0);
-            wc.kl[i] = wc.sb_k * lt;
-            wc.cl[i] = wc.sb_c * lt;
-            wc.mukl[i] = wc.sb_mu * wc.sb_k * lt;
+        set!(wc.il0, k, il0);
+        set!(wc.half_wz, k, hw);
+        set!(wc.half_bz, k, hb);
+        set!(wc.half_fk, k, hfk);
+        set!(wc.hm, k + 1, hm);
+        set!(wc.ha, k + 1, ha);
+        // Without a seabed `sb_k = sb_c = 0`, and the node loop does not read these.
+        if sc.seabed {
+            for (i, trib) in [(r.m, r.trib[0]), (r.w, r.trib[1])] {
+                let lt = trib + 0.5 * (l0 - r.base_l0);
+                set!(wc.kl, i, wc.sb_k * lt);
+                set!(wc.cl, i, wc.sb_c * lt);
+                set!(wc.mukl, i, wc.sb_mu * wc.sb_k * lt);
+            }
         }
     }
 }
@@ -147,27 +187,36 @@ pub(super) fn ale_constants(sc: &mut AleScratch, time: f64, wc: &mut ChainConsts
 /// After the element loop: the damping of a paid-out variable element acts on the
 /// material strain rate, `epsdot = (t . dv - (l / l0) Ldot) / l0` (crate::ale), so
 /// its tension (padded array `ten`) loses `EA c l Ldot / l0^2`.
+///
+/// # Safety
+/// As [`ale_constants`], for the columns of `p` and `ten`.
 #[inline(always)]
-pub(super) fn ale_tension(sc: &AleScratch, p: &[Vec<f64>; 6], ten: &mut [f64]) {
+pub(super) unsafe fn ale_tension(sc: &AleScratch, p: &[Vec<f64>; 6], ten: &mut [f64]) {
     for r in &sc.runs {
         let rate = r.pay.rate;
         if rate != 0.0 {
             let k = r.k;
-            let (dx, dy, dz) = (
-                p[0][k + 1] - p[0][k],
-                p[1][k + 1] - p[1][k],
-                p[2][k + 1] - p[2][k],
-            );
+            // SAFETY: `k + 1` is a node of the block, as the contract says.
+            let d = |q: usize| unsafe { p[q].get_unchecked(k + 1) - p[q].get_unchecked(k) };
+            let (dx, dy, dz) = (d(0), d(1), d(2));
             let l = (dx * dx + dy * dy + dz * dz).sqrt();
-            ten[k + 1] -= r.eac * l * rate / (r.l0 * r.l0);
+            // SAFETY: as above.
+            unsafe { *ten.get_unchecked_mut(k + 1) -= r.eac * l * rate / (r.l0 * r.l0) };
         }
     }
 }
 
 /// The mass-flow forces of Eq. 39 on the variable elements' free nodes, added to the
 /// per-node extra forces `xf`; returns whether any was added.
+///
+/// # Safety
+/// As [`ale_constants`], for the columns of `p` and `xf`.
 #[inline(always)]
-pub(super) fn ale_mass_flow(sc: &AleScratch, p: &[Vec<f64>; 6], xf: &mut [Vec<f64>; 3]) -> bool {
+pub(super) unsafe fn ale_mass_flow(
+    sc: &AleScratch,
+    p: &[Vec<f64>; 6],
+    xf: &mut [Vec<f64>; 3],
+) -> bool {
     let mut any = false;
     for r in &sc.runs {
         let pay = r.pay;
@@ -175,39 +224,41 @@ pub(super) fn ale_mass_flow(sc: &AleScratch, p: &[Vec<f64>; 6], xf: &mut [Vec<f6
             continue;
         }
         let (m, w) = (r.m, r.w);
+        // SAFETY: `m` and `w` are nodes of the block, as the contract says.
+        let at = |q: usize, i: usize| unsafe { *p[q].get_unchecked(i) };
         let (fm, fw) = mass_flow_forces(
             r.mass,
             r.l0,
             pay.rate,
             pay.accel,
-            V3::new(p[0][m], p[1][m], p[2][m]),
-            V3::new(p[0][w], p[1][w], p[2][w]),
-            V3::new(p[3][m], p[4][m], p[5][m]),
-            V3::new(p[3][w], p[4][w], p[5][w]),
+            V3::new(at(0, m), at(1, m), at(2, m)),
+            V3::new(at(0, w), at(1, w), at(2, w)),
+            V3::new(at(3, m), at(4, m), at(5, m)),
+            V3::new(at(3, w), at(4, w), at(5, w)),
         );
-        if r.m_free {
-            xf[0][m] += fm.x;
-            xf[1][m] += fm.y;
-            xf[2][m] += fm.z;
-            any = true;
-        }
-        if r.w_free {
-            xf[0][w] += fw.x;
-            xf[1][w] += fw.y;
-            xf[2][w] += fw.z;
-            any = true;
+        for (free, i, f) in [(r.m_free, m, fm), (r.w_free, w, fw)] {
+            if free {
+                for (x, fq) in xf.iter_mut().zip([f.x, f.y, f.z]) {
+                    // SAFETY: as above.
+                    unsafe { *x.get_unchecked_mut(i) += fq };
+                }
+                any = true;
+            }
         }
     }
     any
 }
 
 /// Clears the entries [`ale_mass_flow`] wrote.
+///
+/// # Safety
+/// As [`ale_constants`], for the columns of `xf`.
 #[inline(always)]
-pub(super) fn ale_mass_flow_clear(sc: &AleScratch, xf: &mut [Vec<f64>; 3]) {
-    for r in &sc.runs {
+pub(super) unsafe fn ale_mass_flow_clear(sc: &AleScratch, xf: &mut [Vec<f64>; 3]) {
+    for &i in &sc.flow_nodes {
         for x in xf.iter_mut() {
-            x[r.m] = 0.0;
-            x[r.w] = 0.0;
+            // SAFETY: `i` is a node of the block, as the contract says.
+            unsafe { *x.get_unchecked_mut(i) = 0.0 };
         }
     }
 }
