@@ -43,6 +43,30 @@ fn solve_mass(d: [f64; 3], a1: f64, a2: f64, t1: [f64; 3], t2: [f64; 3], f: [f64
     ]
 }
 
+/// [`solve_mass`] where `D = s I` (no seabed) and `t1`, `t2` are unit tangents (or
+/// zero, with `a = 0`, for a ghost element): then `G = [[1, g], [g, 1]] / s` with
+/// `g = t1 . t2`, so the 2x2 system is `(s I - A T) c = A U^T f`, and the result
+/// `(det f + c1 t1 + c2 t2) / (s det)` with `c` unscaled: three dot products and one
+/// division instead of five and two. The same solution to round-off (`t . t` is 1 to
+/// a few ulp); `det >= s (s - a1 - a2) > 0` as the original's.
+#[inline(always)]
+fn solve_mass_iso(s: f64, a1: f64, a2: f64, t1: [f64; 3], t2: [f64; 3], f: [f64; 3]) -> [f64; 3] {
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (w1, w2, g) = (dot(t1, f), dot(t2, f), dot(t1, t2));
+    let (m11, m22) = (s - a1, s - a2);
+    let (a1g, a2g) = (a1 * g, a2 * g);
+    let det = m11 * m22 - a1g * a2g;
+    let (aw1, aw2) = (a1 * w1, a2 * w2);
+    let c1 = m22 * aw1 + a1g * aw2;
+    let c2 = m11 * aw2 + a2g * aw1;
+    let r = 1.0 / (s * det);
+    [
+        (f[0] * det + c1 * t1[0] + c2 * t2[0]) * r,
+        (f[1] * det + c1 * t1[1] + c2 * t2[1]) * r,
+        (f[2] * det + c1 * t1[2] + c2 * t2[2]) * r,
+    ]
+}
+
 /// The seabed's damping slopes `(c_h, c_z)` on a chain node penetrating by `pen` and
 /// sliding at `(vx, vy)` (physics::seabed_damping): `C lt` normal, and the regularised
 /// friction's `mu K lt pen / max(|v_h|, v_eps)`; zero off the seabed.
@@ -331,7 +355,7 @@ unsafe fn node_kernel<
             }
             let s = pm[l] + hmj[l] + hmk[l] + haj[l] + hak[l];
             // Seabed damping and friction implicit: (M + h diag(c_h, c_h, c_z)) a = F.
-            // Without a seabed the diagonal is `s` (what `s + h 0` is, bit for bit).
+            // Without a seabed the diagonal is `s`: the shorter solve of a scalar one.
             let acc = if SEABED {
                 let (sb, ch, cz) = seabed_load::<FRICTION>(
                     zb - z[l],
@@ -349,7 +373,7 @@ unsafe fn node_kernel<
                 let d = [s + h * ch, s + h * ch, s + h * cz];
                 solve_mass(d, haj[l], hak[l], tj, tk, g)
             } else {
-                solve_mass([s, s, s], haj[l], hak[l], tj, tk, g)
+                solve_mass_iso(s, haj[l], hak[l], tj, tk, g)
             };
             [o[0][l], o[1][l], o[2][l]] = acc;
         }
