@@ -416,7 +416,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
         if c.uniform.is_none() || waves.is_some() {
             currents(c, &lay.currents, state, u);
         }
-        if let Some(wb) = waves.as_deref_mut() {
+        let wholly_wet = if let Some(wb) = waves.as_deref_mut() {
             let st = |i: usize| {
                 (
                     [state[0][i], state[1][i], state[2][i]],
@@ -435,11 +435,11 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                 wb.fill_chain(time, c.n, st, eta, u, aw);
             }
             // SAFETY: the caller's columns.
-            unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, None) };
+            unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, None) }
         } else {
             // SAFETY: the caller's columns.
-            unsafe { elements::<false, L>(c, state, u, aw, eta, t, ten, f, haw, under) };
-        }
+            unsafe { elements::<false, L>(c, state, u, aw, eta, t, ten, f, haw, under) }
+        };
         // SAFETY: as `ale_constants`.
         unsafe { ale_tension(asc, state, ten) };
         point_surface(c, state, eta, pm, pwz);
@@ -449,7 +449,8 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
             pm,
             pwz,
             hm: &c.hm,
-            ha: haw,
+            // Every element wholly wet: the block's half added masses, bit for bit.
+            ha: if wholly_wet { &c.ha } else { haw },
             kl: &c.kl,
             cl: &c.cl,
             mukl: &c.mukl,

@@ -10,7 +10,9 @@ use crate::model::Current;
 use crate::physics::wetted_fraction;
 
 /// Element pass over SoA positions and velocities `p`, currents `u`. `under`: whether
-/// every node is known to be at or below the surface `eta` (else found here).
+/// every node is known to be at or below the surface `eta` (else found here). Returns
+/// whether it was: then the wetted half added masses are the block's `c.ha`, and
+/// `haw` is not written.
 ///
 /// # Safety
 /// Every column of `c`, `p`, `u`, `aw`, `eta`, `t`, `ten`, `f` and `haw` has at
@@ -28,7 +30,7 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
     f: &mut [Vec<f64>; 3],
     haw: &mut [f64],
     under: Option<bool>,
-) {
+) -> bool {
     let ne = c.l0.len();
     // Every node at or below the surface (the common case: a line in still water, or
     // deep in waves) makes every wetted fraction exactly 1 (`wetted_fraction`'s first
@@ -49,8 +51,8 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
     });
     if under {
         // SAFETY: the caller's columns, as this function's.
-        unsafe { element_chunks::<WAVES, L>(c, p, u, aw, t, ten, f, haw) };
-        return;
+        unsafe { element_chunks::<WAVES, L>(c, p, u, aw, t, ten, f) };
+        return true;
     }
     let [tx, ty, tz] = t;
     let [fx, fy, fz] = f;
@@ -90,6 +92,7 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
         &mut fz[1..ne + 1],
         &mut haw[1..ne + 1],
     );
+    false
 }
 
 /// The element loop over elements `e0..e0 + tx.len()` of the block's constants `c`.
@@ -287,7 +290,8 @@ fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
 
 /// The element loop of a chain whose every node is under the surface, over `nc`
 /// whole chunks of elements of the padded columns (module [`super::lanes`]):
-/// element `k` reads nodes `k` and `k + 1` of `p` and writes padded element `k + 1`.
+/// element `k` reads nodes `k` and `k + 1` of `p` and writes padded element `k + 1`
+/// (not its wetted half added mass: wholly wet, that is the block's `ha`).
 /// The lanes past the last element write padded elements past it, the end ghost
 /// included (reset by the caller).
 ///
@@ -303,7 +307,6 @@ unsafe fn element_chunks<const WAVES: bool, const L: usize>(
     t: &mut [Vec<f64>; 3],
     ten: &mut [f64],
     f: &mut [Vec<f64>; 3],
-    haw: &mut [f64],
 ) {
     let ne = c.l0.len();
     let nc = chunks_for::<L>(ne);
@@ -349,12 +352,12 @@ unsafe fn element_chunks<const WAVES: bool, const L: usize>(
         at!(&c.half_wz),
         at!(&c.half_bz),
     );
-    let (hfk, ha) = (at!(&c.half_fk), next!(&c.ha));
+    let hfk = at!(&c.half_fk);
     let [tx, ty, tz] = t;
     let [fx, fy, fz] = f;
     let (tx, ty, tz) = (out!(tx), out!(ty), out!(tz));
     let (fx, fy, fz) = (out!(fx), out!(fy), out!(fz));
-    let (ten, haw) = (out!(ten), out!(haw));
+    let ten = out!(ten);
     for j in 0..nc {
         keep_chunks();
         // Every input into locals first, then every output: no overlap to check.
@@ -362,8 +365,8 @@ unsafe fn element_chunks<const WAVES: bool, const L: usize>(
         let (xb, yb, zb, vxb, vyb, vzb) = (xb[j], yb[j], zb[j], vxb[j], vyb[j], vzb[j]);
         let (ux, uy, uz, awx, awy, awz) = (ux[j], uy[j], uz[j], awx[j], awy[j], awz[j]);
         let (il0, ea, eac, comp, dn, dt) = (il0[j], ea[j], eac[j], comp[j], dn[j], dt[j]);
-        let (hw, hb, hfk, ha) = (hw[j], hb[j], hfk[j], ha[j]);
-        let mut o = [[0.0; L]; 8];
+        let (hw, hb, hfk) = (hw[j], hb[j], hfk[j]);
+        let mut o = [[0.0; L]; 7];
         for l in 0..L {
             let e = element_lane::<WAVES, true>(
                 [xa[l], ya[l], za[l], vxa[l], vya[l], vza[l], 0.0],
@@ -380,22 +383,21 @@ unsafe fn element_chunks<const WAVES: bool, const L: usize>(
                     hw: hw[l],
                     hb: hb[l],
                     hfk: hfk[l],
-                    ha: ha[l],
+                    ha: 0.0,
                     diam: 0.0,
                 },
             );
             [o[0][l], o[1][l], o[2][l]] = e.t;
             o[3][l] = e.ten;
             [o[4][l], o[5][l], o[6][l]] = e.f;
-            o[7][l] = e.haw;
         }
-        [tx[j], ty[j], tz[j], ten[j], fx[j], fy[j], fz[j], haw[j]] = o;
+        [tx[j], ty[j], tz[j], ten[j], fx[j], fy[j], fz[j]] = o;
     }
     // The lanes past the last element wrote the end ghost (padded element `ne + 1`)
     // unless the elements fill their chunks: zero again.
     let (j, l) = (ne / L, ne % L);
     if j < nc {
-        for q in [tx, ty, tz, ten, fx, fy, fz, haw] {
+        for q in [tx, ty, tz, ten, fx, fy, fz] {
             q[j][l] = 0.0;
         }
     }

@@ -228,7 +228,12 @@ pub(super) fn point_drag_force(
     eta: f64,
     w: &[f64],
 ) -> [f64; 3] {
-    let wet = point_wetted_fraction(eta - z, radius);
+    // Wholly under water the wetted fraction is exactly 1 (`point_wetted_fraction`).
+    let wet = if radius >= 0.0 && eta - z >= radius {
+        1.0
+    } else {
+        point_wetted_fraction(eta - z, radius)
+    };
     let mut u = lay.currents[ci].at::<f64>(z).to_f64();
     if !w.is_empty() {
         let (_, uw, _) = node_water(w, i);
@@ -264,7 +269,7 @@ pub(super) fn route_accel(
     route: usize,
     state: impl Fn(usize) -> (f64, f64),
 ) -> [f64; 3] {
-    let d = lay.routes[route].eval(time);
+    let d = lay.routes[route].eval_inline(time);
     let bg = opts.baumgarte;
     std::array::from_fn(|q| {
         let (r, v) = state(q);
@@ -428,6 +433,11 @@ pub(super) fn point_surface_at(
     &(i, radius, added, buoyancy, _): &(usize, f64, f64, f64, f64),
     depth: f64,
 ) -> (f64, f64) {
+    // Wholly under water the wetted fraction is exactly 1 and `dry` 0, so the
+    // block's constants stand bit for bit: no need to evaluate it.
+    if radius >= 0.0 && depth >= radius {
+        return (c.pm[i], c.pwz[i]);
+    }
     let dry = 1.0 - point_wetted_fraction(depth, radius);
     (c.pm[i] - dry * added, c.pwz[i] - dry * buoyancy)
 }
