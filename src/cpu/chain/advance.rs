@@ -5,7 +5,7 @@
 //! element and node passes, with the divergence check after each step.
 
 use super::consts::ChainConsts;
-use super::elements::{add_waves, currents, elements};
+use super::elements::{add_waves, currents, elements, UniformLine};
 use super::lanes::{chunks_for, keep_chunks, lanes, lanes_mut, padded_len};
 use super::nodes::{nodes, point_surface, Masses};
 use super::winch::{ale_constants, ale_tension, AleScratch};
@@ -389,6 +389,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
         state: &[Vec<f64>; 6],
         time: f64,
         under: Option<bool>,
+        uni: Option<&UniformLine>,
         waves: &mut Option<&mut BlockWaves>,
         wbuf: &mut Water,
         sc: &mut Work,
@@ -435,10 +436,10 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                 wb.fill_chain(time, c.n, st, eta, u, aw);
             }
             // SAFETY: the caller's columns.
-            unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, None) }
+            unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, None, None) }
         } else {
             // SAFETY: the caller's columns.
-            unsafe { elements::<false, L>(c, state, u, aw, eta, t, ten, f, haw, under) }
+            unsafe { elements::<false, L>(c, state, u, aw, eta, t, ten, f, haw, under, uni) }
         };
         // SAFETY: as `ale_constants`.
         unsafe { ale_tension(asc, state, ten) };
@@ -463,6 +464,9 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
     // last symplectic update found; `None`: the element loop finds out.
     let mut under = None;
     let still = waves.is_none();
+    // In still water, a chain of one line type under one uniform current.
+    let uni = if still { UniformLine::of(c) } else { None };
+    let uni = uni.as_ref();
     // SAFETY: the stages' columns (`x`, `xs`, `wc`, `wk`, `a`) were made
     // `padded_len(n)` long above, and nothing in the loop resizes them.
     unsafe {
@@ -471,7 +475,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
             match opts.scheme {
                 Scheme::Symplectic => {
                     eval::<FRICTION, L>(
-                        wc, asc, lay, opts, ale, x, time, under, &mut waves, wbuf, wk, a,
+                        wc, asc, lay, opts, ale, x, time, under, uni, &mut waves, wbuf, wk, a,
                     );
                     let (b, u) =
                         symplectic_update::<L>(x, a, nc, dt, opts.max_speed, opts.max_distance);
@@ -481,7 +485,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                 Scheme::Rk2 => {
                     let h = 0.5 * dt;
                     eval::<FRICTION, L>(
-                        wc, asc, lay, opts, ale, x, time, None, &mut waves, wbuf, wk, a,
+                        wc, asc, lay, opts, ale, x, time, None, uni, &mut waves, wbuf, wk, a,
                     );
                     for q in 0..3 {
                         xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
@@ -496,6 +500,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                         xs,
                         time + h,
                         None,
+                        uni,
                         &mut waves,
                         wbuf,
                         wk,
@@ -528,6 +533,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                             xs,
                             time + tau,
                             None,
+                            uni,
                             &mut waves,
                             wbuf,
                             wk,

@@ -9,10 +9,50 @@ use crate::cpu::water::node_water;
 use crate::model::Current;
 use crate::physics::wetted_fraction;
 
+/// What is the same for every element of a chain in still water with one uniform
+/// current and one line type: the current and the line's constants, which the
+/// element loop then keeps in registers instead of reading five columns and the
+/// current's three (the same values, so the same bits).
+#[derive(Clone, Copy, Default)]
+pub(super) struct UniformLine {
+    u: [f64; 3],
+    ea: f64,
+    eac: f64,
+    comp: f64,
+    dn: f64,
+    dt: f64,
+}
+
+impl UniformLine {
+    /// The block's, when its current is uniform and every element has the same `EA`,
+    /// damping, compression factor and drag coefficients (to the bit).
+    pub(super) fn of(c: &ChainConsts) -> Option<Self> {
+        let ne = c.l0.len();
+        let same = |v: &[f64]| v[..ne].iter().all(|x| x.to_bits() == v[0].to_bits());
+        let u = c.uniform?;
+        if ne == 0
+            || ![&c.ea, &c.eac, &c.comp, &c.drag_n, &c.drag_t]
+                .into_iter()
+                .all(|v| same(v))
+        {
+            return None;
+        }
+        Some(UniformLine {
+            u,
+            ea: c.ea[0],
+            eac: c.eac[0],
+            comp: c.comp[0],
+            dn: c.drag_n[0],
+            dt: c.drag_t[0],
+        })
+    }
+}
+
 /// Element pass over SoA positions and velocities `p`, currents `u`. `under`: whether
 /// every node is known to be at or below the surface `eta` (else found here). Returns
 /// whether it was: then the wetted half added masses are the block's `c.ha`, and
-/// `haw` is not written.
+/// `haw` is not written. `uni`: the block's uniform line in still water, if it is one
+/// (then `u` is not read).
 ///
 /// # Safety
 /// Every column of `c`, `p`, `u`, `aw`, `eta`, `t`, `ten`, `f` and `haw` has at
@@ -30,6 +70,7 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
     f: &mut [Vec<f64>; 3],
     haw: &mut [f64],
     under: Option<bool>,
+    uni: Option<&UniformLine>,
 ) -> bool {
     let ne = c.l0.len();
     // Every node at or below the surface (the common case: a line in still water, or
@@ -51,7 +92,21 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
     });
     if under {
         // SAFETY: the caller's columns, as this function's.
-        unsafe { element_chunks::<WAVES, L>(c, p, u, aw, t, ten, f) };
+        unsafe {
+            match uni {
+                Some(k) if !WAVES => element_chunks::<WAVES, true, L>(c, p, u, aw, t, ten, f, k),
+                _ => element_chunks::<WAVES, false, L>(
+                    c,
+                    p,
+                    u,
+                    aw,
+                    t,
+                    ten,
+                    f,
+                    &UniformLine::default(),
+                ),
+            }
+        };
         return true;
     }
     let [tx, ty, tz] = t;
@@ -291,7 +346,9 @@ fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
 /// The element loop of a chain whose every node is under the surface, over `nc`
 /// whole chunks of elements of the padded columns (module [`super::lanes`]):
 /// element `k` reads nodes `k` and `k + 1` of `p` and writes padded element `k + 1`
-/// (not its wetted half added mass: wholly wet, that is the block's `ha`).
+/// (not its wetted half added mass: wholly wet, that is the block's `ha`). With `UNI`
+/// the current and the line's constants are `k`'s, in every lane (the padding lanes
+/// too: their results are dropped or reset, as with zeros).
 /// The lanes past the last element write padded elements past it, the end ghost
 /// included (reset by the caller).
 ///
@@ -299,7 +356,7 @@ fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
 /// As [`elements`].
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-unsafe fn element_chunks<const WAVES: bool, const L: usize>(
+unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize>(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
@@ -307,6 +364,7 @@ unsafe fn element_chunks<const WAVES: bool, const L: usize>(
     t: &mut [Vec<f64>; 3],
     ten: &mut [f64],
     f: &mut [Vec<f64>; 3],
+    k: &UniformLine,
 ) {
     let ne = c.l0.len();
     let nc = chunks_for::<L>(ne);
@@ -363,8 +421,19 @@ unsafe fn element_chunks<const WAVES: bool, const L: usize>(
         // Every input into locals first, then every output: no overlap to check.
         let (xa, ya, za, vxa, vya, vza) = (xa[j], ya[j], za[j], vxa[j], vya[j], vza[j]);
         let (xb, yb, zb, vxb, vyb, vzb) = (xb[j], yb[j], zb[j], vxb[j], vyb[j], vzb[j]);
-        let (ux, uy, uz, awx, awy, awz) = (ux[j], uy[j], uz[j], awx[j], awy[j], awz[j]);
-        let (il0, ea, eac, comp, dn, dt) = (il0[j], ea[j], eac[j], comp[j], dn[j], dt[j]);
+        let (awx, awy, awz, il0) = (awx[j], awy[j], awz[j], il0[j]);
+        let ((ux, uy, uz), (ea, eac, comp, dn, dt)) = if UNI {
+            let u = k.u;
+            (
+                ([u[0]; L], [u[1]; L], [u[2]; L]),
+                ([k.ea; L], [k.eac; L], [k.comp; L], [k.dn; L], [k.dt; L]),
+            )
+        } else {
+            (
+                (ux[j], uy[j], uz[j]),
+                (ea[j], eac[j], comp[j], dn[j], dt[j]),
+            )
+        };
         let (hw, hb, hfk) = (hw[j], hb[j], hfk[j]);
         let mut o = [[0.0; L]; 7];
         for l in 0..L {

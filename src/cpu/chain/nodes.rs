@@ -169,7 +169,11 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
     if !m.w.is_empty() {
         for pv in &c.point_volume {
             let i = pv.0;
-            add(xf, i, point_water_accel_force(pv, get!(p[2], i), get!(m.eta, i), m.w));
+            add(
+                xf,
+                i,
+                point_water_accel_force(pv, get!(p[2], i), get!(m.eta, i), m.w),
+            );
         }
     }
     // The symplectic scheme takes the seabed's damping implicitly (passes::implicit_dt).
