@@ -344,7 +344,8 @@ struct WaveStep {
 // cache does, since the bands' refreshes differ from node to node); then three per
 // node: the node's velocity at the last refresh (m/s); then one per node: its depth
 // band (a small whole number, exact in R); then one per node: how many times it was
-// found above its band's top (sea::cache::WaveCache::breaches, summed by the host).
+// found above its band's top (sea::cache::WaveCache::breaches, summed by the host);
+// then WAVE_ELEM_STRIDE per element: its midpoint cache (wave_elem_form, below).
 const WAVE_CACHE_STRIDE: u32 = 14u;
 @group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
 @group(0) @binding(20) var<storage, read> wave_steps: array<WaveStep>;
