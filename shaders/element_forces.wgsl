@@ -9,5 +9,5 @@ fn element_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let ep = elems[e];
-    elem_loads[e] = element_step(ep, lines[ep.line], blocks[ep.block].oz, state[ep.a], state[ep.b], step.k);
+    elem_loads[e] = element_step(e, ep, lines[ep.line], blocks[ep.block].oz, state[ep.a], state[ep.b], step.k);
 }

@@ -103,7 +103,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
     }
     for (var k = step.k; k < step.end; k += 1u) {
         if has_elem {
-            wg_loads[j] = element_step(ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k);
+            wg_loads[j] = element_step(e, ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k);
         }
         if j == 0u {
             wg_stop = atomicLoad(&wg_fail);

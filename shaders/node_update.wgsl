@@ -62,3 +62,15 @@ fn wave_refresh(@builtin(global_invocation_id) gid: vec3<u32>) {
     let blk = blocks[nodes[i].block];
     wave_refresh_node(i, step.k, vec3<R>(blk.ox, blk.oy, blk.oz) + (s.r_hi.xyz + s.r_lo.xyz), s.v.xyz);
 }
+
+// The element part of the waves' refresh, dispatched right after `wave_refresh`: per
+// element, its midpoint cache entry formed again from its nodes' new values where one
+// of them refreshed (shared/waves.wgsl: wave_elem_form).
+@compute @workgroup_size(64)
+fn wave_refresh_elems(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let e = gid.x;
+    if e >= params.n_elems {
+        return;
+    }
+    wave_elem_form(e, step.k);
+}

@@ -744,10 +744,10 @@ fn submergence(oz: R, s: NodeState) -> R {
     return -(oz + (s.r_hi.z + s.r_lo.z));
 }
 
-// The GLMF loads of element `ep` (line `lp`, its block's origin height `oz`) from the
-// states `sa`, `sb` of its nodes a and b at step `k` of the submission (the row of
+// The GLMF loads of element `e` (`ep`, line `lp`, its block's origin height `oz`) from
+// the states `sa`, `sb` of its nodes a and b at step `k` of the submission (the row of
 // `payout` of a winch cable's variable element). CPU twin: cpu::stepper element_pass.
-fn element_step(ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeState, k: u32) -> ElemLoads {
+fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeState, k: u32) -> ElemLoads {
     // A winch cable's variable element takes l0_v(t) of this step (crate::ale).
     var l0 = ep.l0;
     var l0_lo = ep.l0_lo;
@@ -778,17 +778,17 @@ fn element_step(ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeSt
     var u = current_at(ep.current, zmid);
     // Still water: the surface is z = 0 and the water does not accelerate. Waves: the
     // mean of the two nodes' wave velocity and acceleration at the midpoint, the
-    // surface over each node for the wetted fraction (cpu::stepper element_input).
+    // surface over each node for the wetted fraction (cpu::stepper element_input),
+    // from the element's cache entry (elem_waves).
     var aw = vec3<R>(R(0.0), R(0.0), R(0.0));
     var wet: R;
     if wave_steps[blocks[ep.block].wave_rows + k].n == 0u {
         wet = wetted_fraction(submergence(oz, sa), submergence(oz, sb), ep.diameter);
     } else {
-        let wa = node_waves(ep.a, k);
-        let wb = node_waves(ep.b, k);
-        u += R(0.5) * (wa.u + wb.u);
-        aw = R(0.5) * (wa.a + wb.a);
-        wet = wetted_fraction(wa.eta + submergence(oz, sa), wb.eta + submergence(oz, sb), ep.diameter);
+        let w = elem_waves(e, ep, k);
+        u += w.u;
+        aw = w.a;
+        wet = wetted_fraction(w.eta_a + submergence(oz, sa), w.eta_b + submergence(oz, sb), ep.diameter);
     }
     let el = glmf_element_wet(lp, d, stretch, sa.v.xyz, sb.v.xyz, l0, u, aw, wet, params.gravity);
     var tension = el.tension;

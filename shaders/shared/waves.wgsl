@@ -344,7 +344,8 @@ struct WaveStep {
 // cache does, since the bands' refreshes differ from node to node); then three per
 // node: the node's velocity at the last refresh (m/s); then one per node: its depth
 // band (a small whole number, exact in R); then one per node: how many times it was
-// found above its band's top (sea::cache::WaveCache::breaches, summed by the host).
+// found above its band's top (sea::cache::WaveCache::breaches, summed by the host);
+// then WAVE_ELEM_STRIDE per element: its midpoint cache (wave_elem_form, below).
 const WAVE_CACHE_STRIDE: u32 = 14u;
 @group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
 @group(0) @binding(20) var<storage, read> wave_steps: array<WaveStep>;
@@ -428,6 +429,131 @@ fn node_waves(i: u32, k: u32) -> WaveKin {
         wave_cache_load7(o0 + 7u),
         wave_cache_load7(o1),
         wave_cache_load7(o1 + 7u),
+        vec4<R>(ws.w0, ws.w1, ws.w2, ws.w3),
+    );
+}
+
+// ---- The per-element midpoint cache (the CPU path's chain columns,
+// cpu::water::BlockWaves::fill_chain): per element, formed when either of its nodes
+// refreshes, the surface over each of its two nodes and the mean of their wave
+// velocity and acceleration, values and rates at both cache times (4 x 8 scalars), so
+// that the element pass interpolates 32 scalars instead of reading both nodes' 56.
+// Interpolation is linear in the cached values, so this is the same value up to
+// round-off. The element's nodes share a band but for the few elements across a band
+// top, whose two nodes interpolate with different weights: those are marked
+// WAVE_ELEM_MIXED and read their nodes' caches (node_waves) as before. ----
+
+// An element's waves: the surface over nodes a and b, the mean wave velocity and
+// acceleration of the two (m, m/s, m/s^2; or their rates).
+struct WaveMid {
+    eta_a: R,
+    eta_b: R,
+    u: vec3<R>,
+    a: vec3<R>,
+}
+
+// One band marker, then the four sides (values at t0, rates at t0, values at t1,
+// rates at t1) of eight scalars, per element, after the nodes' part of the cache.
+const WAVE_ELEM_STRIDE: u32 = 33u;
+// The band marker of an element whose nodes are in different bands.
+const WAVE_ELEM_MIXED: u32 = 255u;
+
+// The element part of node a's and node b's cache entries (one side: values or rates
+// at one time). Rust twin: sea::cache::wave_cache_midpoint.
+fn wave_cache_midpoint(a: WaveKin, b: WaveKin) -> WaveMid {
+    return WaveMid(a.eta, b.eta, R(0.5) * (a.u + b.u), R(0.5) * (a.a + b.a));
+}
+
+// wave_cache_hermite over the element's eight scalars (Rust twin:
+// sea::cache::wave_cache_hermite over slices of eight).
+fn wave_mid_hermite(v0: WaveMid, d0: WaveMid, v1: WaveMid, d1: WaveMid, w: vec4<R>) -> WaveMid {
+    return WaveMid(
+        w.x * v0.eta_a + w.y * d0.eta_a + w.z * v1.eta_a + w.w * d1.eta_a,
+        w.x * v0.eta_b + w.y * d0.eta_b + w.z * v1.eta_b + w.w * d1.eta_b,
+        w.x * v0.u + w.y * d0.u + w.z * v1.u + w.w * d1.u,
+        w.x * v0.a + w.y * d0.a + w.z * v1.a + w.w * d1.a,
+    );
+}
+
+// Where element e's entry is in the cache (after the nodes' 2 x 14 + 5 per node).
+fn wave_elem_at(e: u32) -> u32 {
+    return (2u * WAVE_CACHE_STRIDE + 5u) * params.n_nodes + e * WAVE_ELEM_STRIDE;
+}
+
+fn wave_mid_load(o: u32) -> WaveMid {
+    return WaveMid(
+        wave_cache[o],
+        wave_cache[o + 1u],
+        vec3<R>(wave_cache[o + 2u], wave_cache[o + 3u], wave_cache[o + 4u]),
+        vec3<R>(wave_cache[o + 5u], wave_cache[o + 6u], wave_cache[o + 7u]),
+    );
+}
+
+fn wave_mid_store(o: u32, m: WaveMid) {
+    wave_cache[o] = m.eta_a;
+    wave_cache[o + 1u] = m.eta_b;
+    wave_cache[o + 2u] = m.u.x;
+    wave_cache[o + 3u] = m.u.y;
+    wave_cache[o + 4u] = m.u.z;
+    wave_cache[o + 5u] = m.a.x;
+    wave_cache[o + 6u] = m.a.y;
+    wave_cache[o + 7u] = m.a.z;
+}
+
+// Forms element e's entry at step k, after the nodes' refresh (wave_refresh_node)
+// and only where one of its nodes' bands refreshed at this step (a band changes only
+// at a decision, when every band refreshes): its band, or WAVE_ELEM_MIXED when its
+// nodes' bands differ; for one band, the midpoints of its nodes' four sides. CPU
+// twin: cpu::water::ChainColumns::form (which, with several bands, puts every node
+// in the power basis of one time instead of marking the mixed elements).
+fn wave_elem_form(e: u32, k: u32) {
+    let ep = elems[e];
+    if wave_steps[blocks[ep.block].wave_rows + k].n == 0u {
+        return;
+    }
+    let ba = u32(wave_cache[wave_band_at(ep.a)]);
+    let bb = u32(wave_cache[wave_band_at(ep.b)]);
+    let wa = wave_band_step(ep.a, ba, k);
+    let wb = wave_band_step(ep.b, bb, k);
+    if wa.refresh == 0u && wb.refresh == 0u {
+        return;
+    }
+    let o = wave_elem_at(e);
+    if ba != bb {
+        wave_cache[o] = R(WAVE_ELEM_MIXED);
+        return;
+    }
+    wave_cache[o] = R(ba);
+    let oa0 = (wa.slot0 * params.n_nodes + ep.a) * WAVE_CACHE_STRIDE;
+    let oa1 = (wa.slot1 * params.n_nodes + ep.a) * WAVE_CACHE_STRIDE;
+    let ob0 = (wa.slot0 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
+    let ob1 = (wa.slot1 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
+    wave_mid_store(o + 1u, wave_cache_midpoint(wave_cache_load7(oa0), wave_cache_load7(ob0)));
+    wave_mid_store(o + 9u, wave_cache_midpoint(wave_cache_load7(oa0 + 7u), wave_cache_load7(ob0 + 7u)));
+    wave_mid_store(o + 17u, wave_cache_midpoint(wave_cache_load7(oa1), wave_cache_load7(ob1)));
+    wave_mid_store(o + 25u, wave_cache_midpoint(wave_cache_load7(oa1 + 7u), wave_cache_load7(ob1 + 7u)));
+}
+
+// Element ep's (index e) waves at step k of the submission, in a sea with waves (the
+// caller checks): its entry interpolated with its band's weights, or for an element
+// across a band top, its nodes' own (node_waves). CPU twin:
+// cpu::water::BlockWaves::fill_chain.
+fn elem_waves(e: u32, ep: ElemParams, k: u32) -> WaveMid {
+    let o = wave_elem_at(e);
+    let b = u32(wave_cache[o]);
+    if b == WAVE_ELEM_MIXED {
+        return wave_cache_midpoint(node_waves(ep.a, k), node_waves(ep.b, k));
+    }
+    let r = blocks[ep.block].wave_rows + k;
+    var ws = wave_steps[r];
+    if b != 0u {
+        ws = wave_steps[r + b * ws.band_rows];
+    }
+    return wave_mid_hermite(
+        wave_mid_load(o + 1u),
+        wave_mid_load(o + 9u),
+        wave_mid_load(o + 17u),
+        wave_mid_load(o + 25u),
         vec4<R>(ws.w0, ws.w1, ws.w2, ws.w3),
     );
 }

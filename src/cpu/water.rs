@@ -15,7 +15,9 @@
 //! linear in the cached values and rates, so this is the same value up to round-off.
 
 use crate::sea::bands::BandPlan;
-use crate::sea::cache::{evaluate_nodes, wave_cache_hermite, WaveCache, CACHE_STRIDE};
+use crate::sea::cache::{
+    evaluate_nodes, wave_cache_hermite, wave_cache_midpoint, WaveCache, CACHE_STRIDE,
+};
 use crate::sea::SeaState;
 
 /// Per-node water values: `eta, u (3), a (3)` ([`CACHE_STRIDE`] per node), m, m/s,
@@ -202,9 +204,9 @@ impl ChainColumns {
                     let v = &p[side];
                     self.eta[side][i] = v[i * CACHE_STRIDE];
                     for k in i.saturating_sub(1)..(i + 1).min(n - 1) {
-                        let (a, b) = (&v[k * CACHE_STRIDE..], &v[(k + 1) * CACHE_STRIDE..]);
+                        let m = element_midpoint(v, k);
                         for q in 0..6 {
-                            self.mid[side][q][k] = 0.5 * (a[1 + q] + b[1 + q]);
+                            self.mid[side][q][k] = m[2 + q];
                         }
                     }
                 }
@@ -223,15 +225,26 @@ impl ChainColumns {
             let eta = &mut self.eta[side];
             eta.clear();
             eta.extend((0..n).map(|i| node_water(v, i).0));
-            for (q, col) in self.mid[side].iter_mut().enumerate() {
-                col.clear();
-                col.extend((0..n - 1).map(|k| {
-                    let (a, b) = (&v[k * CACHE_STRIDE..], &v[(k + 1) * CACHE_STRIDE..]);
-                    0.5 * (a[1 + q] + b[1 + q])
-                }));
+            let cols = &mut self.mid[side];
+            cols.iter_mut().for_each(Vec::clear);
+            for k in 0..n - 1 {
+                let m = element_midpoint(v, k);
+                for (q, col) in cols.iter_mut().enumerate() {
+                    col.push(m[2 + q]);
+                }
             }
         }
     }
+}
+
+/// Element `k`'s share ([`wave_cache_midpoint`]) of nodes `k` and `k + 1` in `v`
+/// ([`CACHE_STRIDE`] per node).
+#[inline(always)]
+fn element_midpoint(v: &[f64], k: usize) -> [f64; 8] {
+    wave_cache_midpoint(
+        &v[k * CACHE_STRIDE..(k + 1) * CACHE_STRIDE],
+        &v[(k + 1) * CACHE_STRIDE..(k + 2) * CACHE_STRIDE],
+    )
 }
 
 /// `out = w0 v0 + w1 d0 + w2 v1 + w3 d1` elementwise over the columns `c = [v0, d0,

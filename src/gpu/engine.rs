@@ -92,6 +92,8 @@ pub(super) struct GpuEngine<R: GpuReal> {
     pipe_node: wgpu::ComputePipeline,
     pipe_eval: wgpu::ComputePipeline,
     pipe_refresh: wgpu::ComputePipeline,
+    /// The element part of the refresh (`wave_refresh_elems`), right after it.
+    pipe_refresh_elems: wgpu::ComputePipeline,
     /// The waves (`None`: still water).
     waves: Option<SeaSchedules>,
     /// The fused kernel's pipeline and workgroup size, or why there is none.
@@ -204,8 +206,8 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                             );
                             pass.set_bind_group(0, &self.inst.bind_group, &[off as u32]);
                             if refresh[a as usize] {
-                                self.dispatch(&mut pass, &self.pipe_refresh, self.inst.n_nodes);
-                                self.timings.dispatches += 1;
+                                self.dispatch_refresh(&mut pass);
+                                self.timings.dispatches += 2;
                             }
                             pass.set_pipeline(pipe);
                             pass.dispatch_workgroups(self.inst.n_blocks as u32, 1, 1);
@@ -217,8 +219,8 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                             let off = (k * self.step_stride) as u32;
                             pass.set_bind_group(0, &self.inst.bind_group, &[off]);
                             if refresh[k as usize] {
-                                self.dispatch(&mut pass, &self.pipe_refresh, self.inst.n_nodes);
-                                self.timings.dispatches += 1;
+                                self.dispatch_refresh(&mut pass);
+                                self.timings.dispatches += 2;
                             }
                             self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
                             self.dispatch(&mut pass, &self.pipe_node, self.inst.n_nodes);
@@ -429,7 +431,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             });
             pass.set_bind_group(0, &self.inst.bind_group, &[0]);
             if self.waves.is_some() {
-                self.dispatch(&mut pass, &self.pipe_refresh, self.inst.n_nodes);
+                self.dispatch_refresh(&mut pass);
             }
             self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
             self.dispatch(&mut pass, &self.pipe_eval, self.inst.n_nodes);

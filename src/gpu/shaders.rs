@@ -58,7 +58,12 @@ impl Stage {
     pub fn entry_points(self) -> &'static [&'static str] {
         match self {
             Stage::ElementForces => &["element_forces"],
-            Stage::NodeUpdate => &["node_update", "node_evaluate"],
+            Stage::NodeUpdate => &[
+                "node_update",
+                "node_evaluate",
+                "wave_refresh",
+                "wave_refresh_elems",
+            ],
             Stage::FusedSteps => &["fused_steps"],
         }
     }

@@ -22,6 +22,12 @@ use crate::sea::{SeaSet, SeaState, Stretching, GPU_DEEP};
 /// node: its depth band; then one per node: its breaches (`sea::bands`).
 pub(super) const WAVE_CACHE_STRIDE: usize = 14;
 
+/// Scalars per element after the nodes' part of the cache (`WAVE_ELEM_STRIDE` in
+/// `shaders/shared/waves.wgsl`): its band (or the mark of an element across a band
+/// top), then the surface over its two nodes and the mean of their wave velocity and
+/// acceleration, values and rates at both times (4 x 8).
+pub(super) const WAVE_ELEM_STRIDE: usize = 33;
+
 /// The host's side of the waves' kinematics cache: the components (rebased at each
 /// submission) and when each depth band's two times are (`sea::bands`): the same
 /// [`RefreshClock`]s as the CPU path's `sea::cache::WaveCache`, on the same grid

@@ -91,6 +91,22 @@ pub fn hermite_weights(s: f64, delta: f64) -> [f64; 4] {
     ]
 }
 
+/// An element's share of its nodes' cache entries `a` and `b` (each `eta, u, a`:
+/// [`CACHE_STRIDE`] values, or their rates): the surface over each node and the mean
+/// of the two nodes' wave velocity and acceleration, `[eta_a, eta_b, u (3), a (3)]`.
+/// The CPU's chain columns and the GPU's element cache hold these per element and
+/// refresh, so that a step interpolates them instead of both nodes' entries
+/// (interpolation is linear: the same up to round-off). WGSL twin:
+/// `wave_cache_midpoint` in `shaders/shared/waves.wgsl`.
+#[inline(always)]
+pub fn wave_cache_midpoint(a: &[f64], b: &[f64]) -> [f64; 8] {
+    let mut m = [a[0], b[0], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    for q in 0..6 {
+        m[2 + q] = 0.5 * (a[1 + q] + b[1 + q]);
+    }
+    m
+}
+
 /// Cubic Hermite interpolation of cached values `v0, v1` with rates `d0, d1`,
 /// elementwise, with the weights `w` of [`hermite_weights`]: four multiply-adds a value.
 pub fn wave_cache_hermite(

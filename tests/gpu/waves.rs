@@ -14,7 +14,7 @@ use cablesim::gpu::layout::{GpuReal, WaveComp};
 use cablesim::gpu::{GpuContext, Precision};
 use cablesim::math::V3;
 use cablesim::sea::bands::wave_band;
-use cablesim::sea::cache::{hermite_weights, wave_cache_hermite};
+use cablesim::sea::cache::{hermite_weights, wave_cache_hermite, wave_cache_midpoint};
 use cablesim::sea::cut::wave_decay_prefix;
 use cablesim::sea::irregular::{discretise, Discretisation};
 use cablesim::sea::kinematics::{
@@ -154,6 +154,36 @@ fn t_hermite(@builtin(global_invocation_id) gid: vec3<u32>) {
     let b = 32u * i;
     let w = vec4<R>(tin[b + 28u], tin[b + 29u], tin[b + 30u], tin[b + 31u]);
     kin_out(7u * i, wave_cache_hermite(kin_in(b), kin_in(b + 7u), kin_in(b + 14u), kin_in(b + 21u), w));
+}
+
+fn mid_out(o: u32, m: WaveMid) {
+    tout[o] = m.eta_a;
+    tout[o + 1u] = m.eta_b;
+    tout[o + 2u] = m.u.x;
+    tout[o + 3u] = m.u.y;
+    tout[o + 4u] = m.u.z;
+    tout[o + 5u] = m.a.x;
+    tout[o + 6u] = m.a.y;
+    tout[o + 7u] = m.a.z;
+}
+
+// tin: per side (values at t0, rates at t0, values at t1, rates at t1) node a's and
+// node b's 7, then the four weights, per case; tout: the four sides' midpoints
+// (wave_cache_midpoint), then their interpolation (wave_mid_hermite): 40 per case.
+@compute @workgroup_size(64)
+fn t_midpoint(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 60u {
+        return;
+    }
+    let b = 60u * i;
+    var m: array<WaveMid, 4>;
+    for (var q = 0u; q < 4u; q++) {
+        m[q] = wave_cache_midpoint(kin_in(b + 14u * q), kin_in(b + 14u * q + 7u));
+        mid_out(40u * i + 8u * q, m[q]);
+    }
+    let w = vec4<R>(tin[b + 56u], tin[b + 57u], tin[b + 58u], tin[b + 59u]);
+    mid_out(40u * i + 32u, wave_mid_hermite(m[0], m[1], m[2], m[3], w));
 }
 
 // tin: z, vz, az, horizon, margin, tops[1..5], n_bands per case; tout: the band.
@@ -644,6 +674,64 @@ fn check_hermite<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
     w.report(p);
 }
 
+/// The element cache (`wave_cache_midpoint`, `wave_mid_hermite`) against
+/// `sea::cache::wave_cache_midpoint` and `wave_cache_hermite` over its eight scalars:
+/// the surfaces are copied exactly, the means and the interpolation within the
+/// rounding of their terms.
+fn check_midpoint<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 1000;
+    let mut x = Vec::new();
+    for i in 0..n {
+        for _ in 0..56 {
+            x.push(rng.gen_range(-5.0..5.0));
+        }
+        let s = match i % 10 {
+            0 => 0.0,
+            1 => 1.0,
+            _ => rng.gen_range(0.0..1.0),
+        };
+        x.extend(hermite_weights(s, rng.gen_range(0.01..3.0)));
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_midpoint", &[], &xr, n, 40 * n);
+    let mut w = Worst::new::<R>("wave_cache_midpoint, wave_mid_hermite");
+    for i in 0..n {
+        let b = &x[60 * i..60 * i + 60];
+        let o = &out[40 * i..40 * i + 40];
+        let mids: Vec<[f64; 8]> = (0..4)
+            .map(|q| wave_cache_midpoint(&b[14 * q..14 * q + 7], &b[14 * q + 7..14 * q + 14]))
+            .collect();
+        for (q, m) in mids.iter().enumerate() {
+            let (na, nb) = (&b[14 * q..14 * q + 7], &b[14 * q + 7..14 * q + 14]);
+            assert_eq!(o[8 * q].f64(), na[0], "{p:?} case {i}: eta_a");
+            assert_eq!(o[8 * q + 1].f64(), nb[0], "{p:?} case {i}: eta_b");
+            for d in 2..8 {
+                let scale = 0.5 * (na[d - 1].abs() + nb[d - 1].abs());
+                w.check("mean", i, o[8 * q + d].f64(), m[d], scale);
+            }
+        }
+        let wt = [b[56], b[57], b[58], b[59]];
+        let mut h = [0.0; 8];
+        wave_cache_hermite(&mids[0], &mids[1], &mids[2], &mids[3], wt, &mut h);
+        for d in 0..8 {
+            // The means' own rounding, carried by each weight, plus the sum's.
+            let scale: f64 = (0..4).map(|q| 2.0 * (wt[q] * mids[q][d]).abs()).sum::<f64>()
+                + (0..4)
+                    .map(|q| (wt[q] * 0.5 * (b[14 * q + d].abs() + b[14 * q + 7 + d].abs())).abs())
+                    .sum::<f64>();
+            w.check("interpolated", i, o[32 + d].f64(), h[d], scale);
+        }
+        if i % 10 < 2 {
+            // Exactly the side at an end (the values at t0 or at t1).
+            let q = 2 * (i % 10);
+            for d in 0..8 {
+                assert_eq!(o[32 + d].f64(), o[8 * q + d].f64(), "{p:?} case {i}");
+            }
+        }
+    }
+    w.report(p);
+}
+
 /// The band decision (`sea::bands::wave_band`): random nodes against random
 /// decreasing tops for one to five bands, and nodes whose bound lands exactly on a
 /// top (all terms whole numbers: exact in f32 too), where the node stays in the
@@ -712,6 +800,7 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_kinematics_rates::<R>(ctx, p, &mut rng);
     check_decay_prefix::<R>(ctx, p, &mut rng);
     check_hermite::<R>(ctx, p, &mut rng);
+    check_midpoint::<R>(ctx, p, &mut rng);
     check_band::<R>(ctx, p, &mut rng);
 }
 

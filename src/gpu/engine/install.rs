@@ -14,7 +14,9 @@ use crate::gpu::kernel::{fused_workgroup, STEPS_PER_SUBMISSION, WORKGROUP};
 use crate::gpu::layout::*;
 use crate::gpu::shaders::{self, Stage};
 use crate::gpu::solver::GpuTimings;
-use crate::gpu::wave_schedule::{fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE};
+use crate::gpu::wave_schedule::{
+    fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_ELEM_STRIDE,
+};
 use crate::model::Layout;
 use crate::options::Precision;
 use crate::options::SolverOptions;
@@ -102,6 +104,7 @@ impl<R: GpuReal> GpuEngine<R> {
         let pipe_node = pipeline(&m_node, "node_update");
         let pipe_eval = pipeline(&m_node, "node_evaluate");
         let pipe_refresh = pipeline(&m_node, "wave_refresh");
+        let pipe_refresh_elems = pipeline(&m_node, "wave_refresh_elems");
         let pipe_fused = fused_workgroup(lay, precision, &ctx.limits, !host.winches.is_empty())
             .map(|wg| {
                 let m = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -129,6 +132,7 @@ impl<R: GpuReal> GpuEngine<R> {
             pipe_node,
             pipe_eval,
             pipe_refresh,
+            pipe_refresh_elems,
             waves: None,
             pipe_fused,
             use_fused,
@@ -347,12 +351,12 @@ impl<R: GpuReal> GpuEngine<R> {
         let samples_b = init("route_samples", &bytes_or_one(&samples), ro);
         // Two slots (t0, t1) of WAVE_CACHE_STRIDE values per node, then each node's
         // velocity at the last refresh, then per node its depth band and how many
-        // times it was found above its band's top (`shaders/shared/waves.wgsl`); one
-        // value in still water.
+        // times it was found above its band's top, then WAVE_ELEM_STRIDE per element:
+        // its midpoint cache (`shaders/shared/waves.wgsl`); one value in still water.
         let cache_len = if n_comps == 0 {
             1
         } else {
-            n_nodes * (2 * WAVE_CACHE_STRIDE + 5)
+            n_nodes * (2 * WAVE_CACHE_STRIDE + 5) + n_elems * WAVE_ELEM_STRIDE
         };
         let cache_b = init(
             "wave_cache",
@@ -536,6 +540,13 @@ impl<R: GpuReal> GpuEngine<R> {
     ) {
         pass.set_pipeline(pipe);
         pass.dispatch_workgroups((n as u32).div_ceil(WORKGROUP).max(1), 1, 1);
+    }
+
+    /// The waves' refresh: the nodes' (`wave_refresh`), then the elements' midpoint
+    /// cache from them (`wave_refresh_elems`); two dispatches.
+    pub(super) fn dispatch_refresh(&self, pass: &mut wgpu::ComputePass<'_>) {
+        self.dispatch(pass, &self.pipe_refresh, self.inst.n_nodes);
+        self.dispatch(pass, &self.pipe_refresh_elems, self.inst.n_elems);
     }
 
     /// Copies `(buffer, bytes)` pairs into the staging buffer, waits, and returns the

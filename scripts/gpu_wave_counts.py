@@ -1,0 +1,128 @@
+#!/usr/bin/env python3
+"""Bytes and flops per node-step of the GPU step in waves against still water, counted
+from the shaders (BENCHMARKS.md, "The GPU step in waves: a per-element cache").
+
+Every read and write of the waves' cache is counted as memory traffic (no device cache
+assumed); the `WaveStep` rows (one per band and step, shared by every invocation) and
+the components buffer the refresh sums over (the same for every node) are not, as in
+the section "The water surface and waves". The still-water figures (316 / 575 B, 454 /
+322 flops) are that section's. A refresh is amortised over the steps between two
+refreshes of each node's (element's) band; the refresh dispatches run at every step of
+the finest band's grid.
+
+    python3 scripts/gpu_wave_counts.py
+"""
+
+STILL_BYTES = {"f32": 316, "f64": 575}
+STILL_FLOPS = {"f32": 454, "f64": 322}
+SCALAR = {"f32": 4, "f64": 8}
+NODE_STATE = {"f32": 48, "f64": 96}  # three vec4: position pair, velocity
+ELEM_PARAMS = {"f32": 32, "f64": 40}
+# Flops of one node's refresh: values and rates of 200 components at about 240 flops
+# each (the section "The water surface and waves"), the decay cut not counted.
+REFRESH_FLOPS = 240 * 200
+
+# Scalars of the cache per element at a step that does not refresh.
+OLD_ELEM = 2 * (1 + 28)  # both nodes' band and their 28 (values, rates, two times)
+NEW_ELEM = 1 + 32  # the element's band mark and its 32
+MIXED_ELEM = 1 + OLD_ELEM  # an element across a band top: the mark, then as before
+# Flops per element at a step that does not refresh.
+OLD_ELEM_FLOPS = 117  # two Hermite interpolations of 7, the means, the surface
+NEW_ELEM_FLOPS = 8 * 7 + 3 + 2  # one Hermite interpolation of 8, u +=, the surface
+MIXED_ELEM_FLOPS = OLD_ELEM_FLOPS
+
+# wave_refresh_node, per node and refresh dispatch: always its state, its block index
+# (4 B) and its band; when its band refreshes also its last velocity (3) and the 14
+# t1 scalars it copies (reads), the copy, the new 14, the velocity and the band
+# (writes).
+NODE_ALWAYS = 1
+NODE_DUE = 3 + 14 + 14 + 14 + 3 + 1
+# wave_elem_form (this branch), per element and refresh dispatch: always its
+# parameters and its nodes' bands; when one of its nodes' bands refreshes, the nodes'
+# 2 x 28 (reads) and its 33 (writes); an element across a band top writes its mark.
+ELEM_ALWAYS = 2
+ELEM_DUE = 56 + 33
+MIXED_DUE = 1
+ELEM_FORM_FLOPS = 4 * 6 * 2
+
+
+def per_node_step(p, case, new):
+    """(bytes, flops) per node-step of `case` at precision `p`, this branch's
+    element cache (`new`) or main's."""
+    s = SCALAR[p]
+    n_nodes = sum(case["nodes"].values())
+    n_elems = sum(case["elems"].values()) + sum(case["mixed"].values())
+    per_node = n_elems / n_nodes
+    every = case["interval"][0]  # the refresh dispatches' grid
+    frac_mixed = sum(case["mixed"].values()) / n_elems
+    # The step that does not refresh.
+    if new:
+        elem = (1 - frac_mixed) * NEW_ELEM + frac_mixed * MIXED_ELEM
+        elem_fl = (1 - frac_mixed) * NEW_ELEM_FLOPS + frac_mixed * MIXED_ELEM_FLOPS
+    else:
+        elem, elem_fl = OLD_ELEM, OLD_ELEM_FLOPS
+    b = STILL_BYTES[p] + per_node * elem * s
+    fl = STILL_FLOPS[p] + per_node * elem_fl
+    # The refresh, amortised: the nodes'.
+    b += (NODE_STATE[p] + 4 + NODE_ALWAYS * s) / every
+    for band, n in case["nodes"].items():
+        share = n / n_nodes / case["interval"][band]
+        b += share * NODE_DUE * s
+        fl += share * REFRESH_FLOPS
+    if new:
+        b += per_node * (ELEM_PARAMS[p] + ELEM_ALWAYS * s) / every
+        for band, n in case["elems"].items():
+            share = n / n_nodes / case["interval"][band]
+            b += share * ELEM_DUE * s
+            fl += share * ELEM_FORM_FLOPS
+        for band, n in case["mixed"].items():
+            b += n / n_nodes / case["interval"][band] * MIXED_DUE * s
+    return b, fl
+
+
+CASES = {
+    # benches/gpu_vs_cpu.rs --waves: 100 lines of 51 nodes, one band (SeaSet::single),
+    # refresh every 0.126 s, on the grid 1024 steps of 0.1 ms.
+    "bench line, 0.1 ms": {
+        "interval": {0: 1024},
+        "nodes": {0: 51},
+        "elems": {0: 50},
+        "mixed": {},
+    },
+    # examples/study_design_check.toml, 6.667 ms: bands every 24, 48, 96, 192 steps
+    # (the run's log); nodes and elements per band estimated from the CPU run's
+    # positions at 20 s (z + the 2 m margin against the tops -15.8, -18.8, -99.3 m);
+    # an element across a top refreshes with its finer node.
+    "design member, 6.7 ms": {
+        "interval": {0: 24, 1: 48, 2: 96, 3: 192},
+        "nodes": {0: 6, 1: 2, 2: 40, 3: 280},
+        "elems": {2: 32, 3: 272},
+        "mixed": {0: 6, 1: 2, 2: 8},
+    },
+    # The same member with every node in band 0 (one band, as main before `hband`, or
+    # a sea whose bands all refresh every 24 steps): the worst case for the refresh.
+    "design member, one band": {
+        "interval": {0: 24},
+        "nodes": {0: 328},
+        "elems": {0: 320},
+        "mixed": {},
+    },
+}
+
+
+def main():
+    print("| case | precision | still B | main B (ratio) | this branch B (ratio) "
+          "| still flops | main flops (ratio) | this branch flops (ratio) |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for name, case in CASES.items():
+        for p in ("f32", "f64"):
+            ob, of = per_node_step(p, case, False)
+            nb, nf = per_node_step(p, case, True)
+            sb, sf = STILL_BYTES[p], STILL_FLOPS[p]
+            print(f"| {name} | {p} | {sb} | {ob:.0f} ({ob / sb:.2f}x) | "
+                  f"{nb:.0f} ({nb / sb:.2f}x) | {sf} | {of:.0f} ({of / sf:.2f}x) | "
+                  f"{nf:.0f} ({nf / sf:.2f}x) |")
+
+
+if __name__ == "__main__":
+    main()
