@@ -65,7 +65,10 @@ impl ComponentColumns {
 /// Per-component working columns of [`wave_kinematics_columns`] and
 /// [`wave_kinematics_rates_columns`] (sines, cosines, the phase rates and the terms of
 /// the sums), kept between calls so that a loop over nodes allocates them once.
-#[derive(Clone, Debug, Default)]
+/// Cloning gives an empty one (the columns are overwritten before being read, so
+/// their contents are never state: a copy of the solver for a checkpoint, at each
+/// output time, need not copy 17 columns per cache).
+#[derive(Debug, Default)]
 pub struct KinematicsScratch {
     sin: Vec<f64>,
     cos: Vec<f64>,
@@ -75,6 +78,12 @@ pub struct KinematicsScratch {
     ch: Vec<f64>,
     sh: Vec<f64>,
     terms: [Vec<f64>; 12],
+}
+
+impl Clone for KinematicsScratch {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
 }
 
 impl KinematicsScratch {
