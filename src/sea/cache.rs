@@ -375,9 +375,12 @@ impl WaveCache {
                 &mut self.v1,
                 &mut self.d1,
             );
-        } else if self.due.iter().filter(|t| !t.is_nan()).count() < 32 {
-            // Few nodes due (a band's rung between decisions): one after another with
-            // the cache's own scratch, no parallel split (each split allocates one).
+        } else if rayon::current_num_threads() == 1
+            || self.due.iter().filter(|t| !t.is_nan()).count() < 32
+        {
+            // Few nodes due (a band's rung between decisions), or one thread: one
+            // after another with the cache's own scratch, no parallel split (each
+            // split allocates and zeroes a scratch of its own).
             let s = &mut self.scratch;
             for (i, &t1) in self.due.iter().enumerate() {
                 if t1.is_nan() {
