@@ -34,6 +34,7 @@ pub mod error;
 pub mod gpu;
 pub mod initial;
 pub mod input;
+pub mod lanes;
 pub mod math;
 pub mod model;
 pub mod moordyn;

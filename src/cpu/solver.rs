@@ -70,7 +70,7 @@ pub struct CpuSolver {
     /// The seas and each cable's (`None`: still water everywhere).
     seas: Option<SeaSet>,
     /// Per sea: its field, for exact evaluation at output times.
-    wave_fields: Vec<WaveField>,
+    wave_fields: Vec<std::sync::Arc<WaveField>>,
     /// Per block: its wave kinematics cache (empty in still water).
     wave_blocks: Vec<BlockWaves>,
     /// Evaluate the waves' component sum at every stage instead of interpolating the
@@ -193,7 +193,7 @@ impl CpuSolver {
             self.wave_fields = Vec::new();
         } else {
             self.seas = Some(seas.clone());
-            self.wave_fields = seas.seas.iter().map(WaveField::new).collect();
+            self.wave_fields = seas.seas.iter().map(|s| WaveField::new(s).into()).collect();
         }
         self.install_waves();
     }

@@ -39,7 +39,12 @@ pub(crate) struct BlockWaves {
 
 /// A chain block's cache as columns, in the order of [`wave_cache_hermite`]'s
 /// arguments: values at `t0`, rates at `t0`, values at `t1`, rates at `t1`.
-#[derive(Clone, Debug, Default)]
+///
+/// Derived from the cache alone, so a clone is an empty one (formed again, whole, at
+/// its first use: the same values as the entries formed a refresh at a time, which
+/// are the same function of the same cache entries): the CPU solver is copied whole
+/// for a checkpoint at each output time, and these columns were most of the copy.
+#[derive(Debug, Default)]
 struct ChainColumns {
     /// The cache's refresh count ([`WaveCache::generation`]) these columns were
     /// formed for.
@@ -172,6 +177,12 @@ impl BlockWaves {
             let ac = [&m[0][aq][..], &m[1][aq], &m[2][aq], &m[3][aq]];
             wave_cache_hermite_cols(&mut aw[q][..ne], ac, w, false);
         }
+    }
+}
+
+impl Clone for ChainColumns {
+    fn clone(&self) -> Self {
+        Self::default()
     }
 }
 

@@ -40,6 +40,7 @@ use super::kinematics::{Kinematics, KinematicsScratch, WaveField};
 use super::schedule::{RefreshClock, Tick};
 use super::{SeaState, WaveComponent};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// Values per node in the cache: `eta, u (3), a (3)`.
 pub const CACHE_STRIDE: usize = 7;
@@ -189,8 +190,10 @@ pub fn evaluate_nodes_rates(
 /// [`RefreshClock`] (`sea::schedule`), which the GPU path's schedules share.
 #[derive(Clone, Debug)]
 pub struct WaveCache {
-    /// The sea, packed for evaluation.
-    pub field: WaveField,
+    /// The sea, packed for evaluation; shared, not copied, by a clone of the cache
+    /// (it does not change during a run, and the CPU solver is copied whole for a
+    /// checkpoint at each output time).
+    pub field: Arc<WaveField>,
     /// Per band: the band's times `t0, t1` and refresh interval (nested rungs of one
     /// grid: band `m` every `2^m` refreshes of band 0).
     pub clocks: Vec<RefreshClock>,
@@ -243,7 +246,7 @@ impl WaveCache {
     pub fn with_clock(sea: &SeaState, n_nodes: usize, clock: RefreshClock) -> Self {
         let zeros = || vec![0.0; n_nodes * CACHE_STRIDE];
         Self {
-            field: WaveField::new(sea),
+            field: Arc::new(WaveField::new(sea)),
             horizon: clock.interval,
             clocks: vec![clock],
             tops: vec![f64::INFINITY],
@@ -388,9 +391,12 @@ impl WaveCache {
                 &mut self.v1,
                 &mut self.d1,
             );
-        } else if self.due.iter().filter(|t| !t.is_nan()).count() < 32 {
-            // Few nodes due (a band's rung between decisions): one after another with
-            // the cache's own scratch, no parallel split (each split allocates one).
+        } else if rayon::current_num_threads() == 1
+            || self.due.iter().filter(|t| !t.is_nan()).count() < 32
+        {
+            // Few nodes due (a band's rung between decisions), or one thread: one
+            // after another with the cache's own scratch, no parallel split (each
+            // split allocates and zeroes a scratch of its own).
             let s = &mut self.scratch;
             for (i, &t1) in self.due.iter().enumerate() {
                 if t1.is_nan() {

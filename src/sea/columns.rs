@@ -1,6 +1,6 @@
 //! The CPU's arrangement of the component sums of [`super::kinematics`]: the packed
 //! components as columns, and the sums over them in two passes that vectorise (four
-//! components at a time with AVX2 and FMA), for the values alone
+//! components at a time with AVX2 and FMA, eight with AVX-512), for the values alone
 //! ([`wave_kinematics_columns`], the arrangement of `wave_kinematics_tau`) and for the
 //! values with their rates along a moving path ([`wave_kinematics_rates_columns`], of
 //! `wave_kinematics_rates_tau`). The results agree with the one-component-at-a-time
@@ -65,7 +65,10 @@ impl ComponentColumns {
 /// Per-component working columns of [`wave_kinematics_columns`] and
 /// [`wave_kinematics_rates_columns`] (sines, cosines, the phase rates and the terms of
 /// the sums), kept between calls so that a loop over nodes allocates them once.
-#[derive(Clone, Debug, Default)]
+/// Cloning gives an empty one (the columns are overwritten before being read, so
+/// their contents are never state: a copy of the solver for a checkpoint, at each
+/// output time, need not copy 17 columns per cache).
+#[derive(Debug, Default)]
 pub struct KinematicsScratch {
     sin: Vec<f64>,
     cos: Vec<f64>,
@@ -75,6 +78,12 @@ pub struct KinematicsScratch {
     ch: Vec<f64>,
     sh: Vec<f64>,
     terms: [Vec<f64>; 12],
+}
+
+impl Clone for KinematicsScratch {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
 }
 
 impl KinematicsScratch {
@@ -107,7 +116,8 @@ struct Point {
 }
 
 /// `wave_kinematics_tau` over components in columns, with working columns `scratch`;
-/// on x86-64 with AVX2 the component loops run four components at a time.
+/// on x86-64 the component loops run eight components at a time with AVX-512, four
+/// with AVX2 ([`crate::lanes`]).
 ///
 /// The terms are those of the one-at-a-time formulas (the WGSL twin's), with the loops
 /// split so that each vectorises: two passes, every phase's sine and cosine and the
@@ -165,9 +175,27 @@ pub fn wave_kinematics_rates_columns(
     dispatch::<true>(cols, depth, stretching, at, scratch)
 }
 
-/// The AVX2 + FMA body where the CPU has them, the plain one otherwise.
+/// The AVX-512 body (8 components a vector) where the CPU has it and
+/// [`crate::lanes::avx512_wanted`] says so, the AVX2 + FMA body (4) where it has
+/// those, the plain one otherwise. The two vector bodies give the same bits: the
+/// polynomials are the same fused multiply-adds per component, and the sums keep
+/// four partial sums at both widths ([`sum_lanes`]).
 #[inline(always)]
 fn dispatch<const RATES: bool>(
+    cols: &ComponentColumns,
+    depth: f64,
+    stretching: Stretching,
+    at: Point,
+    scratch: &mut KinematicsScratch,
+) -> (Kinematics, Kinematics) {
+    dispatch_at::<RATES>(crate::lanes::avx512_wanted(), cols, depth, stretching, at, scratch)
+}
+
+/// [`dispatch`] with the choice of AVX-512 given (`wide`; taken only where the CPU has
+/// it), for the test that both widths agree.
+#[inline(always)]
+fn dispatch_at<const RATES: bool>(
+    wide: bool,
     cols: &ComponentColumns,
     depth: f64,
     stretching: Stretching,
@@ -177,12 +205,18 @@ fn dispatch<const RATES: bool>(
     scratch.fit(cols.len());
     #[cfg(target_arch = "x86_64")]
     {
+        if wide && crate::lanes::avx512_present() && std::arch::is_x86_feature_detected!("fma")
+        {
+            // SAFETY: the CPU has AVX-512 (F, DQ, VL) and FMA, checked just above.
+            return unsafe { columns_avx512::<RATES>(cols, depth, stretching, at, scratch) };
+        }
         if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
         {
             // SAFETY: the CPU has AVX2 and FMA, checked just above.
             return unsafe { columns_avx2::<RATES>(cols, depth, stretching, at, scratch) };
         }
     }
+    let _ = wide;
     columns_body::<false, RATES>(cols, depth, stretching, at, scratch)
 }
 
@@ -218,6 +252,20 @@ fn sum<const FMA: bool>(v: &[f64]) -> f64 {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn columns_avx2<const RATES: bool>(
+    cols: &ComponentColumns,
+    depth: f64,
+    stretching: Stretching,
+    at: Point,
+    scratch: &mut KinematicsScratch,
+) -> (Kinematics, Kinematics) {
+    columns_body::<true, RATES>(cols, depth, stretching, at, scratch)
+}
+
+/// The same, with 512-bit vectors: the compiler vectorises the component loops 8 at
+/// a time.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,avx512f,avx512dq,avx512vl")]
+unsafe fn columns_avx512<const RATES: bool>(
     cols: &ComponentColumns,
     depth: f64,
     stretching: Stretching,
@@ -445,6 +493,41 @@ mod tests {
                 }
             })
             .collect()
+    }
+
+    /// The AVX-512 body (8 components a vector) gives the same bits as the AVX2 body
+    /// (4), values alone and with rates, at points where the decay cut drops different
+    /// numbers of components (so that the prefix ends at every lane); skipped, with a
+    /// note, on a CPU without AVX-512.
+    #[test]
+    fn avx512_and_avx2_give_the_same_bits() {
+        if !crate::lanes::avx512_present() {
+            eprintln!("no AVX-512 here: only the AVX2 body runs");
+            return;
+        }
+        let mut comps = packed(203, 320.0, 7);
+        comps.sort_by(|a, b| a.k.total_cmp(&b.k));
+        crate::sea::cut::decay_cut_bounds(&mut comps, 1e-3);
+        let cols = ComponentColumns::new(&comps);
+        let (mut s4, mut s8) = (KinematicsScratch::default(), KinematicsScratch::default());
+        for i in 0..40 {
+            let z = -0.5 - 8.0 * i as f64;
+            for stretching in [Stretching::Wheeler, Stretching::Constant] {
+                let at = Point {
+                    r: 0.9,
+                    r_rate: 0.01,
+                    p: [3.0 * i as f64, -2.0, z],
+                    v: [0.4, -0.3, 0.2],
+                    tau: 17.0 + 0.3 * i as f64,
+                };
+                let narrow = dispatch_at::<true>(false, &cols, 320.0, stretching, at, &mut s4);
+                let wide = dispatch_at::<true>(true, &cols, 320.0, stretching, at, &mut s8);
+                assert_eq!(narrow, wide, "rates at z = {z}");
+                let narrow = dispatch_at::<false>(false, &cols, 320.0, stretching, at, &mut s4);
+                let wide = dispatch_at::<false>(true, &cols, 320.0, stretching, at, &mut s8);
+                assert_eq!(narrow, wide, "values at z = {z}");
+            }
+        }
     }
 
     /// The vectorised values and rates agree with the one-at-a-time reference to

@@ -583,3 +583,39 @@ fn depth_bands_chain_kernel_matches_the_general_path() {
         );
     }
 }
+
+/// A checkpoint in waves (the state and the blocks' kinematics caches; their chain
+/// columns are formed again after a restore, whole, where the run formed them a
+/// refresh at a time) replays the run to the same bits: the deep catenary in bands,
+/// checkpointed between two band decisions, stepped on over the next decision, put
+/// back and stepped again.
+#[test]
+fn a_checkpoint_in_waves_replays_to_the_same_bits() {
+    let (lay, pos) = deep_catenary();
+    let sea = jonswap_in(300.0);
+    let mut set = SeaSet::single(&sea);
+    set.reach = sea_reach(&lay, &pos, &set, 20.0);
+    set.banded = true;
+    let dt = 0.5 * stable_step(&lay, Scheme::Symplectic, Default::default()).dt;
+    let opts = SolverOptions {
+        dt,
+        ..SolverOptions::default()
+    };
+    let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+    s.set_seas(&set, false);
+    // 3.3 s in: refreshes of single bands have happened since the last decision.
+    s.advance((3.3 / dt) as u64).unwrap();
+    let cp = s.checkpoint().expect("the CPU path checkpoints");
+    let on = (2.5 / dt) as u64;
+    s.advance(on).unwrap();
+    let (r1, v1) = (s.r.clone(), s.v.clone());
+    s.restore(&cp);
+    s.advance(on).unwrap();
+    let moved = r1
+        .iter()
+        .zip(&pos)
+        .map(|(a, b)| (a.to_f64()[2] - b[2]).abs())
+        .fold(0.0f64, f64::max);
+    assert!(moved > 0.05, "the waves moved the line {moved} m");
+    assert!(s.r == r1 && s.v == v1, "the replay differs");
+}

@@ -187,11 +187,7 @@ pub(crate) fn advance_chain(
 ) -> Result<(), StepFailure> {
     #[cfg(target_arch = "x86_64")]
     {
-        if lanes_wanted() == 8
-            && std::arch::is_x86_feature_detected!("avx512f")
-            && std::arch::is_x86_feature_detected!("avx512dq")
-            && std::arch::is_x86_feature_detected!("avx512vl")
-        {
+        if crate::lanes::avx512_wanted() {
             // SAFETY: the CPU has AVX-512 (F, DQ, VL), checked just above.
             return unsafe {
                 advance_chain_avx512(
@@ -211,24 +207,6 @@ pub(crate) fn advance_chain(
     advance_chain_body::<4>(
         c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
     )
-}
-
-/// The lanes the chain loops should use where the CPU has them: 8 (AVX-512), or 4
-/// when the environment variable `CABLESIM_CHAIN_LANES` is `4` (to compare the two;
-/// the results are the same bits).
-fn lanes_wanted() -> usize {
-    static WANTED: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
-    *WANTED.get_or_init(|| match std::env::var("CABLESIM_CHAIN_LANES").as_deref() {
-        Ok("4") => 4,
-        Ok("8") | Err(_) => 8,
-        Ok(other) => {
-            log::warn!(
-                "CABLESIM_CHAIN_LANES = {other:?} is neither 4 nor 8: the chain path uses 8 \
-                 lanes where the CPU has AVX-512, else 4"
-            );
-            8
-        }
-    })
 }
 
 #[cfg(target_arch = "x86_64")]

@@ -1,14 +1,16 @@
 //! Checkpoints of a [`CpuSolver`]: its state at one step, to go back to.
 
 use super::CpuSolver;
+use crate::cpu::water::BlockWaves;
 use crate::math::V3;
 
 type V = V3<f64>;
 
 /// The state of a [`CpuSolver`] at one step: positions and velocities where that is all
 /// it carries from step to step (a fixed mesh in still water: element loads and scratch
-/// are recomputed each step); the whole solver where more is (winch cables, whose mesh
-/// and payout change, and the waves' kinematics cache).
+/// are recomputed each step); with them the blocks' kinematics caches in waves (a
+/// fixed mesh too: what else the solver holds does not change from step to step); the
+/// whole solver where the mesh changes (winch cables: mesh and payout).
 #[derive(Clone)]
 pub struct CpuCheckpoint {
     /// Steps taken.
@@ -24,6 +26,15 @@ enum Saved {
         r: Vec<V>,
         v: Vec<V>,
     },
+    /// A fixed mesh in waves: the state and the blocks' caches (a checkpoint is taken
+    /// at each output time, and a copy of the whole solver cost more than the caches).
+    Waves {
+        t: f64,
+        node_steps: u64,
+        r: Vec<V>,
+        v: Vec<V>,
+        wave_blocks: Vec<BlockWaves>,
+    },
     Whole(Box<CpuSolver>),
 }
 
@@ -38,8 +49,16 @@ impl std::fmt::Debug for CpuCheckpoint {
 impl CpuSolver {
     /// The state now, to go back to with [`CpuSolver::restore`].
     pub fn checkpoint(&self) -> Option<CpuCheckpoint> {
-        let saved = if self.ale.is_some() || !self.wave_blocks.is_empty() {
+        let saved = if self.ale.is_some() {
             Saved::Whole(Box::new(self.clone()))
+        } else if !self.wave_blocks.is_empty() {
+            Saved::Waves {
+                t: self.t,
+                node_steps: self.node_steps,
+                r: self.r.clone(),
+                v: self.v.clone(),
+                wave_blocks: self.wave_blocks.clone(),
+            }
         } else {
             Saved::State {
                 t: self.t,
@@ -68,6 +87,20 @@ impl CpuSolver {
                 self.node_steps = *node_steps;
                 self.r.clone_from(r);
                 self.v.clone_from(v);
+            }
+            Saved::Waves {
+                t,
+                node_steps,
+                r,
+                v,
+                wave_blocks,
+            } => {
+                self.steps = cp.steps;
+                self.t = *t;
+                self.node_steps = *node_steps;
+                self.r.clone_from(r);
+                self.v.clone_from(v);
+                self.wave_blocks.clone_from(wave_blocks);
             }
             Saved::Whole(w) => *self = (**w).clone(),
         }
