@@ -352,7 +352,12 @@ impl Scenario {
             ancf: simulation::ancf_settings(p, &raw.ancf)?,
             sea,
             member_seas: None,
-            depth_bands: raw.environment.waves.as_ref().and_then(|w| w.depth_bands).unwrap_or(true),
+            depth_bands: raw
+                .environment
+                .waves
+                .as_ref()
+                .and_then(|w| w.depth_bands)
+                .unwrap_or(true),
             points: points.named,
             vtk: raw.output.vtk.unwrap_or(false),
             limits,

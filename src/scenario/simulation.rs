@@ -1,7 +1,7 @@
 //! The `[simulation]` and `[ancf]` tables: the time step, scheme, formulation and
 //! the solver settings, validated.
 
-use super::raw::{RawAncf, RawSimulation, RawDt};
+use super::raw::{RawAncf, RawDt, RawSimulation};
 use super::{err, non_negative, positive, DtSpec, SimulationConfig};
 use crate::error::Error;
 use crate::options::{AncfSettings, Baumgarte};

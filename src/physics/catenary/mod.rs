@@ -277,7 +277,6 @@ impl Catenary {
     }
 }
 
-
 /// Wet weight per unit length of a round line of diameter `d` and mass per length
 /// `mbar` in water of density `rho` under gravity `g`, N/m (a convenience for tests and
 /// callers without a `LineType` at hand).

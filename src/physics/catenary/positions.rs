@@ -87,4 +87,3 @@ pub fn catenary_positions(
     out[n] = end_b;
     out
 }
-

@@ -206,4 +206,3 @@ pub(super) fn solve_scaled(big_x: f64, big_z: f64, e: f64, seabed: bool) -> Resu
         norm(r)
     ))
 }
-
