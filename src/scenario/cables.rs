@@ -90,8 +90,8 @@ pub(super) fn parse(
             }
             None => 0,
         };
-        let start = ends::parse_end(p, &f("start"), &c.start, &[], &point_index, &bodies)?;
-        let end = ends::parse_end(p, &f("end"), &c.end, &[], &point_index, &bodies)?;
+        let start = ends::parse_end(p, &f("start"), &c.start, &[], point_index, bodies)?;
+        let end = ends::parse_end(p, &f("end"), &c.end, &[], point_index, bodies)?;
         if let Some(w) = &c.winch {
             winches.push(winch::parse(
                 p,
@@ -172,7 +172,7 @@ pub(super) fn parse(
             });
         }
         nodes.push(ids[1]);
-        let output_positions = c.output_positions.unwrap_or(match &positions_sel {
+        let output_positions = c.output_positions.unwrap_or(match positions_sel {
             Selection::All => true,
             Selection::None => false,
             Selection::Auto => !many,

@@ -44,7 +44,7 @@ pub(super) fn parse(
             }
         };
         let field = format!("points[{i}] (\"{name}\")");
-        let spec = ends::parse_end(p, &field, t, &["name"], &HashMap::new(), &bodies)?;
+        let spec = ends::parse_end(p, &field, t, &["name"], &HashMap::new(), bodies)?;
         let free = matches!(spec.kind, EndKind::Free(_));
         let (position, route, point) = match spec.kind {
             EndKind::Point(_) => {
