@@ -10,10 +10,11 @@
 //! volume-equivalent diameter is `dvol_dnom d_n` or, from the material's density,
 //! `sqrt(4 mass / (pi density))`.
 
-use super::err;
+use super::{err, non_negative, positive};
 use crate::error::Error;
 use crate::model::LineType;
 use serde::Deserialize;
+use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -286,6 +287,38 @@ impl RawLineType {
             allow_compression: self.allow_compression,
         })
     }
+}
+
+/// The `[[line_types]]`, resolved and validated, and the index of each by name.
+pub(super) fn line_types(
+    p: &Path,
+    raw: &[RawLineType],
+) -> Result<(Vec<LineType>, HashMap<String, usize>), Error> {
+    let mut lt_index = HashMap::new();
+    let line_types = raw
+        .iter()
+        .enumerate()
+        .map(|(i, lt)| lt.resolve(p, i))
+        .collect::<Result<Vec<_>, _>>()?;
+    for (i, lt) in line_types.iter().enumerate() {
+        let f = |k: &str| format!("line_types[{i}] (\"{}\").{k}", lt.name);
+        positive(p, &f("diameter"), lt.diameter)?;
+        positive(p, &f("mass_per_length"), lt.mass_per_length)?;
+        positive(p, &f("ea"), lt.ea)?;
+        non_negative(p, &f("damping"), lt.damping)?;
+        non_negative(p, &f("cn"), lt.cn)?;
+        non_negative(p, &f("ct"), lt.ct)?;
+        non_negative(p, &f("cm"), lt.cm)?;
+        non_negative(p, &f("ei"), lt.ei)?;
+        if lt_index.insert(lt.name.clone(), i).is_some() {
+            return Err(err(
+                p,
+                format!("line_types[{i}].name"),
+                format!("duplicate line type name \"{}\"", lt.name),
+            ));
+        }
+    }
+    Ok((line_types, lt_index))
 }
 
 #[cfg(test)]

@@ -13,6 +13,7 @@ mod ancf;
 mod bodies;
 mod body_knots;
 mod case1;
+mod catenary;
 mod chain_kernel;
 mod dynamics;
 mod frames;

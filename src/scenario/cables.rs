@@ -1,0 +1,196 @@
+//! `[[cables]]` (and the cables `[[cable_arrays]]` expand to): line type, length,
+//! segments, initial shape, current, ends and winch of each, as nodes and cables of
+//! the model.
+
+use super::ends::{self, EndKind};
+use super::environment::current;
+use super::output::Selection;
+use super::raw::RawCable;
+use super::{bodies, err, positive, validate, winch, InitialShape};
+use crate::ale::Winch;
+use crate::error::Error;
+use crate::model::{CableDef, ModelDef, NodeDef, PointMass};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// What the cables add besides the model's nodes and cables.
+pub(super) struct Cables {
+    /// Initial shape of each cable, in order.
+    pub initial: Vec<InitialShape>,
+    /// The winches, at most one per cable.
+    pub winches: Vec<Winch>,
+    /// Index of each cable by name.
+    pub names: HashMap<String, usize>,
+}
+
+/// Adds each cable of `cables` (its field prefix in messages and its table) to `model`:
+/// its end nodes (or the points it names) and `segments - 1` nodes between them.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn parse(
+    p: &Path,
+    cables: &[(String, RawCable)],
+    lt_index: &HashMap<String, usize>,
+    point_index: &HashMap<String, usize>,
+    bodies: &bodies::Bodies,
+    (depth, max_speed): (f64, f64),
+    positions_sel: &Selection,
+    model: &mut ModelDef,
+) -> Result<Cables, Error> {
+    let mut initial = Vec::with_capacity(cables.len());
+    let mut winches = Vec::new();
+    let mut names = HashMap::new();
+    let many = cables.len() > 20;
+    for (i, (prefix, c)) in cables.iter().enumerate() {
+        let f = |k: &str| format!("{prefix}.{k}");
+        if names.insert(c.name.clone(), i).is_some() {
+            return Err(err(
+                p,
+                f("name"),
+                format!("duplicate cable name \"{}\"", c.name),
+            ));
+        }
+        let &lt = lt_index.get(&c.line_type).ok_or_else(|| {
+            let mut known: Vec<_> = lt_index.keys().cloned().collect();
+            known.sort();
+            err(
+                p,
+                f("line_type"),
+                format!(
+                    "unknown line type \"{}\" (defined: {})",
+                    c.line_type,
+                    known.join(", ")
+                ),
+            )
+        })?;
+        let length = positive(p, &f("length"), c.length)?;
+        validate::magnitude(p, &f("length"), length, "m")?;
+        if c.segments < 1 || c.segments > 1_000_000 {
+            return Err(err(
+                p,
+                f("segments"),
+                format!("must be an integer from 1 to 1000000, got {}", c.segments),
+            ));
+        }
+        let n = c.segments as usize;
+        let shape = match c.initial.as_deref() {
+            None | Some("straight") => InitialShape::Straight,
+            Some("catenary") => InitialShape::Catenary,
+            Some(x) => {
+                return Err(err(
+                    p,
+                    f("initial"),
+                    format!("must be \"catenary\" or \"straight\", got \"{x}\""),
+                ))
+            }
+        };
+        let cur = match current(p, &format!("{prefix}."), c.current, &c.current_profile)? {
+            Some(cu) => {
+                model.currents.push(cu);
+                model.currents.len() - 1
+            }
+            None => 0,
+        };
+        let start = ends::parse_end(p, &f("start"), &c.start, &[], point_index, bodies)?;
+        let end = ends::parse_end(p, &f("end"), &c.end, &[], point_index, bodies)?;
+        if let Some(w) = &c.winch {
+            winches.push(winch::parse(
+                p,
+                &format!("cables[{i}] (\"{}\")", c.name),
+                w,
+                i,
+                length,
+                n,
+                [&start.kind, &end.kind],
+            )?);
+        }
+        let mut ids = [0usize; 2];
+        let mut pos = [[0.0; 3]; 2];
+        for (k, spec) in [start, end].into_iter().enumerate() {
+            if !matches!(spec.kind, EndKind::Point(_)) {
+                let which = if k == 0 { "start" } else { "end" };
+                let x = match (&spec.kind, &spec.route) {
+                    (EndKind::Fixed(x) | EndKind::Free(x), _) => *x,
+                    (_, Some(r)) => r.eval(0.0).r,
+                    _ => [0.0; 3],
+                };
+                validate::position(p, &f(which), x)?;
+                validate::height(p, &f(which), x[2], depth)?;
+                if let Some(r) = &spec.route {
+                    validate::route_speed(p, &f(which), r, max_speed)?;
+                }
+            }
+            match spec.kind {
+                EndKind::Point(idx) => {
+                    ids[k] = idx;
+                    pos[k] = model.nodes[idx].position;
+                }
+                EndKind::Fixed(x) | EndKind::Free(x) => {
+                    ids[k] = model.nodes.len();
+                    pos[k] = x;
+                    model.nodes.push(NodeDef {
+                        position: x,
+                        point: spec.mass,
+                        route: spec.route,
+                        label: None,
+                    });
+                }
+                EndKind::Route => {
+                    let r = spec.route.expect("route ends carry a route");
+                    pos[k] = r.eval(0.0).r;
+                    ids[k] = model.nodes.len();
+                    model.nodes.push(NodeDef {
+                        position: pos[k],
+                        point: spec.mass,
+                        route: Some(r),
+                        label: None,
+                    });
+                }
+            }
+        }
+        if ids[0] == ids[1] {
+            return Err(err(
+                p,
+                f("end"),
+                "a cable cannot start and end at the same point",
+            ));
+        }
+        if shape == InitialShape::Straight {
+            let ea = model.line_types[lt].ea;
+            validate::straight_strain(p, &prefix.to_string(), length, ea, pos[0], pos[1]);
+        }
+        let mut nodes = Vec::with_capacity(n + 1);
+        nodes.push(ids[0]);
+        for k in 1..n {
+            let s = k as f64 / n as f64;
+            let x = [0, 1, 2].map(|d| pos[0][d] + s * (pos[1][d] - pos[0][d]));
+            nodes.push(model.nodes.len());
+            model.nodes.push(NodeDef {
+                position: x,
+                point: PointMass::default(),
+                route: None,
+                label: None,
+            });
+        }
+        nodes.push(ids[1]);
+        let output_positions = c.output_positions.unwrap_or(match positions_sel {
+            Selection::All => true,
+            Selection::None => false,
+            Selection::Auto => !many,
+            Selection::Names(v) => v.contains(&c.name),
+        });
+        model.cables.push(CableDef {
+            name: c.name.clone(),
+            line_type: lt,
+            nodes,
+            l0: vec![length / n as f64; n],
+            current: cur,
+            output_positions,
+        });
+        initial.push(shape);
+    }
+    Ok(Cables {
+        initial,
+        winches,
+        names,
+    })
+}
