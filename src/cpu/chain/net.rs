@@ -31,7 +31,7 @@
 //! A test checks it against the general path (`tests/cpu/net_kernel.rs`).
 
 use super::consts::ChainConsts;
-use super::elements::element_kernel;
+use super::elements::{all_under, element_chunks_net, element_kernel};
 use super::nodes::{
     point_drag_force, point_surface_at, point_water_accel_force, route_accel, seabed_load,
 };
@@ -292,7 +292,7 @@ impl<'a> LoadsOut<'a> {
 /// nodes (`out`).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn element_tile(
+fn element_tile<const L: usize>(
     nc: &NetConsts,
     lay: &Layout,
     piece: Piece,
@@ -358,7 +358,20 @@ fn element_tile(
             )
         }
     };
+    // Every end at or below the surface makes every wetted fraction exactly 1, as on
+    // the chain path. In still water the surface is at zero (`eta` stays so), where
+    // `0 - z >= 0` is `z <= 0`: the surface's columns need not be read.
+    let submerged = if waves {
+        all_under::<true, L>(a, b, ne)
+    } else {
+        all_under::<false, L>(a, b, ne)
+    };
+    // Such a piece of `L` elements or more takes the loop in whole chunks of lanes,
+    // which reads a uniform current in still water as a constant.
+    let chunked = submerged && ne >= L;
+    let uniform = c.uniform.filter(|_| !waves);
     match c.uniform {
+        Some(_) if chunked && uniform.is_some() => {}
         Some(un) => {
             for (q, uq) in u.iter_mut().enumerate() {
                 uq[..ne].fill(un[q]);
@@ -386,40 +399,37 @@ fn element_tile(
             }
         }
     }
-    // Every end at or below the surface makes every wetted fraction exactly 1, as on
-    // the chain path. In still water the surface is at zero (`eta` stays so), where
-    // `0 - z >= 0` is `z <= 0`: the surface's columns need not be read.
-    // (A count, not a fold with `&`: it vectorises.)
-    let under: usize = if waves {
-        (0..ne)
-            .map(|k| ((a[6][k] - a[2][k] >= 0.0) & (b[6][k] - b[2][k] >= 0.0)) as usize)
-            .sum()
-    } else {
-        (0..ne)
-            .map(|k| ((a[2][k] <= 0.0) & (b[2][k] <= 0.0)) as usize)
-            .sum()
-    };
-    let submerged = under == ne;
     let (ten, haw) = (&mut ten[..ne], &mut haw[..ne]);
     {
         let [tx, ty, tz] = t.each_mut().map(|q| &mut q[..ne]);
         let [fx, fy, fz] = f.each_mut().map(|q| &mut q[..ne]);
-        macro_rules! kernel {
-            ($waves:literal, $submerged:literal) => {
-                element_kernel::<$waves, $submerged>(
-                    a, b, &u[0], &u[1], &u[2], &aw[0], &aw[1], &aw[2], c, er.start, tx, ty, tz,
-                    &mut *ten, fx, fy, fz, &mut *haw,
-                )
-            };
-        }
-        match (waves, submerged) {
-            (true, true) => kernel!(true, true),
-            (true, false) => kernel!(true, false),
-            (false, true) => kernel!(false, true),
-            (false, false) => kernel!(false, false),
+        if chunked {
+            // Whole chunks of lanes (the same bits as the loop below).
+            let (u, aw) = (u.each_ref().map(|q| &q[..]), aw.each_ref().map(|q| &q[..]));
+            let out = [tx, ty, tz, ten, fx, fy, fz, haw];
+            match (waves, uniform) {
+                (true, _) => element_chunks_net::<true, false, L>(a, b, u, [0.0; 3], aw, c, er.start, out),
+                (false, Some(un)) => element_chunks_net::<false, true, L>(a, b, u, un, aw, c, er.start, out),
+                (false, None) => element_chunks_net::<false, false, L>(a, b, u, [0.0; 3], aw, c, er.start, out),
+            }
+        } else {
+            macro_rules! kernel {
+                ($waves:literal, $submerged:literal) => {
+                    element_kernel::<$waves, $submerged>(
+                        a, b, &u[0], &u[1], &u[2], &aw[0], &aw[1], &aw[2], c, er.start, tx, ty,
+                        tz, &mut *ten, fx, fy, fz, &mut *haw,
+                    )
+                };
+            }
+            match (waves, submerged) {
+                (true, true) => kernel!(true, true),
+                (true, false) => kernel!(true, false),
+                (false, true) => kernel!(false, true),
+                (false, false) => kernel!(false, false),
+            }
         }
     }
-    node_shares(nc, &piece, t, ten, f, haw, out);
+    node_shares::<L>(nc, &piece, t, ten, f, haw, out);
 }
 
 /// The entries of `list` (sorted by node, its first field) whose node is in `nr`.
@@ -715,6 +725,12 @@ pub(crate) fn advance_net(
 ) -> Result<(), StepFailure> {
     #[cfg(target_arch = "x86_64")]
     {
+        if avx512() {
+            // SAFETY: the CPU has AVX-512 (F, DQ, VL), checked just above.
+            return unsafe {
+                advance_net_avx512(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+            };
+        }
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above.
             return unsafe {
@@ -722,7 +738,53 @@ pub(crate) fn advance_net(
             };
         }
     }
-    advance_net_body(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+    advance_net_body::<4>(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+}
+
+/// Whether the network loops take 8 lanes (AVX-512: F, DQ, VL): where the CPU has them
+/// and the environment variable `CABLESIM_NET_LANES` is `8`. By default they take 4
+/// (AVX2): on the development machine 8 lanes were not faster (BENCHMARKS.md,
+/// "Networks: whole chunks of lanes"). Every loop's lanes are independent (no sum
+/// across elements or nodes), so the results are the same bits with 8 lanes or 4.
+#[cfg(target_arch = "x86_64")]
+fn avx512() -> bool {
+    static WANTED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    let wanted = *WANTED.get_or_init(|| match std::env::var("CABLESIM_NET_LANES").as_deref() {
+        Ok("8") => true,
+        Ok("4") | Err(_) => false,
+        Ok(other) => {
+            log::warn!(
+                "CABLESIM_NET_LANES = {other:?} is neither 4 nor 8: the network path uses 4 \
+                 lanes"
+            );
+            false
+        }
+    });
+    wanted
+        && std::arch::is_x86_feature_detected!("avx512f")
+        && std::arch::is_x86_feature_detected!("avx512dq")
+        && std::arch::is_x86_feature_detected!("avx512vl")
+}
+
+/// The same, compiled for AVX-512 (8 lanes to a vector).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f,avx512dq,avx512vl")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn advance_net_avx512(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut NetScratch,
+    r: &mut [V3<f64>],
+    v: &mut [V3<f64>],
+    n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    advance_net_body::<8>(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -742,12 +804,13 @@ unsafe fn advance_net_avx2(
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
-    advance_net_body(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+    advance_net_body::<4>(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
 }
 
+/// `L`: the lanes of the element and fold loops' chunks (4 with AVX2, 8 with AVX-512).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn advance_net_body(
+fn advance_net_body<const L: usize>(
     nc: &NetConsts,
     lay: &Layout,
     opts: &SolverOptions,
@@ -788,7 +851,7 @@ fn advance_net_body(
             match op {
                 Op::Elems(p) => {
                     let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
-                    element_tile(nc, lay, p.clone(), xs, 0, eta, wbuf, work, out);
+                    element_tile::<L>(nc, lay, p.clone(), xs, 0, eta, wbuf, work, out);
                 }
                 &Op::Nodes(t) => {
                     let nr = t * NT..((t + 1) * NT).min(n);
