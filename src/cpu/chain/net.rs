@@ -270,15 +270,16 @@ impl<'a> LoadsOut<'a> {
         unsafe { std::slice::from_raw_parts(self.sum.add(o) as *const f64, self.per_tile) }
     }
 
-    /// Zeroes the `(node, slot)` pairs `pads` (all of them in one tile).
+    /// Zeroes the slots `pads` ([`Plan::clear`]: slot `s` of nodes `i .. i + len`, all
+    /// of them in one tile).
     ///
     /// # Safety
     /// As [`LoadsOut::column`] for each of their columns.
     #[inline(always)]
-    unsafe fn clear(&self, pads: &[(u32, u8)]) {
-        for &(i, s) in pads {
+    unsafe fn clear(&self, pads: &[(u32, u32, u8)]) {
+        for &(i, len, s) in pads {
             for q in 0..COLS {
-                unsafe { self.column(COLS * s as usize + q, i as usize, 1)[0] = 0.0 };
+                unsafe { self.column(COLS * s as usize + q, i as usize, len as usize).fill(0.0) };
             }
         }
     }
@@ -538,29 +539,46 @@ fn node_pass<const FRICTION: bool>(
         }
     }
     let [px, py, pz, vx, vy, vz] = x;
-    for (p, v, a) in [
-        (&mut *px, &mut *vx, &g.acc[0]),
-        (&mut *py, &mut *vy, &g.acc[1]),
-        (&mut *pz, &mut *vz, &g.acc[2]),
-    ] {
-        let (v, a) = (&mut v[..p.len()], &a[..p.len()]);
-        for i in 0..p.len() {
-            v[i] += a[i] * dt;
-            p[i] += v[i] * dt;
-        }
+    let [ax, ay, az] = g.acc.each_ref().map(|q| &q[..]);
+    let (rmax, vmax) = (opts.max_distance, opts.max_speed);
+    if update_over(px, py, pz, vx, vy, vz, ax, ay, az, dt, rmax, vmax) == 0 {
+        return None;
     }
     first_bad([&*px, &*py, &*pz, &*vx, &*vy, &*vz], opts)
 }
 
-/// The first node whose state is non-finite or over the limits (a vectorised count
-/// first: the search runs only on a blow-up).
+/// The symplectic update of a tile's nodes (`v += a dt`, then `p += v dt`, per
+/// coordinate), and the count of nodes whose new state is non-finite or over the
+/// limits (`rmax` on each coordinate, `vmax` on each velocity component), in one loop:
+/// the new state is checked while still in registers. Every array its own parameter:
+/// no run-time overlap checks before the vector loop.
 #[inline(always)]
-fn first_bad(x: [&[f64]; 6], opts: &SolverOptions) -> Option<usize> {
-    let (rmax, vmax) = (opts.max_distance, opts.max_speed);
-    let n = x[0].len();
-    let [px, py, pz, vx, vy, vz] = x.map(|q| &q[..n]);
+#[allow(clippy::too_many_arguments)]
+fn update_over(
+    px: &mut [f64],
+    py: &mut [f64],
+    pz: &mut [f64],
+    vx: &mut [f64],
+    vy: &mut [f64],
+    vz: &mut [f64],
+    ax: &[f64],
+    ay: &[f64],
+    az: &[f64],
+    dt: f64,
+    rmax: f64,
+    vmax: f64,
+) -> usize {
+    let n = px.len();
+    let (py, pz, vx, vy, vz) = (&mut py[..n], &mut pz[..n], &mut vx[..n], &mut vy[..n], &mut vz[..n]);
+    let (ax, ay, az) = (&ax[..n], &ay[..n], &az[..n]);
     let mut bad = 0usize;
     for i in 0..n {
+        vx[i] += ax[i] * dt;
+        px[i] += vx[i] * dt;
+        vy[i] += ay[i] * dt;
+        py[i] += vy[i] * dt;
+        vz[i] += az[i] * dt;
+        pz[i] += vz[i] * dt;
         // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
         let ok = (px[i].abs() < rmax)
             & (py[i].abs() < rmax)
@@ -570,9 +588,16 @@ fn first_bad(x: [&[f64]; 6], opts: &SolverOptions) -> Option<usize> {
             & (vz[i].abs() < vmax);
         bad += (!ok) as usize;
     }
-    if bad == 0 {
-        return None;
-    }
+    bad
+}
+
+/// The first node whose state is non-finite or over the limits (searched only once
+/// [`update_over`] has counted one).
+#[cold]
+fn first_bad(x: [&[f64]; 6], opts: &SolverOptions) -> Option<usize> {
+    let (rmax, vmax) = (opts.max_distance, opts.max_speed);
+    let n = x[0].len();
+    let [px, py, pz, vx, vy, vz] = x.map(|q| &q[..n]);
     (0..n).find(|&i| {
         !(px[i].abs() < rmax
             && py[i].abs() < rmax
