@@ -303,7 +303,9 @@ pub(super) fn element_chunks_net<const WAVES: bool, const UNIFORM: bool, const L
         &c.ha[e0 + 1..e1 + 1],
     ];
     let ins = a.iter().chain(&b).chain(&aw);
-    assert!(ins.chain(if UNIFORM { &[] } else { &u[..] }).all(|q| q.len() >= ne));
+    assert!(ins
+        .chain(if UNIFORM { &[] } else { &u[..] })
+        .all(|q| q.len() >= ne));
     let outs = [&*ty, &*tz, &*ten, &*fx, &*fy, &*fz, &*haw];
     assert!(outs.iter().all(|q| q.len() == ne));
     for o in overlapped_chunks::<L>(ne) {
@@ -342,8 +344,12 @@ pub(super) fn element_chunks_net<const WAVES: bool, const UNIFORM: bool, const L
         for l in 0..L {
             // (Arrays written out: `array::map` here need not be inlined.)
             let e = element_lane::<WAVES, true>(
-                [pa[0][l], pa[1][l], pa[2][l], pa[3][l], pa[4][l], pa[5][l], 0.0],
-                [pb[0][l], pb[1][l], pb[2][l], pb[3][l], pb[4][l], pb[5][l], 0.0],
+                [
+                    pa[0][l], pa[1][l], pa[2][l], pa[3][l], pa[4][l], pa[5][l], 0.0,
+                ],
+                [
+                    pb[0][l], pb[1][l], pb[2][l], pb[3][l], pb[4][l], pb[5][l], 0.0,
+                ],
                 [uc[0][l], uc[1][l], uc[2][l]],
                 [awc[0][l], awc[1][l], awc[2][l]],
                 ElemConsts {
@@ -625,6 +631,40 @@ pub(super) fn add_waves(
         for q in 0..3 {
             u[q][k] += 0.5 * (ua[q] + ub[q]);
             aw[q][k] = 0.5 * (aa[q] + ab[q]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::overlapped_chunks;
+
+    /// The chunks of a network piece cover each of its elements, stay inside it, and
+    /// overlap only in the last one (pieces of 4 to 300 elements, 4 and 8 lanes).
+    #[test]
+    fn overlapped_chunks_cover_every_entry_once_or_twice_inside() {
+        fn check<const L: usize>(ne: usize) {
+            let mut seen = vec![0usize; ne];
+            let starts: Vec<usize> = overlapped_chunks::<L>(ne).collect();
+            for &o in &starts {
+                assert!(o + L <= ne, "chunk at {o} past {ne} elements");
+                for s in &mut seen[o..o + L] {
+                    *s += 1;
+                }
+            }
+            assert!(seen.iter().all(|&k| k >= 1), "{ne} elements, {L} lanes");
+            // Only the last chunk overlaps: twice at most, and only when L does not
+            // divide the piece.
+            let twice = seen.iter().filter(|&&k| k == 2).count();
+            assert!(seen.iter().all(|&k| k <= 2));
+            assert_eq!(twice, (L - ne % L) % L);
+            assert_eq!(starts.len(), ne.div_ceil(L));
+        }
+        for ne in 4..300 {
+            check::<4>(ne);
+            if ne >= 8 {
+                check::<8>(ne);
+            }
         }
     }
 }
