@@ -167,7 +167,28 @@ const CS: usize = NT + 8;
 /// ([`Plan::clear`]).
 #[derive(Default)]
 struct Loads {
+    /// The values from `sum[off]` on ([`Loads::start`]).
     sum: Vec<f64>,
+    /// The first value at a 64-byte boundary: with [`CS`] a whole number of cache
+    /// lines, every column then starts on one, and the node loop's loads of a chunk of
+    /// nodes do not straddle two lines.
+    off: usize,
+}
+
+impl Loads {
+    /// Sized for [`loads_len`] values, zero, from a 64-byte boundary.
+    fn reset(&mut self, len: usize) {
+        self.sum.clear();
+        self.sum.resize(len + 8, 0.0);
+        self.off = self.sum.as_ptr().align_offset(64);
+        assert!(self.off + len <= self.sum.len());
+    }
+
+    /// The first of the [`loads_len`] values.
+    fn start(&mut self) -> *mut f64 {
+        // SAFETY: `off` is within the buffer (`reset`).
+        unsafe { self.sum.as_mut_ptr().add(self.off) }
+    }
 }
 
 /// Values of [`Loads`] with `nbuf` tile buffers of `width` slots.
@@ -460,8 +481,7 @@ fn load(nc: &NetConsts, plan: &Plan, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3
     sc.eta.clear();
     sc.eta.resize(n, 0.0);
     // Zero: the slots past a node's incidence list stay so.
-    sc.el.sum.clear();
-    sc.el.sum.resize(loads_len(plan.nbuf, nc.width), 0.0);
+    sc.el.reset(loads_len(plan.nbuf, nc.width));
 }
 
 /// Copies the SoA state back to `r`, `v`.
@@ -611,7 +631,7 @@ fn advance_net_body<const L: usize>(
         }
         // SAFETY: `el` is this block's loads in `plan`'s buffers (`load`), and only
         // this loop uses them, one op at a time.
-        let out = unsafe { LoadsOut::new(el.sum.as_mut_ptr(), nc.width, plan) };
+        let out = unsafe { LoadsOut::new(el.start(), nc.width, plan) };
         // The lowest node over the limits in this step.
         let mut bad = None::<usize>;
         for op in &plan.threads[0].ops {

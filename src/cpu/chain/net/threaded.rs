@@ -57,7 +57,7 @@ pub(crate) fn advance_net_threaded(
     let NetScratch { x, eta, el, .. } = sc;
     let sh = Shared {
         x: x.each_mut().map(|q| q.as_mut_ptr()),
-        sum: el.sum.as_mut_ptr(),
+        sum: el.start(),
     };
     let eta: &[f64] = eta;
     let barrier = SpinBarrier::new(threads);
