@@ -172,3 +172,55 @@ fn chain_lanes_4_and_8_give_the_same_bytes() {
         }
     }
 }
+
+/// The network path with 8 lanes (AVX-512, `CABLESIM_NET_LANES=8`) and with 4 (AVX2, the
+/// default) writes the same output bytes: a net cage in still water on one thread and
+/// on two (its loops in whole chunks of lanes, the last chunk of a piece overlapping),
+/// and a net cage in waves (surface-piercing twines: the loop over elements).
+#[test]
+fn net_lanes_4_and_8_give_the_same_bytes() {
+    let avx512 = {
+        #[cfg(target_arch = "x86_64")]
+        {
+            std::arch::is_x86_feature_detected!("avx512f")
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            false
+        }
+    };
+    if !avx512 {
+        eprintln!("no AVX-512 here: both runs take 4 lanes");
+    }
+    for (scenario, duration, threads) in [
+        ("examples/net_cage.toml", "0.5", "1"),
+        ("examples/net_cage.toml", "0.5", "2"),
+        ("examples/net_cage_waves.toml", "0.5", "1"),
+    ] {
+        let run = |lanes: &str| {
+            let dir = tempfile::tempdir().unwrap();
+            let out = Command::new(BIN)
+                .args(["run", scenario, "--backend", "cpu", "--duration", duration])
+                .args(["-q", "--out"])
+                .arg(dir.path())
+                .env("CABLESIM_NET_LANES", lanes)
+                .env("RAYON_NUM_THREADS", threads)
+                .output()
+                .unwrap();
+            assert!(
+                out.status.success(),
+                "{scenario}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            ["tensions.csv", "end_forces.csv"].map(|f| std::fs::read(dir.path().join(f)).unwrap())
+        };
+        let (four, eight) = (run("4"), run("8"));
+        for (k, f) in ["tensions.csv", "end_forces.csv"].iter().enumerate() {
+            assert!(!four[k].is_empty(), "{scenario}: {f} is empty");
+            assert!(
+                four[k] == eight[k],
+                "{scenario}, {threads} threads: {f} differs between 4 and 8 lanes"
+            );
+        }
+    }
+}

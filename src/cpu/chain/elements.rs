@@ -252,6 +252,202 @@ pub(super) fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
     }
 }
 
+/// The chunks of `L` lanes that cover `ne >= L` entries without a remainder: from entry
+/// 0 on, `L` apart, the last one ending at entry `ne` (so it overlaps the one before
+/// it when `L` does not divide `ne`). A loop whose lanes are independent and whose
+/// outputs are not its inputs computes the overlapped entries twice, with the same
+/// bits, and writes them twice: the network path's element and fold loops run so,
+/// its pieces being of any length.
+#[inline(always)]
+pub(super) fn overlapped_chunks<const L: usize>(ne: usize) -> impl Iterator<Item = usize> {
+    debug_assert!(ne >= L);
+    (0..ne.div_ceil(L)).map(move |j| (j * L).min(ne - L))
+}
+
+/// `L` entries of `s` from `o` on.
+///
+/// # Safety
+/// `o + L <= s.len()`.
+#[inline(always)]
+pub(super) unsafe fn chunk_at<const L: usize>(s: &[f64], o: usize) -> [f64; L] {
+    debug_assert!(o + L <= s.len());
+    // SAFETY: the caller's bound; `[f64; L]` has the layout of `L` consecutive f64.
+    unsafe { s.as_ptr().add(o).cast::<[f64; L]>().read_unaligned() }
+}
+
+/// Writes `v` to the `L` entries of `s` from `o` on.
+///
+/// # Safety
+/// `o + L <= s.len()`.
+#[inline(always)]
+pub(super) unsafe fn put_chunk<const L: usize>(s: &mut [f64], o: usize, v: [f64; L]) {
+    debug_assert!(o + L <= s.len());
+    // SAFETY: as in `chunk_at`.
+    unsafe { s.as_mut_ptr().add(o).cast::<[f64; L]>().write_unaligned(v) }
+}
+
+/// Whether every end of the `ne` elements with ends `a`, `b` (`[x, y, z, vx, vy, vz,
+/// eta]`, as [`element_kernel`]'s) is at or below the surface (then every wetted
+/// fraction is exactly 1); in still water (`WAVES` false) the surface is at zero and
+/// its columns are not read. In whole chunks of `L` lanes where `ne >= L`.
+#[inline(always)]
+pub(super) fn all_under<const WAVES: bool, const L: usize>(
+    a: [&[f64]; 7],
+    b: [&[f64]; 7],
+    ne: usize,
+) -> bool {
+    let (za, zb, ea, eb) = (&a[2][..ne], &b[2][..ne], &a[6][..ne], &b[6][..ne]);
+    let under = |k: usize| {
+        if WAVES {
+            (ea[k] - za[k] >= 0.0) & (eb[k] - zb[k] >= 0.0)
+        } else {
+            (za[k] <= 0.0) & (zb[k] <= 0.0)
+        }
+    };
+    if ne < L {
+        return (0..ne).all(under);
+    }
+    // Per lane, a count of the ends over the surface (integers: the comparisons'
+    // masks stay in vector registers; `bool` lanes would be packed to bytes).
+    let mut over = [0u64; L];
+    for o in overlapped_chunks::<L>(ne) {
+        keep_chunks();
+        // SAFETY: `o + L <= ne`, and every slice here has `ne` entries.
+        let (za, zb) = unsafe { (chunk_at::<L>(za, o), chunk_at::<L>(zb, o)) };
+        if WAVES {
+            // SAFETY: as above.
+            let (ea, eb) = unsafe { (chunk_at::<L>(ea, o), chunk_at::<L>(eb, o)) };
+            for l in 0..L {
+                over[l] += (!((ea[l] - za[l] >= 0.0) & (eb[l] - zb[l] >= 0.0))) as u64;
+            }
+        } else {
+            for l in 0..L {
+                over[l] += (!((za[l] <= 0.0) & (zb[l] <= 0.0))) as u64;
+            }
+        }
+    }
+    over.iter().all(|&x| x == 0)
+}
+
+/// [`element_kernel`] for `SUBMERGED` elements (every end at or below the surface) of a
+/// network piece of at least `L` elements, over whole chunks of `L` lanes
+/// ([`overlapped_chunks`]: no scalar remainder): each chunk loads its inputs into
+/// locals, runs [`element_lane`] per lane and stores, as [`element_chunks`] does for a
+/// chain. `UNIFORM`: every element's water velocity is `un` (a uniform current in
+/// still water; `u` is not read); else `u`'s. Same bits as [`element_kernel`].
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn element_chunks_net<const WAVES: bool, const UNIFORM: bool, const L: usize>(
+    a: [&[f64]; 7],
+    b: [&[f64]; 7],
+    u: [&[f64]; 3],
+    un: [f64; 3],
+    aw: [&[f64]; 3],
+    c: &ChainConsts,
+    e0: usize,
+    out: [&mut [f64]; 8],
+) {
+    let [tx, ty, tz, ten, fx, fy, fz, haw] = out;
+    let ne = tx.len();
+    assert!(ne >= L);
+    // Every column read or written below holds the piece's `ne` entries (checked once
+    // here: the chunks' loads and stores are unchecked).
+    let e1 = e0 + ne;
+    let k = [
+        &c.il0[e0..e1],
+        &c.ea[e0..e1],
+        &c.eac[e0..e1],
+        &c.comp[e0..e1],
+        &c.drag_n[e0..e1],
+        &c.drag_t[e0..e1],
+        &c.half_wz[e0..e1],
+        &c.half_bz[e0..e1],
+        &c.half_fk[e0..e1],
+        &c.ha[e0 + 1..e1 + 1],
+    ];
+    let ins = a.iter().chain(&b).chain(&aw);
+    assert!(ins
+        .chain(if UNIFORM { &[] } else { &u[..] })
+        .all(|q| q.len() >= ne));
+    let outs = [&*ty, &*tz, &*ten, &*fx, &*fy, &*fz, &*haw];
+    assert!(outs.iter().all(|q| q.len() == ne));
+    for o in overlapped_chunks::<L>(ne) {
+        keep_chunks();
+        // SAFETY (every chunk): `o + L <= ne`, and every column has `ne` entries or
+        // more (checked above).
+        let ld = |s: &[f64]| unsafe { chunk_at::<L>(s, o) };
+        // (The surface is not read: submerged elements.)
+        let (pa, pb): ([[f64; L]; 6], [[f64; L]; 6]) = (
+            [ld(a[0]), ld(a[1]), ld(a[2]), ld(a[3]), ld(a[4]), ld(a[5])],
+            [ld(b[0]), ld(b[1]), ld(b[2]), ld(b[3]), ld(b[4]), ld(b[5])],
+        );
+        let uc = if UNIFORM {
+            [[un[0]; L], [un[1]; L], [un[2]; L]]
+        } else {
+            [ld(u[0]), ld(u[1]), ld(u[2])]
+        };
+        let awc = if WAVES {
+            [ld(aw[0]), ld(aw[1]), ld(aw[2])]
+        } else {
+            [[0.0; L]; 3]
+        };
+        let kc = [
+            ld(k[0]),
+            ld(k[1]),
+            ld(k[2]),
+            ld(k[3]),
+            ld(k[4]),
+            ld(k[5]),
+            ld(k[6]),
+            ld(k[7]),
+            ld(k[8]),
+            ld(k[9]),
+        ];
+        let mut r = [[0.0; L]; 8];
+        for l in 0..L {
+            // (Arrays written out: `array::map` here need not be inlined.)
+            let e = element_lane::<WAVES, true>(
+                [
+                    pa[0][l], pa[1][l], pa[2][l], pa[3][l], pa[4][l], pa[5][l], 0.0,
+                ],
+                [
+                    pb[0][l], pb[1][l], pb[2][l], pb[3][l], pb[4][l], pb[5][l], 0.0,
+                ],
+                [uc[0][l], uc[1][l], uc[2][l]],
+                [awc[0][l], awc[1][l], awc[2][l]],
+                ElemConsts {
+                    il0: kc[0][l],
+                    ea: kc[1][l],
+                    eac: kc[2][l],
+                    comp: kc[3][l],
+                    dn: kc[4][l],
+                    dt: kc[5][l],
+                    hw: kc[6][l],
+                    hb: kc[7][l],
+                    hfk: kc[8][l],
+                    ha: kc[9][l],
+                    diam: 0.0,
+                },
+            );
+            [r[0][l], r[1][l], r[2][l]] = e.t;
+            r[3][l] = e.ten;
+            [r[4][l], r[5][l], r[6][l]] = e.f;
+            r[7][l] = e.haw;
+        }
+        // SAFETY: as above.
+        unsafe {
+            put_chunk::<L>(tx, o, r[0]);
+            put_chunk::<L>(ty, o, r[1]);
+            put_chunk::<L>(tz, o, r[2]);
+            put_chunk::<L>(ten, o, r[3]);
+            put_chunk::<L>(fx, o, r[4]);
+            put_chunk::<L>(fy, o, r[5]);
+            put_chunk::<L>(fz, o, r[6]);
+            put_chunk::<L>(haw, o, r[7]);
+        }
+    }
+}
+
 /// One element's constants (see [`ChainConsts`]); `ha` is its half normal added mass.
 #[derive(Clone, Copy)]
 pub(super) struct ElemConsts {
@@ -517,6 +713,40 @@ pub(super) fn add_waves(
         for q in 0..3 {
             u[q][k] += 0.5 * (ua[q] + ub[q]);
             aw[q][k] = 0.5 * (aa[q] + ab[q]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::overlapped_chunks;
+
+    /// The chunks of a network piece cover each of its elements, stay inside it, and
+    /// overlap only in the last one (pieces of 4 to 300 elements, 4 and 8 lanes).
+    #[test]
+    fn overlapped_chunks_cover_every_entry_once_or_twice_inside() {
+        fn check<const L: usize>(ne: usize) {
+            let mut seen = vec![0usize; ne];
+            let starts: Vec<usize> = overlapped_chunks::<L>(ne).collect();
+            for &o in &starts {
+                assert!(o + L <= ne, "chunk at {o} past {ne} elements");
+                for s in &mut seen[o..o + L] {
+                    *s += 1;
+                }
+            }
+            assert!(seen.iter().all(|&k| k >= 1), "{ne} elements, {L} lanes");
+            // Only the last chunk overlaps: twice at most, and only when L does not
+            // divide the piece.
+            let twice = seen.iter().filter(|&&k| k == 2).count();
+            assert!(seen.iter().all(|&k| k <= 2));
+            assert_eq!(twice, (L - ne % L) % L);
+            assert_eq!(starts.len(), ne.div_ceil(L));
+        }
+        for ne in 4..300 {
+            check::<4>(ne);
+            if ne >= 8 {
+                check::<8>(ne);
+            }
         }
     }
 }

@@ -6,7 +6,9 @@
 //!   whose ends are consecutive nodes (a net's rows and the twines between two rows)
 //!   reads its ends in place, as the chain path does; other elements have their two
 //!   end nodes gathered by index into structure-of-arrays scratch; then the chain's
-//!   element loop runs over them;
+//!   element arithmetic runs over them, in whole chunks of lanes where a piece is
+//!   under the surface and long enough ([`element_chunks_net`]: the last chunk
+//!   overlaps the one before it, so no scalar remainder), else element by element;
 //! - the element pass then folds each element's results into what its two nodes add
 //!   (the six entries of its share of their mass block, `m/2 I + a (I - t t^T)`, and
 //!   the force on the node: `f/2 + T t` on node a, `f/2 - T t` on node b) and writes
@@ -14,9 +16,10 @@
 //!   padded with zeros), each slot 9 columns over tiles of [`NT`] nodes, so that the
 //!   node pass reads them contiguously, 4 nodes at a time (a run's elements write
 //!   their slots with vector stores too: the pieces keep one slot per end);
-//! - the node pass sums those slots in incidence order and solves each node's 3x3
-//!   mass block with the general path's adjugate ([`Sym3::solve`]), in one loop
-//!   vectorised over nodes;
+//! - the node pass ([`node_pass`]) sums those slots in incidence order and solves each
+//!   node's 3x3 mass block with the general path's adjugate
+//!   ([`Sym3::solve`](crate::math::Sym3::solve)), in one loop vectorised over nodes,
+//!   then updates and checks the tile's nodes in another;
 //! - point-mass drag, a point's water-acceleration load and held nodes are done from
 //!   short index lists, as on the chain path.
 //!
@@ -31,23 +34,20 @@
 //! A test checks it against the general path (`tests/cpu/net_kernel.rs`).
 
 use super::consts::ChainConsts;
-use super::elements::element_kernel;
-use super::nodes::{
-    point_drag_force, point_surface_at, point_water_accel_force, route_accel, seabed_load,
-};
-use crate::cpu::passes::implicit_dt;
+use super::elements::{all_under, element_chunks_net, element_kernel};
 use crate::cpu::water::{node_water, BlockWaves, Water};
-use crate::math::{Sym3, V3};
+use crate::math::V3;
 use crate::model::{Block, Layout};
 use crate::options::SolverOptions;
 use crate::step::{diverged, StepFailure};
-use std::ops::Range;
 
 mod fold;
+mod node_pass;
 mod pieces;
 mod plan;
 mod threaded;
 use fold::node_shares;
+use node_pass::node_pass;
 use pieces::{pieces, Piece, TILE};
 use plan::{plan, Op, Plan};
 pub(crate) use threaded::advance_net_threaded;
@@ -167,7 +167,28 @@ const CS: usize = NT + 8;
 /// ([`Plan::clear`]).
 #[derive(Default)]
 struct Loads {
+    /// The values from `sum[off]` on ([`Loads::start`]).
     sum: Vec<f64>,
+    /// The first value at a 64-byte boundary: with [`CS`] a whole number of cache
+    /// lines, every column then starts on one, and the node loop's loads of a chunk of
+    /// nodes do not straddle two lines.
+    off: usize,
+}
+
+impl Loads {
+    /// Sized for [`loads_len`] values, zero, from a 64-byte boundary.
+    fn reset(&mut self, len: usize) {
+        self.sum.clear();
+        self.sum.resize(len + 8, 0.0);
+        self.off = self.sum.as_ptr().align_offset(64);
+        assert!(self.off + len <= self.sum.len());
+    }
+
+    /// The first of the [`loads_len`] values.
+    fn start(&mut self) -> *mut f64 {
+        // SAFETY: `off` is within the buffer (`reset`).
+        unsafe { self.sum.as_mut_ptr().add(self.off) }
+    }
 }
 
 /// Values of [`Loads`] with `nbuf` tile buffers of `width` slots.
@@ -270,15 +291,19 @@ impl<'a> LoadsOut<'a> {
         unsafe { std::slice::from_raw_parts(self.sum.add(o) as *const f64, self.per_tile) }
     }
 
-    /// Zeroes the `(node, slot)` pairs `pads` (all of them in one tile).
+    /// Zeroes the slots `pads` ([`Plan::clear`]: slot `s` of nodes `i .. i + len`, all
+    /// of them in one tile).
     ///
     /// # Safety
     /// As [`LoadsOut::column`] for each of their columns.
     #[inline(always)]
-    unsafe fn clear(&self, pads: &[(u32, u8)]) {
-        for &(i, s) in pads {
+    unsafe fn clear(&self, pads: &[(u32, u32, u8)]) {
+        for &(i, len, s) in pads {
             for q in 0..COLS {
-                unsafe { self.column(COLS * s as usize + q, i as usize, 1)[0] = 0.0 };
+                unsafe {
+                    self.column(COLS * s as usize + q, i as usize, len as usize)
+                        .fill(0.0)
+                };
             }
         }
     }
@@ -292,7 +317,7 @@ impl<'a> LoadsOut<'a> {
 /// nodes (`out`).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn element_tile(
+fn element_tile<const L: usize>(
     nc: &NetConsts,
     lay: &Layout,
     piece: Piece,
@@ -358,7 +383,20 @@ fn element_tile(
             )
         }
     };
+    // Every end at or below the surface makes every wetted fraction exactly 1, as on
+    // the chain path. In still water the surface is at zero (`eta` stays so), where
+    // `0 - z >= 0` is `z <= 0`: the surface's columns need not be read.
+    let submerged = if waves {
+        all_under::<true, L>(a, b, ne)
+    } else {
+        all_under::<false, L>(a, b, ne)
+    };
+    // Such a piece of `L` elements or more takes the loop in whole chunks of lanes,
+    // which reads a uniform current in still water as a constant.
+    let chunked = submerged && ne >= L;
+    let uniform = c.uniform.filter(|_| !waves);
     match c.uniform {
+        Some(_) if chunked && uniform.is_some() => {}
         Some(un) => {
             for (q, uq) in u.iter_mut().enumerate() {
                 uq[..ne].fill(un[q]);
@@ -386,283 +424,43 @@ fn element_tile(
             }
         }
     }
-    // Every end at or below the surface makes every wetted fraction exactly 1, as on
-    // the chain path. In still water the surface is at zero (`eta` stays so), where
-    // `0 - z >= 0` is `z <= 0`: the surface's columns need not be read.
-    // (A count, not a fold with `&`: it vectorises.)
-    let under: usize = if waves {
-        (0..ne)
-            .map(|k| ((a[6][k] - a[2][k] >= 0.0) & (b[6][k] - b[2][k] >= 0.0)) as usize)
-            .sum()
-    } else {
-        (0..ne)
-            .map(|k| ((a[2][k] <= 0.0) & (b[2][k] <= 0.0)) as usize)
-            .sum()
-    };
-    let submerged = under == ne;
     let (ten, haw) = (&mut ten[..ne], &mut haw[..ne]);
     {
         let [tx, ty, tz] = t.each_mut().map(|q| &mut q[..ne]);
         let [fx, fy, fz] = f.each_mut().map(|q| &mut q[..ne]);
-        macro_rules! kernel {
-            ($waves:literal, $submerged:literal) => {
-                element_kernel::<$waves, $submerged>(
-                    a, b, &u[0], &u[1], &u[2], &aw[0], &aw[1], &aw[2], c, er.start, tx, ty, tz,
-                    &mut *ten, fx, fy, fz, &mut *haw,
-                )
-            };
-        }
-        match (waves, submerged) {
-            (true, true) => kernel!(true, true),
-            (true, false) => kernel!(true, false),
-            (false, true) => kernel!(false, true),
-            (false, false) => kernel!(false, false),
-        }
-    }
-    node_shares(nc, &piece, t, ten, f, haw, out);
-}
-
-/// The entries of `list` (sorted by node, its first field) whose node is in `nr`.
-fn listed<'a, T>(list: &'a [T], node: impl Fn(&T) -> usize, nr: &Range<usize>) -> &'a [T] {
-    let lo = list.partition_point(|p| node(p) < nr.start);
-    let hi = list.partition_point(|p| node(p) < nr.end);
-    &list[lo..hi]
-}
-
-/// The node pass over the nodes `nr` of one tile (`x`: their state, updated in place
-/// by a symplectic step of `dt`), reading what the elements add to them from the
-/// tile's buffer `sum` ([`Loads`]); `eta`, `w` over the whole block. Returns the
-/// block-local index of the first node whose new state is over the limits.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn node_pass<const FRICTION: bool>(
-    nc: &NetConsts,
-    lay: &Layout,
-    opts: &SolverOptions,
-    time: f64,
-    dt: f64,
-    nr: Range<usize>,
-    x: [&mut [f64]; 6],
-    eta: &[f64],
-    w: &[f64],
-    sum: &[f64],
-    g: &mut Work,
-) -> Option<usize> {
-    let c = &nc.c;
-    let n0 = nr.start;
-    let len = nr.len();
-    let point_drag = listed(&c.point_drag, |p| p.0, &nr);
-    let point_volume = listed(&c.point_volume, |p| p.0, &nr);
-    // Point masses and weights: the constants, or where a point has a volume, a copy
-    // with the surface's share of it at the listed nodes.
-    let (pm, pwz) = if point_volume.is_empty() {
-        (&c.pm[nr.clone()], &c.pwz[nr.clone()])
-    } else {
-        g.pm[..len].copy_from_slice(&c.pm[nr.clone()]);
-        g.pwz[..len].copy_from_slice(&c.pwz[nr.clone()]);
-        for pv in point_volume {
-            let i = pv.0;
-            (g.pm[i - n0], g.pwz[i - n0]) = point_surface_at(c, pv, eta[i] - x[2][i - n0]);
-        }
-        (&g.pm[..len], &g.pwz[..len])
-    };
-    for pd in point_drag {
-        let j = pd.0 - n0;
-        let v = [x[3][j], x[4][j], x[5][j]];
-        let f = point_drag_force(lay, pd, x[2][j], v, eta[pd.0], w);
-        for (e, fq) in g.ex.iter_mut().zip(f) {
-            e[j] += fq;
-        }
-    }
-    if !w.is_empty() {
-        for pv in point_volume {
-            let j = pv.0 - n0;
-            let f = point_water_accel_force(pv, x[2][j], eta[pv.0], w);
-            for (e, fq) in g.ex.iter_mut().zip(f) {
-                e[j] += fq;
-            }
-        }
-    }
-    assert_eq!(sum.len(), loads_len(1, nc.width));
-    let h = implicit_dt(opts);
-    // Each its own parameter: the kernel's stores need no run-time overlap checks.
-    let [ax, ay, az] = g.acc.each_mut().map(|q| &mut q[..]);
-    macro_rules! kernel {
-        ($width:literal) => {
-            node_kernel::<$width, FRICTION>(
-                c,
-                h,
-                sum,
-                nr.clone(),
-                [&x[2][..], &x[3][..], &x[4][..], &x[5][..]],
-                pm,
-                pwz,
-                [&g.ex[0][..len], &g.ex[1][..len], &g.ex[2][..len]],
-                [&c.kl[nr.clone()], &c.cl[nr.clone()], &c.mukl[nr.clone()]],
-                ax,
-                ay,
-                az,
-            )
-        };
-    }
-    if nc.width == 4 {
-        kernel!(4)
-    } else {
-        kernel!(8)
-    }
-    // The point loads back to zero for the next tile.
-    for &i in point_drag
-        .iter()
-        .map(|p| &p.0)
-        .chain(point_volume.iter().map(|p| &p.0))
-    {
-        for q in 0..3 {
-            g.ex[q][i - n0] = 0.0;
-        }
-    }
-    for &(i, ri) in listed(&c.constrained, |p| p.0, &nr) {
-        let j = i - n0;
-        let d = route_accel(lay, opts, time, ri, |q| (x[q][j], x[3 + q][j]));
-        for (a, dq) in g.acc.iter_mut().zip(d) {
-            a[j] = dq;
-        }
-    }
-    let [px, py, pz, vx, vy, vz] = x;
-    for (p, v, a) in [
-        (&mut *px, &mut *vx, &g.acc[0]),
-        (&mut *py, &mut *vy, &g.acc[1]),
-        (&mut *pz, &mut *vz, &g.acc[2]),
-    ] {
-        let (v, a) = (&mut v[..p.len()], &a[..p.len()]);
-        for i in 0..p.len() {
-            v[i] += a[i] * dt;
-            p[i] += v[i] * dt;
-        }
-    }
-    first_bad([&*px, &*py, &*pz, &*vx, &*vy, &*vz], opts)
-}
-
-/// The first node whose state is non-finite or over the limits (a vectorised count
-/// first: the search runs only on a blow-up).
-#[inline(always)]
-fn first_bad(x: [&[f64]; 6], opts: &SolverOptions) -> Option<usize> {
-    let (rmax, vmax) = (opts.max_distance, opts.max_speed);
-    let n = x[0].len();
-    let [px, py, pz, vx, vy, vz] = x.map(|q| &q[..n]);
-    let mut bad = 0usize;
-    for i in 0..n {
-        // `&`, not `&&`: no short circuit, so the loop vectorises. NaN fails every `<`.
-        let ok = (px[i].abs() < rmax)
-            & (py[i].abs() < rmax)
-            & (pz[i].abs() < rmax)
-            & (vx[i].abs() < vmax)
-            & (vy[i].abs() < vmax)
-            & (vz[i].abs() < vmax);
-        bad += (!ok) as usize;
-    }
-    if bad == 0 {
-        return None;
-    }
-    (0..n).find(|&i| {
-        !(px[i].abs() < rmax
-            && py[i].abs() < rmax
-            && pz[i].abs() < rmax
-            && vx[i].abs() < vmax
-            && vy[i].abs() < vmax
-            && vz[i].abs() < vmax)
-    })
-}
-
-/// The node loop over the nodes `nr` of one tile (their state, point and seabed values
-/// from 0): per node, the sum over its `W` slots in the tile's buffer `sum`
-/// ([`Loads`]) of what the incident elements add to its force and mass block (the
-/// general path's order: point, then each incident element, then point loads, then
-/// the seabed), the seabed's damping taken implicitly with step `h`, and the 3x3
-/// solve, 4 nodes at a time.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn node_kernel<const W: usize, const FRICTION: bool>(
-    c: &ChainConsts,
-    h: f64,
-    sum: &[f64],
-    nr: Range<usize>,
-    state: [&[f64]; 4],
-    pm: &[f64],
-    pwz: &[f64],
-    ex: [&[f64]; 3],
-    seabed: [&[f64]; 3],
-    ax: &mut [f64],
-    ay: &mut [f64],
-    az: &mut [f64],
-) {
-    let (zb, v_eps) = (c.zb, c.v_eps);
-    let per_tile = W * COLS * CS;
-    let mut i = nr.start;
-    assert!(nr.is_empty() || (nr.end - 1) / NT == nr.start / NT);
-    while i < nr.end {
-        // Nodes `i .. i + len` of tile `i / NT`, from its node `j0`.
-        let (j0, len) = (i % NT, (nr.end - i).min(NT - i % NT));
-        let tile = &sum[..per_tile];
-        // Column `q` of slot `s`: `col[q][s]`, all at fixed offsets from the tile.
-        let col: [[&[f64]; W]; COLS] = std::array::from_fn(|q| {
-            std::array::from_fn(|s| &tile[(COLS * s + q) * CS + j0..][..len])
-        });
-        let tr = i - nr.start..i - nr.start + len;
-        let [z, vx, vy, vz] = state.map(|q| &q[tr.clone()]);
-        let (pm, pwz) = (&pm[tr.clone()], &pwz[tr.clone()]);
-        let [exx, exy, exz] = ex.map(|q| &q[tr.clone()]);
-        let [kl, cl, mukl] = seabed.map(|q| &q[tr.clone()]);
-        let (ax, ay, az) = (
-            &mut ax[tr.clone()],
-            &mut ay[tr.clone()],
-            &mut az[tr.clone()],
-        );
-        for k in 0..len {
-            // Mass block `xx, yy, zz, xy, xz, yz` and force, summed entry by entry in
-            // slot order (the general path's order).
-            let mut sm = [pm[k], pm[k], pm[k], 0.0, 0.0, 0.0];
-            let mut sf = [0.0, 0.0, pwz[k]];
-            for s in 0..W {
-                for (q, v) in sm.iter_mut().enumerate() {
-                    *v += col[q][s][k];
+        if chunked {
+            // Whole chunks of lanes (the same bits as the loop below).
+            let (u, aw) = (u.each_ref().map(|q| &q[..]), aw.each_ref().map(|q| &q[..]));
+            let out = [tx, ty, tz, ten, fx, fy, fz, haw];
+            match (waves, uniform) {
+                (true, _) => {
+                    element_chunks_net::<true, false, L>(a, b, u, [0.0; 3], aw, c, er.start, out)
                 }
-                for (q, v) in sf.iter_mut().enumerate() {
-                    *v += col[6 + q][s][k];
+                (false, Some(un)) => {
+                    element_chunks_net::<false, true, L>(a, b, u, un, aw, c, er.start, out)
+                }
+                (false, None) => {
+                    element_chunks_net::<false, false, L>(a, b, u, [0.0; 3], aw, c, er.start, out)
                 }
             }
-            let mut m = Sym3 {
-                xx: sm[0],
-                yy: sm[1],
-                zz: sm[2],
-                xy: sm[3],
-                xz: sm[4],
-                yz: sm[5],
-            };
-            let mut g = V3::new(sf[0], sf[1], sf[2]);
-            g += V3::new(exx[k], exy[k], exz[k]);
-            let (sb, ch, cz) = seabed_load::<FRICTION>(
-                zb - z[k],
-                [vx[k], vy[k], vz[k]],
-                kl[k],
-                cl[k],
-                mukl[k],
-                v_eps,
-            );
-            g.z += sb[2];
-            if FRICTION {
-                g.x += sb[0];
-                g.y += sb[1];
+        } else {
+            macro_rules! kernel {
+                ($waves:literal, $submerged:literal) => {
+                    element_kernel::<$waves, $submerged>(
+                        a, b, &u[0], &u[1], &u[2], &aw[0], &aw[1], &aw[2], c, er.start, tx, ty, tz,
+                        &mut *ten, fx, fy, fz, &mut *haw,
+                    )
+                };
             }
-            m.xx += h * ch;
-            m.yy += h * ch;
-            m.zz += h * cz;
-            let a = m.solve(g);
-            ax[k] = a.x;
-            ay[k] = a.y;
-            az[k] = a.z;
+            match (waves, submerged) {
+                (true, true) => kernel!(true, true),
+                (true, false) => kernel!(true, false),
+                (false, true) => kernel!(false, true),
+                (false, false) => kernel!(false, false),
+            }
         }
-        i += len;
     }
+    node_shares::<L>(nc, &piece, t, ten, f, haw, out);
 }
 
 /// Copies the block's AoS state into the scratch's SoA arrays and sizes the element
@@ -683,8 +481,7 @@ fn load(nc: &NetConsts, plan: &Plan, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3
     sc.eta.clear();
     sc.eta.resize(n, 0.0);
     // Zero: the slots past a node's incidence list stay so.
-    sc.el.sum.clear();
-    sc.el.sum.resize(loads_len(plan.nbuf, nc.width), 0.0);
+    sc.el.reset(loads_len(plan.nbuf, nc.width));
 }
 
 /// Copies the SoA state back to `r`, `v`.
@@ -715,6 +512,12 @@ pub(crate) fn advance_net(
 ) -> Result<(), StepFailure> {
     #[cfg(target_arch = "x86_64")]
     {
+        if avx512() {
+            // SAFETY: the CPU has AVX-512 (F, DQ, VL), checked just above.
+            return unsafe {
+                advance_net_avx512(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+            };
+        }
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above.
             return unsafe {
@@ -722,7 +525,53 @@ pub(crate) fn advance_net(
             };
         }
     }
-    advance_net_body(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+    advance_net_body::<4>(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+}
+
+/// Whether the network loops take 8 lanes (AVX-512: F, DQ, VL): where the CPU has them
+/// and the environment variable `CABLESIM_NET_LANES` is `8`. By default they take 4
+/// (AVX2): on the development machine 8 lanes were not faster (BENCHMARKS.md,
+/// "Networks: whole chunks of lanes"). Every loop's lanes are independent (no sum
+/// across elements or nodes), so the results are the same bits with 8 lanes or 4.
+#[cfg(target_arch = "x86_64")]
+fn avx512() -> bool {
+    static WANTED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    let wanted = *WANTED.get_or_init(|| match std::env::var("CABLESIM_NET_LANES").as_deref() {
+        Ok("8") => true,
+        Ok("4") | Err(_) => false,
+        Ok(other) => {
+            log::warn!(
+                "CABLESIM_NET_LANES = {other:?} is neither 4 nor 8: the network path uses 4 \
+                 lanes"
+            );
+            false
+        }
+    });
+    wanted
+        && std::arch::is_x86_feature_detected!("avx512f")
+        && std::arch::is_x86_feature_detected!("avx512dq")
+        && std::arch::is_x86_feature_detected!("avx512vl")
+}
+
+/// The same, compiled for AVX-512 (8 lanes to a vector).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f,avx512dq,avx512vl")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn advance_net_avx512(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sc: &mut NetScratch,
+    r: &mut [V3<f64>],
+    v: &mut [V3<f64>],
+    n0: usize,
+    waves: Option<&mut BlockWaves>,
+    wbuf: &mut Water,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Result<(), StepFailure> {
+    advance_net_body::<8>(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -742,12 +591,13 @@ unsafe fn advance_net_avx2(
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
-    advance_net_body(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
+    advance_net_body::<4>(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
 }
 
+/// `L`: the lanes of the element and fold loops' chunks (4 with AVX2, 8 with AVX-512).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn advance_net_body(
+fn advance_net_body<const L: usize>(
     nc: &NetConsts,
     lay: &Layout,
     opts: &SolverOptions,
@@ -781,14 +631,14 @@ fn advance_net_body(
         }
         // SAFETY: `el` is this block's loads in `plan`'s buffers (`load`), and only
         // this loop uses them, one op at a time.
-        let out = unsafe { LoadsOut::new(el.sum.as_mut_ptr(), nc.width, plan) };
+        let out = unsafe { LoadsOut::new(el.start(), nc.width, plan) };
         // The lowest node over the limits in this step.
         let mut bad = None::<usize>;
         for op in &plan.threads[0].ops {
             match op {
                 Op::Elems(p) => {
                     let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
-                    element_tile(nc, lay, p.clone(), xs, 0, eta, wbuf, work, out);
+                    element_tile::<L>(nc, lay, p.clone(), xs, 0, eta, wbuf, work, out);
                 }
                 &Op::Nodes(t) => {
                     let nr = t * NT..((t + 1) * NT).min(n);

@@ -1,6 +1,8 @@
 //! The element pass's last step on the network path: each element's results folded into
 //! what it adds to its two nodes, written into their slots ([`super::Loads`]).
 
+use super::super::elements::{chunk_at, overlapped_chunks, put_chunk};
+use super::super::lanes::keep_chunks;
 use super::{LoadsOut, NetConsts, Piece, COLS, NT};
 
 /// Folds the element loop's results for the elements of `piece` into what they add to
@@ -8,7 +10,7 @@ use super::{LoadsOut, NetConsts, Piece, COLS, NT};
 /// end), written into each end's slot in `out`: with vector stores for a run (one slot
 /// per end along it), one by one for gathered elements.
 #[inline(always)]
-pub(super) fn node_shares(
+pub(super) fn node_shares<const L: usize>(
     nc: &NetConsts,
     piece: &Piece,
     t: &[Vec<f64>; 3],
@@ -41,27 +43,26 @@ pub(super) fn node_shares(
                         std::array::from_fn(|q| out.column(COLS * sb + q, b, len)),
                     )
                 };
+                let [tx, ty, tz] = [tx, ty, tz].map(|q| &q[ks.clone()]);
+                let (haw, hm) = (&haw[ks.clone()], &hm[ks.clone()]);
+                let ([fx, fy, fz], ten) = ([fx, fy, fz].map(|q| &q[ks.clone()]), &ten[ks]);
+                if len >= L {
+                    // SAFETY: as above, the force columns too (other columns of the
+                    // same slots).
+                    let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
+                        (
+                            std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a, len)),
+                            std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b, len)),
+                        )
+                    };
+                    fold_chunks::<L>([tx, ty, tz], haw, hm, ten, [fx, fy, fz], ma, mb, fa, fb);
+                    k0 += len;
+                    continue;
+                }
                 let [xxa, yya, zza, xya, xza, yza] = ma;
                 let [xxb, yyb, zzb, xyb, xzb, yzb] = mb;
-                let [tx, ty, tz] = [tx, ty, tz].map(|q| &q[ks.clone()]);
                 fold_mass(
-                    tx,
-                    ty,
-                    tz,
-                    &haw[ks.clone()],
-                    &hm[ks.clone()],
-                    xxa,
-                    yya,
-                    zza,
-                    xya,
-                    xza,
-                    yza,
-                    xxb,
-                    yyb,
-                    zzb,
-                    xyb,
-                    xzb,
-                    yzb,
+                    tx, ty, tz, haw, hm, xxa, yya, zza, xya, xza, yza, xxb, yyb, zzb, xyb, xzb, yzb,
                 );
                 // SAFETY: as above; the mass columns' slices are no longer used.
                 let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
@@ -71,8 +72,6 @@ pub(super) fn node_shares(
                     )
                 };
                 let ([fxa, fya, fza], [fxb, fyb, fzb]) = (fa, fb);
-                let [fx, fy, fz] = [fx, fy, fz].map(|q| &q[ks.clone()]);
-                let ten = &ten[ks];
                 fold_force(tx, ty, tz, ten, fx, fy, fz, fxa, fya, fza, fxb, fyb, fzb);
                 k0 += len;
             }
@@ -110,6 +109,81 @@ pub(super) fn node_shares(
                         }
                     }
                 }
+            }
+        }
+    }
+}
+
+/// A run's shares of its nodes (the arithmetic of [`fold_mass`] and [`fold_force`],
+/// written to the same columns) over whole chunks of `L` lanes of its `len >= L`
+/// elements ([`overlapped_chunks`]: no scalar remainder): each chunk loads its inputs
+/// into locals, computes and stores, so no run-time overlap checks either.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn fold_chunks<const L: usize>(
+    t: [&[f64]; 3],
+    haw: &[f64],
+    hm: &[f64],
+    ten: &[f64],
+    f: [&[f64]; 3],
+    ma: [&mut [f64]; 6],
+    mb: [&mut [f64]; 6],
+    fa: [&mut [f64]; 3],
+    fb: [&mut [f64]; 3],
+) {
+    let len = haw.len();
+    assert!(len >= L);
+    // Every column holds the run's `len` entries (checked once: the chunks' loads and
+    // stores are unchecked).
+    let mut ins = t.iter().chain(&f).chain([&hm, &ten]);
+    assert!(ins.all(|q| q.len() == len));
+    let mut outs = ma.iter().chain(&mb).chain(&fa).chain(&fb);
+    assert!(outs.all(|q| q.len() == len));
+    let [mut xxa, mut yya, mut zza, mut xya, mut xza, mut yza] = ma;
+    let [mut xxb, mut yyb, mut zzb, mut xyb, mut xzb, mut yzb] = mb;
+    let ([mut fxa, mut fya, mut fza], [mut fxb, mut fyb, mut fzb]) = (fa, fb);
+    for o in overlapped_chunks::<L>(len) {
+        keep_chunks();
+        // SAFETY (every chunk): `o + L <= len`, the length of every column (above).
+        let ld = |s: &[f64]| unsafe { chunk_at::<L>(s, o) };
+        let (tx, ty, tz, a, hm, tn) = (ld(t[0]), ld(t[1]), ld(t[2]), ld(haw), ld(hm), ld(ten));
+        let (fx, fy, fz) = (ld(f[0]), ld(f[1]), ld(f[2]));
+        let mut r = [[0.0; L]; 12];
+        for l in 0..L {
+            let (tx, ty, tz, a, hm) = (tx[l], ty[l], tz[l], a[l], hm[l]);
+            let (tn, ntn) = (tn[l], -tn[l]);
+            r[0][l] = hm + (a - a * tx * tx);
+            r[1][l] = hm + (a - a * ty * ty);
+            r[2][l] = hm + (a - a * tz * tz);
+            r[3][l] = -(a * tx * ty);
+            r[4][l] = -(a * tx * tz);
+            r[5][l] = -(a * ty * tz);
+            r[6][l] = fx[l] + tx * tn;
+            r[7][l] = fy[l] + ty * tn;
+            r[8][l] = fz[l] + tz * tn;
+            r[9][l] = fx[l] + tx * ntn;
+            r[10][l] = fy[l] + ty * ntn;
+            r[11][l] = fz[l] + tz * ntn;
+        }
+        // SAFETY: as above.
+        unsafe {
+            for (q, m) in [&mut xxa, &mut yya, &mut zza, &mut xya, &mut xza, &mut yza]
+                .into_iter()
+                .enumerate()
+            {
+                put_chunk::<L>(m, o, r[q]);
+            }
+            for (q, m) in [&mut xxb, &mut yyb, &mut zzb, &mut xyb, &mut xzb, &mut yzb]
+                .into_iter()
+                .enumerate()
+            {
+                put_chunk::<L>(m, o, r[q]);
+            }
+            for (q, v) in [&mut fxa, &mut fya, &mut fza].into_iter().enumerate() {
+                put_chunk::<L>(v, o, r[6 + q]);
+            }
+            for (q, v) in [&mut fxb, &mut fyb, &mut fzb].into_iter().enumerate() {
+                put_chunk::<L>(v, o, r[9 + q]);
             }
         }
     }

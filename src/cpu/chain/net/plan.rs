@@ -49,10 +49,13 @@ pub(super) struct Plan {
     pub(super) buf: Vec<u32>,
     /// Tile buffers.
     pub(super) nbuf: usize,
-    /// Per tile: the `(node, slot)` pairs to zero once its update has read its buffer:
-    /// the empty slots (past the incidence list) of the next tile to use that buffer,
-    /// which this tile's elements may have filled. Empty when the buffer is its alone.
-    pub(super) clear: Vec<Vec<(u32, u8)>>,
+    /// Per tile: the slots to zero once its update has read its buffer: the empty
+    /// slots (past the incidence list) of the next tile to use that buffer, which this
+    /// tile's elements may have filled. Each entry `(i, len, s)` is slot `s` of the
+    /// nodes `i .. i + len` (a net's rows of knots of one degree: one entry per row, so
+    /// that each column is zeroed by one vector fill). Empty when the buffer is the
+    /// tile's alone.
+    pub(super) clear: Vec<Vec<(u32, u32, u8)>>,
 }
 
 /// The plan for `n` nodes with `width` slots, elements with block-local ends `ea`,
@@ -145,10 +148,23 @@ pub(super) fn plan(
     for &i in ea.iter().chain(eb) {
         deg[i as usize] += 1;
     }
-    let pads = |t: usize| -> Vec<(u32, u8)> {
-        nodes(t)
-            .flat_map(|i| (deg[i]..width).map(move |s| (i as u32, s as u8)))
-            .collect()
+    let pads = |t: usize| -> Vec<(u32, u32, u8)> {
+        // Per slot, the stretches of consecutive nodes that leave it empty.
+        let mut out: Vec<(u32, u32, u8)> = Vec::new();
+        for s in 0..width {
+            let mut i = nodes(t).start;
+            while i < nodes(t).end {
+                let i0 = i;
+                while i < nodes(t).end && deg[i] <= s {
+                    i += 1;
+                }
+                if i > i0 {
+                    out.push((i0 as u32, (i - i0) as u32, s as u8));
+                }
+                i += 1;
+            }
+        }
+        out
     };
     for (u, ts) in users.iter().enumerate() {
         for (k, &t) in ts.iter().enumerate() {
@@ -245,8 +261,7 @@ mod tests {
                 assert_eq!(p.nbuf, 2);
                 // The top row's knots have 3 twines: their fourth slot is cleared
                 // after tile 14 (tile 0 is the next user of its buffer).
-                assert_eq!(p.clear[14].len(), nc);
-                assert!(p.clear[14].iter().all(|&(i, s)| i < nc as u32 && s == 3));
+                assert_eq!(p.clear[14], vec![(0, nc as u32, 3)]);
             }
         }
     }

@@ -57,7 +57,7 @@ pub(crate) fn advance_net_threaded(
     let NetScratch { x, eta, el, .. } = sc;
     let sh = Shared {
         x: x.each_mut().map(|q| q.as_mut_ptr()),
-        sum: el.sum.as_mut_ptr(),
+        sum: el.start(),
     };
     let eta: &[f64] = eta;
     let barrier = SpinBarrier::new(threads);
@@ -96,8 +96,8 @@ pub(crate) fn advance_net_threaded(
     }
 }
 
-/// One thread's steps of [`advance_net_threaded`] (compiled for AVX2 where the CPU has
-/// it); the time its node failed at, if one did.
+/// One thread's steps of [`advance_net_threaded`] (compiled for AVX-512 or AVX2 where
+/// the CPU has it, as [`super::advance_net`]); the time its node failed at, if one did.
 ///
 /// # Safety
 /// As [`step_threads_body`].
@@ -119,6 +119,15 @@ unsafe fn step_threads(
 ) -> Option<f64> {
     #[cfg(target_arch = "x86_64")]
     {
+        if super::avx512() {
+            // SAFETY: the CPU has AVX-512 (F, DQ, VL), checked just above; the rest as
+            // the body's.
+            return unsafe {
+                step_threads_avx512(
+                    nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
+                )
+            };
+        }
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above; the rest as the body's.
             return unsafe {
@@ -128,7 +137,7 @@ unsafe fn step_threads(
             };
         }
     }
-    step_threads_body(
+    step_threads_body::<4>(
         nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
     )
 }
@@ -151,7 +160,31 @@ unsafe fn step_threads_avx2(
     dt: f64,
     nsteps: u64,
 ) -> Option<f64> {
-    step_threads_body(
+    step_threads_body::<4>(
+        nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
+    )
+}
+
+/// The same, compiled for AVX-512 (8 lanes to a vector).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f,avx512dq,avx512vl")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn step_threads_avx512(
+    nc: &NetConsts,
+    lay: &Layout,
+    opts: &SolverOptions,
+    sh: Shared,
+    barrier: &SpinBarrier,
+    failed: &AtomicUsize,
+    plan: &Plan,
+    tid: usize,
+    eta: &[f64],
+    g: &mut Work,
+    step0: u64,
+    dt: f64,
+    nsteps: u64,
+) -> Option<f64> {
+    step_threads_body::<8>(
         nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
     )
 }
@@ -159,9 +192,10 @@ unsafe fn step_threads_avx2(
 /// # Safety
 /// `sh` points at the block's state (`n` nodes) and loads (`load`, in `plan`'s buffers),
 /// and every thread of `barrier` runs this with its own `tid` of `plan`.
+/// `L` as in [`super::advance_net`]'s body.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-unsafe fn step_threads_body(
+unsafe fn step_threads_body<const L: usize>(
     nc: &NetConsts,
     lay: &Layout,
     opts: &SolverOptions,
@@ -214,7 +248,7 @@ unsafe fn step_threads_body(
                         std::slice::from_raw_parts(p.add(reach.start) as *const f64, reach.len())
                     });
                     let eta = &eta[reach.clone()];
-                    element_tile(nc, lay, p.clone(), xs, reach.start, eta, &[], g, out);
+                    element_tile::<L>(nc, lay, p.clone(), xs, reach.start, eta, &[], g, out);
                 }
                 &Op::Nodes(t) => update(t, time, g),
             }
