@@ -779,16 +779,17 @@ fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb
     // Still water: the surface is z = 0 and the water does not accelerate. Waves: the
     // mean of the two nodes' wave velocity and acceleration at the midpoint, the
     // surface over each node for the wetted fraction (cpu::stepper element_input),
-    // from the element's cache entry (elem_waves).
+    // from the element's cache entry (elem_waves). WAVES (the generated header) is
+    // false in a still-water run's fused pipeline: the waves branch folds away there.
     var aw = vec3<R>(R(0.0), R(0.0), R(0.0));
     var wet: R;
-    if wave_steps[blocks[ep.block].wave_rows + k].n == 0u {
-        wet = wetted_fraction(submergence(oz, sa), submergence(oz, sb), ep.diameter);
-    } else {
+    if WAVES && wave_steps[blocks[ep.block].wave_rows + k].n != 0u {
         let w = elem_waves(e, ep, k);
         u += w.u;
         aw = w.a;
         wet = wetted_fraction(w.eta_a + submergence(oz, sa), w.eta_b + submergence(oz, sb), ep.diameter);
+    } else {
+        wet = wetted_fraction(submergence(oz, sa), submergence(oz, sb), ep.diameter);
     }
     let el = glmf_element_wet(lp, d, stretch, sa.v.xyz, sb.v.xyz, l0, u, aw, wet, params.gravity);
     var tension = el.tension;
@@ -848,9 +849,10 @@ struct NodeForce {
 // mass: gather_begin and gather_end then multiply every wave value by zero, so the
 // node pass skips the cache read (14 scalars per node-step) for the plain nodes of a
 // line. CPU twin: the chain kernel (cpu::chain) interpolates per-node values only for
-// blocks with such points.
+// blocks with such points. Zeros too without WAVES (a still-water pipeline; node_waves
+// would return zeros there anyway).
 fn point_waves(i: u32, nd: NodeParams, k: u32) -> WaveKin {
-    if nd.point_drag != R(0.0) || nd.point_displaced != R(0.0) || nd.point_added != R(0.0) {
+    if WAVES && (nd.point_drag != R(0.0) || nd.point_displaced != R(0.0) || nd.point_added != R(0.0)) {
         return node_waves(i, k);
     }
     return WaveKin(R(0.0), vec3<R>(R(0.0)), vec3<R>(R(0.0)));
@@ -890,7 +892,7 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
         f += vr * (nd.point_drag * norm3(vr) * wet);
     }
     let m_fk = nd.point_displaced + nd.point_added;
-    if wave_steps[blk.wave_rows + k].n != 0u && m_fk > R(0.0) {
+    if WAVES && wave_steps[blk.wave_rows + k].n != 0u && m_fk > R(0.0) {
         f += w.a * (m_fk * wet);
     }
     var trib = nd.tributary;

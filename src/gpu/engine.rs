@@ -96,8 +96,11 @@ pub(super) struct GpuEngine<R: GpuReal> {
     pipe_refresh_elems: wgpu::ComputePipeline,
     /// The waves (`None`: still water).
     waves: Option<SeaSchedules>,
-    /// The fused kernel's pipeline and workgroup size, or why there is none.
-    pipe_fused: Result<(wgpu::ComputePipeline, u32), String>,
+    /// The fused kernel's pipelines and workgroup size, or why there is none.
+    pipe_fused: Result<FusedPipelines, String>,
+    /// The layout every pipeline is built with (kept for the fused kernel's waves
+    /// pipeline, built when a sea has waves).
+    pipe_layout: wgpu::PipelineLayout,
     /// Whether `advance` uses the fused kernel.
     use_fused: bool,
     step_stride: u64,
@@ -105,6 +108,27 @@ pub(super) struct GpuEngine<R: GpuReal> {
     dt64: f64,
     timings: GpuTimings,
     _r: PhantomData<R>,
+}
+
+/// The fused kernel's pipelines: one without the waves' code for still water, built
+/// with the engine, and one with it, built when a sea with waves is set
+/// (`shaders::header_with`: a software adapter pays for a branch no lane takes).
+struct FusedPipelines {
+    /// The workgroup size (`FUSED_WG`).
+    wg: u32,
+    still: wgpu::ComputePipeline,
+    waves: Option<wgpu::ComputePipeline>,
+}
+
+impl FusedPipelines {
+    /// The pipeline for a run with waves (`waves`) or in still water.
+    fn pick(&self, waves: bool) -> &wgpu::ComputePipeline {
+        match (&self.waves, waves) {
+            (Some(p), true) => p,
+            (None, true) => unreachable!("set_seas builds the waves pipeline with the waves"),
+            (_, false) => &self.still,
+        }
+    }
 }
 
 /// Bytes of `v`, or of one zeroed element when `v` is empty (bindings may not be empty).
@@ -189,7 +213,8 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                     timestamp_writes: None,
                 });
                 match (&self.pipe_fused, self.use_fused) {
-                    (Ok((pipe, _)), true) => {
+                    (Ok(fused), true) => {
+                        let pipe = fused.pick(self.waves.is_some());
                         // One workgroup per block, stepping from one refresh of the
                         // waves' cache to the next (all `chunk` steps in still water).
                         for (a, b) in fused_segments(&refresh, self.inst.fused_max_steps) {
@@ -325,6 +350,9 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             .ctx
             .device
             .push_error_scope(wgpu::ErrorFilter::Validation);
+        if self.waves.is_some() {
+            self.add_fused_waves();
+        }
         let new = Self::build(
             &self.ctx,
             &self.bgl,

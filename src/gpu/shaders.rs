@@ -3,8 +3,9 @@
 //! One source serves both precisions: a short generated header defines the scalar
 //! alias `R` (`f32` or `f64`), the two-part `pi/2` used by the shaders' own sine
 //! and cosine, Veltkamp's splitting constant and whether element stretches are formed
-//! from compensated pairs (f32 only) and the fused kernel's workgroup size `FUSED_WG`,
-//! then comes `shaders/shared/prelude.wgsl` (structs, bindings, physics) and
+//! from compensated pairs (f32 only), the fused kernel's workgroup size `FUSED_WG` and
+//! whether the run has waves (`WAVES`: see [`header_with`]), then comes
+//! `shaders/shared/prelude.wgsl` (structs, bindings, physics) and
 //! `shaders/shared/waves.wgsl` (wave kinematics), then the stage file.
 
 use crate::options::Precision;
@@ -70,13 +71,22 @@ impl Stage {
 }
 
 /// The generated header: the scalar alias and precision-specific constants, with the
-/// fused kernel's workgroup size [`DEFAULT_FUSED_WORKGROUP`].
+/// fused kernel's workgroup size [`DEFAULT_FUSED_WORKGROUP`] and the waves' code in
+/// (`WAVES = true`).
 pub fn header(p: Precision) -> String {
-    header_with(p, DEFAULT_FUSED_WORKGROUP)
+    header_with(p, DEFAULT_FUSED_WORKGROUP, true)
 }
 
-/// The generated header with the fused kernel's workgroup size `fused_wg`.
-pub fn header_with(p: Precision, fused_wg: u32) -> String {
+/// The generated header with the fused kernel's workgroup size `fused_wg` and
+/// `const WAVES: bool = waves`. The shared functions the step calls guard their waves
+/// branches with `if WAVES && ...`, so a pipeline built with `waves = false` (the fused
+/// kernel of a still-water run) has those branches folded away by the compiler rather
+/// than carried: a software adapter such as lavapipe runs a branch no lane takes
+/// through its masked code, which cost the still-water fused step 8-10% there
+/// (BENCHMARKS.md, "The GPU step in waves: a per-element cache"). `waves = true` is
+/// right for either kind of run (still water then takes the branches' still side at
+/// run time), so the two-pass stages, built once per engine, always have it.
+pub fn header_with(p: Precision, fused_wg: u32, waves: bool) -> String {
     let pio2 = std::f64::consts::FRAC_PI_2;
     let (ty, hi, lo, splitter, compensated) = match p {
         Precision::F32 => {
@@ -103,19 +113,23 @@ pub fn header_with(p: Precision, fused_wg: u32) -> String {
          // Element stretches from compensated pairs (f32; f64 needs no help).\n\
          const COMPENSATED: bool = {compensated};\n\
          // Invocations per workgroup of the fused kernel (nodes per block at most).\n\
-         const FUSED_WG: u32 = {fused_wg}u;\n\n"
+         const FUSED_WG: u32 = {fused_wg}u;\n\
+         // Whether the run has waves (false: the waves branches fold away).\n\
+         const WAVES: bool = {waves};\n\n"
     )
 }
 
-/// The complete WGSL of `stage` at precision `p`: header, prelude, stage body.
+/// The complete WGSL of `stage` at precision `p`: header (waves' code in), prelude,
+/// stage body.
 pub fn source(stage: Stage, p: Precision) -> String {
-    source_with(stage, p, DEFAULT_FUSED_WORKGROUP)
+    source_with(stage, p, DEFAULT_FUSED_WORKGROUP, true)
 }
 
 /// The complete WGSL of `stage` at precision `p` with the fused kernel's workgroup
-/// size `fused_wg`.
-pub fn source_with(stage: Stage, p: Precision, fused_wg: u32) -> String {
-    let mut s = header_with(p, fused_wg);
+/// size `fused_wg` and the waves' branches in (`waves`) or folded away (see
+/// [`header_with`]).
+pub fn source_with(stage: Stage, p: Precision, fused_wg: u32, waves: bool) -> String {
+    let mut s = header_with(p, fused_wg, waves);
     s.push_str(PRELUDE);
     s.push('\n');
     s.push_str(WAVES);

@@ -2,13 +2,15 @@
 //! builds into compute pipelines on the adapter when there is one.
 
 use super::common::*;
+use std::collections::HashSet;
 use cablesim::gpu::shaders::{self, Stage};
 use cablesim::gpu::{GpuSolver, Precision};
 use cablesim::model::{Layout, PointMass, Route};
 use cablesim::options::SolverOptions;
 
-fn validate(stage: Stage, p: Precision) -> naga::Module {
-    let src = shaders::source(stage, p);
+/// Parses and validates `stage` at `p` with the waves' code in or out (`waves`).
+fn validate_with(stage: Stage, p: Precision, waves: bool) -> naga::Module {
+    let src = shaders::source_with(stage, p, shaders::DEFAULT_FUSED_WORKGROUP, waves);
     let module = naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| {
         panic!(
             "{} ({}) does not parse:\n{}",
@@ -37,8 +39,8 @@ fn validate(stage: Stage, p: Precision) -> naga::Module {
 #[test]
 fn every_stage_validates_at_both_precisions() {
     for p in [Precision::F32, Precision::F64] {
-        for stage in Stage::ALL {
-            let m = validate(stage, p);
+        for (stage, waves) in Stage::ALL.into_iter().flat_map(|s| [(s, true), (s, false)]) {
+            let m = validate_with(stage, p, waves);
             let entries: Vec<&str> = m.entry_points.iter().map(|e| e.name.as_str()).collect();
             for want in stage.entry_points() {
                 assert!(
@@ -94,5 +96,121 @@ fn every_stage_builds_on_the_adapter() {
         // GpuSolver::new builds every pipeline inside a validation error scope.
         GpuSolver::new(&ctx, lay.clone(), &pos, SolverOptions::default(), p)
             .unwrap_or_else(|e| panic!("{}: {e}", p.name()));
+    }
+}
+
+/// Whether expression `e` of function `f` is false whatever the run: a literal or
+/// constant `false` (the header's `WAVES` in a still-water source) or a load of a local
+/// that `false_locals` holds (naga lowers `a && b` to `if a { t = b } else { t = false }`).
+fn is_false(
+    m: &naga::Module,
+    f: &naga::Function,
+    e: naga::Handle<naga::Expression>,
+    false_locals: &HashSet<naga::Handle<naga::LocalVariable>>,
+) -> bool {
+    use naga::{Expression as E, Literal};
+    match f.expressions[e] {
+        E::Literal(Literal::Bool(false)) => true,
+        E::Constant(c) => matches!(
+            m.global_expressions[m.constants[c].init],
+            E::Literal(Literal::Bool(false))
+        ),
+        E::Load { pointer } => matches!(
+            f.expressions[pointer],
+            E::LocalVariable(v) if false_locals.contains(&v)
+        ),
+        _ => false,
+    }
+}
+
+/// Adds to `reached` the names of the functions that `block` of `f` can call, leaving
+/// out the `accept` side of every `if` whose condition [`is_false`]. (A local is taken
+/// for false only from such an `if`'s `reject` side: naga's short-circuit temporaries
+/// are stored once on each side.)
+fn calls_in(
+    m: &naga::Module,
+    f: &naga::Function,
+    block: &naga::Block,
+    false_locals: &mut HashSet<naga::Handle<naga::LocalVariable>>,
+    reached: &mut HashSet<String>,
+) {
+    use naga::{Expression as E, Literal, Statement as S};
+    for st in block.iter() {
+        match st {
+            S::Block(b) => calls_in(m, f, b, false_locals, reached),
+            S::If { condition, accept, reject } => {
+                if is_false(m, f, *condition, false_locals) {
+                    // Only `reject` runs: a short-circuit temporary it sets `false`
+                    // stays false.
+                    for st in reject.iter() {
+                        if let S::Store { pointer, value } = st {
+                            if let (E::LocalVariable(v), E::Literal(Literal::Bool(false))) =
+                                (&f.expressions[*pointer], &f.expressions[*value])
+                            {
+                                false_locals.insert(*v);
+                            }
+                        }
+                    }
+                } else {
+                    calls_in(m, f, accept, false_locals, reached);
+                }
+                calls_in(m, f, reject, false_locals, reached);
+            }
+            S::Switch { cases, .. } => {
+                for c in cases {
+                    calls_in(m, f, &c.body, false_locals, reached);
+                }
+            }
+            S::Loop { body, continuing, .. } => {
+                calls_in(m, f, body, false_locals, reached);
+                calls_in(m, f, continuing, false_locals, reached);
+            }
+            S::Call { function, .. } => {
+                let g = &m.functions[*function];
+                let name = g.name.clone().unwrap_or_default();
+                if reached.insert(name) {
+                    calls_in(m, g, &g.body, &mut HashSet::new(), reached);
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// The functions the fused kernel's entry point can reach, `if false` sides left out.
+fn fused_reaches(p: Precision, waves: bool) -> HashSet<String> {
+    let m = validate_with(Stage::FusedSteps, p, waves);
+    let ep = m
+        .entry_points
+        .iter()
+        .find(|e| e.name == "fused_steps")
+        .expect("fused_steps");
+    let mut reached = HashSet::new();
+    calls_in(&m, &ep.function, &ep.function.body, &mut HashSet::new(), &mut reached);
+    reached
+}
+
+#[test]
+fn the_still_water_fused_kernel_carries_no_waves_code() {
+    // shaders::header_with(.., waves = false) sets `WAVES = false`, and every waves
+    // branch of the step is `if WAVES && ..`: no call into the waves' cache is left
+    // where it could run, so the compiler drops it (lavapipe ran those branches masked,
+    // 8-10% of the still-water step). With the waves' code in, the same walk finds the
+    // cache reads (so it does look into the branches).
+    let cache_reads = ["elem_waves", "node_waves", "wave_mid_hermite", "wave_cache_hermite"];
+    for p in [Precision::F32, Precision::F64] {
+        let with = fused_reaches(p, true);
+        for f in cache_reads {
+            assert!(with.contains(f), "{}: the waves kernel does not reach {f}", p.name());
+        }
+        let without = fused_reaches(p, false);
+        assert!(without.contains("element_step") && without.contains("gather_end"));
+        for f in cache_reads {
+            assert!(
+                !without.contains(f),
+                "{}: the still-water fused kernel can still call {f}",
+                p.name()
+            );
+        }
     }
 }

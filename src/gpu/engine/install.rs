@@ -6,7 +6,9 @@
 //! Split out of `engine.rs` to keep each file under ~800 lines: this is the
 //! "what goes on the device" half, `engine.rs` the "how a step runs" half.
 
-use super::{align_up, bytes_or_one, decode, Buffers, Engine, GpuEngine, Installed};
+use super::{
+    align_up, bytes_or_one, decode, Buffers, Engine, FusedPipelines, GpuEngine, Installed,
+};
 use crate::error::Error;
 use crate::gpu::context::GpuContext;
 use crate::gpu::host::{body_rows, rebased_route, route_samples, split, Host};
@@ -24,6 +26,31 @@ use bytemuck::Zeroable;
 use rayon::prelude::*;
 use std::marker::PhantomData;
 use wgpu::util::DeviceExt;
+
+/// The fused kernel's pipeline of workgroup size `wg`, with the waves' branches
+/// (`waves`) or without (shaders::header_with).
+fn fused_pipeline(
+    dev: &wgpu::Device,
+    pl: &wgpu::PipelineLayout,
+    precision: Precision,
+    wg: u32,
+    waves: bool,
+) -> wgpu::ComputePipeline {
+    let m = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(Stage::FusedSteps.file()),
+        source: wgpu::ShaderSource::Wgsl(
+            shaders::source_with(Stage::FusedSteps, precision, wg, waves).into(),
+        ),
+    });
+    dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(if waves { "fused_steps (waves)" } else { "fused_steps (still water)" }),
+        layout: Some(pl),
+        module: &m,
+        entry_point: Some("fused_steps"),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
 
 impl<R: GpuReal> GpuEngine<R> {
     pub(in crate::gpu) fn new(
@@ -105,15 +132,13 @@ impl<R: GpuReal> GpuEngine<R> {
         let pipe_eval = pipeline(&m_node, "node_evaluate");
         let pipe_refresh = pipeline(&m_node, "wave_refresh");
         let pipe_refresh_elems = pipeline(&m_node, "wave_refresh_elems");
+        // The fused kernel for still water here; set_seas adds the one with the waves'
+        // code when a sea has waves (shaders::header_with).
         let pipe_fused = fused_workgroup(lay, precision, &ctx.limits, !host.winches.is_empty())
-            .map(|wg| {
-                let m = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some(Stage::FusedSteps.file()),
-                    source: wgpu::ShaderSource::Wgsl(
-                        shaders::source_with(Stage::FusedSteps, precision, wg).into(),
-                    ),
-                });
-                (pipeline(&m, "fused_steps"), wg)
+            .map(|wg| FusedPipelines {
+                wg,
+                still: fused_pipeline(dev, &pl, precision, wg, false),
+                waves: None,
             });
         let use_fused = pipe_fused.is_ok();
         let inst = Self::build(ctx, &bgl, step_stride, lay, host, opts, None);
@@ -135,6 +160,7 @@ impl<R: GpuReal> GpuEngine<R> {
             pipe_refresh_elems,
             waves: None,
             pipe_fused,
+            pipe_layout: pl,
             use_fused,
             step_stride,
             dt64: opts.dt,
@@ -144,6 +170,29 @@ impl<R: GpuReal> GpuEngine<R> {
         engine.upload(host, positions, &vec![[0.0; 3]; positions.len()]);
         engine.write_routes(lay, host, 0.0);
         Ok(engine)
+    }
+
+    /// Adds the fused kernel's pipeline with the waves' code (`WAVES = true`) if there
+    /// is a fused kernel and it has none yet: built on the first sea with waves, so a
+    /// still-water run compiles only the one without. The caller checks for
+    /// validation errors.
+    pub(super) fn add_fused_waves(&mut self) {
+        let precision = if R::WGSL == "f64" {
+            Precision::F64
+        } else {
+            Precision::F32
+        };
+        if let Ok(f) = &mut self.pipe_fused {
+            if f.waves.is_none() {
+                f.waves = Some(fused_pipeline(
+                    &self.ctx.device,
+                    &self.pipe_layout,
+                    precision,
+                    f.wg,
+                    true,
+                ));
+            }
+        }
     }
 
     /// Creates the layout's buffers and their bind group.
