@@ -528,29 +528,10 @@ pub(crate) fn advance_net(
     advance_net_body::<4>(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
 }
 
-/// Whether the network loops take 8 lanes (AVX-512: F, DQ, VL): where the CPU has them
-/// and the environment variable `CABLESIM_NET_LANES` is `8`. By default they take 4
-/// (AVX2): on the development machine 8 lanes were not faster (BENCHMARKS.md,
-/// "Networks: whole chunks of lanes"). Every loop's lanes are independent (no sum
-/// across elements or nodes), so the results are the same bits with 8 lanes or 4.
+/// Whether the network loops take 8 lanes ([`crate::lanes::net_avx512_wanted`]).
 #[cfg(target_arch = "x86_64")]
 fn avx512() -> bool {
-    static WANTED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    let wanted = *WANTED.get_or_init(|| match std::env::var("CABLESIM_NET_LANES").as_deref() {
-        Ok("8") => true,
-        Ok("4") | Err(_) => false,
-        Ok(other) => {
-            log::warn!(
-                "CABLESIM_NET_LANES = {other:?} is neither 4 nor 8: the network path uses 4 \
-                 lanes"
-            );
-            false
-        }
-    });
-    wanted
-        && std::arch::is_x86_feature_detected!("avx512f")
-        && std::arch::is_x86_feature_detected!("avx512dq")
-        && std::arch::is_x86_feature_detected!("avx512vl")
+    crate::lanes::net_avx512_wanted()
 }
 
 /// The same, compiled for AVX-512 (8 lanes to a vector).
