@@ -138,10 +138,13 @@ impl BlockWaves {
     }
 
     /// The chain kernel's inputs at time `t` from the cache (not in exact mode): each
-    /// node's elevation into `eta`, each element's midpoint wave velocity added to `u`
-    /// and its midpoint wave acceleration into `aw` (elements `0..n - 1`). Refreshes
-    /// the cache when `t` is past it (`state` as in [`Self::fill`]).
+    /// node's elevation into `eta`, each element's midpoint wave velocity plus the
+    /// current into `u` (`uniform`: the block's one current, written with the waves'
+    /// velocity; `None`: added to the currents `u` already holds) and its midpoint wave
+    /// acceleration into `aw` (elements `0..n - 1`). Refreshes the cache when `t` is
+    /// past it (`state` as in [`Self::fill`]).
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn fill_chain(
         &mut self,
         t: f64,
@@ -149,6 +152,7 @@ impl BlockWaves {
         state: impl Fn(usize) -> ([f64; 3], [f64; 3]),
         eta: &mut [f64],
         u: &mut [Vec<f64>; 3],
+        uniform: Option<[f64; 3]>,
         aw: &mut [Vec<f64>; 3],
     ) {
         debug_assert!(!self.exact);
@@ -167,15 +171,19 @@ impl BlockWaves {
         };
         let ne = n - 1;
         let cols = &self.cols;
+        // The power basis's first weight is exactly 1 (its columns skip that multiply).
+        let power = cols.power_ref.is_some();
         let e = &cols.eta;
-        wave_cache_hermite_cols(&mut eta[..n], [&e[0], &e[1], &e[2], &e[3]], w, false);
+        let ec = [&e[0][..], &e[1], &e[2], &e[3]];
+        wave_cache_hermite_cols(&mut eta[..n], ec, w, HermiteOut::Set, power);
         let m = &cols.mid;
         for q in 0..3 {
             let (uq, aq) = (q, 3 + q);
             let uc = [&m[0][uq][..], &m[1][uq], &m[2][uq], &m[3][uq]];
-            wave_cache_hermite_cols(&mut u[q][..ne], uc, w, true);
+            let into = uniform.map_or(HermiteOut::Add, |un| HermiteOut::Over(un[q]));
+            wave_cache_hermite_cols(&mut u[q][..ne], uc, w, into, power);
             let ac = [&m[0][aq][..], &m[1][aq], &m[2][aq], &m[3][aq]];
-            wave_cache_hermite_cols(&mut aw[q][..ne], ac, w, false);
+            wave_cache_hermite_cols(&mut aw[q][..ne], ac, w, HermiteOut::Set, power);
         }
     }
 }
@@ -258,20 +266,76 @@ fn element_midpoint(v: &[f64], k: usize) -> [f64; 8] {
     )
 }
 
-/// `out = w0 v0 + w1 d0 + w2 v1 + w3 d1` elementwise over the columns `c = [v0, d0,
-/// v1, d1]` ([`wave_cache_hermite`] into the kernel's inputs), or `out +=` that when
-/// `add` (a loop that vectorises: distinct slices of one length).
+/// What [`wave_cache_hermite_cols`] does with the interpolated value `h` of entry `i`.
+#[derive(Clone, Copy)]
+enum HermiteOut {
+    /// `out[i] = h`.
+    Set,
+    /// `out[i] += h` (a current already there).
+    Add,
+    /// `out[i] = b + h`: the same bits as `out[i] = b` then `out[i] += h`, without
+    /// filling `out` with the block's uniform current `b` first at every stage.
+    Over(f64),
+}
+
+/// `h = w0 v0 + w1 d0 + w2 v1 + w3 d1` elementwise over the columns `c = [v0, d0, v1,
+/// d1]` ([`wave_cache_hermite`] into the kernel's inputs), written as `into` says.
+/// `unit`: `w0` is exactly 1 (the power basis), and `v0` is taken as it is: `1 * v0`
+/// is `v0` to the bit, so the same sum with one multiply fewer. Loops that vectorise
+/// (distinct slices of one length), one per case, so no branch inside.
 #[inline(always)]
-fn wave_cache_hermite_cols(out: &mut [f64], c: [&[f64]; 4], w: [f64; 4], add: bool) {
+fn wave_cache_hermite_cols(
+    out: &mut [f64],
+    c: [&[f64]; 4],
+    w: [f64; 4],
+    into: HermiteOut,
+    unit: bool,
+) {
+    if unit {
+        debug_assert!(w[0] == 1.0);
+        hermite_cols_into::<true>(out, c, w, into);
+    } else if let HermiteOut::Set = into {
+        let n = out.len();
+        wave_cache_hermite(&c[0][..n], &c[1][..n], &c[2][..n], &c[3][..n], w, out);
+    } else {
+        hermite_cols_into::<false>(out, c, w, into);
+    }
+}
+
+/// [`wave_cache_hermite_cols`]'s loops; `UNIT`: `w0` is 1.
+#[inline(always)]
+fn hermite_cols_into<const UNIT: bool>(
+    out: &mut [f64],
+    c: [&[f64]; 4],
+    w: [f64; 4],
+    into: HermiteOut,
+) {
     let n = out.len();
     let (v0, d0, v1, d1) = (&c[0][..n], &c[1][..n], &c[2][..n], &c[3][..n]);
-    if add {
-        for i in 0..n {
-            out[i] += w[0] * v0[i] + w[1] * d0[i] + w[2] * v1[i] + w[3] * d1[i];
+    match into {
+        HermiteOut::Set => {
+            for i in 0..n {
+                out[i] = hermite_at::<UNIT>(w, v0[i], d0[i], v1[i], d1[i]);
+            }
         }
-    } else {
-        wave_cache_hermite(v0, d0, v1, d1, w, out);
+        HermiteOut::Add => {
+            for i in 0..n {
+                out[i] += hermite_at::<UNIT>(w, v0[i], d0[i], v1[i], d1[i]);
+            }
+        }
+        HermiteOut::Over(b) => {
+            for i in 0..n {
+                out[i] = b + hermite_at::<UNIT>(w, v0[i], d0[i], v1[i], d1[i]);
+            }
+        }
     }
+}
+
+/// One entry of [`wave_cache_hermite`], in its order of operations (`UNIT`: `w0` is 1).
+#[inline(always)]
+fn hermite_at<const UNIT: bool>(w: [f64; 4], v0: f64, d0: f64, v1: f64, d1: f64) -> f64 {
+    let first = if UNIT { v0 } else { w[0] * v0 };
+    first + w[1] * d0 + w[2] * v1 + w[3] * d1
 }
 
 /// Node `i`'s elevation, wave velocity and wave acceleration in `w`.

@@ -391,8 +391,10 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
             unsafe { ale_constants(asc, time, wc) };
         }
         let c = &*wc;
-        // A uniform current in still water was filled once for the run.
-        if c.uniform.is_none() || waves.is_some() {
+        // A uniform current in still water was filled once for the run; in waves from
+        // the cache, `fill_chain` writes it with the waves' velocity.
+        let cache_waves = waves.as_deref().is_some_and(|wb| !wb.exact());
+        if c.uniform.is_none() || (waves.is_some() && !cache_waves) {
             currents(c, &lay.currents, state, u);
         }
         let wholly_wet = if let Some(wb) = waves.as_deref_mut() {
@@ -411,7 +413,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                 if !c.point_drag.is_empty() || !c.point_volume.is_empty() {
                     wb.fill(time, c.n, st, wbuf);
                 }
-                wb.fill_chain(time, c.n, st, eta, u, aw);
+                wb.fill_chain(time, c.n, st, eta, u, c.uniform, aw);
             }
             // SAFETY: the caller's columns.
             unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, None, None) }
