@@ -188,7 +188,14 @@ fn dispatch<const RATES: bool>(
     at: Point,
     scratch: &mut KinematicsScratch,
 ) -> (Kinematics, Kinematics) {
-    dispatch_at::<RATES>(crate::lanes::avx512_wanted(), cols, depth, stretching, at, scratch)
+    dispatch_at::<RATES>(
+        crate::lanes::avx512_wanted(),
+        cols,
+        depth,
+        stretching,
+        at,
+        scratch,
+    )
 }
 
 /// [`dispatch`] with the choice of AVX-512 given (`wide`; taken only where the CPU has
@@ -205,8 +212,7 @@ fn dispatch_at<const RATES: bool>(
     scratch.fit(cols.len());
     #[cfg(target_arch = "x86_64")]
     {
-        if wide && crate::lanes::avx512_present() && std::arch::is_x86_feature_detected!("fma")
-        {
+        if wide && crate::lanes::avx512_present() && std::arch::is_x86_feature_detected!("fma") {
             // SAFETY: the CPU has AVX-512 (F, DQ, VL) and FMA, checked just above.
             return unsafe { columns_avx512::<RATES>(cols, depth, stretching, at, scratch) };
         }

@@ -2,11 +2,11 @@
 //! builds into compute pipelines on the adapter when there is one.
 
 use super::common::*;
-use std::collections::HashSet;
 use cablesim::gpu::shaders::{self, Stage};
 use cablesim::gpu::{GpuSolver, Precision};
 use cablesim::model::{Layout, PointMass, Route};
 use cablesim::options::SolverOptions;
+use std::collections::HashSet;
 
 /// Parses and validates `stage` at `p` with the waves' code in or out (`waves`).
 fn validate_with(stage: Stage, p: Precision, waves: bool) -> naga::Module {
@@ -138,7 +138,11 @@ fn calls_in(
     for st in block.iter() {
         match st {
             S::Block(b) => calls_in(m, f, b, false_locals, reached),
-            S::If { condition, accept, reject } => {
+            S::If {
+                condition,
+                accept,
+                reject,
+            } => {
                 if is_false(m, f, *condition, false_locals) {
                     // Only `reject` runs: a short-circuit temporary it sets `false`
                     // stays false.
@@ -161,7 +165,9 @@ fn calls_in(
                     calls_in(m, f, &c.body, false_locals, reached);
                 }
             }
-            S::Loop { body, continuing, .. } => {
+            S::Loop {
+                body, continuing, ..
+            } => {
                 calls_in(m, f, body, false_locals, reached);
                 calls_in(m, f, continuing, false_locals, reached);
             }
@@ -186,7 +192,13 @@ fn fused_reaches(p: Precision, waves: bool) -> HashSet<String> {
         .find(|e| e.name == "fused_steps")
         .expect("fused_steps");
     let mut reached = HashSet::new();
-    calls_in(&m, &ep.function, &ep.function.body, &mut HashSet::new(), &mut reached);
+    calls_in(
+        &m,
+        &ep.function,
+        &ep.function.body,
+        &mut HashSet::new(),
+        &mut reached,
+    );
     reached
 }
 
@@ -197,11 +209,20 @@ fn the_still_water_fused_kernel_carries_no_waves_code() {
     // where it could run, so the compiler drops it (lavapipe ran those branches masked,
     // 8-10% of the still-water step). With the waves' code in, the same walk finds the
     // cache reads (so it does look into the branches).
-    let cache_reads = ["elem_waves", "node_waves", "wave_mid_hermite", "wave_cache_hermite"];
+    let cache_reads = [
+        "elem_waves",
+        "node_waves",
+        "wave_mid_hermite",
+        "wave_cache_hermite",
+    ];
     for p in [Precision::F32, Precision::F64] {
         let with = fused_reaches(p, true);
         for f in cache_reads {
-            assert!(with.contains(f), "{}: the waves kernel does not reach {f}", p.name());
+            assert!(
+                with.contains(f),
+                "{}: the waves kernel does not reach {f}",
+                p.name()
+            );
         }
         let without = fused_reaches(p, false);
         assert!(without.contains("element_step") && without.contains("gather_end"));

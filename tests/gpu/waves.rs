@@ -715,7 +715,9 @@ fn check_midpoint<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8R
         wave_cache_hermite(&mids[0], &mids[1], &mids[2], &mids[3], wt, &mut h);
         for d in 0..8 {
             // The means' own rounding, carried by each weight, plus the sum's.
-            let scale: f64 = (0..4).map(|q| 2.0 * (wt[q] * mids[q][d]).abs()).sum::<f64>()
+            let scale: f64 = (0..4)
+                .map(|q| 2.0 * (wt[q] * mids[q][d]).abs())
+                .sum::<f64>()
                 + (0..4)
                     .map(|q| (wt[q] * 0.5 * (b[14 * q + d].abs() + b[14 * q + 7 + d].abs())).abs())
                     .sum::<f64>();

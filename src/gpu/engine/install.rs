@@ -43,7 +43,11 @@ fn fused_pipeline(
         ),
     });
     dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(if waves { "fused_steps (waves)" } else { "fused_steps (still water)" }),
+        label: Some(if waves {
+            "fused_steps (waves)"
+        } else {
+            "fused_steps (still water)"
+        }),
         layout: Some(pl),
         module: &m,
         entry_point: Some("fused_steps"),
