@@ -389,9 +389,15 @@ unsafe fn node_kernel<
         [ax[i], ay[i], az[i]] = o;
     }
     // The padding nodes stay at rest at zero (the symplectic update's check reads them).
-    for i in c.n..nc * L {
-        let (j, l) = (i / L, i % L);
-        (ax[j][l], ay[j][l], az[j][l]) = (0.0, 0.0, 0.0);
+    // They are the last chunk's lanes from `c.n` on: one select a column on that chunk
+    // (vector blends), not a store per padding node (up to 7 with 8 lanes).
+    if nc > 0 {
+        let (j, first) = (nc - 1, (nc - 1) * L);
+        for col in [&mut ax[j], &mut ay[j], &mut az[j]] {
+            for (l, v) in col.iter_mut().enumerate() {
+                *v = if first + l < c.n { *v } else { 0.0 };
+            }
+        }
     }
 }
 
