@@ -117,93 +117,20 @@ fn step_above_the_bound_warns_and_blow_up_is_named() {
     assert!(csv.lines().count() >= 3, "the t = 0 rows at least");
 }
 
-/// The chain fast path runs whole chunks of 8 lanes where the CPU has AVX-512 and of 4
-/// with `CABLESIM_CHAIN_LANES=4` (AVX2); every lane does a scalar loop's arithmetic, so
-/// the output files are the same bytes: a winch cable with an end mass towed along a
-/// route (Case 2), a line on the seabed (the catenary), and lines with seabed friction
-/// in waves.
-#[test]
-fn chain_lanes_4_and_8_give_the_same_bytes() {
-    let avx512 = {
-        #[cfg(target_arch = "x86_64")]
-        {
-            std::arch::is_x86_feature_detected!("avx512f")
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        {
-            false
-        }
-    };
-    if !avx512 {
+/// Runs each `(scenario, duration, threads)` with the environment variable `var` at 4
+/// and at 8 lanes and asserts that the output files `files` are the same bytes.
+fn lanes_give_the_same_bytes(var: &str, runs: &[(&str, &str, &str)], files: &[&str]) {
+    if !cablesim::lanes::avx512_present() {
         eprintln!("no AVX-512 here: both runs take 4 lanes");
     }
-    for (scenario, duration) in [
-        ("examples/case2_straight.toml", "20"),
-        ("examples/catenary.toml", "5"),
-        ("examples/spread_mooring_waves.toml", "2"),
-    ] {
+    for &(scenario, duration, threads) in runs {
         let run = |lanes: &str| {
             let dir = tempfile::tempdir().unwrap();
             let out = Command::new(BIN)
                 .args(["run", scenario, "--backend", "cpu", "--duration", duration])
                 .args(["-q", "--out"])
                 .arg(dir.path())
-                .env("CABLESIM_CHAIN_LANES", lanes)
-                .output()
-                .unwrap();
-            assert!(
-                out.status.success(),
-                "{scenario}: {}",
-                String::from_utf8_lossy(&out.stderr)
-            );
-            ["positions.csv", "tensions.csv", "end_forces.csv"]
-                .map(|f| std::fs::read(dir.path().join(f)).unwrap())
-        };
-        let (four, eight) = (run("4"), run("8"));
-        for (k, f) in ["positions.csv", "tensions.csv", "end_forces.csv"]
-            .iter()
-            .enumerate()
-        {
-            assert!(!four[k].is_empty(), "{scenario}: {f} is empty");
-            assert!(
-                four[k] == eight[k],
-                "{scenario}: {f} differs between 4 and 8 lanes"
-            );
-        }
-    }
-}
-
-/// The network path with 8 lanes (AVX-512, `CABLESIM_NET_LANES=8`) and with 4 (AVX2, the
-/// default) writes the same output bytes: a net cage in still water on one thread and
-/// on two (its loops in whole chunks of lanes, the last chunk of a piece overlapping),
-/// and a net cage in waves (surface-piercing twines: the loop over elements).
-#[test]
-fn net_lanes_4_and_8_give_the_same_bytes() {
-    let avx512 = {
-        #[cfg(target_arch = "x86_64")]
-        {
-            std::arch::is_x86_feature_detected!("avx512f")
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        {
-            false
-        }
-    };
-    if !avx512 {
-        eprintln!("no AVX-512 here: both runs take 4 lanes");
-    }
-    for (scenario, duration, threads) in [
-        ("examples/net_cage.toml", "0.5", "1"),
-        ("examples/net_cage.toml", "0.5", "2"),
-        ("examples/net_cage_waves.toml", "0.5", "1"),
-    ] {
-        let run = |lanes: &str| {
-            let dir = tempfile::tempdir().unwrap();
-            let out = Command::new(BIN)
-                .args(["run", scenario, "--backend", "cpu", "--duration", duration])
-                .args(["-q", "--out"])
-                .arg(dir.path())
-                .env("CABLESIM_NET_LANES", lanes)
+                .env(var, lanes)
                 .env("RAYON_NUM_THREADS", threads)
                 .output()
                 .unwrap();
@@ -212,15 +139,53 @@ fn net_lanes_4_and_8_give_the_same_bytes() {
                 "{scenario}: {}",
                 String::from_utf8_lossy(&out.stderr)
             );
-            ["tensions.csv", "end_forces.csv"].map(|f| std::fs::read(dir.path().join(f)).unwrap())
+            files
+                .iter()
+                .map(|f| std::fs::read(dir.path().join(f)).unwrap())
+                .collect::<Vec<_>>()
         };
         let (four, eight) = (run("4"), run("8"));
-        for (k, f) in ["tensions.csv", "end_forces.csv"].iter().enumerate() {
+        for (k, f) in files.iter().enumerate() {
             assert!(!four[k].is_empty(), "{scenario}: {f} is empty");
             assert!(
                 four[k] == eight[k],
-                "{scenario}, {threads} threads: {f} differs between 4 and 8 lanes"
+                "{scenario}, {threads} threads: {f} differs between 4 and 8 lanes ({var})"
             );
         }
     }
+}
+
+/// The chain fast path runs whole chunks of 8 lanes where the CPU has AVX-512 and of 4
+/// with `CABLESIM_CHAIN_LANES=4` (AVX2); every lane does a scalar loop's arithmetic, so
+/// the output files are the same bytes: a winch cable with an end mass towed along a
+/// route (Case 2), a line on the seabed (the catenary), and lines with seabed friction
+/// in waves.
+#[test]
+fn chain_lanes_4_and_8_give_the_same_bytes() {
+    lanes_give_the_same_bytes(
+        "CABLESIM_CHAIN_LANES",
+        &[
+            ("examples/case2_straight.toml", "20", "2"),
+            ("examples/catenary.toml", "5", "2"),
+            ("examples/spread_mooring_waves.toml", "2", "2"),
+        ],
+        &["positions.csv", "tensions.csv", "end_forces.csv"],
+    );
+}
+
+/// The network path with 8 lanes (AVX-512, `CABLESIM_NET_LANES=8`) and with 4 (AVX2, the
+/// default) writes the same output bytes: a net cage in still water on one thread and
+/// on two (its loops in whole chunks of lanes, the last chunk of a piece overlapping),
+/// and a net cage in waves (surface-piercing twines: the loop over elements).
+#[test]
+fn net_lanes_4_and_8_give_the_same_bytes() {
+    lanes_give_the_same_bytes(
+        "CABLESIM_NET_LANES",
+        &[
+            ("examples/net_cage.toml", "0.5", "1"),
+            ("examples/net_cage.toml", "0.5", "2"),
+            ("examples/net_cage_waves.toml", "0.5", "1"),
+        ],
+        &["tensions.csv", "end_forces.csv"],
+    );
 }
