@@ -135,6 +135,24 @@ fn is_false(
     }
 }
 
+/// The local that `block` ends by storing a value [`is_false`] into (naga's
+/// short-circuit temporary of `a && b`: `t = b` on one side, `t = false` on the
+/// other), if any.
+fn stored_false(
+    m: &naga::Module,
+    f: &naga::Function,
+    block: &naga::Block,
+    false_locals: &HashSet<naga::Handle<naga::LocalVariable>>,
+) -> Option<naga::Handle<naga::LocalVariable>> {
+    match block.last() {
+        Some(naga::Statement::Store { pointer, value }) => match f.expressions[*pointer] {
+            naga::Expression::LocalVariable(v) if is_false(m, f, *value, false_locals) => Some(v),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
 /// Adds to `reached` the names of the functions that `block` of `f` can call, leaving
 /// out the `accept` side of every `if` whose condition [`is_false`]. (A local is taken
 /// for false only from such an `if`'s `reject` side: naga's short-circuit temporaries
@@ -169,6 +187,16 @@ fn calls_in(
                     }
                 } else {
                     calls_in(m, f, accept, false_locals, reached);
+                    // `a && b` with `b` false whatever the run (`WAVES && WAVE_POINTS`
+                    // with the latter false): the temporary is false on both sides.
+                    if let (Some(v), Some(w)) = (
+                        stored_false(m, f, accept, false_locals),
+                        stored_false(m, f, reject, false_locals),
+                    ) {
+                        if v == w {
+                            false_locals.insert(v);
+                        }
+                    }
                 }
                 calls_in(m, f, reject, false_locals, reached);
             }
@@ -262,8 +290,17 @@ fn the_fused_waves_kernel_of_lines_without_points_reads_no_node_cache() {
     // read node b's cache through `wave_cache_hermite` directly, not `node_waves`.
     for p in [Precision::F32, Precision::F64] {
         let lines = fused_reaches_points(p, true, false);
-        for f in ["elem_waves", "wave_mid_hermite", "wave_cache_hermite", "wave_band_weights"] {
-            assert!(lines.contains(f), "{}: lines only, {f} not reached", p.name());
+        for f in [
+            "elem_waves",
+            "wave_mid_hermite",
+            "wave_cache_hermite",
+            "wave_band_weights",
+        ] {
+            assert!(
+                lines.contains(f),
+                "{}: lines only, {f} not reached",
+                p.name()
+            );
         }
         assert!(
             !lines.contains("node_waves"),
@@ -271,6 +308,10 @@ fn the_fused_waves_kernel_of_lines_without_points_reads_no_node_cache() {
             p.name()
         );
         let points = fused_reaches_points(p, true, true);
-        assert!(points.contains("node_waves"), "{}: points, node_waves not reached", p.name());
+        assert!(
+            points.contains("node_waves"),
+            "{}: points, node_waves not reached",
+            p.name()
+        );
     }
 }
