@@ -440,8 +440,9 @@ fn node_waves(i: u32, k: u32) -> WaveKin {
 // that the element pass interpolates 32 scalars instead of reading both nodes' 56.
 // Interpolation is linear in the cached values, so this is the same value up to
 // round-off. The element's nodes share a band but for the few elements across a band
-// top, whose two nodes interpolate with different weights: those are marked
-// WAVE_ELEM_MIXED and read their nodes' caches (node_waves) as before. ----
+// top, whose two nodes interpolate with different weights: those are marked with
+// both bands (WAVE_ELEM_MIXED), keep node a's values and both surfaces in their entry
+// and read node b's velocity and acceleration from the nodes' cache (elem_waves). ----
 
 // An element's waves: the surface over nodes a and b, the mean wave velocity and
 // acceleration of the two (m, m/s, m/s^2; or their rates).
