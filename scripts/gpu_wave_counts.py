@@ -25,11 +25,14 @@ REFRESH_FLOPS = 240 * 200
 # Scalars of the cache per element at a step that does not refresh.
 OLD_ELEM = 2 * (1 + 28)  # both nodes' band and their 28 (values, rates, two times)
 NEW_ELEM = 1 + 32  # the element's band mark and its 32
-MIXED_ELEM = 1 + OLD_ELEM  # an element across a band top: the mark, then as before
+# An element across a band top: the mark, its 32 (node a's values and both nodes'
+# surface), node b's velocity and acceleration (24; branch `hlava`: before, the mark
+# and both nodes' band and 28, 59).
+MIXED_ELEM = 1 + 32 + 24
 # Flops per element at a step that does not refresh.
 OLD_ELEM_FLOPS = 117  # two Hermite interpolations of 7, the means, the surface
 NEW_ELEM_FLOPS = 8 * 7 + 3 + 2  # one Hermite interpolation of 8, u +=, the surface
-MIXED_ELEM_FLOPS = OLD_ELEM_FLOPS
+MIXED_ELEM_FLOPS = OLD_ELEM_FLOPS  # 8 x 7 + 7 + 6 x 7 + 6 + 5 = 116 since `hlava`
 
 # wave_refresh_node, per node and refresh dispatch: always its state, its block index
 # (4 B) and its band; when its band refreshes also its last velocity (3) and the 14
@@ -39,10 +42,11 @@ NODE_ALWAYS = 1
 NODE_DUE = 3 + 14 + 14 + 14 + 3 + 1
 # wave_elem_form (this branch), per element and refresh dispatch: always its
 # parameters and its nodes' bands; when one of its nodes' bands refreshes, the nodes'
-# 2 x 28 (reads) and its 33 (writes); an element across a band top writes its mark.
+# 2 x 28 (reads) and its 33 (writes); an element across a band top the same (since
+# branch `hlava`: node a's values and both surfaces; before, only its mark).
 ELEM_ALWAYS = 2
 ELEM_DUE = 56 + 33
-MIXED_DUE = 1
+MIXED_DUE = ELEM_DUE
 ELEM_FORM_FLOPS = 4 * 6 * 2
 
 

@@ -9,5 +9,10 @@ fn element_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let ep = elems[e];
-    elem_loads[e] = element_step(e, ep, lines[ep.line], blocks[ep.block].oz, state[ep.a], state[ep.b], step.k);
+    let blk = blocks[ep.block];
+    var sr = SeaRows(0u, 0u, 0u, 0u, false);
+    if WAVES {
+        sr = wave_sea_rows(blk.wave_rows, step.k);
+    }
+    elem_loads[e] = element_step(e, ep, lines[ep.line], blk.oz, state[ep.a], state[ep.b], step.k, sr);
 }

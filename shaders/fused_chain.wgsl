@@ -98,12 +98,19 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
         la = ep.a - blk.node_start;
         lb = ep.b - blk.node_start;
     }
+    // The block's sea's rows at the dispatch's first step (read once: whether the sea
+    // has waves and the rows between bands are the same at every step; wave_sea_rows).
+    var sr = SeaRows(0u, 0u, 0u, 0u, false);
+    if WAVES {
+        sr = wave_sea_rows(blk.wave_rows, step.k);
+    }
     if workgroupUniformLoad(&wg_stop) != 0u {
         return;
     }
     for (var k = step.k; k < step.end; k += 1u) {
         if has_elem {
-            wg_loads[j] = element_step(e, ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k);
+            sr.r = blk.wave_rows + k;
+            wg_loads[j] = element_step(e, ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k, sr);
         }
         if j == 0u {
             wg_stop = atomicLoad(&wg_fail);

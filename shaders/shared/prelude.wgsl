@@ -747,7 +747,7 @@ fn submergence(oz: R, s: NodeState) -> R {
 // The GLMF loads of element `e` (`ep`, line `lp`, its block's origin height `oz`) from
 // the states `sa`, `sb` of its nodes a and b at step `k` of the submission (the row of
 // `payout` of a winch cable's variable element). CPU twin: cpu::stepper element_pass.
-fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeState, k: u32) -> ElemLoads {
+fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeState, k: u32, sr: SeaRows) -> ElemLoads {
     // A winch cable's variable element takes l0_v(t) of this step (crate::ale).
     var l0 = ep.l0;
     var l0_lo = ep.l0_lo;
@@ -779,12 +779,13 @@ fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb
     // Still water: the surface is z = 0 and the water does not accelerate. Waves: the
     // mean of the two nodes' wave velocity and acceleration at the midpoint, the
     // surface over each node for the wetted fraction (cpu::stepper element_input),
-    // from the element's cache entry (elem_waves). WAVES (the generated header) is
-    // false in a still-water run's fused pipeline: the waves branch folds away there.
+    // from the element's cache entry (elem_waves) at its sea's rows `sr` of this step
+    // (wave_sea_rows). WAVES (the generated header) is false in a still-water run's
+    // fused pipeline: the waves branch folds away there.
     var aw = vec3<R>(R(0.0), R(0.0), R(0.0));
     var wet: R;
-    if WAVES && wave_steps[blocks[ep.block].wave_rows + k].n != 0u {
-        let w = elem_waves(e, ep, k);
+    if WAVES && sr.waves {
+        let w = elem_waves(e, ep, sr);
         u += w.u;
         aw = w.a;
         wet = wetted_fraction(w.eta_a + submergence(oz, sa), w.eta_b + submergence(oz, sb), ep.diameter);
@@ -852,7 +853,7 @@ struct NodeForce {
 // blocks with such points. Zeros too without WAVES (a still-water pipeline; node_waves
 // would return zeros there anyway).
 fn point_waves(i: u32, nd: NodeParams, k: u32) -> WaveKin {
-    if WAVES && (nd.point_drag != R(0.0) || nd.point_displaced != R(0.0) || nd.point_added != R(0.0)) {
+    if WAVES && WAVE_POINTS && (nd.point_drag != R(0.0) || nd.point_displaced != R(0.0) || nd.point_added != R(0.0)) {
         return node_waves(i, k);
     }
     return WaveKin(R(0.0), vec3<R>(R(0.0)), vec3<R>(R(0.0)));
@@ -892,7 +893,7 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
         f += vr * (nd.point_drag * norm3(vr) * wet);
     }
     let m_fk = nd.point_displaced + nd.point_added;
-    if WAVES && wave_steps[blk.wave_rows + k].n != 0u && m_fk > R(0.0) {
+    if WAVES && WAVE_POINTS && wave_steps[blk.wave_rows + k].n != 0u && m_fk > R(0.0) {
         f += w.a * (m_fk * wet);
     }
     var trib = nd.tributary;

@@ -440,8 +440,9 @@ fn node_waves(i: u32, k: u32) -> WaveKin {
 // that the element pass interpolates 32 scalars instead of reading both nodes' 56.
 // Interpolation is linear in the cached values, so this is the same value up to
 // round-off. The element's nodes share a band but for the few elements across a band
-// top, whose two nodes interpolate with different weights: those are marked
-// WAVE_ELEM_MIXED and read their nodes' caches (node_waves) as before. ----
+// top, whose two nodes interpolate with different weights: those are marked with
+// both bands (WAVE_ELEM_MIXED), keep node a's values and both surfaces in their entry
+// and read node b's velocity and acceleration from the nodes' cache (elem_waves). ----
 
 // An element's waves: the surface over nodes a and b, the mean wave velocity and
 // acceleration of the two (m, m/s, m/s^2; or their rates).
@@ -455,8 +456,10 @@ struct WaveMid {
 // One band marker, then the four sides (values at t0, rates at t0, values at t1,
 // rates at t1) of eight scalars, per element, after the nodes' part of the cache.
 const WAVE_ELEM_STRIDE: u32 = 33u;
-// The band marker of an element whose nodes are in different bands.
-const WAVE_ELEM_MIXED: u32 = 255u;
+// The band marker of an element whose nodes are in different bands is at least this:
+// WAVE_ELEM_MIXED + 8 bb + ba for node a in band ba and node b in band bb (small whole
+// numbers, exact in R; a band is below 8: sea::bands::MAX_BANDS).
+const WAVE_ELEM_MIXED: u32 = 8u;
 
 // The element part of node a's and node b's cache entries (one side: values or rates
 // at one time). Rust twin: sea::cache::wave_cache_midpoint.
@@ -500,12 +503,23 @@ fn wave_mid_store(o: u32, m: WaveMid) {
     wave_cache[o + 7u] = m.a.z;
 }
 
+// Node a's side and node b's surface on that side as an element entry stores them
+// for an element across a band top (wave_elem_form): node a's own velocity and
+// acceleration, not the mean, which the step forms after interpolating each node
+// with its own band's weights (elem_waves).
+fn wave_mixed_side(a: WaveKin, b: WaveKin) -> WaveMid {
+    return WaveMid(a.eta, b.eta, a.u, a.a);
+}
+
 // Forms element e's entry at step k, after the nodes' refresh (wave_refresh_node)
 // and only where one of its nodes' bands refreshed at this step (a band changes only
-// at a decision, when every band refreshes): its band, or WAVE_ELEM_MIXED when its
-// nodes' bands differ; for one band, the midpoints of its nodes' four sides. CPU
-// twin: cpu::water::ChainColumns::form (which, with several bands, puts every node
-// in the power basis of one time instead of marking the mixed elements).
+// at a decision, when every band refreshes): its band and, per side, the surface over
+// its nodes and the mean of their velocity and acceleration; or, for an element whose
+// nodes' bands differ, the mark WAVE_ELEM_MIXED + 8 bb + ba and per side node a's
+// values and node b's surface (wave_mixed_side): the step then reads only node b's
+// velocity and acceleration from the nodes' cache. CPU twin:
+// cpu::water::ChainColumns::form (which, with several bands, puts every node in the
+// power basis of one time instead of marking the mixed elements).
 fn wave_elem_form(e: u32, k: u32) {
     let ep = elems[e];
     if wave_steps[blocks[ep.block].wave_rows + k].n == 0u {
@@ -519,43 +533,87 @@ fn wave_elem_form(e: u32, k: u32) {
         return;
     }
     let o = wave_elem_at(e);
-    if ba != bb {
-        wave_cache[o] = R(WAVE_ELEM_MIXED);
-        return;
-    }
-    wave_cache[o] = R(ba);
     let oa0 = (wa.slot0 * params.n_nodes + ep.a) * WAVE_CACHE_STRIDE;
     let oa1 = (wa.slot1 * params.n_nodes + ep.a) * WAVE_CACHE_STRIDE;
     let ob0 = (wa.slot0 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
     let ob1 = (wa.slot1 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
+    if ba != bb {
+        wave_cache[o] = R(WAVE_ELEM_MIXED + 8u * bb + ba);
+        wave_mid_store(o + 1u, wave_mixed_side(wave_cache_load7(oa0), wave_cache_load7(ob0)));
+        wave_mid_store(o + 9u, wave_mixed_side(wave_cache_load7(oa0 + 7u), wave_cache_load7(ob0 + 7u)));
+        wave_mid_store(o + 17u, wave_mixed_side(wave_cache_load7(oa1), wave_cache_load7(ob1)));
+        wave_mid_store(o + 25u, wave_mixed_side(wave_cache_load7(oa1 + 7u), wave_cache_load7(ob1 + 7u)));
+        return;
+    }
+    wave_cache[o] = R(ba);
     wave_mid_store(o + 1u, wave_cache_midpoint(wave_cache_load7(oa0), wave_cache_load7(ob0)));
     wave_mid_store(o + 9u, wave_cache_midpoint(wave_cache_load7(oa0 + 7u), wave_cache_load7(ob0 + 7u)));
     wave_mid_store(o + 17u, wave_cache_midpoint(wave_cache_load7(oa1), wave_cache_load7(ob1)));
     wave_mid_store(o + 25u, wave_cache_midpoint(wave_cache_load7(oa1 + 7u), wave_cache_load7(ob1 + 7u)));
 }
 
-// Element ep's (index e) waves at step k of the submission, in a sea with waves (the
-// caller checks): its entry interpolated with its band's weights, or for an element
-// across a band top, its nodes' own (node_waves). CPU twin:
-// cpu::water::BlockWaves::fill_chain.
-fn elem_waves(e: u32, ep: ElemParams, k: u32) -> WaveMid {
+// Where a block's sea's rows are at one step: `r` the row of band 0 at that step
+// (BlockParams::wave_rows + k), `band_rows` the rows from one band to the next, the
+// cache slots of the t0 and t1 values, and whether the sea has waves (`n != 0`). All
+// but `r` are the same in every row of a sea in a submission
+// (gpu::wave_schedule::WaveSchedule::base), so the fused kernel reads them once per
+// dispatch (wave_sea_rows) and moves `r` along with its step: on a software adapter
+// (lavapipe) every storage load is a loop over the SIMD lanes.
+struct SeaRows {
+    r: u32,
+    band_rows: u32,
+    slot0: u32,
+    slot1: u32,
+    waves: bool,
+}
+
+// The rows of step k of the sea whose band 0 starts at row `wave_rows`.
+fn wave_sea_rows(wave_rows: u32, k: u32) -> SeaRows {
+    let r = wave_rows + k;
+    let n = wave_steps[r].n;
+    return SeaRows(r, wave_steps[r].band_rows, wave_steps[r].slot0, wave_steps[r].slot1, n != 0u);
+}
+
+// The Hermite weights of band b's row at rows `sr`.
+fn wave_band_weights(sr: SeaRows, b: u32) -> vec4<R> {
+    let r = sr.r + b * sr.band_rows;
+    return vec4<R>(wave_steps[r].w0, wave_steps[r].w1, wave_steps[r].w2, wave_steps[r].w3);
+}
+
+// Element e's waves at rows `sr` of a sea with waves (the caller checks): its entry
+// interpolated with its band's weights; for an element across a band top, node a's
+// values from the entry with node a's band's weights, node b's surface from the
+// entry and its velocity and acceleration from the nodes' cache with node b's band's
+// weights, then their mean, as wave_cache_midpoint of the two nodes' interpolations
+// (the same arithmetic, so the same bits). Both cases share the entry's 32 loads: on
+// a software adapter (lavapipe) an `if` costs the code of both sides, loads included.
+// CPU twin: cpu::water::BlockWaves::fill_chain.
+fn elem_waves(e: u32, ep: ElemParams, sr: SeaRows) -> WaveMid {
     let o = wave_elem_at(e);
-    let b = u32(wave_cache[o]);
-    if b == WAVE_ELEM_MIXED {
-        return wave_cache_midpoint(node_waves(ep.a, k), node_waves(ep.b, k));
+    let mark = u32(wave_cache[o]);
+    let mixed = mark >= WAVE_ELEM_MIXED;
+    let ba = select(mark, (mark - WAVE_ELEM_MIXED) % 8u, mixed);
+    let v0 = wave_mid_load(o + 1u);
+    let d0 = wave_mid_load(o + 9u);
+    let v1 = wave_mid_load(o + 17u);
+    let d1 = wave_mid_load(o + 25u);
+    var m = wave_mid_hermite(v0, d0, v1, d1, wave_band_weights(sr, ba));
+    if mixed {
+        let wb = wave_band_weights(sr, (mark - WAVE_ELEM_MIXED) / 8u);
+        m.eta_b = wb.x * v0.eta_b + wb.y * d0.eta_b + wb.z * v1.eta_b + wb.w * d1.eta_b;
+        let o0 = (sr.slot0 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
+        let o1 = (sr.slot1 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
+        let b = wave_cache_hermite(
+            wave_cache_load7(o0),
+            wave_cache_load7(o0 + 7u),
+            wave_cache_load7(o1),
+            wave_cache_load7(o1 + 7u),
+            wb,
+        );
+        m.u = R(0.5) * (m.u + b.u);
+        m.a = R(0.5) * (m.a + b.a);
     }
-    let r = blocks[ep.block].wave_rows + k;
-    var ws = wave_steps[r];
-    if b != 0u {
-        ws = wave_steps[r + b * ws.band_rows];
-    }
-    return wave_mid_hermite(
-        wave_mid_load(o + 1u),
-        wave_mid_load(o + 9u),
-        wave_mid_load(o + 17u),
-        wave_mid_load(o + 25u),
-        vec4<R>(ws.w0, ws.w1, ws.w2, ws.w3),
-    );
+    return m;
 }
 
 // The refresh of node i at step k, at absolute position p (m) with velocity v (m/s),

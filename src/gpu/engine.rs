@@ -351,7 +351,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             .device
             .push_error_scope(wgpu::ErrorFilter::Validation);
         if self.waves.is_some() {
-            self.add_fused_waves();
+            self.add_fused_waves(lay);
         }
         let new = Self::build(
             &self.ctx,

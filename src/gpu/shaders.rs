@@ -71,10 +71,10 @@ impl Stage {
 }
 
 /// The generated header: the scalar alias and precision-specific constants, with the
-/// fused kernel's workgroup size [`DEFAULT_FUSED_WORKGROUP`] and the waves' code in
-/// (`WAVES = true`).
+/// fused kernel's workgroup size [`DEFAULT_FUSED_WORKGROUP`] and all the waves' code in
+/// (`WAVES = true`, `WAVE_POINTS = true`).
 pub fn header(p: Precision) -> String {
-    header_with(p, DEFAULT_FUSED_WORKGROUP, true)
+    header_with(p, DEFAULT_FUSED_WORKGROUP, true, true)
 }
 
 /// The generated header with the fused kernel's workgroup size `fused_wg` and
@@ -86,7 +86,13 @@ pub fn header(p: Precision) -> String {
 /// (BENCHMARKS.md, "The GPU step in waves: a per-element cache"). `waves = true` is
 /// right for either kind of run (still water then takes the branches' still side at
 /// run time), so the two-pass stages, built once per engine, always have it.
-pub fn header_with(p: Precision, fused_wg: u32, waves: bool) -> String {
+///
+/// `const WAVE_POINTS: bool = wave_points` does the same for the waves' loads of point
+/// masses (a node's own cache read, `point_waves`, and the water-acceleration load of
+/// `gather_end`): false only where no node of the layout has a point mass with drag,
+/// displaced or added mass (a chain's lines), where those branches are never taken.
+/// It counts only with `waves`.
+pub fn header_with(p: Precision, fused_wg: u32, waves: bool, wave_points: bool) -> String {
     let pio2 = std::f64::consts::FRAC_PI_2;
     let (ty, hi, lo, splitter, compensated) = match p {
         Precision::F32 => {
@@ -115,21 +121,29 @@ pub fn header_with(p: Precision, fused_wg: u32, waves: bool) -> String {
          // Invocations per workgroup of the fused kernel (nodes per block at most).\n\
          const FUSED_WG: u32 = {fused_wg}u;\n\
          // Whether the run has waves (false: the waves branches fold away).\n\
-         const WAVES: bool = {waves};\n\n"
+         const WAVES: bool = {waves};\n\
+         // Whether some node's point mass takes wave loads (false: those fold away).\n\
+         const WAVE_POINTS: bool = {wave_points};\n\n"
     )
 }
 
 /// The complete WGSL of `stage` at precision `p`: header (waves' code in), prelude,
 /// stage body.
 pub fn source(stage: Stage, p: Precision) -> String {
-    source_with(stage, p, DEFAULT_FUSED_WORKGROUP, true)
+    source_with(stage, p, DEFAULT_FUSED_WORKGROUP, true, true)
 }
 
 /// The complete WGSL of `stage` at precision `p` with the fused kernel's workgroup
-/// size `fused_wg` and the waves' branches in (`waves`) or folded away (see
-/// [`header_with`]).
-pub fn source_with(stage: Stage, p: Precision, fused_wg: u32, waves: bool) -> String {
-    let mut s = header_with(p, fused_wg, waves);
+/// size `fused_wg` and the waves' branches in (`waves`; the point masses' with
+/// `wave_points`) or folded away (see [`header_with`]).
+pub fn source_with(
+    stage: Stage,
+    p: Precision,
+    fused_wg: u32,
+    waves: bool,
+    wave_points: bool,
+) -> String {
+    let mut s = header_with(p, fused_wg, waves, wave_points);
     s.push_str(PRELUDE);
     s.push('\n');
     s.push_str(WAVES);

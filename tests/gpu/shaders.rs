@@ -8,9 +8,21 @@ use cablesim::model::{Layout, PointMass, Route};
 use cablesim::options::SolverOptions;
 use std::collections::HashSet;
 
-/// Parses and validates `stage` at `p` with the waves' code in or out (`waves`).
+/// Parses and validates `stage` at `p` with the waves' code in or out (`waves`; the
+/// point masses' too).
 fn validate_with(stage: Stage, p: Precision, waves: bool) -> naga::Module {
-    let src = shaders::source_with(stage, p, shaders::DEFAULT_FUSED_WORKGROUP, waves);
+    validate_points(stage, p, waves, waves)
+}
+
+/// [`validate_with`], the point masses' waves code in or out on its own (`wave_points`).
+fn validate_points(stage: Stage, p: Precision, waves: bool, wave_points: bool) -> naga::Module {
+    let src = shaders::source_with(
+        stage,
+        p,
+        shaders::DEFAULT_FUSED_WORKGROUP,
+        waves,
+        wave_points,
+    );
     let module = naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| {
         panic!(
             "{} ({}) does not parse:\n{}",
@@ -123,6 +135,24 @@ fn is_false(
     }
 }
 
+/// The local that `block` ends by storing a value [`is_false`] into (naga's
+/// short-circuit temporary of `a && b`: `t = b` on one side, `t = false` on the
+/// other), if any.
+fn stored_false(
+    m: &naga::Module,
+    f: &naga::Function,
+    block: &naga::Block,
+    false_locals: &HashSet<naga::Handle<naga::LocalVariable>>,
+) -> Option<naga::Handle<naga::LocalVariable>> {
+    match block.last() {
+        Some(naga::Statement::Store { pointer, value }) => match f.expressions[*pointer] {
+            naga::Expression::LocalVariable(v) if is_false(m, f, *value, false_locals) => Some(v),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
 /// Adds to `reached` the names of the functions that `block` of `f` can call, leaving
 /// out the `accept` side of every `if` whose condition [`is_false`]. (A local is taken
 /// for false only from such an `if`'s `reject` side: naga's short-circuit temporaries
@@ -157,6 +187,16 @@ fn calls_in(
                     }
                 } else {
                     calls_in(m, f, accept, false_locals, reached);
+                    // `a && b` with `b` false whatever the run (`WAVES && WAVE_POINTS`
+                    // with the latter false): the temporary is false on both sides.
+                    if let (Some(v), Some(w)) = (
+                        stored_false(m, f, accept, false_locals),
+                        stored_false(m, f, reject, false_locals),
+                    ) {
+                        if v == w {
+                            false_locals.insert(v);
+                        }
+                    }
                 }
                 calls_in(m, f, reject, false_locals, reached);
             }
@@ -185,7 +225,12 @@ fn calls_in(
 
 /// The functions the fused kernel's entry point can reach, `if false` sides left out.
 fn fused_reaches(p: Precision, waves: bool) -> HashSet<String> {
-    let m = validate_with(Stage::FusedSteps, p, waves);
+    fused_reaches_points(p, waves, waves)
+}
+
+/// [`fused_reaches`] with the point masses' waves code in or out (`wave_points`).
+fn fused_reaches_points(p: Precision, waves: bool, wave_points: bool) -> HashSet<String> {
+    let m = validate_points(Stage::FusedSteps, p, waves, wave_points);
     let ep = m
         .entry_points
         .iter()
@@ -233,5 +278,40 @@ fn the_still_water_fused_kernel_carries_no_waves_code() {
                 p.name()
             );
         }
+    }
+}
+
+#[test]
+fn the_fused_waves_kernel_of_lines_without_points_reads_no_node_cache() {
+    // `WAVE_POINTS = false` (a layout whose nodes have no point mass taking wave loads,
+    // gpu::engine layout_has_wave_points): the node pass's own cache read
+    // (`point_waves` -> `node_waves`) is out of reach, while the elements' cache reads
+    // stay (lavapipe ran the point branch masked for every node). The mixed elements
+    // read node b's cache through `wave_cache_hermite` directly, not `node_waves`.
+    for p in [Precision::F32, Precision::F64] {
+        let lines = fused_reaches_points(p, true, false);
+        for f in [
+            "elem_waves",
+            "wave_mid_hermite",
+            "wave_cache_hermite",
+            "wave_band_weights",
+        ] {
+            assert!(
+                lines.contains(f),
+                "{}: lines only, {f} not reached",
+                p.name()
+            );
+        }
+        assert!(
+            !lines.contains("node_waves"),
+            "{}: lines only, the node cache read is still reachable",
+            p.name()
+        );
+        let points = fused_reaches_points(p, true, true);
+        assert!(
+            points.contains("node_waves"),
+            "{}: points, node_waves not reached",
+            p.name()
+        );
     }
 }

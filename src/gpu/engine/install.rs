@@ -28,18 +28,20 @@ use std::marker::PhantomData;
 use wgpu::util::DeviceExt;
 
 /// The fused kernel's pipeline of workgroup size `wg`, with the waves' branches
-/// (`waves`) or without (shaders::header_with).
+/// (`waves`; those of point masses too with `wave_points`) or without
+/// (shaders::header_with).
 fn fused_pipeline(
     dev: &wgpu::Device,
     pl: &wgpu::PipelineLayout,
     precision: Precision,
     wg: u32,
     waves: bool,
+    wave_points: bool,
 ) -> wgpu::ComputePipeline {
     let m = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(Stage::FusedSteps.file()),
         source: wgpu::ShaderSource::Wgsl(
-            shaders::source_with(Stage::FusedSteps, precision, wg, waves).into(),
+            shaders::source_with(Stage::FusedSteps, precision, wg, waves, wave_points).into(),
         ),
     });
     dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -54,6 +56,17 @@ fn fused_pipeline(
         compilation_options: Default::default(),
         cache: None,
     })
+}
+
+/// Whether some node of `lay` has a point mass that takes wave loads (drag, displaced
+/// or added mass: the shaders' `point_waves` test); without one the fused kernel's
+/// waves pipeline leaves the point masses' waves code out (`WAVE_POINTS = false`).
+pub(in crate::gpu) fn layout_has_wave_points(lay: &Layout) -> bool {
+    lay.node_point_drag
+        .iter()
+        .chain(&lay.node_point_displaced)
+        .chain(&lay.node_point_added)
+        .any(|&x| x != 0.0)
 }
 
 impl<R: GpuReal> GpuEngine<R> {
@@ -141,7 +154,7 @@ impl<R: GpuReal> GpuEngine<R> {
         let pipe_fused = fused_workgroup(lay, precision, &ctx.limits, !host.winches.is_empty())
             .map(|wg| FusedPipelines {
                 wg,
-                still: fused_pipeline(dev, &pl, precision, wg, false),
+                still: fused_pipeline(dev, &pl, precision, wg, false, false),
                 waves: None,
             });
         let use_fused = pipe_fused.is_ok();
@@ -178,9 +191,11 @@ impl<R: GpuReal> GpuEngine<R> {
 
     /// Adds the fused kernel's pipeline with the waves' code (`WAVES = true`) if there
     /// is a fused kernel and it has none yet: built on the first sea with waves, so a
-    /// still-water run compiles only the one without. The caller checks for
-    /// validation errors.
-    pub(super) fn add_fused_waves(&mut self) {
+    /// still-water run compiles only the one without; the point masses' waves code
+    /// only when a node of `lay` has a point mass that takes wave loads
+    /// ([`layout_has_wave_points`]; the fused kernel's layout does not change: no
+    /// winches). The caller checks for validation errors.
+    pub(super) fn add_fused_waves(&mut self, lay: &Layout) {
         let precision = if R::WGSL == "f64" {
             Precision::F64
         } else {
@@ -194,6 +209,7 @@ impl<R: GpuReal> GpuEngine<R> {
                     precision,
                     f.wg,
                     true,
+                    layout_has_wave_points(lay),
                 ));
             }
         }
