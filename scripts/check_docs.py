@@ -49,6 +49,9 @@ TEXT_SUFFIXES = {".md", ".rs", ".wgsl", ".toml", ".py", ".txt", ".csv", ""}
 OUTSIDE = [
     re.compile(r"\.\./" + "shared"),
     re.compile("/work/" + "shared"),
+    # the working machine's scratch folders (helpers' binaries, copies of models)
+    re.compile("/work/" + "helpers"),
+    re.compile("/work/" + "wt/"),
     re.compile(r"\bMODEL" + r"\.md\b"),
     re.compile("shared/" + "paper"),
 ]
