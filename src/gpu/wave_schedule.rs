@@ -92,6 +92,8 @@ impl WaveSchedule {
             top2: top(2),
             top3: top(3),
             top4: top(4),
+            top5: top(5),
+            top6: top(6),
             ..Default::default()
         }
     }
