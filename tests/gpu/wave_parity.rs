@@ -108,7 +108,7 @@ fn parity(p: Precision, banded: bool) {
     // The line's scale of tension for f32: the larger of its largest now and its
     // largest in still water (f32's tolerance is relative to the line's loads; the run may end
     // at a slack moment, whose largest tension is far under them: the banded run ends
-    // after 2.5 band decisions, at 2.05 s, with 30 N against 27 kN in still water).
+    // after 2.5 band decisions, at 2.05 s, with 30 N against 2.2 kN in still water).
     let tmax = cpu_t.iter().fold(0.0f64, |m, t| m.max(t.abs()));
     let t_still = still
         .evaluate()
