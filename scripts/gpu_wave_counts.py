@@ -93,11 +93,24 @@ CASES = {
         "elems": {0: 50},
         "mixed": {},
     },
-    # examples/study_design_check.toml, 6.667 ms: bands every 24, 48, 96, 192 steps
-    # (the run's log); nodes and elements per band estimated from the CPU run's
-    # positions at 20 s (z + the 2 m margin against the tops -15.8, -18.8, -99.3 m);
-    # an element across a top refreshes with its finer node.
+    # examples/study_design_check.toml, 6.667 ms, the bands on the sea's scale (branch
+    # `hband`, sea::bands::band_interval): every 24, 48, 96, 192, 384, 768 steps under
+    # -15.8, -15.8, -34.4, -89.6, -195.3 m (the run's log; band 1 empty). Nodes per
+    # band: the CPU run's census (`CpuSolver::wave_band_census`, logged at each output
+    # time with RUST_LOG=debug) averaged over the outputs from 10 s to 200 s; elements
+    # estimated from it: each of the 8 chains taken to cross every top between its
+    # occupied bands once (an element across a top refreshes with its finer node).
     "design member, 6.7 ms": {
+        "interval": {0: 24, 2: 96, 3: 192, 4: 384, 5: 768},
+        "nodes": {0: 9.4, 2: 8.7, 3: 25.5, 4: 58.2, 5: 226.2},
+        "elems": {0: 1.4, 2: 0.7, 3: 17.5, 4: 50.2, 5: 218.2},
+        "mixed": {0: 8, 2: 8, 3: 8, 4: 8},
+    },
+    # The same member with the relative bands (main before the sea's scale): every 24,
+    # 48, 96, 192 steps (the run's log); nodes and elements per band estimated from
+    # the CPU run's positions at 20 s (z + the 2 m margin against the tops -15.8,
+    # -18.8, -99.3 m); an element across a top refreshes with its finer node.
+    "design member, relative bands": {
         "interval": {0: 24, 1: 48, 2: 96, 3: 192},
         "nodes": {0: 6, 1: 2, 2: 40, 3: 280},
         "elems": {2: 32, 3: 272},

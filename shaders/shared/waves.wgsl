@@ -331,11 +331,19 @@ struct WaveStep {
     depth: R,
     // The coarsest band's interval, s: how far ahead the band decision looks.
     horizon: R,
-    // The tops of bands 1 to 4, m (band 0's is infinite).
+    // The tops of bands 1 to 6, m (band 0's is infinite; sea::bands::MAX_BANDS at
+    // most 7).
     top1: R,
     top2: R,
     top3: R,
     top4: R,
+    top5: R,
+    top6: R,
+}
+
+// The tops of bands 1 to 6 of a step row, m (wave_band's `tops`).
+fn wave_step_tops(ws: WaveStep) -> array<R, 6> {
+    return array<R, 6>(ws.top1, ws.top2, ws.top3, ws.top4, ws.top5, ws.top6);
 }
 
 // Fourteen scalars per node and slot: eta, u, a (m, m/s, m/s^2), then their rates
@@ -377,13 +385,15 @@ fn wave_cache_store(slot: u32, i: u32, w: WaveKinRates) {
 // The band of a node at height z (m) with vertical velocity vz (m/s) and
 // acceleration estimate az (m/s^2), for the next `horizon` s: the deepest band whose
 // top is not under z + max(vz, 0) horizon + |az| horizon^2 / 2 + margin. `tops` are
-// the tops of bands 1 to 4 (band 0's is infinite), `n_bands` the number of bands.
+// the tops of bands 1 to 6 (band 0's is infinite), `n_bands` the number of bands.
 // Rust twin: sea::bands::wave_band (its `tops[m]` is this `tops[m - 1]`).
-fn wave_band(z: R, vz: R, az: R, horizon: R, margin: R, tops: vec4<R>, n_bands: u32) -> u32 {
+fn wave_band(z: R, vz: R, az: R, horizon: R, margin: R, tops_in: array<R, 6>, n_bands: u32) -> u32 {
+    // A local copy: indexed at run time.
+    var tops = tops_in;
     let bound = z + max(vz, R(0.0)) * horizon + R(0.5) * abs(az) * horizon * horizon + margin;
     var b = 0u;
     loop {
-        if b + 1u >= n_bands || b >= 4u || !(bound <= tops[b]) {
+        if b + 1u >= n_bands || b >= 6u || !(bound <= tops[b]) {
             break;
         }
         b = b + 1u;
@@ -630,7 +640,7 @@ fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
     let old = u32(wave_cache[ab]);
     let wo = wave_band_step(i, old, k);
     if wo.watch != 0u {
-        let tops = vec4<R>(wo.top1, wo.top2, wo.top3, wo.top4);
+        var tops = wave_step_tops(wo);
         if old > 0u && p.z > tops[old - 1u] {
             let bi = ab + params.n_nodes;
             wave_cache[bi] = wave_cache[bi] + R(1.0);
@@ -648,7 +658,7 @@ fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
     if wo.restart != 0u {
         band = 0u;
     } else if wo.decide != 0u {
-        band = wave_band(p.z, v.z, acc.z, wo.horizon, WAVE_BAND_MARGIN, vec4<R>(wo.top1, wo.top2, wo.top3, wo.top4), wo.n_bands);
+        band = wave_band(p.z, v.z, acc.z, wo.horizon, WAVE_BAND_MARGIN, wave_step_tops(wo), wo.n_bands);
     }
     wave_cache[ab] = R(band);
     let ws = wave_band_step(i, band, k);

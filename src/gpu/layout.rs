@@ -626,8 +626,8 @@ gpu_struct! {
         depth: R,
         /// The coarsest band's interval, s: the band decision's horizon.
         horizon: R,
-        /// The tops of bands 1 to 4, m (`sea::bands::BandPlan::tops`; band 0's is
-        /// infinite; those past `n_bands` unused).
+        /// The tops of bands 1 to 6, m (`sea::bands::BandPlan::tops`; band 0's is
+        /// infinite; those past `n_bands` unused; `sea::bands::MAX_BANDS` at most 7).
         top1: R,
         /// Band 2's top, m.
         top2: R,
@@ -635,6 +635,10 @@ gpu_struct! {
         top3: R,
         /// Band 4's top, m.
         top4: R,
+        /// Band 5's top, m.
+        top5: R,
+        /// Band 6's top, m.
+        top6: R,
     }
 }
 

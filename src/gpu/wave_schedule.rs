@@ -16,6 +16,10 @@ use crate::sea::kinematics::{wave_ramp, wave_ramp_rate, WaveField};
 use crate::sea::schedule::{RefreshClock, Tick};
 use crate::sea::{SeaSet, SeaState, Stretching, GPU_DEEP};
 
+// A step row carries the tops of bands 1 to 6 (`WaveStep::top1` to `top6`, WGSL
+// `wave_step_tops`): more bands would need more.
+const _: () = assert!(MAX_BANDS <= 7, "WaveStep carries the tops of bands 1 to 6");
+
 /// Scalars per node and cache slot on the GPU: the values `eta, u, a` and their rates
 /// along the node's path (`WAVE_CACHE_STRIDE` in `shaders/shared/waves.wgsl`); after
 /// the two slots, three per node: its velocity at the last refresh; then one per
@@ -92,6 +96,8 @@ impl WaveSchedule {
             top2: top(2),
             top3: top(3),
             top4: top(4),
+            top5: top(5),
+            top6: top(6),
             ..Default::default()
         }
     }

@@ -11,11 +11,28 @@
 //! before (`steps_0` steps per refresh on the common grid). Band `m` refreshes every
 //! `steps_0 2^m` steps (nested rungs of the grid: a band's refresh times are refresh
 //! times of every shallower band, and all bands refresh together at the coarsest
-//! band's times); its top `tops[m]` is the highest node height at which the plan's
-//! interval (the decayed rule at that height's evaluation depth, times the factor of
+//! band's times); its top `tops[m]` is the highest node height at which the band
+//! interval ([`band_interval`]: the rule on the sea's scale, below, at that height's
+//! evaluation depth, times the factor of
 //! [`super::schedule`]: 0.3 near the surface, 0.8 five metres under the lowest
 //! trough) is still at least `steps_0 2^m dt`. At most [`MAX_BANDS`] bands; a band
 //! exists only if its interval is reached above the seabed.
+//!
+//! The deeper bands' interval is the rule held on the sea's scale
+//! ([`super::schedule::sea_scale_rule_interval`]): the node's interpolation error,
+//! `sqrt(m12(zs)) dt^4 / 384` with the amplitudes decayed to its evaluation depth `zs`,
+//! within the tolerance of the root-mean-square acceleration at the mean level,
+//! `sqrt(m4(0))`, not of its own decayed one. Why: the cache's error matters through
+//! the loads, and a deep node's wave loads are themselves decayed, a thousandth of a
+//! surface node's 300 m down; held to 1e-3 of its own (the relative rule,
+//! [`super::schedule::decayed_rule_interval`], which is scale-free in the decay), its
+//! error is a millionth of the loads at the line's top, far below what any other node
+//! may err. Held on the sea's scale, every node errs by at most what a node at the
+//! mean level may (one absolute bound on the error of the loads for the whole line),
+//! the measure the decay cut ([`super::cut`]) already uses (the sea's `sigma`). At the
+//! mean level the two rules agree, and the sea-scale one is never the shorter (its
+//! `m4` is not decayed). Band 0 keeps the relative rule at the nodes' reach
+//! ([`refresh_plan`]), as before.
 //!
 //! Which band a node is in ([`wave_band`]): decided at the coarsest band's refresh
 //! times (the only times at which every band starts a new interval, so a node can
@@ -48,13 +65,18 @@
 //! (`WaveCache::power_node`), so that a stage interpolates every node, whatever its
 //! band, with the one set of weights `1, tau, tau^2, tau^3`.
 
-use super::schedule::{refresh_plan, RefreshPlan};
+use super::cache::HERMITE_INTERVAL_FACTOR;
+use super::schedule::{
+    eval_depth_of_reach, lowest_trough, refresh_plan, sea_scale_rule_interval, RefreshPlan,
+    SUBMERGED_FACTOR,
+};
 use super::SeaState;
 
 /// The most bands of a sea (the coarsest refreshes `2^(MAX_BANDS - 1)` times less
 /// often than band 0). Why a cap: the decision's horizon is the coarsest interval,
-/// and the bound on how far a node may rise grows with it.
-pub const MAX_BANDS: usize = 5;
+/// and the bound on how far a node may rise grows with it. The GPU's step rows carry
+/// the tops of bands 1 to 6 (`gpu::layout::WaveStep`): at most 7.
+pub const MAX_BANDS: usize = 7;
 
 /// Added to a node's bound on how high it may rise before the next decision, m.
 pub const BAND_MARGIN: f64 = 2.0;
@@ -112,6 +134,21 @@ impl BandPlan {
     }
 }
 
+/// The unrounded interval of a deeper band at node height `z` (m): the factor of
+/// [`super::schedule`] (0.3, or 0.8 when `z` is five metres under the lowest trough)
+/// times the rule on the sea's scale at `z`'s evaluation depth (see the module doc).
+/// Not increasing in `z`; not shorter than [`refresh_plan`]'s `unrounded` at `z`.
+pub fn band_interval(sea: &SeaState, z: f64) -> f64 {
+    let trough = lowest_trough(&sea.components);
+    let (zs, submerged) = eval_depth_of_reach(sea, z, trough);
+    let factor = if submerged {
+        SUBMERGED_FACTOR
+    } else {
+        HERMITE_INTERVAL_FACTOR
+    };
+    factor * sea_scale_rule_interval(&sea.components, sea.cache_tolerance, zs, sea.depth)
+}
+
 /// The bands of `sea` for nodes reaching no higher than `reach` (m; infinite when
 /// unknown), stepping by `dt` (see the module doc); one band in still water.
 pub fn band_plan(sea: &SeaState, reach: f64, dt: f64) -> BandPlan {
@@ -120,9 +157,9 @@ pub fn band_plan(sea: &SeaState, reach: f64, dt: f64) -> BandPlan {
     if base.steps == u64::MAX {
         return plan;
     }
-    // The plan's unrounded interval for nodes reaching no higher than `z`: not
+    // A band's unrounded interval for nodes reaching no higher than `z`: not
     // increasing in `z`.
-    let interval_at = |z: f64| refresh_plan(sea, z, dt).unrounded;
+    let interval_at = |z: f64| band_interval(sea, z);
     let floor = if sea.depth.is_finite() {
         -sea.depth
     } else {
@@ -205,8 +242,9 @@ mod tests {
             assert_eq!(p.steps[m], p.steps[0] << m);
             assert!(p.tops[m] < p.tops[m - 1]);
             let need = p.band(m).interval;
-            assert!(refresh_plan(&s, p.tops[m], dt).unrounded >= need);
-            assert!(refresh_plan(&s, p.tops[m] + 0.01, dt).unrounded < need);
+            assert!(band_interval(&s, p.tops[m]) >= need);
+            assert!(band_interval(&s, p.tops[m] + 0.01) < need);
+            assert!(band_interval(&s, p.tops[m]) >= refresh_plan(&s, p.tops[m], dt).unrounded);
         }
         assert_eq!(p.horizon(), p.band(p.len() - 1).interval);
         let still = band_plan(&SeaState::still(50.0), 0.0, dt);

@@ -91,6 +91,49 @@ pub fn decayed_rule_interval(
     hermite_rule_interval(&decayed, tolerance)
 }
 
+/// The interpolation rule held on the sea's scale: the interval that keeps the
+/// root-mean-square Hermite error of the water acceleration at evaluation depth `zs`,
+/// `sqrt(m12(zs)) dt^4 / 384` with `m12(zs)` of the decayed amplitudes, within
+/// `tolerance` of the root-mean-square acceleration at the mean level, `sqrt(m4)` of
+/// the undecayed ones: `(384^2 eps^2 m4(0) / m12(zs))^(1/8)`. Never shorter than the
+/// relative rule ([`decayed_rule_interval`], whose `m4` is decayed too) and the same
+/// at the mean level. Why the sea's scale: see [`super::bands`].
+pub fn sea_scale_rule_interval(
+    components: &[WaveComponent],
+    tolerance: f64,
+    zs: f64,
+    depth: f64,
+) -> f64 {
+    let (m4, m12) = components.iter().fold((0.0, 0.0), |(m4, m12), c| {
+        let w4 = c.omega.powi(4);
+        let ad = c.amplitude * depth_decay(c.k, zs, depth);
+        (
+            m4 + 0.5 * c.amplitude * c.amplitude * w4,
+            m12 + 0.5 * ad * ad * w4 * c.omega.powi(8),
+        )
+    });
+    if m12 <= 0.0 {
+        return f64::INFINITY;
+    }
+    (384.0 * 384.0 * tolerance * tolerance * m4 / m12).powf(0.125)
+}
+
+/// The highest evaluation depth of nodes reaching no higher than `reach` (m; infinite
+/// when unknown: the mean level) under the lowest trough `trough`, and whether they
+/// all stay [`SURFACE_MARGIN`] under it (see [`refresh_plan`]).
+pub fn eval_depth_of_reach(sea: &SeaState, reach: f64, trough: f64) -> (f64, bool) {
+    let eval_depth = if reach.is_finite() {
+        match sea.stretching {
+            Stretching::Wheeler => (reach - trough) / (1.0 + trough / sea.depth),
+            Stretching::Constant => reach,
+        }
+        .min(0.0)
+    } else {
+        0.0
+    };
+    (eval_depth, reach <= trough - SURFACE_MARGIN)
+}
+
 /// A sea's refresh interval for nodes that reach no higher than `reach`, and how it was
 /// found.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,16 +164,7 @@ pub struct RefreshPlan {
 pub fn refresh_plan(sea: &SeaState, reach: f64, dt: f64) -> RefreshPlan {
     assert!(dt > 0.0, "the step must be positive");
     let trough = lowest_trough(&sea.components);
-    let eval_depth = if reach.is_finite() {
-        match sea.stretching {
-            Stretching::Wheeler => (reach - trough) / (1.0 + trough / sea.depth),
-            Stretching::Constant => reach,
-        }
-        .min(0.0)
-    } else {
-        0.0
-    };
-    let submerged = reach <= trough - SURFACE_MARGIN;
+    let (eval_depth, submerged) = eval_depth_of_reach(sea, reach, trough);
     let factor = if submerged {
         SUBMERGED_FACTOR
     } else {

@@ -390,6 +390,26 @@ impl Simulation {
         self.run_until(sink, progress, || false)
     }
 
+    /// At the `debug` log level, on the CPU path in waves: nodes per depth band now
+    /// and the breaches so far (`CpuSolver::wave_band_census`), at each output time:
+    /// what scripts/gpu_wave_counts.py reads for a member's band census.
+    fn log_wave_band_census(&self) {
+        if !log::log_enabled!(log::Level::Debug) {
+            return;
+        }
+        if let Engine::Lumped(s, _) = &self.engine {
+            if let LumpedStepper::Cpu(c) = s.as_ref() {
+                let (census, breaches) = c.wave_band_census();
+                if !census.is_empty() {
+                    log::debug!(
+                        "waves: t = {:.2} s, nodes per depth band {census:?}, breaches {breaches}",
+                        self.time()
+                    );
+                }
+            }
+        }
+    }
+
     /// [`Simulation::run`], stopped early when `stop` returns true: it is asked between
     /// chunks of stepping (about every tenth of a second on big runs, and at each output
     /// time), so a stop takes effect at the next step boundary. A stopped run hands the
@@ -465,6 +485,7 @@ impl Simulation {
                 Ok(Chunked::Done) => {
                     sink.frame(&self.snapshot()?)?;
                     framed = self.steps();
+                    self.log_wave_band_census();
                 }
                 Ok(Chunked::Stopped) => {
                     end = RunEnd::Interrupted;

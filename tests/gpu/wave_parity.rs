@@ -105,7 +105,18 @@ fn parity(p: Precision, banded: bool) {
     println!("{name}: waves move the line by up to {moved:.3e} m; {above} nodes in air");
     assert!(moved > 1e-3, "the waves barely move the line ({moved} m)");
     let length = 45.0;
+    // The line's scale of tension for f32: the larger of its largest now and its
+    // largest in still water (f32's tolerance is relative to the line's loads; the run may end
+    // at a slack moment, whose largest tension is far under them: the banded run ends
+    // after 2.5 band decisions, at 2.05 s, with 30 N against 2.2 kN in still water).
     let tmax = cpu_t.iter().fold(0.0f64, |m, t| m.max(t.abs()));
+    let t_still = still
+        .evaluate()
+        .unwrap()
+        .tension
+        .iter()
+        .fold(0.0f64, |m, t| m.max(t.abs()));
+    let tscale = tmax.max(t_still);
     for kernel in [GpuKernel::TwoPass, GpuKernel::Fused] {
         let mut gpu = GpuSolver::new(&ctx, lay.clone(), &pos, opts, p).unwrap();
         gpu.set_kernel(kernel).unwrap();
@@ -136,7 +147,10 @@ fn parity(p: Precision, banded: bool) {
             .zip(&cpu_t)
             .map(|(a, b)| (a - b).abs())
             .fold(0.0f64, f64::max);
-        println!("{name} {kernel:?}: |dr| {dr:.3e} m, |dT| {dt:.3e} N (largest {tmax:.1} N)");
+        println!(
+            "{name} {kernel:?}: |dr| {dr:.3e} m, |dT| {dt:.3e} N (largest {tmax:.1} N, \
+             in still water {t_still:.1} N)"
+        );
         match p {
             Precision::F64 => {
                 assert!(dr < 1e-9 * length, "{kernel:?}: |dr| {dr} m");
@@ -146,7 +160,7 @@ fn parity(p: Precision, banded: bool) {
                 assert!(dr < 1e-4 * length, "{kernel:?}: |dr| {dr} m");
                 for (a, b) in tension.iter().zip(&cpu_t) {
                     assert!(
-                        (a - b).abs() < 0.01 * b.abs() + 1e-3 * tmax,
+                        (a - b).abs() < 0.01 * b.abs() + 1e-3 * tscale,
                         "{kernel:?}: tension {a} N against {b} N"
                     );
                 }

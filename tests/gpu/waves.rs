@@ -13,7 +13,7 @@ use super::functions::{run_kernels, to_r, Worst};
 use cablesim::gpu::layout::{GpuReal, WaveComp};
 use cablesim::gpu::{GpuContext, Precision};
 use cablesim::math::V3;
-use cablesim::sea::bands::wave_band;
+use cablesim::sea::bands::{wave_band, MAX_BANDS};
 use cablesim::sea::cache::{hermite_weights, wave_cache_hermite, wave_cache_midpoint};
 use cablesim::sea::cut::wave_decay_prefix;
 use cablesim::sea::irregular::{discretise, Discretisation};
@@ -186,16 +186,16 @@ fn t_midpoint(@builtin(global_invocation_id) gid: vec3<u32>) {
     mid_out(40u * i + 32u, wave_mid_hermite(m[0], m[1], m[2], m[3], w));
 }
 
-// tin: z, vz, az, horizon, margin, tops[1..5], n_bands per case; tout: the band.
+// tin: z, vz, az, horizon, margin, tops[1..7], n_bands per case; tout: the band.
 @compute @workgroup_size(64)
 fn t_band(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
-    if i >= arrayLength(&tin) / 10u {
+    if i >= arrayLength(&tin) / 12u {
         return;
     }
-    let b = 10u * i;
-    let tops = vec4<R>(tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u]);
-    tout[i] = R(wave_band(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u], tops, u32(tin[b + 9u])));
+    let b = 12u * i;
+    let tops = array<R, 6>(tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u]);
+    tout[i] = R(wave_band(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u], tops, u32(tin[b + 11u])));
 }
 "#;
 
@@ -735,7 +735,7 @@ fn check_midpoint<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8R
 }
 
 /// The band decision (`sea::bands::wave_band`): random nodes against random
-/// decreasing tops for one to five bands, and nodes whose bound lands exactly on a
+/// decreasing tops for one to `MAX_BANDS` (7) bands, and nodes whose bound lands exactly on a
 /// top (all terms whole numbers: exact in f32 too), where the node stays in the
 /// deeper band. The bands must be equal, except where the bound is within the
 /// precision's rounding of a top (the f64 twin then may round the other way).
@@ -743,8 +743,9 @@ fn check_band<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) 
     let n = 2000;
     let mut x = Vec::new();
     for i in 0..n {
-        let n_bands = 1 + i % 5;
-        let mut tops = [f64::NEG_INFINITY; 4];
+        let n_bands = 1 + i % MAX_BANDS;
+        // The shader's six tops (bands 1 to 6), those past the node's bands unused.
+        let mut tops = [f64::NEG_INFINITY; 6];
         let mut top = 0.0;
         for t in tops.iter_mut().take(n_bands - 1) {
             top -= rng.gen_range(5.0..80.0_f64).round();
@@ -770,8 +771,8 @@ fn check_band<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) 
     let out = run::<R>(ctx, p, "t_band", &[], &xr, n, n);
     let (mut ties, mut deep) = (0, 0);
     for i in 0..n {
-        let b = &x[10 * i..10 * i + 10];
-        let nb = b[9] as usize;
+        let b = &x[12 * i..12 * i + 12];
+        let nb = b[11] as usize;
         let mut tops = vec![f64::INFINITY];
         tops.extend(&b[5..5 + nb - 1]);
         let want = wave_band(b[0], b[1], b[2], b[3], b[4], &tops);
