@@ -384,13 +384,13 @@ fn wave_cache_store(slot: u32, i: u32, w: WaveKinRates) {
 
 // The band of a node at height z (m) with vertical velocity vz (m/s) and
 // acceleration estimate az (m/s^2), for the next `horizon` s: the deepest band whose
-// top is not under z + max(vz, 0) horizon + |az| horizon^2 / 2 + margin. `tops` are
+// top is not under z + |vz| horizon + |az| horizon^2 / 2 + margin. `tops` are
 // the tops of bands 1 to 6 (band 0's is infinite), `n_bands` the number of bands.
 // Rust twin: sea::bands::wave_band (its `tops[m]` is this `tops[m - 1]`).
 fn wave_band(z: R, vz: R, az: R, horizon: R, margin: R, tops_in: array<R, 6>, n_bands: u32) -> u32 {
     // A local copy: indexed at run time.
     var tops = tops_in;
-    let bound = z + max(vz, R(0.0)) * horizon + R(0.5) * abs(az) * horizon * horizon + margin;
+    let bound = z + abs(vz) * horizon + R(0.5) * abs(az) * horizon * horizon + margin;
     var b = 0u;
     loop {
         if b + 1u >= n_bands || b >= 6u || !(bound <= tops[b]) {

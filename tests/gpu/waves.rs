@@ -754,7 +754,7 @@ fn check_band<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) 
         let (z, vz, az, h) = if i % 4 == 0 {
             // On a top: bound = z + 2 exactly.
             let m = rng.gen_range(0..n_bands.max(2) - 1);
-            (tops[m].max(-400.0) - 2.0, -1.0, 0.0, 4.0)
+            (tops[m].max(-400.0) - 2.0, 0.0, 0.0, 4.0)
         } else {
             (
                 rng.gen_range(-400.0..5.0),
@@ -776,7 +776,7 @@ fn check_band<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) 
         let mut tops = vec![f64::INFINITY];
         tops.extend(&b[5..5 + nb - 1]);
         let want = wave_band(b[0], b[1], b[2], b[3], b[4], &tops);
-        let bound = b[0] + b[1].max(0.0) * b[3] + 0.5 * b[2].abs() * b[3] * b[3] + b[4];
+        let bound = b[0] + b[1].abs() * b[3] + 0.5 * b[2].abs() * b[3] * b[3] + b[4];
         let scale = b[0].abs() + (b[1] * b[3]).abs() + (b[2] * b[3] * b[3]).abs() + b[4];
         let near = tops[1..]
             .iter()
