@@ -46,7 +46,7 @@ mod node_pass;
 mod pieces;
 mod plan;
 mod threaded;
-use fold::node_shares;
+use fold::{node_shares, run_shares};
 use node_pass::node_pass;
 use pieces::{pieces, Piece, TILE};
 use plan::{plan, Op, Plan};
@@ -422,6 +422,19 @@ fn element_tile<const L: usize>(
                 u[q][k] += 0.5 * (ua[q] + ub[q]);
                 aw[q][k] = 0.5 * (aa[q] + ab[q]);
             }
+        }
+    }
+    if chunked {
+        // A run: the element loop and the fold in one loop, where it can.
+        let (us, aws) = (u.each_ref().map(|q| &q[..]), aw.each_ref().map(|q| &q[..]));
+        let (es, p) = (&nc.eslot, &piece);
+        let fused = match (waves, uniform) {
+            (true, _) => run_shares::<true, false, L>(c, es, p, a, b, us, [0.0; 3], aws, out),
+            (false, Some(un)) => run_shares::<false, true, L>(c, es, p, a, b, us, un, aws, out),
+            (false, None) => run_shares::<false, false, L>(c, es, p, a, b, us, [0.0; 3], aws, out),
+        };
+        if fused {
+            return;
         }
     }
     let (ten, haw) = (&mut ten[..ne], &mut haw[..ne]);
