@@ -487,6 +487,36 @@ pub(super) unsafe fn element_chunk_net<const WAVES: bool, const UNIFORM: bool, c
     r
 }
 
+/// [`element_lane`] for one element `e` of `c`, its wetted fraction computed (exactly
+/// 1 for an element under the surface, so the same bits as `SUBMERGED`): for the
+/// network path's gathered elements. Returns the tangent, tension, force and `haw` of
+/// [`ElemOut`].
+#[inline(always)]
+pub(super) fn element_one<const WAVES: bool>(
+    a: [f64; 7],
+    b: [f64; 7],
+    u: [f64; 3],
+    aw: [f64; 3],
+    c: &ChainConsts,
+    e: usize,
+) -> ([f64; 3], f64, [f64; 3], f64) {
+    let k = ElemConsts {
+        il0: c.il0[e],
+        ea: c.ea[e],
+        eac: c.eac[e],
+        comp: c.comp[e],
+        dn: c.drag_n[e],
+        dt: c.drag_t[e],
+        hw: c.half_wz[e],
+        hb: c.half_bz[e],
+        hfk: c.half_fk[e],
+        ha: c.ha[e + 1],
+        diam: c.diameter[e],
+    };
+    let o = element_lane::<WAVES, false>(a, b, u, aw, k);
+    (o.t, o.ten, o.f, o.haw)
+}
+
 /// One element's constants (see [`ChainConsts`]); `ha` is its half normal added mass.
 #[derive(Clone, Copy)]
 pub(super) struct ElemConsts {

@@ -42,11 +42,13 @@ use crate::options::SolverOptions;
 use crate::step::{diverged, StepFailure};
 
 mod fold;
+mod gathered;
 mod node_pass;
 mod pieces;
 mod plan;
 mod threaded;
 use fold::{node_shares, run_shares};
+use gathered::gathered_shares;
 use node_pass::node_pass;
 use pieces::{pieces, Piece, TILE};
 use plan::{plan, Op, Plan};
@@ -196,13 +198,10 @@ fn loads_len(nbuf: usize, width: usize) -> usize {
     nbuf * width * COLS * CS
 }
 
-/// One thread's scratch: gathered element inputs over its elements, node work over
-/// its nodes.
+/// One thread's scratch: element work over a piece of its elements, node work over a
+/// tile of its nodes.
 #[derive(Default)]
 struct Work {
-    /// End nodes a and b, `[x, y, z, vx, vy, vz, eta]` per element.
-    a: [Vec<f64>; 7],
-    b: [Vec<f64>; 7],
     /// Water velocity (current, plus waves) and wave acceleration per element.
     u: [Vec<f64>; 3],
     aw: [Vec<f64>; 3],
@@ -224,8 +223,8 @@ struct Work {
 impl Work {
     /// Sized for `ne` elements and a tile of nodes.
     fn size(&mut self, ne: usize) {
-        let per_elem = (self.a.iter_mut().chain(&mut self.b).chain(&mut self.u))
-            .chain(self.aw.iter_mut().chain(&mut self.t).chain(&mut self.f))
+        let per_elem = (self.u.iter_mut().chain(&mut self.aw))
+            .chain(self.t.iter_mut().chain(&mut self.f))
             .chain([&mut self.ten, &mut self.haw]);
         for v in per_elem {
             // Zero: the surface columns stay so in still water.
@@ -311,10 +310,11 @@ impl<'a> LoadsOut<'a> {
 
 /// The element pass over the elements of `piece`: reads their ends' state `x` and
 /// surface `eta` (both from block node `base` on: the nodes the elements reach) in
-/// place (a run) or gathers them, their water velocity and
-/// acceleration (`w`: per-node water values, empty in still water), runs the chain
-/// path's element loop, and folds its results into what the elements add to their
-/// nodes (`out`).
+/// place (a run) or by index (gathered elements: [`gathered_shares`], element by
+/// element), their water velocity and acceleration (`w`: per-node water values, empty
+/// in still water), runs the chain path's element loop, and folds its results into
+/// what the elements add to their nodes (`out`): a submerged run in one loop
+/// ([`run_shares`]), other runs in two.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn element_tile<const L: usize>(
@@ -336,9 +336,15 @@ fn element_tile<const L: usize>(
     let src: [&[f64]; 7] = [x[0], x[1], x[2], x[3], x[4], x[5], eta];
     let n = x[0].len();
     assert!(src.iter().all(|q| q.len() == n));
+    let Some((a0, b0)) = piece.ends else {
+        if waves {
+            gathered_shares::<true>(nc, lay, er, src, base, w, out);
+        } else {
+            gathered_shares::<false>(nc, lay, er, src, base, w, out);
+        }
+        return;
+    };
     let Work {
-        a: ga,
-        b: gb,
         u,
         aw,
         t,
@@ -347,42 +353,9 @@ fn element_tile<const L: usize>(
         haw,
         ..
     } = g;
-    let (a, b): ([&[f64]; 7], [&[f64]; 7]) = match piece.ends {
-        // A run: the ends are consecutive nodes, read in place as on the chain path.
-        Some((a0, b0)) => {
-            let (a0, b0) = (a0 - base, b0 - base);
-            (src.map(|q| &q[a0..a0 + ne]), src.map(|q| &q[b0..b0 + ne]))
-        }
-        None => {
-            // In still water the surface columns stay zero.
-            let cols = if waves { 7 } else { 6 };
-            // The elements reach no node outside the view (the gather's safety).
-            assert!(ea
-                .iter()
-                .chain(eb)
-                .all(|&i| (i as usize).wrapping_sub(base) < n));
-            {
-                let ga = ga.each_mut().map(|q| &mut q[..ne]);
-                let gb = gb.each_mut().map(|q| &mut q[..ne]);
-                for k in 0..ne {
-                    let (ia, ib) = (ea[k] as usize - base, eb[k] as usize - base);
-                    for q in 0..cols {
-                        // SAFETY: element ends are within the view (checked just
-                        // above), every column has `n` entries and every gathered
-                        // column `ne`.
-                        unsafe {
-                            *ga[q].get_unchecked_mut(k) = *src[q].get_unchecked(ia);
-                            *gb[q].get_unchecked_mut(k) = *src[q].get_unchecked(ib);
-                        }
-                    }
-                }
-            }
-            (
-                std::array::from_fn(|q| &ga[q][..ne]),
-                std::array::from_fn(|q| &gb[q][..ne]),
-            )
-        }
-    };
+    // A run: the ends are consecutive nodes, read in place as on the chain path.
+    let (a0, b0) = (a0 - base, b0 - base);
+    let (a, b) = (src.map(|q| &q[a0..a0 + ne]), src.map(|q| &q[b0..b0 + ne]));
     // Every end at or below the surface makes every wetted fraction exactly 1, as on
     // the chain path. In still water the surface is at zero (`eta` stays so), where
     // `0 - z >= 0` is `z <= 0`: the surface's columns need not be read.

@@ -64,7 +64,12 @@ pub(super) fn run_shares<const WAVES: bool, const UNIFORM: bool, const L: usize>
         // SAFETY: as in `node_shares`: the run's ends are nodes `a0 ..`, `b0 ..` in
         // slots `sa`, `sb` all along, slots of these elements only, that `out`'s
         // contract gives this call alone; the stretch keeps each end in one tile.
-        let (mut ma, mut mb, mut fa, mut fb): ([&mut [f64]; 6], [&mut [f64]; 6], [&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
+        let (mut ma, mut mb, mut fa, mut fb): (
+            [&mut [f64]; 6],
+            [&mut [f64]; 6],
+            [&mut [f64]; 3],
+            [&mut [f64]; 3],
+        ) = unsafe {
             (
                 std::array::from_fn(|q| out.column(COLS * sa + q, a0 + k0, len)),
                 std::array::from_fn(|q| out.column(COLS * sb + q, b0 + k0, len)),
@@ -94,8 +99,8 @@ pub(super) fn run_shares<const WAVES: bool, const UNIFORM: bool, const L: usize>
 
 /// Folds the element loop's results for the elements of `piece` into what they add to
 /// their nodes (the general path's `m/2 I + a (I - t t^T)`, and `f/2 + (+-1 T) t` per
-/// end), written into each end's slot in `out`: with vector stores for a run (one slot
-/// per end along it), one by one for gathered elements.
+/// end), written into each end's slot in `out`, for a run (one slot per end along it:
+/// vector stores); gathered elements take [`super::gathered::gathered_shares`].
 #[inline(always)]
 pub(super) fn node_shares<const L: usize>(
     nc: &NetConsts,
@@ -112,87 +117,50 @@ pub(super) fn node_shares<const L: usize>(
     let [fx, fy, fz] = f.each_ref().map(|q| &q[..ne]);
     let (haw, hm) = (&haw[..ne], &nc.c.hm[e0 + 1..e0 + 1 + ne]);
     let (sa, sb) = (nc.eslot[0][e0] as usize, nc.eslot[1][e0] as usize);
-    match piece.ends {
-        Some((a0, b0)) => {
-            for ks in stretches(a0, b0, ne) {
-                let (k0, len) = (ks.start, ks.len());
-                let (a, b) = (a0 + k0, b0 + k0);
-                // SAFETY: a run's ends are nodes `a0 ..`, `b0 ..` of the block, in
-                // slots `sa`, `sb` all along (`pieces`), slots that belong to these
-                // elements only (so the two sides' columns do not overlap) and that
-                // `out`'s contract gives this call alone; `len` keeps each in a tile.
-                let (ma, mb): ([&mut [f64]; 6], [&mut [f64]; 6]) = unsafe {
-                    (
-                        std::array::from_fn(|q| out.column(COLS * sa + q, a, len)),
-                        std::array::from_fn(|q| out.column(COLS * sb + q, b, len)),
-                    )
-                };
-                let [tx, ty, tz] = [tx, ty, tz].map(|q| &q[ks.clone()]);
-                let (haw, hm) = (&haw[ks.clone()], &hm[ks.clone()]);
-                let ([fx, fy, fz], ten) = ([fx, fy, fz].map(|q| &q[ks.clone()]), &ten[ks]);
-                if len >= L {
-                    // SAFETY: as above, the force columns too (other columns of the
-                    // same slots).
-                    let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
-                        (
-                            std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a, len)),
-                            std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b, len)),
-                        )
-                    };
-                    fold_chunks::<L>([tx, ty, tz], haw, hm, ten, [fx, fy, fz], ma, mb, fa, fb);
-                    continue;
-                }
-                let [xxa, yya, zza, xya, xza, yza] = ma;
-                let [xxb, yyb, zzb, xyb, xzb, yzb] = mb;
-                fold_mass(
-                    tx, ty, tz, haw, hm, xxa, yya, zza, xya, xza, yza, xxb, yyb, zzb, xyb, xzb, yzb,
-                );
-                // SAFETY: as above; the mass columns' slices are no longer used.
-                let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
-                    (
-                        std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a, len)),
-                        std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b, len)),
-                    )
-                };
-                let ([fxa, fya, fza], [fxb, fyb, fzb]) = (fa, fb);
-                fold_force(tx, ty, tz, ten, fx, fy, fz, fxa, fya, fza, fxb, fyb, fzb);
-            }
+    // Gathered elements take `gathered_shares`.
+    let (a0, b0) = piece.ends.expect("node_shares of a run");
+    for ks in stretches(a0, b0, ne) {
+        let (k0, len) = (ks.start, ks.len());
+        let (a, b) = (a0 + k0, b0 + k0);
+        // SAFETY: a run's ends are nodes `a0 ..`, `b0 ..` of the block, in
+        // slots `sa`, `sb` all along (`pieces`), slots that belong to these
+        // elements only (so the two sides' columns do not overlap) and that
+        // `out`'s contract gives this call alone; `len` keeps each in a tile.
+        let (ma, mb): ([&mut [f64]; 6], [&mut [f64]; 6]) = unsafe {
+            (
+                std::array::from_fn(|q| out.column(COLS * sa + q, a, len)),
+                std::array::from_fn(|q| out.column(COLS * sb + q, b, len)),
+            )
+        };
+        let [tx, ty, tz] = [tx, ty, tz].map(|q| &q[ks.clone()]);
+        let (haw, hm) = (&haw[ks.clone()], &hm[ks.clone()]);
+        let ([fx, fy, fz], ten) = ([fx, fy, fz].map(|q| &q[ks.clone()]), &ten[ks]);
+        if len >= L {
+            // SAFETY: as above, the force columns too (other columns of the
+            // same slots).
+            let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
+                (
+                    std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a, len)),
+                    std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b, len)),
+                )
+            };
+            fold_chunks::<L>([tx, ty, tz], haw, hm, ten, [fx, fy, fz], ma, mb, fa, fb);
+            continue;
         }
-        None => {
-            let (ea, eb) = (&nc.ends[0][e0..e0 + ne], &nc.ends[1][e0..e0 + ne]);
-            let (sa, sb) = (&nc.eslot[0][e0..e0 + ne], &nc.eslot[1][e0..e0 + ne]);
-            for k in 0..ne {
-                let (tn, ntn) = (ten[k], -ten[k]);
-                let a = haw[k];
-                let m = [
-                    hm[k] + (a - a * tx[k] * tx[k]),
-                    hm[k] + (a - a * ty[k] * ty[k]),
-                    hm[k] + (a - a * tz[k] * tz[k]),
-                    -(a * tx[k] * ty[k]),
-                    -(a * tx[k] * tz[k]),
-                    -(a * ty[k] * tz[k]),
-                ];
-                let fa = [fx[k] + tx[k] * tn, fy[k] + ty[k] * tn, fz[k] + tz[k] * tn];
-                let fb = [
-                    fx[k] + tx[k] * ntn,
-                    fy[k] + ty[k] * ntn,
-                    fz[k] + tz[k] * ntn,
-                ];
-                for (i, s, fs) in [(ea[k], sa[k], fa), (eb[k], sb[k], fb)] {
-                    let (i, c0) = (i as usize, COLS * s as usize);
-                    // SAFETY: node `i` is in the block and slot `s` below the width
-                    // (`NetConsts::new`); this element's slot is this call's alone.
-                    unsafe {
-                        for (q, &v) in m.iter().enumerate() {
-                            out.column(c0 + q, i, 1)[0] = v;
-                        }
-                        for (q, &v) in fs.iter().enumerate() {
-                            out.column(c0 + 6 + q, i, 1)[0] = v;
-                        }
-                    }
-                }
-            }
-        }
+        let [xxa, yya, zza, xya, xza, yza] = ma;
+        let [xxb, yyb, zzb, xyb, xzb, yzb] = mb;
+        fold_mass(
+            tx, ty, tz, haw, hm, xxa, yya, zza, xya, xza, yza, xxb, yyb, zzb, xyb, xzb, yzb,
+        );
+        // SAFETY: as above; the mass columns' slices are no longer used.
+        let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
+            (
+                std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a, len)),
+                std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b, len)),
+            )
+        };
+        let ([fxa, fya, fza], [fxb, fyb, fzb]) = (fa, fb);
+        fold_force(tx, ty, tz, ten, fx, fy, fz, fxa, fya, fza, fxb, fyb, fzb);
     }
 }
 
