@@ -2,11 +2,10 @@
 //! what it adds to its two nodes, written into their slots ([`super::Loads`]).
 
 use super::super::consts::ChainConsts;
-use super::super::elements::{
-    chunk_at, element_chunk_net, net_consts, net_inputs_hold, overlapped_chunks, put_chunk,
-};
+use super::super::elements::{chunk_at, overlapped_chunks, put_chunk};
 use super::super::lanes::keep_chunks;
-use super::{LoadsOut, NetConsts, Piece, COLS, NT};
+use super::element_chunks::{element_chunk_net, net_consts, net_inputs_hold};
+use super::{cut, LoadsOut, NetConsts, Piece, COLS, NT};
 use std::ops::Range;
 
 /// A run's elements (`ne`, ends from nodes `a0`, `b0` on) in stretches whose two
@@ -27,7 +26,7 @@ fn stretches(a0: usize, b0: usize, ne: usize) -> impl Iterator<Item = Range<usiz
 /// The element loop and the fold in one loop, for a run `piece` whose elements are all
 /// submerged: per chunk of `L` elements, [`element_chunk_net`] then [`fold_chunk`],
 /// written straight into the ends' slots in `out` (the element results never stored:
-/// what [`super::super::elements::element_chunks_net`] then [`node_shares`] do, with
+/// what [`super::element_chunks::element_chunks_net`] then [`node_shares`] do, with
 /// the same bits, less 8 stores and 8 loads per chunk). `a`, `b`, `u`, `aw` as for
 /// [`element_chunk_net`], over the piece's elements. Returns false, having done
 /// nothing, when a stretch ([`stretches`]) is shorter than `L`.
@@ -55,10 +54,10 @@ pub(super) fn run_shares<const WAVES: bool, const UNIFORM: bool, const L: usize>
     assert!(net_inputs_hold::<WAVES, UNIFORM>(a, b, u, aw, ne));
     for ks in stretches(a0, b0, ne) {
         let (k0, len) = (ks.start, ks.len());
-        let (a, b) = (a.map(|q| &q[ks.clone()]), b.map(|q| &q[ks.clone()]));
+        let (a, b) = (cut(a, ks.clone()), cut(b, ks.clone()));
         // (Columns not read, `u` with `UNIFORM` and `aw` in still water, are the
         // scratch's, as long as the piece.)
-        let (u, aw) = (u.map(|q| &q[ks.clone()]), aw.map(|q| &q[ks.clone()]));
+        let (u, aw) = (cut(u, ks.clone()), cut(aw, ks.clone()));
         let k = net_consts(c, e0 + k0, len);
         let hm = &c.hm[e0 + k0 + 1..e0 + k0 + 1 + len];
         // SAFETY: as in `node_shares`: the run's ends are nodes `a0 ..`, `b0 ..` in

@@ -7,7 +7,7 @@
 //! no scratch columns gathered, filled, computed and read back (was 700-odd
 //! instructions a piece, about 12 a node-step of the cage).
 
-use super::super::elements::element_one;
+use super::element_chunks::element_one;
 use super::{LoadsOut, NetConsts, COLS};
 use crate::cpu::water::node_water;
 use crate::model::Layout;
