@@ -4,11 +4,12 @@
 //! ([`element_kernel`]), behind a gather front-end:
 //! - the element pass walks the elements in pieces ([`pieces`]): a run of elements
 //!   whose ends are consecutive nodes (a net's rows and the twines between two rows)
-//!   reads its ends in place, as the chain path does; other elements have their two
-//!   end nodes gathered by index into structure-of-arrays scratch; then the chain's
-//!   element arithmetic runs over them, in whole chunks of lanes where a piece is
-//!   under the surface and long enough ([`element_chunks_net`]: the last chunk
-//!   overlaps the one before it, so no scalar remainder), else element by element;
+//!   reads its ends in place, as the chain path does, and runs the chain's element
+//!   arithmetic over them, in whole chunks of lanes where the run is under the
+//!   surface and long enough ([`element_chunks_net`], or with the fold below in the
+//!   same loop, [`run_shares`]: the last chunk overlaps the one before it, so no scalar
+//!   remainder), else element by element; other elements are read by index and
+//!   computed one at a time, straight into their slots ([`gathered_shares`]);
 //! - the element pass then folds each element's results into what its two nodes add
 //!   (the six entries of its share of their mass block, `m/2 I + a (I - t t^T)`, and
 //!   the force on the node: `f/2 + T t` on node a, `f/2 - T t` on node b) and writes
