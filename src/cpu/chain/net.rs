@@ -455,7 +455,7 @@ fn element_tile<const L: usize>(
 /// Entries `r` of each of the columns `cols`. (A loop, not `array::map`: the map over
 /// 7 slices stayed a call of 60 instructions, about 1 a node-step per use on the cage.)
 #[inline(always)]
-fn cut<'a, const K: usize>(cols: [&'a [f64]; K], r: std::ops::Range<usize>) -> [&'a [f64]; K] {
+fn cut<const K: usize>(cols: [&[f64]; K], r: std::ops::Range<usize>) -> [&[f64]; K] {
     let mut out: [&[f64]; K] = [&[]; K];
     for (o, c) in out.iter_mut().zip(cols) {
         *o = &c[r.clone()];

@@ -63,19 +63,15 @@ pub(super) fn run_shares<const WAVES: bool, const UNIFORM: bool, const L: usize>
         // SAFETY: as in `node_shares`: the run's ends are nodes `a0 ..`, `b0 ..` in
         // slots `sa`, `sb` all along, slots of these elements only, that `out`'s
         // contract gives this call alone; the stretch keeps each end in one tile.
-        let (mut ma, mut mb, mut fa, mut fb): (
-            [&mut [f64]; 6],
-            [&mut [f64]; 6],
-            [&mut [f64]; 3],
-            [&mut [f64]; 3],
-        ) = unsafe {
-            (
-                std::array::from_fn(|q| out.column(COLS * sa + q, a0 + k0, len)),
-                std::array::from_fn(|q| out.column(COLS * sb + q, b0 + k0, len)),
-                std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a0 + k0, len)),
-                std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b0 + k0, len)),
-            )
-        };
+        let (na, nb) = (a0 + k0, b0 + k0);
+        let mut ma: [&mut [f64]; 6] =
+            std::array::from_fn(|q| unsafe { out.column(COLS * sa + q, na, len) });
+        let mut mb: [&mut [f64]; 6] =
+            std::array::from_fn(|q| unsafe { out.column(COLS * sb + q, nb, len) });
+        let mut fa: [&mut [f64]; 3] =
+            std::array::from_fn(|q| unsafe { out.column(COLS * sa + 6 + q, na, len) });
+        let mut fb: [&mut [f64]; 3] =
+            std::array::from_fn(|q| unsafe { out.column(COLS * sb + 6 + q, nb, len) });
         for o in overlapped_chunks::<L>(len) {
             keep_chunks();
             // SAFETY (every chunk): `o + L <= len`, and every column read holds the
