@@ -286,195 +286,33 @@ pub(super) unsafe fn put_chunk<const L: usize>(s: &mut [f64], o: usize, v: [f64;
     unsafe { s.as_mut_ptr().add(o).cast::<[f64; L]>().write_unaligned(v) }
 }
 
-/// Whether every end of the `ne` elements with ends `a`, `b` (`[x, y, z, vx, vy, vz,
-/// eta]`, as [`element_kernel`]'s) is at or below the surface (then every wetted
-/// fraction is exactly 1); in still water (`WAVES` false) the surface is at zero and
-/// its columns are not read. In whole chunks of `L` lanes where `ne >= L`.
-#[inline(always)]
-pub(super) fn all_under<const WAVES: bool, const L: usize>(
-    a: [&[f64]; 7],
-    b: [&[f64]; 7],
-    ne: usize,
-) -> bool {
-    let (za, zb, ea, eb) = (&a[2][..ne], &b[2][..ne], &a[6][..ne], &b[6][..ne]);
-    let under = |k: usize| {
-        if WAVES {
-            (ea[k] - za[k] >= 0.0) & (eb[k] - zb[k] >= 0.0)
-        } else {
-            (za[k] <= 0.0) & (zb[k] <= 0.0)
-        }
-    };
-    if ne < L {
-        return (0..ne).all(under);
-    }
-    // Per lane, a count of the ends over the surface (integers: the comparisons'
-    // masks stay in vector registers; `bool` lanes would be packed to bytes).
-    let mut over = [0u64; L];
-    for o in overlapped_chunks::<L>(ne) {
-        keep_chunks();
-        // SAFETY: `o + L <= ne`, and every slice here has `ne` entries.
-        let (za, zb) = unsafe { (chunk_at::<L>(za, o), chunk_at::<L>(zb, o)) };
-        if WAVES {
-            // SAFETY: as above.
-            let (ea, eb) = unsafe { (chunk_at::<L>(ea, o), chunk_at::<L>(eb, o)) };
-            for l in 0..L {
-                over[l] += (!((ea[l] - za[l] >= 0.0) & (eb[l] - zb[l] >= 0.0))) as u64;
-            }
-        } else {
-            for l in 0..L {
-                over[l] += (!((za[l] <= 0.0) & (zb[l] <= 0.0))) as u64;
-            }
-        }
-    }
-    over.iter().all(|&x| x == 0)
-}
-
-/// [`element_kernel`] for `SUBMERGED` elements (every end at or below the surface) of a
-/// network piece of at least `L` elements, over whole chunks of `L` lanes
-/// ([`overlapped_chunks`]: no scalar remainder): each chunk loads its inputs into
-/// locals, runs [`element_lane`] per lane and stores, as [`element_chunks`] does for a
-/// chain. `UNIFORM`: every element's water velocity is `un` (a uniform current in
-/// still water; `u` is not read); else `u`'s. Same bits as [`element_kernel`].
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-pub(super) fn element_chunks_net<const WAVES: bool, const UNIFORM: bool, const L: usize>(
-    a: [&[f64]; 7],
-    b: [&[f64]; 7],
-    u: [&[f64]; 3],
-    un: [f64; 3],
-    aw: [&[f64]; 3],
-    c: &ChainConsts,
-    e0: usize,
-    out: [&mut [f64]; 8],
-) {
-    let [tx, ty, tz, ten, fx, fy, fz, haw] = out;
-    let ne = tx.len();
-    assert!(ne >= L);
-    // Every column read or written below holds the piece's `ne` entries (checked once
-    // here: the chunks' loads and stores are unchecked).
-    let e1 = e0 + ne;
-    let k = [
-        &c.il0[e0..e1],
-        &c.ea[e0..e1],
-        &c.eac[e0..e1],
-        &c.comp[e0..e1],
-        &c.drag_n[e0..e1],
-        &c.drag_t[e0..e1],
-        &c.half_wz[e0..e1],
-        &c.half_bz[e0..e1],
-        &c.half_fk[e0..e1],
-        &c.ha[e0 + 1..e1 + 1],
-    ];
-    let ins = a.iter().chain(&b).chain(&aw);
-    assert!(ins
-        .chain(if UNIFORM { &[] } else { &u[..] })
-        .all(|q| q.len() >= ne));
-    let outs = [&*ty, &*tz, &*ten, &*fx, &*fy, &*fz, &*haw];
-    assert!(outs.iter().all(|q| q.len() == ne));
-    for o in overlapped_chunks::<L>(ne) {
-        keep_chunks();
-        // SAFETY (every chunk): `o + L <= ne`, and every column has `ne` entries or
-        // more (checked above).
-        let ld = |s: &[f64]| unsafe { chunk_at::<L>(s, o) };
-        // (The surface is not read: submerged elements.)
-        let (pa, pb): ([[f64; L]; 6], [[f64; L]; 6]) = (
-            [ld(a[0]), ld(a[1]), ld(a[2]), ld(a[3]), ld(a[4]), ld(a[5])],
-            [ld(b[0]), ld(b[1]), ld(b[2]), ld(b[3]), ld(b[4]), ld(b[5])],
-        );
-        let uc = if UNIFORM {
-            [[un[0]; L], [un[1]; L], [un[2]; L]]
-        } else {
-            [ld(u[0]), ld(u[1]), ld(u[2])]
-        };
-        let awc = if WAVES {
-            [ld(aw[0]), ld(aw[1]), ld(aw[2])]
-        } else {
-            [[0.0; L]; 3]
-        };
-        let kc = [
-            ld(k[0]),
-            ld(k[1]),
-            ld(k[2]),
-            ld(k[3]),
-            ld(k[4]),
-            ld(k[5]),
-            ld(k[6]),
-            ld(k[7]),
-            ld(k[8]),
-            ld(k[9]),
-        ];
-        let mut r = [[0.0; L]; 8];
-        for l in 0..L {
-            // (Arrays written out: `array::map` here need not be inlined.)
-            let e = element_lane::<WAVES, true>(
-                [
-                    pa[0][l], pa[1][l], pa[2][l], pa[3][l], pa[4][l], pa[5][l], 0.0,
-                ],
-                [
-                    pb[0][l], pb[1][l], pb[2][l], pb[3][l], pb[4][l], pb[5][l], 0.0,
-                ],
-                [uc[0][l], uc[1][l], uc[2][l]],
-                [awc[0][l], awc[1][l], awc[2][l]],
-                ElemConsts {
-                    il0: kc[0][l],
-                    ea: kc[1][l],
-                    eac: kc[2][l],
-                    comp: kc[3][l],
-                    dn: kc[4][l],
-                    dt: kc[5][l],
-                    hw: kc[6][l],
-                    hb: kc[7][l],
-                    hfk: kc[8][l],
-                    ha: kc[9][l],
-                    diam: 0.0,
-                },
-            );
-            [r[0][l], r[1][l], r[2][l]] = e.t;
-            r[3][l] = e.ten;
-            [r[4][l], r[5][l], r[6][l]] = e.f;
-            r[7][l] = e.haw;
-        }
-        // SAFETY: as above.
-        unsafe {
-            put_chunk::<L>(tx, o, r[0]);
-            put_chunk::<L>(ty, o, r[1]);
-            put_chunk::<L>(tz, o, r[2]);
-            put_chunk::<L>(ten, o, r[3]);
-            put_chunk::<L>(fx, o, r[4]);
-            put_chunk::<L>(fy, o, r[5]);
-            put_chunk::<L>(fz, o, r[6]);
-            put_chunk::<L>(haw, o, r[7]);
-        }
-    }
-}
-
 /// One element's constants (see [`ChainConsts`]); `ha` is its half normal added mass.
 #[derive(Clone, Copy)]
 pub(super) struct ElemConsts {
-    il0: f64,
-    ea: f64,
-    eac: f64,
-    comp: f64,
-    dn: f64,
-    dt: f64,
-    hw: f64,
-    hb: f64,
-    hfk: f64,
-    ha: f64,
-    diam: f64,
+    pub(super) il0: f64,
+    pub(super) ea: f64,
+    pub(super) eac: f64,
+    pub(super) comp: f64,
+    pub(super) dn: f64,
+    pub(super) dt: f64,
+    pub(super) hw: f64,
+    pub(super) hb: f64,
+    pub(super) hfk: f64,
+    pub(super) ha: f64,
+    pub(super) diam: f64,
 }
 
 /// What the element loop writes for one element.
 pub(super) struct ElemOut {
     /// Unit tangent.
-    t: [f64; 3],
+    pub(super) t: [f64; 3],
     /// Tension, N.
-    ten: f64,
+    pub(super) ten: f64,
     /// Half drag plus half the weight less buoyancy (and, in waves, half the
     /// water-acceleration load), N.
-    f: [f64; 3],
+    pub(super) f: [f64; 3],
     /// Half normal added mass times the wetted fraction, kg.
-    haw: f64,
+    pub(super) haw: f64,
 }
 
 /// The element loop's arithmetic for one element with ends `a`, `b` (`[x, y, z, vx,
@@ -482,7 +320,7 @@ pub(super) struct ElemOut {
 /// the loop over elements ([`element_kernel`]) and the loop over whole chunks of
 /// lanes ([`element_chunks`]), so both give the same bits.
 #[inline(always)]
-fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
+pub(super) fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
     a: [f64; 7],
     b: [f64; 7],
     u: [f64; 3],

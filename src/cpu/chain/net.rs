@@ -4,11 +4,12 @@
 //! ([`element_kernel`]), behind a gather front-end:
 //! - the element pass walks the elements in pieces ([`pieces`]): a run of elements
 //!   whose ends are consecutive nodes (a net's rows and the twines between two rows)
-//!   reads its ends in place, as the chain path does; other elements have their two
-//!   end nodes gathered by index into structure-of-arrays scratch; then the chain's
-//!   element arithmetic runs over them, in whole chunks of lanes where a piece is
-//!   under the surface and long enough ([`element_chunks_net`]: the last chunk
-//!   overlaps the one before it, so no scalar remainder), else element by element;
+//!   reads its ends in place, as the chain path does, and runs the chain's element
+//!   arithmetic over them, in whole chunks of lanes where the run is under the
+//!   surface and long enough ([`element_chunks_net`], or with the fold below in the
+//!   same loop, [`run_shares`]: the last chunk overlaps the one before it, so no scalar
+//!   remainder), else element by element; other elements are read by index and
+//!   computed one at a time, straight into their slots ([`gathered_shares`]);
 //! - the element pass then folds each element's results into what its two nodes add
 //!   (the six entries of its share of their mass block, `m/2 I + a (I - t t^T)`, and
 //!   the force on the node: `f/2 + T t` on node a, `f/2 - T t` on node b) and writes
@@ -34,19 +35,23 @@
 //! A test checks it against the general path (`tests/cpu/net_kernel.rs`).
 
 use super::consts::ChainConsts;
-use super::elements::{all_under, element_chunks_net, element_kernel};
+use super::elements::element_kernel;
 use crate::cpu::water::{node_water, BlockWaves, Water};
 use crate::math::V3;
 use crate::model::{Block, Layout};
 use crate::options::SolverOptions;
 use crate::step::{diverged, StepFailure};
+use element_chunks::{all_under, element_chunks_net};
 
+mod element_chunks;
 mod fold;
+mod gathered;
 mod node_pass;
 mod pieces;
 mod plan;
 mod threaded;
-use fold::node_shares;
+use fold::{node_shares, run_shares};
+use gathered::gathered_shares;
 use node_pass::node_pass;
 use pieces::{pieces, Piece, TILE};
 use plan::{plan, Op, Plan};
@@ -196,13 +201,10 @@ fn loads_len(nbuf: usize, width: usize) -> usize {
     nbuf * width * COLS * CS
 }
 
-/// One thread's scratch: gathered element inputs over its elements, node work over
-/// its nodes.
+/// One thread's scratch: element work over a piece of its elements, node work over a
+/// tile of its nodes.
 #[derive(Default)]
 struct Work {
-    /// End nodes a and b, `[x, y, z, vx, vy, vz, eta]` per element.
-    a: [Vec<f64>; 7],
-    b: [Vec<f64>; 7],
     /// Water velocity (current, plus waves) and wave acceleration per element.
     u: [Vec<f64>; 3],
     aw: [Vec<f64>; 3],
@@ -224,8 +226,8 @@ struct Work {
 impl Work {
     /// Sized for `ne` elements and a tile of nodes.
     fn size(&mut self, ne: usize) {
-        let per_elem = (self.a.iter_mut().chain(&mut self.b).chain(&mut self.u))
-            .chain(self.aw.iter_mut().chain(&mut self.t).chain(&mut self.f))
+        let per_elem = (self.u.iter_mut().chain(&mut self.aw))
+            .chain(self.t.iter_mut().chain(&mut self.f))
             .chain([&mut self.ten, &mut self.haw]);
         for v in per_elem {
             // Zero: the surface columns stay so in still water.
@@ -311,10 +313,11 @@ impl<'a> LoadsOut<'a> {
 
 /// The element pass over the elements of `piece`: reads their ends' state `x` and
 /// surface `eta` (both from block node `base` on: the nodes the elements reach) in
-/// place (a run) or gathers them, their water velocity and
-/// acceleration (`w`: per-node water values, empty in still water), runs the chain
-/// path's element loop, and folds its results into what the elements add to their
-/// nodes (`out`).
+/// place (a run) or by index (gathered elements: [`gathered_shares`], element by
+/// element), their water velocity and acceleration (`w`: per-node water values, empty
+/// in still water), runs the chain path's element loop, and folds its results into
+/// what the elements add to their nodes (`out`): a submerged run in one loop
+/// ([`run_shares`]), other runs in two.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn element_tile<const L: usize>(
@@ -336,9 +339,15 @@ fn element_tile<const L: usize>(
     let src: [&[f64]; 7] = [x[0], x[1], x[2], x[3], x[4], x[5], eta];
     let n = x[0].len();
     assert!(src.iter().all(|q| q.len() == n));
+    let Some((a0, b0)) = piece.ends else {
+        if waves {
+            gathered_shares::<true>(nc, lay, er, src, base, w, out);
+        } else {
+            gathered_shares::<false>(nc, lay, er, src, base, w, out);
+        }
+        return;
+    };
     let Work {
-        a: ga,
-        b: gb,
         u,
         aw,
         t,
@@ -347,42 +356,9 @@ fn element_tile<const L: usize>(
         haw,
         ..
     } = g;
-    let (a, b): ([&[f64]; 7], [&[f64]; 7]) = match piece.ends {
-        // A run: the ends are consecutive nodes, read in place as on the chain path.
-        Some((a0, b0)) => {
-            let (a0, b0) = (a0 - base, b0 - base);
-            (src.map(|q| &q[a0..a0 + ne]), src.map(|q| &q[b0..b0 + ne]))
-        }
-        None => {
-            // In still water the surface columns stay zero.
-            let cols = if waves { 7 } else { 6 };
-            // The elements reach no node outside the view (the gather's safety).
-            assert!(ea
-                .iter()
-                .chain(eb)
-                .all(|&i| (i as usize).wrapping_sub(base) < n));
-            {
-                let ga = ga.each_mut().map(|q| &mut q[..ne]);
-                let gb = gb.each_mut().map(|q| &mut q[..ne]);
-                for k in 0..ne {
-                    let (ia, ib) = (ea[k] as usize - base, eb[k] as usize - base);
-                    for q in 0..cols {
-                        // SAFETY: element ends are within the view (checked just
-                        // above), every column has `n` entries and every gathered
-                        // column `ne`.
-                        unsafe {
-                            *ga[q].get_unchecked_mut(k) = *src[q].get_unchecked(ia);
-                            *gb[q].get_unchecked_mut(k) = *src[q].get_unchecked(ib);
-                        }
-                    }
-                }
-            }
-            (
-                std::array::from_fn(|q| &ga[q][..ne]),
-                std::array::from_fn(|q| &gb[q][..ne]),
-            )
-        }
-    };
+    // A run: the ends are consecutive nodes, read in place as on the chain path.
+    let (a0, b0) = (a0 - base, b0 - base);
+    let (a, b) = (cut(src, a0..a0 + ne), cut(src, b0..b0 + ne));
     // Every end at or below the surface makes every wetted fraction exactly 1, as on
     // the chain path. In still water the surface is at zero (`eta` stays so), where
     // `0 - z >= 0` is `z <= 0`: the surface's columns need not be read.
@@ -424,6 +400,19 @@ fn element_tile<const L: usize>(
             }
         }
     }
+    if chunked {
+        // A run: the element loop and the fold in one loop, where it can.
+        let (us, aws) = (u.each_ref().map(|q| &q[..]), aw.each_ref().map(|q| &q[..]));
+        let (es, p) = (&nc.eslot, &piece);
+        let fused = match (waves, uniform) {
+            (true, _) => run_shares::<true, false, L>(c, es, p, a, b, us, [0.0; 3], aws, out),
+            (false, Some(un)) => run_shares::<false, true, L>(c, es, p, a, b, us, un, aws, out),
+            (false, None) => run_shares::<false, false, L>(c, es, p, a, b, us, [0.0; 3], aws, out),
+        };
+        if fused {
+            return;
+        }
+    }
     let (ten, haw) = (&mut ten[..ne], &mut haw[..ne]);
     {
         let [tx, ty, tz] = t.each_mut().map(|q| &mut q[..ne]);
@@ -461,6 +450,17 @@ fn element_tile<const L: usize>(
         }
     }
     node_shares::<L>(nc, &piece, t, ten, f, haw, out);
+}
+
+/// Entries `r` of each of the columns `cols`. (A loop, not `array::map`: the map over
+/// 7 slices stayed a call of 60 instructions, about 1 a node-step per use on the cage.)
+#[inline(always)]
+fn cut<const K: usize>(cols: [&[f64]; K], r: std::ops::Range<usize>) -> [&[f64]; K] {
+    let mut out: [&[f64]; K] = [&[]; K];
+    for (o, c) in out.iter_mut().zip(cols) {
+        *o = &c[r.clone()];
+    }
+    out
 }
 
 /// Copies the block's AoS state into the scratch's SoA arrays and sizes the element

@@ -1,14 +1,101 @@
 //! The element pass's last step on the network path: each element's results folded into
 //! what it adds to its two nodes, written into their slots ([`super::Loads`]).
 
+use super::super::consts::ChainConsts;
 use super::super::elements::{chunk_at, overlapped_chunks, put_chunk};
 use super::super::lanes::keep_chunks;
-use super::{LoadsOut, NetConsts, Piece, COLS, NT};
+use super::element_chunks::{element_chunk_net, net_consts, net_inputs_hold};
+use super::{cut, LoadsOut, NetConsts, Piece, COLS, NT};
+use std::ops::Range;
+
+/// A run's elements (`ne`, ends from nodes `a0`, `b0` on) in stretches whose two
+/// ends' nodes each stay in one tile (so that each end's slot columns are contiguous).
+#[inline(always)]
+fn stretches(a0: usize, b0: usize, ne: usize) -> impl Iterator<Item = Range<usize>> {
+    let mut k0 = 0;
+    std::iter::from_fn(move || {
+        (k0 < ne).then(|| {
+            let (a, b) = (a0 + k0, b0 + k0);
+            let len = (ne - k0).min(NT - a % NT).min(NT - b % NT);
+            k0 += len;
+            k0 - len..k0
+        })
+    })
+}
+
+/// The element loop and the fold in one loop, for a run `piece` whose elements are all
+/// submerged: per chunk of `L` elements, [`element_chunk_net`] then [`fold_chunk`],
+/// written straight into the ends' slots in `out` (the element results never stored:
+/// what [`super::element_chunks::element_chunks_net`] then [`node_shares`] do, with
+/// the same bits, less 8 stores and 8 loads per chunk). `a`, `b`, `u`, `aw` as for
+/// [`element_chunk_net`], over the piece's elements. Returns false, having done
+/// nothing, when a stretch ([`stretches`]) is shorter than `L`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn run_shares<const WAVES: bool, const UNIFORM: bool, const L: usize>(
+    c: &ChainConsts,
+    eslot: &[Vec<u8>; 2],
+    piece: &Piece,
+    a: [&[f64]; 7],
+    b: [&[f64]; 7],
+    u: [&[f64]; 3],
+    un: [f64; 3],
+    aw: [&[f64]; 3],
+    out: LoadsOut,
+) -> bool {
+    let Some((a0, b0)) = piece.ends else {
+        return false;
+    };
+    let (e0, ne) = (piece.elems.start, piece.elems.len());
+    if stretches(a0, b0, ne).any(|ks| ks.len() < L) {
+        return false;
+    }
+    let (sa, sb) = (eslot[0][e0] as usize, eslot[1][e0] as usize);
+    assert!(net_inputs_hold::<WAVES, UNIFORM>(a, b, u, aw, ne));
+    for ks in stretches(a0, b0, ne) {
+        let (k0, len) = (ks.start, ks.len());
+        let (a, b) = (cut(a, ks.clone()), cut(b, ks.clone()));
+        // (Columns not read, `u` with `UNIFORM` and `aw` in still water, are the
+        // scratch's, as long as the piece.)
+        let (u, aw) = (cut(u, ks.clone()), cut(aw, ks.clone()));
+        let k = net_consts(c, e0 + k0, len);
+        let hm = &c.hm[e0 + k0 + 1..e0 + k0 + 1 + len];
+        // SAFETY: as in `node_shares`: the run's ends are nodes `a0 ..`, `b0 ..` in
+        // slots `sa`, `sb` all along, slots of these elements only, that `out`'s
+        // contract gives this call alone; the stretch keeps each end in one tile.
+        let (na, nb) = (a0 + k0, b0 + k0);
+        let mut ma: [&mut [f64]; 6] =
+            std::array::from_fn(|q| unsafe { out.column(COLS * sa + q, na, len) });
+        let mut mb: [&mut [f64]; 6] =
+            std::array::from_fn(|q| unsafe { out.column(COLS * sb + q, nb, len) });
+        let mut fa: [&mut [f64]; 3] =
+            std::array::from_fn(|q| unsafe { out.column(COLS * sa + 6 + q, na, len) });
+        let mut fb: [&mut [f64]; 3] =
+            std::array::from_fn(|q| unsafe { out.column(COLS * sb + 6 + q, nb, len) });
+        for o in overlapped_chunks::<L>(len) {
+            keep_chunks();
+            // SAFETY (every chunk): `o + L <= len`, and every column read holds the
+            // stretch's `len` entries (the inputs checked above, the constants and
+            // the slots cut to it).
+            let r = unsafe { element_chunk_net::<WAVES, UNIFORM, L>(a, b, u, un, aw, &k, o) };
+            let s = fold_chunk::<L>(
+                [r[0], r[1], r[2]],
+                r[7],
+                unsafe { chunk_at::<L>(hm, o) },
+                r[3],
+                [r[4], r[5], r[6]],
+            );
+            // SAFETY: as above.
+            unsafe { put_shares::<L>(&mut ma, &mut mb, &mut fa, &mut fb, o, s) };
+        }
+    }
+    true
+}
 
 /// Folds the element loop's results for the elements of `piece` into what they add to
 /// their nodes (the general path's `m/2 I + a (I - t t^T)`, and `f/2 + (+-1 T) t` per
-/// end), written into each end's slot in `out`: with vector stores for a run (one slot
-/// per end along it), one by one for gathered elements.
+/// end), written into each end's slot in `out`, for a run (one slot per end along it:
+/// vector stores); gathered elements take [`super::gathered::gathered_shares`].
 #[inline(always)]
 pub(super) fn node_shares<const L: usize>(
     nc: &NetConsts,
@@ -25,92 +112,50 @@ pub(super) fn node_shares<const L: usize>(
     let [fx, fy, fz] = f.each_ref().map(|q| &q[..ne]);
     let (haw, hm) = (&haw[..ne], &nc.c.hm[e0 + 1..e0 + 1 + ne]);
     let (sa, sb) = (nc.eslot[0][e0] as usize, nc.eslot[1][e0] as usize);
-    match piece.ends {
-        Some((a0, b0)) => {
-            // In stretches whose two ends' nodes each stay in one tile.
-            let mut k0 = 0;
-            while k0 < ne {
-                let (a, b) = (a0 + k0, b0 + k0);
-                let len = (ne - k0).min(NT - a % NT).min(NT - b % NT);
-                let ks = k0..k0 + len;
-                // SAFETY: a run's ends are nodes `a0 ..`, `b0 ..` of the block, in
-                // slots `sa`, `sb` all along (`pieces`), slots that belong to these
-                // elements only (so the two sides' columns do not overlap) and that
-                // `out`'s contract gives this call alone; `len` keeps each in a tile.
-                let (ma, mb): ([&mut [f64]; 6], [&mut [f64]; 6]) = unsafe {
-                    (
-                        std::array::from_fn(|q| out.column(COLS * sa + q, a, len)),
-                        std::array::from_fn(|q| out.column(COLS * sb + q, b, len)),
-                    )
-                };
-                let [tx, ty, tz] = [tx, ty, tz].map(|q| &q[ks.clone()]);
-                let (haw, hm) = (&haw[ks.clone()], &hm[ks.clone()]);
-                let ([fx, fy, fz], ten) = ([fx, fy, fz].map(|q| &q[ks.clone()]), &ten[ks]);
-                if len >= L {
-                    // SAFETY: as above, the force columns too (other columns of the
-                    // same slots).
-                    let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
-                        (
-                            std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a, len)),
-                            std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b, len)),
-                        )
-                    };
-                    fold_chunks::<L>([tx, ty, tz], haw, hm, ten, [fx, fy, fz], ma, mb, fa, fb);
-                    k0 += len;
-                    continue;
-                }
-                let [xxa, yya, zza, xya, xza, yza] = ma;
-                let [xxb, yyb, zzb, xyb, xzb, yzb] = mb;
-                fold_mass(
-                    tx, ty, tz, haw, hm, xxa, yya, zza, xya, xza, yza, xxb, yyb, zzb, xyb, xzb, yzb,
-                );
-                // SAFETY: as above; the mass columns' slices are no longer used.
-                let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
-                    (
-                        std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a, len)),
-                        std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b, len)),
-                    )
-                };
-                let ([fxa, fya, fza], [fxb, fyb, fzb]) = (fa, fb);
-                fold_force(tx, ty, tz, ten, fx, fy, fz, fxa, fya, fza, fxb, fyb, fzb);
-                k0 += len;
-            }
+    // Gathered elements take `gathered_shares`.
+    let (a0, b0) = piece.ends.expect("node_shares of a run");
+    for ks in stretches(a0, b0, ne) {
+        let (k0, len) = (ks.start, ks.len());
+        let (a, b) = (a0 + k0, b0 + k0);
+        // SAFETY: a run's ends are nodes `a0 ..`, `b0 ..` of the block, in
+        // slots `sa`, `sb` all along (`pieces`), slots that belong to these
+        // elements only (so the two sides' columns do not overlap) and that
+        // `out`'s contract gives this call alone; `len` keeps each in a tile.
+        let (ma, mb): ([&mut [f64]; 6], [&mut [f64]; 6]) = unsafe {
+            (
+                std::array::from_fn(|q| out.column(COLS * sa + q, a, len)),
+                std::array::from_fn(|q| out.column(COLS * sb + q, b, len)),
+            )
+        };
+        let [tx, ty, tz] = [tx, ty, tz].map(|q| &q[ks.clone()]);
+        let (haw, hm) = (&haw[ks.clone()], &hm[ks.clone()]);
+        let ([fx, fy, fz], ten) = ([fx, fy, fz].map(|q| &q[ks.clone()]), &ten[ks]);
+        if len >= L {
+            // SAFETY: as above, the force columns too (other columns of the
+            // same slots).
+            let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
+                (
+                    std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a, len)),
+                    std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b, len)),
+                )
+            };
+            fold_chunks::<L>([tx, ty, tz], haw, hm, ten, [fx, fy, fz], ma, mb, fa, fb);
+            continue;
         }
-        None => {
-            let (ea, eb) = (&nc.ends[0][e0..e0 + ne], &nc.ends[1][e0..e0 + ne]);
-            let (sa, sb) = (&nc.eslot[0][e0..e0 + ne], &nc.eslot[1][e0..e0 + ne]);
-            for k in 0..ne {
-                let (tn, ntn) = (ten[k], -ten[k]);
-                let a = haw[k];
-                let m = [
-                    hm[k] + (a - a * tx[k] * tx[k]),
-                    hm[k] + (a - a * ty[k] * ty[k]),
-                    hm[k] + (a - a * tz[k] * tz[k]),
-                    -(a * tx[k] * ty[k]),
-                    -(a * tx[k] * tz[k]),
-                    -(a * ty[k] * tz[k]),
-                ];
-                let fa = [fx[k] + tx[k] * tn, fy[k] + ty[k] * tn, fz[k] + tz[k] * tn];
-                let fb = [
-                    fx[k] + tx[k] * ntn,
-                    fy[k] + ty[k] * ntn,
-                    fz[k] + tz[k] * ntn,
-                ];
-                for (i, s, fs) in [(ea[k], sa[k], fa), (eb[k], sb[k], fb)] {
-                    let (i, c0) = (i as usize, COLS * s as usize);
-                    // SAFETY: node `i` is in the block and slot `s` below the width
-                    // (`NetConsts::new`); this element's slot is this call's alone.
-                    unsafe {
-                        for (q, &v) in m.iter().enumerate() {
-                            out.column(c0 + q, i, 1)[0] = v;
-                        }
-                        for (q, &v) in fs.iter().enumerate() {
-                            out.column(c0 + 6 + q, i, 1)[0] = v;
-                        }
-                    }
-                }
-            }
-        }
+        let [xxa, yya, zza, xya, xza, yza] = ma;
+        let [xxb, yyb, zzb, xyb, xzb, yzb] = mb;
+        fold_mass(
+            tx, ty, tz, haw, hm, xxa, yya, zza, xya, xza, yza, xxb, yyb, zzb, xyb, xzb, yzb,
+        );
+        // SAFETY: as above; the mass columns' slices are no longer used.
+        let (fa, fb): ([&mut [f64]; 3], [&mut [f64]; 3]) = unsafe {
+            (
+                std::array::from_fn(|q| out.column(COLS * sa + 6 + q, a, len)),
+                std::array::from_fn(|q| out.column(COLS * sb + 6 + q, b, len)),
+            )
+        };
+        let ([fxa, fya, fza], [fxb, fyb, fzb]) = (fa, fb);
+        fold_force(tx, ty, tz, ten, fx, fy, fz, fxa, fya, fza, fxb, fyb, fzb);
     }
 }
 
@@ -139,52 +184,79 @@ fn fold_chunks<const L: usize>(
     assert!(ins.all(|q| q.len() == len));
     let mut outs = ma.iter().chain(&mb).chain(&fa).chain(&fb);
     assert!(outs.all(|q| q.len() == len));
-    let [mut xxa, mut yya, mut zza, mut xya, mut xza, mut yza] = ma;
-    let [mut xxb, mut yyb, mut zzb, mut xyb, mut xzb, mut yzb] = mb;
-    let ([mut fxa, mut fya, mut fza], [mut fxb, mut fyb, mut fzb]) = (fa, fb);
+    let (mut ma, mut mb, mut fa, mut fb) = (ma, mb, fa, fb);
     for o in overlapped_chunks::<L>(len) {
         keep_chunks();
         // SAFETY (every chunk): `o + L <= len`, the length of every column (above).
         let ld = |s: &[f64]| unsafe { chunk_at::<L>(s, o) };
-        let (tx, ty, tz, a, hm, tn) = (ld(t[0]), ld(t[1]), ld(t[2]), ld(haw), ld(hm), ld(ten));
-        let (fx, fy, fz) = (ld(f[0]), ld(f[1]), ld(f[2]));
-        let mut r = [[0.0; L]; 12];
-        for l in 0..L {
-            let (tx, ty, tz, a, hm) = (tx[l], ty[l], tz[l], a[l], hm[l]);
-            let (tn, ntn) = (tn[l], -tn[l]);
-            r[0][l] = hm + (a - a * tx * tx);
-            r[1][l] = hm + (a - a * ty * ty);
-            r[2][l] = hm + (a - a * tz * tz);
-            r[3][l] = -(a * tx * ty);
-            r[4][l] = -(a * tx * tz);
-            r[5][l] = -(a * ty * tz);
-            r[6][l] = fx[l] + tx * tn;
-            r[7][l] = fy[l] + ty * tn;
-            r[8][l] = fz[l] + tz * tn;
-            r[9][l] = fx[l] + tx * ntn;
-            r[10][l] = fy[l] + ty * ntn;
-            r[11][l] = fz[l] + tz * ntn;
-        }
+        let r = fold_chunk::<L>(
+            [ld(t[0]), ld(t[1]), ld(t[2])],
+            ld(haw),
+            ld(hm),
+            ld(ten),
+            [ld(f[0]), ld(f[1]), ld(f[2])],
+        );
         // SAFETY: as above.
-        unsafe {
-            for (q, m) in [&mut xxa, &mut yya, &mut zza, &mut xya, &mut xza, &mut yza]
-                .into_iter()
-                .enumerate()
-            {
-                put_chunk::<L>(m, o, r[q]);
-            }
-            for (q, m) in [&mut xxb, &mut yyb, &mut zzb, &mut xyb, &mut xzb, &mut yzb]
-                .into_iter()
-                .enumerate()
-            {
-                put_chunk::<L>(m, o, r[q]);
-            }
-            for (q, v) in [&mut fxa, &mut fya, &mut fza].into_iter().enumerate() {
-                put_chunk::<L>(v, o, r[6 + q]);
-            }
-            for (q, v) in [&mut fxb, &mut fyb, &mut fzb].into_iter().enumerate() {
-                put_chunk::<L>(v, o, r[9 + q]);
-            }
+        unsafe { put_shares::<L>(&mut ma, &mut mb, &mut fa, &mut fb, o, r) };
+    }
+}
+
+/// One chunk of `L` elements' shares of their nodes ([`fold_mass`]'s and
+/// [`fold_force`]'s arithmetic per lane): the mass block `xx, yy, zz, xy, xz, yz`,
+/// the force on node a, the force on node b.
+#[inline(always)]
+fn fold_chunk<const L: usize>(
+    t: [[f64; L]; 3],
+    a: [f64; L],
+    hm: [f64; L],
+    tn: [f64; L],
+    f: [[f64; L]; 3],
+) -> [[f64; L]; 12] {
+    let mut r = [[0.0; L]; 12];
+    for l in 0..L {
+        let (tx, ty, tz, a, hm) = (t[0][l], t[1][l], t[2][l], a[l], hm[l]);
+        let (tn, ntn) = (tn[l], -tn[l]);
+        r[0][l] = hm + (a - a * tx * tx);
+        r[1][l] = hm + (a - a * ty * ty);
+        r[2][l] = hm + (a - a * tz * tz);
+        r[3][l] = -(a * tx * ty);
+        r[4][l] = -(a * tx * tz);
+        r[5][l] = -(a * ty * tz);
+        r[6][l] = f[0][l] + tx * tn;
+        r[7][l] = f[1][l] + ty * tn;
+        r[8][l] = f[2][l] + tz * tn;
+        r[9][l] = f[0][l] + tx * ntn;
+        r[10][l] = f[1][l] + ty * ntn;
+        r[11][l] = f[2][l] + tz * ntn;
+    }
+    r
+}
+
+/// Writes a [`fold_chunk`] to entries `o .. o + L` of the slots' columns: the mass
+/// block to both ends (`*a`, `*b`), each end's force to its own.
+///
+/// # Safety
+/// `o + L` is at most every column's length.
+#[inline(always)]
+unsafe fn put_shares<const L: usize>(
+    ma: &mut [&mut [f64]; 6],
+    mb: &mut [&mut [f64]; 6],
+    fa: &mut [&mut [f64]; 3],
+    fb: &mut [&mut [f64]; 3],
+    o: usize,
+    r: [[f64; L]; 12],
+) {
+    // SAFETY: the caller's bound.
+    unsafe {
+        for q in 0..6 {
+            put_chunk::<L>(ma[q], o, r[q]);
+        }
+        for q in 0..6 {
+            put_chunk::<L>(mb[q], o, r[q]);
+        }
+        for q in 0..3 {
+            put_chunk::<L>(fa[q], o, r[6 + q]);
+            put_chunk::<L>(fb[q], o, r[9 + q]);
         }
     }
 }

@@ -1,7 +1,7 @@
 //! How the network path's element pass walks a block's elements: in pieces of at most
 //! [`TILE`] elements, each either a run of elements whose ends are consecutive nodes
 //! (read in place, as on the chain path: no gather) or a stretch of other elements
-//! (their ends gathered by index into scratch).
+//! (their ends read by index, one element at a time: `gathered.rs`).
 //!
 //! A net's twines come in such runs: the knots of a row are numbered in order, so the
 //! row's twines have ends `i, i + 1`, and the twines between two rows `i, i + columns`
