@@ -27,9 +27,9 @@ fn satisfies_the_relation_to_round_off() {
 }
 
 /// DNV-RP-C205 (sec. 3.2.2, after Hunt 1979) gives the wavelength in finite depth as
-/// `L = T sqrt(g d) sqrt(f / (1 + w f))`, `f = 1 + 0.666 w + 0.445 w^2 - 0.105 w^3
-/// + 0.272 w^4`, `w = 4 pi^2 d / (g T^2)`, an approximation it states to be good to
-/// a fraction of a percent. Our exact solution must agree to within 0.2% over the
+/// `L = T sqrt(g d) sqrt(f / (1 + w f))`, with `w = 4 pi^2 d / (g T^2)` and
+/// `f = 1 + 0.666 w + 0.445 w^2 - 0.105 w^3 + 0.272 w^4`, an approximation it states to
+/// be good to a fraction of a percent. Our exact solution must agree to within 0.2% over the
 /// whole range of depth to wavelength (the approximation's own worst error there is
 /// 0.15%), and a wrong solution (e.g. the deep-water wavelength in shallow water,
 /// off by up to a factor of ten) would not.
