@@ -54,7 +54,8 @@ fn packed_seas_on_the_grid_cut_the_fused_dispatch_rarely() {
         let (_, refresh) = w.rows::<f64>(per as usize, |k| (step0 + k as u64) as f64 * dt, 0.0);
         for (k, &r) in refresh.iter().enumerate() {
             let i = step0 + k as u64;
-            let want = i == 0 || (i > 1 && ((i - 1).is_multiple_of(16) || (i - 1).is_multiple_of(24)));
+            let want =
+                i == 0 || (i > 1 && ((i - 1).is_multiple_of(16) || (i - 1).is_multiple_of(24)));
             assert_eq!(r, want, "step {i}");
         }
         refreshes += refresh.iter().filter(|&&r| r).count() as u64;
