@@ -5,8 +5,9 @@ as ParaView would, and checks it against the CSV files of the same run.
     python3 scripts/check_vtk.py [OUTDIR]
 
 Without OUTDIR it runs tests/data/buoy_three_chains.toml with $CABLESIM_BIN (else
-target/release/cablesim) into a temporary directory first. For every file of vtk/cablesim.pvd: the point count
-(every cable node of positions.csv at that time, or the bodies and shared points), the
+target/release/cablesim) into a temporary directory first. For every file of
+vtk/cablesim.pvd: the point count (every cable node of positions.csv at that time, or
+the bodies and shared points), the
 line count (one two-point line per element), and, for the cables, one node's position
 against positions.csv, its tension against the mean of its two elements in tensions.csv
 and the next element's own tension (cell data); for the points, the
