@@ -4,9 +4,10 @@ as ParaView would, and checks it against the CSV files of the same run.
 
     python3 scripts/check_vtk.py [OUTDIR]
 
-Without OUTDIR it runs tests/data/buoy_three_chains.toml with target/release/cablesim
-into a temporary directory first. For every file of vtk/cablesim.pvd: the point count
-(every cable node of positions.csv at that time, or the bodies and shared points), the
+Without OUTDIR it runs tests/data/buoy_three_chains.toml with $CABLESIM_BIN (else
+target/release/cablesim) into a temporary directory first. For every file of
+vtk/cablesim.pvd: the point count (every cable node of positions.csv at that time, or
+the bodies and shared points), the
 line count (one two-point line per element), and, for the cables, one node's position
 against positions.csv, its tension against the mean of its two elements in tensions.csv
 and the next element's own tension (cell data); for the points, the
@@ -14,6 +15,7 @@ position and force against points.csv. Exits non-zero on the first mismatch.
 """
 
 import csv
+import os
 import subprocess
 import sys
 import tempfile
@@ -103,7 +105,7 @@ def main():
         return
     with tempfile.TemporaryDirectory() as d:
         subprocess.run(
-            [ROOT / "target/release/cablesim", "run", ROOT / "tests/data/buoy_three_chains.toml",
+            [os.environ.get("CABLESIM_BIN", ROOT / "target/release/cablesim"), "run", ROOT / "tests/data/buoy_three_chains.toml",
              "--vtk", "-q", "--out", d],
             check=True,
         )

@@ -49,6 +49,8 @@ pub mod stability;
 pub mod statics;
 pub mod step;
 pub mod study;
+#[doc(hidden)]
+pub mod testing;
 
 pub use error::{Error, Result};
 pub use options::Overrides;

@@ -16,3 +16,6 @@ mod gpu;
 
 #[path = "cli/main.rs"]
 mod cli;
+
+#[path = "units/main.rs"]
+mod units;

@@ -131,13 +131,14 @@
 //! the mass-flow force is skipped and no remeshing happens.
 
 mod drive;
-mod mass_flow;
-mod mesh;
-mod schedule;
-mod winch;
+pub(crate) mod mass_flow;
+pub(crate) mod mesh;
+pub(crate) mod schedule;
+pub(crate) mod winch;
 
 pub(crate) use drive::{advance_with_winches, MeshStepper};
 pub use mass_flow::{mass_flow_forces, material_velocity};
 pub(crate) use mesh::{AleElem, AleState};
+
 pub use schedule::{Payout, PayoutSchedule};
 pub use winch::{MeshOp, Winch, WinchEnd, WinchLimit, WinchTracker, DELETE_RATIO, INSERT_RATIO};

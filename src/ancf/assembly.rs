@@ -21,21 +21,21 @@ type V = V3<f64>;
 
 /// A prescribed group of three coordinates (a node's position or slope).
 #[derive(Clone, Debug)]
-pub(super) struct Prescribed {
+pub struct Prescribed {
     /// First of the three coordinates.
-    pub(super) dof: usize,
-    pub(super) motion: Motion,
+    pub dof: usize,
+    pub motion: Motion,
 }
 
 #[derive(Clone, Debug)]
-pub(super) enum Motion {
+pub enum Motion {
     Route(Route),
     Constant(V),
 }
 
 impl Motion {
     /// Value, rate and second rate at `t`.
-    pub(super) fn eval(&self, t: f64) -> (V, V, V) {
+    pub fn eval(&self, t: f64) -> (V, V, V) {
         match self {
             Motion::Route(r) => {
                 let s = r.eval(t);
@@ -48,95 +48,95 @@ impl Motion {
 
 /// A point mass (and applied force) at an end node, folded.
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct EndLoad {
-    pub(super) node: usize,
+pub struct EndLoad {
+    pub node: usize,
     /// Mass plus isotropic added mass, kg.
-    pub(super) mass: f64,
+    pub mass: f64,
     /// Weight less buoyancy (z) plus the applied force, N.
-    pub(super) force: V,
+    pub force: V,
     /// `1/2 rho Cd A`, kg/m.
-    pub(super) drag: f64,
+    pub drag: f64,
 }
 
 /// The constant part of the model.
 #[derive(Clone, Debug)]
-pub(super) struct Model {
-    pub(super) name: String,
-    pub(super) n_el: usize,
+pub struct Model {
+    pub name: String,
+    pub n_el: usize,
     /// Standard element length (the winch's `l_s` with a winch), m: scales only.
-    pub(super) l_el: f64,
+    pub l_el: f64,
     /// Unstretched length of each element, m (the variable element's at the last
     /// remeshing: its length now is [`Model::ale_now`]'s).
-    pub(super) lens: Vec<f64>,
-    pub(super) coefs: AncfCoefs,
+    pub lens: Vec<f64>,
+    pub coefs: AncfCoefs,
     /// Gauss points per element.
-    pub(super) n_gauss: usize,
+    pub n_gauss: usize,
     /// The Gauss rule of each element.
-    pub(super) egps: Vec<Vec<GaussPoint>>,
+    pub egps: Vec<Vec<GaussPoint>>,
     /// The winch of an ALE-ANCF cable.
-    pub(super) ale: Option<AleWinch>,
-    pub(super) current: Current,
-    pub(super) uniform_current: Option<V>,
-    pub(super) water_accel: V,
-    pub(super) seabed: Option<SeabedCoefs<f64>>,
-    pub(super) ends: Vec<EndLoad>,
-    pub(super) prescribed: Vec<Prescribed>,
-    pub(super) is_prescribed: Vec<bool>,
+    pub ale: Option<AleWinch>,
+    pub current: Current,
+    pub uniform_current: Option<V>,
+    pub water_accel: V,
+    pub seabed: Option<SeabedCoefs<f64>>,
+    pub ends: Vec<EndLoad>,
+    pub prescribed: Vec<Prescribed>,
+    pub is_prescribed: Vec<bool>,
     /// Ends with a route: (end index 0/1, node).
-    pub(super) supported: [Option<usize>; 2],
+    pub supported: [Option<usize>; 2],
     /// `int S S^T (mbar + Cm rho A) dx (x) I` plus the point masses: the whole mass
     /// matrix when `Cm = 0`, else the part the tangent-dependent term is taken from.
-    pub(super) mass_base: Band,
+    pub mass_base: Band,
     /// Added mass per length `Cm rho A` in `mass_base` (isotropic), kg/m.
-    pub(super) added_iso: f64,
+    pub added_iso: f64,
     /// The part of it subtracted along the tangent, kg/m: `Cm rho A` for the normal
     /// added mass, 0 for the isotropic approximation (then the mass matrix is constant).
-    pub(super) added: f64,
+    pub added: f64,
     /// The eliminated, factored mass matrix when it is constant.
-    pub(super) chol_const: Option<Band>,
+    pub chol_const: Option<Band>,
     /// Constant generalized force of weights and applied forces (for the potential).
-    pub(super) const_force: Vec<f64>,
-    pub(super) scheme: Scheme,
-    pub(super) max_speed: f64,
-    pub(super) stable_dt: f64,
-    pub(super) stable_term: String,
+    pub const_force: Vec<f64>,
+    pub scheme: Scheme,
+    pub max_speed: f64,
+    pub stable_dt: f64,
+    pub stable_term: String,
 }
 
 /// The winch of an ALE-ANCF cable: its schedule and the mesh state.
 #[derive(Clone, Debug)]
-pub(super) struct AleWinch {
-    pub(super) winch: Winch,
-    pub(super) tracker: WinchTracker,
+pub struct AleWinch {
+    pub winch: Winch,
+    pub tracker: WinchTracker,
     /// Index of the variable element (next to the winch).
-    pub(super) elem: usize,
+    pub elem: usize,
     /// The winch is node 0 (else the last node).
-    pub(super) at_start: bool,
+    pub at_start: bool,
     /// Payout rates taken as zero (static solutions).
-    pub(super) frozen: bool,
+    pub frozen: bool,
 }
 
 /// The variable element at one time: its length, rates and Gauss rule.
 #[derive(Clone, Debug)]
-pub(super) struct AleNow {
-    pub(super) elem: usize,
-    pub(super) l: f64,
-    pub(super) ldot: f64,
-    pub(super) lddot: f64,
-    pub(super) gps: Vec<GaussPoint>,
-    pub(super) shapes: Vec<AleShapeAt>,
+pub struct AleNow {
+    pub elem: usize,
+    pub l: f64,
+    pub ldot: f64,
+    pub lddot: f64,
+    pub gps: Vec<GaussPoint>,
+    pub shapes: Vec<AleShapeAt>,
 }
 
 /// Work arrays of one evaluation.
 #[derive(Clone, Debug)]
-pub(super) struct Ws {
-    pub(super) f: Vec<f64>,
-    pub(super) m: Band,
-    pub(super) chol: Band,
-    pub(super) acc: Vec<f64>,
-    pub(super) tangents: Vec<V>,
+pub struct Ws {
+    pub f: Vec<f64>,
+    pub m: Band,
+    pub chol: Band,
+    pub acc: Vec<f64>,
+    pub tangents: Vec<V>,
 }
 impl Ws {
-    pub(super) fn new(nd: usize, ng: usize) -> Self {
+    pub fn new(nd: usize, ng: usize) -> Self {
         Self {
             f: vec![0.0; nd],
             m: Band::zeros(nd),
@@ -150,7 +150,7 @@ impl Ws {
 impl Model {
     /// The model of `cfg` on a mesh of element lengths `lens` (node 0 to the end), with
     /// the winch state `ale`, and the given stable step.
-    pub(super) fn build(
+    pub fn build(
         cfg: &AncfConfig,
         lens: Vec<f64>,
         ale: Option<AleWinch>,
@@ -300,18 +300,18 @@ impl Model {
     }
 
     /// Number of coordinates.
-    pub(super) fn n_dofs(&self) -> usize {
+    pub fn n_dofs(&self) -> usize {
         6 * (self.n_el + 1)
     }
 
     /// True when the mass matrix is assembled at every evaluation: the normal added
     /// mass follows the tangent, or a winch changes the variable element's length.
-    pub(super) fn mass_varies(&self) -> bool {
+    pub fn mass_varies(&self) -> bool {
         self.added > 0.0 || self.ale.is_some()
     }
 
     /// The variable element at `t` (a winch cable only).
-    pub(super) fn ale_now(&self, t: f64) -> Option<AleNow> {
+    pub fn ale_now(&self, t: f64) -> Option<AleNow> {
         let a = self.ale.as_ref()?;
         let pay = a.winch.schedule.eval(t);
         let l = a.tracker.variable_l0(pay.dl);
@@ -337,7 +337,7 @@ impl Model {
 
     /// Element `e`'s Gauss rule and ALE terms (given the variable element now).
     #[inline]
-    pub(super) fn element_rule<'a>(
+    pub fn element_rule<'a>(
         &'a self,
         e: usize,
         now: &'a Option<AleNow>,
@@ -356,7 +356,7 @@ impl Model {
     }
 
     /// Unstretched element lengths at `t`, m.
-    pub(super) fn lens_at(&self, t: f64) -> Vec<f64> {
+    pub fn lens_at(&self, t: f64) -> Vec<f64> {
         let mut l = self.lens.clone();
         if let Some(a) = self.ale_now(t) {
             l[a.elem] = a.l;
@@ -365,7 +365,7 @@ impl Model {
     }
 
     /// The same model with its current (and water acceleration) scaled by `s`.
-    pub(super) fn with_flow(&self, s: f64) -> Model {
+    pub fn with_flow(&self, s: f64) -> Model {
         let mut m = self.clone();
         for row in &mut m.current.table {
             row.1 = row.1.map(|u| u * s);
@@ -378,7 +378,7 @@ impl Model {
     /// Potential energy of the static loads at rest (strain, weights and applied
     /// forces, seabed stiffness), J: the static forces in still water are its negative
     /// gradient.
-    pub(super) fn potential_energy(&self, q: &[f64]) -> f64 {
+    pub fn potential_energy(&self, q: &[f64]) -> f64 {
         let mut e = -self
             .const_force
             .iter()
@@ -403,7 +403,7 @@ impl Model {
         e
     }
 
-    pub(super) fn env(&self) -> ElementEnv<'_> {
+    pub fn env(&self) -> ElementEnv<'_> {
         ElementEnv {
             current: &self.current,
             uniform_current: self.uniform_current,
@@ -412,7 +412,7 @@ impl Model {
         }
     }
 
-    pub(super) fn diverged(&self, node: usize, time: f64, what: String) -> Error {
+    pub fn diverged(&self, node: usize, time: f64, what: String) -> Error {
         Error::Diverged {
             cable: self.name.clone(),
             node,
@@ -422,7 +422,7 @@ impl Model {
     }
 
     /// Sum of the magnitudes of the external loads on the cable at rest, N.
-    pub(super) fn load_scale(&self, q: &[f64]) -> f64 {
+    pub fn load_scale(&self, q: &[f64]) -> f64 {
         let c = &self.coefs.line;
         let u = self
             .uniform_current
@@ -439,7 +439,7 @@ impl Model {
     }
 
     /// Sets prescribed coordinates and their rates to their values at `t`.
-    pub(super) fn apply_prescribed(&self, q: &mut [f64], qd: &mut [f64], t: f64) {
+    pub fn apply_prescribed(&self, q: &mut [f64], qd: &mut [f64], t: f64) {
         for p in &self.prescribed {
             let (x, v, _) = p.motion.eval(t);
             q[p.dof..p.dof + 3].copy_from_slice(&x.to_f64());
@@ -448,7 +448,7 @@ impl Model {
     }
 
     /// Replaces the prescribed rows and columns of `m` by the identity's.
-    pub(super) fn eliminate(&self, m: &mut Band) {
+    pub fn eliminate(&self, m: &mut Band) {
         for p in &self.prescribed {
             for a in 0..3 {
                 m.eliminate(p.dof + a);
@@ -457,7 +457,7 @@ impl Model {
     }
 
     /// Generalized force into `ws.f`; with `with_mass` also the mass matrix into `ws.m`.
-    pub(super) fn forces(&self, q: &[f64], qd: &[f64], t: f64, ws: &mut Ws, with_mass: bool) {
+    pub fn forces(&self, q: &[f64], qd: &[f64], t: f64, ws: &mut Ws, with_mass: bool) {
         ws.f.iter_mut().for_each(|x| *x = 0.0);
         let now = self.ale_now(t);
         if with_mass {
@@ -523,13 +523,7 @@ impl Model {
 
     /// Accelerations `ws.acc` of state `(q, qd)` at `t`: forces, mass, prescribed
     /// accelerations by direct elimination, Cholesky solve.
-    pub(super) fn accelerations(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        t: f64,
-        ws: &mut Ws,
-    ) -> Result<(), String> {
+    pub fn accelerations(&self, q: &[f64], qd: &[f64], t: f64, ws: &mut Ws) -> Result<(), String> {
         let variable = self.mass_varies();
         self.forces(q, qd, t, ws, variable);
         ws.acc.copy_from_slice(&ws.f);
@@ -578,7 +572,7 @@ impl Model {
 
 /// Adds the consistent mass `mbar int S_k S_l dx (x) I` of element `e` of length `l`
 /// to `m` (a rule of at least 4 points: exact for the degree-6 products).
-pub(super) fn add_element_mass(m: &mut Band, e: usize, l: f64, n_gauss: usize, mbar: f64) {
+pub fn add_element_mass(m: &mut Band, e: usize, l: f64, n_gauss: usize, mbar: f64) {
     for gp in &gauss_points(l, n_gauss.max(4)) {
         let s = &gp.shape.s;
         for k in 0..4 {

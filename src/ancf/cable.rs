@@ -18,18 +18,24 @@ type V = V3<f64>;
 /// A 3D gradient-deficient ANCF cable (see the module doc of [`crate::ancf`]).
 #[derive(Clone, Debug)]
 pub struct AncfCable {
-    pub(super) m: Model,
-    pub(super) ws: Ws,
+    #[doc(hidden)]
+    pub m: Model,
+    #[doc(hidden)]
+    pub ws: Ws,
     /// Coordinates, node by node `[r_k, r'_k]` (m, and 1 for slopes).
-    pub(super) q: Vec<f64>,
+    #[doc(hidden)]
+    pub q: Vec<f64>,
     /// Their rates.
-    pub(super) qd: Vec<f64>,
-    pub(super) t: f64,
+    #[doc(hidden)]
+    pub qd: Vec<f64>,
+    #[doc(hidden)]
+    pub t: f64,
     pub(super) steps: u64,
     pub(super) dt: f64,
     pub(super) rk: Vec<Vec<f64>>,
     /// What the cable was built from (a remeshing rebuilds the model from it).
-    pub(super) cfg: AncfConfig,
+    #[doc(hidden)]
+    pub cfg: AncfConfig,
 }
 impl AncfCable {
     /// Builds the cable, straight between the two ends' initial positions (slopes
@@ -379,7 +385,8 @@ impl AncfCable {
     /// deleted node's neighbours keep their coordinates (the merged element is the
     /// cubic through them: the one approximation of remeshing). The model is then
     /// rebuilt on the new mesh; the time step is kept (it was set for the worst mesh).
-    pub(super) fn remesh(&mut self) -> Result<(), Error> {
+    #[doc(hidden)]
+    pub fn remesh(&mut self) -> Result<(), Error> {
         let Some(a) = self.m.ale.as_ref() else {
             return Ok(());
         };

@@ -163,8 +163,6 @@ mod readback;
 pub mod shape;
 mod stable_step;
 mod static_solver;
-#[cfg(test)]
-mod tests;
 
 pub use crate::options::AddedMass;
 pub use cable::AncfCable;

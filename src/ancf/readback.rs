@@ -31,7 +31,8 @@ impl AncfCable {
     /// Kinematics at unstretched arc length `s` from node 0 (clamped to the cable):
     /// material velocity and rates (convective parts included on a winch's variable
     /// element).
-    pub(super) fn point_at(&self, s: f64) -> PointKinematics {
+    #[doc(hidden)]
+    pub fn point_at(&self, s: f64) -> PointKinematics {
         let lens = self.m.lens_at(self.t);
         let mut e = 0;
         let mut x = s.max(0.0);

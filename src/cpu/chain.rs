@@ -23,9 +23,9 @@
 
 mod advance;
 mod consts;
-mod elements;
+pub(crate) mod elements;
 mod lanes;
-mod net;
+pub(crate) mod net;
 mod nodes;
 mod winch;
 pub(crate) use advance::{advance_chain, ChainScratch};

@@ -23,7 +23,7 @@
 //! element's length and mass-flow forces evaluated at each stage's time, and are
 //! remeshed between steps ([`CpuSolver::with_winches`]).
 
-mod chain;
+pub(crate) mod chain;
 mod passes;
 mod solver;
 mod threaded;

@@ -1,9 +1,11 @@
 //! The solver's API: building a [`CpuSolver`], winches, seas, stepping a run's blocks
 //! (chunks over rayon's threads, each block on the chain fast path, the general passes
 //! of [`super::passes`] or, for a big network, [`super::threaded`]), evaluation and
-//! energies. Checkpoints are in [`checkpoint`].
+//! energies. Checkpoints are in [`checkpoint`], the output-time evaluation and the
+//! energies in [`evaluation`].
 
 mod checkpoint;
+mod evaluation;
 mod waves;
 
 pub use checkpoint::CpuCheckpoint;
@@ -12,11 +14,9 @@ use super::chain::{
     advance_chain, advance_net, advance_net_threaded, ChainConsts, ChainScratch, NetConsts,
     NetScratch,
 };
-use super::passes::{
-    advance_block, element_pass, implicit_dt, node_accel, node_mass, Ctx, GeneralTopo, NodeScratch,
-};
+use super::passes::{advance_block, implicit_dt, Ctx, NodeScratch};
 use super::threaded::{advance_block_threaded, THREADED_MIN_NODES};
-use super::water::{node_water, BlockWaves, Water};
+use super::water::{BlockWaves, Water};
 use crate::ale::{advance_with_winches, AleElem, AleState, MeshStepper, Winch};
 use crate::error::Error;
 use crate::math::V3;
@@ -25,7 +25,7 @@ use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::{Coefs, ElementLoads, SeabedCoefs};
 use crate::sea::kinematics::WaveField;
 use crate::sea::{SeaSet, SeaState};
-use crate::step::{Evaluation, StepFailure, WinchStatus};
+use crate::step::{StepFailure, WinchStatus};
 use rayon::prelude::*;
 
 type V = V3<f64>;
@@ -629,133 +629,6 @@ impl CpuSolver {
                 }
             }
         }
-    }
-
-    /// Evaluates loads, accelerations and reactions at the current state, with the
-    /// water the next step starts from: each block's kinematics cache interpolated at
-    /// the current time (refreshed first where that step would refresh it), or the
-    /// exact sum in exact mode. So the loads reported are those the solver integrates,
-    /// within the cache's tolerance of the exact sum, and outputs do not change the run.
-    pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
-        self.cover_waves_now();
-        let ctx = self.ctx();
-        let lay = &self.layout;
-        let mut ev = Evaluation {
-            acc: vec![[0.0; 3]; lay.n_nodes()],
-            force: vec![[0.0; 3]; lay.n_nodes()],
-            tension: vec![0.0; lay.n_elements()],
-            reaction: vec![[0.0; 3]; lay.routes.len()],
-            elements: Vec::new(),
-        };
-        let mut elems = vec![ElementLoads::default(); lay.n_elements()];
-        for (bi, b) in lay.blocks.iter().enumerate() {
-            let ale = self.ale_block(bi);
-            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
-            let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
-            let topo = GeneralTopo { lay, n0, e0 };
-            let w = self.water_now(bi, n0, n1);
-            element_pass(
-                &ctx,
-                &topo,
-                b,
-                ale,
-                &self.r[n0..n1],
-                &self.v[n0..n1],
-                self.t,
-                &w,
-                &mut elems[e0..e1],
-            )
-            .map_err(|f| self.name_failure(f))?;
-            for i in n0..n1 {
-                let (a, f, m) = node_accel(
-                    &ctx,
-                    &topo,
-                    b,
-                    ale,
-                    i - n0,
-                    &self.r[n0..n1],
-                    &self.v[n0..n1],
-                    self.t,
-                    &w,
-                    &elems[e0..e1],
-                );
-                ev.acc[i] = a.to_f64();
-                ev.force[i] = f.to_f64();
-                let c = lay.node_constraint[i];
-                if c != NO_CONSTRAINT {
-                    ev.reaction[c as usize] = (f - m.mul_vec(a)).to_f64();
-                }
-            }
-        }
-        for (e, el) in elems.iter().enumerate() {
-            ev.tension[e] = el.tension;
-        }
-        ev.elements = elems;
-        Ok(ev)
-    }
-
-    /// Total kinetic energy `1/2 v^T M v` (mass blocks with added mass), J.
-    pub fn kinetic_energy(&self) -> f64 {
-        let ctx = self.ctx();
-        let lay = &self.layout;
-        let mut elems = vec![ElementLoads::default(); lay.n_elements()];
-        let mut ke = 0.0;
-        for (bi, b) in lay.blocks.iter().enumerate() {
-            let ale = self.ale_block(bi);
-            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
-            let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
-            // Frames can only fail where GLMF would not; energy uses the GLMF masses.
-            let ctx = Ctx {
-                opts: SolverOptions {
-                    formulation: Formulation::Glmf,
-                    ..ctx.opts
-                },
-                ..ctx
-            };
-            let topo = GeneralTopo { lay, n0, e0 };
-            let w = self.water_exact_now(n0, n1);
-            let _ = element_pass(
-                &ctx,
-                &topo,
-                b,
-                ale,
-                &self.r[n0..n1],
-                &self.v[n0..n1],
-                self.t,
-                &w,
-                &mut elems[e0..e1],
-            );
-            for i in n0..n1 {
-                let eta = if w.is_empty() {
-                    0.0
-                } else {
-                    node_water(&w, i - n0).0
-                };
-                let m = node_mass(&ctx, &topo, b, i - n0, self.r[i], eta, &elems[e0..e1]);
-                let v = self.v[i];
-                ke += 0.5 * v.dot(m.mul_vec(v));
-            }
-        }
-        ke
-    }
-
-    /// Elastic strain energy `sum 1/2 EA l0 eps^2` over stretched elements, J.
-    pub fn strain_energy(&self) -> f64 {
-        let lay = &self.layout;
-        let l0s = self.element_l0();
-        (0..lay.n_elements())
-            .map(|e| {
-                let l = (self.r[lay.elem_b[e] as usize] - self.r[lay.elem_a[e] as usize]).norm();
-                let l0 = l0s[e];
-                let c = &self.coefs[lay.elem_line[e] as usize];
-                let eps = l / l0 - 1.0;
-                if eps > 0.0 || c.compression > 0.0 {
-                    0.5 * c.ea * l0 * eps * eps
-                } else {
-                    0.0
-                }
-            })
-            .sum()
     }
 }
 /// The variable elements of block `bi` under `ale` (none without winches).

@@ -91,7 +91,7 @@ mod kernel;
 pub mod layout;
 pub mod shaders;
 pub mod solver;
-mod wave_schedule;
+pub(crate) mod wave_schedule;
 
 pub use crate::options::Precision;
 pub use context::GpuContext;

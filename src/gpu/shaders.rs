@@ -5,13 +5,18 @@
 //! and cosine, Veltkamp's splitting constant and whether element stretches are formed
 //! from compensated pairs (f32 only), the fused kernel's workgroup size `FUSED_WG` and
 //! whether the run has waves (`WAVES`: see [`header_with`]), then comes
-//! `shaders/shared/prelude.wgsl` (structs, bindings, physics) and
+//! `shaders/shared/prelude.wgsl` (structs, bindings, physics),
+//! `shaders/shared/step.wgsl` (one element and one node of a step) and
 //! `shaders/shared/waves.wgsl` (wave kinematics), then the stage file.
 
 use crate::options::Precision;
 
 /// The shared prelude: structs, bindings and force functions.
 pub const PRELUDE: &str = include_str!("../../shaders/shared/prelude.wgsl");
+
+/// One element and one node of a step (`shaders/shared/step.wgsl`), appended after the
+/// prelude: the functions the element and node passes and the fused kernel compose.
+pub const STEP: &str = include_str!("../../shaders/shared/step.wgsl");
 
 /// The wave kinematics (`shaders/shared/waves.wgsl`), appended after the prelude.
 pub const WAVES: &str = include_str!("../../shaders/shared/waves.wgsl");
@@ -146,17 +151,21 @@ pub fn source_with(
     let mut s = header_with(p, fused_wg, waves, wave_points);
     s.push_str(PRELUDE);
     s.push('\n');
+    s.push_str(STEP);
+    s.push('\n');
     s.push_str(WAVES);
     s.push('\n');
     s.push_str(stage.body());
     s
 }
 
-/// The prelude alone at precision `p` (header, prelude and wave kinematics), for
-/// tests that add their own entry points.
+/// The prelude alone at precision `p` (header, prelude, a step's functions and wave
+/// kinematics), for tests that add their own entry points.
 pub fn prelude(p: Precision) -> String {
     let mut s = header(p);
     s.push_str(PRELUDE);
+    s.push('\n');
+    s.push_str(STEP);
     s.push('\n');
     s.push_str(WAVES);
     s

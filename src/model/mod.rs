@@ -1,10 +1,10 @@
 //! What is simulated: line types, environment, routes, and the packed layout.
 
-mod environment;
+pub(crate) mod environment;
 mod layout;
 mod line_type;
 pub mod net;
-mod route;
+pub(crate) mod route;
 
 pub use environment::{Current, Environment, Seabed};
 pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};

@@ -17,7 +17,8 @@ use std::path::Path;
 
 /// Builds the error for line `line` (1-based; 0 = the file as a whole) of a MoorDyn
 /// file: the field names the line and the column or option.
-pub(crate) fn err_at(
+#[doc(hidden)]
+pub fn err_at(
     path: &Path,
     line: usize,
     what: impl AsRef<str>,

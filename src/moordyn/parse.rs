@@ -151,7 +151,8 @@ pub struct MoorDynFile {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Kind {
+#[doc(hidden)]
+pub enum Kind {
     LineTypes,
     Points,
     Lines,
@@ -164,7 +165,8 @@ enum Kind {
 
 /// The section a header line opens. Longer phrases are tried first where one contains
 /// another (`LINE TYPES` before `LINES`, `ROD TYPES` before `RODS`).
-fn kind_of(header: &str) -> Kind {
+#[doc(hidden)]
+pub fn kind_of(header: &str) -> Kind {
     let h = header.to_uppercase();
     let has = |keys: &[&str]| keys.iter().any(|k| h.contains(k));
     if has(&["LINE DICTIONARY", "LINE TYPES"]) {
@@ -218,7 +220,8 @@ pub fn looks_like_moordyn(text: &str) -> bool {
 }
 
 /// A row's fields: whitespace-separated, with `#` comments removed.
-fn fields(line: &str) -> Vec<String> {
+#[doc(hidden)]
+pub fn fields(line: &str) -> Vec<String> {
     let body = line.split('#').next().unwrap_or("");
     body.split_whitespace().map(str::to_string).collect()
 }
@@ -504,31 +507,4 @@ pub fn parse(text: &str, path: &Path) -> Result<MoorDynFile, Error> {
         ));
     }
     Ok(file)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn header_phrases_pick_their_sections() {
-        assert_eq!(kind_of("---- LINE TYPES ----"), Kind::LineTypes);
-        assert_eq!(kind_of("---- LINE DICTIONARY ----"), Kind::LineTypes);
-        assert_eq!(kind_of("---- LINE PROPERTIES ----"), Kind::Lines);
-        assert_eq!(kind_of("---- Lines ----"), Kind::Lines);
-        assert_eq!(kind_of("--- CONNECTION PROPERTIES ---"), Kind::Points);
-        assert_eq!(kind_of("--- NODE PROPERTIES ---"), Kind::Points);
-        assert_eq!(kind_of("--- ROD TYPES ---"), Kind::Other("ROD TYPES"));
-        assert_eq!(kind_of("--- RODS ---"), Kind::Other("RODS"));
-        assert_eq!(kind_of("---- SOLVER OPTIONS ----"), Kind::Options);
-        assert_eq!(kind_of("---- OUTPUTS ----"), Kind::Outputs);
-        assert_eq!(kind_of("---- MoorDyn Input File ----"), Kind::Unknown);
-        assert_eq!(kind_of("---- need this line ----"), Kind::Unknown);
-    }
-
-    #[test]
-    fn comments_and_blank_rows_are_skipped() {
-        assert_eq!(fields("  1  Fixed  0 # anchor"), vec!["1", "Fixed", "0"]);
-        assert!(fields("   # only a note").is_empty());
-    }
 }

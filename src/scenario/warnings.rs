@@ -12,12 +12,14 @@
 use std::cell::RefCell;
 
 thread_local! {
-    static SINK: RefCell<Option<Vec<String>>> = const { RefCell::new(None) };
+    /// The warnings kept while [`collect_warnings`] runs on this thread (`None`: log
+    /// them).
+    pub static SINK: RefCell<Option<Vec<String>>> = const { RefCell::new(None) };
 }
 
 /// Logs `message` as a warning, or keeps it when [`collect_warnings`] is running on
 /// this thread.
-pub(crate) fn warn(message: String) {
+pub fn warn(message: String) {
     let kept = SINK.with(|s| match s.borrow_mut().as_mut() {
         Some(list) => {
             list.push(message.clone());
@@ -37,23 +39,4 @@ pub fn collect_warnings<T>(f: impl FnOnce() -> T) -> (T, Vec<String>) {
     let out = f();
     let kept = SINK.with(|s| std::mem::replace(&mut *s.borrow_mut(), outer));
     (out, kept.unwrap_or_default())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn collected_warnings_are_kept_in_order_and_nested_calls_keep_their_own() {
-        let (((), inner), outer) = collect_warnings(|| {
-            warn("a".into());
-            let inner = collect_warnings(|| warn("b".into()));
-            warn("c".into());
-            inner
-        });
-        assert_eq!(inner, vec!["b".to_string()]);
-        assert_eq!(outer, vec!["a".to_string(), "c".to_string()]);
-        // Outside, nothing is collected any more.
-        assert!(SINK.with(|s| s.borrow().is_none()));
-    }
 }

@@ -620,6 +620,3 @@ fn evaluate_due_nodes(
             },
         );
 }
-
-#[cfg(test)]
-mod tests;

@@ -16,7 +16,7 @@
 //! the same numbers.
 
 mod packed;
-mod sea_check;
+pub(crate) mod sea_check;
 
 pub use packed::PackedRun;
 

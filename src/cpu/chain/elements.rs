@@ -259,7 +259,7 @@ pub(super) fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
 /// bits, and writes them twice: the network path's element and fold loops run so,
 /// its pieces being of any length.
 #[inline(always)]
-pub(super) fn overlapped_chunks<const L: usize>(ne: usize) -> impl Iterator<Item = usize> {
+pub fn overlapped_chunks<const L: usize>(ne: usize) -> impl Iterator<Item = usize> {
     debug_assert!(ne >= L);
     (0..ne.div_ceil(L)).map(move |j| (j * L).min(ne - L))
 }
@@ -551,40 +551,6 @@ pub(super) fn add_waves(
         for q in 0..3 {
             u[q][k] += 0.5 * (ua[q] + ub[q]);
             aw[q][k] = 0.5 * (aa[q] + ab[q]);
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::overlapped_chunks;
-
-    /// The chunks of a network piece cover each of its elements, stay inside it, and
-    /// overlap only in the last one (pieces of 4 to 300 elements, 4 and 8 lanes).
-    #[test]
-    fn overlapped_chunks_cover_every_entry_once_or_twice_inside() {
-        fn check<const L: usize>(ne: usize) {
-            let mut seen = vec![0usize; ne];
-            let starts: Vec<usize> = overlapped_chunks::<L>(ne).collect();
-            for &o in &starts {
-                assert!(o + L <= ne, "chunk at {o} past {ne} elements");
-                for s in &mut seen[o..o + L] {
-                    *s += 1;
-                }
-            }
-            assert!(seen.iter().all(|&k| k >= 1), "{ne} elements, {L} lanes");
-            // Only the last chunk overlaps: twice at most, and only when L does not
-            // divide the piece.
-            let twice = seen.iter().filter(|&&k| k == 2).count();
-            assert!(seen.iter().all(|&k| k <= 2));
-            assert_eq!(twice, (L - ne % L) % L);
-            assert_eq!(starts.len(), ne.div_ceil(L));
-        }
-        for ne in 4..300 {
-            check::<4>(ne);
-            if ne >= 8 {
-                check::<8>(ne);
-            }
         }
     }
 }

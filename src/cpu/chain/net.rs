@@ -47,8 +47,8 @@ mod element_chunks;
 mod fold;
 mod gathered;
 mod node_pass;
-mod pieces;
-mod plan;
+pub(crate) mod pieces;
+pub(crate) mod plan;
 mod threaded;
 use fold::{node_shares, run_shares};
 use gathered::gathered_shares;
@@ -151,7 +151,7 @@ pub(crate) struct NetScratch {
 const COLS: usize = 9;
 
 /// Nodes per tile of [`Loads`].
-const NT: usize = 256;
+pub const NT: usize = 256;
 
 /// Distance between two columns of a tile: [`NT`] values and a cache line. At `NT`
 /// (2 KiB) the 36 or 72 columns the node loop reads at once would fall in 2 of the 64

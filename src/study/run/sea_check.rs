@@ -16,7 +16,7 @@ use crate::study::members::Member;
 
 /// The field of the member scenario that carries sea state `i`'s key `field`, as the
 /// study names it; `None` when `field` is not the sea state's.
-fn study_field(i: usize, field: &str) -> Option<String> {
+pub fn study_field(i: usize, field: &str) -> Option<String> {
     let base = format!("study.sea_states[{i}]");
     if let Some(rest) = field.strip_prefix("environment.waves.trains[0]") {
         let key = match rest.strip_prefix('.') {
@@ -116,38 +116,5 @@ impl StudyRunner {
             }
         }
         Ok(())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::study_field;
-
-    #[test]
-    fn member_fields_map_to_the_study_fields_of_their_sea_state() {
-        let f = |s: &str| study_field(2, s);
-        assert_eq!(
-            f("environment.waves.trains[0].hs").unwrap(),
-            "study.sea_states[2].hs"
-        );
-        assert_eq!(
-            f("environment.waves.trains[0].tp").unwrap(),
-            "study.sea_states[2].tp"
-        );
-        assert_eq!(
-            f("environment.waves.trains[0].direction").unwrap(),
-            "study.sea_states[2].heading"
-        );
-        assert_eq!(
-            f("environment.waves.trains[0]").unwrap(),
-            "study.sea_states[2]"
-        );
-        assert_eq!(
-            f("environment.current").unwrap(),
-            "study.sea_states[2].current_speed"
-        );
-        assert_eq!(f("environment.waves.seed").unwrap(), "study.sea_states[2]");
-        assert_eq!(f("cables[0].length"), None);
-        assert_eq!(f("environment.depth"), None);
     }
 }

@@ -22,7 +22,7 @@ use std::ops::Range;
 
 /// One piece of a thread's phase 1.
 #[derive(Clone, Debug, PartialEq)]
-pub(super) enum Op {
+pub enum Op {
     /// Evaluate these elements and write their slots.
     Elems(Piece),
     /// Update tile `t`'s nodes from its slots.
@@ -31,36 +31,37 @@ pub(super) enum Op {
 
 /// One thread's share of a step.
 #[derive(Clone, Debug, Default)]
-pub(super) struct ThreadPlan {
+pub struct ThreadPlan {
     /// Phase 1, in order.
-    pub(super) ops: Vec<Op>,
+    pub ops: Vec<Op>,
     /// Tiles updated in phase 2 (after the barrier), in order.
-    pub(super) late: Vec<usize>,
+    pub late: Vec<usize>,
     /// The nodes its elements reach (empty without elements): its own tiles and the
     /// other threads' late tiles only.
-    pub(super) reach: Range<usize>,
+    pub reach: Range<usize>,
 }
 
 /// A step's work over a block's tiles.
 #[derive(Clone, Debug)]
-pub(super) struct Plan {
-    pub(super) threads: Vec<ThreadPlan>,
+pub struct Plan {
+    /// Per thread: its part of the step.
+    pub threads: Vec<ThreadPlan>,
     /// Per tile: its buffer in [`super::Loads`].
-    pub(super) buf: Vec<u32>,
+    pub buf: Vec<u32>,
     /// Tile buffers.
-    pub(super) nbuf: usize,
+    pub nbuf: usize,
     /// Per tile: the slots to zero once its update has read its buffer: the empty
     /// slots (past the incidence list) of the next tile to use that buffer, which this
     /// tile's elements may have filled. Each entry `(i, len, s)` is slot `s` of the
     /// nodes `i .. i + len` (a net's rows of knots of one degree: one entry per row, so
     /// that each column is zeroed by one vector fill). Empty when the buffer is the
     /// tile's alone.
-    pub(super) clear: Vec<Vec<(u32, u32, u8)>>,
+    pub clear: Vec<Vec<(u32, u32, u8)>>,
 }
 
 /// The plan for `n` nodes with `width` slots, elements with block-local ends `ea`,
 /// `eb` cut into `pieces`, on `threads` threads.
-pub(super) fn plan(
+pub fn plan(
     n: usize,
     width: usize,
     ea: &[u32],
@@ -176,93 +177,4 @@ pub(super) fn plan(
     }
     out.nbuf = users.len();
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::super::pieces::pieces;
-    use super::*;
-
-    /// A cylinder net of 128 x 32 knots (as `model::add_net` numbers it): rows of
-    /// twines, then the twines down. Every element is evaluated once, every tile
-    /// updated once, after every group that writes its slots and before any group
-    /// that reads its nodes; tiles that share a buffer are never live at once.
-    #[test]
-    fn wavefront_covers_the_cage_in_order() {
-        let (nc, nr) = (128usize, 32usize);
-        let (mut ea, mut eb) = (Vec::new(), Vec::new());
-        for r in 0..nr {
-            for c in 0..nc {
-                ea.push((r * nc + c) as u32);
-                eb.push((r * nc + (c + 1) % nc) as u32);
-            }
-        }
-        for r in 0..nr - 1 {
-            for c in 0..nc {
-                ea.push((r * nc + c) as u32);
-                eb.push(((r + 1) * nc + c) as u32);
-            }
-        }
-        let n = nc * nr;
-        // Slots: the place in each node's incidence list, in element order.
-        let mut deg = vec![0u8; n];
-        let (mut sa, mut sb) = (Vec::new(), Vec::new());
-        for (&a, &b) in ea.iter().zip(&eb) {
-            sa.push(deg[a as usize]);
-            deg[a as usize] += 1;
-            sb.push(deg[b as usize]);
-            deg[b as usize] += 1;
-        }
-        let ps = pieces(&ea, &eb, &sa, &sb);
-        for threads in [1, 2, 3] {
-            let p = plan(n, 4, &ea, &eb, &ps, threads);
-            let nt = n / NT;
-            let mut seen = vec![0usize; ea.len()];
-            let mut done = vec![false; nt];
-            // Per buffer: the tile whose slots it holds now.
-            let mut holder = vec![usize::MAX; p.nbuf];
-            let late: Vec<usize> = p.threads.iter().flat_map(|th| th.late.clone()).collect();
-            for (k, th) in p.threads.iter().enumerate() {
-                // This thread's tiles: the others' updates never touch what it reads.
-                let mine = nt * k / threads..nt * (k + 1) / threads;
-                for op in &th.ops {
-                    match op {
-                        Op::Elems(pc) => {
-                            for e in pc.elems.clone() {
-                                seen[e] += 1;
-                                for i in [ea[e], eb[e]] {
-                                    let t = i as usize / NT;
-                                    assert!(mine.contains(&t) || late.contains(&t));
-                                    assert!(!done[t], "tile {t} read after its update");
-                                    let b = p.buf[t] as usize;
-                                    assert!(holder[b] == t || holder[b] == usize::MAX);
-                                    holder[b] = t;
-                                }
-                            }
-                        }
-                        Op::Nodes(t) => {
-                            assert!(!done[*t]);
-                            done[*t] = true;
-                            holder[p.buf[*t] as usize] = usize::MAX;
-                        }
-                    }
-                }
-            }
-            for th in &p.threads {
-                for &t in &th.late {
-                    assert!(!done[t]);
-                    done[t] = true;
-                }
-            }
-            assert!(seen.iter().all(|&k| k == 1), "{threads} threads");
-            assert!(done.iter().all(|&d| d));
-            // One thread: two buffers for the 16 tiles.
-            if threads == 1 {
-                assert_eq!(p.nbuf, 2);
-                // The top row's knots have 3 twines: their fourth slot is cleared
-                // after tile 14 (tile 0 is the next user of its buffer).
-                assert_eq!(p.clear[14], vec![(0, nc as u32, 3)]);
-            }
-        }
-    }
 }

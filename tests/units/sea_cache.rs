@@ -1,9 +1,14 @@
+//! `src/sea/cache.rs`: its unit tests, moved here from its `#[cfg(test)]` module so that
+//! `cargo test` does not compile the library a second time as a test harness.
+//!
 //! Unit tests of the kinematics cache (moved out of `cache.rs`: the cache itself is
 //! one concept, its tests another file).
 
-use super::*;
-use crate::sea::dispersion::wave_number;
-use crate::sea::Stretching;
+use cablesim::sea::cache::*;
+use cablesim::sea::dispersion::wave_number;
+use cablesim::sea::kinematics::WaveField;
+use cablesim::sea::Stretching;
+use cablesim::sea::{SeaState, WaveComponent};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::TAU;
@@ -159,11 +164,12 @@ fn moving_nodes_add_the_path_prediction_error() {
 fn banded_cache_follows_its_bands_and_its_cubics() {
     let sea = broad_sea();
     let dt = 0.002;
-    let plan = crate::sea::bands::band_plan(&sea, f64::INFINITY, dt);
+    let plan = cablesim::sea::bands::band_plan(&sea, f64::INFINITY, dt);
     assert!(plan.len() >= 3, "{plan:?}");
     let n = 20;
     let mut banded = WaveCache::with_bands(&sea, n, &plan);
-    let mut one = WaveCache::with_bands(&sea, n, &crate::sea::bands::BandPlan::single(plan.base));
+    let mut one =
+        WaveCache::with_bands(&sea, n, &cablesim::sea::bands::BandPlan::single(plan.base));
     let exact = WaveField::new(&sea);
     let (mut pos, mut vel) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
     let (mut e_b, mut e_1, mut norm) = (0.0, 0.0, vec![0.0; n]);

@@ -1,11 +1,13 @@
+//! `src/ancf/mod.rs`: its unit tests, moved here from its `#[cfg(test)]` module so that
+//! `cargo test` does not compile the library a second time as a test harness.
+//!
 //! Unit tests of the ANCF cable that reach into its model (energy gradient, ALE
 //! remeshing, momentum balance).
 
-use super::cable::AncfCable;
-use super::config::{AncfConfig, AncfEnd};
-use super::element::{ale_kinematics, kinematics, PointKinematics};
-use crate::math::V3;
-use crate::model::{Current, Environment, LineType, PointMass, Route, Seabed};
+use cablesim::ancf::element::{ale_kinematics, kinematics, PointKinematics};
+use cablesim::ancf::{AncfCable, AncfConfig, AncfEnd};
+use cablesim::math::V3;
+use cablesim::model::{Current, Environment, LineType, PointMass, Route, Seabed};
 
 type V = V3<f64>;
 
@@ -83,8 +85,8 @@ fn static_forces_are_the_energy_gradient() {
 
 /// A winch cable hanging from a moving top with a clump at its far end, curved and
 /// moving (so every ALE term is non-zero), element length 10 m.
-fn winch_cable(at_start: bool, schedule: crate::ale::PayoutSchedule) -> AncfCable {
-    use crate::ale::{Winch, WinchEnd};
+fn winch_cable(at_start: bool, schedule: cablesim::ale::PayoutSchedule) -> AncfCable {
+    use cablesim::ale::{Winch, WinchEnd};
     let mut lt = line(200.0, false);
     lt.cm = 0.2;
     lt.damping = 1e-4;
@@ -156,7 +158,10 @@ fn assembled_mass(c: &mut AncfCable) -> f64 {
 #[test]
 fn ale_insertion_keeps_shape_and_material_motion() {
     for at_start in [true, false] {
-        let mut c = winch_cable(at_start, crate::ale::PayoutSchedule::constant(0.8).unwrap());
+        let mut c = winch_cable(
+            at_start,
+            cablesim::ale::PayoutSchedule::constant(0.8).unwrap(),
+        );
         c.set_shape(|s| [5.0 + 3.0 * (s / 13.0).sin(), 0.5 * s / 40.0, -s]);
         if !at_start {
             c.set_shape(|s| [5.0 + 3.0 * (s / 13.0).sin(), 0.5 * s / 40.0, s - 40.0]);
@@ -210,7 +215,7 @@ fn ale_insertion_keeps_shape_and_material_motion() {
 #[test]
 fn ale_mass_follows_the_deployed_length_through_remeshing() {
     for at_start in [true, false] {
-        let sched = crate::ale::PayoutSchedule::rates(&[
+        let sched = cablesim::ale::PayoutSchedule::rates(&[
             (0.0, 2.0),
             (30.0, 2.0),
             (30.0, -2.0),
@@ -251,7 +256,7 @@ fn ale_mass_follows_the_deployed_length_through_remeshing() {
 /// (the mass matrix is summed in another order, so not bitwise).
 #[test]
 fn ale_with_zero_payout_is_the_plain_cable() {
-    let mut a = winch_cable(true, crate::ale::PayoutSchedule::constant(0.0).unwrap());
+    let mut a = winch_cable(true, cablesim::ale::PayoutSchedule::constant(0.0).unwrap());
     let mut cfg = a.cfg.clone();
     cfg.winch = None;
     cfg.dt = Some(a.dt());
@@ -300,7 +305,7 @@ fn momentum(c: &AncfCable) -> V {
 /// reported reaction together.
 #[test]
 fn ale_momentum_balance_holds() {
-    use crate::ale::{PayoutSchedule, Winch, WinchEnd};
+    use cablesim::ale::{PayoutSchedule, Winch, WinchEnd};
     for at_start in [true, false] {
         let mut lt = line(500.0, false);
         lt.damping = 1e-3;

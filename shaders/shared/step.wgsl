@@ -1,0 +1,234 @@
+// One element and one node of a step: the functions the element and node passes of the
+// two-pass stages and the fused kernel compose (each computes exactly this, only from
+// different memory). `gpu::shaders` appends this file to `prelude.wgsl` (whose structs,
+// bindings and force functions it uses), before the wave kinematics.
+
+// Depth of node state `s` (block origin height `oz`) under the water surface, m:
+// negative in air. Still water: the surface is z = 0.
+fn submergence(oz: R, s: NodeState) -> R {
+    return -(oz + (s.r_hi.z + s.r_lo.z));
+}
+
+// The GLMF loads of element `e` (`ep`, line `lp`, its block's origin height `oz`) from
+// the states `sa`, `sb` of its nodes a and b at step `k` of the submission (the row of
+// `payout` of a winch cable's variable element). CPU twin: cpu::stepper element_pass.
+fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeState, k: u32, sr: SeaRows) -> ElemLoads {
+    // A winch cable's variable element takes l0_v(t) of this step (crate::ale).
+    var l0 = ep.l0;
+    var l0_lo = ep.l0_lo;
+    var py = Payout(R(0.0), R(0.0), R(0.0), R(0.0), R(0.0));
+    let var_elem = ep.winch != NO_WINCH;
+    if var_elem {
+        py = payout[k * params.n_winch + (ep.winch >> 1u)];
+        l0 = py.l0;
+        l0_lo = py.l0_lo;
+    }
+    // Compensated positions: the difference of the hi parts is made exact by a
+    // two-sum, the lo parts add the rest: d = d_hi + d_lo to about eps^2.
+    var stretch: R;
+    var d: vec3<R>;
+    if COMPENSATED {
+        let x = two_sum(sb.r_hi.x, -sa.r_hi.x);
+        let y = two_sum(sb.r_hi.y, -sa.r_hi.y);
+        let z = two_sum(sb.r_hi.z, -sa.r_hi.z);
+        let d_hi = vec3<R>(x.x, y.x, z.x);
+        let d_lo = vec3<R>(x.y, y.y, z.y) + (sb.r_lo.xyz - sa.r_lo.xyz);
+        d = d_hi + d_lo;
+        stretch = element_stretch(d_hi, d_lo, l0, l0_lo);
+    } else {
+        d = (sb.r_hi.xyz - sa.r_hi.xyz) + (sb.r_lo.xyz - sa.r_lo.xyz);
+        stretch = norm3(d) - l0;
+    }
+    let zmid = oz + ((sa.r_hi.z + sb.r_hi.z) + (sa.r_lo.z + sb.r_lo.z)) * R(0.5);
+    var u = current_at(ep.current, zmid);
+    // Still water: the surface is z = 0 and the water does not accelerate. Waves: the
+    // mean of the two nodes' wave velocity and acceleration at the midpoint, the
+    // surface over each node for the wetted fraction (cpu::stepper element_input),
+    // from the element's cache entry (elem_waves) at its sea's rows `sr` of this step
+    // (wave_sea_rows). WAVES (the generated header) is false in a still-water run's
+    // fused pipeline: the waves branch folds away there.
+    var aw = vec3<R>(R(0.0), R(0.0), R(0.0));
+    var wet: R;
+    if WAVES && sr.waves {
+        let w = elem_waves(e, ep, sr);
+        u += w.u;
+        aw = w.a;
+        wet = wetted_fraction(w.eta_a + submergence(oz, sa), w.eta_b + submergence(oz, sb), ep.diameter);
+    } else {
+        wet = wetted_fraction(submergence(oz, sa), submergence(oz, sb), ep.diameter);
+    }
+    let el = glmf_element_wet(lp, d, stretch, sa.v.xyz, sb.v.xyz, l0, u, aw, wet, params.gravity);
+    var tension = el.tension;
+    if var_elem {
+        tension = variable_element(ep, lp, py, d, sa.v.xyz, sb.v.xyz, tension);
+    }
+    return ElemLoads(
+        el.t.x, el.t.y, el.t.z, tension,
+        el.f_half.x, el.f_half.y, el.f_half.z, el.half_mass, el.half_added,
+    );
+}
+
+// The ALE additions of a winch cable's variable element (crate::ale; CPU twin:
+// cpu::stepper element_pass and node_accel): the internal damping acts on the
+// material strain rate, epsdot = (t . dv - (l / l0) Ldot) / l0, so the tension loses
+// EA c l Ldot / l0^2; and the mass-flow forces of Eq. 39 on its material node m and
+// winch node w, F_m = -mbar l0 g / 6, F_w = -mbar l0 g / 3 with
+// g = -2 (Ldot / l0) (v_w - v_m) + (2 Ldot^2 / l0^2 - Lddot / l0) (r_w - r_m),
+// left in node_out for the node pass. Returns the tension.
+fn variable_element(ep: ElemParams, lp: LineParams, py: Payout, d: vec3<R>, va: vec3<R>, vb: vec3<R>, tension: R) -> R {
+    var ten = tension;
+    let l0 = py.l0;
+    if py.rate != R(0.0) {
+        let l = norm3(d);
+        ten -= lp.ea_c * l * py.rate / (l0 * l0);
+    }
+    let w_is_b = (ep.winch & 1u) == 1u;
+    let m = select(ep.b, ep.a, w_is_b);
+    let w = select(ep.a, ep.b, w_is_b);
+    var fm = vec3<R>(R(0.0), R(0.0), R(0.0));
+    var fw = fm;
+    if py.rate != R(0.0) || py.accel != R(0.0) {
+        // r_w - r_m and v_w - v_m from the element's a-to-b difference.
+        let e = select(-d, d, w_is_b);
+        let dv = select(va - vb, vb - va, w_is_b);
+        let il0 = R(1.0) / l0;
+        let g = dv * (R(-2.0) * py.rate * il0) + e * ((R(2.0) * py.rate * py.rate * il0 - py.accel) * il0);
+        let s = -lp.mass * l0;
+        fm = g * (s / R(6.0));
+        fw = g * (s / R(3.0));
+    }
+    node_out[m].force = vec4<R>(fm, R(0.0));
+    node_out[w].force = vec4<R>(fw, R(0.0));
+    return ten;
+}
+
+struct NodeForce {
+    f: vec3<R>,
+    m: Sym3,
+    // The seabed's damping slopes (seabed_damping), which node_advance takes
+    // implicitly; zero off the seabed.
+    c: vec3<R>,
+}
+
+// The waves over node `i` at step `k` as its point mass's loads read them
+// (node_waves), or zeros when the point has no drag, no displaced mass and no added
+// mass: gather_begin and gather_end then multiply every wave value by zero, so the
+// node pass skips the cache read (14 scalars per node-step) for the plain nodes of a
+// line. CPU twin: the chain kernel (cpu::chain) interpolates per-node values only for
+// blocks with such points. Zeros too without WAVES (a still-water pipeline; node_waves
+// would return zeros there anyway).
+fn point_waves(i: u32, nd: NodeParams, k: u32) -> WaveKin {
+    if WAVES && WAVE_POINTS && (nd.point_drag != R(0.0) || nd.point_displaced != R(0.0) || nd.point_added != R(0.0)) {
+        return node_waves(i, k);
+    }
+    return WaveKin(R(0.0), vec3<R>(R(0.0)), vec3<R>(R(0.0)));
+}
+
+// The start of node `nd`'s gather (state `s`, block `blk`, waves `w` over it: see
+// node_waves): its point mass and the point's weight less buoyancy, less the added
+// mass and buoyancy of the share of the point out of the water (nothing under water:
+// dry = 0).
+fn gather_begin(nd: NodeParams, s: NodeState, blk: BlockParams, w: WaveKin) -> NodeForce {
+    let dry = R(1.0) - point_wetted_fraction(w.eta + submergence(blk.oz, s), nd.point_radius);
+    let wz = nd.point_weight_z - dry * (nd.point_displaced * params.gravity);
+    let zero = vec3<R>(R(0.0), R(0.0), R(0.0));
+    return NodeForce(vec3<R>(R(0.0), R(0.0), wz), sym3_scalar(nd.point_mass - dry * nd.point_added), zero);
+}
+
+// Adds the loads `el` of the element of incidence entry `entry` (element * 2 + side).
+fn gather_add(nf: NodeForce, el: ElemLoads, entry: u32) -> NodeForce {
+    var f = nf.f;
+    let sign = select(R(1.0), R(-1.0), (entry & 1u) == 1u);
+    let t = vec3<R>(el.tx, el.ty, el.tz);
+    f += vec3<R>(el.fx, el.fy, el.fz) + t * (sign * el.tension);
+    return NodeForce(f, sym3_add_element(nf.m, el.half_mass, el.half_added, t), nf.c);
+}
+
+// The end of node `i`'s gather (block `blk`, state `s`, step `k` of the submission,
+// waves `w` over it): point drag on the relative water velocity, the water-
+// acceleration load (1 + Ca) rho V a of the point's wet share in waves, a winch
+// node's mass-flow force and tributary change, seabed contact.
+fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockParams, k: u32, w: WaveKin) -> NodeForce {
+    var f = nf.f;
+    let v = s.v.xyz;
+    let wet = point_wetted_fraction(w.eta + submergence(blk.oz, s), nd.point_radius);
+    if nd.point_drag > R(0.0) {
+        let z = blk.oz + (s.r_hi.z + s.r_lo.z);
+        let vr = (current_at(nd.current, z) + w.u) - v;
+        f += vr * (nd.point_drag * norm3(vr) * wet);
+    }
+    let m_fk = nd.point_displaced + nd.point_added;
+    if WAVES && WAVE_POINTS && wave_steps[blk.wave_rows + k].n != 0u && m_fk > R(0.0) {
+        f += w.a * (m_fk * wet);
+    }
+    var trib = nd.tributary;
+    if nd.winch != NO_WINCH {
+        // A node of a variable element: its tributary length follows l0_v, and the
+        // element pass left the mass-flow force of Eq. 39 in node_out (crate::ale).
+        let py = payout[k * params.n_winch + nd.winch];
+        trib += py.trib;
+        if py.rate != R(0.0) || py.accel != R(0.0) {
+            f += node_out[i].force.xyz;
+        }
+    }
+    var c = nf.c;
+    if params.seabed != 0u {
+        let pen = (blk.zb - s.r_hi.z) - s.r_lo.z;
+        f += seabed_force(pen, trib, v);
+        c = seabed_damping(pen, trib, v);
+    }
+    return NodeForce(f, nf.m, c);
+}
+
+// Force and mass block of node `i`: its elements' loads and half masses gathered over
+// the incidence list from `elem_loads` (no atomics), point-mass weight and drag,
+// seabed contact.
+fn gather_node(i: u32, nd: NodeParams, s: NodeState, k: u32) -> NodeForce {
+    let blk = blocks[nd.block];
+    let w = point_waves(i, nd, k);
+    var nf = gather_begin(nd, s, blk, w);
+    for (var j = nd.inc_start; j < nd.inc_end; j += 1u) {
+        let entry = inc[j];
+        nf = gather_add(nf, elem_loads[entry >> 1u], entry);
+    }
+    return gather_end(i, nd, s, nf, blk, k, w);
+}
+
+// Acceleration of node `i`: free (mass block solve) or driven onto its route with
+// Baumgarte stabilisation `a = a_d - beta (v - v_d) - alpha (r - r_d)`, at `tau`
+// into the submission, its step `k`.
+fn node_accel(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R, k: u32) -> vec3<R> {
+    if nd.constraint == NO_CONSTRAINT {
+        return sym3_solve(nf.m, nf.f);
+    }
+    let d = constraint_target(nd.constraint, tau, k);
+    let dr = (s.r_hi.xyz - d.r_hi) + (s.r_lo.xyz - d.r_lo);
+    return d.a - (s.v.xyz - d.v) * params.beta - dr * params.alpha;
+}
+
+// Symplectic Euler from state `s` under `nf` at `tau` into the submission (its step
+// `k`): v += a dt; r += v dt (r kept as a compensated pair). The seabed's damping is
+// taken implicitly, linearised at this state: (M + dt diag(c)) a = F (CPU twin:
+// cpu::stepper node_accel_of with implicit_dt), so it does not bound the step.
+fn node_advance(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R, k: u32) -> NodeState {
+    var nfi = nf;
+    nfi.m.xx += params.dt * nf.c.x;
+    nfi.m.yy += params.dt * nf.c.y;
+    nfi.m.zz += params.dt * nf.c.z;
+    let a = node_accel(nd, s, nfi, tau, k);
+    let vn = s.v.xyz + a * params.dt;
+    let r = add_compensated(s.r_hi.xyz, s.r_lo.xyz, opaque3(vn * params.dt));
+    return NodeState(vec4<R>(r[0], R(0.0)), vec4<R>(r[1], R(0.0)), vec4<R>(vn, R(0.0)));
+}
+
+// Blow-up check of a node's new state in block `blk`, written so that NaN fails the
+// comparisons (cpu::stepper check): 0, FAIL_SPEED or FAIL_DISTANCE.
+fn node_check(blk: BlockParams, s: NodeState) -> u32 {
+    let ra = vec3<R>(blk.ox, blk.oy, blk.oz) + (s.r_hi.xyz + s.r_lo.xyz);
+    if !all(abs(s.v.xyz) < vec3<R>(params.max_speed)) {
+        return FAIL_SPEED;
+    } else if !all(abs(ra) < vec3<R>(params.max_distance)) {
+        return FAIL_DISTANCE;
+    }
+    return 0u;
+}

@@ -1,0 +1,141 @@
+//! What a [`CpuSolver`] reports at an output time without stepping: the loads,
+//! accelerations and reactions of the current state ([`CpuSolver::evaluate`]), and the
+//! kinetic and strain energies (diagnostics of the energy tests).
+
+use super::CpuSolver;
+use crate::cpu::passes::{element_pass, node_accel, node_mass, Ctx, GeneralTopo};
+use crate::cpu::water::node_water;
+use crate::error::Error;
+use crate::model::NO_CONSTRAINT;
+use crate::options::{Formulation, SolverOptions};
+use crate::physics::ElementLoads;
+use crate::step::Evaluation;
+
+impl CpuSolver {
+    /// Evaluates loads, accelerations and reactions at the current state, with the
+    /// water the next step starts from: each block's kinematics cache interpolated at
+    /// the current time (refreshed first where that step would refresh it), or the
+    /// exact sum in exact mode. So the loads reported are those the solver integrates,
+    /// within the cache's tolerance of the exact sum, and outputs do not change the run.
+    pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
+        self.cover_waves_now();
+        let ctx = self.ctx();
+        let lay = &self.layout;
+        let mut ev = Evaluation {
+            acc: vec![[0.0; 3]; lay.n_nodes()],
+            force: vec![[0.0; 3]; lay.n_nodes()],
+            tension: vec![0.0; lay.n_elements()],
+            reaction: vec![[0.0; 3]; lay.routes.len()],
+            elements: Vec::new(),
+        };
+        let mut elems = vec![ElementLoads::default(); lay.n_elements()];
+        for (bi, b) in lay.blocks.iter().enumerate() {
+            let ale = self.ale_block(bi);
+            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
+            let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
+            let topo = GeneralTopo { lay, n0, e0 };
+            let w = self.water_now(bi, n0, n1);
+            element_pass(
+                &ctx,
+                &topo,
+                b,
+                ale,
+                &self.r[n0..n1],
+                &self.v[n0..n1],
+                self.t,
+                &w,
+                &mut elems[e0..e1],
+            )
+            .map_err(|f| self.name_failure(f))?;
+            for i in n0..n1 {
+                let (a, f, m) = node_accel(
+                    &ctx,
+                    &topo,
+                    b,
+                    ale,
+                    i - n0,
+                    &self.r[n0..n1],
+                    &self.v[n0..n1],
+                    self.t,
+                    &w,
+                    &elems[e0..e1],
+                );
+                ev.acc[i] = a.to_f64();
+                ev.force[i] = f.to_f64();
+                let c = lay.node_constraint[i];
+                if c != NO_CONSTRAINT {
+                    ev.reaction[c as usize] = (f - m.mul_vec(a)).to_f64();
+                }
+            }
+        }
+        for (e, el) in elems.iter().enumerate() {
+            ev.tension[e] = el.tension;
+        }
+        ev.elements = elems;
+        Ok(ev)
+    }
+
+    /// Total kinetic energy `1/2 v^T M v` (mass blocks with added mass), J.
+    pub fn kinetic_energy(&self) -> f64 {
+        let ctx = self.ctx();
+        let lay = &self.layout;
+        let mut elems = vec![ElementLoads::default(); lay.n_elements()];
+        let mut ke = 0.0;
+        for (bi, b) in lay.blocks.iter().enumerate() {
+            let ale = self.ale_block(bi);
+            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
+            let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
+            // Frames can only fail where GLMF would not; energy uses the GLMF masses.
+            let ctx = Ctx {
+                opts: SolverOptions {
+                    formulation: Formulation::Glmf,
+                    ..ctx.opts
+                },
+                ..ctx
+            };
+            let topo = GeneralTopo { lay, n0, e0 };
+            let w = self.water_exact_now(n0, n1);
+            let _ = element_pass(
+                &ctx,
+                &topo,
+                b,
+                ale,
+                &self.r[n0..n1],
+                &self.v[n0..n1],
+                self.t,
+                &w,
+                &mut elems[e0..e1],
+            );
+            for i in n0..n1 {
+                let eta = if w.is_empty() {
+                    0.0
+                } else {
+                    node_water(&w, i - n0).0
+                };
+                let m = node_mass(&ctx, &topo, b, i - n0, self.r[i], eta, &elems[e0..e1]);
+                let v = self.v[i];
+                ke += 0.5 * v.dot(m.mul_vec(v));
+            }
+        }
+        ke
+    }
+
+    /// Elastic strain energy `sum 1/2 EA l0 eps^2` over stretched elements, J.
+    pub fn strain_energy(&self) -> f64 {
+        let lay = &self.layout;
+        let l0s = self.element_l0();
+        (0..lay.n_elements())
+            .map(|e| {
+                let l = (self.r[lay.elem_b[e] as usize] - self.r[lay.elem_a[e] as usize]).norm();
+                let l0 = l0s[e];
+                let c = &self.coefs[lay.elem_line[e] as usize];
+                let eps = l / l0 - 1.0;
+                if eps > 0.0 || c.compression > 0.0 {
+                    0.5 * c.ea * l0 * eps * eps
+                } else {
+                    0.0
+                }
+            })
+            .sum()
+    }
+}
