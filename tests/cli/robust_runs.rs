@@ -456,13 +456,20 @@ fn an_output_directory_belongs_to_one_run() {
 
 #[test]
 fn cable_names_with_commas_quotes_and_newlines_are_quoted() {
-    use cablesim::output::{CableState, EndForces, FileSink, OutputSink, Snapshot};
+    use cablesim::output::{CableState, EndForces, FileSink, OutputSink, PointState, Snapshot};
     let dir = tempfile::tempdir().unwrap();
     let names = ["plain", "a,b", "say \"hi\"", "two\nlines"];
-    let snap = Snapshot {
+    let mut snap = Snapshot {
         time: 0.5,
         steps: 2,
-        points: Vec::new(),
+        points: names
+            .iter()
+            .map(|n| PointState {
+                name: n.to_string(),
+                position: [1.0, 2.0, 3.0],
+                force: [0.0, 0.0, -9.0],
+            })
+            .collect(),
         cables: names
             .iter()
             .map(|n| CableState {
@@ -480,7 +487,10 @@ fn cable_names_with_commas_quotes_and_newlines_are_quoted() {
             .collect(),
         bodies: Vec::new(),
     };
+    // Two output times: the second writes the names the sink quoted at the first.
     let mut sink = FileSink::new(dir.path());
+    sink.frame(&snap).unwrap();
+    snap.time = 1.0;
     sink.frame(&snap).unwrap();
     let mut sim =
         cablesim::Simulation::from_file("examples/catenary.toml", &cablesim::Overrides::default())
@@ -490,11 +500,13 @@ fn cable_names_with_commas_quotes_and_newlines_are_quoted() {
         ("end_forces.csv", 2),
         ("tensions.csv", 1),
         ("positions.csv", 2),
+        ("points.csv", 1),
     ] {
         let rows = assert_whole_rows(&dir.path().join(file));
         let got: Vec<&str> = rows.iter().map(|r| &r[1]).collect();
-        let want: Vec<&str> = names
+        let want: Vec<&str> = [names, names]
             .iter()
+            .flatten()
             .flat_map(|n| std::iter::repeat_n(*n, per_cable))
             .collect();
         assert_eq!(got, want, "{file}");
