@@ -25,6 +25,9 @@
 //! The library prints nothing: it logs through the `log` crate, reports progress to a
 //! callback ([`Simulation::run`]), and returns the crate's [`Error`].
 #![warn(missing_docs)]
+// `!(x <= limit)` and the like are the crate's checks that also catch NaN (a NaN
+// compares false, so the negation is true): written so on purpose, not `x > limit`.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod ale;
 pub mod ancf;
