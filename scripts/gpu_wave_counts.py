@@ -18,9 +18,28 @@ STILL_FLOPS = {"f32": 454, "f64": 322}
 SCALAR = {"f32": 4, "f64": 8}
 NODE_STATE = {"f32": 48, "f64": 96}  # three vec4: position pair, velocity
 ELEM_PARAMS = {"f32": 32, "f64": 40}
-# Flops of one node's refresh: values and rates of 200 components at about 240 flops
-# each (the section "The water surface and waves"), the decay cut not counted.
-REFRESH_FLOPS = 240 * 200
+# Flops of one node's refresh (wave_kinematics_rates_tau, shaders/shared/waves.wgsl),
+# counted from the shader, a multiply or an add one flop each (branch `hwgpu`):
+# - the elevation pass, every component whatever the depth: the phase (6), sin_cos
+#   (reduction 7, two polynomials 31: 39), the elevation and its rate (9): 54;
+# - the decay cut's bisection, ceil(log2(n + 1)) = 8 steps at 200 components, each a
+#   wave_exp (46: reduction 7, Taylor 26, about 8 squarings and 4 products for the
+#   depths here, the final product) and the bound (5): 51 a step;
+# - the decay pass, over the prefix the node needs (sea::cut): wave_depth_decay (two
+#   wave_exp and 6), the phase and sin_cos (45), the phase rate (4), the twelve value
+#   and rate terms of u and a and their sums (about 50): about 199 per component.
+# (Before this branch: 240 per component over all 200, about 48,000 per node and
+# refresh, the section "The water surface and waves"; now 54 + 199 = 253 per component
+# where the prefix is whole, plus the bisection.)
+N_COMPS = 200
+ELEVATION_FLOPS = 54
+DECAY_FLOPS = 199
+BISECTION_FLOPS = 8 * 51
+
+
+def refresh_flops(prefix):
+    """Flops of one node refresh whose decay pass sums `prefix` components."""
+    return N_COMPS * ELEVATION_FLOPS + BISECTION_FLOPS + prefix * DECAY_FLOPS
 
 # Scalars of the cache per element at a step that does not refresh.
 OLD_ELEM = 2 * (1 + 28)  # both nodes' band and their 28 (values, rates, two times)
@@ -50,9 +69,11 @@ MIXED_DUE = ELEM_DUE
 ELEM_FORM_FLOPS = 4 * 6 * 2
 
 
-def per_node_step(p, case, new):
-    """(bytes, flops) per node-step of `case` at precision `p`, this branch's
-    element cache (`new`) or main's."""
+def per_node_step(p, case, new, with_prefix=True):
+    """(bytes, flops) per node-step of `case` at precision `p`, the per-element
+    cache (`new`, branch `hwavegpu`) or the nodes' (before it); `with_prefix`: each
+    band's refresh sums its measured decay prefix (the case's `prefix`), else all
+    the components."""
     s = SCALAR[p]
     n_nodes = sum(case["nodes"].values())
     n_elems = sum(case["elems"].values()) + sum(case["mixed"].values())
@@ -72,7 +93,8 @@ def per_node_step(p, case, new):
     for band, n in case["nodes"].items():
         share = n / n_nodes / case["interval"][band]
         b += share * NODE_DUE * s
-        fl += share * REFRESH_FLOPS
+        prefix = case.get("prefix", {}).get(band, N_COMPS) if with_prefix else N_COMPS
+        fl += share * refresh_flops(prefix)
     if new:
         b += per_node * (ELEM_PARAMS[p] + ELEM_ALWAYS * s) / every
         for band, n in case["elems"].items():
@@ -94,17 +116,20 @@ CASES = {
         "mixed": {},
     },
     # examples/study_design_check.toml, 6.667 ms, the bands on the sea's scale (branch
-    # `hband`, sea::bands::band_interval): every 24, 48, 96, 192, 384, 768 steps under
-    # -15.8, -15.8, -34.4, -89.6, -195.3 m (the run's log; band 1 empty). Nodes per
-    # band: the CPU run's census (`CpuSolver::wave_band_census`, logged at each output
-    # time with RUST_LOG=debug) averaged over the outputs from 10 s to 200 s; elements
-    # estimated from it: each of the 8 chains taken to cross every top between its
-    # occupied bands once (an element across a top refreshes with its finer node).
+    # `hband`, sea::bands::band_interval; the rise bound with |v_z| of main): every 24,
+    # 48, 96, 192, 384, 768 steps under -15.8, -15.8, -34.4, -89.6, -195.3 m (the run's
+    # log; band 1 empty). Nodes per band and each band's mean decay prefix: the CPU
+    # run sampled every second from 10 s to 200 s (examples/wave_prefix_count.rs,
+    # branch `hwgpu`: each node's band and the prefix sea::cut::wave_decay_prefix,
+    # the shader's twin, gives at its state); elements estimated from the nodes: each
+    # of the 8 chains taken to cross every top between its occupied bands once (an
+    # element across a top refreshes with its finer node).
     "design member, 6.7 ms": {
         "interval": {0: 24, 2: 96, 3: 192, 4: 384, 5: 768},
-        "nodes": {0: 9.4, 2: 8.7, 3: 25.5, 4: 58.2, 5: 226.2},
-        "elems": {0: 1.4, 2: 0.7, 3: 17.5, 4: 50.2, 5: 218.2},
+        "nodes": {0: 10.3, 2: 8.8, 3: 26.0, 4: 58.8, 5: 224.2},
+        "elems": {0: 2.3, 2: 0.8, 3: 18.0, 4: 50.8, 5: 216.2},
         "mixed": {0: 8, 2: 8, 3: 8, 4: 8},
+        "prefix": {0: 198.9, 2: 190.3, 3: 145.1, 4: 90.3, 5: 52.4},
     },
     # The same member with the relative bands (main before the sea's scale): every 24,
     # 48, 96, 192 steps (the run's log); nodes and elements per band estimated from
@@ -118,27 +143,33 @@ CASES = {
     },
     # The same member with every node in band 0 (one band, as main before `hband`, or
     # a sea whose bands all refresh every 24 steps): the worst case for the refresh.
+    # The prefix: the mean over every node of the banded run's samples (the nodes'
+    # depths hardly depend on the banding).
     "design member, one band": {
         "interval": {0: 24},
         "nodes": {0: 328},
         "elems": {0: 320},
         "mixed": {},
+        "prefix": {0: (10.3 * 198.9 + 8.8 * 190.3 + 26.0 * 145.1 + 58.8 * 90.3
+                       + 224.2 * 52.4) / 328.1},
     },
 }
 
 
 def main():
-    print("| case | precision | still B | main B (ratio) | this branch B (ratio) "
-          "| still flops | main flops (ratio) | this branch flops (ratio) |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    print("| case | precision | still B | B (ratio) | still flops "
+          "| flops, every refresh over all 200 (ratio) "
+          "| flops, the decay prefix counted (ratio) |")
+    print("|---|---|---:|---:|---:|---:|---:|")
     for name, case in CASES.items():
         for p in ("f32", "f64"):
-            ob, of = per_node_step(p, case, False)
-            nb, nf = per_node_step(p, case, True)
+            nb, full = per_node_step(p, case, True, False)
+            _, cut = per_node_step(p, case, True, True)
             sb, sf = STILL_BYTES[p], STILL_FLOPS[p]
-            print(f"| {name} | {p} | {sb} | {ob:.0f} ({ob / sb:.2f}x) | "
-                  f"{nb:.0f} ({nb / sb:.2f}x) | {sf} | {of:.0f} ({of / sf:.2f}x) | "
-                  f"{nf:.0f} ({nf / sf:.2f}x) |")
+            cut_s = (f"{cut:.0f} ({cut / sf:.2f}x)" if "prefix" in case
+                     else "(not measured)")
+            print(f"| {name} | {p} | {sb} | {nb:.0f} ({nb / sb:.2f}x) | {sf} | "
+                  f"{full:.0f} ({full / sf:.2f}x) | {cut_s} |")
 
 
 if __name__ == "__main__":

@@ -354,6 +354,18 @@ impl Simulation {
         }
     }
 
+    /// The CPU solver of a lumped-mass run on the CPU backend (`None` otherwise): for
+    /// diagnostics that read its state, as examples/wave_prefix_count.rs does.
+    pub fn cpu_solver(&self) -> Option<&crate::cpu::CpuSolver> {
+        match &self.engine {
+            Engine::Lumped(s, _) => match s.as_ref() {
+                LumpedStepper::Cpu(c) => Some(c),
+                LumpedStepper::Gpu(_) => None,
+            },
+            Engine::Ancf(_) => None,
+        }
+    }
+
     /// Every cable's state now (read back from the GPU on that backend).
     pub fn snapshot(&mut self) -> Result<Snapshot, Error> {
         let time = self.time();

@@ -5,6 +5,10 @@
 use super::CpuSolver;
 use crate::cpu::water::Water;
 use crate::sea::cache::{evaluate_nodes, CACHE_STRIDE};
+use crate::sea::cut::wave_decay_prefix;
+use crate::sea::kinematics::{
+    wave_eval_depth, wave_eval_depth_rate, wave_ramp_rate, KinematicsScratch,
+};
 
 impl CpuSolver {
     /// The exact water values of the block of nodes `n0..n1` at the current time
@@ -56,5 +60,37 @@ impl CpuSolver {
     /// the nodes' old paths.
     pub fn restart_waves(&mut self) {
         self.install_waves();
+    }
+
+    /// Per node (packed order): its depth band now and the number of components the
+    /// decay pass of a refresh at the current state would sum
+    /// ([`crate::sea::cut::wave_decay_prefix`], the GPU refresh's `wave_decay_prefix`):
+    /// the evaluation depth and its rate from the node's position, velocity and the
+    /// elevation and its rate over it, the speed `|v_h| + |zs'|`. A diagnostic for
+    /// counting the GPU refresh's work (examples/wave_prefix_count.rs); empty in
+    /// still water. (A refresh evaluates its `t1` values at the position predicted
+    /// one interval ahead: this is the state now.)
+    pub fn wave_decay_prefixes(&self) -> Vec<(usize, usize)> {
+        let Some(seas) = &self.seas else {
+            return Vec::new();
+        };
+        let mut out = Vec::with_capacity(self.r.len());
+        let mut scratch = KinematicsScratch::default();
+        for (b, w) in self.layout.blocks.iter().zip(&self.wave_blocks) {
+            let n0 = b.node_start as usize;
+            let field = &self.wave_fields[self.block_sea(seas, n0)];
+            let r_rate = wave_ramp_rate(self.t, field.ramp_duration);
+            for i in n0..b.node_end as usize {
+                let (p, v) = (self.r[i].to_f64(), self.v[i].to_f64());
+                let (k, dk) = field.kinematics_rates_with(p, v, self.t, &mut scratch);
+                let zs = wave_eval_depth(p[2], k.eta, field.depth, field.stretching);
+                let zs_rate =
+                    wave_eval_depth_rate(p[2], k.eta, field.depth, field.stretching, v[2], dk.eta);
+                let s = v[0].hypot(v[1]) + zs_rate.abs();
+                let m = wave_decay_prefix(&field.comps, zs, s, r_rate);
+                out.push((w.cache().band_of(i - n0), m));
+            }
+        }
+        out
     }
 }
