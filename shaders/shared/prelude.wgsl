@@ -289,6 +289,11 @@ struct Status {
     step: atomic<u32>,
     node: u32,
     what: u32,
+    // Waves: how many times a node was found more than the band margin above its
+    // band's top in this advance call, and 0xffffffff less the earliest such step
+    // (shared/waves.wgsl: wave_beyond_margin).
+    beyond: atomic<u32>,
+    beyond_step: atomic<u32>,
 }
 
 @group(0) @binding(0) var<storage, read> params: Params;

@@ -626,6 +626,29 @@ fn elem_waves(e: u32, ep: ElemParams, sr: SeaRows) -> WaveMid {
     return m;
 }
 
+// Where node i's record of its breaches beyond the margin is in the cache, after the
+// elements' part: how many, then the height and the band's top (m) of its first one
+// and its step within its `advance` call (small whole numbers, exact in R).
+fn wave_beyond_at(i: u32) -> u32 {
+    return wave_elem_at(params.n_elems) + 4u * i;
+}
+
+// Node i at height z, more than WAVE_BAND_MARGIN above the top `top` of its band at
+// step k of the submission: counted in its record (the first one's height, top and
+// step kept) and in the status (how many, and the earliest step of the advance call),
+// from which the host warns as the CPU path does (sea::bands::warn_beyond_margin).
+fn wave_beyond_margin(i: u32, k: u32, z: R, top: R) {
+    let o = wave_beyond_at(i);
+    if wave_cache[o] == R(0.0) {
+        wave_cache[o + 1u] = z;
+        wave_cache[o + 2u] = top;
+        wave_cache[o + 3u] = R(params.step_base + k);
+    }
+    wave_cache[o] = wave_cache[o] + R(1.0);
+    atomicAdd(&status.beyond, 1u);
+    atomicMax(&status.beyond_step, 0xffffffffu - (params.step_base + k));
+}
+
 // The refresh of node i at step k, at absolute position p (m) with velocity v (m/s),
 // when the node's band refreshes at this step (nothing otherwise: the node keeps its
 // cache): on a restart the t0 values and rates at p along v and the node back in
@@ -644,6 +667,9 @@ fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
         if old > 0u && p.z > tops[old - 1u] {
             let bi = ab + params.n_nodes;
             wave_cache[bi] = wave_cache[bi] + R(1.0);
+            if p.z - tops[old - 1u] > WAVE_BAND_MARGIN {
+                wave_beyond_margin(i, k, p.z, tops[old - 1u]);
+            }
         }
     }
     if wo.refresh == 0u {

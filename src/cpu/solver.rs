@@ -24,6 +24,7 @@ use crate::model::{Block, Layout, ModelDef, Route, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::{Coefs, ElementLoads, SeabedCoefs};
 use crate::sea::kinematics::WaveField;
+use crate::sea::bands::BandCensus;
 use crate::sea::{SeaSet, SeaState};
 use crate::step::{StepFailure, WinchStatus};
 use rayon::prelude::*;
@@ -199,22 +200,29 @@ impl CpuSolver {
     }
 
     /// Where the waves' caches stand (`sea::bands`): per band, how many nodes refresh
-    /// in it now, and how many times a node was found above its band's top.
-    pub fn wave_band_census(&self) -> (Vec<usize>, u64) {
-        let mut count = Vec::new();
-        let mut breaches = 0;
+    /// in it now, and how many times a node was found above its band's top (and more
+    /// than the margin above it).
+    pub fn wave_band_census(&self) -> BandCensus {
+        let mut out = BandCensus::default();
         for w in &self.wave_blocks {
             let c = w.cache();
-            breaches += c.breaches;
+            out.breaches += c.breaches;
+            out.beyond_margin += c.beyond_margin;
+            // The earliest (blocks in node order: the lowest node at that time).
+            if let Some(f) = c.first_beyond_margin {
+                if out.first_beyond_margin.is_none_or(|g| f[0] < g[0]) {
+                    out.first_beyond_margin = Some(f);
+                }
+            }
             for i in 0..c.v0.len() / crate::sea::cache::CACHE_STRIDE {
                 let b = c.band_of(i);
-                if count.len() <= b {
-                    count.resize(b + 1, 0);
+                if out.nodes.len() <= b {
+                    out.nodes.resize(b + 1, 0);
                 }
-                count[b] += 1;
+                out.nodes[b] += 1;
             }
         }
-        (count, breaches)
+        out
     }
 
     /// The sea index of the block starting at packed node `n0`.

@@ -17,6 +17,7 @@ use super::wave_schedule::{fused_segments, SeaSchedules};
 use crate::error::Error;
 use crate::model::Layout;
 use crate::options::SolverOptions;
+use crate::sea::bands::BandCensus;
 use crate::sea::SeaSet;
 use crate::step::Evaluation;
 use std::marker::PhantomData;
@@ -43,7 +44,7 @@ pub(super) trait Engine: Send {
     /// put back to an earlier time).
     fn restart_waves(&mut self);
     /// Per depth band, its nodes now; and the breaches counted (`sea::bands`).
-    fn wave_band_census(&self) -> Result<(Vec<usize>, u64), Error>;
+    fn wave_band_census(&self) -> Result<BandCensus, Error>;
     /// Loads, accelerations and reactions at step `step`.
     fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error>;
     /// Where the host's time went in `advance` so far.
@@ -106,6 +107,9 @@ pub(super) struct GpuEngine<R: GpuReal> {
     step_stride: u64,
     /// The time step in f64 (the shaders hold it in `R`; route times are formed in f64).
     dt64: f64,
+    /// The run's first breach of a depth band beyond the margin, `[t, z, top]`
+    /// (`note_beyond_margin`).
+    first_beyond_margin: Option<[f64; 3]>,
     timings: GpuTimings,
     _r: PhantomData<R>,
 }
@@ -263,11 +267,15 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             done += chunk;
         }
         let t_wait = Instant::now();
-        let out = self.read_back(&[(&self.inst.buf.status, 16)])?;
+        let size = std::mem::size_of::<Status>();
+        let out = self.read_back(&[(&self.inst.buf.status, size as u64)])?;
         self.timings.wait_seconds += t_wait.elapsed().as_secs_f64();
         self.timings.advance_seconds += t_start.elapsed().as_secs_f64();
         self.timings.steps += n;
-        let st: Status = bytemuck::pod_read_unaligned(&out[0][..16]);
+        let st: Status = bytemuck::pod_read_unaligned(&out[0][..size]);
+        if st.beyond != 0 {
+            self.note_beyond_margin(step0, (u32::MAX - st.beyond_step) as u64)?;
+        }
         if st.failed & FUSED_FAILED == 0 {
             return Ok((st.failed != 0).then_some((st.step as u64, st.node)));
         }
@@ -401,7 +409,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         }
     }
 
-    fn wave_band_census(&self) -> Result<(Vec<usize>, u64), Error> {
+    fn wave_band_census(&self) -> Result<BandCensus, Error> {
         self.band_census()
     }
 
@@ -447,6 +455,12 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             0,
             bytemuck::bytes_of(&self.inst.params),
         );
+        // The refresh below watches the bands as a step's does: its breaches beyond
+        // the margin counted afresh (the rest of the status left as the last advance
+        // call left it) and read back with the loads.
+        let beyond_at = std::mem::offset_of!(Status, beyond) as u64;
+        ctx.queue
+            .write_buffer(&self.inst.buf.status, beyond_at, &[0u8; 8]);
         let mut enc = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -472,7 +486,12 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             (&self.inst.buf.elem_loads, loads_bytes.max(4)),
             (&self.inst.buf.node_out, out_bytes.max(4)),
             (&self.inst.buf.reactions, react_bytes.max(4)),
+            (&self.inst.buf.status, std::mem::size_of::<Status>() as u64),
         ])?;
+        let st: Status = bytemuck::pod_read_unaligned(&out[3][..std::mem::size_of::<Status>()]);
+        if st.beyond != 0 {
+            self.note_beyond_margin(step, (u32::MAX - st.beyond_step) as u64)?;
+        }
         let loads: Vec<ElemLoads<R>> = decode(&out[0][..loads_bytes as usize]);
         let nout: Vec<NodeOut<R>> = decode(&out[1][..out_bytes as usize]);
         let react: Vec<[R; 4]> = decode(&out[2][..react_bytes as usize]);

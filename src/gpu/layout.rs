@@ -506,7 +506,8 @@ gpu_struct! {
 }
 
 gpu_struct_u32! {
-    /// First blow-up of an `advance` call (WGSL `Status`; `failed` and `step` are
+    /// First blow-up of an `advance` call, and its breaches of a depth band beyond
+    /// the margin (WGSL `Status`; `failed`, `step`, `beyond` and `beyond_step` are
     /// atomic there).
     Status {
         /// Nonzero once a node has failed: 1 from the two-pass path; from the fused
@@ -521,6 +522,12 @@ gpu_struct_u32! {
         /// 1: speed over the limit (or non-finite), 2: too far (or non-finite)
         /// (two-pass only).
         what: u32,
+        /// Waves: how many times a node was found more than `sea::bands::BAND_MARGIN`
+        /// above its band's top in this call (atomic in WGSL).
+        beyond: u32,
+        /// `0xffffffff` less the earliest step of this call (`step_base + k`) at which
+        /// one was (atomic in WGSL; 0: none).
+        beyond_step: u32,
     }
 }
 

@@ -429,9 +429,10 @@ impl GpuSolver {
     }
 
     /// Where the waves' caches stand (`sea::bands`): per band, how many nodes refresh
-    /// in it now, and how many times a node was found above its band's top, read back
-    /// from the device; as [`crate::cpu::CpuSolver::wave_band_census`].
-    pub fn wave_band_census(&self) -> Result<(Vec<usize>, u64), Error> {
+    /// in it now, and how many times a node was found above its band's top (and
+    /// beyond the margin), read back from the device; as
+    /// [`crate::cpu::CpuSolver::wave_band_census`].
+    pub fn wave_band_census(&self) -> Result<crate::sea::bands::BandCensus, Error> {
         self.engine.wave_band_census()
     }
 }

@@ -35,7 +35,7 @@
 //! at `t1`, rates at `t1`; nodes one after another; positions and velocities three per
 //! node.
 
-use super::bands::{wave_band, BandPlan, BAND_MARGIN};
+use super::bands::{warn_beyond_margin, wave_band, BandPlan, BAND_MARGIN};
 use super::kinematics::{Kinematics, KinematicsScratch, WaveField};
 use super::schedule::{RefreshClock, Tick};
 use super::{SeaState, WaveComponent};
@@ -209,6 +209,10 @@ pub struct WaveCache {
     pub generation: u64,
     /// How many times a node was found above its band's top at a refresh of band 0.
     pub breaches: u64,
+    /// Of those, how many were more than [`BAND_MARGIN`] above it.
+    pub beyond_margin: u64,
+    /// The first of those, `[t, z, top]` (s, m, m).
+    pub first_beyond_margin: Option<[f64; 3]>,
     /// Values at `t0`, [`CACHE_STRIDE`] per node.
     pub v0: Vec<f64>,
     /// Rates at `t0` along the node's path, [`CACHE_STRIDE`] per node.
@@ -254,6 +258,8 @@ impl WaveCache {
             runs: vec![(0, n_nodes, 0)],
             generation: 0,
             breaches: 0,
+            beyond_margin: 0,
+            first_beyond_margin: None,
             v0: zeros(),
             d0: zeros(),
             v1: zeros(),
@@ -427,33 +433,21 @@ impl WaveCache {
         true
     }
 
-    /// Counts nodes above their band's top at `t`, and warns (once per process: a
-    /// study's members share one log) of a node more than [`BAND_MARGIN`] above it.
-    /// Why not of every breach: a node a little above its band's top refreshes at an
-    /// interval a little longer than the rule allows at its height; the rule's interval
-    /// changes with height through the decay of the components that set it, which over
-    /// a metre or two is a few percent at the depths of the deeper bands (the error
-    /// grows as the fourth power of the interval). The full study of the design check
-    /// (30 members of 3 hours) saw breaches of 0.02 to 0.4 m, at 100 and 250 m down.
+    /// Counts nodes above their band's top at `t`, apart those more than
+    /// [`BAND_MARGIN`] above it, and warns of the first of these (once per process:
+    /// [`warn_beyond_margin`], which says why not of every breach).
     fn watch(&mut self, t: f64, positions: &[f64]) {
-        static WARNED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
         for (i, &b) in self.band.iter().enumerate() {
             let z = positions[3 * i + 2];
             let top = self.tops[b as usize];
             if z > top {
                 self.breaches += 1;
-                if z - top > BAND_MARGIN && !WARNED.swap(true, std::sync::atomic::Ordering::Relaxed)
-                {
-                    log::warn!(
-                        "waves: a node is at z = {z:.2} m at t = {t:.2} s, {:.2} m above the \
-                         top {top:.2} m of the depth band it refreshes in (decided from its \
-                         height, velocity and acceleration plus {BAND_MARGIN} m): its wave \
-                         loads may be less accurate than the cache tolerance until the next \
-                         band decision (docs/src/sea_states.md, \"Refresh per depth band\"); \
-                         warned once",
-                        z - top
-                    );
-                } else {
+                let beyond = z - top > BAND_MARGIN;
+                self.beyond_margin += beyond as u64;
+                if beyond && self.first_beyond_margin.is_none() {
+                    self.first_beyond_margin = Some([t, z, top]);
+                }
+                if !(beyond && warn_beyond_margin(t, z, top)) {
                     log::debug!(
                         "waves: a node at z = {z:.2} m at t = {t:.2} s is above the top \
                          {top:.2} m of its depth band"

@@ -411,11 +411,14 @@ impl Simulation {
         }
         if let Engine::Lumped(s, _) = &self.engine {
             if let LumpedStepper::Cpu(c) = s.as_ref() {
-                let (census, breaches) = c.wave_band_census();
-                if !census.is_empty() {
+                let c = c.wave_band_census();
+                if !c.nodes.is_empty() {
                     log::debug!(
-                        "waves: t = {:.2} s, nodes per depth band {census:?}, breaches {breaches}",
-                        self.time()
+                        "waves: t = {:.2} s, nodes per depth band {:?}, breaches {} ({} beyond the margin)",
+                        self.time(),
+                        c.nodes,
+                        c.breaches,
+                        c.beyond_margin
                     );
                 }
             }

@@ -27,6 +27,7 @@ mod parity;
 mod shaders;
 mod step_functions;
 mod surface;
+mod wave_breach;
 mod wave_parity;
 mod waves;
 mod winch;

@@ -85,9 +85,12 @@ fn parity(p: Precision, banded: bool) {
     if banded {
         println!("{name}: CPU bands {census:?}");
         assert!(
-            census.0.len() >= 2 && census.0[0] < lay.n_nodes(),
+            census.nodes.len() >= 2 && census.nodes[0] < lay.n_nodes(),
             "no node in a deeper band: {census:?}"
         );
+        // A normal run: no node beyond the margin, so no warning (tests/gpu/wave_breach.rs
+        // forces one).
+        assert_eq!(census.beyond_margin, 0, "{census:?}");
     }
     let cpu_r: Vec<[f64; 3]> = cpu.r.iter().map(|v| v.to_f64()).collect();
     let cpu_t = cpu.evaluate().unwrap().tension;

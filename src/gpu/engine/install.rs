@@ -22,6 +22,7 @@ use crate::gpu::wave_schedule::{
 use crate::model::Layout;
 use crate::options::Precision;
 use crate::options::SolverOptions;
+use crate::sea::bands::{warn_beyond_margin, BandCensus};
 use bytemuck::Zeroable;
 use rayon::prelude::*;
 use std::marker::PhantomData;
@@ -181,6 +182,7 @@ impl<R: GpuReal> GpuEngine<R> {
             use_fused,
             step_stride,
             dt64: opts.dt,
+            first_beyond_margin: None,
             timings: GpuTimings::default(),
             _r: PhantomData,
         };
@@ -380,7 +382,7 @@ impl<R: GpuReal> GpuEngine<R> {
             elem_loads: init("elem_loads", &zeros(loads_bytes), rw),
             node_out: init("node_out", &zeros(out_bytes), rw),
             reactions: init("reactions", &zeros(react_bytes), rw),
-            status: init("status", &zeros(16), rw),
+            status: init("status", &zeros(std::mem::size_of::<Status>() as u64), rw),
             payout: init("payout", &zeros(payout_bytes), ro | U::COPY_DST),
             body_rows: init("body_rows", &zeros(body_bytes), ro | U::COPY_DST),
             wave_comps: init(
@@ -421,11 +423,13 @@ impl<R: GpuReal> GpuEngine<R> {
         // Two slots (t0, t1) of WAVE_CACHE_STRIDE values per node, then each node's
         // velocity at the last refresh, then per node its depth band and how many
         // times it was found above its band's top, then WAVE_ELEM_STRIDE per element:
-        // its midpoint cache (`shaders/shared/waves.wgsl`); one value in still water.
+        // its midpoint cache, then four per node: its breaches beyond the band margin
+        // and the first one's height, top and step (`shaders/shared/waves.wgsl`); one
+        // value in still water.
         let cache_len = if n_comps == 0 {
             1
         } else {
-            n_nodes * (2 * WAVE_CACHE_STRIDE + 5) + n_elems * WAVE_ELEM_STRIDE
+            n_nodes * (2 * WAVE_CACHE_STRIDE + 5) + n_elems * WAVE_ELEM_STRIDE + 4 * n_nodes
         };
         let cache_b = init(
             "wave_cache",
@@ -661,21 +665,14 @@ impl<R: GpuReal> GpuEngine<R> {
         Ok(out)
     }
 
-    /// Per depth band, how many nodes are in it now, and how many times a node was
-    /// found above its band's top (`sea::bands`): the cache's per-node band and
-    /// breach counts (`shaders/shared/waves.wgsl`) read back through a buffer of their
-    /// own (the staging buffer is sized for the state). Empty in still water.
-    pub(super) fn band_census(&self) -> Result<(Vec<usize>, u64), Error> {
-        if self.waves.as_ref().is_none_or(|w| w.n_comps == 0) {
-            return Ok((Vec::new(), 0));
-        }
-        let n = self.inst.n_nodes;
+    /// `count` scalars of the waves' cache from scalar `from`, read back through a
+    /// buffer of their own (the staging buffer is sized for the state).
+    fn read_cache(&self, from: usize, count: usize) -> Result<Vec<R>, Error> {
         let size = std::mem::size_of::<R>() as u64;
-        let from = (2 * WAVE_CACHE_STRIDE + 3) as u64 * n as u64 * size;
-        let bytes = 2 * n as u64 * size;
+        let bytes = count as u64 * size;
         let ctx = &self.ctx;
         let dst = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("band_census"),
+            label: Some("wave_cache_read"),
             size: align_up(bytes.max(4), 4),
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
@@ -683,9 +680,9 @@ impl<R: GpuReal> GpuEngine<R> {
         let mut enc = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("band_census"),
+                label: Some("wave_cache_read"),
             });
-        enc.copy_buffer_to_buffer(&self.inst.wave_cache, from, &dst, 0, bytes);
+        enc.copy_buffer_to_buffer(&self.inst.wave_cache, from as u64 * size, &dst, 0, bytes);
         ctx.queue.submit([enc.finish()]);
         let slice = dst.slice(..);
         let (tx, rx) = std::sync::mpsc::channel();
@@ -699,21 +696,66 @@ impl<R: GpuReal> GpuEngine<R> {
         rx.recv()
             .map_err(|e| Error::Gpu(format!("read-back: {e}")))?
             .map_err(|e| Error::Gpu(format!("read-back: {e}")))?;
-        let vals: Vec<R> = {
-            let view = slice
-                .get_mapped_range()
-                .map_err(|e| Error::Gpu(format!("read-back: {e}")))?;
-            decode(&view[..bytes as usize])
-        };
+        let view = slice
+            .get_mapped_range()
+            .map_err(|e| Error::Gpu(format!("read-back: {e}")))?;
+        Ok(decode(&view[..bytes as usize]))
+    }
+
+    /// Where each node's record of its breaches beyond the band margin starts in the
+    /// waves' cache, four scalars per node (WGSL `wave_beyond_at`).
+    fn beyond_at(&self) -> usize {
+        self.inst.n_nodes * (2 * WAVE_CACHE_STRIDE + 5) + self.inst.n_elems * WAVE_ELEM_STRIDE
+    }
+
+    /// Per depth band, how many nodes are in it now, how many times a node was found
+    /// above its band's top, and how many of those beyond the margin (`sea::bands`):
+    /// the cache's per-node bands, breach counts and records
+    /// (`shaders/shared/waves.wgsl`) read back. Empty in still water.
+    pub(super) fn band_census(&self) -> Result<BandCensus, Error> {
+        if self.waves.as_ref().is_none_or(|w| w.n_comps == 0) {
+            return Ok(BandCensus::default());
+        }
+        let n = self.inst.n_nodes;
+        let vals = self.read_cache((2 * WAVE_CACHE_STRIDE + 3) * n, 2 * n)?;
+        let beyond = self.read_cache(self.beyond_at(), 4 * n)?;
         let (band, breach) = vals.split_at(n);
-        let mut count = Vec::new();
+        let mut out = BandCensus::default();
         for b in band {
             let b = b.f64() as usize;
-            if count.len() <= b {
-                count.resize(b + 1, 0);
+            if out.nodes.len() <= b {
+                out.nodes.resize(b + 1, 0);
             }
-            count[b] += 1;
+            out.nodes[b] += 1;
         }
-        Ok((count, breach.iter().map(|x| x.f64() as u64).sum()))
+        out.breaches = breach.iter().map(|x| x.f64() as u64).sum();
+        out.beyond_margin = beyond.chunks_exact(4).map(|r| r[0].f64() as u64).sum();
+        out.first_beyond_margin = self.first_beyond_margin;
+        Ok(out)
+    }
+
+    /// After an `advance` call from step `step0` (or an evaluation at step `step0`)
+    /// whose status counted a node more than the band margin above its band's top,
+    /// first at step `k` of the call: keeps the first such breach of the run, the
+    /// lowest such node at that step from its record (its height and its band's top
+    /// then), and warns of it as the CPU path does (`sea::bands::warn_beyond_margin`,
+    /// once per process). Reads nothing once the run has one.
+    pub(super) fn note_beyond_margin(&mut self, step0: u64, k: u64) -> Result<(), Error> {
+        if self.first_beyond_margin.is_some() {
+            return Ok(());
+        }
+        let rec = self.read_cache(self.beyond_at(), 4 * self.inst.n_nodes)?;
+        // A node's record keeps its first breach beyond the margin; none can be from
+        // an earlier call, which would have set `first_beyond_margin` (and this not
+        // be read).
+        if let Some(r) = rec
+            .chunks_exact(4)
+            .find(|r| r[0].f64() > 0.0 && r[3].f64() as u64 == k)
+        {
+            let t = (step0 + k) as f64 * self.dt64;
+            self.first_beyond_margin = Some([t, r[1].f64(), r[2].f64()]);
+            warn_beyond_margin(t, r[1].f64(), r[2].f64());
+        }
+        Ok(())
     }
 }
