@@ -3,7 +3,7 @@
 //
 // Appended after the prelude (it uses `R`, `PIO2_HI`, `PIO2_LO`, `sin_cos` and
 // `params`). Buffers: the components, `WaveComp` per component
-// (`sea::kinematics::PackedComponent`, thirteen scalars, sorted by k, phases referred to a reference
+// (`sea::kinematics::PackedComponent`, four vec4, sorted by k, phases referred to a reference
 // time `t_ref` chosen by the host: the solver rebases them at each submission), at
 // group 0, binding 17; the solver's per-node cache at binding 19 and its per-step rows
 // at binding 20 (see the end of this file).
@@ -12,7 +12,25 @@
 // - w t + phi, b the direction of travel from +x towards +y. Infinite depth comes as
 // `sea::GPU_DEEP` (1e30 m).
 
+// One component in the buffer: four vec4 (sea::kinematics::PackedComponent's thirteen
+// scalars, `k` twice), grouped by the loops that read them, so that a loop loads one
+// vec4 where it loaded up to four scalars: on a software adapter (lavapipe) every
+// storage load is a loop over the SIMD lanes. The elevation pass reads `phase` and
+// `amps`, the decay pass `phase`, `amps` and `dir`, the decay cut's bisection `cut`
+// (wave_comp, wave_comp_cut). Rust: gpu::layout::WaveComp.
 struct WaveComp {
+    // kx, ky, the phase at the reference time, omega.
+    phase: vec4<R>,
+    // The amplitude A, amp_u, amp_a, k.
+    amps: vec4<R>,
+    // cos b, sin b, 0, 0.
+    dir: vec4<R>,
+    // k and the decay cut's bounds on this component and all after it (sea::cut).
+    cut: vec4<R>,
+}
+
+// A component's values as the sums use them, read from the buffer by wave_comp.
+struct WaveCompVals {
     kx: R,
     ky: R,
     k: R,
@@ -23,7 +41,11 @@ struct WaveComp {
     amp_a: R,
     cos_b: R,
     sin_b: R,
-    // The decay cut's bounds on this component and all after it (sea::cut).
+}
+
+// A component's decay cut, read by wave_comp_cut.
+struct WaveCompCut {
+    k: R,
     cut0: R,
     cut1: R,
     cut2: R,
@@ -39,6 +61,21 @@ const WAVE_WHEELER: u32 = 0u;
 const WAVE_CONSTANT: u32 = 1u;
 
 @group(0) @binding(17) var<storage, read> wave_comps: array<WaveComp>;
+
+// Component j's values: one vec4 load per group a caller uses (the others are dead
+// code, which the compiler drops).
+fn wave_comp(j: u32) -> WaveCompVals {
+    let p = wave_comps[j].phase;
+    let a = wave_comps[j].amps;
+    let d = wave_comps[j].dir;
+    return WaveCompVals(p.x, p.y, a.w, p.w, p.z, a.x, a.y, a.z, d.x, d.y);
+}
+
+// Component j's decay cut: one vec4 load.
+fn wave_comp_cut(j: u32) -> WaveCompCut {
+    let c = wave_comps[j].cut;
+    return WaveCompCut(c.x, c.y, c.z, c.w);
+}
 
 // exp(x) for x <= 0 in the shader's own arithmetic (WGSL has no f64 exp): Cody-Waite
 // reduction x = n ln2 + r, |r| <= ln2 / 2, with ln2 split so that n * LN2_HI is exact
@@ -98,7 +135,7 @@ fn wave_ramp_rate(t: R, ramp_duration: R) -> R {
 }
 
 // Phase of a component at (x, y), tau = t - t_ref after its reference time.
-fn wave_theta(c: WaveComp, x: R, y: R, tau: R) -> R {
+fn wave_theta(c: WaveCompVals, x: R, y: R, tau: R) -> R {
     return c.kx * x + c.ky * y + c.phase_ref - c.omega * tau;
 }
 
@@ -106,7 +143,7 @@ fn wave_theta(c: WaveComp, x: R, y: R, tau: R) -> R {
 fn wave_elevation_sum(first: u32, n: u32, x: R, y: R, tau: R) -> R {
     var eta = R(0.0);
     for (var j = first; j < first + n; j++) {
-        let c = wave_comps[j];
+        let c = wave_comp(j);
         eta += c.amp * sin_cos(wave_theta(c, x, y, tau)).y;
     }
     return eta;
@@ -164,7 +201,7 @@ fn wave_kinematics_tau(first: u32, n: u32, depth: R, stretching: u32, r: R, p: v
     var u = vec3<R>(R(0.0));
     var a = vec3<R>(R(0.0));
     for (var j = first; j < first + n; j++) {
-        let c = wave_comps[j];
+        let c = wave_comp(j);
         let sc = sin_cos(wave_theta(c, p.x, p.y, tau));
         let d = wave_depth_decay(c.k, zs, depth);
         let uh = c.amp_u * d.x * sc.y;
@@ -184,7 +221,7 @@ fn wave_decay_prefix(first: u32, n: u32, zs: R, s: R, r_rate: R) -> u32 {
     var hi = n;
     while lo < hi {
         let mid = (lo + hi) / 2u;
-        let c = wave_comps[first + mid];
+        let c = wave_comp_cut(first + mid);
         let bound = wave_exp(c.k * zs) * (c.cut0 + c.cut1 * s + c.cut2 * abs(r_rate));
         if bound <= R(1.0) {
             hi = mid;
@@ -211,7 +248,7 @@ fn wave_kinematics_rates_tau(first: u32, n: u32, depth: R, stretching: u32, r: R
     var se = R(0.0);
     var sed = R(0.0);
     for (var j = first; j < first + n; j++) {
-        let c = wave_comps[j];
+        let c = wave_comp(j);
         let sc = sin_cos(wave_theta(c, p.x, p.y, tau));
         se += c.amp * sc.y;
         sed -= c.amp * sc.x * (c.kx * v.x + c.ky * v.y - c.omega);
@@ -227,7 +264,7 @@ fn wave_kinematics_rates_tau(first: u32, n: u32, depth: R, stretching: u32, r: R
     var du = vec3<R>(R(0.0));
     var da = vec3<R>(R(0.0));
     for (var j = first; j < first + m; j++) {
-        let c = wave_comps[j];
+        let c = wave_comp(j);
         let d = wave_depth_decay(c.k, zs, depth);
         // A component decayed below 1e-30 (e^{k zs} = (ch + sh) / 2: short waves deep
         // down) contributes 0, as in the CPU's sums; its phase is not needed.

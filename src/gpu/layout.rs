@@ -533,34 +533,20 @@ gpu_struct_u32! {
 
 gpu_struct! {
     /// One wave component (WGSL `WaveComp` in `shaders/shared/waves.wgsl`), as
-    /// `sea::kinematics::PackedComponent`.
+    /// `sea::kinematics::PackedComponent`, in four vec4 grouped by the loops that
+    /// read them (one load each on a software adapter instead of up to four).
     WaveComp {
-        /// `k cos b`, rad/m.
-        kx: R,
-        /// `k sin b`, rad/m.
-        ky: R,
-        /// Wave number `k`, rad/m.
-        k: R,
-        /// Angular frequency `w`, rad/s.
-        omega: R,
-        /// Phase at the host's reference time, rad.
-        phase_ref: R,
-        /// Amplitude `A`, m.
-        amp: R,
-        /// `A w / (1 - e^{-2 k h})`, m/s.
-        amp_u: R,
-        /// `A w^2 / (1 - e^{-2 k h})`, m/s^2.
-        amp_a: R,
-        /// `cos b`.
-        cos_b: R,
-        /// `sin b`.
-        sin_b: R,
-        /// The decay cut's bounds (`sea::cut::decay_cut_bounds`).
-        cut0: R,
-        /// The decay cut's factor of the node's speed, s/m.
-        cut1: R,
-        /// The decay cut's factor of the ramp's rate, s.
-        cut2: R,
+        /// `k cos b`, `k sin b` (rad/m), the phase at the host's reference time (rad),
+        /// the angular frequency `w` (rad/s).
+        phase: [R; 4],
+        /// The amplitude `A` (m), `A w / (1 - e^{-2 k h})` (m/s),
+        /// `A w^2 / (1 - e^{-2 k h})` (m/s^2), the wave number `k` (rad/m).
+        amps: [R; 4],
+        /// `cos b`, `sin b`, 0, 0.
+        dir: [R; 4],
+        /// `k` (rad/m) and the decay cut's bounds (`sea::cut::decay_cut_bounds`): the
+        /// constant, the factor of the node's speed (s/m), of the ramp's rate (s).
+        cut: [R; 4],
     }
 }
 
@@ -652,20 +638,12 @@ gpu_struct! {
 impl<R: GpuReal> WaveComp<R> {
     /// The component at precision `R`.
     pub fn from_packed(c: &crate::sea::kinematics::PackedComponent) -> Self {
+        let v = |x: [f64; 4]| x.map(R::c);
         Self {
-            kx: R::c(c.kx),
-            ky: R::c(c.ky),
-            k: R::c(c.k),
-            omega: R::c(c.omega),
-            phase_ref: R::c(c.phase_ref),
-            amp: R::c(c.amp),
-            amp_u: R::c(c.amp_u),
-            amp_a: R::c(c.amp_a),
-            cos_b: R::c(c.cos_b),
-            sin_b: R::c(c.sin_b),
-            cut0: R::c(c.cut0),
-            cut1: R::c(c.cut1),
-            cut2: R::c(c.cut2),
+            phase: v([c.kx, c.ky, c.phase_ref, c.omega]),
+            amps: v([c.amp, c.amp_u, c.amp_a, c.k]),
+            dir: v([c.cos_b, c.sin_b, 0.0, 0.0]),
+            cut: v([c.k, c.cut0, c.cut1, c.cut2]),
         }
     }
 }

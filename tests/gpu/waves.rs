@@ -371,20 +371,27 @@ fn gpu_comps<R: GpuReal>(field: &WaveField) -> (Vec<u8>, Vec<PackedComponent>) {
     let comps: Vec<WaveComp<R>> = field.comps.iter().map(WaveComp::from_packed).collect();
     let back = comps
         .iter()
-        .map(|c| PackedComponent {
-            kx: c.kx.f64(),
-            ky: c.ky.f64(),
-            k: c.k.f64(),
-            omega: c.omega.f64(),
-            phase_ref: c.phase_ref.f64(),
-            amp: c.amp.f64(),
-            amp_u: c.amp_u.f64(),
-            amp_a: c.amp_a.f64(),
-            cos_b: c.cos_b.f64(),
-            sin_b: c.sin_b.f64(),
-            cut0: c.cut0.f64(),
-            cut1: c.cut1.f64(),
-            cut2: c.cut2.f64(),
+        .map(|c| {
+            let [kx, ky, phase_ref, omega] = c.phase.map(|x| x.f64());
+            let [amp, amp_u, amp_a, k] = c.amps.map(|x| x.f64());
+            let [cos_b, sin_b, _, _] = c.dir.map(|x| x.f64());
+            let [k_cut, cut0, cut1, cut2] = c.cut.map(|x| x.f64());
+            assert_eq!(k, k_cut, "k is stored twice, the same");
+            PackedComponent {
+                kx,
+                ky,
+                k,
+                omega,
+                phase_ref,
+                amp,
+                amp_u,
+                amp_a,
+                cos_b,
+                sin_b,
+                cut0,
+                cut1,
+                cut2,
+            }
         })
         .collect();
     (bytemuck::cast_slice(&comps).to_vec(), back)
