@@ -6,14 +6,19 @@
 //! Each block keeps its own cache: blocks are stepped independently (in parallel, many
 //! steps at a time), so a block's refresh reads only its own nodes' state.
 //!
-//! The chain kernel reads the cache as columns ([`BlockWaves::fill_chain`]): each
+//! The chain kernel reads the cache as columns ([`BlockWaves::chain_columns`]): each
 //! node's elevation and each element's midpoint wave velocity and acceleration (the
 //! mean of its two nodes'), values and rates formed once per refresh at both cache
 //! times, so that a stage interpolates seven columns (four multiply-adds a value, the
 //! cubic Hermite weights formed once per stage) straight into the element loop's
 //! inputs instead of interpolating per node and then averaging. Interpolation is
 //! linear in the cached values and rates, so this is the same value up to round-off.
+//! With several depth bands (the power basis) and every node under the surface, the
+//! element loop interpolates the six element columns in its own lanes
+//! (`cpu::chain::elements::elements_fused`) rather than reading them back from
+//! columns [`ChainCols::fill`] wrote: the same arithmetic, one pass fewer.
 
+use crate::cpu::chain::padded_len;
 use crate::sea::bands::BandPlan;
 use crate::sea::cache::{
     evaluate_nodes, wave_cache_hermite, wave_cache_midpoint, WaveCache, CACHE_STRIDE,
@@ -54,7 +59,8 @@ struct ChainColumns {
     power_ref: Option<f64>,
     /// Scratch: the nodes' power-basis coefficients.
     power: [Vec<f64>; 4],
-    /// Elevation over each node, m (rates: m/s).
+    /// Elevation over each node, m (rates: m/s). This and `mid` zero-padded to the
+    /// chain's padded length ([`padded_len`]), read in whole chunks of lanes.
     eta: [Vec<f64>; 4],
     /// Per element (between nodes `k` and `k + 1`): the mean of its nodes' wave
     /// velocity `x, y, z` then wave acceleration `x, y, z` (or of their rates).
@@ -137,24 +143,16 @@ impl BlockWaves {
         self.exact
     }
 
-    /// The chain kernel's inputs at time `t` from the cache (not in exact mode): each
-    /// node's elevation into `eta`, each element's midpoint wave velocity plus the
-    /// current into `u` (`uniform`: the block's one current, written with the waves'
-    /// velocity; `None`: added to the currents `u` already holds) and its midpoint wave
-    /// acceleration into `aw` (elements `0..n - 1`). Refreshes the cache when `t` is
-    /// past it (`state` as in [`Self::fill`]).
+    /// The chain kernel's view of the cache at time `t` (not in exact mode): its
+    /// columns, formed for the cache's latest refresh, and the interpolation weights
+    /// of `t`. Refreshes the cache when `t` is past it (`state` as in [`Self::fill`]).
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn fill_chain(
+    pub(crate) fn chain_columns(
         &mut self,
         t: f64,
         n: usize,
         state: impl Fn(usize) -> ([f64; 3], [f64; 3]),
-        eta: &mut [f64],
-        u: &mut [Vec<f64>; 3],
-        uniform: Option<[f64; 3]>,
-        aw: &mut [Vec<f64>; 3],
-    ) {
+    ) -> ChainCols<'_> {
         debug_assert!(!self.exact);
         self.cover(t, n, state);
         let c = &self.cache;
@@ -162,21 +160,65 @@ impl BlockWaves {
             self.cols.form(c, n);
             self.cols.generation = Some(c.generation);
         }
-        let w = match self.cols.power_ref {
+        let (w, unit) = match self.cols.power_ref {
             Some(t_ref) => {
                 let tau = t - t_ref;
-                [1.0, tau, tau * tau, tau * tau * tau]
+                ([1.0, tau, tau * tau, tau * tau * tau], true)
             }
-            None => c.weights(t),
+            None => (c.weights(t), false),
         };
+        ChainCols {
+            eta: &self.cols.eta,
+            mid: &self.cols.mid,
+            w,
+            unit,
+        }
+    }
+}
+
+/// The chain kernel's view of a block's cache at one time ([`BlockWaves::chain_columns`]):
+/// the columns `[v0, d0, v1, d1]` of each node's elevation and of each element's
+/// midpoint wave velocity and acceleration, and the weights `w` that interpolate them.
+/// Every column is zero-padded to the chain's padded length
+/// (`cpu::chain::padded_len`), so the element loop may read them in whole chunks of
+/// lanes.
+pub(crate) struct ChainCols<'a> {
+    /// Elevation over each node (the four columns).
+    pub(crate) eta: &'a [Vec<f64>; 4],
+    /// `mid[side][q]`: per element, the mean of its nodes' wave velocity (`q` 0-2) or
+    /// acceleration (`q` 3-5), side `side` of `[v0, d0, v1, d1]`.
+    pub(crate) mid: &'a [[Vec<f64>; 6]; 4],
+    /// The weights of the time asked for.
+    pub(crate) w: [f64; 4],
+    /// The power basis (several bands): `w[0]` is exactly 1.
+    pub(crate) unit: bool,
+}
+
+impl ChainCols<'_> {
+    /// The chain kernel's inputs from the columns: each node's elevation into `eta`
+    /// (unless `with_eta` is false: already there), each element's midpoint wave
+    /// velocity plus the current into `u` (`uniform`: the block's one current, written
+    /// with the waves' velocity; `None`: added to the currents `u` already holds) and
+    /// its midpoint wave acceleration into `aw`, for the `n` nodes and their `n - 1`
+    /// elements.
+    #[inline(always)]
+    pub(crate) fn fill(
+        &self,
+        n: usize,
+        eta: &mut [f64],
+        with_eta: bool,
+        u: &mut [Vec<f64>; 3],
+        uniform: Option<[f64; 3]>,
+        aw: &mut [Vec<f64>; 3],
+    ) {
+        let (w, power) = (self.w, self.unit);
         let ne = n - 1;
-        let cols = &self.cols;
-        // The power basis's first weight is exactly 1 (its columns skip that multiply).
-        let power = cols.power_ref.is_some();
-        let e = &cols.eta;
-        let ec = [&e[0][..], &e[1], &e[2], &e[3]];
-        wave_cache_hermite_cols(&mut eta[..n], ec, w, HermiteOut::Set, power);
-        let m = &cols.mid;
+        if with_eta {
+            let e = self.eta;
+            let ec = [&e[0][..], &e[1], &e[2], &e[3]];
+            wave_cache_hermite_cols(&mut eta[..n], ec, w, HermiteOut::Set, power);
+        }
+        let m = self.mid;
         for q in 0..3 {
             let (uq, aq) = (q, 3 + q);
             let uc = [&m[0][uq][..], &m[1][uq], &m[2][uq], &m[3][uq]];
@@ -244,6 +286,7 @@ impl ChainColumns {
             let eta = &mut self.eta[side];
             eta.clear();
             eta.extend((0..n).map(|i| node_water(v, i).0));
+            eta.resize(padded_len(n), 0.0);
             let cols = &mut self.mid[side];
             cols.iter_mut().for_each(Vec::clear);
             for k in 0..n - 1 {
@@ -252,6 +295,7 @@ impl ChainColumns {
                     col.push(m[2 + q]);
                 }
             }
+            cols.iter_mut().for_each(|c| c.resize(padded_len(n), 0.0));
         }
     }
 }
@@ -333,7 +377,7 @@ fn hermite_cols_into<const UNIT: bool>(
 
 /// One entry of [`wave_cache_hermite`], in its order of operations (`UNIT`: `w0` is 1).
 #[inline(always)]
-fn hermite_at<const UNIT: bool>(w: [f64; 4], v0: f64, d0: f64, v1: f64, d1: f64) -> f64 {
+pub(crate) fn hermite_at<const UNIT: bool>(w: [f64; 4], v0: f64, d0: f64, v1: f64, d1: f64) -> f64 {
     let first = if UNIT { v0 } else { w[0] * v0 };
     first + w[1] * d0 + w[2] * v1 + w[3] * d1
 }

@@ -5,7 +5,7 @@
 //! element and node passes, with the divergence check after each step.
 
 use super::consts::ChainConsts;
-use super::elements::{add_waves, currents, elements, UniformLine};
+use super::elements::{add_waves, currents, elements, elements_fused, UniformLine};
 use super::lanes::{chunks_for, keep_chunks, lanes, lanes_mut, padded_len};
 use super::nodes::{nodes, point_surface, Masses};
 use super::winch::{ale_constants, ale_tension, AleScratch};
@@ -368,6 +368,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
         time: f64,
         under: Option<bool>,
         uni: Option<&UniformLine>,
+        wuni: Option<&UniformLine>,
         waves: &mut Option<&mut BlockWaves>,
         wbuf: &mut Water,
         sc: &mut Work,
@@ -392,7 +393,8 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
         }
         let c = &*wc;
         // A uniform current in still water was filled once for the run; in waves from
-        // the cache, `fill_chain` writes it with the waves' velocity.
+        // the cache, the element loop adds the waves' velocity to it (`elements_fused`)
+        // or `ChainCols::fill` writes it with them.
         let cache_waves = waves.as_deref().is_some_and(|wb| !wb.exact());
         if c.uniform.is_none() || (waves.is_some() && !cache_waves) {
             currents(c, &lay.currents, state, u);
@@ -407,16 +409,31 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
             if wb.exact() {
                 wb.fill(time, c.n, st, wbuf);
                 add_waves(c.l0.len(), wbuf, u, aw, eta);
+                // SAFETY: the caller's columns.
+                unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, None, None) }
             } else {
                 // The per-node values are needed only by the point masses' loads
                 // (`nodes`); the elements read the cache's columns.
                 if !c.point_drag.is_empty() || !c.point_volume.is_empty() {
                     wb.fill(time, c.n, st, wbuf);
                 }
-                wb.fill_chain(time, c.n, st, eta, u, c.uniform, aw);
+                let cols = wb.chain_columns(time, c.n, st);
+                // Several bands (the power basis): the elevations and the surface test
+                // in one pass, then, every node under, the element loop interpolating
+                // the waves in its lanes. `u` holds the currents unless `wuni` has them.
+                if cols.unit && wuni.is_none() && c.uniform.is_some() {
+                    currents(c, &lay.currents, state, u);
+                }
+                // SAFETY: the caller's columns; the cache's are padded.
+                if cols.unit && unsafe { elements_fused::<L>(c, state, &cols, u, eta, t, ten, f, wuni) } {
+                    true
+                } else {
+                    cols.fill(c.n, eta, !cols.unit, u, c.uniform, aw);
+                    let under = cols.unit.then_some(false);
+                    // SAFETY: the caller's columns.
+                    unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, under, None) }
+                }
             }
-            // SAFETY: the caller's columns.
-            unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, None, None) }
         } else {
             // SAFETY: the caller's columns.
             unsafe { elements::<false, L>(c, state, u, aw, eta, t, ten, f, haw, under, uni) }
@@ -447,6 +464,10 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
     // In still water, a chain of one line type under one uniform current.
     let uni = if still { UniformLine::of(c) } else { None };
     let uni = uni.as_ref();
+    // In waves, the same for the element loop that interpolates the waves in its lanes
+    // (`elements_fused`, which adds them to this current).
+    let wuni = if still { None } else { UniformLine::of(c) };
+    let wuni = wuni.as_ref();
     // SAFETY: the stages' columns (`x`, `xs`, `wc`, `wk`, `a`) were made
     // `padded_len(n)` long above, and nothing in the loop resizes them.
     unsafe {
@@ -455,7 +476,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
             match opts.scheme {
                 Scheme::Symplectic => {
                     eval::<FRICTION, L>(
-                        wc, asc, lay, opts, ale, x, time, under, uni, &mut waves, wbuf, wk, a,
+                        wc, asc, lay, opts, ale, x, time, under, uni, wuni, &mut waves, wbuf, wk, a,
                     );
                     let (b, u) =
                         symplectic_update::<L>(x, a, nc, dt, opts.max_speed, opts.max_distance);
@@ -465,7 +486,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                 Scheme::Rk2 => {
                     let h = 0.5 * dt;
                     eval::<FRICTION, L>(
-                        wc, asc, lay, opts, ale, x, time, None, uni, &mut waves, wbuf, wk, a,
+                        wc, asc, lay, opts, ale, x, time, None, uni, wuni, &mut waves, wbuf, wk, a,
                     );
                     for q in 0..3 {
                         xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
@@ -481,6 +502,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                         time + h,
                         None,
                         uni,
+                        wuni,
                         &mut waves,
                         wbuf,
                         wk,
@@ -514,6 +536,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                             time + tau,
                             None,
                             uni,
+                            wuni,
                             &mut waves,
                             wbuf,
                             wk,

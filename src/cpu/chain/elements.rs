@@ -5,7 +5,7 @@
 
 use super::consts::ChainConsts;
 use super::lanes::{chunks_for, keep_chunks, lanes, lanes_mut, lanes_next};
-use crate::cpu::water::node_water;
+use crate::cpu::water::{hermite_at, node_water, ChainCols};
 use crate::model::Current;
 use crate::physics::wetted_fraction;
 
@@ -94,8 +94,10 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
         // SAFETY: the caller's columns, as this function's.
         unsafe {
             match uni {
-                Some(k) if !WAVES => element_chunks::<WAVES, true, L>(c, p, u, aw, t, ten, f, k),
-                _ => element_chunks::<WAVES, false, L>(
+                Some(k) if !WAVES => {
+                    element_chunks::<WAVES, true, false, L>(c, p, u, aw, t, ten, f, k, None)
+                }
+                _ => element_chunks::<WAVES, false, false, L>(
                     c,
                     p,
                     u,
@@ -104,6 +106,7 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
                     ten,
                     f,
                     &UniformLine::default(),
+                    None,
                 ),
             }
         };
@@ -377,20 +380,99 @@ pub(super) fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
     }
 }
 
+/// The element pass in waves from the cache's power-basis columns `w` (several depth
+/// bands: [`ChainCols::unit`]) when every node is under the surface: interpolates each
+/// node's elevation into `eta` and checks it against the node's height in the same
+/// pass; then, if every node is under, runs the element loop with each element's wave
+/// velocity and acceleration interpolated in its lanes ([`element_chunks`] with
+/// `FUSED`) instead of written to the columns `u`, `aw` by one pass and read back by
+/// the next. The same arithmetic per value as [`ChainCols::fill`] then [`elements`],
+/// so the same bits. Returns `false`, having written only `eta`, when some node is
+/// above the surface: the caller then fills the columns and runs [`elements`].
+/// `uni`: the block's line constants and uniform current, if it has them (else `u`
+/// holds the currents).
+///
+/// # Safety
+/// As [`elements`]; `w`'s columns hold [`super::lanes::padded_len`]`(c.n)` entries.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) unsafe fn elements_fused<const L: usize>(
+    c: &ChainConsts,
+    p: &[Vec<f64>; 6],
+    w: &ChainCols,
+    u: &[Vec<f64>; 3],
+    eta: &mut [f64],
+    t: &mut [Vec<f64>; 3],
+    ten: &mut [f64],
+    f: &mut [Vec<f64>; 3],
+    uni: Option<&UniformLine>,
+) -> bool {
+    debug_assert!(w.unit);
+    let nn = chunks_for::<L>(c.n);
+    // SAFETY: the caller's columns hold `padded_len(c.n) >= nn * L` entries.
+    let (z_c, eta_c) = unsafe { (lanes::<L>(&p[2], nn), lanes_mut::<L>(eta, 0, nn)) };
+    let e = w.eta;
+    // SAFETY: as above, for the cache's columns.
+    let ec = unsafe {
+        [
+            lanes::<L>(&e[0], nn),
+            lanes::<L>(&e[1], nn),
+            lanes::<L>(&e[2], nn),
+            lanes::<L>(&e[3], nn),
+        ]
+    };
+    let wt = w.w;
+    let mut under = [true; L];
+    for j in 0..nn {
+        keep_chunks();
+        let (e0, e1, e2, e3, z) = (ec[0][j], ec[1][j], ec[2][j], ec[3][j], z_c[j]);
+        let mut h = [0.0; L];
+        for l in 0..L {
+            h[l] = hermite_at::<true>(wt, e0[l], e1[l], e2[l], e3[l]);
+            under[l] &= h[l] - z[l] >= 0.0;
+        }
+        eta_c[j] = h;
+    }
+    if !under.iter().all(|&x| x) {
+        return false;
+    }
+    // SAFETY: the caller's columns, as this function's.
+    unsafe {
+        match uni {
+            Some(k) => element_chunks::<true, true, true, L>(c, p, u, u, t, ten, f, k, Some(w)),
+            None => element_chunks::<true, false, true, L>(
+                c,
+                p,
+                u,
+                u,
+                t,
+                ten,
+                f,
+                &UniformLine::default(),
+                Some(w),
+            ),
+        }
+    }
+    true
+}
+
 /// The element loop of a chain whose every node is under the surface, over `nc`
 /// whole chunks of elements of the padded columns (module [`super::lanes`]):
 /// element `k` reads nodes `k` and `k + 1` of `p` and writes padded element `k + 1`
 /// (not its wetted half added mass: wholly wet, that is the block's `ha`). With `UNI`
 /// the current and the line's constants are `k`'s, in every lane (the padding lanes
-/// too: their results are dropped or reset, as with zeros).
+/// too: their results are dropped or reset, as with zeros). With `FUSED` (waves,
+/// `cols` given, its power basis) the element's wave velocity and acceleration are
+/// interpolated here from `cols`, the velocity added to the current (`k`'s with
+/// `UNI`, else `u`'s), and `aw` is not read.
 /// The lanes past the last element write padded elements past it, the end ghost
 /// included (reset by the caller).
 ///
 /// # Safety
-/// As [`elements`].
+/// As [`elements`]; with `FUSED`, as [`elements_fused`].
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize>(
+unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const FUSED: bool, const L: usize>(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
@@ -399,6 +481,7 @@ unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize>(
     ten: &mut [f64],
     f: &mut [Vec<f64>; 3],
     k: &UniformLine,
+    cols: Option<&ChainCols>,
 ) {
     let ne = c.l0.len();
     let nc = chunks_for::<L>(ne);
@@ -445,6 +528,15 @@ unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize>(
         at!(&c.half_bz),
     );
     let hfk = at!(&c.half_fk);
+    // With `FUSED`: `mc[q][side]`, the cache's columns of wave velocity (`q` 0-2) and
+    // acceleration (3-5), and the weights of the time.
+    let (mc, wt) = match cols {
+        Some(w) if FUSED => (
+            std::array::from_fn(|q| std::array::from_fn(|side| at!(&w.mid[side][q]))),
+            w.w,
+        ),
+        _ => ([[&[][..]; 4]; 6], [0.0; 4]),
+    };
     let [tx, ty, tz] = t;
     let [fx, fy, fz] = f;
     let (tx, ty, tz) = (out!(tx), out!(ty), out!(tz));
@@ -455,7 +547,16 @@ unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize>(
         // Every input into locals first, then every output: no overlap to check.
         let (xa, ya, za, vxa, vya, vza) = (xa[j], ya[j], za[j], vxa[j], vya[j], vza[j]);
         let (xb, yb, zb, vxb, vyb, vzb) = (xb[j], yb[j], zb[j], vxb[j], vyb[j], vzb[j]);
-        let (awx, awy, awz, il0) = (awx[j], awy[j], awz[j], il0[j]);
+        let il0 = il0[j];
+        let (awx, awy, awz) = if FUSED {
+            (
+                cubic_lanes(&mc[3], j, wt),
+                cubic_lanes(&mc[4], j, wt),
+                cubic_lanes(&mc[5], j, wt),
+            )
+        } else {
+            (awx[j], awy[j], awz[j])
+        };
         let ((ux, uy, uz), (ea, eac, comp, dn, dt)) = if UNI {
             let u = k.u;
             (
@@ -467,6 +568,17 @@ unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize>(
                 (ux[j], uy[j], uz[j]),
                 (ea[j], eac[j], comp[j], dn[j], dt[j]),
             )
+        };
+        // The current plus the waves' velocity: `b + h` as `ChainCols::fill` writes it
+        // over a uniform current, `u + h` as it adds to the currents in `u`.
+        let (ux, uy, uz) = if FUSED {
+            (
+                plus_lanes(ux, cubic_lanes(&mc[0], j, wt)),
+                plus_lanes(uy, cubic_lanes(&mc[1], j, wt)),
+                plus_lanes(uz, cubic_lanes(&mc[2], j, wt)),
+            )
+        } else {
+            (ux, uy, uz)
         };
         let (hw, hb, hfk) = (hw[j], hb[j], hfk[j]);
         let mut o = [[0.0; L]; 7];
@@ -504,6 +616,28 @@ unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize>(
             q[j][l] = 0.0;
         }
     }
+}
+
+/// The cache's cubic of one column (`m`: its four sides as chunks of lanes) in chunk
+/// `j`, with the power basis's weights `w` (`hermite_at`'s order). A function, not a
+/// closure: closures are not inlined into the AVX2 caller.
+#[inline(always)]
+fn cubic_lanes<const L: usize>(m: &[&[[f64; L]]; 4], j: usize, w: [f64; 4]) -> [f64; L] {
+    let (v0, d0, v1, d1) = (m[0][j], m[1][j], m[2][j], m[3][j]);
+    let mut h = [0.0; L];
+    for l in 0..L {
+        h[l] = hermite_at::<true>(w, v0[l], d0[l], v1[l], d1[l]);
+    }
+    h
+}
+
+/// `b + h` lane by lane.
+#[inline(always)]
+fn plus_lanes<const L: usize>(mut b: [f64; L], h: [f64; L]) -> [f64; L] {
+    for l in 0..L {
+        b[l] += h[l];
+    }
+    b
 }
 
 /// Fills the per-element current (midpoint height) when the block's is not uniform.

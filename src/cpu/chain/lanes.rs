@@ -21,7 +21,7 @@ pub(super) fn chunks_for<const L: usize>(n: usize) -> usize {
 /// The padded length of the columns of a chain of `n` nodes: the node chunks, plus
 /// one chunk for the reads one entry further on.
 #[inline(always)]
-pub(super) fn padded_len(n: usize) -> usize {
+pub(crate) fn padded_len(n: usize) -> usize {
     (chunks_for::<MAX_LANES>(n) + 1) * MAX_LANES
 }
 
