@@ -416,11 +416,15 @@ fn element_tile<const L: usize>(
     if chunked {
         // A run: the element loop and the fold in one loop, where it can.
         let (us, aws) = (u.each_ref().map(|q| &q[..]), aw.each_ref().map(|q| &q[..]));
-        let (es, p) = (&nc.eslot, &piece);
+        let (es, p, v) = (&nc.eslot, &piece, ([a0, b0], x));
         let fused = match (waves, uniform) {
-            (true, _) => run_shares::<true, false, L>(c, es, p, a, b, us, [0.0; 3], aws, out),
-            (false, Some(un)) => run_shares::<false, true, L>(c, es, p, a, b, us, un, aws, out),
-            (false, None) => run_shares::<false, false, L>(c, es, p, a, b, us, [0.0; 3], aws, out),
+            (true, _) => run_shares::<true, false, L>(c, es, p, a, b, us, [0.0; 3], aws, v, out),
+            (false, Some(un)) => {
+                run_shares::<false, true, L>(c, es, p, a, b, us, un, aws, v, out)
+            }
+            (false, None) => {
+                run_shares::<false, false, L>(c, es, p, a, b, us, [0.0; 3], aws, v, out)
+            }
         };
         if fused {
             return;
