@@ -6,7 +6,8 @@
 //!   whose ends are consecutive nodes (a net's rows and the twines between two rows)
 //!   reads its ends in place, as the chain path does, and runs the chain's element
 //!   arithmetic over them, in whole chunks of lanes where the run is under the
-//!   surface and long enough ([`element_chunks_net`], or with the fold below in the
+//!   surface (known from its tiles' flags, [`NetScratch::under`], else tested end by
+//!   end) and long enough ([`element_chunks_net`], or with the fold below in the
 //!   same loop, [`run_shares`]: the last chunk overlaps the one before it, so no scalar
 //!   remainder), else element by element; other elements are read by index and
 //!   computed one at a time, straight into their slots ([`gathered_shares`]);

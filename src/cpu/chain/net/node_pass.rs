@@ -1,7 +1,9 @@
 //! The network path's node pass over one tile of nodes: the point loads, the node loop
 //! (each node's slots summed in incidence order, the seabed, the 3x3 solve; vectorised
 //! over nodes), held nodes' routes, then the symplectic update and the limits check in
-//! one loop.
+//! one loop, which also finds whether the tile's nodes end the step at or below still
+//! water's surface (the tile's flag, which spares the element pass its test of a run:
+//! [`super::NetScratch::under`]).
 
 use super::super::consts::ChainConsts;
 use super::super::nodes::{
