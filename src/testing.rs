@@ -25,6 +25,7 @@ pub mod cpu_chain_elements {
 
 pub mod cpu_chain_net_pieces {
     pub use crate::cpu::chain::net::pieces::*;
+    pub use crate::cpu::chain::net::NT;
 }
 
 pub mod cpu_chain_net_plan {

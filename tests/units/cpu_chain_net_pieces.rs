@@ -4,7 +4,8 @@
 use cablesim::testing::cpu_chain_net_pieces::*;
 
 /// A ring of 40 nodes (its closing element breaks the run), 300 elements `i, i + 40`
-/// (two pieces of in-place ends), 5 scattered elements (gathered).
+/// (in-place ends: cut where a slot changes and where node a enters a new tile of `NT`
+/// nodes), 5 scattered elements (gathered).
 #[test]
 fn pieces_cover_every_element_once_with_its_ends() {
     let (mut ea, mut eb) = (Vec::new(), Vec::new());
@@ -30,7 +31,8 @@ fn pieces_cover_every_element_once_with_its_ends() {
         assert_eq!(p.elems.start, k, "{ps:?}");
         assert!(p.elems.len() <= TILE);
         if let Some((a0, b0)) = p.ends {
-            assert!(p.elems.len() >= MIN_RUN);
+            // Node a in one tile.
+            assert_eq!(a0 / NT, (a0 + p.elems.len() - 1) / NT, "{p:?}");
             for (d, e) in p.elems.clone().enumerate() {
                 assert_eq!((ea[e] as usize, eb[e] as usize), (a0 + d, b0 + d));
                 let e0 = p.elems.start;
@@ -41,11 +43,15 @@ fn pieces_cover_every_element_once_with_its_ends() {
     }
     assert_eq!(k, ea.len());
     let direct: Vec<_> = ps.iter().filter(|p| p.ends.is_some()).collect();
-    // The ring's 39 elements in order, then the 300 cut where the slot changes.
-    assert_eq!(direct.len(), 3, "{ps:?}");
+    // The ring's 39 elements in order, then the 300 cut where the slot changes (node a
+    // 100) and where node a enters the second tile (`NT`).
+    assert_eq!(NT, 256);
+    assert_eq!(direct.len(), 4, "{ps:?}");
     assert_eq!(direct[0].elems, 0..39);
     assert_eq!(direct[1].elems, 40..140);
-    assert_eq!(direct[2].elems, 140..340);
+    assert_eq!(direct[2].elems, 140..296);
+    assert_eq!(direct[3].elems, 296..340);
+    assert_eq!(direct[3].ends, Some((256, 296)));
     // The closing element and the scattered ones are gathered.
     assert!(ps.contains(&Piece {
         elems: 39..40,

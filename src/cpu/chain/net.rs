@@ -6,7 +6,8 @@
 //!   whose ends are consecutive nodes (a net's rows and the twines between two rows)
 //!   reads its ends in place, as the chain path does, and runs the chain's element
 //!   arithmetic over them, in whole chunks of lanes where the run is under the
-//!   surface and long enough ([`element_chunks_net`], or with the fold below in the
+//!   surface (known from its tiles' flags, [`NetScratch::under`], else tested end by
+//!   end) and long enough ([`element_chunks_net`], or with the fold below in the
 //!   same loop, [`run_shares`]: the last chunk overlaps the one before it, so no scalar
 //!   remainder), else element by element; other elements are read by index and
 //!   computed one at a time, straight into their slots ([`gathered_shares`]);
@@ -41,6 +42,7 @@ use crate::math::V3;
 use crate::model::{Block, Layout};
 use crate::options::SolverOptions;
 use crate::step::{diverged, StepFailure};
+use std::sync::atomic::{AtomicBool, Ordering};
 use element_chunks::{all_under, element_chunks_net};
 
 mod element_chunks;
@@ -142,6 +144,12 @@ pub(crate) struct NetScratch {
     x: [Vec<f64>; 6],
     /// Surface elevation over each node, m (zero in still water).
     eta: Vec<f64>,
+    /// Per tile of [`NT`] nodes: whether every node is at or below the surface in the
+    /// state the next element pass reads ([`flag_tiles`]; in still water the node
+    /// pass sets its tile's as it updates it). Atomic: the threads of
+    /// [`advance_net_threaded`] set their tiles' and read the others' (across the
+    /// barriers).
+    under: Vec<AtomicBool>,
     el: Loads,
     /// One thread's work of either pass (the first thread's when threaded).
     work: Work,
@@ -317,7 +325,8 @@ impl<'a> LoadsOut<'a> {
 /// element), their water velocity and acceleration (`w`: per-node water values, empty
 /// in still water), runs the chain path's element loop, and folds its results into
 /// what the elements add to their nodes (`out`): a submerged run in one loop
-/// ([`run_shares`]), other runs in two.
+/// ([`run_shares`]), other runs in two. `under`: the block's tile flags
+/// ([`NetScratch::under`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn element_tile<const L: usize>(
@@ -328,6 +337,7 @@ fn element_tile<const L: usize>(
     base: usize,
     eta: &[f64],
     w: &[f64],
+    under: &[AtomicBool],
     g: &mut Work,
     out: LoadsOut,
 ) {
@@ -356,17 +366,21 @@ fn element_tile<const L: usize>(
         haw,
         ..
     } = g;
+    // Every end at or below the surface makes every wetted fraction exactly 1, as on
+    // the chain path: known at once where the ends' tiles are all under (the net
+    // cage's every piece), else tested end by end. In still water the surface is at
+    // zero (`eta` stays so), where `0 - z >= 0` is `z <= 0`: the surface's columns
+    // need not be read.
+    let flagged = tiles_under(under, a0, ne) && tiles_under(under, b0, ne);
     // A run: the ends are consecutive nodes, read in place as on the chain path.
     let (a0, b0) = (a0 - base, b0 - base);
     let (a, b) = (cut(src, a0..a0 + ne), cut(src, b0..b0 + ne));
-    // Every end at or below the surface makes every wetted fraction exactly 1, as on
-    // the chain path. In still water the surface is at zero (`eta` stays so), where
-    // `0 - z >= 0` is `z <= 0`: the surface's columns need not be read.
-    let submerged = if waves {
-        all_under::<true, L>(a, b, ne)
-    } else {
-        all_under::<false, L>(a, b, ne)
-    };
+    let submerged = flagged
+        || if waves {
+            all_under::<true, L>(a, b, ne)
+        } else {
+            all_under::<false, L>(a, b, ne)
+        };
     // Such a piece of `L` elements or more takes the loop in whole chunks of lanes,
     // which reads a uniform current in still water as a constant.
     let chunked = submerged && ne >= L;
@@ -403,11 +417,15 @@ fn element_tile<const L: usize>(
     if chunked {
         // A run: the element loop and the fold in one loop, where it can.
         let (us, aws) = (u.each_ref().map(|q| &q[..]), aw.each_ref().map(|q| &q[..]));
-        let (es, p) = (&nc.eslot, &piece);
+        let (es, p, v) = (&nc.eslot, &piece, ([a0, b0], x));
         let fused = match (waves, uniform) {
-            (true, _) => run_shares::<true, false, L>(c, es, p, a, b, us, [0.0; 3], aws, out),
-            (false, Some(un)) => run_shares::<false, true, L>(c, es, p, a, b, us, un, aws, out),
-            (false, None) => run_shares::<false, false, L>(c, es, p, a, b, us, [0.0; 3], aws, out),
+            (true, _) => run_shares::<true, false, L>(c, es, p, a, b, us, [0.0; 3], aws, v, out),
+            (false, Some(un)) => {
+                run_shares::<false, true, L>(c, es, p, a, b, us, un, aws, v, out)
+            }
+            (false, None) => {
+                run_shares::<false, false, L>(c, es, p, a, b, us, [0.0; 3], aws, v, out)
+            }
         };
         if fused {
             return;
@@ -452,6 +470,25 @@ fn element_tile<const L: usize>(
     node_shares::<L>(nc, &piece, t, ten, f, haw, out);
 }
 
+/// Whether the tiles of block nodes `i0 .. i0 + len` (`len` at least 1) are all
+/// flagged under the surface ([`NetScratch::under`]): one load per tile, where testing
+/// the run's ends cost 14 instructions a chunk of 4 elements (7 a node-step of the
+/// cage, 5% of its step).
+#[inline(always)]
+fn tiles_under(under: &[AtomicBool], i0: usize, len: usize) -> bool {
+    (i0 / NT..=(i0 + len - 1) / NT).all(|t| under[t].load(Ordering::Relaxed))
+}
+
+/// Sets each tile's flag of `under` ([`NetScratch::under`]) to whether every node of
+/// it is at or below the surface: `eta - z >= 0` (the wetted fraction's test; `z <= 0`
+/// in still water, whose `eta` is zero), false for a NaN.
+fn flag_tiles(z: &[f64], eta: &[f64], under: &[AtomicBool]) {
+    for (t, u) in under.iter().enumerate() {
+        let r = t * NT..((t + 1) * NT).min(z.len());
+        u.store(r.into_iter().all(|i| eta[i] - z[i] >= 0.0), Ordering::Relaxed);
+    }
+}
+
 /// Entries `r` of each of the columns `cols`. (A loop, not `array::map`: the map over
 /// 7 slices stayed a call of 60 instructions, about 1 a node-step per use on the cage.)
 #[inline(always)]
@@ -464,8 +501,8 @@ fn cut<const K: usize>(cols: [&[f64]; K], r: std::ops::Range<usize>) -> [&[f64];
 }
 
 /// Copies the block's AoS state into the scratch's SoA arrays and sizes the element
-/// results (the tile buffers of `plan`) and surface (zero: still water until the waves
-/// fill it).
+/// results (the tile buffers of `plan`), surface (zero: still water until the waves
+/// fill it) and tile flags (set from the state).
 fn load(nc: &NetConsts, plan: &Plan, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3<f64>]) {
     let n = nc.n();
     for (q, xq) in sc.x.iter_mut().enumerate() {
@@ -480,6 +517,9 @@ fn load(nc: &NetConsts, plan: &Plan, sc: &mut NetScratch, r: &[V3<f64>], v: &[V3
     }
     sc.eta.clear();
     sc.eta.resize(n, 0.0);
+    sc.under.clear();
+    sc.under.resize_with(n.div_ceil(NT), AtomicBool::default);
+    flag_tiles(&sc.x[2], &sc.eta, &sc.under);
     // Zero: the slots past a node's incidence list stay so.
     sc.el.reset(loads_len(plan.nbuf, nc.width));
 }
@@ -598,7 +638,13 @@ fn advance_net_body<const L: usize>(
     if waves.is_none() {
         wbuf.clear();
     }
-    let NetScratch { x, eta, el, work } = sc;
+    let NetScratch {
+        x,
+        eta,
+        under,
+        el,
+        work,
+    } = sc;
     work.size(nc.ne().min(TILE));
     let mut result = Ok(());
     for k in 0..nsteps {
@@ -609,6 +655,8 @@ fn advance_net_body<const L: usize>(
             for (i, e) in eta.iter_mut().enumerate() {
                 *e = node_water(wbuf, i).0;
             }
+            // The surface moved: the node pass's flags were for still water's.
+            flag_tiles(&x[2], eta, under);
         }
         // SAFETY: `el` is this block's loads in `plan`'s buffers (`load`), and only
         // this loop uses them, one op at a time.
@@ -619,7 +667,7 @@ fn advance_net_body<const L: usize>(
             match op {
                 Op::Elems(p) => {
                     let xs: [&[f64]; 6] = std::array::from_fn(|q| &x[q][..]);
-                    element_tile::<L>(nc, lay, p.clone(), xs, 0, eta, wbuf, work, out);
+                    element_tile::<L>(nc, lay, p.clone(), xs, 0, eta, wbuf, under, work, out);
                 }
                 &Op::Nodes(t) => {
                     let nr = t * NT..((t + 1) * NT).min(n);
@@ -639,6 +687,7 @@ fn advance_net_body<const L: usize>(
                             wbuf,
                             sum,
                             work,
+                            &under[t],
                         )
                     } else {
                         node_pass::<false>(
@@ -653,6 +702,7 @@ fn advance_net_body<const L: usize>(
                             wbuf,
                             sum,
                             work,
+                            &under[t],
                         )
                     };
                     // SAFETY: the next user of this buffer has not started.

@@ -151,6 +151,58 @@ pub(super) unsafe fn element_chunk_net<const WAVES: bool, const UNIFORM: bool, c
         [ld(a[0]), ld(a[1]), ld(a[2]), ld(a[3]), ld(a[4]), ld(a[5])],
         [ld(b[0]), ld(b[1]), ld(b[2]), ld(b[3]), ld(b[4]), ld(b[5])],
     );
+    // SAFETY: the caller's bound.
+    unsafe { element_chunk_ends::<WAVES, UNIFORM, L>(pa, pb, u, un, aw, k, o) }
+}
+
+/// [`element_chunk_net`] for a run's chunk whose ends are read from the block's state
+/// columns `x` (`[x, y, z, vx, vy, vz]`) at nodes `ia .. ia + L` and `ib .. ib + L`:
+/// one base pointer per column for both ends (two indices), where the ends' 12 cut
+/// columns each took a pointer of their own, more than the registers (spilled, a
+/// reload per column and chunk).
+///
+/// # Safety
+/// `ia + L` and `ib + L` at most the length of every column of `x`; `o + L` as for
+/// [`element_chunk_net`] (`u`, `aw`, `k`).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) unsafe fn element_chunk_run<const WAVES: bool, const UNIFORM: bool, const L: usize>(
+    x: [&[f64]; 6],
+    ia: usize,
+    ib: usize,
+    u: [&[f64]; 3],
+    un: [f64; 3],
+    aw: [&[f64]; 3],
+    k: &[&[f64]; 10],
+    o: usize,
+) -> [[f64; L]; 8] {
+    // SAFETY: the caller's bounds.
+    let (pa, pb): ([[f64; L]; 6], [[f64; L]; 6]) = unsafe {
+        (
+            std::array::from_fn(|q| chunk_at::<L>(x[q], ia)),
+            std::array::from_fn(|q| chunk_at::<L>(x[q], ib)),
+        )
+    };
+    // SAFETY: the caller's bound.
+    unsafe { element_chunk_ends::<WAVES, UNIFORM, L>(pa, pb, u, un, aw, k, o) }
+}
+
+/// The rest of [`element_chunk_net`], the ends' state `pa`, `pb` loaded.
+///
+/// # Safety
+/// As [`element_chunk_net`].
+#[inline(always)]
+unsafe fn element_chunk_ends<const WAVES: bool, const UNIFORM: bool, const L: usize>(
+    pa: [[f64; L]; 6],
+    pb: [[f64; L]; 6],
+    u: [&[f64]; 3],
+    un: [f64; 3],
+    aw: [&[f64]; 3],
+    k: &[&[f64]; 10],
+    o: usize,
+) -> [[f64; L]; 8] {
+    // SAFETY: the caller's bound.
+    let ld = |s: &[f64]| unsafe { chunk_at::<L>(s, o) };
     let uc = if UNIFORM {
         [[un[0]; L], [un[1]; L], [un[2]; L]]
     } else {

@@ -4,7 +4,7 @@
 use super::super::consts::ChainConsts;
 use super::super::elements::{chunk_at, overlapped_chunks, put_chunk};
 use super::super::lanes::keep_chunks;
-use super::element_chunks::{element_chunk_net, net_consts, net_inputs_hold};
+use super::element_chunks::{element_chunk_run, net_consts, net_inputs_hold};
 use super::{cut, LoadsOut, NetConsts, Piece, COLS, NT};
 use std::ops::Range;
 
@@ -29,7 +29,9 @@ fn stretches(a0: usize, b0: usize, ne: usize) -> impl Iterator<Item = Range<usiz
 /// what [`super::element_chunks::element_chunks_net`] then [`node_shares`] do, with
 /// the same bits, less 8 stores and 8 loads per chunk). `a`, `b`, `u`, `aw` as for
 /// [`element_chunk_net`], over the piece's elements. Returns false, having done
-/// nothing, when a stretch ([`stretches`]) is shorter than `L`.
+/// nothing, when a stretch ([`stretches`]) is shorter than `L`. `view`: the ends'
+/// first nodes in the state columns `x` that `a`, `b` were cut from (whose columns
+/// the loop reads, through one pointer per column for both ends).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn run_shares<const WAVES: bool, const UNIFORM: bool, const L: usize>(
@@ -41,6 +43,7 @@ pub(super) fn run_shares<const WAVES: bool, const UNIFORM: bool, const L: usize>
     u: [&[f64]; 3],
     un: [f64; 3],
     aw: [&[f64]; 3],
+    view: ([usize; 2], [&[f64]; 6]),
     out: LoadsOut,
 ) -> bool {
     let Some((a0, b0)) = piece.ends else {
@@ -52,9 +55,13 @@ pub(super) fn run_shares<const WAVES: bool, const UNIFORM: bool, const L: usize>
     }
     let (sa, sb) = (eslot[0][e0] as usize, eslot[1][e0] as usize);
     assert!(net_inputs_hold::<WAVES, UNIFORM>(a, b, u, aw, ne));
+    // The ends' state columns from the view's node `xa0` on (`a`'s are the view's
+    // from its node `xa0`, `b`'s from `xb0`), read at two indices.
+    let ([xa0, xb0], x) = view;
+    assert!(x.iter().all(|q| q.len() >= xa0.max(xb0) + ne));
     for ks in stretches(a0, b0, ne) {
         let (k0, len) = (ks.start, ks.len());
-        let (a, b) = (cut(a, ks.clone()), cut(b, ks.clone()));
+        let (ia, ib) = (xa0 + k0, xb0 + k0);
         // (Columns not read, `u` with `UNIFORM` and `aw` in still water, are the
         // scratch's, as long as the piece.)
         let (u, aw) = (cut(u, ks.clone()), cut(aw, ks.clone()));
@@ -77,7 +84,9 @@ pub(super) fn run_shares<const WAVES: bool, const UNIFORM: bool, const L: usize>
             // SAFETY (every chunk): `o + L <= len`, and every column read holds the
             // stretch's `len` entries (the inputs checked above, the constants and
             // the slots cut to it).
-            let r = unsafe { element_chunk_net::<WAVES, UNIFORM, L>(a, b, u, un, aw, &k, o) };
+            let r = unsafe {
+                element_chunk_run::<WAVES, UNIFORM, L>(x, ia + o, ib + o, u, un, aw, &k, o)
+            };
             let s = fold_chunk::<L>(
                 [r[0], r[1], r[2]],
                 r[7],

@@ -1,7 +1,9 @@
 //! The network path's node pass over one tile of nodes: the point loads, the node loop
 //! (each node's slots summed in incidence order, the seabed, the 3x3 solve; vectorised
 //! over nodes), held nodes' routes, then the symplectic update and the limits check in
-//! one loop.
+//! one loop, which also finds whether the tile's nodes end the step at or below still
+//! water's surface (the tile's flag, which spares the element pass its test of a run:
+//! [`super::NetScratch::under`]).
 
 use super::super::consts::ChainConsts;
 use super::super::nodes::{
@@ -13,6 +15,7 @@ use crate::math::{Sym3, V3};
 use crate::model::Layout;
 use crate::options::SolverOptions;
 use std::ops::Range;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The entries of `list` (sorted by node, its first field) whose node is in `nr`.
 fn listed<'a, T>(list: &'a [T], node: impl Fn(&T) -> usize, nr: &Range<usize>) -> &'a [T] {
@@ -23,8 +26,10 @@ fn listed<'a, T>(list: &'a [T], node: impl Fn(&T) -> usize, nr: &Range<usize>) -
 
 /// The node pass over the nodes `nr` of one tile (`x`: their state, updated in place
 /// by a symplectic step of `dt`), reading what the elements add to them from the
-/// tile's buffer `sum` ([`Loads`]); `eta`, `w` over the whole block. Returns the
-/// block-local index of the first node whose new state is over the limits.
+/// tile's buffer `sum` ([`Loads`]); `eta`, `w` over the whole block. Sets `under`
+/// (the tile's flag of [`super::NetScratch::under`]) to whether every new `z` is at or
+/// below zero. Returns the block-local index of the first node whose new state is over
+/// the limits.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn node_pass<const FRICTION: bool>(
@@ -39,6 +44,7 @@ pub(super) fn node_pass<const FRICTION: bool>(
     w: &[f64],
     sum: &[f64],
     g: &mut Work,
+    under: &AtomicBool,
 ) -> Option<usize> {
     let c = &nc.c;
     let n0 = nr.start;
@@ -122,15 +128,19 @@ pub(super) fn node_pass<const FRICTION: bool>(
     let [px, py, pz, vx, vy, vz] = x;
     let [ax, ay, az] = g.acc.each_ref().map(|q| &q[..]);
     let (rmax, vmax) = (opts.max_distance, opts.max_speed);
-    if update_over(px, py, pz, vx, vy, vz, ax, ay, az, dt, rmax, vmax) == 0 {
+    let (bad, above) = update_over(px, py, pz, vx, vy, vz, ax, ay, az, dt, rmax, vmax);
+    // Read by the next step's element pass (after the barriers when threaded).
+    under.store(above == 0, Ordering::Relaxed);
+    if bad == 0 {
         return None;
     }
     first_bad([&*px, &*py, &*pz, &*vx, &*vy, &*vz], opts)
 }
 
 /// The symplectic update of a tile's nodes (`v += a dt`, then `p += v dt`, per
-/// coordinate), and the count of nodes whose new state is non-finite or over the
-/// limits (`rmax` on each coordinate, `vmax` on each velocity component), in one loop:
+/// coordinate), the count of nodes whose new state is non-finite or over the limits
+/// (`rmax` on each coordinate, `vmax` on each velocity component), and the count of
+/// those whose new `z` is not at or below zero (still water's surface), in one loop:
 /// the new state is checked while still in registers. Every array its own parameter:
 /// no run-time overlap checks before the vector loop.
 #[inline(always)]
@@ -148,7 +158,7 @@ fn update_over(
     dt: f64,
     rmax: f64,
     vmax: f64,
-) -> usize {
+) -> (usize, usize) {
     let n = px.len();
     let (py, pz, vx, vy, vz) = (
         &mut py[..n],
@@ -158,7 +168,7 @@ fn update_over(
         &mut vz[..n],
     );
     let (ax, ay, az) = (&ax[..n], &ay[..n], &az[..n]);
-    let mut bad = 0usize;
+    let (mut bad, mut above) = (0usize, 0usize);
     for i in 0..n {
         vx[i] += ax[i] * dt;
         px[i] += vx[i] * dt;
@@ -174,8 +184,9 @@ fn update_over(
             & (vy[i].abs() < vmax)
             & (vz[i].abs() < vmax);
         bad += (!ok) as usize;
+        above += (!(pz[i] <= 0.0)) as usize;
     }
-    bad
+    (bad, above)
 }
 
 /// The first node whose state is non-finite or over the limits (searched only once

@@ -9,8 +9,13 @@
 //! twines of several elements break them. A run also keeps each end in one slot of
 //! its nodes (the place in their incidence lists), so that it writes what it adds to
 //! them with vector stores: a net's first twine of a row, whose node a has no twine
-//! before it, starts a new run.
+//! before it, starts a new run. A run is cut where its node a enters a new tile of
+//! [`NT`] nodes, as the step's plan would cut it (it gives each tile's elements to the
+//! tile's group): a net's long run of twines between rows, cut every [`TILE`] elements
+//! from its start, was cut again by the plan into twice as many pieces, each with its
+//! set-up (about 340 instructions).
 
+use super::NT;
 use std::ops::Range;
 
 /// Elements per piece: the piece's scratch stays in the core's own cache (a net cage's
@@ -45,7 +50,8 @@ impl Piece {
 }
 
 /// Cuts elements with block-local ends `ea`, `eb`, in slots `sa`, `sb` of them, into
-/// pieces, in element order.
+/// pieces, in element order: a run's pieces end where its node a reaches a multiple
+/// of [`NT`] (so at most [`TILE`] long).
 pub fn pieces(ea: &[u32], eb: &[u32], sa: &[u8], sb: &[u8]) -> Vec<Piece> {
     let ne = ea.len();
     let next = |j: usize| {
@@ -64,11 +70,15 @@ pub fn pieces(ea: &[u32], eb: &[u32], sa: &[u8], sb: &[u8]) -> Vec<Piece> {
         }
         if j - k >= MIN_RUN {
             gathered(&mut out, pending..k);
-            for s in (k..j).step_by(TILE) {
+            let mut s = k;
+            while s < j {
+                let a = ea[s] as usize;
+                let e = j.min(s + TILE).min(s + NT - a % NT);
                 out.push(Piece {
-                    elems: s..(s + TILE).min(j),
-                    ends: Some((ea[s] as usize, eb[s] as usize)),
+                    elems: s..e,
+                    ends: Some((a, eb[s] as usize)),
                 });
+                s = e;
             }
             pending = j;
         }

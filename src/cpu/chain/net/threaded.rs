@@ -10,7 +10,7 @@ use crate::math::V3;
 use crate::model::Layout;
 use crate::options::SolverOptions;
 use crate::step::{diverged, StepFailure};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 /// Raw views of the state and element loads shared by the threads of
 /// [`advance_net_threaded`]. Within each phase of a step every element and every node
@@ -54,12 +54,12 @@ pub(crate) fn advance_net_threaded(
     let (n, ne) = (nc.n(), nc.ne());
     let plan = plan(n, nc.width, &nc.ends[0], &nc.ends[1], &nc.pieces, threads);
     load(nc, &plan, sc, r, v);
-    let NetScratch { x, eta, el, .. } = sc;
+    let NetScratch { x, eta, el, under, .. } = sc;
     let sh = Shared {
         x: x.each_mut().map(|q| q.as_mut_ptr()),
         sum: el.start(),
     };
-    let eta: &[f64] = eta;
+    let (eta, under): (&[f64], &[_]) = (eta, under);
     let barrier = SpinBarrier::new(threads);
     // Lowest failing node of the current step (usize::MAX: none yet).
     let failed = AtomicUsize::new(usize::MAX);
@@ -74,7 +74,8 @@ pub(crate) fn advance_net_threaded(
         // has its own tiles and elements (each element has one node a).
         unsafe {
             step_threads(
-                nc, lay, opts, sh, &barrier, &failed, plan, tid, eta, &mut g, step0, dt, nsteps,
+                nc, lay, opts, sh, &barrier, &failed, plan, tid, eta, under, &mut g, step0, dt,
+                nsteps,
             )
         }
     };
@@ -112,6 +113,7 @@ unsafe fn step_threads(
     plan: &Plan,
     tid: usize,
     eta: &[f64],
+    under: &[AtomicBool],
     g: &mut Work,
     step0: u64,
     dt: f64,
@@ -124,7 +126,7 @@ unsafe fn step_threads(
             // the body's.
             return unsafe {
                 step_threads_avx512(
-                    nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
+                    nc, lay, opts, sh, barrier, failed, plan, tid, eta, under, g, step0, dt, nsteps,
                 )
             };
         }
@@ -132,13 +134,13 @@ unsafe fn step_threads(
             // SAFETY: the CPU has AVX2, checked just above; the rest as the body's.
             return unsafe {
                 step_threads_avx2(
-                    nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
+                    nc, lay, opts, sh, barrier, failed, plan, tid, eta, under, g, step0, dt, nsteps,
                 )
             };
         }
     }
     step_threads_body::<4>(
-        nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
+        nc, lay, opts, sh, barrier, failed, plan, tid, eta, under, g, step0, dt, nsteps,
     )
 }
 
@@ -155,13 +157,14 @@ unsafe fn step_threads_avx2(
     plan: &Plan,
     tid: usize,
     eta: &[f64],
+    under: &[AtomicBool],
     g: &mut Work,
     step0: u64,
     dt: f64,
     nsteps: u64,
 ) -> Option<f64> {
     step_threads_body::<4>(
-        nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
+        nc, lay, opts, sh, barrier, failed, plan, tid, eta, under, g, step0, dt, nsteps,
     )
 }
 
@@ -179,13 +182,14 @@ unsafe fn step_threads_avx512(
     plan: &Plan,
     tid: usize,
     eta: &[f64],
+    under: &[AtomicBool],
     g: &mut Work,
     step0: u64,
     dt: f64,
     nsteps: u64,
 ) -> Option<f64> {
     step_threads_body::<8>(
-        nc, lay, opts, sh, barrier, failed, plan, tid, eta, g, step0, dt, nsteps,
+        nc, lay, opts, sh, barrier, failed, plan, tid, eta, under, g, step0, dt, nsteps,
     )
 }
 
@@ -205,6 +209,7 @@ unsafe fn step_threads_body<const L: usize>(
     plan: &Plan,
     tid: usize,
     eta: &[f64],
+    under: &[AtomicBool],
     g: &mut Work,
     step0: u64,
     dt: f64,
@@ -225,9 +230,9 @@ unsafe fn step_threads_body<const L: usize>(
             sh.x.map(|p| unsafe { std::slice::from_raw_parts_mut(p.add(nr.start), nr.len()) });
         let sum = unsafe { out.tile(t) };
         let bad = if nc.c.friction {
-            node_pass::<true>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], sum, g)
+            node_pass::<true>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], sum, g, &under[t])
         } else {
-            node_pass::<false>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], sum, g)
+            node_pass::<false>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], sum, g, &under[t])
         };
         unsafe { out.clear(&plan.clear[t]) };
         if let Some(j) = bad {
@@ -248,7 +253,8 @@ unsafe fn step_threads_body<const L: usize>(
                         std::slice::from_raw_parts(p.add(reach.start) as *const f64, reach.len())
                     });
                     let eta = &eta[reach.clone()];
-                    element_tile::<L>(nc, lay, p.clone(), xs, reach.start, eta, &[], g, out);
+                    let (p, base) = (p.clone(), reach.start);
+                    element_tile::<L>(nc, lay, p, xs, base, eta, &[], under, g, out);
                 }
                 &Op::Nodes(t) => update(t, time, g),
             }
