@@ -486,7 +486,7 @@ fn columns_body<const FMA: bool, const RATES: bool>(
     // The seabed's reflection `e2` is below round-off (`2 k (zs + h) > 39`) from the
     // first component that passes that test on (`k` ascending, `zs + h >= 0`): a
     // suffix, which the second loop leaves it out of (the same bits: `e1 + 0.0`).
-    // Near the surface in 320 m of water that is every wave shorter than 10 s
+    // Near the surface in 320 m of water that is every wave shorter than 8 s
     // (`k > 0.061`), two thirds of the design member's sea. Components not sorted
     // by `k`, or a NaN height, keep all in the first loop, as before.
     let reach_bed = if cols.k_ascending {
