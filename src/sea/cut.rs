@@ -6,7 +6,10 @@
 //! everything from it to the end ([`decay_cut_bounds`]); the decay pass then sums a
 //! prefix, whose length [`wave_decay_prefix`] finds by bisection (WGSL twin of the
 //! same name in `shaders/shared/waves.wgsl`). The elevation pass stays whole: an
-//! error in `eta` would move `zs`, and with it the decay of the waves that are kept.
+//! error in `eta` would move `zs`, and with it the decay of the waves that are kept;
+//! a bound in this style allows too little of it to pay (on the design member, not
+//! one component above 250 m: `scripts/elevation_cut_bound.py`, and
+//! docs/src/sea_states.md, "Why the elevation pass is not cut").
 //!
 //! The bound. With `s = |v_h| + |zs'|` (the node's horizontal speed and the rate of
 //! its evaluation depth) and `r'` the ramp's rate, the components `i >= j` dropped

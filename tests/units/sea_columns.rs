@@ -141,3 +141,55 @@ fn rates_columns_match_the_scalar_reference() {
     }
     assert_eq!(checked, 16);
 }
+
+/// The four lane sums in one AVX register give the bits of the plain four-lane sum
+/// (lengths that are and are not multiples of four, values of mixed sign and size,
+/// so that the order of additions shows); skipped, with a note, without AVX.
+#[test]
+fn lane_sums_in_a_register_give_the_same_bits() {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    for n in 0..70 {
+        let v: Vec<f64> = (0..n)
+            .map(|_| rng.gen_range(-1.0..1.0) * 10f64.powi(rng.gen_range(-8..8)))
+            .collect();
+        let Some(wide) = sum_lanes_wide(&v) else {
+            eprintln!("no AVX here: only the plain lane sum runs");
+            return;
+        };
+        assert_eq!(wide.to_bits(), sum_lanes(&v).to_bits(), "{n} values");
+    }
+}
+
+/// The decay pass that leaves the seabed term out of the components whose term is
+/// below round-off (a suffix, `k` ascending) gives the same bits as the one that
+/// computes it for every component and selects 0: from the surface, where most of
+/// the components drop it, to the seabed, where none does, in finite and infinite
+/// depth, values and rates.
+#[test]
+fn the_seabed_term_left_out_gives_the_same_bits() {
+    for h in [320.0, 60.0, f64::INFINITY] {
+        let mut comps = packed(203, h, 11);
+        comps.sort_by(|a, b| a.k.total_cmp(&b.k));
+        cablesim::sea::cut::decay_cut_bounds(&mut comps, 1e-3);
+        let split = ComponentColumns::new(&comps);
+        let whole = split.clone().without_order();
+        let (mut s1, mut s2) = (KinematicsScratch::default(), KinematicsScratch::default());
+        let bottom = if h.is_finite() { -h } else { -400.0 };
+        for i in 0..=40 {
+            let z = 1.0 + (bottom - 1.0) * i as f64 / 40.0;
+            for stretching in [Stretching::Wheeler, Stretching::Constant] {
+                let (p, v) = ([2.0 * i as f64, -5.0, z], [0.4, -0.3, 0.2]);
+                let a = wave_kinematics_rates_columns(
+                    &split, h, stretching, 0.9, 0.01, p, v, 23.0, &mut s1,
+                );
+                let b = wave_kinematics_rates_columns(
+                    &whole, h, stretching, 0.9, 0.01, p, v, 23.0, &mut s2,
+                );
+                assert_eq!(a, b, "h {h}, z {z}");
+                let a = wave_kinematics_columns(&split, h, stretching, 0.9, p, 23.0, &mut s1);
+                let b = wave_kinematics_columns(&whole, h, stretching, 0.9, p, 23.0, &mut s2);
+                assert_eq!(a, b, "values, h {h}, z {z}");
+            }
+        }
+    }
+}
