@@ -4,7 +4,7 @@
 //! buoyancy, and the wetted half added masses into the padded element columns.
 
 use super::consts::ChainConsts;
-use super::lanes::{chunks_for, keep_chunks, lanes, lanes_mut, lanes_next};
+use super::lanes::{chunks_for, col, keep_chunks, lanes, lanes_next, ColumnsView, Stride};
 use crate::cpu::water::node_water;
 use crate::model::Current;
 use crate::physics::wetted_fraction;
@@ -48,26 +48,27 @@ impl UniformLine {
     }
 }
 
-/// Element pass over SoA positions and velocities `p`, currents `u`. `under`: whether
+/// Element pass over SoA positions and velocities `p`, currents `u`, into the padded
+/// element columns of the block `wv` (tangents, tensions, forces: module
+/// [`super::lanes`]'s `col`) and `haw`. `under`: whether
 /// every node is known to be at or below the surface `eta` (else found here). Returns
 /// whether it was: then the wetted half added masses are the block's `c.ha`, and
 /// `haw` is not written. `uni`: the block's uniform line in still water, if it is one
 /// (then `u` is not read).
 ///
 /// # Safety
-/// Every column of `c`, `p`, `u`, `aw`, `eta`, `t`, `ten`, `f` and `haw` has at
-/// least [`super::lanes::padded_len`]`(c.n)` entries (module [`super::lanes`]), and `L` is 4 or 8.
+/// Every column of `c`, `p`, `u`, `aw`, `eta`, `wv` and `haw` has at least
+/// [`super::lanes::padded_len`]`(c.n)` entries (module [`super::lanes`]), no slice of
+/// `wv`'s columns lives during the call, and `L` is 4 or 8.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
+pub(super) unsafe fn elements<const WAVES: bool, const L: usize, St: Stride>(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
     aw: &[Vec<f64>; 3],
     eta: &[f64],
-    t: &mut [Vec<f64>; 3],
-    ten: &mut [f64],
-    f: &mut [Vec<f64>; 3],
+    wv: &ColumnsView<'_, St>,
     haw: &mut [f64],
     under: Option<bool>,
     uni: Option<&UniformLine>,
@@ -94,23 +95,31 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
         // SAFETY: the caller's columns, as this function's.
         unsafe {
             match uni {
-                Some(k) if !WAVES => element_chunks::<WAVES, true, L>(c, p, u, aw, t, ten, f, k),
-                _ => element_chunks::<WAVES, false, L>(
+                Some(k) if !WAVES => element_chunks::<WAVES, true, L, St>(c, p, u, aw, wv, k),
+                _ => element_chunks::<WAVES, false, L, St>(
                     c,
                     p,
                     u,
                     aw,
-                    t,
-                    ten,
-                    f,
+                    wv,
                     &UniformLine::default(),
                 ),
             }
         };
         return true;
     }
-    let [tx, ty, tz] = t;
-    let [fx, fy, fz] = f;
+    // SAFETY: seven distinct columns of the block, reached only here.
+    let (tx, ty, tz, ten, fx, fy, fz) = unsafe {
+        (
+            wv.col_mut(col::TX),
+            wv.col_mut(col::TX + 1),
+            wv.col_mut(col::TX + 2),
+            wv.col_mut(col::TEN),
+            wv.col_mut(col::FX),
+            wv.col_mut(col::FX + 1),
+            wv.col_mut(col::FX + 2),
+        )
+    };
     element_kernel::<WAVES, false>(
         [
             &p[0][..ne],
@@ -390,14 +399,12 @@ pub(super) fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
 /// As [`elements`].
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize>(
+unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize, St: Stride>(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
     aw: &[Vec<f64>; 3],
-    t: &mut [Vec<f64>; 3],
-    ten: &mut [f64],
-    f: &mut [Vec<f64>; 3],
+    wv: &ColumnsView<'_, St>,
     k: &UniformLine,
 ) {
     let ne = c.l0.len();
@@ -414,9 +421,11 @@ unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize>(
             unsafe { lanes_next::<L>($s, nc) }
         };
     }
+    // The block's columns from padded element 1 on: one base register, constant
+    // displacements with a fixed stride. SAFETY: as above; written only here.
     macro_rules! out {
-        ($s:expr) => {
-            unsafe { lanes_mut::<L>($s, 1, nc) }
+        ($q:expr) => {
+            unsafe { wv.lanes_mut::<L>($q, 1, nc) }
         };
     }
     let (xa, ya, za, vxa, vya, vza) = (
@@ -445,11 +454,9 @@ unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const L: usize>(
         at!(&c.half_bz),
     );
     let hfk = at!(&c.half_fk);
-    let [tx, ty, tz] = t;
-    let [fx, fy, fz] = f;
-    let (tx, ty, tz) = (out!(tx), out!(ty), out!(tz));
-    let (fx, fy, fz) = (out!(fx), out!(fy), out!(fz));
-    let ten = out!(ten);
+    let (tx, ty, tz) = (out!(col::TX), out!(col::TX + 1), out!(col::TX + 2));
+    let (fx, fy, fz) = (out!(col::FX), out!(col::FX + 1), out!(col::FX + 2));
+    let ten = out!(col::TEN);
     for j in 0..nc {
         keep_chunks();
         // Every input into locals first, then every output: no overlap to check.
