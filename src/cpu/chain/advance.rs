@@ -7,8 +7,8 @@
 use super::consts::ChainConsts;
 use super::elements::{add_waves, currents, elements, UniformLine};
 use super::lanes::{
-    chunks_for, col, keep_chunks, lanes_mut, padded_len, Columns, ColumnsView, Dyn, Fixed,
-    Stride, SHORT_STRIDE,
+    chunks_for, col, keep_chunks, lanes_mut, padded_len, Columns, ColumnsView, Dyn, Fixed, Stride,
+    SHORT_STRIDE,
 };
 use super::nodes::{nodes, point_surface, Masses};
 use super::winch::{ale_constants, ale_tension, AleScratch};

@@ -96,14 +96,9 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize, St: Stride>(
         unsafe {
             match uni {
                 Some(k) if !WAVES => element_chunks::<WAVES, true, L, St>(c, p, u, aw, wv, k),
-                _ => element_chunks::<WAVES, false, L, St>(
-                    c,
-                    p,
-                    u,
-                    aw,
-                    wv,
-                    &UniformLine::default(),
-                ),
+                _ => {
+                    element_chunks::<WAVES, false, L, St>(c, p, u, aw, wv, &UniformLine::default())
+                }
             }
         };
         return true;

@@ -188,7 +188,12 @@ impl<'a, St: Stride> ColumnsView<'a, St> {
     /// # Safety
     /// As [`ColumnsView::col`], and `nc * L + off` entries fit in the stride.
     #[inline(always)]
-    pub(super) unsafe fn lanes<const L: usize>(&self, q: usize, off: usize, nc: usize) -> &'a [[f64; L]] {
+    pub(super) unsafe fn lanes<const L: usize>(
+        &self,
+        q: usize,
+        off: usize,
+        nc: usize,
+    ) -> &'a [[f64; L]] {
         debug_assert!(nc * L + off <= self.st.get(), "chunks past the column");
         // SAFETY: the caller's bounds; `[f64; L]` has the layout of `L` consecutive f64.
         unsafe { std::slice::from_raw_parts(self.base.add(q * self.st.get() + off).cast(), nc) }
