@@ -6,7 +6,10 @@
 
 use super::consts::ChainConsts;
 use super::elements::{add_waves, currents, elements, elements_fused, UniformLine};
-use super::lanes::{chunks_for, keep_chunks, lanes, lanes_mut, padded_len};
+use super::lanes::{
+    chunks_for, col, keep_chunks, lanes_mut, padded_len, Columns, ColumnsView, Dyn, Fixed, Stride,
+    SHORT_STRIDE,
+};
 use super::nodes::{nodes, point_surface, Masses};
 use super::winch::{ale_constants, ale_tension, AleScratch};
 use crate::ale::AleElem;
@@ -23,8 +26,10 @@ pub(crate) struct ChainScratch {
     xs: [Vec<f64>; 6],
     x0: [Vec<f64>; 6],
     sum: [Vec<f64>; 6],
-    a: [Vec<f64>; 3],
     w: Work,
+    /// The per-stage results the node loop reads and the accelerations it writes, in
+    /// one block (module [`super::lanes`]'s `col`).
+    wb: Columns,
     /// The block's constants with their columns padded to whole chunks of lanes,
     /// which a winch cable's variable elements change every stage; and what the run
     /// keeps about those.
@@ -40,19 +45,8 @@ struct Work {
     aw: [Vec<f64>; 3],
     // Surface elevation over each node, m (zero in still water).
     eta: Vec<f64>,
-    // Padded element results; `haw` the half normal added masses times the elements'
-    // wetted fractions.
-    t: [Vec<f64>; 3],
-    ten: Vec<f64>,
-    f: [Vec<f64>; 3],
+    // The half normal added masses of the padded elements times their wetted fractions.
     haw: Vec<f64>,
-    // Per node: point mass and point weight less buoyancy, less what a point mass
-    // partly out of the water loses.
-    pm: Vec<f64>,
-    pwz: Vec<f64>,
-    // Per node: the extra forces (point drag, water acceleration of a point, mass flow)
-    // that the node loop adds before its solve; zero but at the few nodes that have them.
-    xf: [Vec<f64>; 3],
 }
 
 fn resize(v: &mut [Vec<f64>], n: usize) {
@@ -70,22 +64,17 @@ fn resize(v: &mut [Vec<f64>], n: usize) {
 /// it then need not make: [`elements`]), in one loop.
 ///
 /// # Safety
-/// Every column of `x` and `a` has at least `nc * L` entries.
+/// Every column of `x` and `wv`'s accelerations has at least `nc * L` entries.
 #[inline(always)]
-unsafe fn symplectic_update<const L: usize>(
+unsafe fn symplectic_update<const L: usize, St: Stride>(
     x: &mut [Vec<f64>; 6],
-    a: &[Vec<f64>; 3],
+    wv: &ColumnsView<'_, St>,
     nc: usize,
     dt: f64,
     vmax: f64,
     rmax: f64,
 ) -> (usize, bool) {
     // SAFETY (every use): the caller's columns.
-    macro_rules! at {
-        ($s:expr) => {
-            unsafe { lanes::<L>($s, nc) }
-        };
-    }
     macro_rules! out {
         ($s:expr) => {
             unsafe { lanes_mut::<L>($s, 0, nc) }
@@ -94,7 +83,14 @@ unsafe fn symplectic_update<const L: usize>(
     let [px, py, pz, vx, vy, vz] = x;
     let (px, py, pz) = (out!(px), out!(py), out!(pz));
     let (vx, vy, vz) = (out!(vx), out!(vy), out!(vz));
-    let (ax, ay, az) = (at!(&a[0]), at!(&a[1]), at!(&a[2]));
+    // SAFETY: the accelerations, only read here.
+    let (ax, ay, az) = unsafe {
+        (
+            wv.lanes::<L>(col::AX, 0, nc),
+            wv.lanes::<L>(col::AX + 1, 0, nc),
+            wv.lanes::<L>(col::AX + 2, 0, nc),
+        )
+    };
     let mut bad = [0usize; L];
     let mut under = [true; L];
     for i in 0..nc {
@@ -273,20 +269,27 @@ fn advance_chain_body<const L: usize>(
     dt: f64,
     nsteps: u64,
 ) -> Result<(), StepFailure> {
-    if c.friction {
-        advance_chain_scheme::<true, L>(
-            c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
-        )
-    } else {
-        advance_chain_scheme::<false, L>(
-            c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
-        )
+    // A short chain's block at the fixed stride (its columns at constant offsets from
+    // one base register), a long one's at its padded length.
+    let len = padded_len(c.n);
+    macro_rules! scheme {
+        ($friction:literal, $st:expr) => {
+            advance_chain_scheme::<$friction, L, _>(
+                c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps, $st,
+            )
+        };
+    }
+    match (c.friction, len <= SHORT_STRIDE) {
+        (true, true) => scheme!(true, Fixed::<SHORT_STRIDE>),
+        (true, false) => scheme!(true, Dyn(len)),
+        (false, true) => scheme!(false, Fixed::<SHORT_STRIDE>),
+        (false, false) => scheme!(false, Dyn(len)),
     }
 }
 
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
+fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
     c: &ChainConsts,
     lay: &Layout,
     opts: &SolverOptions,
@@ -300,6 +303,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
     step0: u64,
     dt: f64,
     nsteps: u64,
+    st: St,
 ) -> Result<(), StepFailure> {
     let n = c.n;
     let nc = chunks_for::<L>(n);
@@ -311,18 +315,21 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
     let len = padded_len(n);
     sc.wc.copy_padded_from(c, len);
     resize(&mut sc.x, len);
-    resize(&mut sc.a, len);
-    resize(&mut sc.w.t, len);
-    resize(&mut sc.w.f, len);
     resize(&mut sc.w.u, len);
     resize(&mut sc.w.aw, len);
-    resize(&mut sc.w.xf, len);
-    for v in [&mut sc.w.ten, &mut sc.w.eta, &mut sc.w.haw] {
+    for v in [&mut sc.w.eta, &mut sc.w.haw] {
         v.clear();
         v.resize(len, 0.0);
     }
-    sc.w.pm.clone_from(&sc.wc.pm);
-    sc.w.pwz.clone_from(&sc.wc.pwz);
+    // `st` is `len` or more (the caller's choice).
+    sc.wb.reset(col::COUNT, st.get());
+    {
+        let wv = sc.wb.view(st);
+        // SAFETY: two distinct columns of the block, reached only here.
+        let (pm, pwz) = unsafe { (wv.col_mut(col::PM), wv.col_mut(col::PWZ)) };
+        pm[..len].copy_from_slice(&sc.wc.pm[..len]);
+        pwz[..len].copy_from_slice(&sc.wc.pwz[..len]);
+    }
     if opts.scheme != Scheme::Symplectic {
         resize(&mut sc.xs, len);
         resize(&mut sc.x0, len);
@@ -346,19 +353,22 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
         xs,
         x0,
         sum,
-        a,
         w: wk,
         wc,
         ale: asc,
+        wb,
     } = sc;
+    // One view of the block for the run: its columns from one base pointer (constant
+    // offsets with a fixed stride).
+    let wv = wb.view(st);
     // A function, not a closure: closures are not inlined into the AVX2 caller and
     // would be compiled for the baseline target.
     //
-    // Safety: every column of `wc`, `state`, `sc` and `a` has at least
-    // `padded_len(wc.n)` entries.
+    // Safety: every column of `wc`, `state`, `sc` and `wv` has at least
+    // `padded_len(wc.n)` entries, and no slice of `wv`'s columns lives during the call.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    unsafe fn eval<const FRICTION: bool, const L: usize>(
+    unsafe fn eval<const FRICTION: bool, const L: usize, St: Stride>(
         wc: &mut ChainConsts,
         asc: &mut AleScratch,
         lay: &Layout,
@@ -372,20 +382,9 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
         waves: &mut Option<&mut BlockWaves>,
         wbuf: &mut Water,
         sc: &mut Work,
-        a: &mut [Vec<f64>; 3],
+        wv: &ColumnsView<'_, St>,
     ) {
-        let Work {
-            u,
-            aw,
-            eta,
-            t,
-            ten,
-            f,
-            haw,
-            pm,
-            pwz,
-            xf,
-        } = sc;
+        let Work { u, aw, eta, haw } = sc;
         // Winch cables: the variable elements' constants at this time.
         if !ale.is_empty() {
             // SAFETY: `asc` was prepared for this block, and `wc`'s columns are padded.
@@ -410,7 +409,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                 wb.fill(time, c.n, st, wbuf);
                 add_waves(c.l0.len(), wbuf, u, aw, eta);
                 // SAFETY: the caller's columns.
-                unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, None, None) }
+                unsafe { elements::<true, L, St>(c, state, u, aw, eta, wv, haw, None, None) }
             } else {
                 // The per-node values are needed only by the point masses' loads
                 // (`nodes`); the elements read the cache's columns.
@@ -425,27 +424,26 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                     currents(c, &lay.currents, state, u);
                 }
                 // SAFETY: the caller's columns; the cache's are padded.
-                if cols.unit && unsafe { elements_fused::<L>(c, state, &cols, u, eta, t, ten, f, wuni) } {
+                if cols.unit && unsafe { elements_fused::<L, St>(c, state, &cols, u, eta, wv, wuni) } {
                     true
                 } else {
                     cols.fill(c.n, eta, !cols.unit, u, c.uniform, aw);
                     let under = cols.unit.then_some(false);
                     // SAFETY: the caller's columns.
-                    unsafe { elements::<true, L>(c, state, u, aw, eta, t, ten, f, haw, under, None) }
+                    unsafe { elements::<true, L, St>(c, state, u, aw, eta, wv, haw, under, None) }
                 }
             }
         } else {
             // SAFETY: the caller's columns.
-            unsafe { elements::<false, L>(c, state, u, aw, eta, t, ten, f, haw, under, uni) }
+            unsafe { elements::<false, L, St>(c, state, u, aw, eta, wv, haw, under, uni) }
         };
-        // SAFETY: as `ale_constants`.
-        unsafe { ale_tension(asc, state, ten) };
-        point_surface(c, state, eta, pm, pwz);
+        // SAFETY: as `ale_constants`; the tensions' column, reached only here.
+        unsafe { ale_tension(asc, state, wv.col_mut(col::TEN)) };
+        // SAFETY: two distinct columns of the block, reached only here.
+        unsafe { point_surface(c, state, eta, wv.col_mut(col::PM), wv.col_mut(col::PWZ)) };
         let m = Masses {
             eta,
             w: wbuf,
-            pm,
-            pwz,
             hm: &c.hm,
             // Every element wholly wet: the block's half added masses, bit for bit.
             ha: if wholly_wet { &c.ha } else { haw },
@@ -453,7 +451,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
             cl: &c.cl,
             mukl: &c.mukl,
         };
-        nodes::<FRICTION, L>(c, lay, opts, time, state, t, ten, f, &m, asc, xf, a);
+        unsafe { nodes::<FRICTION, L, St>(c, lay, opts, time, state, &m, asc, wv) };
     }
     let mut result = Ok(());
     let mut bad = 0;
@@ -475,24 +473,30 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
             let time = (step0 + k) as f64 * dt;
             match opts.scheme {
                 Scheme::Symplectic => {
-                    eval::<FRICTION, L>(
-                        wc, asc, lay, opts, ale, x, time, under, uni, wuni, &mut waves, wbuf, wk, a,
+                    eval::<FRICTION, L, St>(
+                        wc, asc, lay, opts, ale, x, time, under, uni, wuni, &mut waves, wbuf, wk, &wv,
                     );
-                    let (b, u) =
-                        symplectic_update::<L>(x, a, nc, dt, opts.max_speed, opts.max_distance);
+                    let (b, u) = symplectic_update::<L, St>(
+                        x,
+                        &wv,
+                        nc,
+                        dt,
+                        opts.max_speed,
+                        opts.max_distance,
+                    );
                     bad = b;
                     under = still.then_some(u);
                 }
                 Scheme::Rk2 => {
                     let h = 0.5 * dt;
-                    eval::<FRICTION, L>(
-                        wc, asc, lay, opts, ale, x, time, None, uni, wuni, &mut waves, wbuf, wk, a,
+                    eval::<FRICTION, L, St>(
+                        wc, asc, lay, opts, ale, x, time, None, uni, wuni, &mut waves, wbuf, wk, &wv,
                     );
                     for q in 0..3 {
                         xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
-                        xpvh(&mut xs[3 + q][..n], &x[3 + q], &a[q], h);
+                        xpvh(&mut xs[3 + q][..n], &x[3 + q], wv.col(col::AX + q), h);
                     }
-                    eval::<FRICTION, L>(
+                    eval::<FRICTION, L, St>(
                         wc,
                         asc,
                         lay,
@@ -506,12 +510,12 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                         &mut waves,
                         wbuf,
                         wk,
-                        a,
+                        &wv,
                     );
                     let (pos, vel) = x.split_at_mut(3);
                     for q in 0..3 {
                         axpy(&mut pos[q][..n], &xs[3 + q], dt);
-                        axpy(&mut vel[q][..n], &a[q], dt);
+                        axpy(&mut vel[q][..n], wv.col(col::AX + q), dt);
                     }
                 }
                 Scheme::Rk4 => {
@@ -526,7 +530,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                             .into_iter()
                             .enumerate()
                     {
-                        eval::<FRICTION, L>(
+                        eval::<FRICTION, L, St>(
                             wc,
                             asc,
                             lay,
@@ -540,15 +544,16 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize>(
                             &mut waves,
                             wbuf,
                             wk,
-                            a,
+                            &wv,
                         );
                         let (spos, svel) = xs.split_at_mut(3);
                         for q in 0..3 {
+                            let aq = wv.col(col::AX + q);
                             axpy(&mut sum[q][..n], &svel[q], w);
-                            axpy(&mut sum[3 + q][..n], &a[q], w);
+                            axpy(&mut sum[3 + q][..n], aq, w);
                             if stage < 3 {
                                 xpvh(&mut spos[q][..n], &x0[q], &svel[q], next);
-                                xpvh(&mut svel[q][..n], &x0[3 + q], &a[q], next);
+                                xpvh(&mut svel[q][..n], &x0[3 + q], aq, next);
                             }
                         }
                     }

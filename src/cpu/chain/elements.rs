@@ -4,7 +4,9 @@
 //! buoyancy, and the wetted half added masses into the padded element columns.
 
 use super::consts::ChainConsts;
-use super::lanes::{chunks_for, keep_chunks, lanes, lanes_mut, lanes_next};
+use super::lanes::{
+    chunks_for, col, keep_chunks, lanes, lanes_mut, lanes_next, ColumnsView, Stride,
+};
 use crate::cpu::water::{hermite_at, node_water, ChainCols};
 use crate::model::Current;
 use crate::physics::wetted_fraction;
@@ -48,26 +50,27 @@ impl UniformLine {
     }
 }
 
-/// Element pass over SoA positions and velocities `p`, currents `u`. `under`: whether
+/// Element pass over SoA positions and velocities `p`, currents `u`, into the padded
+/// element columns of the block `wv` (tangents, tensions, forces: module
+/// [`super::lanes`]'s `col`) and `haw`. `under`: whether
 /// every node is known to be at or below the surface `eta` (else found here). Returns
 /// whether it was: then the wetted half added masses are the block's `c.ha`, and
 /// `haw` is not written. `uni`: the block's uniform line in still water, if it is one
 /// (then `u` is not read).
 ///
 /// # Safety
-/// Every column of `c`, `p`, `u`, `aw`, `eta`, `t`, `ten`, `f` and `haw` has at
-/// least [`super::lanes::padded_len`]`(c.n)` entries (module [`super::lanes`]), and `L` is 4 or 8.
+/// Every column of `c`, `p`, `u`, `aw`, `eta`, `wv` and `haw` has at least
+/// [`super::lanes::padded_len`]`(c.n)` entries (module [`super::lanes`]), no slice of
+/// `wv`'s columns lives during the call, and `L` is 4 or 8.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
+pub(super) unsafe fn elements<const WAVES: bool, const L: usize, St: Stride>(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
     aw: &[Vec<f64>; 3],
     eta: &[f64],
-    t: &mut [Vec<f64>; 3],
-    ten: &mut [f64],
-    f: &mut [Vec<f64>; 3],
+    wv: &ColumnsView<'_, St>,
     haw: &mut [f64],
     under: Option<bool>,
     uni: Option<&UniformLine>,
@@ -95,16 +98,14 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
         unsafe {
             match uni {
                 Some(k) if !WAVES => {
-                    element_chunks::<WAVES, true, false, L>(c, p, u, aw, t, ten, f, k, None)
+                    element_chunks::<WAVES, true, false, L, St>(c, p, u, aw, wv, k, None)
                 }
-                _ => element_chunks::<WAVES, false, false, L>(
+                _ => element_chunks::<WAVES, false, false, L, St>(
                     c,
                     p,
                     u,
                     aw,
-                    t,
-                    ten,
-                    f,
+                    wv,
                     &UniformLine::default(),
                     None,
                 ),
@@ -112,8 +113,18 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize>(
         };
         return true;
     }
-    let [tx, ty, tz] = t;
-    let [fx, fy, fz] = f;
+    // SAFETY: seven distinct columns of the block, reached only here.
+    let (tx, ty, tz, ten, fx, fy, fz) = unsafe {
+        (
+            wv.col_mut(col::TX),
+            wv.col_mut(col::TX + 1),
+            wv.col_mut(col::TX + 2),
+            wv.col_mut(col::TEN),
+            wv.col_mut(col::FX),
+            wv.col_mut(col::FX + 1),
+            wv.col_mut(col::FX + 2),
+        )
+    };
     element_kernel::<WAVES, false>(
         [
             &p[0][..ne],
@@ -396,15 +407,13 @@ pub(super) fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
 /// As [`elements`]; `w`'s columns hold [`super::lanes::padded_len`]`(c.n)` entries.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) unsafe fn elements_fused<const L: usize>(
+pub(super) unsafe fn elements_fused<const L: usize, St: Stride>(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     w: &ChainCols,
     u: &[Vec<f64>; 3],
     eta: &mut [f64],
-    t: &mut [Vec<f64>; 3],
-    ten: &mut [f64],
-    f: &mut [Vec<f64>; 3],
+    wv: &ColumnsView<'_, St>,
     uni: Option<&UniformLine>,
 ) -> bool {
     debug_assert!(w.unit);
@@ -439,15 +448,13 @@ pub(super) unsafe fn elements_fused<const L: usize>(
     // SAFETY: the caller's columns, as this function's.
     unsafe {
         match uni {
-            Some(k) => element_chunks::<true, true, true, L>(c, p, u, u, t, ten, f, k, Some(w)),
-            None => element_chunks::<true, false, true, L>(
+            Some(k) => element_chunks::<true, true, true, L, St>(c, p, u, u, wv, k, Some(w)),
+            None => element_chunks::<true, false, true, L, St>(
                 c,
                 p,
                 u,
                 u,
-                t,
-                ten,
-                f,
+                wv,
                 &UniformLine::default(),
                 Some(w),
             ),
@@ -472,14 +479,18 @@ pub(super) unsafe fn elements_fused<const L: usize>(
 /// As [`elements`]; with `FUSED`, as [`elements_fused`].
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const FUSED: bool, const L: usize>(
+unsafe fn element_chunks<
+    const WAVES: bool,
+    const UNI: bool,
+    const FUSED: bool,
+    const L: usize,
+    St: Stride,
+>(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     u: &[Vec<f64>; 3],
     aw: &[Vec<f64>; 3],
-    t: &mut [Vec<f64>; 3],
-    ten: &mut [f64],
-    f: &mut [Vec<f64>; 3],
+    wv: &ColumnsView<'_, St>,
     k: &UniformLine,
     cols: Option<&ChainCols>,
 ) {
@@ -497,9 +508,11 @@ unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const FUSED: bool, 
             unsafe { lanes_next::<L>($s, nc) }
         };
     }
+    // The block's columns from padded element 1 on: one base register, constant
+    // displacements with a fixed stride. SAFETY: as above; written only here.
     macro_rules! out {
-        ($s:expr) => {
-            unsafe { lanes_mut::<L>($s, 1, nc) }
+        ($q:expr) => {
+            unsafe { wv.lanes_mut::<L>($q, 1, nc) }
         };
     }
     let (xa, ya, za, vxa, vya, vza) = (
@@ -529,19 +542,39 @@ unsafe fn element_chunks<const WAVES: bool, const UNI: bool, const FUSED: bool, 
     );
     let hfk = at!(&c.half_fk);
     // With `FUSED`: `mc[q][side]`, the cache's columns of wave velocity (`q` 0-2) and
-    // acceleration (3-5), and the weights of the time.
+    // acceleration (3-5), and the weights of the time. Written out, not with
+    // `std::array::from_fn`: its closures, not inlined into the AVX2 caller, left the
+    // 24 slices in a stack array the loop reloaded (20 instructions a node-step more).
     let (mc, wt) = match cols {
-        Some(w) if FUSED => (
-            std::array::from_fn(|q| std::array::from_fn(|side| at!(&w.mid[side][q]))),
-            w.w,
-        ),
+        Some(w) if FUSED => {
+            let m = &w.mid;
+            macro_rules! sides {
+                ($q:expr) => {
+                    [
+                        at!(&m[0][$q]),
+                        at!(&m[1][$q]),
+                        at!(&m[2][$q]),
+                        at!(&m[3][$q]),
+                    ]
+                };
+            }
+            (
+                [
+                    sides!(0),
+                    sides!(1),
+                    sides!(2),
+                    sides!(3),
+                    sides!(4),
+                    sides!(5),
+                ],
+                w.w,
+            )
+        }
         _ => ([[&[][..]; 4]; 6], [0.0; 4]),
     };
-    let [tx, ty, tz] = t;
-    let [fx, fy, fz] = f;
-    let (tx, ty, tz) = (out!(tx), out!(ty), out!(tz));
-    let (fx, fy, fz) = (out!(fx), out!(fy), out!(fz));
-    let ten = out!(ten);
+    let (tx, ty, tz) = (out!(col::TX), out!(col::TX + 1), out!(col::TX + 2));
+    let (fx, fy, fz) = (out!(col::FX), out!(col::FX + 1), out!(col::FX + 2));
+    let ten = out!(col::TEN);
     for j in 0..nc {
         keep_chunks();
         // Every input into locals first, then every output: no overlap to check.

@@ -81,3 +81,155 @@ pub(super) fn keep_chunks() {
         std::arch::asm!("", options(nomem, nostack, preserves_flags))
     }
 }
+
+/// The distance between two columns of a [`Columns`] block, in entries: known at
+/// compile time ([`Fixed`]) for short chains, so that a loop reaches every column from
+/// one base register by constant displacements, or at run time ([`Dyn`]) for long ones
+/// (then the compiler keeps a pointer a column, as for separate `Vec`s).
+pub(super) trait Stride: Copy {
+    fn get(self) -> usize;
+}
+
+/// A stride known at compile time.
+#[derive(Clone, Copy)]
+pub(super) struct Fixed<const S: usize>;
+
+impl<const S: usize> Stride for Fixed<S> {
+    #[inline(always)]
+    fn get(self) -> usize {
+        S
+    }
+}
+
+/// A stride known at run time.
+#[derive(Clone, Copy)]
+pub(super) struct Dyn(pub(super) usize);
+
+impl Stride for Dyn {
+    #[inline(always)]
+    fn get(self) -> usize {
+        self.0
+    }
+}
+
+/// The fixed stride of the short chains' blocks: chains whose [`padded_len`] fits in
+/// it (up to 128 nodes; Case 2's 21-61, the catenary's 51) take it. 136 entries, 1088
+/// bytes: whole 64-byte lines, and not a divisor of 4096, so that two columns' same
+/// entries do not fall 4 KiB apart (where a load after a store to the other column
+/// would wait on a false dependence).
+pub(super) const SHORT_STRIDE: usize = 136;
+
+/// Columns of one allocation, `stride` entries apart (each column [`padded_len`] long
+/// or longer; the entries past it are zero and never read). The node loop reads 14
+/// columns of per-stage results: as separate `Vec`s, 14 pointers for the 15 free
+/// general registers, spilled to the stack and reloaded each chunk; here one base.
+#[derive(Default)]
+pub(super) struct Columns {
+    data: Vec<f64>,
+    stride: usize,
+}
+
+impl Columns {
+    /// `ncols` columns of `stride` zeros.
+    pub(super) fn reset(&mut self, ncols: usize, stride: usize) {
+        self.stride = stride;
+        self.data.clear();
+        self.data.resize(ncols * stride, 0.0);
+    }
+
+    /// A view of the block whose stride is `st`'s (a constant when `St` is [`Fixed`]).
+    ///
+    /// # Panics
+    /// If `st` is not the block's stride.
+    #[inline(always)]
+    pub(super) fn view<St: Stride>(&mut self, st: St) -> ColumnsView<'_, St> {
+        assert_eq!(st.get(), self.stride, "a view of another stride");
+        ColumnsView {
+            base: self.data.as_mut_ptr(),
+            st,
+            _block: std::marker::PhantomData,
+        }
+    }
+}
+
+/// The columns of a [`Columns`] block through one base pointer. Its accessors hand
+/// out column slices of any lifetime up to the block's borrow: the caller keeps a
+/// column it writes from being read or written through another slice at the same time.
+pub(super) struct ColumnsView<'a, St> {
+    base: *mut f64,
+    st: St,
+    _block: std::marker::PhantomData<&'a mut [f64]>,
+}
+
+impl<'a, St: Stride> ColumnsView<'a, St> {
+    /// Column `q`, whole.
+    ///
+    /// # Safety
+    /// `q` is a column of the block, not written through another slice while this one lives.
+    #[inline(always)]
+    pub(super) unsafe fn col(&self, q: usize) -> &'a [f64] {
+        // SAFETY: the block holds its columns `stride` apart; the caller's `q`.
+        unsafe { std::slice::from_raw_parts(self.base.add(q * self.st.get()), self.st.get()) }
+    }
+
+    /// Column `q`, whole, mutable.
+    ///
+    /// # Safety
+    /// `q` is a column of the block, not reached through another slice while this one lives.
+    #[inline(always)]
+    #[allow(clippy::mut_from_ref)] // the view stands for the block's `&mut` borrow
+    pub(super) unsafe fn col_mut(&self, q: usize) -> &'a mut [f64] {
+        // SAFETY: as in `col`.
+        unsafe { std::slice::from_raw_parts_mut(self.base.add(q * self.st.get()), self.st.get()) }
+    }
+
+    /// The first `nc` chunks of column `q` from entry `off` (0 or 1).
+    ///
+    /// # Safety
+    /// As [`ColumnsView::col`], and `nc * L + off` entries fit in the stride.
+    #[inline(always)]
+    pub(super) unsafe fn lanes<const L: usize>(
+        &self,
+        q: usize,
+        off: usize,
+        nc: usize,
+    ) -> &'a [[f64; L]] {
+        debug_assert!(nc * L + off <= self.st.get(), "chunks past the column");
+        // SAFETY: the caller's bounds; `[f64; L]` has the layout of `L` consecutive f64.
+        unsafe { std::slice::from_raw_parts(self.base.add(q * self.st.get() + off).cast(), nc) }
+    }
+
+    /// The same, mutable.
+    ///
+    /// # Safety
+    /// As [`ColumnsView::col_mut`], and `nc * L + off` entries fit in the stride.
+    #[inline(always)]
+    #[allow(clippy::mut_from_ref)] // as `col_mut`
+    pub(super) unsafe fn lanes_mut<const L: usize>(
+        &self,
+        q: usize,
+        off: usize,
+        nc: usize,
+    ) -> &'a mut [[f64; L]] {
+        debug_assert!(nc * L + off <= self.st.get(), "chunks past the column");
+        // SAFETY: as in `lanes`.
+        unsafe { std::slice::from_raw_parts_mut(self.base.add(q * self.st.get() + off).cast(), nc) }
+    }
+}
+
+/// The columns of a chain's per-stage results in its [`Columns`] block: the padded
+/// elements' unit tangents, tensions and forces (half drag plus half weight less
+/// buoyancy), the nodes' extra forces (point drag, a point's water acceleration, mass
+/// flow; zero but at the few nodes that have them), point masses and weights (less
+/// what a point partly out of the water loses), and accelerations.
+pub(super) mod col {
+    pub(in super::super) const TX: usize = 0;
+    pub(in super::super) const TEN: usize = 3;
+    pub(in super::super) const FX: usize = 4;
+    pub(in super::super) const XFX: usize = 7;
+    pub(in super::super) const PM: usize = 10;
+    pub(in super::super) const PWZ: usize = 11;
+    pub(in super::super) const AX: usize = 12;
+    /// How many.
+    pub(in super::super) const COUNT: usize = 15;
+}

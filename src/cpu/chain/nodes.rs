@@ -6,7 +6,7 @@
 //! masses ([`Masses`]) and the point-mass helpers that the network path shares.
 
 use super::consts::ChainConsts;
-use super::lanes::{chunks_for, keep_chunks, lanes, lanes_mut, lanes_next};
+use super::lanes::{chunks_for, col, keep_chunks, lanes, lanes_next, ColumnsView, Stride};
 use super::winch::{ale_mass_flow, ale_mass_flow_clear, AleScratch};
 use crate::cpu::passes::implicit_dt;
 use crate::cpu::water::node_water;
@@ -113,29 +113,27 @@ pub(super) fn seabed_load<const FRICTION: bool>(
     ([-(ch * v[0]), -(ch * v[1]), gz], ch, cz)
 }
 
-/// Node pass: accelerations of every node into `a`, with constraints fixed up
-/// afterwards. `p` is the state the element pass used. The few nodes with extra forces
-/// (point drag, a point's water-acceleration load, mass flow) have them added to their
-/// force before the solve, as on the general path.
+/// Node pass: accelerations of every node into the block's `col::AX` columns, with
+/// constraints fixed up afterwards, from its element results, point masses and extra
+/// forces (module [`super::lanes`]'s `col`). `p` is the state the element pass used.
+/// The few nodes with extra forces (point drag, a point's water-acceleration load,
+/// mass flow) have them added to their force before the solve, as on the general path.
 ///
 /// # Safety
-/// Every column of `c`, `p`, `tv`, `ten`, `fv`, `m`, `xf` and `a` has at least
-/// [`super::lanes::padded_len`]`(c.n)` entries, and `L` is 4 or 8.
+/// Every column of `c`, `p`, `m` and `wv` has at least
+/// [`super::lanes::padded_len`]`(c.n)` entries, no slice of `wv`'s columns lives
+/// during the call, and `L` is 4 or 8.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
+pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize, St: Stride>(
     c: &ChainConsts,
     lay: &Layout,
     opts: &SolverOptions,
     time: f64,
     p: &[Vec<f64>; 6],
-    tv: &[Vec<f64>; 3],
-    ten: &[f64],
-    fv: &[Vec<f64>; 3],
     m: &Masses,
     asc: &AleScratch,
-    xf: &mut [Vec<f64>; 3],
-    a: &mut [Vec<f64>; 3],
+    wv: &ColumnsView<'_, St>,
 ) {
     // SAFETY (every use): the nodes of `c`'s lists and of the variable elements
     // (checked by `AleScratch::prepare`) are below `c.n`, and the caller's columns
@@ -150,11 +148,19 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
             unsafe { $col.get_unchecked_mut($i) }
         };
     }
+    // SAFETY: the extra forces' columns, not reached otherwise until the node loop.
+    let mut xf: [&mut [f64]; 3] = unsafe {
+        [
+            wv.col_mut(col::XFX),
+            wv.col_mut(col::XFX + 1),
+            wv.col_mut(col::XFX + 2),
+        ]
+    };
     // Winch cables: the mass-flow forces of Eq. 39 on the variable element's free nodes
     // (crate::ale; a held winch node's acceleration is its route's).
     // SAFETY: as above.
-    let mut extra = unsafe { ale_mass_flow(asc, p, xf) };
-    let mut add = |xf: &mut [Vec<f64>; 3], i: usize, f: [f64; 3]| {
+    let mut extra = unsafe { ale_mass_flow(asc, p, &mut xf) };
+    let mut add = |xf: &mut [&mut [f64]; 3], i: usize, f: [f64; 3]| {
         for (x, fq) in xf.iter_mut().zip(f) {
             *set!(x, i) += fq;
         }
@@ -164,13 +170,13 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
         let i = pd.0;
         let v = [get!(p[3], i), get!(p[4], i), get!(p[5], i)];
         let f = point_drag_force(lay, pd, get!(p[2], i), v, get!(m.eta, i), m.w);
-        add(xf, i, f);
+        add(&mut xf, i, f);
     }
     if !m.w.is_empty() {
         for pv in &c.point_volume {
             let i = pv.0;
             add(
-                xf,
+                &mut xf,
                 i,
                 point_water_accel_force(pv, get!(p[2], i), get!(m.eta, i), m.w),
             );
@@ -181,7 +187,7 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
     // SAFETY: the caller's columns, as this function's.
     macro_rules! kernel_of {
         ($extra:literal, $seabed:literal) => {
-            unsafe { node_kernel::<FRICTION, $extra, $seabed, L>(c, h, p, tv, ten, fv, xf, m, a) }
+            unsafe { node_kernel::<FRICTION, $extra, $seabed, L, St>(c, h, p, m, wv) }
         };
     }
     // Without a seabed (friction needs one) the node loop skips the contact terms.
@@ -197,8 +203,16 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
     }
     if extra {
         kernel!(true);
+        // SAFETY: the extra forces' columns, not reached otherwise after the node loop.
+        let mut xf: [&mut [f64]; 3] = unsafe {
+            [
+                wv.col_mut(col::XFX),
+                wv.col_mut(col::XFX + 1),
+                wv.col_mut(col::XFX + 2),
+            ]
+        };
         // SAFETY: as above.
-        unsafe { ale_mass_flow_clear(asc, xf) };
+        unsafe { ale_mass_flow_clear(asc, &mut xf) };
         for i in c
             .point_drag
             .iter()
@@ -214,8 +228,10 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize>(
     }
     for &(i, ri) in &c.constrained {
         let d = route_accel(lay, opts, time, ri, |q| (get!(p[q], i), get!(p[3 + q], i)));
-        for (q, aq) in a.iter_mut().enumerate() {
-            *set!(aq, i) = d[q];
+        for (q, dq) in d.into_iter().enumerate() {
+            // SAFETY: an acceleration column, not reached otherwise here.
+            let aq = unsafe { wv.col_mut(col::AX + q) };
+            *set!(aq, i) = dq;
         }
     }
 }
@@ -294,16 +310,13 @@ unsafe fn node_kernel<
     const EXTRA: bool,
     const SEABED: bool,
     const L: usize,
+    St: Stride,
 >(
     c: &ChainConsts,
     h: f64,
     p: &[Vec<f64>; 6],
-    t: &[Vec<f64>; 3],
-    ten: &[f64],
-    f: &[Vec<f64>; 3],
-    xf: &[Vec<f64>; 3],
     m: &Masses,
-    a: &mut [Vec<f64>; 3],
+    wv: &ColumnsView<'_, St>,
 ) {
     let nc = chunks_for::<L>(c.n);
     // SAFETY (every use): the caller's columns hold `padded_len(c.n) >= nc * L + 1`
@@ -318,21 +331,34 @@ unsafe fn node_kernel<
             unsafe { lanes_next::<L>($s, nc) }
         };
     }
-    macro_rules! out {
-        ($s:expr) => {
-            unsafe { lanes_mut::<L>($s, 0, nc) }
+    // The block's columns: one base register, constant displacements with a fixed
+    // stride. SAFETY (every use): as above; the accelerations are the only columns
+    // written, and not read.
+    macro_rules! bat {
+        ($q:expr) => {
+            unsafe { wv.lanes::<L>($q, 0, nc) }
         };
     }
+    macro_rules! bnext {
+        ($q:expr) => {
+            unsafe { wv.lanes::<L>($q, 1, nc) }
+        };
+    }
+    macro_rules! bout {
+        ($q:expr) => {
+            unsafe { wv.lanes_mut::<L>($q, 0, nc) }
+        };
+    }
+    use col::{AX, FX, PM, PWZ, TEN, TX, XFX};
     let (z, vx, vy, vz) = (at!(&p[2]), at!(&p[3]), at!(&p[4]), at!(&p[5]));
-    let (txj, tyj, tzj, tnj) = (at!(&t[0]), at!(&t[1]), at!(&t[2]), at!(ten));
-    let (txk, tyk, tzk, tnk) = (next!(&t[0]), next!(&t[1]), next!(&t[2]), next!(ten));
-    let (fxj, fyj, fzj) = (at!(&f[0]), at!(&f[1]), at!(&f[2]));
-    let (fxk, fyk, fzk) = (next!(&f[0]), next!(&f[1]), next!(&f[2]));
-    let (xfx, xfy, xfz) = (at!(&xf[0]), at!(&xf[1]), at!(&xf[2]));
+    let (txj, tyj, tzj, tnj) = (bat!(TX), bat!(TX + 1), bat!(TX + 2), bat!(TEN));
+    let (txk, tyk, tzk, tnk) = (bnext!(TX), bnext!(TX + 1), bnext!(TX + 2), bnext!(TEN));
+    let (fxj, fyj, fzj) = (bat!(FX), bat!(FX + 1), bat!(FX + 2));
+    let (fxk, fyk, fzk) = (bnext!(FX), bnext!(FX + 1), bnext!(FX + 2));
+    let (xfx, xfy, xfz) = (bat!(XFX), bat!(XFX + 1), bat!(XFX + 2));
     let (hmj, hmk, haj, hak) = (at!(m.hm), next!(m.hm), at!(m.ha), next!(m.ha));
-    let (pm, pwz, kl, cl, mukl) = (at!(m.pm), at!(m.pwz), at!(m.kl), at!(m.cl), at!(m.mukl));
-    let [ax, ay, az] = a;
-    let (ax, ay, az) = (out!(ax), out!(ay), out!(az));
+    let (pm, pwz, kl, cl, mukl) = (bat!(PM), bat!(PWZ), at!(m.kl), at!(m.cl), at!(m.mukl));
+    let (ax, ay, az) = (bout!(AX), bout!(AX + 1), bout!(AX + 2));
     let (zb, v_eps) = (c.zb, c.v_eps);
     for i in 0..nc {
         keep_chunks();
@@ -409,8 +435,6 @@ pub(super) struct Masses<'a> {
     pub(super) eta: &'a [f64],
     /// Per-node water values in waves (`cpu::water`), empty in still water.
     pub(super) w: &'a [f64],
-    pub(super) pm: &'a [f64],
-    pub(super) pwz: &'a [f64],
     pub(super) hm: &'a [f64],
     pub(super) ha: &'a [f64],
     pub(super) kl: &'a [f64],

@@ -215,7 +215,7 @@ pub(super) unsafe fn ale_tension(sc: &AleScratch, p: &[Vec<f64>; 6], ten: &mut [
 pub(super) unsafe fn ale_mass_flow(
     sc: &AleScratch,
     p: &[Vec<f64>; 6],
-    xf: &mut [Vec<f64>; 3],
+    xf: &mut [&mut [f64]; 3],
 ) -> bool {
     let mut any = false;
     for r in &sc.runs {
@@ -254,7 +254,7 @@ pub(super) unsafe fn ale_mass_flow(
 /// # Safety
 /// As [`ale_constants`], for the columns of `xf`.
 #[inline(always)]
-pub(super) unsafe fn ale_mass_flow_clear(sc: &AleScratch, xf: &mut [Vec<f64>; 3]) {
+pub(super) unsafe fn ale_mass_flow_clear(sc: &AleScratch, xf: &mut [&mut [f64]; 3]) {
     for &i in &sc.flow_nodes {
         for x in xf.iter_mut() {
             // SAFETY: `i` is a node of the block, as the contract says.
