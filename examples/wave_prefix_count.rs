@@ -30,7 +30,13 @@ fn main() {
         ..Default::default()
     };
     let mut sim = Simulation::from_file(path, &ov).expect("scenario");
-    let n_comps = sim.scenario().sea_set().seas.iter().map(|s| s.components.len()).max();
+    let n_comps = sim
+        .scenario()
+        .sea_set()
+        .seas
+        .iter()
+        .map(|s| s.components.len())
+        .max();
     // Per band: node samples, the sum of their prefixes, the least and the most.
     let mut per: Vec<(u64, u64, usize, usize)> = Vec::new();
     let mut samples = 0u64;

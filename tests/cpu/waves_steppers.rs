@@ -491,7 +491,10 @@ fn depth_bands_keep_the_end_force_of_a_deep_line() {
             done += every;
             out.push(s.evaluate().unwrap().reaction[1]);
             let census_now = s.wave_band_census();
-            assert_eq!(census_now.breaches, 0, "a node above its band's top at step {done}");
+            assert_eq!(
+                census_now.breaches, 0,
+                "a node above its band's top at step {done}"
+            );
             let c = census_now.nodes;
             if c.iter().filter(|&&n| n > 0).count() > census.iter().filter(|&&n| n > 0).count() {
                 census = c;

@@ -70,7 +70,10 @@ fn line(z0: f64, t_lift: f64, lift: f64, dur: f64) -> (Layout, Vec<[f64; 3]>) {
 /// The CPU's census and each GPU kernel's after 1.9 coarsest intervals of the line,
 /// `lifted` or not.
 fn run(p: Precision, lifted: bool) -> Option<(BandCensus, Vec<BandCensus>)> {
-    let ctx = gpu_context(&format!("band_breach_{lifted}_{}", p.name()), p == Precision::F64)?;
+    let ctx = gpu_context(
+        &format!("band_breach_{lifted}_{}", p.name()),
+        p == Precision::F64,
+    )?;
     let opts = SolverOptions {
         dt: 2e-4,
         ..SolverOptions::default()
@@ -121,17 +124,29 @@ fn check_lifted(p: Precision) {
     let Some((cpu, gpus)) = run(p, true) else {
         return;
     };
-    assert!(cpu.beyond_margin > 0, "the CPU saw no breach beyond the margin: {cpu:?}");
+    assert!(
+        cpu.beyond_margin > 0,
+        "the CPU saw no breach beyond the margin: {cpu:?}"
+    );
     let [t, z, top] = cpu.first_beyond_margin.expect("the CPU's first breach");
     assert!(z - top > BAND_MARGIN, "{cpu:?}");
     for g in &gpus {
-        assert!(g.beyond_margin > 0, "the GPU saw no breach beyond the margin: {g:?}");
+        assert!(
+            g.beyond_margin > 0,
+            "the GPU saw no breach beyond the margin: {g:?}"
+        );
         let [gt, gz, gtop] = g.first_beyond_margin.expect("the GPU's first breach");
         assert!(gz - gtop > BAND_MARGIN, "{g:?}");
         // The same refresh (the same step), the same band's top; the height to the
         // precision's round-off of the run.
-        assert!((gt - t).abs() < 1e-9, "first breach at {gt} s on the GPU, {t} s on the CPU");
-        assert!((gtop - top).abs() < 1e-5 * top.abs(), "top {gtop} against {top}");
+        assert!(
+            (gt - t).abs() < 1e-9,
+            "first breach at {gt} s on the GPU, {t} s on the CPU"
+        );
+        assert!(
+            (gtop - top).abs() < 1e-5 * top.abs(),
+            "top {gtop} against {top}"
+        );
         let tol = if p == Precision::F64 { 1e-9 } else { 1e-3 };
         assert!((gz - z).abs() < tol, "height {gz} against {z}");
         if p == Precision::F64 {
@@ -157,7 +172,10 @@ fn a_line_that_stays_in_its_band_reports_no_breach_beyond_the_margin() {
     let Some((cpu, gpus)) = run(Precision::F32, false) else {
         return;
     };
-    assert!(cpu.nodes.iter().skip(1).sum::<usize>() > 0, "no node in a deeper band: {cpu:?}");
+    assert!(
+        cpu.nodes.iter().skip(1).sum::<usize>() > 0,
+        "no node in a deeper band: {cpu:?}"
+    );
     assert_eq!((cpu.beyond_margin, cpu.first_beyond_margin), (0, None));
     for g in gpus {
         assert_eq!((g.beyond_margin, g.first_beyond_margin), (0, None), "{g:?}");

@@ -424,7 +424,9 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
                     currents(c, &lay.currents, state, u);
                 }
                 // SAFETY: the caller's columns; the cache's are padded.
-                if cols.unit && unsafe { elements_fused::<L, St>(c, state, &cols, u, eta, wv, wuni) } {
+                if cols.unit
+                    && unsafe { elements_fused::<L, St>(c, state, &cols, u, eta, wv, wuni) }
+                {
                     true
                 } else {
                     cols.fill(c.n, eta, !cols.unit, u, c.uniform, aw);
@@ -474,7 +476,8 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
             match opts.scheme {
                 Scheme::Symplectic => {
                     eval::<FRICTION, L, St>(
-                        wc, asc, lay, opts, ale, x, time, under, uni, wuni, &mut waves, wbuf, wk, &wv,
+                        wc, asc, lay, opts, ale, x, time, under, uni, wuni, &mut waves, wbuf, wk,
+                        &wv,
                     );
                     let (b, u) = symplectic_update::<L, St>(
                         x,
@@ -490,7 +493,8 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
                 Scheme::Rk2 => {
                     let h = 0.5 * dt;
                     eval::<FRICTION, L, St>(
-                        wc, asc, lay, opts, ale, x, time, None, uni, wuni, &mut waves, wbuf, wk, &wv,
+                        wc, asc, lay, opts, ale, x, time, None, uni, wuni, &mut waves, wbuf, wk,
+                        &wv,
                     );
                     for q in 0..3 {
                         xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);

@@ -42,8 +42,8 @@ use crate::math::V3;
 use crate::model::{Block, Layout};
 use crate::options::SolverOptions;
 use crate::step::{diverged, StepFailure};
-use std::sync::atomic::{AtomicBool, Ordering};
 use element_chunks::{all_under, element_chunks_net};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 mod element_chunks;
 mod fold;
@@ -420,9 +420,7 @@ fn element_tile<const L: usize>(
         let (es, p, v) = (&nc.eslot, &piece, ([a0, b0], x));
         let fused = match (waves, uniform) {
             (true, _) => run_shares::<true, false, L>(c, es, p, a, b, us, [0.0; 3], aws, v, out),
-            (false, Some(un)) => {
-                run_shares::<false, true, L>(c, es, p, a, b, us, un, aws, v, out)
-            }
+            (false, Some(un)) => run_shares::<false, true, L>(c, es, p, a, b, us, un, aws, v, out),
             (false, None) => {
                 run_shares::<false, false, L>(c, es, p, a, b, us, [0.0; 3], aws, v, out)
             }
@@ -485,7 +483,10 @@ fn tiles_under(under: &[AtomicBool], i0: usize, len: usize) -> bool {
 fn flag_tiles(z: &[f64], eta: &[f64], under: &[AtomicBool]) {
     for (t, u) in under.iter().enumerate() {
         let r = t * NT..((t + 1) * NT).min(z.len());
-        u.store(r.into_iter().all(|i| eta[i] - z[i] >= 0.0), Ordering::Relaxed);
+        u.store(
+            r.into_iter().all(|i| eta[i] - z[i] >= 0.0),
+            Ordering::Relaxed,
+        );
     }
 }
 

@@ -54,7 +54,9 @@ pub(crate) fn advance_net_threaded(
     let (n, ne) = (nc.n(), nc.ne());
     let plan = plan(n, nc.width, &nc.ends[0], &nc.ends[1], &nc.pieces, threads);
     load(nc, &plan, sc, r, v);
-    let NetScratch { x, eta, el, under, .. } = sc;
+    let NetScratch {
+        x, eta, el, under, ..
+    } = sc;
     let sh = Shared {
         x: x.each_mut().map(|q| q.as_mut_ptr()),
         sum: el.start(),
@@ -230,9 +232,35 @@ unsafe fn step_threads_body<const L: usize>(
             sh.x.map(|p| unsafe { std::slice::from_raw_parts_mut(p.add(nr.start), nr.len()) });
         let sum = unsafe { out.tile(t) };
         let bad = if nc.c.friction {
-            node_pass::<true>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], sum, g, &under[t])
+            node_pass::<true>(
+                nc,
+                lay,
+                opts,
+                time,
+                dt,
+                nr.clone(),
+                xs,
+                eta,
+                &[],
+                sum,
+                g,
+                &under[t],
+            )
         } else {
-            node_pass::<false>(nc, lay, opts, time, dt, nr.clone(), xs, eta, &[], sum, g, &under[t])
+            node_pass::<false>(
+                nc,
+                lay,
+                opts,
+                time,
+                dt,
+                nr.clone(),
+                xs,
+                eta,
+                &[],
+                sum,
+                g,
+                &under[t],
+            )
         };
         unsafe { out.clear(&plan.clear[t]) };
         if let Some(j) = bad {
