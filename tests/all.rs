@@ -8,6 +8,10 @@
 //! each other through `super::`, which is the same path in both layouts). Filter by
 //! module path: `cargo test --release --test all -- cpu::statics::`.
 
+// Each of the three loads `tests/common` as its own `mod common` (each must, to build
+// alone as its own target), so this binary holds three copies of it: on purpose.
+#![allow(clippy::duplicate_mod)]
+
 #[path = "cpu/main.rs"]
 mod cpu;
 

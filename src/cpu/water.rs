@@ -248,7 +248,7 @@ impl ChainColumns {
     fn form(&mut self, cache: &WaveCache, n: usize) {
         if cache.clocks.len() == 1 {
             self.power_ref = None;
-            self.from_arrays([&cache.v0, &cache.d0, &cache.v1, &cache.d1], n);
+            self.form_from_arrays([&cache.v0, &cache.d0, &cache.v1, &cache.d1], n);
             return;
         }
         let t_ref = cache.power_ref();
@@ -261,8 +261,7 @@ impl ChainColumns {
                     continue;
                 }
                 cache.power_node(i, t_ref, &mut p);
-                for side in 0..4 {
-                    let v = &p[side];
+                for (side, v) in p.iter().enumerate() {
                     self.eta[side][i] = v[i * CACHE_STRIDE];
                     for k in i.saturating_sub(1)..(i + 1).min(n - 1) {
                         let m = element_midpoint(v, k);
@@ -275,13 +274,13 @@ impl ChainColumns {
         } else {
             self.power_ref = Some(t_ref);
             cache.power_coefficients(t_ref, &mut p);
-            self.from_arrays([&p[0], &p[1], &p[2], &p[3]], n);
+            self.form_from_arrays([&p[0], &p[1], &p[2], &p[3]], n);
         }
         self.power = p;
     }
 
     /// Forms the columns from four arrays of [`CACHE_STRIDE`] per node.
-    fn from_arrays(&mut self, v: [&[f64]; 4], n: usize) {
+    fn form_from_arrays(&mut self, v: [&[f64]; 4], n: usize) {
         for (side, v) in v.into_iter().enumerate() {
             let eta = &mut self.eta[side];
             eta.clear();

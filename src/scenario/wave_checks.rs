@@ -123,7 +123,8 @@ pub fn train(
         }
     }
     let interval = refresh_interval(comps, tolerance);
-    if !comps.is_empty() && !(interval > 0.0 && interval.is_finite()) {
+    let interval_ok = interval > 0.0 && interval.is_finite();
+    if !comps.is_empty() && !interval_ok {
         return Err(err(
             p,
             t.culprit(),

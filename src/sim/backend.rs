@@ -131,6 +131,10 @@ pub enum LumpedStepper {
     Gpu(GpuSolver),
 }
 
+/// What [`LumpedStepper::snapshot_parts`] reads at an output time: the cables', the
+/// bodies' and the shared points' states.
+pub type SnapshotParts = (Vec<CableState>, Vec<BodyState>, Vec<PointState>);
+
 impl LumpedStepper {
     /// Builds the chosen solver at rest at `pos` (packed order of `lay`), in the seas
     /// `seas` (`Scenario::sea_set`, with the reach of `sim::reach`).
@@ -324,7 +328,7 @@ impl LumpedStepper {
         &mut self,
         t: f64,
         points: &[(String, usize, bool)],
-    ) -> Result<(Vec<CableState>, Vec<BodyState>, Vec<PointState>), Error> {
+    ) -> Result<SnapshotParts, Error> {
         let ev = self.evaluate()?;
         let (r, v) = self.state()?;
         let bodies = if self.has_bodies() {

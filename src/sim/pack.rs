@@ -155,7 +155,7 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
         model,
         initial,
         winches: Vec::new(),
-        ancf: first.ancf.clone(),
+        ancf: first.ancf,
         sea: seas[0].clone(),
         member_seas: Some(SeaSet {
             seas,

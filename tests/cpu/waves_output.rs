@@ -93,12 +93,12 @@ fn output_loads_are_the_ones_the_step_integrates() {
         let ev = s.evaluate().unwrap();
         let v0: Vec<[f64; 3]> = s.v.iter().map(|v| v.to_f64()).collect();
         s.advance(1).unwrap();
-        for i in 0..lay.n_nodes() {
+        for (i, &v0_i) in v0.iter().enumerate() {
             let free = lay.node_constraint[i] == cablesim::model::NO_CONSTRAINT;
             if !free || s.r[i].z < -depth + 0.5 {
                 continue;
             }
-            let a_step = sub(s.v[i].to_f64(), v0[i]).map(|x| x / DT);
+            let a_step = sub(s.v[i].to_f64(), v0_i).map(|x| x / DT);
             worst = worst.max(norm(sub(ev.acc[i], a_step)));
             amax = amax.max(norm(a_step));
             if k > 0 {

@@ -213,16 +213,16 @@ fn compare_f64(
         let c = Snapshot::cpu("CPU f64", &mut cpu);
         let g = Snapshot::gpu("GPU f64", &mut gpu);
         let eg = &g.eval;
-        let bounds = RoundOff::new(&cpu.layout(), &c, done, EPS, rope().ea, l0_min, omega);
+        let bounds = RoundOff::new(cpu.layout(), &c, done, EPS, rope().ea, l0_min, omega);
         let name = format!("{label} t = {} s", cpu.t());
-        let d = bounds.check(&name, &cpu.layout(), &g, &c);
-        let df = Check::new(&name, &cpu.layout(), &g, &c)
+        let d = bounds.check(&name, cpu.layout(), &g, &c);
+        let df = Check::new(&name, cpu.layout(), &g, &c)
             .within(
                 "end forces",
                 "N",
                 Place::CableEnd,
-                &end_forces(&gpu.layout(), &g.eval),
-                &end_forces(&cpu.layout(), &c.eval),
+                &end_forces(gpu.layout(), &g.eval),
+                &end_forces(cpu.layout(), &c.eval),
                 |_| bounds.force,
             )
             .map_or(0.0, |w| w.diff);
@@ -239,8 +239,8 @@ fn compare_f64(
         );
         // Mass in the water from the GPU's own half masses: mbar L(t).
         for (w, st) in winches.iter().zip(&sg) {
-            let var = variable_element(&gpu.layout(), w.cable, w.end);
-            let (mass, len) = mass_and_length(&gpu.layout(), eg, w.cable, var, st.variable_l0);
+            let var = variable_element(gpu.layout(), w.cable, w.end);
+            let (mass, len) = mass_and_length(gpu.layout(), eg, w.cable, var, st.variable_l0);
             let l = st.deployed_length;
             assert!((len - l).abs() <= 1e-12 * l, "layout length {len} vs L {l}");
             worst_mass = worst_mass.max((mass - mbar * l).abs() / (mbar * l));
@@ -377,7 +377,7 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
         let c = Snapshot::cpu("CPU f64", &mut cpu);
         let g = Snapshot::gpu("GPU f32", &mut gpu);
         let name = format!("{path} t = {} s (L = {l} m)", cpu.t());
-        let check = Check::new(&name, &cpu.layout(), &g, &c);
+        let check = Check::new(&name, cpu.layout(), &g, &c);
         let last = |nodes: &[u32]| nodes[nodes.len() - 1] as usize;
         let (ig, ic) = (
             last(&gpu.layout().cables[ci].nodes),
@@ -394,8 +394,8 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
         );
         worst_pos = worst_pos.max(w.diff / l);
         let (fg, fc) = (
-            end_forces(&gpu.layout(), &g.eval),
-            end_forces(&cpu.layout(), &c.eval),
+            end_forces(gpu.layout(), &g.eval),
+            end_forces(cpu.layout(), &c.eval),
         );
         for k in [2 * ci, 2 * ci + 1] {
             let f = norm(fc[k]);
@@ -411,8 +411,8 @@ fn f32_against_cpu(ctx: &GpuContext, path: &str, duration: f64, every: f64) {
             worst_force = worst_force.max(w.diff / f);
         }
         let eg = g.eval;
-        let var = variable_element(&gpu.layout(), ci, end);
-        let (mass, len) = mass_and_length(&gpu.layout(), &eg, ci, var, sg.variable_l0);
+        let var = variable_element(gpu.layout(), ci, end);
+        let (mass, len) = mass_and_length(gpu.layout(), &eg, ci, var, sg.variable_l0);
         assert!((len - l).abs() <= 1e-12 * l, "layout length {len} vs L {l}");
         worst_mass = worst_mass.max((mass - mbar * l).abs() / (mbar * l));
     }
