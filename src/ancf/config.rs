@@ -67,7 +67,7 @@ impl AncfEnd {
     }
 }
 
-/// Everything an [`AncfCable`] is built from.
+/// Everything an [`AncfCable`](super::AncfCable) is built from.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AncfConfig {
     /// Name used in error messages.

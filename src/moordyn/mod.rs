@@ -1,7 +1,7 @@
-//! MoorDyn input files (v1 and v2): read ([`parse`]) and mapped to an equivalent
-//! cablesim scenario ([`convert`]), written as scenario TOML with a comment on every
+//! MoorDyn input files (v1 and v2): read ([`parse()`]) and mapped to an equivalent
+//! cablesim scenario ([`convert()`]), written as scenario TOML with a comment on every
 //! mapping choice. `cablesim run model.dat` runs one through
-//! [`crate::scenario::load_any`]; `cablesim convert model.dat -o model.toml` writes the
+//! [`Scenario::load_any`](crate::scenario::Scenario::load_any); `cablesim convert model.dat -o model.toml` writes the
 //! TOML. docs/src/moordyn.md lists what is read, how each field maps and what is refused.
 
 pub mod convert;

@@ -1,4 +1,4 @@
-//! `[limits]`: the work budget of a run (docs/src/scenario.md, "[limits]"), and the
+//! `[limits]`: the work budget of a run (docs/src/scenario.md, "\[limits\]"), and the
 //! estimate of the model's size from the file as written, made before any cable,
 //! node or net is built: an absurd `count`, `segments` or `knots` is refused with the
 //! estimate instead of growing memory until the machine runs out.

@@ -8,13 +8,13 @@
 //! # The static force
 //! The residual on a free node is exactly the force of the CPU stepper with every
 //! velocity zero and `t = 0`, built from the same physics functions:
-//! [`glmf_element_wet`] with zero node velocities (elastic axial force with the slack
+//! [`glmf_element_wet`](crate::physics::glmf_element_wet) with zero node velocities (elastic axial force with the slack
 //! rule, no internal damping since the strain rate is zero; half the element's weight
 //! less the buoyancy of its share under the mean water level `z = 0`; normal and
 //! tangential drag of the current at the element's midpoint on that share; no water
 //! acceleration), the point mass's weight less the buoyancy of its share under water
 //! and its drag in the current at the node on that share (docs/src/water_surface.md: a line
-//! hung above the water starts from its true equilibrium, in air), and [`seabed_force`] with zero velocity (the elastic normal force; the
+//! hung above the water starts from its true equilibrium, in air), and [`seabed_force`](crate::physics::seabed_force) with zero velocity (the elastic normal force; the
 //! damping and the regularised friction vanish at rest). Nodes held by a route are
 //! placed at `route.eval(0.0).r` and are not unknowns. Only the GLMF loads are used:
 //! at rest in still water the older element frames are singular or equal to them.

@@ -1,6 +1,6 @@
 //! Running a study's members on the CPU: each member is the base scenario with its own
 //! sea state, stepped through the library's [`Simulation`], its channels streamed into
-//! [`ChannelStats`] at every output time and nothing else kept.
+//! [`ChannelStats`](super::ChannelStats) at every output time and nothing else kept.
 //!
 //! A member's scenario is the base scenario's text with two things replaced, then
 //! validated as any scenario is (so bodies that move in the waves, route files and every

@@ -46,7 +46,7 @@ pub struct ThreadPlan {
 pub struct Plan {
     /// Per thread: its part of the step.
     pub threads: Vec<ThreadPlan>,
-    /// Per tile: its buffer in [`super::Loads`].
+    /// Per tile: its buffer in the block's loads (`super::Loads`).
     pub buf: Vec<u32>,
     /// Tile buffers.
     pub nbuf: usize,
