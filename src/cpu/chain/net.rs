@@ -158,7 +158,7 @@ pub(crate) struct NetScratch {
 /// Columns per slot in [`Loads`].
 const COLS: usize = 9;
 
-/// Nodes per tile of [`Loads`].
+/// Nodes per tile of the block's loads (`Loads`).
 pub const NT: usize = 256;
 
 /// Distance between two columns of a tile: [`NT`] values and a cache line. At `NT`
@@ -675,37 +675,20 @@ fn advance_net_body<const L: usize>(
                     let xs = x.each_mut().map(|q| &mut q[nr.clone()]);
                     // SAFETY: nothing writes tile `t`'s buffer during its update.
                     let sum = unsafe { out.tile(t) };
-                    let b = if nc.c.friction {
-                        node_pass::<true>(
-                            nc,
-                            lay,
-                            opts,
-                            time,
-                            dt,
-                            nr.clone(),
-                            xs,
-                            eta,
-                            wbuf,
-                            sum,
-                            work,
-                            &under[t],
-                        )
-                    } else {
-                        node_pass::<false>(
-                            nc,
-                            lay,
-                            opts,
-                            time,
-                            dt,
-                            nr.clone(),
-                            xs,
-                            eta,
-                            wbuf,
-                            sum,
-                            work,
-                            &under[t],
-                        )
-                    };
+                    let b = node_pass(
+                        nc,
+                        lay,
+                        opts,
+                        time,
+                        dt,
+                        nr.clone(),
+                        xs,
+                        eta,
+                        wbuf,
+                        sum,
+                        work,
+                        &under[t],
+                    );
                     // SAFETY: the next user of this buffer has not started.
                     unsafe { out.clear(&plan.clear[t]) };
                     if let Some(j) = b {

@@ -231,37 +231,20 @@ unsafe fn step_threads_body<const L: usize>(
         let xs: [&mut [f64]; 6] =
             sh.x.map(|p| unsafe { std::slice::from_raw_parts_mut(p.add(nr.start), nr.len()) });
         let sum = unsafe { out.tile(t) };
-        let bad = if nc.c.friction {
-            node_pass::<true>(
-                nc,
-                lay,
-                opts,
-                time,
-                dt,
-                nr.clone(),
-                xs,
-                eta,
-                &[],
-                sum,
-                g,
-                &under[t],
-            )
-        } else {
-            node_pass::<false>(
-                nc,
-                lay,
-                opts,
-                time,
-                dt,
-                nr.clone(),
-                xs,
-                eta,
-                &[],
-                sum,
-                g,
-                &under[t],
-            )
-        };
+        let bad = node_pass(
+            nc,
+            lay,
+            opts,
+            time,
+            dt,
+            nr.clone(),
+            xs,
+            eta,
+            &[],
+            sum,
+            g,
+            &under[t],
+        );
         unsafe { out.clear(&plan.clear[t]) };
         if let Some(j) = bad {
             failed.fetch_min(nr.start + j, Ordering::AcqRel);
