@@ -54,7 +54,7 @@ pub(crate) mod plan;
 mod threaded;
 use fold::{node_shares, run_shares};
 use gathered::gathered_shares;
-use node_pass::node_pass;
+use node_pass::{node_pass, node_pass_either};
 use pieces::{pieces, Piece, TILE};
 use plan::{plan, Op, Plan};
 pub(crate) use threaded::advance_net_threaded;
@@ -675,7 +675,7 @@ fn advance_net_body<const L: usize>(
                     let xs = x.each_mut().map(|q| &mut q[nr.clone()]);
                     // SAFETY: nothing writes tile `t`'s buffer during its update.
                     let sum = unsafe { out.tile(t) };
-                    let b = node_pass(
+                    let b = node_pass_either!(
                         nc,
                         lay,
                         opts,

@@ -3,7 +3,8 @@
 
 use super::plan::{plan, Op, Plan, ThreadPlan};
 use super::{
-    element_tile, load, node_pass, store, LoadsOut, NetConsts, NetScratch, Work, NT, TILE,
+    element_tile, load, node_pass, node_pass_either, store, LoadsOut, NetConsts, NetScratch, Work,
+    NT, TILE,
 };
 use crate::cpu::threaded::SpinBarrier;
 use crate::math::V3;
@@ -231,7 +232,7 @@ unsafe fn step_threads_body<const L: usize>(
         let xs: [&mut [f64]; 6] =
             sh.x.map(|p| unsafe { std::slice::from_raw_parts_mut(p.add(nr.start), nr.len()) });
         let sum = unsafe { out.tile(t) };
-        let bad = node_pass(
+        let bad = node_pass_either!(
             nc,
             lay,
             opts,
