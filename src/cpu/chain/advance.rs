@@ -300,10 +300,10 @@ fn advance_chain_body<const L: usize>(
     }
 }
 
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
 /// `WAVES`: whether `waves` is `Some` (the caller's dispatch), so that the still-water
 /// instantiation has none of the waves' code.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize, St: Stride>(
     c: &ChainConsts,
     lay: &Layout,
