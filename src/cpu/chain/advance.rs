@@ -272,24 +272,39 @@ fn advance_chain_body<const L: usize>(
     // A short chain's block at the fixed stride (its columns at constant offsets from
     // one base register), a long one's at its padded length.
     let len = padded_len(c.n);
+    // Still water and waves in separate instantiations (`WAVES`): the whole run of
+    // steps is one function, and the waves' code in it (the element loop that
+    // interpolates the waves in its lanes, the cache's columns) moved the register
+    // allocation of the still-water loops (BENCHMARKS.md, "hstraight5").
     macro_rules! scheme {
-        ($friction:literal, $st:expr) => {
-            advance_chain_scheme::<$friction, L, _>(
+        ($waves:literal, $friction:literal, $st:expr) => {
+            advance_chain_scheme::<$waves, $friction, L, _>(
                 c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps, $st,
             )
         };
     }
-    match (c.friction, len <= SHORT_STRIDE) {
-        (true, true) => scheme!(true, Fixed::<SHORT_STRIDE>),
-        (true, false) => scheme!(true, Dyn(len)),
-        (false, true) => scheme!(false, Fixed::<SHORT_STRIDE>),
-        (false, false) => scheme!(false, Dyn(len)),
+    macro_rules! stride {
+        ($waves:literal) => {
+            match (c.friction, len <= SHORT_STRIDE) {
+                (true, true) => scheme!($waves, true, Fixed::<SHORT_STRIDE>),
+                (true, false) => scheme!($waves, true, Dyn(len)),
+                (false, true) => scheme!($waves, false, Fixed::<SHORT_STRIDE>),
+                (false, false) => scheme!($waves, false, Dyn(len)),
+            }
+        };
+    }
+    if waves.is_some() {
+        stride!(true)
+    } else {
+        stride!(false)
     }
 }
 
+/// `WAVES`: whether `waves` is `Some` (the caller's dispatch), so that the still-water
+/// instantiation has none of the waves' code.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
+fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize, St: Stride>(
     c: &ChainConsts,
     lay: &Layout,
     opts: &SolverOptions,
@@ -307,8 +322,9 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
 ) -> Result<(), StepFailure> {
     let n = c.n;
     let nc = chunks_for::<L>(n);
-    let mut waves = waves;
-    if waves.is_none() {
+    debug_assert_eq!(WAVES, waves.is_some());
+    let mut waves = if WAVES { waves } else { None };
+    if !WAVES {
         wbuf.clear();
     }
     // Every column padded to whole chunks of lanes (module `lanes`), with zeros.
@@ -343,7 +359,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
         sc.x[4][i] = v[i].y;
         sc.x[5][i] = v[i].z;
     }
-    if c.uniform.is_some() && waves.is_none() {
+    if c.uniform.is_some() && !WAVES {
         currents(c, &lay.currents, &sc.x, &mut sc.w.u);
     }
     // Always: the scratch may hold the previous block's variable elements.
@@ -368,7 +384,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
     // `padded_len(wc.n)` entries, and no slice of `wv`'s columns lives during the call.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    unsafe fn eval<const FRICTION: bool, const L: usize, St: Stride>(
+    unsafe fn eval<const WAVES: bool, const FRICTION: bool, const L: usize, St: Stride>(
         wc: &mut ChainConsts,
         asc: &mut AleScratch,
         lay: &Layout,
@@ -394,11 +410,12 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
         // A uniform current in still water was filled once for the run; in waves from
         // the cache, the element loop adds the waves' velocity to it (`elements_fused`)
         // or `ChainCols::fill` writes it with them.
-        let cache_waves = waves.as_deref().is_some_and(|wb| !wb.exact());
-        if c.uniform.is_none() || (waves.is_some() && !cache_waves) {
+        let cache_waves = WAVES && waves.as_deref().is_some_and(|wb| !wb.exact());
+        if c.uniform.is_none() || (WAVES && !cache_waves) {
             currents(c, &lay.currents, state, u);
         }
-        let wholly_wet = if let Some(wb) = waves.as_deref_mut() {
+        let wb = if WAVES { waves.as_deref_mut() } else { None };
+        let wholly_wet = if let Some(wb) = wb {
             let st = |i: usize| {
                 (
                     [state[0][i], state[1][i], state[2][i]],
@@ -460,7 +477,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
     // In still water, whether every node is at or below the surface (z = 0), as the
     // last symplectic update found; `None`: the element loop finds out.
     let mut under = None;
-    let still = waves.is_none();
+    let still = !WAVES;
     // In still water, a chain of one line type under one uniform current.
     let uni = if still { UniformLine::of(c) } else { None };
     let uni = uni.as_ref();
@@ -475,7 +492,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
             let time = (step0 + k) as f64 * dt;
             match opts.scheme {
                 Scheme::Symplectic => {
-                    eval::<FRICTION, L, St>(
+                    eval::<WAVES, FRICTION, L, St>(
                         wc, asc, lay, opts, ale, x, time, under, uni, wuni, &mut waves, wbuf, wk,
                         &wv,
                     );
@@ -492,7 +509,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
                 }
                 Scheme::Rk2 => {
                     let h = 0.5 * dt;
-                    eval::<FRICTION, L, St>(
+                    eval::<WAVES, FRICTION, L, St>(
                         wc, asc, lay, opts, ale, x, time, None, uni, wuni, &mut waves, wbuf, wk,
                         &wv,
                     );
@@ -500,7 +517,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
                         xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
                         xpvh(&mut xs[3 + q][..n], &x[3 + q], wv.col(col::AX + q), h);
                     }
-                    eval::<FRICTION, L, St>(
+                    eval::<WAVES, FRICTION, L, St>(
                         wc,
                         asc,
                         lay,
@@ -534,7 +551,7 @@ fn advance_chain_scheme<const FRICTION: bool, const L: usize, St: Stride>(
                             .into_iter()
                             .enumerate()
                     {
-                        eval::<FRICTION, L, St>(
+                        eval::<WAVES, FRICTION, L, St>(
                             wc,
                             asc,
                             lay,
