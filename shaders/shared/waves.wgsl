@@ -179,9 +179,20 @@ fn wave_eval_depth_rate(z: R, eta: R, depth: R, stretching: u32, vz: R, eta_rate
 
 // (e^{k zs} + e^{-k (zs + 2 h)}, e^{k zs} - e^{-k (zs + 2 h)}): the depth decay
 // (cosh, sinh)(k (zs + h)) / sinh(k h) times 1 - e^{-2 k h}, without overflow.
+//
+// The seabed's reflection e2 is left out (0) where 2 k (zs + h) > 39, as on the CPU
+// (sea::columns): then e2 / e1 = e^{-2 k (zs + h)} < e^{-39} < 1.2e-17, below half an
+// ulp of e1 even where e1 is a power of two (the gap below it is 2^-53 e1 in f64, the
+// half of that 5.6e-17 e1; f32's 3e-8 e1), so e1 + e2 and e1 - e2 round to e1 exactly,
+// the bits of e1 +- 0. The margin (4.8x in f64) covers the rounding of the exponents
+// (|x| eps, 1e-13 relative at k (zs + 2 h) = 640) and of wave_exp (a few ulps). A NaN
+// fails the test and keeps e2, as before; zs + h >= 0 (wave_eval_depth's clamp).
 fn wave_depth_decay(k: R, zs: R, depth: R) -> vec2<R> {
     let e1 = wave_exp(k * zs);
-    let e2 = wave_exp(-k * (zs + R(2.0) * depth));
+    var e2 = R(0.0);
+    if !(R(2.0) * k * (zs + depth) > R(39.0)) {
+        e2 = wave_exp(-k * (zs + R(2.0) * depth));
+    }
     return vec2<R>(e1 + e2, e1 - e2);
 }
 
