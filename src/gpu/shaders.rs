@@ -111,7 +111,14 @@ pub fn header_with(p: Precision, fused_wg: u32, waves: bool, wave_points: bool) 
                 -149.0,
             )
         }
-        Precision::F64 => ("f64", pio2, 6.123233995736766e-17, 134217729.0, false, -1074.0),
+        Precision::F64 => (
+            "f64",
+            pio2,
+            6.123233995736766e-17,
+            134217729.0,
+            false,
+            -1074.0,
+        ),
     };
     // `{:e}` prints the shortest string that reads back to the same f64; the
     // abstract-float literal then converts exactly (f64) or to the same f32.

@@ -100,12 +100,21 @@ fn check_exp_bits<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8R
     let new: Vec<R> = out.iter().step_by(2).copied().collect();
     let old: Vec<R> = out.iter().skip(1).step_by(2).copied().collect();
     if let Some((i, a, b)) = first_difference(&new, &old) {
-        panic!("{p:?}: wave_exp({}) = {a:e} by ldexp, {b:e} by squaring", x[i]);
+        panic!(
+            "{p:?}: wave_exp({}) = {a:e} by ldexp, {b:e} by squaring",
+            x[i]
+        );
     }
     // Not vacuous: some results are 0, some are in (0, 1), and some subnormal or not.
     let zeros = old.iter().filter(|v| v.f64() == 0.0).count();
-    let inner = old.iter().filter(|v| v.f64() > 0.0 && v.f64() < 1.0).count();
-    assert!(zeros > 50 && inner > 2000, "{p:?}: {zeros} zeros, {inner} in (0, 1)");
+    let inner = old
+        .iter()
+        .filter(|v| v.f64() > 0.0 && v.f64() < 1.0)
+        .count();
+    assert!(
+        zeros > 50 && inner > 2000,
+        "{p:?}: {zeros} zeros, {inner} in (0, 1)"
+    );
     eprintln!("{p:?}: wave_exp the same bits at {n} arguments ({zeros} results 0)");
 }
 
@@ -140,7 +149,10 @@ fn check_decay_bits<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha
             i % 2
         );
     }
-    assert!(skipped > 1000 && skipped < n - 1000, "{p:?}: {skipped} of {n} skip the seabed");
+    assert!(
+        skipped > 1000 && skipped < n - 1000,
+        "{p:?}: {skipped} of {n} skip the seabed"
+    );
     eprintln!("{p:?}: wave_depth_decay the same bits at {n} points ({skipped} skip the seabed)");
 }
 
