@@ -23,23 +23,59 @@ ELEM_PARAMS = {"f32": 32, "f64": 40}
 # - the elevation pass, every component whatever the depth: the phase (6), sin_cos
 #   (reduction 7, two polynomials 31: 39), the elevation and its rate (9): 54;
 # - the decay cut's bisection, ceil(log2(n + 1)) = 8 steps at 200 components, each a
-#   wave_exp (46: reduction 7, Taylor 26, about 8 squarings and 4 products for the
-#   depths here, the final product) and the bound (5): 51 a step;
-# - the decay pass, over the prefix the node needs (sea::cut): wave_depth_decay (two
-#   wave_exp and 6), the phase and sin_cos (45), the phase rate (4), the twelve value
-#   and rate terms of u and a and their sums (about 50): about 199 per component.
-# (Before this branch: 240 per component over all 200, about 48,000 per node and
-# refresh, the section "The water surface and waves"; now 54 + 199 = 253 per component
-# where the prefix is whole, plus the bisection.)
+#   wave_exp and the bound (5);
+# - the decay pass, over the prefix the node needs (sea::cut): wave_depth_decay, the
+#   phase and sin_cos (45), the phase rate (4), the twelve value and rate terms of u
+#   and a and their sums (about 50): 101 per component besides wave_depth_decay.
+# wave_exp: the reduction 7, Taylor 26, then 2^n: before branch `hgpuref` about 8
+# squarings and 4 products for the depths here and the final product (46 in all);
+# since, one ldexp (counted as the one multiply it replaces: 34 in all).
+# wave_depth_decay: before `hgpuref` two wave_exp, their exponents (1 and 3) and the
+# two sums (98); since, the test 2 k (zs + h) > 39 (3) and the seabed's wave_exp with
+# its exponent only where it fails (BENCHMARKS.md, "The seabed term and ldexp in the
+# GPU refresh"): 77 with it, 40 without.
+# (Branch `hwgpu`: 240 per component over all 200 before it, about 48,000 per node and
+# refresh, the section "The water surface and waves"; with it 54 + 199 = 253 per
+# component where the prefix is whole, plus the bisection.)
 N_COMPS = 200
 ELEVATION_FLOPS = 54
-DECAY_FLOPS = 199
-BISECTION_FLOPS = 8 * 51
+DECAY_OTHER_FLOPS = 101
+EXP_FLOPS = {"squaring": 46, "ldexp": 34}
+BISECTION_STEPS = 8
+# This branch's wave_exp and wave_depth_decay (False: as before `hgpuref`, for the
+# before column).
+NEW_EXP = True
 
 
-def refresh_flops(prefix):
-    """Flops of one node refresh whose decay pass sums `prefix` components."""
-    return N_COMPS * ELEVATION_FLOPS + BISECTION_FLOPS + prefix * DECAY_FLOPS
+def exp_flops(new):
+    return EXP_FLOPS["ldexp" if new else "squaring"]
+
+
+def decay_flops(new, seabed):
+    """Flops of one component of the decay pass, with or without the seabed term."""
+    e = exp_flops(new)
+    if not new:
+        return DECAY_OTHER_FLOPS + 2 * e + 6
+    return DECAY_OTHER_FLOPS + 3 + e + 3 + (e + 3 if seabed else 0)
+
+
+# A proposal, not built (BENCHMARKS.md, "The seabed term and ldexp in the GPU
+# refresh"): the decay pass taking each component's sine, cosine and phase rate from
+# the elevation pass (kept per invocation, 3 scalars a component) instead of forming
+# them again: the same bits, the phase (6), sin_cos (39) and the phase rate (4) saved
+# per prefix component.
+REUSED_PHASE_FLOPS = 6 + 39 + 4
+
+
+def refresh_flops(prefix, seabed_skip=0.0, new=NEW_EXP, reuse_phases=False):
+    """Flops of one node refresh whose decay pass sums `prefix` components, of which
+    `seabed_skip` leave out the seabed term (counted only with `new`); `reuse_phases`:
+    the proposal above."""
+    skip = seabed_skip if new else 0.0
+    saved = prefix * REUSED_PHASE_FLOPS if reuse_phases else 0.0
+    return (N_COMPS * ELEVATION_FLOPS + BISECTION_STEPS * (exp_flops(new) + 5)
+            + (prefix - skip) * decay_flops(new, True) + skip * decay_flops(new, False)
+            - saved)
 
 # Scalars of the cache per element at a step that does not refresh.
 OLD_ELEM = 2 * (1 + 28)  # both nodes' band and their 28 (values, rates, two times)
@@ -69,11 +105,12 @@ MIXED_DUE = ELEM_DUE
 ELEM_FORM_FLOPS = 4 * 6 * 2
 
 
-def per_node_step(p, case, new, with_prefix=True):
+def per_node_step(p, case, new, with_prefix=True, new_exp=NEW_EXP, reuse_phases=False):
     """(bytes, flops) per node-step of `case` at precision `p`, the per-element
     cache (`new`, branch `hwavegpu`) or the nodes' (before it); `with_prefix`: each
-    band's refresh sums its measured decay prefix (the case's `prefix`), else all
-    the components."""
+    band's refresh sums its measured decay prefix (the case's `prefix`, of which the
+    case's `seabed_skip` without the seabed term), else all the components (all with
+    it); `new_exp`: wave_exp and wave_depth_decay of branch `hgpuref` (else before)."""
     s = SCALAR[p]
     n_nodes = sum(case["nodes"].values())
     n_elems = sum(case["elems"].values()) + sum(case["mixed"].values())
@@ -94,7 +131,8 @@ def per_node_step(p, case, new, with_prefix=True):
         share = n / n_nodes / case["interval"][band]
         b += share * NODE_DUE * s
         prefix = case.get("prefix", {}).get(band, N_COMPS) if with_prefix else N_COMPS
-        fl += share * refresh_flops(prefix)
+        skip = case.get("seabed_skip", {}).get(band, 0.0) if with_prefix else 0.0
+        fl += share * refresh_flops(prefix, skip, new_exp, reuse_phases)
     if new:
         b += per_node * (ELEM_PARAMS[p] + ELEM_ALWAYS * s) / every
         for band, n in case["elems"].items():
@@ -130,6 +168,9 @@ CASES = {
         "elems": {0: 2.3, 2: 0.8, 3: 18.0, 4: 50.8, 5: 216.2},
         "mixed": {0: 8, 2: 8, 3: 8, 4: 8},
         "prefix": {0: 198.9, 2: 190.3, 3: 145.1, 4: 90.3, 5: 52.4},
+        # Of each band's prefix, the mean number of components whose seabed term the
+        # refresh leaves out (2 k (zs + h) > 39; the same run, branch `hgpuref`).
+        "seabed_skip": {0: 133.3, 2: 121.6, 3: 67.9, 4: 5.7, 5: 0.0},
     },
     # The same member with the relative bands (main before the sea's scale): every 24,
     # 48, 96, 192 steps (the run's log); nodes and elements per band estimated from
@@ -152,6 +193,8 @@ CASES = {
         "mixed": {},
         "prefix": {0: (10.3 * 198.9 + 8.8 * 190.3 + 26.0 * 145.1 + 58.8 * 90.3
                        + 224.2 * 52.4) / 328.1},
+        "seabed_skip": {0: (10.3 * 133.3 + 8.8 * 121.6 + 26.0 * 67.9 + 58.8 * 5.7
+                            + 224.2 * 0.0) / 328.1},
     },
 }
 
@@ -159,17 +202,32 @@ CASES = {
 def main():
     print("| case | precision | still B | B (ratio) | still flops "
           "| flops, every refresh over all 200 (ratio) "
+          "| flops, the decay prefix counted, before `hgpuref` (ratio) "
           "| flops, the decay prefix counted (ratio) |")
-    print("|---|---|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
     for name, case in CASES.items():
         for p in ("f32", "f64"):
             nb, full = per_node_step(p, case, True, False)
+            _, before = per_node_step(p, case, True, True, False)
             _, cut = per_node_step(p, case, True, True)
             sb, sf = STILL_BYTES[p], STILL_FLOPS[p]
-            cut_s = (f"{cut:.0f} ({cut / sf:.2f}x)" if "prefix" in case
-                     else "(not measured)")
+
+            def measured(v):
+                return f"{v:.0f} ({v / sf:.2f}x)" if "prefix" in case else "(not measured)"
             print(f"| {name} | {p} | {sb} | {nb:.0f} ({nb / sb:.2f}x) | {sf} | "
-                  f"{full:.0f} ({full / sf:.2f}x) | {cut_s} |")
+                  f"{full:.0f} ({full / sf:.2f}x) | {measured(before)} | {measured(cut)} |")
+    print()
+    print("Proposal (not built): the decay pass reusing the elevation pass's phases")
+    print()
+    print("| case | precision | still flops | flops, the decay prefix counted (ratio) |")
+    print("|---|---|---:|---:|")
+    for name, case in CASES.items():
+        if "prefix" not in case:
+            continue
+        for p in ("f32", "f64"):
+            _, fl = per_node_step(p, case, True, True, NEW_EXP, True)
+            sf = STILL_FLOPS[p]
+            print(f"| {name} | {p} | {sf} | {fl:.0f} ({fl / sf:.2f}x) |")
 
 
 if __name__ == "__main__":

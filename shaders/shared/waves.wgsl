@@ -80,34 +80,33 @@ fn wave_comp_cut(j: u32) -> WaveCompCut {
 // exp(x) for x <= 0 in the shader's own arithmetic (WGSL has no f64 exp): Cody-Waite
 // reduction x = n ln2 + r, |r| <= ln2 / 2, with ln2 split so that n * LN2_HI is exact
 // in f32 and f64 (LN2_HI has 16 significant bits), Taylor to r^13 (truncation below
-// 1e-17), then the factor 2^n by repeated squaring of 1/2.
+// 1e-17), then the factor 2^n by `ldexp`.
+//
+// `ldexp` gives the bits the loop before it gave (0.5^-n by repeated squaring, then
+// p * 0.5^-n; branch `hgpuref`, BENCHMARKS.md "The seabed term and ldexp in the GPU
+// refresh"): a power of two 2^n, n >= R_LEAST_EXP2 (the least subnormal's exponent),
+// is exact, so both are p * 2^n rounded once (the loop's partial products are powers
+// of two, exact down to 2^R_LEAST_EXP2; `ldexp` is the correctly rounded p * 2^n).
+// Below it the loop's 0.5^-n was 0 (2^(R_LEAST_EXP2 - 1) is a tie that rounds to even,
+// 0), where `ldexp` of p > 1 would round up to the least subnormal: hence the test on
+// n, which also stands for the old test x < -745 (there n <= -1075). A device that
+// flushes subnormals flushes both the same way. The loop ran as many times as the
+// bits of -n (on lavapipe a loop runs as long as its slowest lane).
 const WAVE_LN2_HI: R = 0.693145751953125;
 const WAVE_LN2_LO: R = 1.4286068203094172321e-06;
 
 fn wave_exp(x: R) -> R {
-    if x < R(-745.0) {
+    let n = floor(x * R(1.4426950408889634) + R(0.5));
+    if n < R_LEAST_EXP2 {
         return R(0.0);
     }
-    let n = floor(x * R(1.4426950408889634) + R(0.5));
     let r = (x - n * WAVE_LN2_HI) - n * WAVE_LN2_LO;
     let p = R(1.0) + r * (R(1.0) + r * (R(1.0 / 2.0) + r * (R(1.0 / 6.0) + r * (R(1.0 / 24.0)
         + r * (R(1.0 / 120.0) + r * (R(1.0 / 720.0) + r * (R(1.0 / 5040.0) + r * (R(1.0 / 40320.0)
         + r * (R(1.0 / 362880.0) + r * (R(1.0 / 3628800.0) + r * (R(1.0 / 39916800.0)
         + r * (R(1.0 / 479001600.0) + r * R(1.0 / 6227020800.0)))))))))))));
-    var m = u32(-n);
-    var s = R(1.0);
-    var b = R(0.5);
-    loop {
-        if m == 0u {
-            break;
-        }
-        if (m & 1u) == 1u {
-            s = s * b;
-        }
-        b = b * b;
-        m = m >> 1u;
-    }
-    return p * s;
+    // n <= 0 in the domain x <= 0 (x > ln2 / 2 is no use here: the loop returned p).
+    return ldexp(p, i32(n));
 }
 
 // The start-up ramp 0.5 (1 - cos(pi t / T_r)) on [0, T_r), 0 before, 1 after (and
@@ -179,9 +178,20 @@ fn wave_eval_depth_rate(z: R, eta: R, depth: R, stretching: u32, vz: R, eta_rate
 
 // (e^{k zs} + e^{-k (zs + 2 h)}, e^{k zs} - e^{-k (zs + 2 h)}): the depth decay
 // (cosh, sinh)(k (zs + h)) / sinh(k h) times 1 - e^{-2 k h}, without overflow.
+//
+// The seabed's reflection e2 is left out (0) where 2 k (zs + h) > 39, as on the CPU
+// (sea::columns): then e2 / e1 = e^{-2 k (zs + h)} < e^{-39} < 1.2e-17, below half an
+// ulp of e1 even where e1 is a power of two (the gap below it is 2^-53 e1 in f64, the
+// half of that 5.6e-17 e1; f32's 3e-8 e1), so e1 + e2 and e1 - e2 round to e1 exactly,
+// the bits of e1 +- 0. The margin (4.8x in f64) covers the rounding of the exponents
+// (|x| eps, 1e-13 relative at k (zs + 2 h) = 640) and of wave_exp (a few ulps). A NaN
+// fails the test and keeps e2, as before; zs + h >= 0 (wave_eval_depth's clamp).
 fn wave_depth_decay(k: R, zs: R, depth: R) -> vec2<R> {
     let e1 = wave_exp(k * zs);
-    let e2 = wave_exp(-k * (zs + R(2.0) * depth));
+    var e2 = R(0.0);
+    if !(R(2.0) * k * (zs + depth) > R(39.0)) {
+        e2 = wave_exp(-k * (zs + R(2.0) * depth));
+    }
     return vec2<R>(e1 + e2, e1 - e2);
 }
 

@@ -99,7 +99,7 @@ pub fn header(p: Precision) -> String {
 /// It counts only with `waves`.
 pub fn header_with(p: Precision, fused_wg: u32, waves: bool, wave_points: bool) -> String {
     let pio2 = std::f64::consts::FRAC_PI_2;
-    let (ty, hi, lo, splitter, compensated) = match p {
+    let (ty, hi, lo, splitter, compensated, least_exp2) = match p {
         Precision::F32 => {
             let hi = pio2 as f32;
             (
@@ -108,9 +108,17 @@ pub fn header_with(p: Precision, fused_wg: u32, waves: bool, wave_points: bool) 
                 (pio2 - hi as f64) as f32 as f64,
                 4097.0,
                 true,
+                -149.0,
             )
         }
-        Precision::F64 => ("f64", pio2, 6.123233995736766e-17, 134217729.0, false),
+        Precision::F64 => (
+            "f64",
+            pio2,
+            6.123233995736766e-17,
+            134217729.0,
+            false,
+            -1074.0,
+        ),
     };
     // `{:e}` prints the shortest string that reads back to the same f64; the
     // abstract-float literal then converts exactly (f64) or to the same f32.
@@ -123,6 +131,8 @@ pub fn header_with(p: Precision, fused_wg: u32, waves: bool, wave_points: bool) 
          const SPLITTER: R = {splitter:e};\n\
          // Element stretches from compensated pairs (f32; f64 needs no help).\n\
          const COMPENSATED: bool = {compensated};\n\
+         // The exponent of the least subnormal R, 2^-149 (f32) or 2^-1074 (f64).\n\
+         const R_LEAST_EXP2: R = {least_exp2:?};\n\
          // Invocations per workgroup of the fused kernel (nodes per block at most).\n\
          const FUSED_WG: u32 = {fused_wg}u;\n\
          // Whether the run has waves (false: the waves branches fold away).\n\

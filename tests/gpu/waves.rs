@@ -28,6 +28,7 @@ use rand_chacha::ChaCha8Rng;
 use std::f64::consts::{PI, TAU};
 
 mod cache;
+mod exact;
 use cache::*;
 
 const KERNELS: &str = r#"

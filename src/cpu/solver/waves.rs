@@ -69,8 +69,10 @@ impl CpuSolver {
     /// elevation and its rate over it, the speed `|v_h| + |zs'|`. A diagnostic for
     /// counting the GPU refresh's work (examples/wave_prefix_count.rs); empty in
     /// still water. (A refresh evaluates its `t1` values at the position predicted
-    /// one interval ahead: this is the state now.)
-    pub fn wave_decay_prefixes(&self) -> Vec<(usize, usize)> {
+    /// one interval ahead: this is the state now.) The third number: how many of the
+    /// prefix's components leave out the seabed's term (`2 k (zs + h) > 39`, the
+    /// shader's `wave_depth_decay`: one `wave_exp` instead of two).
+    pub fn wave_decay_prefixes(&self) -> Vec<(usize, usize, usize)> {
         let Some(seas) = &self.seas else {
             return Vec::new();
         };
@@ -88,7 +90,12 @@ impl CpuSolver {
                     wave_eval_depth_rate(p[2], k.eta, field.depth, field.stretching, v[2], dk.eta);
                 let s = v[0].hypot(v[1]) + zs_rate.abs();
                 let m = wave_decay_prefix(&field.comps, zs, s, r_rate);
-                out.push((w.cache().band_of(i - n0), m));
+                let above_bed = zs + field.depth;
+                let seabed_skip = field.comps[..m]
+                    .iter()
+                    .filter(|c| 2.0 * c.k * above_bed > 39.0)
+                    .count();
+                out.push((w.cache().band_of(i - n0), m, seabed_skip));
             }
         }
         out
