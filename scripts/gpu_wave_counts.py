@@ -59,6 +59,14 @@ MIXED_ELEM_FLOPS = OLD_ELEM_FLOPS  # 8 x 7 + 7 + 6 x 7 + 6 + 5 = 116 since `hlav
 # (writes).
 NODE_ALWAYS = 1
 NODE_DUE = 3 + 14 + 14 + 14 + 3 + 1
+# The refresh's work list (branch `hcompact`): per due evaluation the first pass
+# writes an entry (node, which, position, velocity: 8) and the second reads it back
+# with the node's band (1) and block index (4 B); per node and refresh dispatch the
+# second pass's two invocations (two entries per node at most) read the list's
+# length (4 B each).
+LIST_DUE = 8 + 8 + 1
+LIST_DUE_BYTES = 4
+LIST_ALWAYS_BYTES = 2 * 4
 # wave_elem_form (this branch), per element and refresh dispatch: always its
 # parameters and its nodes' bands; when one of its nodes' bands refreshes, the nodes'
 # 2 x 28 (reads) and its 33 (writes); an element across a band top the same (since
@@ -69,11 +77,12 @@ MIXED_DUE = ELEM_DUE
 ELEM_FORM_FLOPS = 4 * 6 * 2
 
 
-def per_node_step(p, case, new, with_prefix=True):
+def per_node_step(p, case, new, with_prefix=True, work_list=True):
     """(bytes, flops) per node-step of `case` at precision `p`, the per-element
     cache (`new`, branch `hwavegpu`) or the nodes' (before it); `with_prefix`: each
     band's refresh sums its measured decay prefix (the case's `prefix`), else all
-    the components."""
+    the components; `work_list`: the refresh's evaluations over a work list (branch
+    `hcompact`), else in the pass over the nodes."""
     s = SCALAR[p]
     n_nodes = sum(case["nodes"].values())
     n_elems = sum(case["elems"].values()) + sum(case["mixed"].values())
@@ -90,9 +99,13 @@ def per_node_step(p, case, new, with_prefix=True):
     fl = STILL_FLOPS[p] + per_node * elem_fl
     # The refresh, amortised: the nodes'.
     b += (NODE_STATE[p] + 4 + NODE_ALWAYS * s) / every
+    if work_list:
+        b += LIST_ALWAYS_BYTES / every
     for band, n in case["nodes"].items():
         share = n / n_nodes / case["interval"][band]
         b += share * NODE_DUE * s
+        if work_list:
+            b += share * (LIST_DUE * s + LIST_DUE_BYTES)
         prefix = case.get("prefix", {}).get(band, N_COMPS) if with_prefix else N_COMPS
         fl += share * refresh_flops(prefix)
     if new:
@@ -157,18 +170,20 @@ CASES = {
 
 
 def main():
-    print("| case | precision | still B | B (ratio) | still flops "
-          "| flops, every refresh over all 200 (ratio) "
+    print("| case | precision | still B | B without the work list | B (ratio) "
+          "| still flops | flops, every refresh over all 200 (ratio) "
           "| flops, the decay prefix counted (ratio) |")
-    print("|---|---|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
     for name, case in CASES.items():
         for p in ("f32", "f64"):
             nb, full = per_node_step(p, case, True, False)
             _, cut = per_node_step(p, case, True, True)
+            ob, _ = per_node_step(p, case, True, True, work_list=False)
             sb, sf = STILL_BYTES[p], STILL_FLOPS[p]
             cut_s = (f"{cut:.0f} ({cut / sf:.2f}x)" if "prefix" in case
                      else "(not measured)")
-            print(f"| {name} | {p} | {sb} | {nb:.0f} ({nb / sb:.2f}x) | {sf} | "
+            print(f"| {name} | {p} | {sb} | {ob:.1f} ({ob / sb:.3f}x) "
+                  f"| {nb:.1f} ({nb / sb:.3f}x) | {sf} | "
                   f"{full:.0f} ({full / sf:.2f}x) | {cut_s} |")
 
 
