@@ -77,6 +77,15 @@ def refresh_flops(prefix, seabed_skip=0.0, new=NEW_EXP, reuse_phases=False):
             + (prefix - skip) * decay_flops(new, True) + skip * decay_flops(new, False)
             - saved)
 
+# The refresh's work list (branch `hcompact`): per due evaluation the first pass
+# writes an entry (node, which, position, velocity: 8) and the second reads it back
+# with the node's band (1) and block index (4 B); per node and refresh dispatch the
+# second pass's two invocations (two entries per node at most) read the list's
+# length (4 B each).
+LIST_DUE = 8 + 8 + 1
+LIST_DUE_BYTES = 4
+LIST_ALWAYS_BYTES = 2 * 4
+
 # Scalars of the cache per element at a step that does not refresh.
 OLD_ELEM = 2 * (1 + 28)  # both nodes' band and their 28 (values, rates, two times)
 NEW_ELEM = 1 + 32  # the element's band mark and its 32
@@ -105,12 +114,15 @@ MIXED_DUE = ELEM_DUE
 ELEM_FORM_FLOPS = 4 * 6 * 2
 
 
-def per_node_step(p, case, new, with_prefix=True, new_exp=NEW_EXP, reuse_phases=False):
+def per_node_step(p, case, new, with_prefix=True, new_exp=NEW_EXP, reuse_phases=False,
+                  work_list=True):
     """(bytes, flops) per node-step of `case` at precision `p`, the per-element
     cache (`new`, branch `hwavegpu`) or the nodes' (before it); `with_prefix`: each
     band's refresh sums its measured decay prefix (the case's `prefix`, of which the
     case's `seabed_skip` without the seabed term), else all the components (all with
-    it); `new_exp`: wave_exp and wave_depth_decay of branch `hgpuref` (else before)."""
+    it); `new_exp`: wave_exp and wave_depth_decay of branch `hgpuref` (else before);
+    `work_list`: the refresh's evaluations over a work list (branch `hcompact`), else
+    in the pass over the nodes."""
     s = SCALAR[p]
     n_nodes = sum(case["nodes"].values())
     n_elems = sum(case["elems"].values()) + sum(case["mixed"].values())
@@ -127,9 +139,13 @@ def per_node_step(p, case, new, with_prefix=True, new_exp=NEW_EXP, reuse_phases=
     fl = STILL_FLOPS[p] + per_node * elem_fl
     # The refresh, amortised: the nodes'.
     b += (NODE_STATE[p] + 4 + NODE_ALWAYS * s) / every
+    if work_list:
+        b += LIST_ALWAYS_BYTES / every
     for band, n in case["nodes"].items():
         share = n / n_nodes / case["interval"][band]
         b += share * NODE_DUE * s
+        if work_list:
+            b += share * (LIST_DUE * s + LIST_DUE_BYTES)
         prefix = case.get("prefix", {}).get(band, N_COMPS) if with_prefix else N_COMPS
         skip = case.get("seabed_skip", {}).get(band, 0.0) if with_prefix else 0.0
         fl += share * refresh_flops(prefix, skip, new_exp, reuse_phases)
@@ -200,21 +216,23 @@ CASES = {
 
 
 def main():
-    print("| case | precision | still B | B (ratio) | still flops "
-          "| flops, every refresh over all 200 (ratio) "
+    print("| case | precision | still B | B without the work list | B (ratio) "
+          "| still flops | flops, every refresh over all 200 (ratio) "
           "| flops, the decay prefix counted, before `hgpuref` (ratio) "
           "| flops, the decay prefix counted (ratio) |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
     for name, case in CASES.items():
         for p in ("f32", "f64"):
             nb, full = per_node_step(p, case, True, False)
             _, before = per_node_step(p, case, True, True, False)
             _, cut = per_node_step(p, case, True, True)
+            ob, _ = per_node_step(p, case, True, True, work_list=False)
             sb, sf = STILL_BYTES[p], STILL_FLOPS[p]
 
             def measured(v):
                 return f"{v:.0f} ({v / sf:.2f}x)" if "prefix" in case else "(not measured)"
-            print(f"| {name} | {p} | {sb} | {nb:.0f} ({nb / sb:.2f}x) | {sf} | "
+            print(f"| {name} | {p} | {sb} | {ob:.1f} ({ob / sb:.3f}x) "
+                  f"| {nb:.1f} ({nb / sb:.3f}x) | {sf} | "
                   f"{full:.0f} ({full / sf:.2f}x) | {measured(before)} | {measured(cut)} |")
     print()
     print("Proposal (not built): the decay pass reusing the elevation pass's phases")

@@ -50,8 +50,9 @@ fn node_evaluate(@builtin(global_invocation_id) gid: vec3<u32>) {
 }
 
 // The waves' refresh, dispatched by the host before the element pass of a step whose
-// WaveStep row has `refresh` set: per node, the cache's new values (shared/waves.wgsl:
-// wave_refresh_node) at the node's absolute position.
+// WaveStep row has `refresh` set, in three passes. First, per node, the band
+// decision, the t1 -> t0 copy and the node's evaluations put on the work list
+// (shared/waves.wgsl: wave_refresh_node) at its absolute position.
 @compute @workgroup_size(64)
 fn wave_refresh(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
@@ -63,12 +64,24 @@ fn wave_refresh(@builtin(global_invocation_id) gid: vec3<u32>) {
     wave_refresh_node(i, step.k, vec3<R>(blk.ox, blk.oy, blk.oz) + (s.r_hi.xyz + s.r_lo.xyz), s.v.xyz);
 }
 
-// The element part of the waves' refresh, dispatched right after `wave_refresh`: per
-// element, its midpoint cache entry formed again from its nodes' new values where one
-// of them refreshed (shared/waves.wgsl: wave_elem_form).
+// Second, per entry of the work list (dispatched over two per node, the most a list
+// holds; those past its length return at once), the evaluation
+// (shared/waves.wgsl: wave_refresh_due).
+@compute @workgroup_size(64)
+fn wave_refresh_due(@builtin(global_invocation_id) gid: vec3<u32>) {
+    wave_refresh_due_entry(gid.x, step.k);
+}
+
+// Third, per element, its midpoint cache entry formed again from its nodes' new
+// values where one of them refreshed (shared/waves.wgsl: wave_elem_form). The work
+// list is emptied here, after the second pass read its length (every dispatch of a
+// pass sees the previous one's writes).
 @compute @workgroup_size(64)
 fn wave_refresh_elems(@builtin(global_invocation_id) gid: vec3<u32>) {
     let e = gid.x;
+    if e == 0u {
+        atomicStore(&status.refresh_due, 0u);
+    }
     if e >= params.n_elems {
         return;
     }

@@ -294,6 +294,9 @@ struct Status {
     // (shared/waves.wgsl: wave_beyond_margin).
     beyond: atomic<u32>,
     beyond_step: atomic<u32>,
+    // Waves: the entries on the refresh's work list (shared/waves.wgsl:
+    // wave_due_push), 0 between refreshes.
+    refresh_due: atomic<u32>,
 }
 
 @group(0) @binding(0) var<storage, read> params: Params;

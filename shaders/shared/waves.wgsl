@@ -400,7 +400,9 @@ fn wave_step_tops(ws: WaveStep) -> array<R, 6> {
 // node: the node's velocity at the last refresh (m/s); then one per node: its depth
 // band (a small whole number, exact in R); then one per node: how many times it was
 // found above its band's top (sea::cache::WaveCache::breaches, summed by the host);
-// then WAVE_ELEM_STRIDE per element: its midpoint cache (wave_elem_form, below).
+// then WAVE_ELEM_STRIDE per element: its midpoint cache (wave_elem_form, below); then
+// four per node: its breaches beyond the margin (wave_beyond_at); then the refresh's
+// work list, two entries of WAVE_DUE_STRIDE per node at most (wave_due_at).
 const WAVE_CACHE_STRIDE: u32 = 14u;
 @group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
 @group(0) @binding(20) var<storage, read> wave_steps: array<WaveStep>;
@@ -696,14 +698,69 @@ fn wave_beyond_margin(i: u32, k: u32, z: R, top: R) {
     atomicMax(&status.beyond_step, 0xffffffffu - (params.step_base + k));
 }
 
-// The refresh of node i at step k, at absolute position p (m) with velocity v (m/s),
-// when the node's band refreshes at this step (nothing otherwise: the node keeps its
-// cache): on a restart the t0 values and rates at p along v and the node back in
-// band 0; else the t1 values and rates become the t0 ones, and at a band decision the
-// node goes to the band `wave_band` gives; then the t1 values and rates of its band
-// at the predicted position p + v h + acc h^2 / 2 along v + acc h (h = t1 - t, acc
-// the velocity change since the previous refresh over its time, 0 on a restart). At
-// a refresh of band 0 a node above its band's top is counted. CPU twin:
+// ---- The refresh's work list. A refresh runs in two passes: the first
+// (wave_refresh_node, over every node) decides, copies and tracks, and puts each
+// evaluation a node needs on this list; the second (wave_refresh_due_entry, over it)
+// evaluates. Why: at most refreshes only band 0's nodes are due (about one per chain,
+// spread over the layout), and a SIMD group (llvmpipe's 4-8 lanes, a GPU's warp) runs
+// the 200-component sums once per group with any lane due: over the list the due
+// nodes sit side by side in a few groups. Each evaluation is the same call with the
+// same arguments as in one pass, so the same bits whatever the list's order. ----
+
+// Per entry: the node, which evaluation (0: the t0 values of a restart, 1: the t1
+// values), then the position (m) and velocity (m/s) to evaluate at. At most two
+// entries per node (a restart), after the nodes' beyond-margin records.
+const WAVE_DUE_STRIDE: u32 = 8u;
+
+fn wave_due_at(n: u32) -> u32 {
+    return wave_beyond_at(params.n_nodes) + WAVE_DUE_STRIDE * n;
+}
+
+// Appends node i's evaluation `which` at p along v (small whole numbers stored in R:
+// the host keeps node indices below 2^24, exact in f32).
+fn wave_due_push(i: u32, which: u32, p: vec3<R>, v: vec3<R>) {
+    let o = wave_due_at(atomicAdd(&status.refresh_due, 1u));
+    wave_cache[o] = R(i);
+    wave_cache[o + 1u] = R(which);
+    wave_cache[o + 2u] = p.x;
+    wave_cache[o + 3u] = p.y;
+    wave_cache[o + 4u] = p.z;
+    wave_cache[o + 5u] = v.x;
+    wave_cache[o + 6u] = v.y;
+    wave_cache[o + 7u] = v.z;
+}
+
+// Entry n of the list at step k, if there is one: its node's values and rates in the
+// slot of the evaluation (t0 of a restart: slot0 at tau0 with ramp0; t1: slot1 at
+// tau1 with ramp1) of the node's band's row (the band the first pass set). One call
+// of wave_kinematics_rates_tau with its arguments selected, not one per branch: on a
+// software adapter an `if` runs both sides.
+fn wave_refresh_due_entry(n: u32, k: u32) {
+    if n >= atomicLoad(&status.refresh_due) {
+        return;
+    }
+    let o = wave_due_at(n);
+    let i = u32(wave_cache[o]);
+    let t1 = wave_cache[o + 1u] != R(0.0);
+    let p = vec3<R>(wave_cache[o + 2u], wave_cache[o + 3u], wave_cache[o + 4u]);
+    let v = vec3<R>(wave_cache[o + 5u], wave_cache[o + 6u], wave_cache[o + 7u]);
+    let ws = wave_band_step(i, u32(wave_cache[wave_band_at(i)]), k);
+    let slot = select(ws.slot0, ws.slot1, t1);
+    let ramp = select(ws.ramp0, ws.ramp1, t1);
+    let ramp_rate = select(ws.ramp_rate0, ws.ramp_rate1, t1);
+    let tau = select(ws.tau0, ws.tau1, t1);
+    wave_cache_store(slot, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ramp, ramp_rate, p, v, tau));
+}
+
+// The first pass of the refresh of node i at step k, at absolute position p (m) with
+// velocity v (m/s), when the node's band refreshes at this step (nothing otherwise:
+// the node keeps its cache): on a restart the t0 values and rates at p along v (on
+// the work list) and the node back in band 0; else the t1 values and rates become
+// the t0 ones, and at a band decision the node goes to the band `wave_band` gives;
+// then the t1 values and rates of its band (on the work list) at the predicted
+// position p + v h + acc h^2 / 2 along v + acc h (h = t1 - t, acc the velocity change
+// since the previous refresh over its time, 0 on a restart). At a refresh of band 0
+// a node above its band's top is counted. CPU twin (both passes):
 // sea::cache::WaveCache::refresh_if_due.
 fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
     let ab = wave_band_at(i);
@@ -739,7 +796,7 @@ fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
         return;
     }
     if ws.restart != 0u {
-        wave_cache_store(ws.slot0, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp0, ws.ramp_rate0, p, v, ws.tau0));
+        wave_due_push(i, 0u, p, v);
     } else {
         let o0 = (ws.slot0 * params.n_nodes + i) * WAVE_CACHE_STRIDE;
         let o1 = (ws.slot1 * params.n_nodes + i) * WAVE_CACHE_STRIDE;
@@ -755,5 +812,5 @@ fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
     let h = ws.ahead;
     let p1 = p + v * h + R(0.5) * acc * h * h;
     let v1 = v + acc * h;
-    wave_cache_store(ws.slot1, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ws.ramp1, ws.ramp_rate1, p1, v1, ws.tau1));
+    wave_due_push(i, 1u, p1, v1);
 }

@@ -13,7 +13,7 @@ use super::host::{split, Host, NodeStates};
 use super::kernel::{GpuKernel, FUSED_FAILED, STEPS_PER_SUBMISSION};
 use super::layout::*;
 use super::solver::GpuTimings;
-use super::wave_schedule::{fused_segments, SeaSchedules};
+use super::wave_schedule::{fused_segments, SeaSchedules, WAVE_MAX_NODES};
 use crate::error::Error;
 use crate::model::Layout;
 use crate::options::SolverOptions;
@@ -93,6 +93,8 @@ pub(super) struct GpuEngine<R: GpuReal> {
     pipe_node: wgpu::ComputePipeline,
     pipe_eval: wgpu::ComputePipeline,
     pipe_refresh: wgpu::ComputePipeline,
+    /// The refresh's evaluations over its work list (`wave_refresh_due`), after it.
+    pipe_refresh_due: wgpu::ComputePipeline,
     /// The element part of the refresh (`wave_refresh_elems`), right after it.
     pipe_refresh_elems: wgpu::ComputePipeline,
     /// The waves (`None`: still water).
@@ -142,6 +144,17 @@ fn bytes_or_one<T: bytemuck::Pod>(v: &[T]) -> Vec<u8> {
     } else {
         bytemuck::cast_slice(v).to_vec()
     }
+}
+
+/// Refuses a layout in waves with more nodes than the refresh's work list can name
+/// (`WAVE_MAX_NODES`).
+fn check_wave_nodes(n_nodes: usize) -> Result<(), Error> {
+    if n_nodes > WAVE_MAX_NODES {
+        return Err(Error::GpuUnsupported(format!(
+            "{n_nodes} nodes in waves: the GPU path's waves refresh handles at most {WAVE_MAX_NODES}"
+        )));
+    }
+    Ok(())
 }
 
 fn align_up(x: u64, a: u64) -> u64 {
@@ -236,7 +249,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                             pass.set_bind_group(0, &self.inst.bind_group, &[off as u32]);
                             if refresh[a as usize] {
                                 self.dispatch_refresh(&mut pass);
-                                self.timings.dispatches += 2;
+                                self.timings.dispatches += 3;
                             }
                             pass.set_pipeline(pipe);
                             pass.dispatch_workgroups(self.inst.n_blocks as u32, 1, 1);
@@ -249,7 +262,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                             pass.set_bind_group(0, &self.inst.bind_group, &[off]);
                             if refresh[k as usize] {
                                 self.dispatch_refresh(&mut pass);
-                                self.timings.dispatches += 2;
+                                self.timings.dispatches += 3;
                             }
                             self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
                             self.dispatch(&mut pass, &self.pipe_node, self.inst.n_nodes);
@@ -334,6 +347,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             .push_error_scope(wgpu::ErrorFilter::Validation);
         // A new mesh starts the waves' cache afresh (as the CPU path's does).
         if let Some(w) = self.waves.as_mut() {
+            check_wave_nodes(lay.n_nodes())?;
             w.restart();
         }
         self.inst = Self::build(
@@ -353,6 +367,9 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
     }
 
     fn set_seas(&mut self, lay: &Layout, host: &Host, seas: &SeaSet) -> Result<(), Error> {
+        if !seas.is_still() {
+            check_wave_nodes(lay.n_nodes())?;
+        }
         self.waves = (!seas.is_still()).then(|| SeaSchedules::new(seas, self.dt64));
         let scope = self
             .ctx

@@ -507,8 +507,8 @@ gpu_struct! {
 
 gpu_struct_u32! {
     /// First blow-up of an `advance` call, and its breaches of a depth band beyond
-    /// the margin (WGSL `Status`; `failed`, `step`, `beyond` and `beyond_step` are
-    /// atomic there).
+    /// the margin, and the waves' refresh's work-list counter (WGSL `Status`;
+    /// `failed`, `step`, `beyond`, `beyond_step` and `refresh_due` are atomic there).
     Status {
         /// Nonzero once a node has failed: 1 from the two-pass path; from the fused
         /// kernel `FUSED_FAILED | (0x7fff - k) << 16 | (0xffff - block)` of the
@@ -528,6 +528,10 @@ gpu_struct_u32! {
         /// `0xffffffff` less the earliest step of this call (`step_base + k`) at which
         /// one was (atomic in WGSL; 0: none).
         beyond_step: u32,
+        /// Waves: how many evaluations a refresh's first pass (`wave_refresh`) put on
+        /// its work list for the second (`wave_refresh_due`); set back to 0 by the
+        /// third (`wave_refresh_elems`), so 0 between refreshes (atomic in WGSL).
+        refresh_due: u32,
     }
 }
 

@@ -68,6 +68,7 @@ impl Stage {
                 "node_update",
                 "node_evaluate",
                 "wave_refresh",
+                "wave_refresh_due",
                 "wave_refresh_elems",
             ],
             Stage::FusedSteps => &["fused_steps"],

@@ -3,8 +3,10 @@
 //! With the fused kernel ([`GpuKernel::Fused`], chosen by [`fused_workgroup`] where it
 //! applies) a submission is one dispatch of `fused_steps`, one workgroup per block,
 //! looping over the submission's steps inside the shader (in waves, one dispatch from
-//! each refresh of the kinematics cache to the next, the refresh a `wave_refresh`
-//! dispatch of its own: see [`fused_segments`](super::wave_schedule::fused_segments)). With the
+//! each refresh of the kinematics cache to the next, the refresh dispatches of its
+//! own, `wave_refresh` then `wave_refresh_due` over the nodes put on its work list,
+//! then `wave_refresh_elems`: see
+//! [`fused_segments`](super::wave_schedule::fused_segments)). With the
 //! two-pass kernel a step is two dispatches in one compute pass, `element_forces` then
 //! `node_update` (wgpu orders the storage writes of one dispatch before the reads of the
 //! next). Both read the step's route and payout rows the same way, so the rest of this
@@ -16,7 +18,7 @@
 //! routes are rebased to its start time (see [`RouteParams`](super::layout::RouteParams)): the shaders evaluate
 //! `r_d(t0 + tau)` with a small `tau`, which keeps f32 route positions and angles
 //! accurate over long runs. Nothing is read back while stepping except, at the end of
-//! an [`GpuSolver::advance`] call, the 16-byte status; state, tensions and reactions
+//! an [`GpuSolver::advance`] call, the status; state, tensions and reactions
 //! come back only when asked for, through one staging buffer created once per layout.
 //!
 //! Winch cables: per submission the host also writes the `payout` rows (one [`Payout`](super::layout::Payout)

@@ -32,6 +32,16 @@ pub(super) const WAVE_CACHE_STRIDE: usize = 14;
 /// acceleration, values and rates at both times (4 x 8).
 pub(super) const WAVE_ELEM_STRIDE: usize = 33;
 
+/// Scalars per entry of the refresh's work list, at most two entries per node, after
+/// the nodes' beyond-margin records (`WAVE_DUE_STRIDE` in
+/// `shaders/shared/waves.wgsl`): the node, which evaluation, the position and the
+/// velocity to evaluate at.
+pub(super) const WAVE_DUE_STRIDE: usize = 8;
+
+/// The most nodes a layout in waves may have: the work list stores node indices as
+/// scalars of the run's precision, exact in f32 below 2^24.
+pub(super) const WAVE_MAX_NODES: usize = 1 << 24;
+
 /// The host's side of the waves' kinematics cache: the components (rebased at each
 /// submission) and when each depth band's two times are (`sea::bands`): the same
 /// [`RefreshClock`]s as the CPU path's `sea::cache::WaveCache`, on the same grid

@@ -17,7 +17,7 @@ use crate::gpu::layout::*;
 use crate::gpu::shaders::{self, Stage};
 use crate::gpu::solver::GpuTimings;
 use crate::gpu::wave_schedule::{
-    fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_ELEM_STRIDE,
+    fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_DUE_STRIDE, WAVE_ELEM_STRIDE,
 };
 use crate::model::Layout;
 use crate::options::Precision;
@@ -149,6 +149,7 @@ impl<R: GpuReal> GpuEngine<R> {
         let pipe_node = pipeline(&m_node, "node_update");
         let pipe_eval = pipeline(&m_node, "node_evaluate");
         let pipe_refresh = pipeline(&m_node, "wave_refresh");
+        let pipe_refresh_due = pipeline(&m_node, "wave_refresh_due");
         let pipe_refresh_elems = pipeline(&m_node, "wave_refresh_elems");
         // The fused kernel for still water here; set_seas adds the one with the waves'
         // code when a sea has waves (shaders::header_with).
@@ -175,6 +176,7 @@ impl<R: GpuReal> GpuEngine<R> {
             pipe_node,
             pipe_eval,
             pipe_refresh,
+            pipe_refresh_due,
             pipe_refresh_elems,
             waves: None,
             pipe_fused,
@@ -424,12 +426,16 @@ impl<R: GpuReal> GpuEngine<R> {
         // velocity at the last refresh, then per node its depth band and how many
         // times it was found above its band's top, then WAVE_ELEM_STRIDE per element:
         // its midpoint cache, then four per node: its breaches beyond the band margin
-        // and the first one's height, top and step (`shaders/shared/waves.wgsl`); one
-        // value in still water.
+        // and the first one's height, top and step, then the refresh's work list, two
+        // entries per node at most (`shaders/shared/waves.wgsl`); one value in still
+        // water.
         let cache_len = if n_comps == 0 {
             1
         } else {
-            n_nodes * (2 * WAVE_CACHE_STRIDE + 5) + n_elems * WAVE_ELEM_STRIDE + 4 * n_nodes
+            n_nodes * (2 * WAVE_CACHE_STRIDE + 5)
+                + n_elems * WAVE_ELEM_STRIDE
+                + 4 * n_nodes
+                + 2 * n_nodes * WAVE_DUE_STRIDE
         };
         let cache_b = init(
             "wave_cache",
@@ -615,10 +621,13 @@ impl<R: GpuReal> GpuEngine<R> {
         pass.dispatch_workgroups((n as u32).div_ceil(WORKGROUP).max(1), 1, 1);
     }
 
-    /// The waves' refresh: the nodes' (`wave_refresh`), then the elements' midpoint
-    /// cache from them (`wave_refresh_elems`); two dispatches.
+    /// The waves' refresh: the nodes' decisions, putting their evaluations on a work
+    /// list (`wave_refresh`), the evaluations over the list (`wave_refresh_due`, two
+    /// entries per node at most), then the elements' midpoint cache from them
+    /// (`wave_refresh_elems`, which empties the list); three dispatches.
     pub(super) fn dispatch_refresh(&self, pass: &mut wgpu::ComputePass<'_>) {
         self.dispatch(pass, &self.pipe_refresh, self.inst.n_nodes);
+        self.dispatch(pass, &self.pipe_refresh_due, 2 * self.inst.n_nodes);
         self.dispatch(pass, &self.pipe_refresh_elems, self.inst.n_elems);
     }
 
