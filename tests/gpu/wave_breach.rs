@@ -91,7 +91,10 @@ fn run(p: Precision, lifted: bool) -> Option<(BandCensus, Vec<BandCensus>)> {
     // refresh and decision (2 h), while band 0 refreshes (and watches) several times.
     let top = plan.tops[plan.len() - 1];
     let z0 = top - BAND_MARGIN - 1.0;
-    assert!(z0 > -28.0, "the coarsest band's top {top} m is too deep for the line");
+    assert!(
+        z0 > -28.0,
+        "the coarsest band's top {top} m is too deep for the line"
+    );
     let lift = if lifted { 4.0 * BAND_MARGIN } else { 0.0 };
     let (lay, pos) = line(z0, 1.05 * h, lift, 0.5 * h);
     let steps = (1.9 * h / opts.dt).ceil() as u64;
