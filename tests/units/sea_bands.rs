@@ -68,10 +68,10 @@ fn the_band_decision_keeps_the_bound_under_the_top() {
     // The same node deep enough for band 3 at rest, but moving: band 3's 8 s carry
     // it 12 m up to -146 m (over -150), band 2's 4 s 6 m: band 2.
     assert_eq!(wave_band(-160.0, 1.5, 0.0, 1.0, 2.0, &tops), 2);
-    // Near the top of band 1 and heaving: over band 1's 2 s it stays under -20 m
-    // where over one coarsest interval (8 s) it would not.
+    // Near the top of band 1 and heaving: over band 1's 2 s it stays under -20 m,
+    // where looking 8 s ahead (band 0's look-ahead 4 s) it would not.
     assert_eq!(wave_band(-25.0, 1.0, 0.0, 1.0, 2.0, &tops), 1);
-    assert!(-25.0 + 1.0 * 8.0 + 2.0 > -20.0);
+    assert_eq!(wave_band(-25.0, 1.0, 0.0, 4.0, 2.0, &tops), 0);
     // Only the bands refreshing at the decision: bands 0 to 1 here.
     assert_eq!(wave_band(-300.0, 0.0, 0.0, 1.0, 2.0, &tops[..2]), 1);
     assert_eq!(wave_band(-300.0, 0.0, 0.0, 1.0, 2.0, &tops[..1]), 0);
