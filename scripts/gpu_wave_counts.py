@@ -178,7 +178,22 @@ CASES = {
     # the shader's twin, gives at its state); elements estimated from the nodes: each
     # of the 8 chains taken to cross every top between its occupied bands once (an
     # element across a top refreshes with its finer node).
+    # The same member with each node's band decided at its own band's refreshes,
+    # looking two of the band's intervals ahead (branch `hhorizon`,
+    # sea::bands::BAND_LOOK_AHEAD): nodes per band, the CPU run's census logged every
+    # second from 10 s to 200 s (RUST_LOG=cablesim=debug); elements estimated from
+    # the nodes as below, but with fewer than 8 nodes in a band all of its nodes' upper
+    # elements taken as across a top; the decay prefixes NOT measured with these bands:
+    # each band's mean from the case below (main's bands), an estimate.
     "design member, 6.7 ms": {
+        "interval": {0: 24, 1: 48, 2: 96, 3: 192, 4: 384, 5: 768},
+        "nodes": {0: 4.29, 1: 1.14, 2: 10.58, 3: 29.56, 4: 72.73, 5: 209.7},
+        "elems": {2: 2.58, 3: 21.56, 4: 64.73, 5: 201.7},
+        "mixed": {0: 4.29, 1: 1.14, 2: 8, 3: 8, 4: 8},
+        "prefix": {0: 198.9, 1: 198.9, 2: 190.3, 3: 145.1, 4: 90.3, 5: 52.4},
+    },
+    # Before branch `hhorizon` (main cf2e924): decided at the coarsest band's refreshes.
+    "design member, 6.7 ms, before": {
         "interval": {0: 24, 2: 96, 3: 192, 4: 384, 5: 768},
         "nodes": {0: 10.3, 2: 8.8, 3: 26.0, 4: 58.8, 5: 224.2},
         "elems": {0: 2.3, 2: 0.8, 3: 18.0, 4: 50.8, 5: 216.2},

@@ -347,8 +347,9 @@ struct WaveStep {
     // band_rows rows after band 0's.
     n_bands: u32,
     band_rows: u32,
-    // 1 when this step decides each node's band anew (wave_band): the coarsest band
-    // refreshes (so every band does), not a restart.
+    // How many bands this step's decision is among: M + 1, M > 0 the coarsest band
+    // that refreshes (so every band up to it does), not a restart; a node of one of
+    // those bands is decided anew among them (wave_band). 0: no decision.
     decide: u32,
     // 1 when this step counts the nodes above their band's top: band 0 refreshes,
     // not a restart, more than one band.
@@ -376,8 +377,9 @@ struct WaveStep {
     acc_rate: R,
     // Water depth, m (sea::GPU_DEEP for deep water).
     depth: R,
-    // The coarsest band's interval, s: how far ahead the band decision looks.
-    horizon: R,
+    // How far ahead a decision into band 0 looks, s (sea::bands::BAND_LOOK_AHEAD band 0
+    // intervals); into band m, 2^m times it (wave_band).
+    look0: R,
     // The tops of bands 1 to 6, m (band 0's is infinite; sea::bands::MAX_BANDS at
     // most 7).
     top1: R,
@@ -432,17 +434,26 @@ fn wave_cache_store(slot: u32, i: u32, w: WaveKinRates) {
 }
 
 // The band of a node at height z (m) with vertical velocity vz (m/s) and
-// acceleration estimate az (m/s^2), for the next `horizon` s: the deepest band whose
-// top is not under z + |vz| horizon + |az| horizon^2 / 2 + margin. `tops` are
-// the tops of bands 1 to 6 (band 0's is infinite), `n_bands` the number of bands.
-// Rust twin: sea::bands::wave_band (its `tops[m]` is this `tops[m - 1]`).
-fn wave_band(z: R, vz: R, az: R, horizon: R, margin: R, tops_in: array<R, 6>, n_bands: u32) -> u32 {
+// acceleration estimate az (m/s^2), among bands 0 to n_bands - 1 (those refreshing at
+// the decision): the deepest band m whose top is not under z + |vz| L_m + |az| L_m^2 / 2
+// + margin, L_m = look0 2^m the look-ahead of band m (BAND_LOOK_AHEAD times its own
+// interval; the node stays in m until m's next refresh). `tops` are the tops of bands 1 to 6 (band 0's is infinite). The
+// bound grows with m and the tops fall: the search stops at the first band that does
+// not pass. Rust twin: sea::bands::wave_band (its `tops[m]` is this `tops[m - 1]`,
+// its tops' length this `n_bands`).
+fn wave_band(z: R, vz: R, az: R, look0: R, margin: R, tops_in: array<R, 6>, n_bands: u32) -> u32 {
     // A local copy: indexed at run time.
     var tops = tops_in;
-    let bound = z + abs(vz) * horizon + R(0.5) * abs(az) * horizon * horizon + margin;
     var b = 0u;
+    var h = look0;
     loop {
-        if b + 1u >= n_bands || b >= 6u || !(bound <= tops[b]) {
+        if b + 1u >= n_bands || b >= 6u {
+            break;
+        }
+        // Band b + 1's look-ahead: a doubling, exact in any precision.
+        h = h + h;
+        let bound = z + abs(vz) * h + R(0.5) * abs(az) * h * h + margin;
+        if !(bound <= tops[b]) {
             break;
         }
         b = b + 1u;
@@ -571,8 +582,8 @@ fn wave_mixed_side(a: WaveKin, b: WaveKin) -> WaveMid {
 }
 
 // Forms element e's entry at step k, after the nodes' refresh (wave_refresh_node)
-// and only where one of its nodes' bands refreshed at this step (a band changes only
-// at a decision, when every band refreshes): its band and, per side, the surface over
+// and only where one of its nodes' bands refreshed at this step (a node changes band
+// only at a refresh of its old and its new band): its band and, per side, the surface over
 // its nodes and the mean of their velocity and acceleration; or, for an element whose
 // nodes' bands differ, the mark WAVE_ELEM_MIXED + 8 bb + ba and per side node a's
 // values and node b's surface (wave_mixed_side): the step then reads only node b's
@@ -756,8 +767,9 @@ fn wave_refresh_due_entry(n: u32, k: u32) {
 // velocity v (m/s), when the node's band refreshes at this step (nothing otherwise:
 // the node keeps its cache): on a restart the t0 values and rates at p along v (on
 // the work list) and the node back in band 0; else the t1 values and rates become
-// the t0 ones, and at a band decision the node goes to the band `wave_band` gives;
-// then the t1 values and rates of its band (on the work list) at the predicted
+// the t0 ones, and at a band decision (bands 0 to decide - 1 refresh, its own among
+// them) the node goes to the band `wave_band` gives among those; then the t1 values
+// and rates of its band (on the work list) at the predicted
 // position p + v h + acc h^2 / 2 along v + acc h (h = t1 - t, acc the velocity change
 // since the previous refresh over its time, 0 on a restart). At a refresh of band 0
 // a node above its band's top is counted. CPU twin (both passes):
@@ -788,7 +800,8 @@ fn wave_refresh_node(i: u32, k: u32, p: vec3<R>, v: vec3<R>) {
     if wo.restart != 0u {
         band = 0u;
     } else if wo.decide != 0u {
-        band = wave_band(p.z, v.z, acc.z, wo.horizon, WAVE_BAND_MARGIN, wave_step_tops(wo), wo.n_bands);
+        // The node's band refreshes (above), so it is among the `decide` bands.
+        band = wave_band(p.z, v.z, acc.z, wo.look0, WAVE_BAND_MARGIN, wave_step_tops(wo), min(wo.decide, wo.n_bands));
     }
     wave_cache[ab] = R(band);
     let ws = wave_band_step(i, band, k);

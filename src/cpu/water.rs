@@ -243,7 +243,8 @@ impl ChainColumns {
     /// ([`WaveCache::power_node`], `t_ref` the coarsest band's `t0`), so that every
     /// node, whatever its band, interpolates with the same weights `1, tau, tau^2,
     /// tau^3` (an element between two bands too: its midpoint is the mean of its
-    /// nodes' cubics). Between decisions only the nodes the last refresh touched
+    /// nodes' cubics). Until the coarsest band refreshes (and `t_ref` moves) only the
+    /// nodes the last refresh touched
     /// change, and only their entries are formed again.
     fn form(&mut self, cache: &WaveCache, n: usize) {
         if cache.clocks.len() == 1 {

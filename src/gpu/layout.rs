@@ -586,8 +586,9 @@ gpu_struct! {
         n_bands: u32,
         /// Rows between one band's row of a step and the next band's.
         band_rows: u32,
-        /// 1 when this step decides each node's band anew (`wave_band`; the coarsest
-        /// band refreshes, not a restart).
+        /// How many bands this step's decision is among: `M + 1`, `M > 0` the coarsest
+        /// band that refreshes (so every band up to it does), not a restart; the nodes
+        /// of those bands are decided anew among them (`wave_band`); 0: no decision.
         decide: u32,
         /// 1 when this step counts the nodes above their band's top (band 0
         /// refreshes, not a restart, more than one band).
@@ -621,8 +622,9 @@ gpu_struct! {
         acc_rate: R,
         /// Water depth, m (`sea::GPU_DEEP` for deep water).
         depth: R,
-        /// The coarsest band's interval, s: the band decision's horizon.
-        horizon: R,
+        /// How far ahead a decision into band 0 looks, s (`sea::bands::BAND_LOOK_AHEAD`
+        /// band 0 intervals); into band `m`, `2^m` times it (`sea::bands::wave_band`).
+        look0: R,
         /// The tops of bands 1 to 6, m (`sea::bands::BandPlan::tops`; band 0's is
         /// infinite; those past `n_bands` unused; `sea::bands::MAX_BANDS` at most 7).
         top1: R,

@@ -10,7 +10,7 @@
 use super::kernel::STEPS_PER_SUBMISSION;
 use super::layout::*;
 use crate::model::{Layout, Route};
-use crate::sea::bands::{BandPlan, MAX_BANDS};
+use crate::sea::bands::{BandPlan, BAND_LOOK_AHEAD, MAX_BANDS};
 use crate::sea::cache::hermite_weights;
 use crate::sea::kinematics::{wave_ramp, wave_ramp_rate, WaveField};
 use crate::sea::schedule::{RefreshClock, Tick};
@@ -46,7 +46,7 @@ pub(super) const WAVE_MAX_NODES: usize = 1 << 24;
 /// submission) and when each depth band's two times are (`sea::bands`): the same
 /// [`RefreshClock`]s as the CPU path's `sea::cache::WaveCache`, on the same grid
 /// (`sea::schedule`), so that both refresh the same nodes at the same steps and
-/// interpolate with the same Hermite weights, and the same band plan (tops, horizon),
+/// interpolate with the same Hermite weights, and the same band plan (tops, look-ahead),
 /// so that the shader's `wave_band` puts each node in the band the CPU path does.
 pub(super) struct WaveSchedule {
     pub(super) field: WaveField,
@@ -56,8 +56,9 @@ pub(super) struct WaveSchedule {
     pub(super) clocks: Vec<RefreshClock>,
     /// Per band: the highest height its nodes may reach, m (`tops[0]` infinite).
     tops: Vec<f64>,
-    /// The coarsest band's interval, s: the horizon of the band decision.
-    horizon: f64,
+    /// How far ahead a decision into band 0 looks, s (into band `m`, `2^m` times it:
+    /// `sea::bands::wave_band`).
+    look0: f64,
 }
 
 impl WaveSchedule {
@@ -69,7 +70,7 @@ impl WaveSchedule {
                 .map(|m| RefreshClock::on_grid(&plan.band(m)))
                 .collect(),
             tops: plan.tops.clone(),
-            horizon: plan.horizon(),
+            look0: BAND_LOOK_AHEAD * plan.band(0).interval,
         }
     }
 
@@ -97,8 +98,8 @@ impl WaveSchedule {
             slot1: 1,
             n_bands: self.n_bands() as u32,
             band_rows: STEPS_PER_SUBMISSION,
-            horizon: R::c(if self.horizon.is_finite() {
-                self.horizon
+            look0: R::c(if self.look0.is_finite() {
+                self.look0
             } else {
                 0.0
             }),
@@ -115,8 +116,9 @@ impl WaveSchedule {
     /// The rows of the step at time `t` (s; phases referred to `t_ref`), band `m`'s
     /// at `rows[m * STEPS_PER_SUBMISSION]`, refreshing the bands the CPU path's cache
     /// would (`sea::cache::WaveCache::refresh_if_due`: nothing while band 0 covers
-    /// `t`; every band restarts when band 0 would; the band decision when the
-    /// coarsest band refreshes). Returns whether some band refreshes.
+    /// `t`; every band restarts when band 0 would; when bands `0..=M` refresh, `M >
+    /// 0`, the decision of their nodes' bands among them). Returns whether some band
+    /// refreshes.
     pub(super) fn step<R: GpuReal>(
         &mut self,
         t: f64,
@@ -134,13 +136,19 @@ impl WaveSchedule {
             }
         }
         let restart = ticks[0].is_some_and(|k| k.restart);
-        let decide = nb > 1 && !restart && ticks[nb - 1].is_some();
+        // The coarsest band refreshing now (every band up to it does): the nodes of
+        // the bands that refresh are decided among them, as on the CPU path.
+        let coarsest = ticks.iter().take(nb).rposition(Option::is_some);
+        let decide = match coarsest {
+            Some(m) if m > 0 && !restart => m as u32 + 1,
+            _ => 0,
+        };
         let watch = nb > 1 && !restart && ticks[0].is_some();
         let ramp = self.field.ramp_duration;
         let per = STEPS_PER_SUBMISSION as usize;
         for (m, tick) in ticks.iter().take(nb).enumerate() {
             let mut row = self.base::<R>();
-            row.decide = decide as u32;
+            row.decide = decide;
             row.watch = watch as u32;
             let clock = &self.clocks[m];
             if let Some(tick) = tick {

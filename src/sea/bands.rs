@@ -34,27 +34,48 @@
 //! `m4` is not decayed). Band 0 keeps the relative rule at the nodes' reach
 //! ([`refresh_plan`]), as before.
 //!
-//! Which band a node is in ([`wave_band`]): decided at the coarsest band's refresh
-//! times (the only times at which every band starts a new interval, so a node can
-//! change band with its values and rates at that time kept: no jump in the loads), from
-//! the node's height `z`, vertical velocity `v_z` and acceleration estimate `a_z` (its
-//! velocity change since its previous refresh): the highest it could rise before the
-//! next decision, one coarsest interval `H` later, is taken as `z + |v_z| H +
-//! |a_z| H^2 / 2 + BAND_MARGIN`, and the node goes to the deepest band whose top is
-//! not under that. `|v_z|`, not `max(v_z, 0)`: a node moving down in an oscillation
-//! comes back up within the horizon (for `z = A sin(w t)` the bound's rise is at least
-//! `A min(w H, w^2 H^2 / 2)`, over `2 A` once `w H >= 2`, i.e. every period under
-//! `pi H`: 16 s for the 5.12 s horizon of the design check), which `max(v_z, 0)` missed
-//! by up to 3.2 m on the design check. Why this and not a per-node bound over the run: a node's motion is
-//! known only as the run goes (a chain's fairlead region follows its vessel, its
-//! bottom lies still), and the decision is cheap (once per coarsest interval, a few
-//! comparisons per node). After a restart (the first refresh, a remesh) the
-//! acceleration is not known: every node starts in band 0 until the first decision.
+//! Which band a node is in ([`wave_band`]): decided at each refresh of its band,
+//! among the bands that refresh then. At a time `t` where bands `0..=M` refresh (`M`
+//! the coarsest band refreshing at `t`, `M > 0`; the rungs are nested, so every band
+//! up to `M` refreshes at `t` and no deeper one does), each node of a band `j <= M` is
+//! decided anew among bands `0..=M`; a node of a deeper band is left alone (its
+//! band's interval runs on). Why a node can change band there: `t` is a refresh time
+//! of both its old band `j` and its new band `m`, so its `t0` values and rates become
+//! its values at `t` (the old band's `t1` ones, as at any refresh of `j`) and its new
+//! `t1` is band `m`'s next rung, `t + I_m` (`I_m = steps_0 2^m dt`, band `m`'s own
+//! interval): the interpolant and its derivative stay continuous, no jump in the
+//! loads, as at a refresh that keeps the band; and the node's acceleration estimate at
+//! `m`'s next refresh is its velocity change since `t`, `m`'s previous rung. The node
+//! goes to the deepest band `m <= M` whose top is not under `z + |v_z| L_m + |a_z|
+//! L_m^2 / 2 + BAND_MARGIN`, from its height `z`, vertical velocity `v_z` and
+//! acceleration estimate `a_z` (its velocity change since its previous refresh) at
+//! `t`, with the look-ahead `L_m` [`BAND_LOOK_AHEAD`] (2) of band `m`'s own intervals
+//! `I_m`: the node stays in `m` until `t + I_m`, where `m` refreshes and the node is
+//! decided again, so one interval is as far as its height must be bounded; the second
+//! is an empirical margin for what the rule at a fixed point does not see (a moving
+//! node's path prediction over a long interval; the constant says how it was found).
+//! The bound grows with `m` and the tops fall, so the bands that pass are `0..=m`.
+//! Why not decide
+//! only when every band refreshes, looking one coarsest interval `H` ahead (as
+//! before): the bound over `H` (5.12 s on the design check) of a heaving fairlead
+//! reaches far above it, so every moving node near the top stayed in band 0; looking
+//! only as far as the band it is tried for, a node is kept out of a band only by its
+//! motion over that band's look-ahead, and after a restart it leaves band 0 at band 1's
+//! first refresh, not the coarsest band's. `|v_z|`, not `max(v_z, 0)`: a node moving
+//! down in an oscillation comes back up within the interval (for `z = A sin(w t)` the
+//! bound's rise over `I` is at least `A min(w I, w^2 I^2 / 2)`, over `2 A` once
+//! `w I >= 2`, i.e. every period under `pi I`), which `max(v_z, 0)` missed by up to
+//! 3.2 m on the design check (deciding every 5.12 s). Why this and not a per-node
+//! bound over the run: a node's motion is known only as the run goes (a chain's
+//! fairlead region follows its vessel, its bottom lies still), and the decision is
+//! cheap (a few comparisons per node and refresh). After a restart (the first
+//! refresh, a remesh) the acceleration is not known: every node starts in band 0
+//! until band 1's first refresh.
 //!
 //! A node that rises above its band's top anyway (a motion the bound did not foresee)
 //! is noticed at every refresh of band 0: the cache counts it (and, apart, one more
 //! than [`BAND_MARGIN`] above its band's top, of which it warns once per process:
-//! [`warn_beyond_margin`]), and the next decision puts the node in the band its
+//! [`warn_beyond_margin`]), and its band's next refresh puts the node in the band its
 //! height then allows.
 //!
 //! The plan option ([`super::SeaSet::banded`]): banding is on unless the scenario
@@ -80,13 +101,26 @@ use super::schedule::{
 use super::SeaState;
 
 /// The most bands of a sea (the coarsest refreshes `2^(MAX_BANDS - 1)` times less
-/// often than band 0). Why a cap: the decision's horizon is the coarsest interval,
-/// and the bound on how far a node may rise grows with it. The GPU's step rows carry
+/// often than band 0). Why a cap: a deep band's decision looks one of its intervals
+/// ahead, and the bound on how far a node may rise grows with it. The GPU's step rows carry
 /// the tops of bands 1 to 6 (`gpu::layout::WaveStep`): at most 7.
 pub const MAX_BANDS: usize = 7;
 
 /// Added to a node's bound on how high it may rise before the next decision, m.
 pub const BAND_MARGIN: f64 = 2.0;
+
+/// How many of band `m`'s own intervals a decision into band `m` looks ahead
+/// ([`wave_band`]): a power of two, so that the look-ahead doubles exactly from band
+/// to band in any precision. Why 2 and not 1 (the node is decided again after one):
+/// empirical. With 1, moving nodes near a line's top went into deep bands whose long
+/// intervals the path prediction (constant acceleration) follows less well, an error
+/// the rule at a fixed point does not see: the deep line of
+/// `tests/cpu/waves_steppers.rs` (fairlead on a 2 m circle, 6 to 10 m down) erred by
+/// 1.6e-3 of its largest fairlead force against 1e-3 allowed (1.3e-4 when every node
+/// looked one coarsest interval ahead); with 2, 4.0e-4 (4: 8.7e-4, 8: 3.8e-4; the
+/// error is not monotone in it). BENCHMARKS.md, "A node's band decided at its own
+/// band's refreshes".
+pub const BAND_LOOK_AHEAD: f64 = 2.0;
 
 /// Where the waves' caches of a run stand (`CpuSolver::wave_band_census`, and
 /// `GpuSolver`'s from the device): per band how many nodes refresh in it now, how
@@ -182,7 +216,8 @@ impl BandPlan {
         }
     }
 
-    /// The coarsest band's interval, s: the horizon of the band decision.
+    /// The coarsest band's interval, s: the longest a node stays in one band between
+    /// two decisions (a node of the coarsest band).
     pub fn horizon(&self) -> f64 {
         self.band(self.len() - 1).interval
     }
@@ -249,13 +284,25 @@ pub fn band_plan(sea: &SeaState, reach: f64, dt: f64) -> BandPlan {
 }
 
 /// The band of a node at height `z` (m) with vertical velocity `vz` (m/s) and
-/// acceleration estimate `az` (m/s^2), for the next `horizon` s: the deepest band
-/// whose top (`tops`, decreasing, `tops[0]` infinite) is not under `z + |vz|
-/// horizon + |az| horizon^2 / 2 + margin` (see the module doc).
-pub fn wave_band(z: f64, vz: f64, az: f64, horizon: f64, margin: f64, tops: &[f64]) -> usize {
-    let bound = z + vz.abs() * horizon + 0.5 * az.abs() * horizon * horizon + margin;
+/// acceleration estimate `az` (m/s^2), among the bands of `tops` (decreasing,
+/// `tops[0]` infinite: the bands `0..=M` that refresh at the decision, see the module
+/// doc): the deepest band `m` whose top is not under `z + |vz| L_m + |az| L_m^2 / 2 +
+/// margin`, with `L_m = look0 2^m` (s) the look-ahead of band `m`, `look0` band 0's:
+/// [`BAND_LOOK_AHEAD`] times band `m`'s own interval (the node stays in `m` until `m`'s
+/// next refresh, where it is decided again). The
+/// bound grows with `m` and the tops fall, so the bands that pass are `0..=m`: the
+/// search stops at the first that does not. WGSL twin: `wave_band` in
+/// `shaders/shared/waves.wgsl`.
+pub fn wave_band(z: f64, vz: f64, az: f64, look0: f64, margin: f64, tops: &[f64]) -> usize {
     let mut b = 0;
-    while b + 1 < tops.len() && bound <= tops[b + 1] {
+    let mut h = look0;
+    while b + 1 < tops.len() {
+        // Band b + 1's look-ahead: a doubling, exact in any precision.
+        h += h;
+        let bound = z + vz.abs() * h + 0.5 * az.abs() * h * h + margin;
+        if !(bound <= tops[b + 1]) {
+            break;
+        }
         b += 1;
     }
     b

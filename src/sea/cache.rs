@@ -35,7 +35,7 @@
 //! at `t1`, rates at `t1`; nodes one after another; positions and velocities three per
 //! node.
 
-use super::bands::{warn_beyond_margin, wave_band, BandPlan, BAND_MARGIN};
+use super::bands::{warn_beyond_margin, wave_band, BandPlan, BAND_LOOK_AHEAD, BAND_MARGIN};
 use super::kinematics::{Kinematics, KinematicsScratch, WaveField};
 use super::schedule::{RefreshClock, Tick};
 use super::{SeaState, WaveComponent};
@@ -199,8 +199,9 @@ pub struct WaveCache {
     pub clocks: Vec<RefreshClock>,
     /// Per band: the highest height, m, its nodes may reach (`tops[0]` infinite).
     tops: Vec<f64>,
-    /// The coarsest band's interval, s: how far ahead a band decision looks.
-    horizon: f64,
+    /// How far ahead a decision into band 0 looks, s ([`BAND_LOOK_AHEAD`] band 0
+    /// intervals): into band `m`, `2^m` times it (`super::bands::wave_band`).
+    look0: f64,
     /// Per node: its band.
     band: Vec<u8>,
     /// Runs of consecutive nodes of one band: `(first, end, band)`.
@@ -251,7 +252,7 @@ impl WaveCache {
         let zeros = || vec![0.0; n_nodes * CACHE_STRIDE];
         Self {
             field: Arc::new(WaveField::new(sea)),
-            horizon: clock.interval,
+            look0: BAND_LOOK_AHEAD * clock.interval,
             clocks: vec![clock],
             tops: vec![f64::INFINITY],
             band: vec![0; n_nodes],
@@ -280,7 +281,7 @@ impl WaveCache {
             .map(|m| RefreshClock::on_grid(&plan.band(m)))
             .collect();
         c.tops = plan.tops.clone();
-        c.horizon = plan.horizon();
+        c.look0 = BAND_LOOK_AHEAD * plan.band(0).interval;
         c
     }
 
@@ -318,8 +319,9 @@ impl WaveCache {
     /// and rates become the `t0` ones (the interpolant stays continuous with a
     /// continuous derivative: no jump in the loads at a refresh) and new `t1` ones are
     /// evaluated at the predicted positions `x + v (t1 - t) + a (t1 - t)^2 / 2`, with
-    /// velocity `v + a (t1 - t)`. When the coarsest band refreshes (every band does),
-    /// each node's band is decided anew (`super::bands::wave_band`).
+    /// velocity `v + a (t1 - t)`. When bands `0..=M` refresh (`M > 0` the coarsest
+    /// that does; the rungs are nested), each node of those bands is decided anew
+    /// among them (`super::bands::wave_band`); the nodes of deeper bands keep theirs.
     pub fn refresh_if_due(&mut self, t: f64, positions: &[f64], velocities: &[f64]) -> bool {
         if self.covers(t) {
             return false;
@@ -330,7 +332,13 @@ impl WaveCache {
         let ticks: Vec<Option<Tick>> = self.clocks.iter_mut().map(|c| c.tick(t)).collect();
         let restart = ticks[0].is_some_and(|k| k.restart);
         let nb = self.clocks.len();
-        let decide = nb > 1 && !restart && ticks[nb - 1].is_some();
+        // The coarsest band refreshing now, when a decision is due: every band up to
+        // it refreshes too (nested rungs), so a node of one of them may move to
+        // another with its values at `t` as its new `t0` ones (no jump).
+        let decide = ticks
+            .iter()
+            .rposition(Option::is_some)
+            .filter(|&m| m > 0 && !restart);
         if restart {
             evaluate_nodes_rates(
                 &self.field,
@@ -342,8 +350,8 @@ impl WaveCache {
             );
             self.band.iter_mut().for_each(|b| *b = 0);
         } else if nb > 1 {
-            // A node above its band's top: noticed here, re-banded at the next
-            // decision (or now, when this is one).
+            // A node above its band's top: noticed here, re-banded at its band's
+            // next refresh (now, when its band refreshes now).
             self.watch(t, positions);
         }
         let mut all_due = true;
@@ -359,10 +367,12 @@ impl WaveCache {
                 (v[1] - lv[1]) * rate,
                 (v[2] - lv[2]) * rate,
             ];
-            let new = if decide {
-                wave_band(p[2], v[2], acc[2], self.horizon, BAND_MARGIN, &self.tops)
-            } else {
-                old
+            let new = match decide {
+                Some(m) if old <= m => {
+                    let tops = &self.tops[..=m];
+                    wave_band(p[2], v[2], acc[2], self.look0, BAND_MARGIN, tops)
+                }
+                _ => old,
             };
             self.band[i] = new as u8;
             let Some(tick) = ticks[new] else {
@@ -385,7 +395,7 @@ impl WaveCache {
                 self.last_vel[k] = v[d];
             }
         }
-        if decide || restart {
+        if decide.is_some() || restart {
             self.form_runs();
         }
         if all_due && nb == 1 {
@@ -400,7 +410,7 @@ impl WaveCache {
         } else if rayon::current_num_threads() == 1
             || self.due.iter().filter(|t| !t.is_nan()).count() < 32
         {
-            // Few nodes due (a band's rung between decisions), or one thread: one
+            // Few nodes due (a rung of the shallow bands alone), or one thread: one
             // after another with the cache's own scratch, no parallel split (each
             // split allocates and zeroes a scratch of its own).
             let s = &mut self.scratch;
@@ -550,7 +560,8 @@ impl WaveCache {
     /// whatever its band, then interpolates with the weights `1, tau, tau^2, tau^3`,
     /// and an element's midpoint is the mean of its nodes' cubics: one set of weights
     /// per stage, as with one band. With `t_ref` the coarsest band's `t0` only the
-    /// nodes a refresh touched change between decisions; `tau` stays within the
+    /// nodes a refresh touched change until every band refreshes (a node changes band
+    /// only at a refresh of its old and its new band); `tau` stays within the
     /// coarsest interval (a second or two), and the coefficients are bounded by the
     /// values' time derivatives, so the power basis loses nothing that matters.
     #[inline]

@@ -737,8 +737,9 @@ fn log_refresh_plans(seas: &crate::sea::SeaSet, dt: f64) {
                 .map(|m| format!("{} steps under z = {:.1} m", bands.steps[m], bands.tops[m]))
                 .collect();
             log::info!(
-                "waves, sea {q}: refresh per depth band, decided every {:.3} s: {}",
-                bands.horizon(),
+                "waves, sea {q}: refresh per depth band (each node's decided at its \
+                 band's refreshes, band 0 every {:.4} s): {}",
+                bands.band(0).interval,
                 rungs.join(", ")
             );
         }

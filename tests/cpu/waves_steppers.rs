@@ -469,7 +469,7 @@ fn depth_bands_keep_the_end_force_of_a_deep_line() {
     let bands = set.band_plan(0, dt);
     println!(
         "deep line: dt {dt:.3e} s, reach {:.2} m, bands every {:?} steps under {:?} m, \
-         decided every {:.3} s",
+         the coarsest every {:.3} s",
         bands.base.reach,
         bands.steps,
         bands.tops,
@@ -544,7 +544,7 @@ fn depth_bands_keep_the_end_force_of_a_deep_line() {
 /// basis, formed again only where a refresh touched them) and the general path (each
 /// node with its band's Hermite weights) agree on the deep catenary of
 /// [`depth_bands_keep_the_end_force_of_a_deep_line`], for every scheme, over 20 s
-/// (several band decisions).
+/// (several refreshes of the coarsest band).
 #[test]
 fn depth_bands_chain_kernel_matches_the_general_path() {
     let (lay, pos) = deep_catenary();
@@ -592,7 +592,7 @@ fn depth_bands_chain_kernel_matches_the_general_path() {
 /// A checkpoint in waves (the state and the blocks' kinematics caches; their chain
 /// columns are formed again after a restore, whole, where the run formed them a
 /// refresh at a time) replays the run to the same bits: the deep catenary in bands,
-/// checkpointed between two band decisions, stepped on over the next decision, put
+/// checkpointed between two refreshes of the coarsest band, stepped on over the next, put
 /// back and stepped again.
 #[test]
 fn a_checkpoint_in_waves_replays_to_the_same_bits() {
@@ -608,7 +608,8 @@ fn a_checkpoint_in_waves_replays_to_the_same_bits() {
     };
     let mut s = CpuSolver::new(lay.clone(), &pos, opts);
     s.set_seas(&set, false);
-    // 3.3 s in: refreshes of single bands have happened since the last decision.
+    // 3.3 s in: refreshes of the finer bands alone (and their decisions) have
+    // happened since the coarsest band's last.
     s.advance((3.3 / dt) as u64).unwrap();
     let cp = s.checkpoint().expect("the CPU path checkpoints");
     let on = (2.5 / dt) as u64;

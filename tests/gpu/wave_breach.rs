@@ -1,7 +1,8 @@
 //! A node more than the margin above its depth band's top (`sea::bands`), on both
-//! paths: a short line lying under the first deeper band's top is lifted by both ends,
+//! paths: a short line lying under the coarsest band's top is lifted by both ends,
 //! faster than the band decision foresaw (it saw the line at rest), right after the
-//! first decision. The CPU path counts the breaches beyond the margin and warns of the
+//! coarsest band's first refresh put it in that band (a node is decided again only at
+//! its band's refreshes, so between two of them the lift goes unforeseen). The CPU path counts the breaches beyond the margin and warns of the
 //! first (`sea::bands::warn_beyond_margin`); the GPU path must report the same: the
 //! same count, and the same first breach (time, height, top) that its warning prints.
 //! The same line not lifted must report none on either path.
@@ -83,13 +84,17 @@ fn run(p: Precision, lifted: bool) -> Option<(BandCensus, Vec<BandCensus>)> {
     let plan = set.band_plan(0, opts.dt);
     assert!(plan.len() >= 2, "one band only: {plan:?}");
     let h = plan.horizon();
-    // Under band 1's top by more than the margin, so that the first decision (at the
-    // coarsest band's first refresh, time h) puts the ends in band 1 or deeper; lifted
-    // from 1.05 h to 1.55 h to 2.5 margins over that top, before the next decision
-    // (2 h), while band 0 refreshes (and watches) several times.
-    let top = plan.tops[1];
+    // Under the coarsest band's top by more than the margin, so that the ends at rest
+    // go one band deeper at each deeper band's first refresh (a node is decided among
+    // the bands refreshing then) and into the coarsest at its first, time h; lifted
+    // from 1.05 h to 1.55 h to 2.5 margins over that top, before their band's next
+    // refresh and decision (2 h), while band 0 refreshes (and watches) several times.
+    let top = plan.tops[plan.len() - 1];
     let z0 = top - BAND_MARGIN - 1.0;
-    assert!(z0 > -28.0, "band 1's top {top} m is too deep for the line");
+    assert!(
+        z0 > -28.0,
+        "the coarsest band's top {top} m is too deep for the line"
+    );
     let lift = if lifted { 4.0 * BAND_MARGIN } else { 0.0 };
     let (lay, pos) = line(z0, 1.05 * h, lift, 0.5 * h);
     let steps = (1.9 * h / opts.dt).ceil() as u64;

@@ -46,7 +46,7 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 
 /// The GPU path against the CPU path in [`sea`] on the crossing line; `banded`:
 /// refreshed per depth band (`sea::bands`) on both, over two and a half of the
-/// coarsest band's intervals (two band decisions), and the bands the nodes end in and
+/// coarsest band's intervals (two of its refreshes), and the bands the nodes end in and
 /// the breaches counted must be the same on both paths, with some nodes in a deeper
 /// band than band 0.
 fn parity(p: Precision, banded: bool) {
@@ -111,7 +111,7 @@ fn parity(p: Precision, banded: bool) {
     // The line's scale of tension for f32: the larger of its largest now and its
     // largest in still water (f32's tolerance is relative to the line's loads; the run may end
     // at a slack moment, whose largest tension is far under them: the banded run ends
-    // after 2.5 band decisions, at 2.05 s, with 30 N against 2.2 kN in still water).
+    // after 2.5 coarsest intervals, at 2.05 s, with 30 N against 2.2 kN in still water).
     let tmax = cpu_t.iter().fold(0.0f64, |m, t| m.max(t.abs()));
     let t_still = still
         .evaluate()

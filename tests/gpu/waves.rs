@@ -190,7 +190,7 @@ fn t_midpoint(@builtin(global_invocation_id) gid: vec3<u32>) {
     mid_out(40u * i + 32u, wave_mid_hermite(m[0], m[1], m[2], m[3], w));
 }
 
-// tin: z, vz, az, horizon, margin, tops[1..7], n_bands per case; tout: the band.
+// tin: z, vz, az, band 0's look-ahead, margin, tops[1..7], n_bands per case; tout: the band.
 @compute @workgroup_size(64)
 fn t_band(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;

@@ -148,7 +148,7 @@ fn moving_nodes_add_the_path_prediction_error() {
 }
 
 /// Refresh per depth band (`sea::bands`) on the line of [`node_path`] (nodes from
-/// 75 m down to the troughs, on circles): after the first decision the nodes are
+/// 75 m down to the troughs, on circles): after the first decisions the nodes are
 /// in several bands, each refreshing on its own rung; a node's interpolant stays
 /// within its band's `[t0, t1]` and is continuous across refreshes and band
 /// changes; the power-basis cubics the chain kernel reads
