@@ -183,14 +183,17 @@ CASES = {
     # sea::bands::BAND_LOOK_AHEAD): nodes per band, the CPU run's census logged every
     # second from 10 s to 200 s (RUST_LOG=cablesim=debug); elements estimated from
     # the nodes as below, but with fewer than 8 nodes in a band all of its nodes' upper
-    # elements taken as across a top; the decay prefixes NOT measured with these bands:
-    # each band's mean from the case below (main's bands), an estimate.
+    # elements taken as across a top. The decay prefixes and their seabed skips
+    # measured with these bands (examples/wave_prefix_count.rs on main after the
+    # merge of `hhorizon`, `hgpuref`, `hcompact`, the same samples; its node census
+    # equals the log's).
     "design member, 6.7 ms": {
         "interval": {0: 24, 1: 48, 2: 96, 3: 192, 4: 384, 5: 768},
         "nodes": {0: 4.29, 1: 1.14, 2: 10.58, 3: 29.56, 4: 72.73, 5: 209.7},
         "elems": {2: 2.58, 3: 21.56, 4: 64.73, 5: 201.7},
         "mixed": {0: 4.29, 1: 1.14, 2: 8, 3: 8, 4: 8},
-        "prefix": {0: 198.9, 1: 198.9, 2: 190.3, 3: 145.1, 4: 90.3, 5: 52.4},
+        "prefix": {0: 200.0, 1: 200.0, 2: 198.5, 3: 147.5, 4: 85.2, 5: 51.4},
+        "seabed_skip": {0: 135.4, 1: 135.0, 2: 131.7, 3: 70.7, 4: 4.4, 5: 0.0},
     },
     # Before branch `hhorizon` (main cf2e924): decided at the coarsest band's refreshes.
     "design member, 6.7 ms, before": {

@@ -161,9 +161,16 @@ fn parity(p: Precision, banded: bool) {
             }
             Precision::F32 => {
                 assert!(dr < 1e-4 * length, "{kernel:?}: |dr| {dr} m");
+                // The tension's f32 difference follows the positions' (about 5.5e4 N
+                // per m of |dr| on this line in both runs: 0.34 N at 6.2e-6 m after
+                // 3,000 steps, 4.0 N at 7.0e-5 m after the banded run's 10,240, which
+                // ends slack): the banded run, 3.4x as long, gets twice the share of
+                // the line's scale. A band decided otherwise on the GPU moves nodes by
+                // far more (the census is checked above; waves move the line by 0.4 m).
+                let share = if banded { 2e-3 } else { 1e-3 };
                 for (a, b) in tension.iter().zip(&cpu_t) {
                     assert!(
-                        (a - b).abs() < 0.01 * b.abs() + 1e-3 * tscale,
+                        (a - b).abs() < 0.01 * b.abs() + share * tscale,
                         "{kernel:?}: tension {a} N against {b} N"
                     );
                 }
