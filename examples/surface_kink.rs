@@ -14,6 +14,11 @@
 //!   (interval, node) classed as *crossing* (the node's submergence `eta - z` changed
 //!   sign within the interval: the surface went over it or uncovered it), *dry* (above
 //!   the surface throughout) or *wet* (under it throughout).
+//! - an *oracle*: the same intervals interpolated from the values and rates at the
+//!   nodes' actual states at both ends (the interpolation's error alone along the path
+//!   they took), and the prediction's largest miss of the actual position at `t1`;
+//! - *replicas* of the cache on the exact run's trajectory with other path predictions
+//!   (the node's acceleration at the refresh; and its jerk): remedy (c) of issue 8.
 //!
 //! Arguments: `wheeler|constant` (the stretching), `zf` (m, the fairlead's height),
 //! `steps` (of 2e-4 s), optionally a CSV path for the time series (time, force
@@ -29,8 +34,7 @@
 
 use cablesim::cpu::CpuSolver;
 use cablesim::model::{
-    CableDef, Current, Environment, Layout, LineType, ModelDef, NodeDef, PointMass, Route,
-    Seabed,
+    CableDef, Current, Environment, Layout, LineType, ModelDef, NodeDef, PointMass, Route, Seabed,
 };
 use cablesim::options::SolverOptions;
 use cablesim::sea::cache::WaveCache;
@@ -182,7 +186,11 @@ fn main() {
         base.unrounded,
         bands.len()
     );
-    assert_eq!(base.steps % SAMPLE, 0, "the grid's steps must be a multiple of {SAMPLE}");
+    assert_eq!(
+        base.steps % SAMPLE,
+        0,
+        "the grid's steps must be a multiple of {SAMPLE}"
+    );
     let field = WaveField::new(&sea);
     let sigma_a = sea
         .components
@@ -320,10 +328,121 @@ fn main() {
         .collect();
     println!("  crossing intervals per node: {}", with.join(", "));
     let top: Vec<String> = (n.saturating_sub(5)..n)
-        .map(|i| format!("node {i}: {:.2e} / {:.2e}", wet_per_node[i].rms(), wet_per_node[i].max))
+        .map(|i| {
+            format!(
+                "node {i}: {:.2e} / {:.2e}",
+                wet_per_node[i].rms(),
+                wet_per_node[i].max
+            )
+        })
         .collect();
     println!("  wet rms / max, top five nodes: {}", top.join(", "));
     oracle(&field, &states, (base.steps / SAMPLE) as usize, sigma_a);
+    let per = (base.steps / SAMPLE) as usize;
+    for predictor in [Predictor::Cache, Predictor::Acceleration, Predictor::Jerk] {
+        replica(&field, &states, per, sigma_a, predictor);
+    }
+}
+
+/// How a replica of the cache predicts a node's state at `t1` from its states so far.
+#[derive(Clone, Copy, Debug)]
+enum Predictor {
+    /// As the cache: the velocity change over the previous interval as acceleration.
+    Cache,
+    /// The node's acceleration at the refresh (a central difference of the exact run's
+    /// velocities one sample either side: what the solver's last stage knows).
+    Acceleration,
+    /// That and the jerk, the acceleration's change over the previous interval.
+    Jerk,
+}
+
+/// A replica of the cache (values at `t1` at the predicted state, those at `t0` the
+/// previous interval's `t1` ones) on the exact run's trajectory, with `predictor`: its
+/// acceleration error over `sqrt(m4)`, rms and largest of each (interval, node)'s
+/// largest, for the top five nodes. Prototype of remedy (c): a better path prediction.
+fn replica(
+    field: &WaveField,
+    states: &[(Vec<f64>, Vec<f64>)],
+    per: usize,
+    sigma_a: f64,
+    predictor: Predictor,
+) {
+    let n = states[0].0.len() / 3;
+    let step = SAMPLE as f64 * DT;
+    let h = per as f64 * step;
+    let mut scratch = Default::default();
+    let mut err = vec![Class::default(); n];
+    let node = |q: usize, i: usize| {
+        let (p, v) = &states[q];
+        (
+            [p[3 * i], p[3 * i + 1], p[3 * i + 2]],
+            [v[3 * i], v[3 * i + 1], v[3 * i + 2]],
+        )
+    };
+    // The acceleration at sample q (central difference; one-sided at the start).
+    let acc = |q: usize, i: usize| {
+        let (lo, hi) = (q.saturating_sub(1), (q + 1).min(states.len() - 1));
+        let (va, vb) = (node(lo, i).1, node(hi, i).1);
+        [0, 1, 2].map(|d| (vb[d] - va[d]) / ((hi - lo) as f64 * step))
+    };
+    for i in 0..n {
+        let (p, v) = node(0, i);
+        let (mut k0, mut d0) = field.kinematics_rates_with(p, v, 0.0, &mut scratch);
+        let mut j = 0;
+        while j + per < states.len() {
+            let t0 = j as f64 * step;
+            let (p, v) = node(j, i);
+            let (a, jerk) = match predictor {
+                Predictor::Cache if j >= per => {
+                    let vb = node(j - per, i).1;
+                    ([0, 1, 2].map(|d| (v[d] - vb[d]) / h), [0.0; 3])
+                }
+                Predictor::Cache => ([0.0; 3], [0.0; 3]),
+                Predictor::Acceleration => (acc(j, i), [0.0; 3]),
+                Predictor::Jerk => {
+                    let a = acc(j, i);
+                    let jerk = if j >= per {
+                        let ab = acc(j - per, i);
+                        [0, 1, 2].map(|d| (a[d] - ab[d]) / h)
+                    } else {
+                        [0.0; 3]
+                    };
+                    (a, jerk)
+                }
+            };
+            let p1 = [0, 1, 2].map(|d| p[d] + h * (v[d] + h * (a[d] / 2.0 + h * jerk[d] / 6.0)));
+            let v1 = [0, 1, 2].map(|d| v[d] + h * (a[d] + h * jerk[d] / 2.0));
+            let (k1, d1) = field.kinematics_rates_with(p1, v1, t0 + h, &mut scratch);
+            let mut worst = 0.0f64;
+            for q in j + 1..j + per {
+                let t = q as f64 * step;
+                let w = cablesim::sea::cache::hermite_weights((t - t0) / h, h);
+                let k = field.kinematics(node(q, i).0, t);
+                let e = norm([0, 1, 2].map(|d| {
+                    w[0] * k0.a[d] + w[1] * d0.a[d] + w[2] * k1.a[d] + w[3] * d1.a[d] - k.a[d]
+                }));
+                worst = worst.max(e / sigma_a);
+            }
+            err[i].add(worst);
+            (k0, d0) = (k1, d1);
+            j += per;
+        }
+    }
+    let all = err.iter().fold(Class::default(), |mut c, e| {
+        c.n += e.n;
+        c.sq += e.sq;
+        c.max = c.max.max(e.max);
+        c
+    });
+    let top: Vec<String> = (n.saturating_sub(5)..n)
+        .map(|i| format!("node {i}: {:.2e} / {:.2e}", err[i].rms(), err[i].max))
+        .collect();
+    println!(
+        "replica, {predictor:?} prediction: all {:.2e} / {:.2e}; {}",
+        all.rms(),
+        all.max,
+        top.join(", ")
+    );
 }
 
 /// The same intervals interpolated with the values and rates at the nodes' *actual*
@@ -341,7 +460,10 @@ fn oracle(field: &WaveField, states: &[(Vec<f64>, Vec<f64>)], per: usize, sigma_
     let dtr = per as f64 * SAMPLE as f64 * DT;
     let mut j = 0;
     while j + per < states.len() {
-        let (t0, t1) = (j as f64 * SAMPLE as f64 * DT, (j + per) as f64 * SAMPLE as f64 * DT);
+        let (t0, t1) = (
+            j as f64 * SAMPLE as f64 * DT,
+            (j + per) as f64 * SAMPLE as f64 * DT,
+        );
         for i in 0..n {
             let at = |q: usize| {
                 let (p, v) = &states[q];
@@ -375,7 +497,14 @@ fn oracle(field: &WaveField, states: &[(Vec<f64>, Vec<f64>)], per: usize, sigma_
         j += per;
     }
     let top: Vec<String> = (n.saturating_sub(5)..n)
-        .map(|i| format!("node {i}: {:.2e} / {:.2e} / {:.1e} m", err[i].rms(), err[i].max, miss[i]))
+        .map(|i| {
+            format!(
+                "node {i}: {:.2e} / {:.2e} / {:.1e} m",
+                err[i].rms(),
+                err[i].max,
+                miss[i]
+            )
+        })
         .collect();
     println!(
         "oracle (actual states at both ends), acceleration error rms / max over sqrt(m4), \
