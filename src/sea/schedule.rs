@@ -15,8 +15,8 @@
 //! `reach` unknown (infinite) that is the rule at the mean level, as before.
 //!
 //! The factor on the rule: [`super::cache::HERMITE_INTERVAL_FACTOR`] (0.3) when a node
-//! may come near the surface (the error of a rope through the surface, cause not
-//! found); [`SUBMERGED_FACTOR`] when every node stays [`SURFACE_MARGIN`] under the
+//! may come near the surface (the path prediction of nodes that move with the short
+//! waves there: see that constant); [`SUBMERGED_FACTOR`] when every node stays [`SURFACE_MARGIN`] under the
 //! lowest trough (measured: `tests/cpu/waves_steppers.rs`,
 //! `submerged_line_keeps_the_end_force_at_the_planned_interval`).
 //!
