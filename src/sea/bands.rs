@@ -93,10 +93,9 @@
 //! (`WaveCache::power_node`), so that a stage interpolates every node, whatever its
 //! band, with the one set of weights `1, tau, tau^2, tau^3`.
 
-use super::cache::HERMITE_INTERVAL_FACTOR;
 use super::schedule::{
-    eval_depth_of_reach, lowest_trough, refresh_plan, sea_scale_rule_interval, RefreshPlan,
-    SUBMERGED_FACTOR,
+    eval_depth_of_reach, lowest_trough, refresh_plan, sea_scale_rule_interval, surface_factor,
+    RefreshPlan, SUBMERGED_FACTOR,
 };
 use super::SeaState;
 
@@ -233,7 +232,7 @@ pub fn band_interval(sea: &SeaState, z: f64) -> f64 {
     let factor = if submerged {
         SUBMERGED_FACTOR
     } else {
-        HERMITE_INTERVAL_FACTOR
+        surface_factor()
     };
     factor * sea_scale_rule_interval(&sea.components, sea.cache_tolerance, zs, sea.depth)
 }

@@ -49,11 +49,18 @@ pub const CACHE_STRIDE: usize = 7;
 /// [`refresh_interval`]). Empirical: at the rule's own interval the fairlead force of
 /// the moored rope in `tests/cpu/waves_steppers.rs` (200-component JONSWAP, nodes up
 /// to 1 m under the mean level) was out by 1e-2 of its largest value at tolerance
-/// 1e-3, ten times the kinematics' tolerance, and by 1e-3 at 0.32 of it; the error
-/// falls as the interval squared, not to the fourth power, and its cause is not found
-/// (not the path prediction: predicting with or without the nodes' velocity gave the
-/// same force). Until it is, the cache refreshes at this fraction of the rule when its
-/// nodes may come near the surface (`super::schedule::SUBMERGED_FACTOR` otherwise).
+/// 1e-3, ten times the kinematics' tolerance, and by 1e-3 at 0.3 of it. The cause
+/// (BENCHMARKS.md, "Why the surface needs 0.3 of the rule"; `examples/surface_kink.rs`):
+/// the path prediction of nodes that move with the short waves near the surface. The
+/// values at `t1` are evaluated where a node is predicted to be; for the rope's top
+/// nodes that misses by 0.1 to 0.27 m at the rule's interval (third order in it), and
+/// their acceleration errs 10-25 times what the rule allows, while a node at rest, or
+/// the same nodes interpolated from their actual states, err as the rule says. Not the
+/// kink of Wheeler stretching's clamp where the surface crosses a node: that is there,
+/// but the force errs as much with the profile held at `z = 0`. Until the prediction
+/// is better, the cache refreshes at this fraction of the rule when its nodes may come
+/// near the surface (`super::schedule::SUBMERGED_FACTOR` otherwise;
+/// `super::schedule::surface_factor` reads it, with an experiment knob).
 pub const HERMITE_INTERVAL_FACTOR: f64 = 0.3;
 
 /// The refresh interval, s: [`HERMITE_INTERVAL_FACTOR`] times the interval that keeps
