@@ -291,10 +291,12 @@ pub(super) fn route_accel(
 ) -> [f64; 3] {
     let d = lay.routes[route].eval_inline(time);
     let bg = opts.baumgarte;
-    std::array::from_fn(|q| {
+    // Written out, not `std::array::from_fn` (see `net::node_pass`'s columns).
+    let axis = |q: usize| {
         let (r, v) = state(q);
         d.a[q] - bg.beta * (v - d.v[q]) - bg.alpha * (r - d.r[q])
-    })
+    };
+    [axis(0), axis(1), axis(2)]
 }
 
 /// The node loop over `nc` whole chunks of nodes of the padded columns (module
