@@ -92,7 +92,11 @@ unsafe fn symplectic_update<const L: usize, St: Stride>(
         )
     };
     let mut bad = [0usize; L];
-    let mut under = [true; L];
+    // The highest new `z` of each lane: every node is at or below zero exactly when
+    // each is. A select written as x86's `max` (one instruction a chunk; an AND of
+    // `z <= 0` flags took five with AVX2). A NaN may be passed over here, but it also
+    // fails `ok` below, and a step with a bad node ends the run.
+    let mut zmax = [f64::NEG_INFINITY; L];
     for i in 0..nc {
         keep_chunks();
         // Every input into locals first, then every output: no overlap to check.
@@ -111,13 +115,13 @@ unsafe fn symplectic_update<const L: usize, St: Stride>(
                 & (v[1][l].abs() < vmax)
                 & (v[2][l].abs() < vmax);
             bad[l] += (!ok) as usize;
-            // `0 - z >= 0` exactly when `z <= 0` (NaN fails both).
-            under[l] &= p[2][l] <= 0.0;
+            zmax[l] = if p[2][l] > zmax[l] { p[2][l] } else { zmax[l] };
         }
         [px[i], py[i], pz[i]] = p;
         [vx[i], vy[i], vz[i]] = v;
     }
-    (bad.iter().sum(), under.iter().all(|&u| u))
+    // `0 - z >= 0` exactly when `z <= 0`.
+    (bad.iter().sum(), zmax.iter().all(|&z| z <= 0.0))
 }
 
 /// `x += v h` elementwise.
@@ -393,8 +397,8 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
         state: &[Vec<f64>; 6],
         time: f64,
         under: Option<bool>,
-        uni: Option<&UniformLine>,
-        wuni: Option<&UniformLine>,
+        uni: Option<&UniformLine<L>>,
+        wuni: Option<&UniformLine<L>>,
         waves: &mut Option<&mut BlockWaves>,
         wbuf: &mut Water,
         sc: &mut Work,
@@ -458,7 +462,8 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
         };
         // SAFETY: as `ale_constants`; the tensions' column, reached only here.
         unsafe { ale_tension(asc, state, wv.col_mut(col::TEN)) };
-        // SAFETY: two distinct columns of the block, reached only here.
+        // SAFETY: two distinct columns of the block, reached only here; the points' nodes
+        // are nodes of the block.
         unsafe { point_surface(c, state, eta, wv.col_mut(col::PM), wv.col_mut(col::PWZ)) };
         let m = Masses {
             eta,
@@ -479,17 +484,23 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
     let mut under = None;
     let still = !WAVES;
     // In still water, a chain of one line type under one uniform current.
-    let uni = if still { UniformLine::of(c) } else { None };
-    let uni = uni.as_ref();
+    let uni = if still { UniformLine::<L>::of(c) } else { None };
+    // Behind a reference the optimiser cannot see through (`black_box`), so that the
+    // element loop reads its lanes as memory operands: a local it could see into was
+    // split into values that were copied from one stack slot to another every step.
+    let uni = std::hint::black_box(uni.as_ref());
     // In waves, the same for the element loop that interpolates the waves in its lanes
     // (`elements_fused`, which adds them to this current).
-    let wuni = if still { None } else { UniformLine::of(c) };
-    let wuni = wuni.as_ref();
+    let wuni = if still { None } else { UniformLine::<L>::of(c) };
+    // As `uni`.
+    let wuni = std::hint::black_box(wuni.as_ref());
     // SAFETY: the stages' columns (`x`, `xs`, `wc`, `wk`, `a`) were made
     // `padded_len(n)` long above, and nothing in the loop resizes them.
     unsafe {
         for k in 0..nsteps {
-            let time = (step0 + k) as f64 * dt;
+            // Through `i64` (the same value below 2^63 steps): one conversion
+            // instruction, where `u64` to `f64` takes five without AVX-512.
+            let time = (step0 + k) as i64 as f64 * dt;
             match opts.scheme {
                 Scheme::Symplectic => {
                     eval::<WAVES, FRICTION, L, St>(

@@ -13,19 +13,34 @@ use crate::physics::wetted_fraction;
 
 /// What is the same for every element of a chain in still water with one uniform
 /// current and one line type: the current and the line's constants, which the
-/// element loop then keeps in registers instead of reading five columns and the
-/// current's three (the same values, so the same bits).
-#[derive(Clone, Copy, Default)]
-pub(super) struct UniformLine {
-    u: [f64; 3],
-    ea: f64,
-    eac: f64,
-    comp: f64,
-    dn: f64,
-    dt: f64,
+/// element loop then reads from here instead of five columns and the current's three
+/// (the same values, so the same bits). Held as whole chunks of `L` lanes, made once
+/// per run of steps: the loop reads them as memory operands, where a scalar each
+/// was broadcast and spilled to the stack again every step (about 16 instructions).
+#[derive(Clone, Copy)]
+pub(super) struct UniformLine<const L: usize> {
+    u: [[f64; L]; 3],
+    ea: [f64; L],
+    eac: [f64; L],
+    comp: [f64; L],
+    dn: [f64; L],
+    dt: [f64; L],
 }
 
-impl UniformLine {
+impl<const L: usize> Default for UniformLine<L> {
+    fn default() -> Self {
+        UniformLine {
+            u: [[0.0; L]; 3],
+            ea: [0.0; L],
+            eac: [0.0; L],
+            comp: [0.0; L],
+            dn: [0.0; L],
+            dt: [0.0; L],
+        }
+    }
+}
+
+impl<const L: usize> UniformLine<L> {
     /// The block's, when its current is uniform and every element has the same `EA`,
     /// damping, compression factor and drag coefficients (to the bit).
     pub(super) fn of(c: &ChainConsts) -> Option<Self> {
@@ -40,12 +55,12 @@ impl UniformLine {
             return None;
         }
         Some(UniformLine {
-            u,
-            ea: c.ea[0],
-            eac: c.eac[0],
-            comp: c.comp[0],
-            dn: c.drag_n[0],
-            dt: c.drag_t[0],
+            u: [[u[0]; L], [u[1]; L], [u[2]; L]],
+            ea: [c.ea[0]; L],
+            eac: [c.eac[0]; L],
+            comp: [c.comp[0]; L],
+            dn: [c.drag_n[0]; L],
+            dt: [c.drag_t[0]; L],
         })
     }
 }
@@ -73,7 +88,7 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize, St: Stride>(
     wv: &ColumnsView<'_, St>,
     haw: &mut [f64],
     under: Option<bool>,
-    uni: Option<&UniformLine>,
+    uni: Option<&UniformLine<L>>,
 ) -> bool {
     let ne = c.l0.len();
     // Every node at or below the surface (the common case: a line in still water, or
@@ -341,18 +356,60 @@ pub(super) fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
     aw: [f64; 3],
     k: ElemConsts,
 ) -> ElemOut {
+    element_lane_lits::<WAVES, SUBMERGED>(a, b, u, aw, k, Literals::PLAIN)
+}
+
+/// The literals of [`element_lane`]'s arithmetic: `0.5`, `1.0` and `0.0`, as values.
+#[derive(Clone, Copy)]
+pub(super) struct Literals {
+    half: f64,
+    one: f64,
+    zero: f64,
+}
+
+impl Literals {
+    /// The literals themselves (folded by the compiler as before).
+    pub(super) const PLAIN: Literals = Literals {
+        half: 0.5,
+        one: 1.0,
+        zero: 0.0,
+    };
+
+    /// The same values hidden from the optimiser (`std::hint::black_box`), for the
+    /// chain's loop over chunks: with AVX2's 16 vector registers a known 0.5 was
+    /// re-broadcast from the constant pool before each of its six uses a chunk, and
+    /// `x - 1.0` became `x + (-1.0)` with a broadcast of its own (two instructions each
+    /// use); unknown values are broadcast once a step and kept in a register or read as
+    /// a memory operand (one). The same values, so the same bits.
+    #[inline(always)]
+    pub(super) fn hidden() -> Literals {
+        std::hint::black_box(Literals::PLAIN)
+    }
+}
+
+/// [`element_lane`] with its literals given as values ([`Literals`]).
+#[inline(always)]
+pub(super) fn element_lane_lits<const WAVES: bool, const SUBMERGED: bool>(
+    a: [f64; 7],
+    b: [f64; 7],
+    u: [f64; 3],
+    aw: [f64; 3],
+    k: ElemConsts,
+    lits: Literals,
+) -> ElemOut {
+    let Literals { half, one, zero } = lits;
     let (dx, dy, dz) = (b[0] - a[0], b[1] - a[1], b[2] - a[2]);
     let l = (dx * dx + dy * dy + dz * dz).sqrt();
-    let il = 1.0 / l;
+    let il = one / l;
     let (ex, ey, ez) = (dx * il, dy * il, dz * il);
-    let eps = l * k.il0 - 1.0;
+    let eps = l * k.il0 - one;
     let epsdot = (ex * (b[3] - a[3]) + ey * (b[4] - a[4]) + ez * (b[5] - a[5])) * k.il0;
     // Slack: the elastic part vanishes in compression unless the line is a rod.
-    let elastic = k.ea * eps * if eps > 0.0 { 1.0 } else { k.comp };
+    let elastic = k.ea * eps * if eps > zero { one } else { k.comp };
     let tension = elastic + k.eac * epsdot;
-    let rx = u[0] - 0.5 * (a[3] + b[3]);
-    let ry = u[1] - 0.5 * (a[4] + b[4]);
-    let rz = u[2] - 0.5 * (a[5] + b[5]);
+    let rx = u[0] - half * (a[3] + b[3]);
+    let ry = u[1] - half * (a[4] + b[4]);
+    let rz = u[2] - half * (a[5] + b[5]);
     let vt = ex * rx + ey * ry + ez * rz;
     let (nx, ny, nz) = (rx - ex * vt, ry - ey * vt, rz - ez * vt);
     // Water terms times the wetted fraction; the dry part loses its buoyancy.
@@ -371,9 +428,9 @@ pub(super) fn element_lane<const WAVES: bool, const SUBMERGED: bool>(
     };
     // Half of drag, plus half the weight less buoyancy (no water acceleration yet).
     let mut f = [
-        0.5 * (nx * kn + ex * kt),
-        0.5 * (ny * kn + ey * kt),
-        0.5 * (nz * kn + ez * kt) + hw_wet,
+        half * (nx * kn + ex * kt),
+        half * (ny * kn + ey * kt),
+        half * (nz * kn + ez * kt) + hw_wet,
     ];
     if WAVES {
         // Froude-Krylov and added mass on the normal wave acceleration P a_w.
@@ -414,7 +471,7 @@ pub(super) unsafe fn elements_fused<const L: usize, St: Stride>(
     u: &[Vec<f64>; 3],
     eta: &mut [f64],
     wv: &ColumnsView<'_, St>,
-    uni: Option<&UniformLine>,
+    uni: Option<&UniformLine<L>>,
 ) -> bool {
     debug_assert!(w.unit);
     let nn = chunks_for::<L>(c.n);
@@ -491,7 +548,7 @@ unsafe fn element_chunks<
     u: &[Vec<f64>; 3],
     aw: &[Vec<f64>; 3],
     wv: &ColumnsView<'_, St>,
-    k: &UniformLine,
+    k: &UniformLine<L>,
     cols: Option<&ChainCols>,
 ) {
     let ne = c.l0.len();
@@ -575,6 +632,8 @@ unsafe fn element_chunks<
     let (tx, ty, tz) = (out!(col::TX), out!(col::TX + 1), out!(col::TX + 2));
     let (fx, fy, fz) = (out!(col::FX), out!(col::FX + 1), out!(col::FX + 2));
     let ten = out!(col::TEN);
+    // The literals hidden from the optimiser ([`Literals::hidden`]).
+    let lits = Literals::hidden();
     for j in 0..nc {
         keep_chunks();
         // Every input into locals first, then every output: no overlap to check.
@@ -591,11 +650,8 @@ unsafe fn element_chunks<
             (awx[j], awy[j], awz[j])
         };
         let ((ux, uy, uz), (ea, eac, comp, dn, dt)) = if UNI {
-            let u = k.u;
-            (
-                ([u[0]; L], [u[1]; L], [u[2]; L]),
-                ([k.ea; L], [k.eac; L], [k.comp; L], [k.dn; L], [k.dt; L]),
-            )
+            let u = &k.u;
+            ((u[0], u[1], u[2]), (k.ea, k.eac, k.comp, k.dn, k.dt))
         } else {
             (
                 (ux[j], uy[j], uz[j]),
@@ -616,7 +672,7 @@ unsafe fn element_chunks<
         let (hw, hb, hfk) = (hw[j], hb[j], hfk[j]);
         let mut o = [[0.0; L]; 7];
         for l in 0..L {
-            let e = element_lane::<WAVES, true>(
+            let e = element_lane_lits::<WAVES, true>(
                 [xa[l], ya[l], za[l], vxa[l], vya[l], vza[l], 0.0],
                 [xb[l], yb[l], zb[l], vxb[l], vyb[l], vzb[l], 0.0],
                 [ux[l], uy[l], uz[l]],
@@ -634,6 +690,7 @@ unsafe fn element_chunks<
                     ha: 0.0,
                     diam: 0.0,
                 },
+                lits,
             );
             [o[0][l], o[1][l], o[2][l]] = e.t;
             o[3][l] = e.ten;

@@ -6,8 +6,10 @@
 //! masses ([`Masses`]) and the point-mass helpers that the network path shares.
 
 use super::consts::ChainConsts;
-use super::lanes::{chunks_for, col, keep_chunks, lanes, lanes_next, ColumnsView, Stride};
-use super::winch::{ale_mass_flow, ale_mass_flow_clear, AleScratch};
+use super::lanes::{
+    chunks_for, col, keep_chunks, lanes, lanes_next, ColumnsView, Stride, KEEP,
+};
+use super::winch::{ale_mass_flow, extra_forces_clear, AleScratch};
 use crate::cpu::passes::implicit_dt;
 use crate::cpu::water::node_water;
 use crate::model::Layout;
@@ -211,18 +213,8 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize, St: Stride>(
                 wv.col_mut(col::XFX + 2),
             ]
         };
-        // SAFETY: as above.
-        unsafe { ale_mass_flow_clear(asc, &mut xf) };
-        for i in c
-            .point_drag
-            .iter()
-            .map(|pd| pd.0)
-            .chain(c.point_volume.iter().map(|pv| pv.0))
-        {
-            for x in xf.iter_mut() {
-                *set!(x, i) = 0.0;
-            }
-        }
+        // SAFETY: as above (the nodes checked by `AleScratch::prepare`).
+        unsafe { extra_forces_clear(asc, &mut xf) };
     } else {
         kernel!(false);
     }
@@ -416,17 +408,38 @@ unsafe fn node_kernel<
         }
         [ax[i], ay[i], az[i]] = o;
     }
-    // The padding nodes stay at rest at zero (the symplectic update's check reads them).
-    // They are the last chunk's lanes from `c.n` on: one select a column on that chunk
-    // (vector blends), not a store per padding node (up to 7 with 8 lanes).
+    // The padding nodes stay at rest at zero (the symplectic update's check reads them;
+    // their solve divides by a zero mass, and they gather the padding elements' NaN
+    // tangents). They are the last chunk's lanes from `c.n` on: one AND a column on
+    // that chunk with the lanes' bits (`KEEP`), `+0.0` as before, in vector code.
     if nc > 0 {
-        let (j, first) = (nc - 1, (nc - 1) * L);
-        for col in [&mut ax[j], &mut ay[j], &mut az[j]] {
-            for (l, v) in col.iter_mut().enumerate() {
-                *v = if first + l < c.n { *v } else { 0.0 };
-            }
-        }
+        let j = nc - 1;
+        // The last chunk holds 1 to `L` nodes (`nc = chunks_for::<L>(c.n)`), and
+        // `L <= MAX_LANES`.
+        let k = c.n - j * L;
+        debug_assert!((1..=L).contains(&k));
+        // SAFETY: `k <= L <= MAX_LANES`, a row of the table, whose first `L` entries
+        // are an `[u64; L]`.
+        let keep = unsafe { &*KEEP.get_unchecked(k).as_ptr().cast::<[u64; L]>() };
+        // Every input into locals first, then every output.
+        let (x, y, z) = (ax[j], ay[j], az[j]);
+        [ax[j], ay[j], az[j]] = [
+            keep_lanes(x, keep),
+            keep_lanes(y, keep),
+            keep_lanes(z, keep),
+        ];
     }
+}
+
+/// `v`'s lanes ANDed with `keep`'s bits (module [`super::lanes`]'s `KEEP`). A
+/// function, not a closure: closures are not inlined into the AVX2 caller.
+#[inline(always)]
+fn keep_lanes<const L: usize>(v: [f64; L], keep: &[u64; L]) -> [f64; L] {
+    let mut o = [0.0; L];
+    for l in 0..L {
+        o[l] = f64::from_bits(v[l].to_bits() & keep[l]);
+    }
+    o
 }
 
 /// The per-stage masses and seabed constants: the point masses and weights and the
@@ -447,8 +460,13 @@ pub(super) struct Masses<'a> {
 /// The point masses and weights of the nodes whose point has a volume, less what the
 /// share of it out of the water loses (its added mass and buoyancy). Under water
 /// `dry` is 0 and the block's constants stand bit for bit.
+///
+/// # Safety
+/// Every column of `c`, `p` and `eta`, `pm` and `pwz` has at least `c.n` entries (the
+/// points' nodes are nodes of the block, as `nodes` relies on too): read and written
+/// without bounds checks (about 10 instructions a step of Case 2 with its end mass).
 #[inline(always)]
-pub(super) fn point_surface(
+pub(super) unsafe fn point_surface(
     c: &ChainConsts,
     p: &[Vec<f64>; 6],
     eta: &[f64],
@@ -457,7 +475,17 @@ pub(super) fn point_surface(
 ) {
     for pv in &c.point_volume {
         let i = pv.0;
-        (pm[i], pwz[i]) = point_surface_at(c, pv, eta[i] - p[2][i]);
+        debug_assert!(i < c.n);
+        // SAFETY (every use): `i` is a node of the block, as the contract says.
+        let depth = unsafe { *eta.get_unchecked(i) - *p[2].get_unchecked(i) };
+        // `point_surface_at` with the block's own constants read unchecked.
+        let radius = pv.1;
+        let v = if radius >= 0.0 && depth >= radius {
+            unsafe { (*c.pm.get_unchecked(i), *c.pwz.get_unchecked(i)) }
+        } else {
+            point_surface_at(c, pv, depth)
+        };
+        unsafe { (*pm.get_unchecked_mut(i), *pwz.get_unchecked_mut(i)) = v };
     }
 }
 

@@ -54,9 +54,11 @@ pub(super) struct AleScratch {
     /// Whether the block has a seabed (only then do the variable element's nodes'
     /// seabed constants, read by the node loop's contact terms, need updating).
     seabed: bool,
-    /// The nodes whose per-node extra forces [`ale_mass_flow`] writes (the free ends of
-    /// the variable elements), what [`ale_mass_flow_clear`] zeroes again.
-    flow_nodes: Vec<usize>,
+    /// The nodes whose per-node extra forces a stage may write: the free ends of the
+    /// variable elements ([`ale_mass_flow`]) and the nodes with point drag or a point's
+    /// water-acceleration load (`nodes`), each once; what [`extra_forces_clear`] zeroes
+    /// again (one loop, not one a list).
+    extra_nodes: Vec<usize>,
 }
 
 impl AleScratch {
@@ -70,12 +72,14 @@ impl AleScratch {
         let held = |i: usize| c.constrained.iter().any(|&(j, _)| j == i);
         // Friction needs a seabed; the node loop's own test (`nodes`).
         self.seabed = c.friction || c.zb.is_finite();
-        self.flow_nodes.clear();
-        for ae in ale {
-            for i in [ae.m, ae.w] {
-                if !held(i) && !self.flow_nodes.contains(&i) {
-                    self.flow_nodes.push(i);
-                }
+        self.extra_nodes.clear();
+        let points = c.point_drag.iter().map(|pd| pd.0);
+        let points = points.chain(c.point_volume.iter().map(|pv| pv.0));
+        let flow = ale.iter().flat_map(|ae| [ae.m, ae.w]).filter(|&i| !held(i));
+        for i in flow.chain(points) {
+            assert!(i < c.n, "node {i} outside its chain of {} nodes", c.n);
+            if !self.extra_nodes.contains(&i) {
+                self.extra_nodes.push(i);
             }
         }
         self.runs.clear();
@@ -249,13 +253,13 @@ pub(super) unsafe fn ale_mass_flow(
     any
 }
 
-/// Clears the entries [`ale_mass_flow`] wrote.
+/// Clears the per-node extra forces a stage wrote (the mass flow's, the points').
 ///
 /// # Safety
 /// As [`ale_constants`], for the columns of `xf`.
 #[inline(always)]
-pub(super) unsafe fn ale_mass_flow_clear(sc: &AleScratch, xf: &mut [&mut [f64]; 3]) {
-    for &i in &sc.flow_nodes {
+pub(super) unsafe fn extra_forces_clear(sc: &AleScratch, xf: &mut [&mut [f64]; 3]) {
+    for &i in &sc.extra_nodes {
         for x in xf.iter_mut() {
             // SAFETY: `i` is a node of the block, as the contract says.
             unsafe { *x.get_unchecked_mut(i) = 0.0 };
