@@ -23,6 +23,10 @@ pub mod cpu_chain_elements {
     pub use crate::cpu::chain::elements::*;
 }
 
+pub mod cpu_chain_lanes {
+    pub use crate::cpu::chain::lanes::{KEEP, MAX_LANES};
+}
+
 pub mod cpu_chain_net_pieces {
     pub use crate::cpu::chain::net::pieces::*;
     pub use crate::cpu::chain::net::NT;

@@ -24,7 +24,7 @@
 mod advance;
 mod consts;
 pub(crate) mod elements;
-mod lanes;
+pub(crate) mod lanes;
 pub(crate) mod net;
 mod nodes;
 mod winch;

@@ -17,6 +17,7 @@ mod body_kinematics;
 mod body_motion;
 mod body_rao;
 mod cpu_chain_elements;
+mod cpu_chain_lanes;
 mod cpu_chain_net_pieces;
 mod cpu_chain_net_plan;
 mod gpu_wave_schedule;

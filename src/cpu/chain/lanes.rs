@@ -10,7 +10,7 @@
 //! lane count does not change a bit of the results.
 
 /// The most lanes per chunk (8 f64, one AVX-512 register); the padding is for it.
-pub(super) const MAX_LANES: usize = 8;
+pub const MAX_LANES: usize = 8;
 
 /// `KEEP[k]`: the bits that keep the first `k` lanes of a chunk and clear the rest
 /// (`f64::from_bits(v.to_bits() & KEEP[k][l])`: `v` or `+0.0`). One AND a column on
@@ -18,7 +18,7 @@ pub(super) const MAX_LANES: usize = 8;
 /// in vector code: the same select written as `if first + l < n { v } else { 0 }`
 /// was compiled to a compare, a branch and a store per lane (about 55 instructions a
 /// step with 4 lanes, about 140 with 8).
-pub(super) static KEEP: [[u64; MAX_LANES]; MAX_LANES + 1] = keep_table();
+pub static KEEP: [[u64; MAX_LANES]; MAX_LANES + 1] = keep_table();
 
 const fn keep_table() -> [[u64; MAX_LANES]; MAX_LANES + 1] {
     let mut t = [[0u64; MAX_LANES]; MAX_LANES + 1];

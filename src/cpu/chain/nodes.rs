@@ -6,9 +6,7 @@
 //! masses ([`Masses`]) and the point-mass helpers that the network path shares.
 
 use super::consts::ChainConsts;
-use super::lanes::{
-    chunks_for, col, keep_chunks, lanes, lanes_next, ColumnsView, Stride, KEEP,
-};
+use super::lanes::{chunks_for, col, keep_chunks, lanes, lanes_next, ColumnsView, Stride, KEEP};
 use super::winch::{ale_mass_flow, extra_forces_clear, AleScratch};
 use crate::cpu::passes::implicit_dt;
 use crate::cpu::water::node_water;
