@@ -325,6 +325,11 @@ fn wave_cache_hermite(v0: WaveKin, d0: WaveKin, v1: WaveKin, d1: WaveKin, w: vec
 
 // One step of a submission in one sea. Rust: gpu::layout::WaveStep.
 struct WaveStep {
+    // The Hermite weights of this step's time, [h00, Delta h10, h01, Delta h11]
+    // (wave_cache_hermite): a vec4, one load (on a software adapter, lavapipe, a loop
+    // over the lanes per load, which every element of the step runs: wave_band_weights),
+    // first in the row so that it is aligned at both precisions.
+    w: vec4<R>,
     // Cache slots of the t0 values and of the t1 values (0 and 1: a refresh copies a
     // node's t1 values to slot 0).
     slot0: u32,
@@ -354,12 +359,11 @@ struct WaveStep {
     // 1 when this step counts the nodes above their band's top: band 0 refreshes,
     // not a restart, more than one band.
     watch: u32,
-    // The Hermite weights of this step's time, [h00, Delta h10, h01, Delta h11]
-    // (wave_cache_hermite; four scalars, not a vec4, whose alignment would pad the row).
-    w0: R,
-    w1: R,
-    w2: R,
-    w3: R,
+    // Unused: the row's size a multiple of vec4<f64>'s alignment (32 bytes).
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+    pad3: u32,
     // Refresh: t - t_ref (s), the ramp factor and its rate (1/s) at the step's time t
     // (restart only).
     tau0: R,
@@ -504,7 +508,7 @@ fn node_waves(i: u32, k: u32) -> WaveKin {
         wave_cache_load7(o0 + 7u),
         wave_cache_load7(o1),
         wave_cache_load7(o1 + 7u),
-        vec4<R>(ws.w0, ws.w1, ws.w2, ws.w3),
+        ws.w,
     );
 }
 
@@ -697,7 +701,7 @@ fn wave_sea_rows(wave_rows: u32, k: u32) -> SeaRows {
 // The Hermite weights of band b's row at rows `sr`.
 fn wave_band_weights(sr: SeaRows, b: u32) -> vec4<R> {
     let r = sr.r + b * sr.band_rows;
-    return vec4<R>(wave_steps[r].w0, wave_steps[r].w1, wave_steps[r].w2, wave_steps[r].w3);
+    return wave_steps[r].w;
 }
 
 // Element e's waves at rows `sr` of a sea with waves (the caller checks): its entry

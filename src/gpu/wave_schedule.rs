@@ -178,7 +178,7 @@ impl WaveSchedule {
             let delta = t1 - t0;
             let s = ((t - t0) / delta).clamp(0.0, 1.0);
             let w = hermite_weights(s, delta);
-            (row.w0, row.w1, row.w2, row.w3) = (R::c(w[0]), R::c(w[1]), R::c(w[2]), R::c(w[3]));
+            row.w = [R::c(w[0]), R::c(w[1]), R::c(w[2]), R::c(w[3])];
             rows[m * per] = row;
         }
         ticks[0].is_some()
