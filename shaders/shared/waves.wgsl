@@ -407,8 +407,9 @@ fn wave_step_tops(ws: WaveStep) -> array<R, 6> {
 // band (a small whole number, exact in R); then one per node: how many times it was
 // found above its band's top (sea::cache::WaveCache::breaches, summed by the host);
 // then WAVE_ELEM_STRIDE per element: its band or mark (wave_elem_form, below; its
-// midpoint cache is in wave_elems, as vec4 rows); then four per node: its breaches beyond the margin (wave_beyond_at); then the refresh's
-// work list, two entries of WAVE_DUE_STRIDE per node at most (wave_due_at).
+// midpoint cache is in wave_elems, as vec4 rows); then four per node: its breaches
+// beyond the margin (wave_beyond_at); then the refresh's work list, two entries of
+// WAVE_DUE_STRIDE per node at most (wave_due_at).
 const WAVE_CACHE_STRIDE: u32 = 14u;
 @group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
 @group(0) @binding(20) var<storage, read> wave_steps: array<WaveStep>;

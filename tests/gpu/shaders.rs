@@ -316,11 +316,7 @@ fn the_fused_waves_kernel_of_lines_without_points_reads_no_node_cache() {
         }
         let points = fused_reaches_points(p, true, true);
         for f in ["node_waves", "wave_cache_load7"] {
-            assert!(
-                points.contains(f),
-                "{}: points, {f} not reached",
-                p.name()
-            );
+            assert!(points.contains(f), "{}: points, {f} not reached", p.name());
         }
     }
 }

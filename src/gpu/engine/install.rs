@@ -17,7 +17,8 @@ use crate::gpu::layout::*;
 use crate::gpu::shaders::{self, Stage};
 use crate::gpu::solver::GpuTimings;
 use crate::gpu::wave_schedule::{
-    fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_DUE_STRIDE, WAVE_ELEM_ROWS, WAVE_ELEM_STRIDE,
+    fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_DUE_STRIDE, WAVE_ELEM_ROWS,
+    WAVE_ELEM_STRIDE,
 };
 use crate::model::Layout;
 use crate::options::Precision;
