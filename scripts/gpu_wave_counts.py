@@ -91,7 +91,8 @@ OLD_ELEM = 2 * (1 + 28)  # both nodes' band and their 28 (values, rates, two tim
 NEW_ELEM = 1 + 32  # the element's band mark and its 32
 # An element across a band top: the mark, its 32 (node a's values and both nodes'
 # surface), node b's velocity and acceleration (24; branch `hlava`: before, the mark
-# and both nodes' band and 28, 59).
+# and both nodes' band and 28, 59; since branch `hlavastep` the 24 are copies in the
+# element's entry, as vec4 rows, not the nodes' cache: the same bytes).
 MIXED_ELEM = 1 + 32 + 24
 # Flops per element at a step that does not refresh.
 OLD_ELEM_FLOPS = 117  # two Hermite interpolations of 7, the means, the surface
@@ -107,10 +108,12 @@ NODE_DUE = 3 + 14 + 14 + 14 + 3 + 1
 # wave_elem_form (this branch), per element and refresh dispatch: always its
 # parameters and its nodes' bands; when one of its nodes' bands refreshes, the nodes'
 # 2 x 28 (reads) and its 33 (writes); an element across a band top the same (since
-# branch `hlava`: node a's values and both surfaces; before, only its mark).
+# branch `hlava`: node a's values and both surfaces; before, only its mark), and
+# since branch `hlavastep` a copy of node b's velocity and acceleration too (24 more
+# writes).
 ELEM_ALWAYS = 2
 ELEM_DUE = 56 + 33
-MIXED_DUE = ELEM_DUE
+MIXED_DUE = ELEM_DUE + 24
 ELEM_FORM_FLOPS = 4 * 6 * 2
 
 

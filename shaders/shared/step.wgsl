@@ -50,7 +50,7 @@ fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb
     var aw = vec3<R>(R(0.0), R(0.0), R(0.0));
     var wet: R;
     if WAVES && sr.waves {
-        let w = elem_waves(e, ep, sr);
+        let w = elem_waves(e, sr);
         u += w.u;
         aw = w.a;
         wet = wetted_fraction(w.eta_a + submergence(oz, sa), w.eta_b + submergence(oz, sb), ep.diameter);

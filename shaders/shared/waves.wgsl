@@ -325,6 +325,11 @@ fn wave_cache_hermite(v0: WaveKin, d0: WaveKin, v1: WaveKin, d1: WaveKin, w: vec
 
 // One step of a submission in one sea. Rust: gpu::layout::WaveStep.
 struct WaveStep {
+    // The Hermite weights of this step's time, [h00, Delta h10, h01, Delta h11]
+    // (wave_cache_hermite): a vec4, one load (on a software adapter, lavapipe, a loop
+    // over the lanes per load, which every element of the step runs: wave_band_weights),
+    // first in the row so that it is aligned at both precisions.
+    w: vec4<R>,
     // Cache slots of the t0 values and of the t1 values (0 and 1: a refresh copies a
     // node's t1 values to slot 0).
     slot0: u32,
@@ -354,12 +359,11 @@ struct WaveStep {
     // 1 when this step counts the nodes above their band's top: band 0 refreshes,
     // not a restart, more than one band.
     watch: u32,
-    // The Hermite weights of this step's time, [h00, Delta h10, h01, Delta h11]
-    // (wave_cache_hermite; four scalars, not a vec4, whose alignment would pad the row).
-    w0: R,
-    w1: R,
-    w2: R,
-    w3: R,
+    // Unused: the row's size a multiple of vec4<f64>'s alignment (32 bytes).
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+    pad3: u32,
     // Refresh: t - t_ref (s), the ramp factor and its rate (1/s) at the step's time t
     // (restart only).
     tau0: R,
@@ -402,12 +406,18 @@ fn wave_step_tops(ws: WaveStep) -> array<R, 6> {
 // node: the node's velocity at the last refresh (m/s); then one per node: its depth
 // band (a small whole number, exact in R); then one per node: how many times it was
 // found above its band's top (sea::cache::WaveCache::breaches, summed by the host);
-// then WAVE_ELEM_STRIDE per element: its midpoint cache (wave_elem_form, below); then
-// four per node: its breaches beyond the margin (wave_beyond_at); then the refresh's
-// work list, two entries of WAVE_DUE_STRIDE per node at most (wave_due_at).
+// then WAVE_ELEM_STRIDE per element: its band or mark (wave_elem_form, below; its
+// midpoint cache is in wave_elems, as vec4 rows); then four per node: its breaches
+// beyond the margin (wave_beyond_at); then the refresh's work list, two entries of
+// WAVE_DUE_STRIDE per node at most (wave_due_at).
 const WAVE_CACHE_STRIDE: u32 = 14u;
 @group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
 @group(0) @binding(20) var<storage, read> wave_steps: array<WaveStep>;
+// The elements' midpoint cache, WAVE_ELEM_ROWS rows per element (wave_elem_rows_at),
+// as vec4 rows: on a software adapter (lavapipe) a storage load is a loop over the
+// SIMD lanes, one loop per load whatever its width, so the step reads an entry's 32
+// scalars in 8 loads instead of 32.
+@group(0) @binding(21) var<storage, read_write> wave_elems: array<vec4<R>>;
 
 fn wave_cache_load7(o: u32) -> WaveKin {
     return WaveKin(
@@ -499,7 +509,7 @@ fn node_waves(i: u32, k: u32) -> WaveKin {
         wave_cache_load7(o0 + 7u),
         wave_cache_load7(o1),
         wave_cache_load7(o1 + 7u),
-        vec4<R>(ws.w0, ws.w1, ws.w2, ws.w3),
+        ws.w,
     );
 }
 
@@ -512,7 +522,12 @@ fn node_waves(i: u32, k: u32) -> WaveKin {
 // round-off. The element's nodes share a band but for the few elements across a band
 // top, whose two nodes interpolate with different weights: those are marked with
 // both bands (WAVE_ELEM_MIXED), keep node a's values and both surfaces in their entry
-// and read node b's velocity and acceleration from the nodes' cache (elem_waves). ----
+// and node b's velocity and acceleration after it (elem_waves). The entries are
+// vec4 rows of their own buffer (wave_elems): the step's loads of an entry are 8
+// rows, and 6 more for node b's values, where scalars took 32 and 24 loads; on a
+// software adapter each load is a loop over the lanes whatever its width. The
+// element's band (or mark) stays a scalar of the cache (wave_elem_at), so that a GPU
+// reads no more bytes than the 33 scalars it read before. ----
 
 // An element's waves: the surface over nodes a and b, the mean wave velocity and
 // acceleration of the two (m, m/s, m/s^2; or their rates).
@@ -523,9 +538,13 @@ struct WaveMid {
     a: vec3<R>,
 }
 
-// One band marker, then the four sides (values at t0, rates at t0, values at t1,
-// rates at t1) of eight scalars, per element, after the nodes' part of the cache.
-const WAVE_ELEM_STRIDE: u32 = 33u;
+// One band marker per element, after the nodes' part of the cache.
+const WAVE_ELEM_STRIDE: u32 = 1u;
+// Rows of an element's entry in wave_elems: the four sides (values at t0, rates at
+// t0, values at t1, rates at t1) of two rows each, (eta_a, u) and (eta_b, a)
+// (wave_mid_load); then, for an element across a band top only, node b's velocity
+// and acceleration on the four sides, 24 scalars in six rows (wave_mixed_b_load).
+const WAVE_ELEM_ROWS: u32 = 14u;
 // The band marker of an element whose nodes are in different bands is at least this:
 // WAVE_ELEM_MIXED + 8 bb + ba for node a in band ba and node b in band bb (small whole
 // numbers, exact in R; a band is below 8: sea::bands::MAX_BANDS).
@@ -548,29 +567,57 @@ fn wave_mid_hermite(v0: WaveMid, d0: WaveMid, v1: WaveMid, d1: WaveMid, w: vec4<
     );
 }
 
-// Where element e's entry is in the cache (after the nodes' 2 x 14 + 5 per node).
+// Where element e's band (or mark) is in the cache (after the nodes' 2 x 14 + 5 per
+// node).
 fn wave_elem_at(e: u32) -> u32 {
     return (2u * WAVE_CACHE_STRIDE + 5u) * params.n_nodes + e * WAVE_ELEM_STRIDE;
 }
 
-fn wave_mid_load(o: u32) -> WaveMid {
-    return WaveMid(
-        wave_cache[o],
-        wave_cache[o + 1u],
-        vec3<R>(wave_cache[o + 2u], wave_cache[o + 3u], wave_cache[o + 4u]),
-        vec3<R>(wave_cache[o + 5u], wave_cache[o + 6u], wave_cache[o + 7u]),
-    );
+// Where element e's entry starts in wave_elems.
+fn wave_elem_rows_at(e: u32) -> u32 {
+    return e * WAVE_ELEM_ROWS;
 }
 
-fn wave_mid_store(o: u32, m: WaveMid) {
-    wave_cache[o] = m.eta_a;
-    wave_cache[o + 1u] = m.eta_b;
-    wave_cache[o + 2u] = m.u.x;
-    wave_cache[o + 3u] = m.u.y;
-    wave_cache[o + 4u] = m.u.z;
-    wave_cache[o + 5u] = m.a.x;
-    wave_cache[o + 6u] = m.a.y;
-    wave_cache[o + 7u] = m.a.z;
+// One side of an entry from its two rows at q: (eta_a, u) and (eta_b, a).
+fn wave_mid_load(q: u32) -> WaveMid {
+    let x = wave_elems[q];
+    let y = wave_elems[q + 1u];
+    return WaveMid(x.x, y.x, x.yzw, y.yzw);
+}
+
+fn wave_mid_store(q: u32, m: WaveMid) {
+    wave_elems[q] = vec4<R>(m.eta_a, m.u);
+    wave_elems[q + 1u] = vec4<R>(m.eta_b, m.a);
+}
+
+// Node b's velocity and acceleration on the four sides of an element across a band
+// top (values at t0, rates at t0, values at t1, rates at t1), 24 scalars packed in
+// the six rows from q (the surfaces are in the entry's sides: wave_mixed_side).
+fn wave_mixed_b_store(q: u32, s0: WaveKin, s1: WaveKin, s2: WaveKin, s3: WaveKin) {
+    wave_elems[q] = vec4<R>(s0.u, s0.a.x);
+    wave_elems[q + 1u] = vec4<R>(s0.a.yz, s1.u.xy);
+    wave_elems[q + 2u] = vec4<R>(s1.u.z, s1.a);
+    wave_elems[q + 3u] = vec4<R>(s2.u, s2.a.x);
+    wave_elems[q + 4u] = vec4<R>(s2.a.yz, s3.u.xy);
+    wave_elems[q + 5u] = vec4<R>(s3.u.z, s3.a);
+}
+
+// The four sides wave_mixed_b_store packed, their surfaces zero (the caller uses
+// only the velocity and acceleration).
+fn wave_mixed_b_load(q: u32) -> array<WaveKin, 4> {
+    let x0 = wave_elems[q];
+    let x1 = wave_elems[q + 1u];
+    let x2 = wave_elems[q + 2u];
+    let x3 = wave_elems[q + 3u];
+    let x4 = wave_elems[q + 4u];
+    let x5 = wave_elems[q + 5u];
+    let z = R(0.0);
+    return array<WaveKin, 4>(
+        WaveKin(z, x0.xyz, vec3<R>(x0.w, x1.xy)),
+        WaveKin(z, vec3<R>(x1.zw, x2.x), x2.yzw),
+        WaveKin(z, x3.xyz, vec3<R>(x3.w, x4.xy)),
+        WaveKin(z, vec3<R>(x4.zw, x5.x), x5.yzw),
+    );
 }
 
 // Node a's side and node b's surface on that side as an element entry stores them
@@ -586,8 +633,10 @@ fn wave_mixed_side(a: WaveKin, b: WaveKin) -> WaveMid {
 // only at a refresh of its old and its new band): its band and, per side, the surface over
 // its nodes and the mean of their velocity and acceleration; or, for an element whose
 // nodes' bands differ, the mark WAVE_ELEM_MIXED + 8 bb + ba and per side node a's
-// values and node b's surface (wave_mixed_side): the step then reads only node b's
-// velocity and acceleration from the nodes' cache. CPU twin:
+// values and node b's surface (wave_mixed_side), then node b's velocity and
+// acceleration on the four sides (wave_mixed_b_store): the same values the step
+// would read from the nodes' cache, which changes only at a refresh of node b's band,
+// when this entry is formed again. CPU twin:
 // cpu::water::ChainColumns::form (which, with several bands, puts every node in the
 // power basis of one time instead of marking the mixed elements).
 fn wave_elem_form(e: u32, k: u32) {
@@ -603,23 +652,29 @@ fn wave_elem_form(e: u32, k: u32) {
         return;
     }
     let o = wave_elem_at(e);
+    let q = wave_elem_rows_at(e);
     let oa0 = (wa.slot0 * params.n_nodes + ep.a) * WAVE_CACHE_STRIDE;
     let oa1 = (wa.slot1 * params.n_nodes + ep.a) * WAVE_CACHE_STRIDE;
     let ob0 = (wa.slot0 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
     let ob1 = (wa.slot1 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
     if ba != bb {
         wave_cache[o] = R(WAVE_ELEM_MIXED + 8u * bb + ba);
-        wave_mid_store(o + 1u, wave_mixed_side(wave_cache_load7(oa0), wave_cache_load7(ob0)));
-        wave_mid_store(o + 9u, wave_mixed_side(wave_cache_load7(oa0 + 7u), wave_cache_load7(ob0 + 7u)));
-        wave_mid_store(o + 17u, wave_mixed_side(wave_cache_load7(oa1), wave_cache_load7(ob1)));
-        wave_mid_store(o + 25u, wave_mixed_side(wave_cache_load7(oa1 + 7u), wave_cache_load7(ob1 + 7u)));
+        let b0 = wave_cache_load7(ob0);
+        let b1 = wave_cache_load7(ob0 + 7u);
+        let b2 = wave_cache_load7(ob1);
+        let b3 = wave_cache_load7(ob1 + 7u);
+        wave_mid_store(q, wave_mixed_side(wave_cache_load7(oa0), b0));
+        wave_mid_store(q + 2u, wave_mixed_side(wave_cache_load7(oa0 + 7u), b1));
+        wave_mid_store(q + 4u, wave_mixed_side(wave_cache_load7(oa1), b2));
+        wave_mid_store(q + 6u, wave_mixed_side(wave_cache_load7(oa1 + 7u), b3));
+        wave_mixed_b_store(q + 8u, b0, b1, b2, b3);
         return;
     }
     wave_cache[o] = R(ba);
-    wave_mid_store(o + 1u, wave_cache_midpoint(wave_cache_load7(oa0), wave_cache_load7(ob0)));
-    wave_mid_store(o + 9u, wave_cache_midpoint(wave_cache_load7(oa0 + 7u), wave_cache_load7(ob0 + 7u)));
-    wave_mid_store(o + 17u, wave_cache_midpoint(wave_cache_load7(oa1), wave_cache_load7(ob1)));
-    wave_mid_store(o + 25u, wave_cache_midpoint(wave_cache_load7(oa1 + 7u), wave_cache_load7(ob1 + 7u)));
+    wave_mid_store(q, wave_cache_midpoint(wave_cache_load7(oa0), wave_cache_load7(ob0)));
+    wave_mid_store(q + 2u, wave_cache_midpoint(wave_cache_load7(oa0 + 7u), wave_cache_load7(ob0 + 7u)));
+    wave_mid_store(q + 4u, wave_cache_midpoint(wave_cache_load7(oa1), wave_cache_load7(ob1)));
+    wave_mid_store(q + 6u, wave_cache_midpoint(wave_cache_load7(oa1 + 7u), wave_cache_load7(ob1 + 7u)));
 }
 
 // Where a block's sea's rows are at one step: `r` the row of band 0 at that step
@@ -647,39 +702,34 @@ fn wave_sea_rows(wave_rows: u32, k: u32) -> SeaRows {
 // The Hermite weights of band b's row at rows `sr`.
 fn wave_band_weights(sr: SeaRows, b: u32) -> vec4<R> {
     let r = sr.r + b * sr.band_rows;
-    return vec4<R>(wave_steps[r].w0, wave_steps[r].w1, wave_steps[r].w2, wave_steps[r].w3);
+    return wave_steps[r].w;
 }
 
 // Element e's waves at rows `sr` of a sea with waves (the caller checks): its entry
 // interpolated with its band's weights; for an element across a band top, node a's
 // values from the entry with node a's band's weights, node b's surface from the
-// entry and its velocity and acceleration from the nodes' cache with node b's band's
-// weights, then their mean, as wave_cache_midpoint of the two nodes' interpolations
-// (the same arithmetic, so the same bits). Both cases share the entry's 32 loads: on
-// a software adapter (lavapipe) an `if` costs the code of both sides, loads included.
-// CPU twin: cpu::water::BlockWaves::fill_chain.
-fn elem_waves(e: u32, ep: ElemParams, sr: SeaRows) -> WaveMid {
-    let o = wave_elem_at(e);
-    let mark = u32(wave_cache[o]);
+// entry and its velocity and acceleration from the entry's last six rows (copies of
+// the nodes' cache: wave_elem_form) with node b's band's weights, then their mean, as
+// wave_cache_midpoint of the two nodes' interpolations (the same arithmetic on the
+// same values, so the same bits). Both cases share the entry's 8 row loads: on a
+// software adapter (lavapipe) an `if` costs the code of both sides, loads included,
+// so every element runs the 6 rows of node b too (24 scalar loads of the nodes' cache
+// before). CPU twin: cpu::water::BlockWaves::fill_chain.
+fn elem_waves(e: u32, sr: SeaRows) -> WaveMid {
+    let mark = u32(wave_cache[wave_elem_at(e)]);
     let mixed = mark >= WAVE_ELEM_MIXED;
     let ba = select(mark, (mark - WAVE_ELEM_MIXED) % 8u, mixed);
-    let v0 = wave_mid_load(o + 1u);
-    let d0 = wave_mid_load(o + 9u);
-    let v1 = wave_mid_load(o + 17u);
-    let d1 = wave_mid_load(o + 25u);
+    let q = wave_elem_rows_at(e);
+    let v0 = wave_mid_load(q);
+    let d0 = wave_mid_load(q + 2u);
+    let v1 = wave_mid_load(q + 4u);
+    let d1 = wave_mid_load(q + 6u);
     var m = wave_mid_hermite(v0, d0, v1, d1, wave_band_weights(sr, ba));
     if mixed {
         let wb = wave_band_weights(sr, (mark - WAVE_ELEM_MIXED) / 8u);
         m.eta_b = wb.x * v0.eta_b + wb.y * d0.eta_b + wb.z * v1.eta_b + wb.w * d1.eta_b;
-        let o0 = (sr.slot0 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
-        let o1 = (sr.slot1 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
-        let b = wave_cache_hermite(
-            wave_cache_load7(o0),
-            wave_cache_load7(o0 + 7u),
-            wave_cache_load7(o1),
-            wave_cache_load7(o1 + 7u),
-            wb,
-        );
+        let s = wave_mixed_b_load(q + 8u);
+        let b = wave_cache_hermite(s[0], s[1], s[2], s[3], wb);
         m.u = R(0.5) * (m.u + b.u);
         m.a = R(0.5) * (m.a + b.a);
     }

@@ -20,8 +20,8 @@ use crate::options::Precision;
 use std::sync::{Arc, Mutex};
 
 /// Storage buffers the solver binds in one stage (see the prelude's bindings: 0, 2 to
-/// 16 and 18, and the waves' 17, 19 and 20; binding 1 is a uniform).
-pub const STORAGE_BUFFERS_PER_STAGE: u32 = 20;
+/// 16 and 18, and the waves' 17, 19, 20 and 21; binding 1 is a uniform).
+pub const STORAGE_BUFFERS_PER_STAGE: u32 = 21;
 
 /// An open device, its queue, and what the adapter is.
 #[derive(Clone, Debug)]

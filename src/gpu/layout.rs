@@ -2,7 +2,8 @@
 //!
 //! Each struct is `#[repr(C)]`, generic over the scalar type `R` (`f32` or `f64`, the
 //! WGSL alias `R` of the same name), and made only of 32-bit integers, `R` scalars and
-//! `[R; 4]` (WGSL `vec4<R>`, only in structs made entirely of them): no `vec3`, whose
+//! `[R; 4]` (WGSL `vec4<R>`, in structs made entirely of them, and first in
+//! `WaveStep`, whose size is then a multiple of its alignment): no `vec3`, whose
 //! 16-byte alignment would open gaps that `#[repr(C)]` does not have. A compile-time
 //! assertion per precision shows each struct has no padding (so `Pod` is sound), and
 //! `tests/gpu/layout.rs` parses the WGSL with naga and checks every size and member
@@ -560,6 +561,13 @@ gpu_struct! {
     /// Hermite weights, and what a refresh at this step evaluates. Times are
     /// relative to the components' reference time `t_ref`, formed in f64 on the host.
     WaveStep {
+        /// Hermite weights of the step's time, `s = (t - t0) / (t1 - t0)`
+        /// (`sea::cache::hermite_weights`): `h00(s)` of the values at `t0`,
+        /// `(t1 - t0) h10(s)` of the rates at `t0`, `h01(s)` of the values at `t1`,
+        /// `(t1 - t0) h11(s)` of the rates at `t1`. A `vec4` (one load a step for every
+        /// element on a software adapter, four as scalars), first so that it is
+        /// aligned at both precisions.
+        w: [R; 4],
         /// Cache slot of the values at `t0` (always 0 since the depth bands: a
         /// refresh copies a node's `t1` values to slot 0; kept as a field so that the
         /// shader names the slot it reads).
@@ -593,15 +601,15 @@ gpu_struct! {
         /// 1 when this step counts the nodes above their band's top (band 0
         /// refreshes, not a restart, more than one band).
         watch: u32,
-        /// Hermite weight `h00(s)` of the step's time, `s = (t - t0) / (t1 - t0)`
-        /// (`sea::cache::hermite_weights`): of the values at `t0`.
-        w0: R,
-        /// `(t1 - t0) h10(s)`: of the rates at `t0`.
-        w1: R,
-        /// `h01(s)`: of the values at `t1`.
-        w2: R,
-        /// `(t1 - t0) h11(s)`: of the rates at `t1`.
-        w3: R,
+        /// Unused: the row's size a multiple of `vec4<f64>`'s alignment (32 bytes;
+        /// 144 bytes in f32, 224 in f64).
+        pad0: u32,
+        /// Unused.
+        pad1: u32,
+        /// Unused.
+        pad2: u32,
+        /// Unused.
+        pad3: u32,
         /// `t - t_ref` of the step, s (refresh with restart).
         tau0: R,
         /// Start-up ramp factor at the step's time (refresh with restart).

@@ -28,9 +28,16 @@ pub(super) const WAVE_CACHE_STRIDE: usize = 14;
 
 /// Scalars per element after the nodes' part of the cache (`WAVE_ELEM_STRIDE` in
 /// `shaders/shared/waves.wgsl`): its band (or the mark of an element across a band
-/// top), then the surface over its two nodes and the mean of their wave velocity and
-/// acceleration, values and rates at both times (4 x 8).
-pub(super) const WAVE_ELEM_STRIDE: usize = 33;
+/// top). Its entry is in a buffer of its own ([`WAVE_ELEM_ROWS`]).
+pub(super) const WAVE_ELEM_STRIDE: usize = 1;
+
+/// `vec4` rows per element of the elements' cache (`wave_elems`, `WAVE_ELEM_ROWS` in
+/// `shaders/shared/waves.wgsl`): the surface over its two nodes and the mean of their
+/// wave velocity and acceleration, values and rates at both times (4 sides of two
+/// rows), then, for an element across a band top, node b's velocity and acceleration
+/// on the four sides (six rows). Rows, not scalars, because on a software adapter
+/// (lavapipe) each storage load is a loop over the SIMD lanes whatever its width.
+pub(super) const WAVE_ELEM_ROWS: usize = 14;
 
 /// Scalars per entry of the refresh's work list, at most two entries per node, after
 /// the nodes' beyond-margin records (`WAVE_DUE_STRIDE` in
@@ -171,7 +178,7 @@ impl WaveSchedule {
             let delta = t1 - t0;
             let s = ((t - t0) / delta).clamp(0.0, 1.0);
             let w = hermite_weights(s, delta);
-            (row.w0, row.w1, row.w2, row.w3) = (R::c(w[0]), R::c(w[1]), R::c(w[2]), R::c(w[3]));
+            row.w = [R::c(w[0]), R::c(w[1]), R::c(w[2]), R::c(w[3])];
             rows[m * per] = row;
         }
         ticks[0].is_some()

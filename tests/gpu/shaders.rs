@@ -287,12 +287,17 @@ fn the_fused_waves_kernel_of_lines_without_points_reads_no_node_cache() {
     // gpu::engine layout_has_wave_points): the node pass's own cache read
     // (`point_waves` -> `node_waves`) is out of reach, while the elements' cache reads
     // stay (lavapipe ran the point branch masked for every node). The mixed elements
-    // read node b's cache through `wave_cache_hermite` directly, not `node_waves`.
+    // interpolate node b's values (`wave_cache_hermite`) from copies in their entry's
+    // vec4 rows (`wave_mixed_b_load`): no scalar read of the nodes' cache
+    // (`wave_cache_load7`, 14 loads a side) is left in the step, each of which lavapipe
+    // ran for every element.
     for p in [Precision::F32, Precision::F64] {
         let lines = fused_reaches_points(p, true, false);
         for f in [
             "elem_waves",
+            "wave_mid_load",
             "wave_mid_hermite",
+            "wave_mixed_b_load",
             "wave_cache_hermite",
             "wave_band_weights",
         ] {
@@ -302,16 +307,16 @@ fn the_fused_waves_kernel_of_lines_without_points_reads_no_node_cache() {
                 p.name()
             );
         }
-        assert!(
-            !lines.contains("node_waves"),
-            "{}: lines only, the node cache read is still reachable",
-            p.name()
-        );
+        for f in ["node_waves", "wave_cache_load7"] {
+            assert!(
+                !lines.contains(f),
+                "{}: lines only, the node cache read {f} is still reachable",
+                p.name()
+            );
+        }
         let points = fused_reaches_points(p, true, true);
-        assert!(
-            points.contains("node_waves"),
-            "{}: points, node_waves not reached",
-            p.name()
-        );
+        for f in ["node_waves", "wave_cache_load7"] {
+            assert!(points.contains(f), "{}: points, {f} not reached", p.name());
+        }
     }
 }

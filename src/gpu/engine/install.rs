@@ -17,7 +17,8 @@ use crate::gpu::layout::*;
 use crate::gpu::shaders::{self, Stage};
 use crate::gpu::solver::GpuTimings;
 use crate::gpu::wave_schedule::{
-    fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_DUE_STRIDE, WAVE_ELEM_STRIDE,
+    fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_DUE_STRIDE, WAVE_ELEM_ROWS,
+    WAVE_ELEM_STRIDE,
 };
 use crate::model::Layout;
 use crate::options::Precision;
@@ -108,11 +109,13 @@ impl<R: GpuReal> GpuEngine<R> {
         entries.extend((2..=9).map(|b| storage(b, true)));
         entries.extend((10..=14).map(|b| storage(b, false)));
         entries.extend((15..=16).map(|b| storage(b, true)));
-        // The wave components, bodies, the waves' cache and per-step rows.
+        // The wave components, bodies, the waves' cache, per-step rows and the
+        // elements' cache.
         entries.push(storage(17, true));
         entries.push(storage(18, true));
         entries.push(storage(19, false));
         entries.push(storage(20, true));
+        entries.push(storage(21, false));
         let bgl = dev.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("cablesim"),
             entries: &entries,
@@ -425,7 +428,7 @@ impl<R: GpuReal> GpuEngine<R> {
         // Two slots (t0, t1) of WAVE_CACHE_STRIDE values per node, then each node's
         // velocity at the last refresh, then per node its depth band and how many
         // times it was found above its band's top, then WAVE_ELEM_STRIDE per element:
-        // its midpoint cache, then four per node: its breaches beyond the band margin
+        // its band, then four per node: its breaches beyond the band margin
         // and the first one's height, top and step, then the refresh's work list, two
         // entries per node at most (`shaders/shared/waves.wgsl`); one value in still
         // water.
@@ -441,6 +444,18 @@ impl<R: GpuReal> GpuEngine<R> {
             "wave_cache",
             &zeros((cache_len * std::mem::size_of::<R>()) as u64),
             U::STORAGE | U::COPY_SRC,
+        );
+        // The elements' midpoint cache, WAVE_ELEM_ROWS vec4 rows per element
+        // (`wave_elems`); one row in still water.
+        let elem_rows = if n_comps == 0 {
+            1
+        } else {
+            (n_elems * WAVE_ELEM_ROWS).max(1)
+        };
+        let elems_cache_b = init(
+            "wave_elems",
+            &zeros((elem_rows * 4 * std::mem::size_of::<R>()) as u64),
+            U::STORAGE,
         );
         fn whole(binding: u32, b: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
             wgpu::BindGroupEntry {
@@ -480,6 +495,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 whole(18, &buf.body_rows),
                 whole(19, &cache_b),
                 whole(20, &buf.wave_steps),
+                whole(21, &elems_cache_b),
             ],
         });
         Installed {
