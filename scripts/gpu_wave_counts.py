@@ -112,31 +112,17 @@ ELEM_ALWAYS = 2
 ELEM_DUE = 56 + 33
 MIXED_DUE = ELEM_DUE
 ELEM_FORM_FLOPS = 4 * 6 * 2
-# The refresh's element list (branch `hlavaref`): the third pass runs over the
-# elements the second put on a list, not over every element. Per element and refresh
-# dispatch its invocation reads the list's length (4 B); an element on the list is
-# written there and read back (2 scalars) and reads its parameters and its nodes'
-# bands as before (ELEM_PARAMS + ELEM_ALWAYS, now only when due); per due node the
-# second pass reads its incidence entries (two per element, 4 B each, and the
-# element's node a, 4 B) and, for the elements it is node b of, node a's band (a
-# scalar) and where its row is (its block, the block's rows, the row's band rows and
-# refresh flag: 16 B).
-ELEM_LIST_ALWAYS_BYTES = 4
-ELEM_LIST_DUE = 2
-NODE_LIST_INC_BYTES = 4 + 4
-NODE_LIST_SIDE_B_BYTES = 16
 
 
 def per_node_step(p, case, new, with_prefix=True, new_exp=NEW_EXP, reuse_phases=False,
-                  work_list=True, elem_list=True):
+                  work_list=True):
     """(bytes, flops) per node-step of `case` at precision `p`, the per-element
     cache (`new`, branch `hwavegpu`) or the nodes' (before it); `with_prefix`: each
     band's refresh sums its measured decay prefix (the case's `prefix`, of which the
     case's `seabed_skip` without the seabed term), else all the components (all with
     it); `new_exp`: wave_exp and wave_depth_decay of branch `hgpuref` (else before);
     `work_list`: the refresh's evaluations over a work list (branch `hcompact`), else
-    in the pass over the nodes; `elem_list`: the elements' part of the refresh over
-    an element list (branch `hlavaref`), else over every element."""
+    in the pass over the nodes."""
     s = SCALAR[p]
     n_nodes = sum(case["nodes"].values())
     n_elems = sum(case["elems"].values()) + sum(case["mixed"].values())
@@ -160,27 +146,17 @@ def per_node_step(p, case, new, with_prefix=True, new_exp=NEW_EXP, reuse_phases=
         b += share * NODE_DUE * s
         if work_list:
             b += share * (LIST_DUE * s + LIST_DUE_BYTES)
-        if elem_list:
-            b += share * per_node * (NODE_LIST_INC_BYTES
-                                     + 0.5 * (s + NODE_LIST_SIDE_B_BYTES))
         prefix = case.get("prefix", {}).get(band, N_COMPS) if with_prefix else N_COMPS
         skip = case.get("seabed_skip", {}).get(band, 0.0) if with_prefix else 0.0
         fl += share * refresh_flops(prefix, skip, new_exp, reuse_phases)
     if new:
-        # Per element and refresh dispatch; with the element list, per element on it.
-        always = ELEM_PARAMS[p] + ELEM_ALWAYS * s
-        due = 0.0
-        if elem_list:
-            b += per_node * ELEM_LIST_ALWAYS_BYTES / every
-            due = always + ELEM_LIST_DUE * s
-        else:
-            b += per_node * always / every
+        b += per_node * (ELEM_PARAMS[p] + ELEM_ALWAYS * s) / every
         for band, n in case["elems"].items():
             share = n / n_nodes / case["interval"][band]
-            b += share * (ELEM_DUE * s + due)
+            b += share * ELEM_DUE * s
             fl += share * ELEM_FORM_FLOPS
         for band, n in case["mixed"].items():
-            b += n / n_nodes / case["interval"][band] * (MIXED_DUE * s + due)
+            b += n / n_nodes / case["interval"][band] * MIXED_DUE * s
     return b, fl
 
 
@@ -258,25 +234,22 @@ CASES = {
 
 
 def main():
-    print("| case | precision | still B | B without the work list "
-          "| B without the element list | B (ratio) "
+    print("| case | precision | still B | B without the work list | B (ratio) "
           "| still flops | flops, every refresh over all 200 (ratio) "
           "| flops, the decay prefix counted, before `hgpuref` (ratio) "
           "| flops, the decay prefix counted (ratio) |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
     for name, case in CASES.items():
         for p in ("f32", "f64"):
             nb, full = per_node_step(p, case, True, False)
             _, before = per_node_step(p, case, True, True, False)
             _, cut = per_node_step(p, case, True, True)
-            ob, _ = per_node_step(p, case, True, True, work_list=False, elem_list=False)
-            eb, _ = per_node_step(p, case, True, True, elem_list=False)
+            ob, _ = per_node_step(p, case, True, True, work_list=False)
             sb, sf = STILL_BYTES[p], STILL_FLOPS[p]
 
             def measured(v):
                 return f"{v:.0f} ({v / sf:.2f}x)" if "prefix" in case else "(not measured)"
             print(f"| {name} | {p} | {sb} | {ob:.1f} ({ob / sb:.3f}x) "
-                  f"| {eb:.1f} ({eb / sb:.3f}x) "
                   f"| {nb:.1f} ({nb / sb:.3f}x) | {sf} | "
                   f"{full:.0f} ({full / sf:.2f}x) | {measured(before)} | {measured(cut)} |")
     print()

@@ -56,11 +56,6 @@ fn node_evaluate(@builtin(global_invocation_id) gid: vec3<u32>) {
 @compute @workgroup_size(64)
 fn wave_refresh(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
-    // The element list, read by the previous refresh's third pass, emptied for the
-    // second pass to fill.
-    if i == 0u {
-        atomicStore(&status.elems_due, 0u);
-    }
     if i >= params.n_nodes {
         return;
     }
@@ -70,26 +65,25 @@ fn wave_refresh(@builtin(global_invocation_id) gid: vec3<u32>) {
 }
 
 // Second, per entry of the work list (dispatched over two per node, the most a list
-// holds; those past its length return at once), the evaluation, and a t1 entry's
-// elements put on the element list (shared/waves.wgsl: wave_refresh_due_entry).
+// holds; those past its length return at once), the evaluation
+// (shared/waves.wgsl: wave_refresh_due).
 @compute @workgroup_size(64)
 fn wave_refresh_due(@builtin(global_invocation_id) gid: vec3<u32>) {
     wave_refresh_due_entry(gid.x, step.k);
 }
 
-// Third, per entry of the element list (dispatched over one per element, the most it
-// holds), the element's midpoint cache entry formed again from its nodes' new values
-// (shared/waves.wgsl: wave_elem_form). The work list is emptied here, after the
-// second pass read its length (every dispatch of a pass sees the previous one's
-// writes); the element list by the next refresh's first pass, after this one read it.
+// Third, per element, its midpoint cache entry formed again from its nodes' new
+// values where one of them refreshed (shared/waves.wgsl: wave_elem_form). The work
+// list is emptied here, after the second pass read its length (every dispatch of a
+// pass sees the previous one's writes).
 @compute @workgroup_size(64)
 fn wave_refresh_elems(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let n = gid.x;
-    if n == 0u {
+    let e = gid.x;
+    if e == 0u {
         atomicStore(&status.refresh_due, 0u);
     }
-    if n >= atomicLoad(&status.elems_due) {
+    if e >= params.n_elems {
         return;
     }
-    wave_elem_form(u32(wave_cache[wave_elem_due_at(n)]), step.k);
+    wave_elem_form(e, step.k);
 }

@@ -297,9 +297,6 @@ struct Status {
     // Waves: the entries on the refresh's work list (shared/waves.wgsl:
     // wave_due_push), 0 between refreshes.
     refresh_due: atomic<u32>,
-    // Waves: the elements on the refresh's element list (shared/waves.wgsl:
-    // wave_elem_due_push), set back to 0 by the refresh's first pass.
-    elems_due: atomic<u32>,
 }
 
 @group(0) @binding(0) var<storage, read> params: Params;

@@ -404,8 +404,7 @@ fn wave_step_tops(ws: WaveStep) -> array<R, 6> {
 // found above its band's top (sea::cache::WaveCache::breaches, summed by the host);
 // then WAVE_ELEM_STRIDE per element: its midpoint cache (wave_elem_form, below); then
 // four per node: its breaches beyond the margin (wave_beyond_at); then the refresh's
-// work list, two entries of WAVE_DUE_STRIDE per node at most (wave_due_at); then its
-// element list, one entry per element at most (wave_elem_due_at).
+// work list, two entries of WAVE_DUE_STRIDE per node at most (wave_due_at).
 const WAVE_CACHE_STRIDE: u32 = 14u;
 @group(0) @binding(19) var<storage, read_write> wave_cache: array<R>;
 @group(0) @binding(20) var<storage, read> wave_steps: array<WaveStep>;
@@ -746,38 +745,6 @@ fn wave_due_push(i: u32, which: u32, p: vec3<R>, v: vec3<R>) {
     wave_cache[o + 7u] = v.z;
 }
 
-// ---- The refresh's element list: the elements whose entry the third pass forms
-// (wave_elem_form: those with a node due, each once), put there by the second pass
-// (wave_refresh_due_entry) from its nodes' entries, so that the third pass runs
-// over them alone, not over every element: at most refreshes a few nodes are due,
-// and on a software adapter every element's 56 loads and 33 stores ran whatever
-// its nodes' bands. After the node list; one element index per entry (a small whole
-// number: the host keeps element indices below 2^24, exact in f32). ----
-
-fn wave_elem_due_at(n: u32) -> u32 {
-    return wave_due_at(2u * params.n_nodes) + n;
-}
-
-fn wave_elem_due_push(e: u32) {
-    wave_cache[wave_elem_due_at(atomicAdd(&status.elems_due, 1u))] = R(e);
-}
-
-// Puts on the element list the elements of node i, due at step k, that their other
-// node does not put there: every one whose node a is i, and those whose node a is
-// not due (its band does not refresh at k; the first pass set its band). So each
-// element with a node due is there once.
-fn wave_elems_due(i: u32, k: u32) {
-    let nd = nodes[i];
-    for (var j = nd.inc_start; j < nd.inc_end; j++) {
-        // An incidence entry is element * 2 + side.
-        let e = inc[j] / 2u;
-        let a = elems[e].a;
-        if a == i || wave_band_step(a, u32(wave_cache[wave_band_at(a)]), k).refresh == 0u {
-            wave_elem_due_push(e);
-        }
-    }
-}
-
 // Entry n of the list at step k, if there is one: its node's values and rates in the
 // slot of the evaluation (t0 of a restart: slot0 at tau0 with ramp0; t1: slot1 at
 // tau1 with ramp1) of the node's band's row (the band the first pass set). One call
@@ -798,10 +765,6 @@ fn wave_refresh_due_entry(n: u32, k: u32) {
     let ramp_rate = select(ws.ramp_rate0, ws.ramp_rate1, t1);
     let tau = select(ws.tau0, ws.tau1, t1);
     wave_cache_store(slot, i, wave_kinematics_rates_tau(ws.first, ws.n, ws.depth, ws.stretching, ramp, ramp_rate, p, v, tau));
-    // Every node due has one t1 entry (a restart's t0 entry is its second).
-    if t1 {
-        wave_elems_due(i, k);
-    }
 }
 
 // The first pass of the refresh of node i at step k, at absolute position p (m) with

@@ -146,15 +146,13 @@ fn bytes_or_one<T: bytemuck::Pod>(v: &[T]) -> Vec<u8> {
     }
 }
 
-/// Refuses a layout in waves with more nodes or elements than the refresh's work
-/// lists can name (`WAVE_MAX_NODES`).
-fn check_wave_nodes(lay: &Layout) -> Result<(), Error> {
-    for (n, what) in [(lay.n_nodes(), "nodes"), (lay.n_elements(), "elements")] {
-        if n > WAVE_MAX_NODES {
-            return Err(Error::GpuUnsupported(format!(
-                "{n} {what} in waves: the GPU path's waves refresh handles at most {WAVE_MAX_NODES}"
-            )));
-        }
+/// Refuses a layout in waves with more nodes than the refresh's work list can name
+/// (`WAVE_MAX_NODES`).
+fn check_wave_nodes(n_nodes: usize) -> Result<(), Error> {
+    if n_nodes > WAVE_MAX_NODES {
+        return Err(Error::GpuUnsupported(format!(
+            "{n_nodes} nodes in waves: the GPU path's waves refresh handles at most {WAVE_MAX_NODES}"
+        )));
     }
     Ok(())
 }
@@ -349,7 +347,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             .push_error_scope(wgpu::ErrorFilter::Validation);
         // A new mesh starts the waves' cache afresh (as the CPU path's does).
         if let Some(w) = self.waves.as_mut() {
-            check_wave_nodes(lay)?;
+            check_wave_nodes(lay.n_nodes())?;
             w.restart();
         }
         self.inst = Self::build(
@@ -370,7 +368,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
 
     fn set_seas(&mut self, lay: &Layout, host: &Host, seas: &SeaSet) -> Result<(), Error> {
         if !seas.is_still() {
-            check_wave_nodes(lay)?;
+            check_wave_nodes(lay.n_nodes())?;
         }
         self.waves = (!seas.is_still()).then(|| SeaSchedules::new(seas, self.dt64));
         let scope = self

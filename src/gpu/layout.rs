@@ -507,9 +507,8 @@ gpu_struct! {
 
 gpu_struct_u32! {
     /// First blow-up of an `advance` call, and its breaches of a depth band beyond
-    /// the margin, and the waves' refresh's work-list counters (WGSL `Status`;
-    /// `failed`, `step`, `beyond`, `beyond_step`, `refresh_due` and `elems_due` are
-    /// atomic there).
+    /// the margin, and the waves' refresh's work-list counter (WGSL `Status`;
+    /// `failed`, `step`, `beyond`, `beyond_step` and `refresh_due` are atomic there).
     Status {
         /// Nonzero once a node has failed: 1 from the two-pass path; from the fused
         /// kernel `FUSED_FAILED | (0x7fff - k) << 16 | (0xffff - block)` of the
@@ -533,10 +532,6 @@ gpu_struct_u32! {
         /// its work list for the second (`wave_refresh_due`); set back to 0 by the
         /// third (`wave_refresh_elems`), so 0 between refreshes (atomic in WGSL).
         refresh_due: u32,
-        /// Waves: how many elements the refresh's second pass put on its element list
-        /// for the third; set back to 0 by the next refresh's first pass (atomic in
-        /// WGSL).
-        elems_due: u32,
     }
 }
 

@@ -5,7 +5,7 @@
 //! looping over the submission's steps inside the shader (in waves, one dispatch from
 //! each refresh of the kinematics cache to the next, the refresh dispatches of its
 //! own, `wave_refresh` then `wave_refresh_due` over the nodes put on its work list,
-//! then `wave_refresh_elems` over the elements of those nodes: see
+//! then `wave_refresh_elems`: see
 //! [`fused_segments`](super::wave_schedule::fused_segments)). With the
 //! two-pass kernel a step is two dispatches in one compute pass, `element_forces` then
 //! `node_update` (wgpu orders the storage writes of one dispatch before the reads of the

@@ -38,9 +38,8 @@ pub(super) const WAVE_ELEM_STRIDE: usize = 33;
 /// velocity to evaluate at.
 pub(super) const WAVE_DUE_STRIDE: usize = 8;
 
-/// The most nodes, and the most elements, a layout in waves may have: the work lists
-/// store node and element indices as scalars of the run's precision, exact in f32
-/// below 2^24.
+/// The most nodes a layout in waves may have: the work list stores node indices as
+/// scalars of the run's precision, exact in f32 below 2^24.
 pub(super) const WAVE_MAX_NODES: usize = 1 << 24;
 
 /// The host's side of the waves' kinematics cache: the components (rebased at each

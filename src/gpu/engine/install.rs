@@ -427,8 +427,8 @@ impl<R: GpuReal> GpuEngine<R> {
         // times it was found above its band's top, then WAVE_ELEM_STRIDE per element:
         // its midpoint cache, then four per node: its breaches beyond the band margin
         // and the first one's height, top and step, then the refresh's work list, two
-        // entries per node at most, then its element list, one entry per element at
-        // most (`shaders/shared/waves.wgsl`); one value in still water.
+        // entries per node at most (`shaders/shared/waves.wgsl`); one value in still
+        // water.
         let cache_len = if n_comps == 0 {
             1
         } else {
@@ -436,7 +436,6 @@ impl<R: GpuReal> GpuEngine<R> {
                 + n_elems * WAVE_ELEM_STRIDE
                 + 4 * n_nodes
                 + 2 * n_nodes * WAVE_DUE_STRIDE
-                + n_elems
         };
         let cache_b = init(
             "wave_cache",
@@ -624,10 +623,8 @@ impl<R: GpuReal> GpuEngine<R> {
 
     /// The waves' refresh: the nodes' decisions, putting their evaluations on a work
     /// list (`wave_refresh`), the evaluations over the list (`wave_refresh_due`, two
-    /// entries per node at most), which put the elements with a node due on an
-    /// element list, then those elements' midpoint cache from them
-    /// (`wave_refresh_elems`, over the element list: one entry per element at most;
-    /// it empties the node list); three dispatches.
+    /// entries per node at most), then the elements' midpoint cache from them
+    /// (`wave_refresh_elems`, which empties the list); three dispatches.
     pub(super) fn dispatch_refresh(&self, pass: &mut wgpu::ComputePass<'_>) {
         self.dispatch(pass, &self.pipe_refresh, self.inst.n_nodes);
         self.dispatch(pass, &self.pipe_refresh_due, 2 * self.inst.n_nodes);
