@@ -479,12 +479,12 @@ fn wave_band_at(i: u32) -> u32 {
     return (2u * WAVE_CACHE_STRIDE + 3u) * params.n_nodes + i;
 }
 
-// The row of step k of the submission for band b of the sea of node i's block.
+// The row of step k of the submission for band b of the sea of node i's block. One
+// row read whatever b (band 0's is b * band_rows = 0 rows on), not one per branch: on a
+// software adapter (lavapipe) an `if` runs both sides, loads included, so a branch
+// for band 0 read every field the caller uses twice.
 fn wave_band_step(i: u32, b: u32, k: u32) -> WaveStep {
     let r = blocks[nodes[i].block].wave_rows + k;
-    if b == 0u {
-        return wave_steps[r];
-    }
     return wave_steps[r + b * wave_steps[r].band_rows];
 }
 
@@ -657,24 +657,30 @@ fn wave_elem_form(e: u32, k: u32) {
     let oa1 = (wa.slot1 * params.n_nodes + ep.a) * WAVE_CACHE_STRIDE;
     let ob0 = (wa.slot0 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
     let ob1 = (wa.slot1 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
-    if ba != bb {
-        wave_cache[o] = R(WAVE_ELEM_MIXED + 8u * bb + ba);
-        let b0 = wave_cache_load7(ob0);
-        let b1 = wave_cache_load7(ob0 + 7u);
-        let b2 = wave_cache_load7(ob1);
-        let b3 = wave_cache_load7(ob1 + 7u);
-        wave_mid_store(q, wave_mixed_side(wave_cache_load7(oa0), b0));
-        wave_mid_store(q + 2u, wave_mixed_side(wave_cache_load7(oa0 + 7u), b1));
-        wave_mid_store(q + 4u, wave_mixed_side(wave_cache_load7(oa1), b2));
-        wave_mid_store(q + 6u, wave_mixed_side(wave_cache_load7(oa1 + 7u), b3));
-        wave_mixed_b_store(q + 8u, b0, b1, b2, b3);
-        return;
-    }
-    wave_cache[o] = R(ba);
-    wave_mid_store(q, wave_cache_midpoint(wave_cache_load7(oa0), wave_cache_load7(ob0)));
-    wave_mid_store(q + 2u, wave_cache_midpoint(wave_cache_load7(oa0 + 7u), wave_cache_load7(ob0 + 7u)));
-    wave_mid_store(q + 4u, wave_cache_midpoint(wave_cache_load7(oa1), wave_cache_load7(ob1)));
-    wave_mid_store(q + 6u, wave_cache_midpoint(wave_cache_load7(oa1 + 7u), wave_cache_load7(ob1 + 7u)));
+    // Both kinds of entry from the same loads and stores, the kind selected: on a
+    // software adapter an `if` per kind ran both kinds' loads and stores. Node b's
+    // velocity and acceleration rows are written for every element; the step reads
+    // them only for a mixed one (elem_waves).
+    let mixed = ba != bb;
+    wave_cache[o] = R(select(ba, WAVE_ELEM_MIXED + 8u * bb + ba, mixed));
+    let b0 = wave_cache_load7(ob0);
+    let b1 = wave_cache_load7(ob0 + 7u);
+    let b2 = wave_cache_load7(ob1);
+    let b3 = wave_cache_load7(ob1 + 7u);
+    wave_mid_store(q, wave_elem_side(wave_cache_load7(oa0), b0, mixed));
+    wave_mid_store(q + 2u, wave_elem_side(wave_cache_load7(oa0 + 7u), b1, mixed));
+    wave_mid_store(q + 4u, wave_elem_side(wave_cache_load7(oa1), b2, mixed));
+    wave_mid_store(q + 6u, wave_elem_side(wave_cache_load7(oa1 + 7u), b3, mixed));
+    wave_mixed_b_store(q + 8u, b0, b1, b2, b3);
+}
+
+// One side of an element's entry from its nodes' a and b: wave_mixed_side for an
+// element across a band top, else wave_cache_midpoint (the same values either way as
+// when each had its own branch).
+fn wave_elem_side(a: WaveKin, b: WaveKin, mixed: bool) -> WaveMid {
+    let m = wave_cache_midpoint(a, b);
+    let x = wave_mixed_side(a, b);
+    return WaveMid(m.eta_a, m.eta_b, select(m.u, x.u, mixed), select(m.a, x.a, mixed));
 }
 
 // Where a block's sea's rows are at one step: `r` the row of band 0 at that step
