@@ -659,8 +659,8 @@ fn wave_elem_form(e: u32, k: u32) {
     let ob1 = (wa.slot1 * params.n_nodes + ep.b) * WAVE_CACHE_STRIDE;
     // Both kinds of entry from the same loads and stores, the kind selected: on a
     // software adapter an `if` per kind ran both kinds' loads and stores. Node b's
-    // velocity and acceleration rows are written for every element; the step reads
-    // them only for a mixed one (elem_waves).
+    // velocity and acceleration rows only for a mixed element, the only kind whose
+    // step reads them (elem_waves): on a GPU the other elements skip the 24 stores.
     let mixed = ba != bb;
     wave_cache[o] = R(select(ba, WAVE_ELEM_MIXED + 8u * bb + ba, mixed));
     let b0 = wave_cache_load7(ob0);
@@ -671,7 +671,9 @@ fn wave_elem_form(e: u32, k: u32) {
     wave_mid_store(q + 2u, wave_elem_side(wave_cache_load7(oa0 + 7u), b1, mixed));
     wave_mid_store(q + 4u, wave_elem_side(wave_cache_load7(oa1), b2, mixed));
     wave_mid_store(q + 6u, wave_elem_side(wave_cache_load7(oa1 + 7u), b3, mixed));
-    wave_mixed_b_store(q + 8u, b0, b1, b2, b3);
+    if mixed {
+        wave_mixed_b_store(q + 8u, b0, b1, b2, b3);
+    }
 }
 
 // One side of an element's entry from its nodes' a and b: wave_mixed_side for an
