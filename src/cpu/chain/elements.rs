@@ -397,10 +397,35 @@ pub(super) fn element_lane_lits<const WAVES: bool, const SUBMERGED: bool>(
     k: ElemConsts,
     lits: Literals,
 ) -> ElemOut {
-    let Literals { half, one, zero } = lits;
+    let (l, il) = element_length(a, b, lits);
+    element_lane_len::<WAVES, SUBMERGED>(a, b, u, aw, k, lits, l, il)
+}
+
+/// An element's length `l` and its inverse `1 / l` from its ends `a`, `b`: the first
+/// two of [`element_lane`]'s three operations on the divider.
+#[inline(always)]
+pub(super) fn element_length(a: [f64; 7], b: [f64; 7], lits: Literals) -> (f64, f64) {
     let (dx, dy, dz) = (b[0] - a[0], b[1] - a[1], b[2] - a[2]);
     let l = (dx * dx + dy * dy + dz * dz).sqrt();
-    let il = one / l;
+    (l, lits.one / l)
+}
+
+/// [`element_lane_lits`] given the element's length and its inverse
+/// ([`element_length`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn element_lane_len<const WAVES: bool, const SUBMERGED: bool>(
+    a: [f64; 7],
+    b: [f64; 7],
+    u: [f64; 3],
+    aw: [f64; 3],
+    k: ElemConsts,
+    lits: Literals,
+    l: f64,
+    il: f64,
+) -> ElemOut {
+    let Literals { half, one, zero } = lits;
+    let (dx, dy, dz) = (b[0] - a[0], b[1] - a[1], b[2] - a[2]);
     let (ex, ey, ez) = (dx * il, dy * il, dz * il);
     let eps = l * k.il0 - one;
     let epsdot = (ex * (b[3] - a[3]) + ey * (b[4] - a[4]) + ez * (b[5] - a[5])) * k.il0;
@@ -634,8 +659,28 @@ unsafe fn element_chunks<
     let ten = out!(col::TEN);
     // The literals hidden from the optimiser ([`Literals::hidden`]).
     let lits = Literals::hidden();
+    // Every chunk's lengths and their inverses first, in the tangents' columns (written
+    // again below): a chunk's square root, division and second square root are one
+    // chain of dependent operations on the divider, which the out-of-order window did
+    // not overlap across a short line's few chunks (3 to 8); a loop of independent
+    // chunks keeps the divider busy instead. The same operations, so the same bits.
     for j in 0..nc {
         keep_chunks();
+        let (xa, ya, za) = (xa[j], ya[j], za[j]);
+        let (xb, yb, zb) = (xb[j], yb[j], zb[j]);
+        let (mut ls, mut ils) = ([0.0; L], [0.0; L]);
+        for l in 0..L {
+            (ls[l], ils[l]) = element_length(
+                [xa[l], ya[l], za[l], 0.0, 0.0, 0.0, 0.0],
+                [xb[l], yb[l], zb[l], 0.0, 0.0, 0.0, 0.0],
+                lits,
+            );
+        }
+        (tx[j], ty[j]) = (ls, ils);
+    }
+    for j in 0..nc {
+        keep_chunks();
+        let (ls, ils) = (tx[j], ty[j]);
         // Every input into locals first, then every output: no overlap to check.
         let (xa, ya, za, vxa, vya, vza) = (xa[j], ya[j], za[j], vxa[j], vya[j], vza[j]);
         let (xb, yb, zb, vxb, vyb, vzb) = (xb[j], yb[j], zb[j], vxb[j], vyb[j], vzb[j]);
@@ -672,7 +717,7 @@ unsafe fn element_chunks<
         let (hw, hb, hfk) = (hw[j], hb[j], hfk[j]);
         let mut o = [[0.0; L]; 7];
         for l in 0..L {
-            let e = element_lane_lits::<WAVES, true>(
+            let e = element_lane_len::<WAVES, true>(
                 [xa[l], ya[l], za[l], vxa[l], vya[l], vza[l], 0.0],
                 [xb[l], yb[l], zb[l], vxb[l], vyb[l], vzb[l], 0.0],
                 [ux[l], uy[l], uz[l]],
@@ -691,6 +736,8 @@ unsafe fn element_chunks<
                     diam: 0.0,
                 },
                 lits,
+                ls[l],
+                ils[l],
             );
             [o[0][l], o[1][l], o[2][l]] = e.t;
             o[3][l] = e.ten;
