@@ -30,5 +30,5 @@ mod nodes;
 mod winch;
 pub(crate) use advance::{advance_chain, ChainScratch};
 pub(crate) use consts::ChainConsts;
-pub(crate) use lanes::padded_len;
+pub(crate) use lanes::column_stride;
 pub(crate) use net::{advance_net, advance_net_threaded, NetConsts, NetScratch};

@@ -18,7 +18,7 @@
 //! (`cpu::chain::elements::elements_fused`) rather than reading them back from
 //! columns [`ChainCols::fill`] wrote: the same arithmetic, one pass fewer.
 
-use crate::cpu::chain::padded_len;
+use crate::cpu::chain::column_stride;
 use crate::sea::bands::BandPlan;
 use crate::sea::cache::{
     evaluate_nodes, wave_cache_hermite, wave_cache_midpoint, WaveCache, CACHE_STRIDE,
@@ -59,12 +59,19 @@ struct ChainColumns {
     power_ref: Option<f64>,
     /// Scratch: the nodes' power-basis coefficients.
     power: [Vec<f64>; 4],
-    /// Elevation over each node, m (rates: m/s). This and `mid` zero-padded to the
-    /// chain's padded length ([`padded_len`]), read in whole chunks of lanes.
-    eta: [Vec<f64>; 4],
+    /// Elevation over each node, m (rates: m/s): four columns `stride` apart (one a
+    /// side). This and `mid` zero past the chain's nodes, read in whole chunks of
+    /// lanes.
+    eta: Vec<f64>,
     /// Per element (between nodes `k` and `k + 1`): the mean of its nodes' wave
-    /// velocity `x, y, z` then wave acceleration `x, y, z` (or of their rates).
-    mid: [[Vec<f64>; 6]; 4],
+    /// velocity `x, y, z` then wave acceleration `x, y, z` (or of their rates), 24
+    /// columns `stride` apart, column `6 side + q`.
+    mid: Vec<f64>,
+    /// The distance between two columns ([`column_stride`]): the chain's per-stage
+    /// block's, so that its element loop reaches the 24 columns from one base
+    /// register by constant displacements, where 24 separate `Vec`s left their
+    /// pointers on the stack, reloaded before each load.
+    stride: usize,
 }
 
 impl BlockWaves {
@@ -170,6 +177,7 @@ impl BlockWaves {
         ChainCols {
             eta: &self.cols.eta,
             mid: &self.cols.mid,
+            stride: self.cols.stride,
             w,
             unit,
         }
@@ -179,15 +187,18 @@ impl BlockWaves {
 /// The chain kernel's view of a block's cache at one time ([`BlockWaves::chain_columns`]):
 /// the columns `[v0, d0, v1, d1]` of each node's elevation and of each element's
 /// midpoint wave velocity and acceleration, and the weights `w` that interpolate them.
-/// Every column is zero-padded to the chain's padded length
-/// (`cpu::chain::padded_len`), so the element loop may read them in whole chunks of
-/// lanes.
+/// Every column is zero past the chain's nodes up to the stride ([`column_stride`], at
+/// least the chain's padded length), so the element loop may read them in whole chunks
+/// of lanes.
 pub(crate) struct ChainCols<'a> {
-    /// Elevation over each node (the four columns).
-    pub(crate) eta: &'a [Vec<f64>; 4],
-    /// `mid[side][q]`: per element, the mean of its nodes' wave velocity (`q` 0-2) or
-    /// acceleration (`q` 3-5), side `side` of `[v0, d0, v1, d1]`.
-    pub(crate) mid: &'a [[Vec<f64>; 6]; 4],
+    /// Elevation over each node (the four columns, [`Self::eta_col`]).
+    pub(crate) eta: &'a [f64],
+    /// Per element, the mean of its nodes' wave velocity (`q` 0-2) or acceleration
+    /// (`q` 3-5), side `side` of `[v0, d0, v1, d1]`: column `6 side + q`
+    /// ([`Self::mid_col`]).
+    pub(crate) mid: &'a [f64],
+    /// The distance between two columns, entries ([`column_stride`]).
+    pub(crate) stride: usize,
     /// The weights of the time asked for.
     pub(crate) w: [f64; 4],
     /// The power basis (several bands): `w[0]` is exactly 1.
@@ -195,6 +206,17 @@ pub(crate) struct ChainCols<'a> {
 }
 
 impl ChainCols<'_> {
+    /// Side `side` of the elevations.
+    pub(crate) fn eta_col(&self, side: usize) -> &[f64] {
+        &self.eta[side * self.stride..(side + 1) * self.stride]
+    }
+
+    /// Side `side` of the elements' quantity `q`.
+    pub(crate) fn mid_col(&self, side: usize, q: usize) -> &[f64] {
+        let c = 6 * side + q;
+        &self.mid[c * self.stride..(c + 1) * self.stride]
+    }
+
     /// The chain kernel's inputs from the columns: each node's elevation into `eta`
     /// (unless `with_eta` is false: already there), each element's midpoint wave
     /// velocity plus the current into `u` (`uniform`: the block's one current, written
@@ -214,17 +236,15 @@ impl ChainCols<'_> {
         let (w, power) = (self.w, self.unit);
         let ne = n - 1;
         if with_eta {
-            let e = self.eta;
-            let ec = [&e[0][..], &e[1], &e[2], &e[3]];
+            let ec = [0, 1, 2, 3].map(|side| self.eta_col(side));
             wave_cache_hermite_cols(&mut eta[..n], ec, w, HermiteOut::Set, power);
         }
-        let m = self.mid;
         for q in 0..3 {
             let (uq, aq) = (q, 3 + q);
-            let uc = [&m[0][uq][..], &m[1][uq], &m[2][uq], &m[3][uq]];
+            let uc = [0, 1, 2, 3].map(|side| self.mid_col(side, uq));
             let into = uniform.map_or(HermiteOut::Add, |un| HermiteOut::Over(un[q]));
             wave_cache_hermite_cols(&mut u[q][..ne], uc, w, into, power);
-            let ac = [&m[0][aq][..], &m[1][aq], &m[2][aq], &m[3][aq]];
+            let ac = [0, 1, 2, 3].map(|side| self.mid_col(side, aq));
             wave_cache_hermite_cols(&mut aw[q][..ne], ac, w, HermiteOut::Set, power);
         }
     }
@@ -262,12 +282,13 @@ impl ChainColumns {
                     continue;
                 }
                 cache.power_node(i, t_ref, &mut p);
+                let st = self.stride;
                 for (side, v) in p.iter().enumerate() {
-                    self.eta[side][i] = v[i * CACHE_STRIDE];
+                    self.eta[side * st + i] = v[i * CACHE_STRIDE];
                     for k in i.saturating_sub(1)..(i + 1).min(n - 1) {
                         let m = element_midpoint(v, k);
                         for q in 0..6 {
-                            self.mid[side][q][k] = m[2 + q];
+                            self.mid[(6 * side + q) * st + k] = m[2 + q];
                         }
                     }
                 }
@@ -282,20 +303,22 @@ impl ChainColumns {
 
     /// Forms the columns from four arrays of [`CACHE_STRIDE`] per node.
     fn form_from_arrays(&mut self, v: [&[f64]; 4], n: usize) {
+        let st = column_stride(n);
+        self.stride = st;
+        for (c, len) in [(&mut self.eta, 4 * st), (&mut self.mid, 24 * st)] {
+            c.clear();
+            c.resize(len, 0.0);
+        }
         for (side, v) in v.into_iter().enumerate() {
-            let eta = &mut self.eta[side];
-            eta.clear();
-            eta.extend((0..n).map(|i| node_water(v, i).0));
-            eta.resize(padded_len(n), 0.0);
-            let cols = &mut self.mid[side];
-            cols.iter_mut().for_each(Vec::clear);
+            for i in 0..n {
+                self.eta[side * st + i] = node_water(v, i).0;
+            }
             for k in 0..n - 1 {
                 let m = element_midpoint(v, k);
-                for (q, col) in cols.iter_mut().enumerate() {
-                    col.push(m[2 + q]);
+                for q in 0..6 {
+                    self.mid[(6 * side + q) * st + k] = m[2 + q];
                 }
             }
-            cols.iter_mut().for_each(|c| c.resize(padded_len(n), 0.0));
         }
     }
 }

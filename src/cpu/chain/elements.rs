@@ -502,14 +502,13 @@ pub(super) unsafe fn elements_fused<const L: usize, St: Stride>(
     let nn = chunks_for::<L>(c.n);
     // SAFETY: the caller's columns hold `padded_len(c.n) >= nn * L` entries.
     let (z_c, eta_c) = unsafe { (lanes::<L>(&p[2], nn), lanes_mut::<L>(eta, 0, nn)) };
-    let e = w.eta;
     // SAFETY: as above, for the cache's columns.
     let ec = unsafe {
         [
-            lanes::<L>(&e[0], nn),
-            lanes::<L>(&e[1], nn),
-            lanes::<L>(&e[2], nn),
-            lanes::<L>(&e[3], nn),
+            lanes::<L>(w.eta_col(0), nn),
+            lanes::<L>(w.eta_col(1), nn),
+            lanes::<L>(w.eta_col(2), nn),
+            lanes::<L>(w.eta_col(3), nn),
         ]
     };
     let wt = w.w;
@@ -629,15 +628,26 @@ unsafe fn element_chunks<
     // 24 slices in a stack array the loop reloaded (20 instructions a node-step more).
     let (mc, wt) = match cols {
         Some(w) if FUSED => {
-            let m = &w.mid;
+            // The 24 columns from one base by multiples of the stride (a constant for
+            // short chains: `St`, the per-stage block's, which the cache shares).
+            let st = wv.stride();
+            assert_eq!(w.stride, st.get(), "the cache's columns at another stride");
+            let m = w.mid.as_ptr();
+            macro_rules! col {
+                ($side:expr, $q:expr) => {
+                    // SAFETY: column `6 side + q` of the 24, each `stride >= padded_len`
+                    // entries (the caller's `nc` chunks fit, as for the block's).
+                    unsafe {
+                        std::slice::from_raw_parts(
+                            m.add((6 * $side + $q) * st.get()).cast::<[f64; L]>(),
+                            nc,
+                        )
+                    }
+                };
+            }
             macro_rules! sides {
                 ($q:expr) => {
-                    [
-                        at!(&m[0][$q]),
-                        at!(&m[1][$q]),
-                        at!(&m[2][$q]),
-                        at!(&m[3][$q]),
-                    ]
+                    [col!(0, $q), col!(1, $q), col!(2, $q), col!(3, $q)]
                 };
             }
             (

@@ -47,6 +47,15 @@ pub(crate) fn padded_len(n: usize) -> usize {
     (chunks_for::<MAX_LANES>(n) + 1) * MAX_LANES
 }
 
+/// The stride of a chain's column blocks ([`Columns`]): [`SHORT_STRIDE`] when its
+/// [`padded_len`] fits, else the padded length. The chain's per-stage block and its
+/// waves' cache columns (`cpu::water`) take the same, so that the element loop
+/// reaches both by constant displacements.
+#[inline(always)]
+pub(crate) fn column_stride(n: usize) -> usize {
+    padded_len(n).max(SHORT_STRIDE)
+}
+
 /// The first `nc` chunks of `s`.
 ///
 /// # Safety
@@ -139,7 +148,7 @@ impl Stride for Dyn {
 /// bytes: whole 64-byte lines, and not a divisor of 4096, so that two columns' same
 /// entries do not fall 4 KiB apart (where a load after a store to the other column
 /// would wait on a false dependence).
-pub(super) const SHORT_STRIDE: usize = 136;
+pub(crate) const SHORT_STRIDE: usize = 136;
 
 /// Columns of one allocation, `stride` entries apart (each column [`padded_len`] long
 /// or longer; the entries past it are zero and never read). The node loop reads 14
@@ -184,6 +193,12 @@ pub(super) struct ColumnsView<'a, St> {
 }
 
 impl<'a, St: Stride> ColumnsView<'a, St> {
+    /// The block's stride.
+    #[inline(always)]
+    pub(super) fn stride(&self) -> St {
+        self.st
+    }
+
     /// Column `q`, whole.
     ///
     /// # Safety
