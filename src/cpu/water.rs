@@ -207,11 +207,13 @@ pub(crate) struct ChainCols<'a> {
 
 impl ChainCols<'_> {
     /// Side `side` of the elevations.
+    #[inline(always)]
     pub(crate) fn eta_col(&self, side: usize) -> &[f64] {
         &self.eta[side * self.stride..(side + 1) * self.stride]
     }
 
     /// Side `side` of the elements' quantity `q`.
+    #[inline(always)]
     pub(crate) fn mid_col(&self, side: usize, q: usize) -> &[f64] {
         let c = 6 * side + q;
         &self.mid[c * self.stride..(c + 1) * self.stride]
@@ -236,15 +238,32 @@ impl ChainCols<'_> {
         let (w, power) = (self.w, self.unit);
         let ne = n - 1;
         if with_eta {
-            let ec = [0, 1, 2, 3].map(|side| self.eta_col(side));
+            let ec = [
+                self.eta_col(0),
+                self.eta_col(1),
+                self.eta_col(2),
+                self.eta_col(3),
+            ];
             wave_cache_hermite_cols(&mut eta[..n], ec, w, HermiteOut::Set, power);
+        }
+        // The sides written out, not by `array::map` or a closure: neither was inlined
+        // into the AVX-512 caller (a call a column a step).
+        macro_rules! sides {
+            ($q:expr) => {
+                [
+                    self.mid_col(0, $q),
+                    self.mid_col(1, $q),
+                    self.mid_col(2, $q),
+                    self.mid_col(3, $q),
+                ]
+            };
         }
         for q in 0..3 {
             let (uq, aq) = (q, 3 + q);
-            let uc = [0, 1, 2, 3].map(|side| self.mid_col(side, uq));
+            let uc = sides!(uq);
             let into = uniform.map_or(HermiteOut::Add, |un| HermiteOut::Over(un[q]));
             wave_cache_hermite_cols(&mut u[q][..ne], uc, w, into, power);
-            let ac = [0, 1, 2, 3].map(|side| self.mid_col(side, aq));
+            let ac = sides!(aq);
             wave_cache_hermite_cols(&mut aw[q][..ne], ac, w, HermiteOut::Set, power);
         }
     }
