@@ -333,10 +333,18 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                 continue;
             }
             let dt = mode_step(scheme, omega2, gamma);
-            if best.is_none_or(|(b, _, _)| dt < b) && dt < body_best.as_ref().map_or(f64::INFINITY, |b: &(f64, String)| b.0) {
+            if best.is_none_or(|(b, _, _)| dt < b)
+                && dt
+                    < body_best
+                        .as_ref()
+                        .map_or(f64::INFINITY, |b: &(f64, String)| b.0)
+            {
                 body_best = Some((
                     dt,
-                    format!("the stiffness or damping of free body '{}' (degree of freedom {k})", body.name),
+                    format!(
+                        "the stiffness or damping of free body '{}' (degree of freedom {k})",
+                        body.name
+                    ),
                 ));
             }
         }

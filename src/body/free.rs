@@ -325,7 +325,13 @@ impl FreeBody {
         // The rigid body: its mass at the centre of gravity, its inertia, and the
         // gyroscopic moment.
         let ig = r * m3(&s.inertia) * r.transpose();
-        add_point_mass(&mut mm, &mut f, &(Matrix3::identity() * s.mass), self.x_g - p, w);
+        add_point_mass(
+            &mut mm,
+            &mut f,
+            &(Matrix3::identity() * s.mass),
+            self.x_g - p,
+            w,
+        );
         {
             let mut rr = mm.fixed_view_mut::<3, 3>(3, 3);
             rr += ig;
@@ -352,7 +358,9 @@ impl FreeBody {
         let [iwx, iwy] = s.waterplane_inertia;
         if iwx != 0.0 || iwy != 0.0 {
             let tilt = ez.cross(&(r * ez));
-            let mw = -rg * (r * Matrix3::from_diagonal(&Vec3::new(iwx, iwy, 0.0)) * r.transpose()) * tilt;
+            let mw = -rg
+                * (r * Matrix3::from_diagonal(&Vec3::new(iwx, iwy, 0.0)) * r.transpose())
+                * tilt;
             for k in 0..3 {
                 f[3 + k] += mw[k];
             }
@@ -391,12 +399,17 @@ impl FreeBody {
         let ur = v3(u) - vx;
         let cda = v3(s.drag_area);
         if cda != Vec3::zeros() {
-            let fd = r * Matrix3::from_diagonal(&cda) * r.transpose() * ur * (0.5 * fluid.rho * ur.norm());
+            let fd = r
+                * Matrix3::from_diagonal(&cda)
+                * r.transpose()
+                * ur
+                * (0.5 * fluid.rho * ur.norm());
             add_force(&mut f, fd, ex);
         }
         let cdr = v3(s.rotational_drag);
         if cdr != Vec3::zeros() {
-            let md = -(r * Matrix3::from_diagonal(&cdr) * r.transpose() * w) * (0.5 * fluid.rho * w.norm());
+            let md = -(r * Matrix3::from_diagonal(&cdr) * r.transpose() * w)
+                * (0.5 * fluid.rho * w.norm());
             for k in 0..3 {
                 f[3 + k] += md[k];
             }
@@ -439,7 +452,10 @@ impl FreeBody {
             (FreeKind::Free, _) => {
                 let (mm, f) = self.system(t, fluid, u, lumps, self.x_g);
                 let a = solve6(mm, f)?;
-                Ok((a.fixed_rows::<3>(0).into_owned(), a.fixed_rows::<3>(3).into_owned()))
+                Ok((
+                    a.fixed_rows::<3>(0).into_owned(),
+                    a.fixed_rows::<3>(3).into_owned(),
+                ))
             }
             (FreeKind::Pinned, Some(pin)) => {
                 let (mm, f) = self.system(t, fluid, u, lumps, v3(pin.x));
@@ -540,11 +556,17 @@ fn solve6(mm: Matrix6<f64>, f: Vector6<f64>) -> Result<Vector6<f64>, String> {
 pub fn check(spec: &FreeSpec, kind: FreeKind) -> Result<(), (String, String)> {
     let bad = |k: &str, m: String| Err((k.to_string(), m));
     if !(spec.mass.is_finite() && spec.mass > 0.0) {
-        return bad("mass", format!("must be positive and finite, got {}", spec.mass));
+        return bad(
+            "mass",
+            format!("must be positive and finite, got {}", spec.mass),
+        );
     }
     let i = m3(&spec.inertia);
     if (i - i.transpose()).abs().max() > 1e-9 * i.abs().max().max(1e-300) {
-        return bad("inertia", format!("must be symmetric, got {:?}", spec.inertia));
+        return bad(
+            "inertia",
+            format!("must be symmetric, got {:?}", spec.inertia),
+        );
     }
     let eig = i.symmetric_eigenvalues();
     if kind == FreeKind::Free || kind == FreeKind::Pinned {
@@ -576,7 +598,8 @@ pub fn check(spec: &FreeSpec, kind: FreeKind) -> Result<(), (String, String)> {
                 if k < 3 { "mass" } else { "inertia" },
                 format!(
                     "no mass in {} (the mass matrix with the added mass has {} there)",
-                    names[k], mm[(k, k)]
+                    names[k],
+                    mm[(k, k)]
                 ),
             );
         }

@@ -9,7 +9,7 @@
 //! place of the route), so an output-time evaluation reports their reactions against
 //! the body's own motion.
 
-use crate::body::free::{FreeBody, FreeKind, Fluid, Lump};
+use crate::body::free::{Fluid, FreeBody, FreeKind, Lump};
 use crate::body::kinematics::attachment;
 use crate::body::Body;
 use crate::math::{Sym3, V3};
@@ -87,7 +87,9 @@ impl FreeRun {
         let mut held_local = vec![Vec::new(); lay.blocks.len()];
         for e in &bodies {
             for h in &e.held {
-                let bi = lay.blocks.partition_point(|b| (b.node_end as usize) <= h.node);
+                let bi = lay
+                    .blocks
+                    .partition_point(|b| (b.node_end as usize) <= h.node);
                 touched[bi] = true;
                 held_local[bi].push(h.node - lay.blocks[bi].node_start as usize);
             }
@@ -140,16 +142,15 @@ impl FreeRun {
                 };
                 ls.push(Lump {
                     r: r[h.node].to_f64(),
-                    m: [
-                        [m.xx, m.xy, m.xz],
-                        [m.xy, m.yy, m.yz],
-                        [m.xz, m.yz, m.zz],
-                    ],
+                    m: [[m.xx, m.xy, m.xz], [m.xy, m.yy, m.yz], [m.xz, m.yz, m.zz]],
                     f: f.to_f64(),
                 });
             }
             let x = e.state.reference();
-            let u = lay.currents.first().map_or([0.0; 3], |c| c.at(x.z).to_f64());
+            let u = lay
+                .currents
+                .first()
+                .map_or([0.0; 3], |c| c.at(x.z).to_f64());
             let (pin, pin_next) = match e.state.kind {
                 FreeKind::Free => (None, None),
                 FreeKind::Pinned => (Some(e.body.pin(t)), Some(e.body.pin(t + dt))),
@@ -178,7 +179,9 @@ impl FreeRun {
             }
             e.held.retain(|h| h.node != node);
         }
-        let bi = lay.blocks.partition_point(|b| (b.node_end as usize) <= node);
+        let bi = lay
+            .blocks
+            .partition_point(|b| (b.node_end as usize) <= node);
         let li = node - lay.blocks[bi].node_start as usize;
         self.held_local[bi].retain(|&x| x != li);
         self.touched[bi] = !self.held_local[bi].is_empty();

@@ -16,8 +16,8 @@ use super::chain::{
 };
 use super::free::{end_tension, Failure, FreeRun};
 use super::passes::{advance_block, implicit_dt, node_accel_of, Ctx, GeneralTopo, NodeScratch};
-use super::water::node_water;
 use super::threaded::{advance_block_threaded, THREADED_MIN_NODES};
+use super::water::node_water;
 use super::water::{BlockWaves, Water};
 use crate::ale::{advance_with_winches, AleElem, AleState, MeshStepper, Winch};
 use crate::error::Error;
@@ -176,7 +176,11 @@ impl CpuSolver {
                 pos0.len()
             )));
         }
-        if lay.routes.iter().any(|r| matches!(r, Route::Body { body, .. } if body.dynamic().is_some())) {
+        if lay
+            .routes
+            .iter()
+            .any(|r| matches!(r, Route::Body { body, .. } if body.dynamic().is_some()))
+        {
             return Err(Error::Model(
                 "winch cables and free or pinned bodies in one run are not supported yet".into(),
             ));
@@ -474,13 +478,20 @@ impl CpuSolver {
             let t = self.t;
             let lumps = self.advance_blocks(1)?;
             if let Some(free) = self.free.as_deref_mut() {
-                free.step(&self.layout, t, self.opts.dt, &lumps, &mut self.r, &mut self.v)
-                    .map_err(|m| Error::Diverged {
-                        cable: m,
-                        node: 0,
-                        time: t + self.opts.dt,
-                        what: "a free body's state".into(),
-                    })?;
+                free.step(
+                    &self.layout,
+                    t,
+                    self.opts.dt,
+                    &lumps,
+                    &mut self.r,
+                    &mut self.v,
+                )
+                .map_err(|m| Error::Diverged {
+                    cable: m,
+                    node: 0,
+                    time: t + self.opts.dt,
+                    what: "a free body's state".into(),
+                })?;
             }
             if pending {
                 self.check_failures();
@@ -498,9 +509,16 @@ impl CpuSolver {
         let lay = &self.layout;
         let mut out = Vec::with_capacity(failures.len());
         for f in failures {
-            let c = lay.cables.iter().find(|c| c.name == f.cable).ok_or_else(|| {
-                Error::Model(format!("a failure names cable '{}', which the run does not have", f.cable))
-            })?;
+            let c = lay
+                .cables
+                .iter()
+                .find(|c| c.name == f.cable)
+                .ok_or_else(|| {
+                    Error::Model(format!(
+                        "a failure names cable '{}', which the run does not have",
+                        f.cable
+                    ))
+                })?;
             let (node, elem) = if f.at_start {
                 (c.nodes[0], c.elements[0])
             } else {
@@ -526,7 +544,11 @@ impl CpuSolver {
 
     /// The failures so far, in the order they fired.
     pub fn failure_events(&self) -> Vec<crate::model::FailureEvent> {
-        let mut v: Vec<_> = self.failures.iter().filter_map(|f| f.fired.clone()).collect();
+        let mut v: Vec<_> = self
+            .failures
+            .iter()
+            .filter_map(|f| f.fired.clone())
+            .collect();
         v.sort_by(|a, b| a.time.total_cmp(&b.time));
         v
     }
@@ -599,7 +621,10 @@ impl CpuSolver {
             implicit_dt: implicit_dt(&self.opts),
             targets: self.free.as_deref().map_or(&[], |f| &f.targets[..]),
         };
-        let touched = self.free.as_deref().map(|f| (&f.touched[..], &f.held_local[..]));
+        let touched = self
+            .free
+            .as_deref()
+            .map(|f| (&f.touched[..], &f.held_local[..]));
         let is_touched = |bi: usize| touched.is_some_and(|(t, _)| t[bi]);
         let blocks = &self.layout.blocks;
         let chain_consts = &self.chain_consts;
@@ -658,8 +683,9 @@ impl CpuSolver {
                 el = e2;
             }
         }
-        let result: Result<Vec<Vec<(usize, V, Sym3<f64>)>>, StepFailure> =
-            parts.into_par_iter().map(|(ch, r, v, s, el, wb)| {
+        let result: Result<Vec<Vec<(usize, V, Sym3<f64>)>>, StepFailure> = parts
+            .into_par_iter()
+            .map(|(ch, r, v, s, el, wb)| {
                 let mut lumps = Vec::new();
                 let base = blocks[ch.start];
                 // Stage buffers of the Runge-Kutta schemes, reused across the chunk's blocks.
@@ -682,8 +708,10 @@ impl CpuSolver {
                         // Held on a free body: the general passes (one step), then the
                         // held nodes' forces and mass blocks at the step's start.
                         let held = &touched.expect("free bodies").1[ch.start + bi];
-                        let saved: Vec<(usize, V, V)> =
-                            held.iter().map(|&li| (li, r[n0 + li], v[n0 + li])).collect();
+                        let saved: Vec<(usize, V, V)> = held
+                            .iter()
+                            .map(|&li| (li, r[n0 + li], v[n0 + li]))
+                            .collect();
                         advance_block(
                             &ctx,
                             b,
@@ -708,8 +736,16 @@ impl CpuSolver {
                         for (li, ri, vi) in saved {
                             let wn = (!wbuf.is_empty()).then(|| node_water(&wbuf, li));
                             let (_, f, m) = node_accel_of(
-                                &ctx, &topo, b, li, ri, vi, step0 as f64 * dt, wn,
-                                &el[e0..e1], |_, _| {},
+                                &ctx,
+                                &topo,
+                                b,
+                                li,
+                                ri,
+                                vi,
+                                step0 as f64 * dt,
+                                wn,
+                                &el[e0..e1],
+                                |_, _| {},
                             );
                             lumps.push((b.node_start as usize + li, f, m));
                         }
@@ -767,7 +803,8 @@ impl CpuSolver {
                     }
                 }
                 Ok(lumps)
-            }).collect();
+            })
+            .collect();
         let result = result.and_then(|lumps| {
             let mut net_scratch = NetScratch::default();
             for (bi, b) in blocks.iter().enumerate().filter(|(bi, _)| threaded[*bi]) {

@@ -153,13 +153,13 @@ pub fn parse(
                 "prescribed" => None,
                 "free" => Some(FreeKind::Free),
                 "pinned" => Some(FreeKind::Pinned),
-                other => {
-                    return Err(err(
-                        p,
-                        f("motion"),
-                        format!("unknown motion \"{other}\" (one of \"prescribed\", \"free\", \"pinned\")"),
-                    ))
-                }
+                other => return Err(err(
+                    p,
+                    f("motion"),
+                    format!(
+                        "unknown motion \"{other}\" (one of \"prescribed\", \"free\", \"pinned\")"
+                    ),
+                )),
             },
         };
         if let Some(kind) = kind {
@@ -167,7 +167,11 @@ pub fn parse(
             if out
                 .insert(
                     name.clone(),
-                    Arc::new(Body::new(name.clone(), pose, Motion::Dynamic(Box::new(dynamic)))),
+                    Arc::new(Body::new(
+                        name.clone(),
+                        pose,
+                        Motion::Dynamic(Box::new(dynamic)),
+                    )),
                 )
                 .is_some()
             {
@@ -452,12 +456,21 @@ fn matrix<const N: usize>(p: &Path, field: &str, v: &toml::Value) -> Result<[[f6
         toml::Value::Array(rows) if rows.len() == N => {
             let mut out = [[0.0; N]; N];
             for (i, r) in rows.iter().enumerate() {
-                out[i] = numbers::<N>(p, &format!("{field}[{i}]"), r)
-                    .map_err(|_| err(p, format!("{field}[{i}]"), format!("must be a row of {N} numbers")))?;
+                out[i] = numbers::<N>(p, &format!("{field}[{i}]"), r).map_err(|_| {
+                    err(
+                        p,
+                        format!("{field}[{i}]"),
+                        format!("must be a row of {N} numbers"),
+                    )
+                })?;
             }
             Ok(out)
         }
-        _ => Err(err(p, field, format!("must be a {N}x{N} matrix: {N} rows of {N} numbers"))),
+        _ => Err(err(
+            p,
+            field,
+            format!("must be a {N}x{N} matrix: {N} rows of {N} numbers"),
+        )),
     }
 }
 
@@ -494,11 +507,11 @@ fn parse_dynamic(
     let get3 = |k: &str| -> Result<[f64; 3], Error> {
         t.get(k).map_or(Ok([0.0; 3]), |v| numbers::<3>(p, &f(k), v))
     };
-    let get1 = |k: &str| -> Result<f64, Error> {
-        t.get(k).map_or(Ok(0.0), |v| number(p, &f(k), v))
-    };
+    let get1 =
+        |k: &str| -> Result<f64, Error> { t.get(k).map_or(Ok(0.0), |v| number(p, &f(k), v)) };
     let get6 = |k: &str| -> Result<[[f64; 6]; 6], Error> {
-        t.get(k).map_or(Ok([[0.0; 6]; 6]), |v| matrix::<6>(p, &f(k), v))
+        t.get(k)
+            .map_or(Ok([[0.0; 6]; 6]), |v| matrix::<6>(p, &f(k), v))
     };
     if t.get("rao_file").is_some() {
         return Err(err(
@@ -534,7 +547,13 @@ fn parse_dynamic(
     };
     let mass = match t.get("mass") {
         Some(v) => number(p, &f("mass"), v)?,
-        None => return Err(err(p, f("mass"), "missing: a free or pinned body's mass, kg")),
+        None => {
+            return Err(err(
+                p,
+                f("mass"),
+                "missing: a free or pinned body's mass, kg",
+            ))
+        }
     };
     let inertia = match t.get("inertia") {
         None => {
@@ -557,7 +576,11 @@ fn parse_dynamic(
     };
     let volume = get1("volume")?;
     if volume < 0.0 {
-        return Err(err(p, f("volume"), format!("must not be negative, got {volume}")));
+        return Err(err(
+            p,
+            f("volume"),
+            format!("must not be negative, got {volume}"),
+        ));
     }
     let waterplane_area = get1("waterplane_area")?;
     if waterplane_area < 0.0 {
@@ -567,9 +590,9 @@ fn parse_dynamic(
             format!("must not be negative, got {waterplane_area}"),
         ));
     }
-    let waterplane_inertia = t
-        .get("waterplane_inertia")
-        .map_or(Ok([0.0; 2]), |v| numbers::<2>(p, &f("waterplane_inertia"), v))?;
+    let waterplane_inertia = t.get("waterplane_inertia").map_or(Ok([0.0; 2]), |v| {
+        numbers::<2>(p, &f("waterplane_inertia"), v)
+    })?;
     let mut added_mass = match (t.get("ca"), t.get("added_mass")) {
         (Some(_), Some(_)) => {
             return Err(err(p, field, "give either `ca` or `added_mass`, not both"))
@@ -587,7 +610,10 @@ fn parse_dynamic(
             added_mass[k][k] = ca[k] * volume * rho;
         }
     }
-    for (k, v) in [("drag_area", get3("drag_area")?), ("rotational_drag", get3("rotational_drag")?)] {
+    for (k, v) in [
+        ("drag_area", get3("drag_area")?),
+        ("rotational_drag", get3("rotational_drag")?),
+    ] {
         if let Some(x) = v.iter().find(|x| **x < 0.0) {
             return Err(err(p, f(k), format!("must not be negative, got {x}")));
         }

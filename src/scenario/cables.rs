@@ -55,7 +55,11 @@ fn failure(
     if time.is_none() && tension.is_none() {
         return Ok(None);
     }
-    let key = if time.is_some() { "fail_time" } else { "fail_tension" };
+    let key = if time.is_some() {
+        "fail_time"
+    } else {
+        "fail_tension"
+    };
     match kind {
         EndKind::Free(_) => {
             return Err(err(

@@ -98,10 +98,7 @@ pub fn cable_config(
                 return Err(unsupported(
                     sc,
                     ci,
-                    format!(
-                        "does not run free or pinned bodies (body '{}')",
-                        body.name
-                    ),
+                    format!("does not run free or pinned bodies (body '{}')", body.name),
                 ));
             }
         }

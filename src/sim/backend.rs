@@ -325,7 +325,13 @@ impl LumpedStepper {
         let ev = self.evaluate()?;
         let (r, _) = self.state()?;
         let dynamic = self.dynamic_bodies();
-        Ok(crate::body::output::body_states(self.layout(), t, &r, &ev, &dynamic))
+        Ok(crate::body::output::body_states(
+            self.layout(),
+            t,
+            &r,
+            &ev,
+            &dynamic,
+        ))
     }
 
     /// The shared points' states now. `points` names each point and where it is found:

@@ -123,7 +123,12 @@ fn a_buoy_on_three_lines_settles_at_its_equilibrium() {
     }
     // The same pose from both releases (within 1 cm and 0.01 degrees).
     for k in 2..8 {
-        assert!((a[k] - b[k]).abs() < 0.01, "column {k}: {} vs {}", a[k], b[k]);
+        assert!(
+            (a[k] - b[k]).abs() < 0.01,
+            "column {k}: {} vs {}",
+            a[k],
+            b[k]
+        );
     }
     // The lines' force balances the net buoyancy (the held end nodes' weight is in
     // the lines' force).
@@ -142,7 +147,8 @@ fn a_buoy_on_three_lines_settles_at_its_equilibrium() {
 #[test]
 fn the_gpu_path_refuses_free_bodies_and_auto_falls_back() {
     let dir = tempfile::tempdir().unwrap();
-    let text = buoy([1.0, 0.0, 0.0], [0.0; 3], 2.0).replace("backend = \"cpu\"", "backend = \"gpu\"");
+    let text =
+        buoy([1.0, 0.0, 0.0], [0.0; 3], 2.0).replace("backend = \"cpu\"", "backend = \"gpu\"");
     write(dir.path(), "s.toml", &text);
     let sc = Scenario::load(&dir.path().join("s.toml")).unwrap();
     let e = cablesim::sim::run(
@@ -155,8 +161,12 @@ fn the_gpu_path_refuses_free_bodies_and_auto_falls_back() {
     )
     .unwrap_err()
     .to_string();
-    assert!(e.contains("free or pinned bodies") && e.contains("buoy"), "{e}");
-    let text = buoy([1.0, 0.0, 0.0], [0.0; 3], 2.0).replace("backend = \"cpu\"", "backend = \"auto\"");
+    assert!(
+        e.contains("free or pinned bodies") && e.contains("buoy"),
+        "{e}"
+    );
+    let text =
+        buoy([1.0, 0.0, 0.0], [0.0; 3], 2.0).replace("backend = \"cpu\"", "backend = \"auto\"");
     write(dir.path(), "s.toml", &text);
     let sc = Scenario::load(&dir.path().join("s.toml")).unwrap();
     cablesim::sim::run(
@@ -182,7 +192,10 @@ fn error_of(text: &str) -> String {
 fn bad_free_body_input_names_the_key_and_value() {
     let base = buoy([0.0; 3], [0.0; 3], 1.0);
     let e = error_of(&base.replace("mass = 2000.0", "mass = 0.0"));
-    assert!(e.contains("bodies[0] (\"buoy\").mass") && e.contains("positive"), "{e}");
+    assert!(
+        e.contains("bodies[0] (\"buoy\").mass") && e.contains("positive"),
+        "{e}"
+    );
     let e = error_of(&base.replace(
         "inertia = [2000.0, 2000.0, 3000.0]",
         "inertia = [2000.0, -2000.0, 3000.0]",
@@ -201,7 +214,10 @@ fn bad_free_body_input_names_the_key_and_value() {
     assert!(e.contains(".mass") && e.contains("missing"), "{e}");
     // A prescribed body with a key of the free ones.
     let e = error_of(&base.replace("motion = \"free\"\n", ""));
-    assert!(e.contains("motion = \\\"free\\\"") || e.contains("motion = \"free\""), "{e}");
+    assert!(
+        e.contains("motion = \\\"free\\\"") || e.contains("motion = \"free\""),
+        "{e}"
+    );
 }
 
 /// Runs scenario `text` in `dir` and returns the output directory.
@@ -304,7 +320,10 @@ end = {{ route = "line", start = [15.0, 0.0, -10.0], velocity = [1.0, 0.0, 0.0],
     let f = failures_of(&out);
     assert_eq!(f.len(), 1, "{f:?}");
     assert_eq!(f[0]["trigger"], "tension");
-    let (t, tension) = (f[0]["time"].as_f64().unwrap(), f[0]["tension"].as_f64().unwrap());
+    let (t, tension) = (
+        f[0]["time"].as_f64().unwrap(),
+        f[0]["tension"].as_f64().unwrap(),
+    );
     assert!((1.0e4..1.05e4).contains(&tension), "tension {tension}");
     // The line is taut once the ends are 20 m apart, and 1e4 N is 10 cm more.
     assert!(t > 5.0 && t < 5.5, "fired at {t}");
@@ -326,7 +345,11 @@ fn a_buoy_drifts_away_from_a_failed_leg() {
     let rows: Vec<Vec<f64>> = csv
         .lines()
         .skip(1)
-        .map(|l| l.split(',').map(|x| x.parse().unwrap_or(f64::NAN)).collect())
+        .map(|l| {
+            l.split(',')
+                .map(|x| x.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
         .collect();
     // Leg 0 held it towards +x: without it the other two pull it to -x.
     let at = |t: f64| rows.iter().find(|r| r[0] == t).unwrap();
@@ -348,7 +371,10 @@ start = {{ fixed = [0.0, 0.0, -10.0] }}
 end = {{ fixed = [5.0, 0.0, -10.0], fail_tension = 0.0 }}
 "#
     ));
-    assert!(e.contains("cables[0] (\"c\").end.fail_tension") && e.contains("positive"), "{e}");
+    assert!(
+        e.contains("cables[0] (\"c\").end.fail_tension") && e.contains("positive"),
+        "{e}"
+    );
     let e = error_of(&format!(
         r#"{ROPE}
 [[cables]]

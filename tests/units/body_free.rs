@@ -102,12 +102,19 @@ fn eccentric_spin_in_zero_gravity_keeps_its_orbit_and_rate() {
             .unwrap();
         let t = (n + 1) as f64 * dt;
         let d = b.reference() - xg;
-        assert!(((d.norm() - r) / r).abs() < 1e-6, "radius {} at {t}", d.norm());
+        assert!(
+            ((d.norm() - r) / r).abs() < 1e-6,
+            "radius {} at {t}",
+            d.norm()
+        );
         // At t = 0 the reference point is at +y of the centre of gravity.
         let ang = d.x.atan2(d.y).rem_euclid(TAU);
         let want = (-w * t).rem_euclid(TAU);
         let diff = (ang - want + PI).rem_euclid(TAU) - PI;
-        assert!(diff.abs() < 1e-6 * w * t, "angle {ang} against {want} at {t}");
+        assert!(
+            diff.abs() < 1e-6 * w * t,
+            "angle {ang} against {want} at {t}"
+        );
         assert!(((b.w.z - w) / w).abs() < 1e-6);
     }
 }
@@ -139,7 +146,11 @@ fn free_fall_with_quadratic_drag_reaches_its_terminal_velocity() {
             // The transient: v = -vt tanh(t / tau).
             let t = n_tau as f64 * dt;
             let want = -vt * (t / tau).tanh();
-            assert!(((b.v_g.z - want) / want).abs() < 1e-3, "{} against {want}", b.v_g.z);
+            assert!(
+                ((b.v_g.z - want) / want).abs() < 1e-3,
+                "{} against {want}",
+                b.v_g.z
+            );
         }
     }
     assert!(
@@ -243,8 +254,20 @@ fn bad_properties_name_the_key() {
     };
     assert!(check(&ok, FreeKind::Free).is_ok());
     let key = |s: FreeSpec| check(&s, FreeKind::Free).unwrap_err().0;
-    assert_eq!(key(FreeSpec { mass: 0.0, ..ok.clone() }), "mass");
-    assert_eq!(key(FreeSpec { mass: f64::NAN, ..ok.clone() }), "mass");
+    assert_eq!(
+        key(FreeSpec {
+            mass: 0.0,
+            ..ok.clone()
+        }),
+        "mass"
+    );
+    assert_eq!(
+        key(FreeSpec {
+            mass: f64::NAN,
+            ..ok.clone()
+        }),
+        "mass"
+    );
     let mut nonsym = ok.clone();
     nonsym.inertia[0][1] = 0.5;
     assert_eq!(key(nonsym), "inertia");
