@@ -153,13 +153,15 @@ pub fn parse(
                 "prescribed" => None,
                 "free" => Some(FreeKind::Free),
                 "pinned" => Some(FreeKind::Pinned),
-                other => return Err(err(
-                    p,
-                    f("motion"),
-                    format!(
+                other => {
+                    return Err(err(
+                        p,
+                        f("motion"),
+                        format!(
                         "unknown motion \"{other}\" (one of \"prescribed\", \"free\", \"pinned\")"
                     ),
-                )),
+                    ))
+                }
             },
         };
         if let Some(kind) = kind {
