@@ -159,6 +159,7 @@ fn amplification(scheme: Scheme, x: f64, y: f64) -> f64 {
 pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
     // (step, node, term) of the smallest step so far.
     let mut best: Option<(f64, usize, Term)> = None;
+    let mut body_best: Option<(f64, String)> = None;
     let sb = lay.env.seabed;
     // The symplectic node solve takes the seabed's damping and friction implicitly
     // (cpu::stepper::implicit_dt and node_advance in shared/prelude.wgsl).
@@ -308,6 +309,49 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                     }
                 });
             best = Some((dt, i, term));
+        }
+    }
+    // Free and pinned bodies: their own stiffness and linear damping per degree of
+    // freedom (the held nodes are lumped into them, which only lowers the lines'
+    // frequencies: docs/src/bodies.md, "Free bodies").
+    let fluid = crate::body::free::Fluid {
+        rho: lay.env.water_density,
+        g: lay.env.gravity,
+    };
+    let mut seen: Vec<*const crate::body::Body> = Vec::new();
+    for r in &lay.routes {
+        let crate::model::Route::Body { body, .. } = r else {
+            continue;
+        };
+        let Some(d) = body.dynamic() else { continue };
+        if seen.contains(&std::sync::Arc::as_ptr(body)) {
+            continue;
+        }
+        seen.push(std::sync::Arc::as_ptr(body));
+        for (k, (omega2, gamma)) in d.body.modes(fluid).into_iter().enumerate() {
+            if omega2 == 0.0 && gamma == 0.0 {
+                continue;
+            }
+            let dt = mode_step(scheme, omega2, gamma);
+            if best.is_none_or(|(b, _, _)| dt < b)
+                && dt
+                    < body_best
+                        .as_ref()
+                        .map_or(f64::INFINITY, |b: &(f64, String)| b.0)
+            {
+                body_best = Some((
+                    dt,
+                    format!(
+                        "the stiffness or damping of free body '{}' (degree of freedom {k})",
+                        body.name
+                    ),
+                ));
+            }
+        }
+    }
+    if let Some((dt, term)) = body_best {
+        if best.is_none_or(|(b, _, _)| dt < b) {
+            return StepBound { dt, term };
         }
     }
     match best {

@@ -50,6 +50,15 @@ pub use super::kernel::{fused_workgroup, GpuKernel, MAX_FUSED_WORKGROUP, STEPS_P
 
 /// What the GPU solver does not do yet, or `None`.
 pub fn unsupported(lay: &Layout, opts: &SolverOptions) -> Option<String> {
+    if let Some(b) = lay.routes.iter().find_map(|r| match r {
+        crate::model::Route::Body { body, .. } if body.dynamic().is_some() => Some(body),
+        _ => None,
+    }) {
+        return Some(format!(
+            "free or pinned bodies (body '{}'; the CPU path runs them)",
+            b.name
+        ));
+    }
     if opts.formulation != Formulation::Glmf {
         return Some(format!(
             "the {} formulation (the GPU path is GLMF only)",

@@ -275,7 +275,11 @@ impl FileSink {
             bodies: if bodies {
                 Some(self.open(
                     "bodies.csv",
-                    "time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz",
+                    if first.bodies.iter().any(|b| b.velocity.is_some()) {
+                        "time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz,vx,vy,vz,wx,wy,wz"
+                    } else {
+                        "time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz"
+                    },
                 )?)
             } else {
                 None
@@ -342,7 +346,7 @@ impl OutputSink for FileSink {
             let e_b = err(&self.dir, "bodies.csv");
             for b in &s.bodies {
                 let (x, a, f, m) = (b.position, b.angles, b.force, b.moment);
-                writeln!(
+                write!(
                     w,
                     "{t},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                     quoted(&mut self.quoted, &b.name),
@@ -360,6 +364,11 @@ impl OutputSink for FileSink {
                     m[2]
                 )
                 .map_err(&e_b)?;
+                if let Some(u) = b.velocity {
+                    write!(w, ",{},{},{},{},{},{}", u[0], u[1], u[2], u[3], u[4], u[5])
+                        .map_err(&e_b)?;
+                }
+                writeln!(w).map_err(&e_b)?;
             }
         }
         if let Some(w) = f.points.as_mut() {

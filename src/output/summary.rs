@@ -96,6 +96,9 @@ pub struct Summary {
     pub relax_residual: f64,
     /// Per cable.
     pub cables: Vec<CableSummary>,
+    /// The line failures, in the order they fired (left out when none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub failures: Vec<crate::model::FailureEvent>,
 }
 
 /// `summary.json` of a run that failed before its first step (the build, the initial

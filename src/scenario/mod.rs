@@ -117,6 +117,8 @@ pub struct Scenario {
     pub vtk: bool,
     /// The work budget (`[limits]`, with the caller's overrides over it).
     pub limits: Limits,
+    /// The cable ends that may fail during the run.
+    pub failures: Vec<crate::model::EndFailure>,
 }
 
 /// A named shared point (`[[points]]`).
@@ -243,7 +245,13 @@ impl Scenario {
 
         // [[bodies]]: bodies with prescribed motion that ends attach to (RAO bodies move
         // in the sea state's wave components, ramped in with them).
-        let bodies = bodies::parse(p, &raw.bodies, &sea.components, sea.ramp_duration)?;
+        let bodies = bodies::parse(
+            p,
+            &raw.bodies,
+            &sea.components,
+            sea.ramp_duration,
+            model.env.water_density,
+        )?;
 
         // [[points]]: named shared nodes.
         let points = points::parse(p, &raw.points, &bodies, depth, sim.max_speed, &mut model)?;
@@ -254,6 +262,7 @@ impl Scenario {
             mut initial,
             winches,
             mut names,
+            failures,
         } = cables::parse(
             p,
             &cables,
@@ -361,6 +370,7 @@ impl Scenario {
             points: points.named,
             vtk: raw.output.vtk.unwrap_or(false),
             limits,
+            failures,
         })
     }
 }

@@ -611,6 +611,10 @@ impl Simulation {
             threads: rayon::current_num_threads(),
             relax_residual: self.relax_residual,
             cables,
+            failures: match &self.engine {
+                Engine::Lumped(s, _) => s.failure_events(),
+                _ => Vec::new(),
+            },
         })
     }
 }

@@ -13,6 +13,7 @@ mod ale_winch;
 mod ancf;
 mod ancf_band;
 mod ancf_shape;
+mod body_free;
 mod body_kinematics;
 mod body_motion;
 mod body_rao;
