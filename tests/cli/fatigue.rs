@@ -218,8 +218,8 @@ area_m2 = 0.00098
 
 /// A study with a scatter diagram: its `fatigue.csv` holds per location and sea state
 /// the seeds' mean damage, scaled to the sea state's hours, their sum and the life; the
-/// members' records give it back; two shards merged give the one machine's files byte
-/// for byte.
+/// members' records give it back; two shards merged, and members packed into runs,
+/// give the one machine's files byte for byte.
 #[test]
 fn a_study_scatter_diagram_gives_annual_damage_and_life_the_same_from_shards() {
     let tmp = tempfile::tempdir().unwrap();
@@ -260,15 +260,27 @@ fn a_study_scatter_diagram_gives_annual_damage_and_life_the_same_from_shards() {
         "--out",
         merged.to_str().unwrap(),
     ]);
+    // Packed (`--backend auto`: on the CPU here, members packed three to a run), each
+    // member steps as alone: the same files.
+    let packed = tmp.path().join("packed");
+    run_ok(&[
+        "study",
+        "run",
+        s,
+        "-q",
+        "--backend",
+        "auto",
+        "--batch",
+        "3",
+        "--out",
+        packed.to_str().unwrap(),
+    ]);
     for f in ["fatigue.csv", "study.csv", "members.csv", "study.json"] {
-        let (a, b) = (
-            std::fs::read(one.join(f)).unwrap(),
-            std::fs::read(merged.join(f)).unwrap(),
-        );
-        assert!(
-            a == b,
-            "{f} differs between one machine and the merged shards"
-        );
+        let a = std::fs::read(one.join(f)).unwrap();
+        for (other, what) in [(&merged, "the merged shards"), (&packed, "a packed run")] {
+            let b = std::fs::read(other.join(f)).unwrap();
+            assert!(a == b, "{f} differs between one machine and {what}");
+        }
     }
     let rows = read_csv(&one.join("fatigue.csv"));
     assert_eq!(rows.len(), 3 * 2 * 4, "3 lines x 2 ends x 4 sea states");
