@@ -251,7 +251,12 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
                 b
             };
             let mut vtk_sink = VtkSink::new(out_dir.join("vtk"));
+            let mut fatigue = (simulation.scenario().fatigue.clone())
+                .map(|f| cablesim::output::FatigueSink::new(&out_dir, f));
             let mut sinks = FanOut::new().with(&mut sink);
+            if let Some(f) = fatigue.as_mut() {
+                sinks = sinks.with(f);
+            }
             if vtk || simulation.scenario().vtk {
                 sinks = sinks.with(&mut vtk_sink);
             }

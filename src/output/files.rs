@@ -59,6 +59,7 @@ pub const OWN_FILES: &[&str] = &[
     "winches.csv",
     "bodies.csv",
     "points.csv",
+    "fatigue.csv",
 ];
 
 /// Folders cablesim writes into an output directory, with the extensions of the files it

@@ -7,6 +7,7 @@
 //! in memory; [`FanOut`] hands the output to several; a caller may write its own.
 
 mod fanout;
+mod fatigue;
 mod files;
 mod memory;
 mod sink;
@@ -14,6 +15,7 @@ mod summary;
 mod vtk;
 
 pub use fanout::FanOut;
+pub use fatigue::FatigueSink;
 pub use files::{FileSink, LOCK_FILE, MARKER_FILE, OWN_DIRS, OWN_FILES};
 pub use memory::MemorySink;
 pub use sink::{BodyState, CableState, OutputSink, PointState, Snapshot};

@@ -13,6 +13,7 @@ mod bodies;
 mod cables;
 mod ends;
 mod environment;
+mod fatigue;
 pub mod limits;
 pub mod materials;
 mod nets;
@@ -115,6 +116,8 @@ pub struct Scenario {
     pub points: Vec<NamedPoint>,
     /// `[output] vtk`: also write ParaView files (`vtk/`).
     pub vtk: bool,
+    /// `[fatigue]`, resolved against the model: a run writes `fatigue.csv`.
+    pub fatigue: Option<crate::fatigue::FatigueSpec>,
     /// The work budget (`[limits]`, with the caller's overrides over it).
     pub limits: Limits,
     /// The cable ends that may fail during the run.
@@ -352,6 +355,11 @@ impl Scenario {
                 ));
             }
         }
+        let fatigue = raw
+            .fatigue
+            .as_ref()
+            .map(|f| fatigue::resolve(p, f, &model))
+            .transpose()?;
         Ok(Scenario {
             path: p.to_path_buf(),
             sim,
@@ -369,6 +377,7 @@ impl Scenario {
                 .unwrap_or(true),
             points: points.named,
             vtk: raw.output.vtk.unwrap_or(false),
+            fatigue,
             limits,
             failures,
         })

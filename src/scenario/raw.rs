@@ -32,6 +32,8 @@ pub struct RawScenario {
     /// scenario ignores it (the study reads the table from the file's text itself).
     #[allow(dead_code)]
     pub study: Option<toml::Value>,
+    /// `[fatigue]`: T-N curves and the locations whose fatigue a run counts.
+    pub fatigue: Option<super::fatigue::RawFatigue>,
 }
 
 /// A `[[nets]]` entry: a net panel or cylindrical cage (see `model::net`).

@@ -172,6 +172,8 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
         points,
         vtk: false,
         failures,
+        // The study counts its members' fatigue itself (`study::run`).
+        fatigue: None,
         // Each member passed its own budget; the packed run is their sum.
         limits: {
             let (n, l) = (members.len() as f64, &first.limits);

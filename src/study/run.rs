@@ -74,7 +74,8 @@ impl StudyRunner {
                 .filter_map(|b| b.get("name").and_then(|n| n.as_str()).map(String::from))
                 .collect();
         }
-        let plan = StudyPlan::new(file, &model)?;
+        let plan =
+            StudyPlan::new(file, &model)?.with_fatigue(scenario.fatigue.as_ref(), &file.path)?;
         let sampler = Sampler::new(&plan.channels, &model);
         let runner = StudyRunner {
             plan,
@@ -156,6 +157,7 @@ impl StudyRunner {
         let mut sim = Simulation::new(self.member_scenario(m)?, &overrides)?;
         let interval = sim.scenario().sim.output_interval;
         let mut stats = self.plan.new_stats();
+        let mut fatigue = self.plan.new_fatigue();
         let mut body_index: Option<Vec<Option<usize>>> = None;
         let outputs = (def.duration / interval - 1e-9).ceil().max(1.0) as u64;
         let mut done = 0.0;
@@ -181,12 +183,13 @@ impl StudyRunner {
             }
             let snap = sim.snapshot()?;
             let n = snap.cables.len();
-            self.record(&mut stats, &snap, 0..n, None, &mut body_index);
+            self.record(&mut stats, &mut fatigue, &snap, 0..n, None, &mut body_index);
         }
         Ok(Some(MemberResult {
             member: *m,
             status,
             stats,
+            fatigue: fatigue.into_iter().map(|c| c.finish()).collect(),
         }))
     }
 
@@ -207,13 +210,15 @@ impl StudyRunner {
         )
     }
 
-    /// Records one member's channels from `snap` into `stats`: the member's cables are
+    /// Records one member's channels from `snap` into `stats`, and its fatigue
+    /// locations' values into `fatigue` (one counter per location): the member's cables are
     /// `cables` (in the base scenario's order), its bodies are named `PREFIX/name`
     /// when `prefix` is given (a packed run, `sim::pack`), else by their own names;
     /// `body_index` caches where they are in the snapshots.
     pub(crate) fn record(
         &self,
         stats: &mut [crate::study::ChannelStats],
+        fatigue: &mut [crate::fatigue::DamageCounter],
         snap: &Snapshot,
         cables: Range<usize>,
         prefix: Option<&str>,
@@ -252,6 +257,12 @@ impl StudyRunner {
             })
             .collect();
         self.sampler.record(stats, snap.time, &cables, &bodies);
+        for (loc, counter) in self.plan.fatigue.iter().zip(fatigue) {
+            let c = &cables[loc.cable_index];
+            if let Some(x) = loc.value(c.tensions, c.start_force, c.end_force) {
+                counter.push(snap.time, x);
+            }
+        }
     }
 
     /// Runs `members` in parallel on rayon's threads; `on_done` is called with each

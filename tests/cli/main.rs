@@ -11,6 +11,7 @@ mod common;
 mod ancf_scenario;
 mod end_to_end;
 mod examples;
+mod fatigue;
 mod fuzz_scenarios;
 mod moordyn_input;
 mod robust_inputs;

@@ -21,6 +21,7 @@ mod cpu_chain_elements;
 mod cpu_chain_lanes;
 mod cpu_chain_net_pieces;
 mod cpu_chain_net_plan;
+mod fatigue;
 mod gpu_wave_schedule;
 mod math;
 mod model_environment;
