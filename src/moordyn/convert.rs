@@ -115,12 +115,17 @@ fn write_waves(w: &mut String, md: &super::waves::MdWaves) {
     );
     let _ = writeln!(w, "\n[[environment.waves.trains]]");
     let _ = writeln!(w, "type = \"components\"");
+    let rows_are = if mode == 7 {
+        "MoorDyn's complex amplitude a gives A = |a| and phase = 90 - arg(a) in degrees \
+         (MoorDyn writes |a| sin(omega t - k x + arg a))"
+    } else {
+        "FFT bin i of the N resampled samples, X_i, gives A = 2 |X_i| / N and phase = \
+         -arg(X_i) in degrees (the record at the origin from t = 0)"
+    };
     let _ = writeln!(
         w,
         "# [omega (rad/s), amplitude (m), phase (degrees), direction (degrees)] with \
-         eta = A cos(k (x cos b + y sin b) - omega t + phase): MoorDyn's complex amplitude a \
-         gives A = |a| and phase = 90 - arg(a) in degrees (MoorDyn writes |a| sin(omega t - \
-         k x + arg a))."
+         eta = A cos(k (x cos b + y sin b) - omega t + phase): {rows_are}."
     );
     let _ = writeln!(w, "rows = [");
     for r in &md.rows {

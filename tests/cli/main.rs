@@ -21,3 +21,4 @@ mod simulation_api;
 mod slurm;
 mod study_run;
 mod viz_output;
+mod wave_inputs;
