@@ -13,7 +13,7 @@ use super::host::{split, Host, NodeStates};
 use super::kernel::{GpuKernel, FUSED_FAILED, STEPS_PER_SUBMISSION};
 use super::layout::*;
 use super::solver::GpuTimings;
-use super::wave_schedule::{fused_segments, SeaSchedules, WAVE_MAX_NODES};
+use super::wave_schedule::{check_wave_components, fused_segments, SeaSchedules, WAVE_MAX_NODES};
 use crate::error::Error;
 use crate::model::Layout;
 use crate::options::SolverOptions;
@@ -369,6 +369,12 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
     fn set_seas(&mut self, lay: &Layout, host: &Host, seas: &SeaSet) -> Result<(), Error> {
         if !seas.is_still() {
             check_wave_nodes(lay.n_nodes())?;
+            check_wave_components(
+                seas,
+                std::mem::size_of::<WaveComp<R>>() as u64,
+                self.ctx.limits.max_storage_buffer_binding_size,
+                self.ctx.info.device_type == wgpu::DeviceType::Cpu,
+            )?;
         }
         self.waves = (!seas.is_still()).then(|| SeaSchedules::new(seas, self.dt64));
         let scope = self

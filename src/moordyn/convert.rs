@@ -90,6 +90,57 @@ fn v3(x: [f64; 3]) -> String {
     format!("[{}, {}, {}]", f(x[0]), f(x[1]), f(x[2]))
 }
 
+/// Writes MoorDyn's waves (`moordyn::waves`) as `[environment.waves]` with one
+/// `"components"` train; still water, with a comment, when every amplitude is zero.
+fn write_waves(w: &mut String, md: &super::waves::MdWaves) {
+    let (mode, l) = md.mode;
+    let what = if mode == 7 {
+        "MoorDyn sums these components at the nodes, as cablesim does"
+    } else {
+        "the elevation record resampled and decomposed by FFT as MoorDyn does"
+    };
+    let _ = writeln!(w, "# WaveKin = {mode} (line {l}): {}; {what}.", md.file);
+    for n in &md.notes {
+        let _ = writeln!(w, "# {n}.");
+    }
+    if md.rows.iter().all(|r| r[1] == 0.0) {
+        let _ = writeln!(w, "# Every amplitude is zero: still water.");
+        return;
+    }
+    let _ = writeln!(w, "\n[environment.waves]");
+    let _ = writeln!(
+        w,
+        "# MoorDyn has no start-up ramp and stretches the profile as Wheeler does (cablesim's \
+         default); the components act from t = 0."
+    );
+    let _ = writeln!(w, "\n[[environment.waves.trains]]");
+    let _ = writeln!(w, "type = \"components\"");
+    let rows_are = if mode == 7 {
+        "MoorDyn's complex amplitude a gives A = |a| and phase = 90 - arg(a) in degrees \
+         (MoorDyn writes |a| sin(omega t - k x + arg a))"
+    } else {
+        "FFT bin i of the N resampled samples, X_i, gives A = 2 |X_i| / N and phase = \
+         -arg(X_i) in degrees (the record at the origin from t = 0)"
+    };
+    let _ = writeln!(
+        w,
+        "# [omega (rad/s), amplitude (m), phase (degrees), direction (degrees)] with \
+         eta = A cos(k (x cos b + y sin b) - omega t + phase): {rows_are}."
+    );
+    let _ = writeln!(w, "rows = [");
+    for r in &md.rows {
+        let _ = writeln!(
+            w,
+            "    [{}, {}, {}, {}],",
+            f(r[0]),
+            f(r[1]),
+            f(r[2]),
+            f(r[3])
+        );
+    }
+    let _ = writeln!(w, "]");
+}
+
 /// Maps a parsed MoorDyn file to scenario TOML. `path` names the file in messages.
 pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result<Converted, Error> {
     let p = path;
@@ -155,6 +206,16 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             let (rows, file) = read_current_profile(p, l)?;
             Some((mode, l, rows, file))
         }
+        None => None,
+    };
+    let waves = match o.wave_kin {
+        Some((7, l)) => Some(super::waves::frequencies(p, l, &mut warn)?),
+        Some((_, l)) => Some(super::waves::elevation(
+            p,
+            l,
+            o.dt_wave.unwrap_or((super::waves::DEFAULT_DT_WAVE, 0)),
+            &mut warn,
+        )?),
         None => None,
     };
 
@@ -539,11 +600,15 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         f(depth)
     );
     match &current {
-        None => {
+        None if waves.is_none() => {
             let _ = writeln!(
                 w,
-                "# Still water: MoorDyn's WaveKin and Currents are 0 (other values are refused)."
+                "# Still water: MoorDyn's WaveKin and Currents are 0 (WaveKin 3 and 7 and \
+                 Currents 1 and 3 convert; other values are refused)."
             );
+        }
+        None => {
+            let _ = writeln!(w, "# No current: MoorDyn's Currents is 0.");
         }
         Some((mode, l, rows, file)) => {
             let _ = writeln!(
@@ -564,6 +629,9 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             }
             let _ = writeln!(w, "]");
         }
+    }
+    if let Some(md) = &waves {
+        write_waves(w, md);
     }
     let _ = writeln!(w, "\n[environment.seabed]");
     let _ = writeln!(

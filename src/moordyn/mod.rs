@@ -8,6 +8,7 @@ pub mod convert;
 mod options;
 pub mod parse;
 mod tables;
+pub mod waves;
 
 pub use convert::{convert, ConvertOptions, Converted, Warning};
 pub use parse::{looks_like_moordyn, parse, MoorDynFile, Version};

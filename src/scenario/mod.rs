@@ -26,6 +26,7 @@ mod simulation;
 mod validate;
 pub(crate) mod warnings;
 mod wave_checks;
+pub mod wave_inputs;
 pub use warnings::collect_warnings;
 pub mod waves;
 mod winch;
@@ -216,8 +217,13 @@ impl Scenario {
         // [environment]
         let (env, global_current) = environment::environment(p, &raw.environment)?;
         let depth = env.depth;
-        let (sea, sea_warnings) =
-            waves::sea_state(p, raw.environment.waves.as_ref(), depth, env.gravity)?;
+        let (sea, sea_warnings) = waves::sea_state_for_run(
+            p,
+            raw.environment.waves.as_ref(),
+            depth,
+            env.gravity,
+            Some(sim.duration),
+        )?;
         sea_warnings
             .iter()
             .for_each(|w| warnings::warn(w.to_string()));

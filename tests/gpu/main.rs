@@ -28,6 +28,7 @@ mod shaders;
 mod step_functions;
 mod surface;
 mod wave_breach;
+mod wave_inputs;
 mod wave_parity;
 mod waves;
 mod winch;
