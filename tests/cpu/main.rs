@@ -17,6 +17,7 @@ mod catenary;
 mod chain_kernel;
 mod dynamics;
 mod frames;
+mod froude_krylov;
 mod net_kernel;
 mod nets;
 mod packed;
