@@ -301,7 +301,11 @@ fn dropped_features_are_warnings_naming_the_line() {
         .unwrap();
     close(rope.ei, 250.0, "EI");
     close(rope.cat, 0.5, "CaAx");
-    assert!(c.toml.contains("cat = 0.5  # CaAx, tangential added mass"), "{}", c.toml);
+    assert!(
+        c.toml.contains("cat = 0.5  # CaAx, tangential added mass"),
+        "{}",
+        c.toml
+    );
 }
 
 #[test]
@@ -311,7 +315,10 @@ fn tangential_added_mass_is_read_and_checked_in_both_versions() {
     assert_ne!(v1, V1);
     let (toml, sc) = convert(&v1);
     close(sc.model.line_types[0].cat, 0.3, "Cat");
-    assert!(toml.contains("cat = 0.3  # Cat, tangential added mass"), "{toml}");
+    assert!(
+        toml.contains("cat = 0.3  # Cat, tangential added mass"),
+        "{toml}"
+    );
     // A negative one is refused, naming the file, the line and the column as the
     // file's version names it.
     let bad1 = V1.replacen("0.9   0.0   1.6", "0.9   -0.3  1.6", 1);

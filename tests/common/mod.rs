@@ -231,13 +231,14 @@ sea_states = [
 pub fn froude_krylov_case(
     cm: f64,
     cat: f64,
-) -> (cablesim::model::Layout, Vec<[f64; 3]>, cablesim::sea::SeaState) {
+) -> (
+    cablesim::model::Layout,
+    Vec<[f64; 3]>,
+    cablesim::sea::SeaState,
+) {
     use cablesim::sea::dispersion::wave_number;
     let depth = 200.0;
-    let env = Environment {
-        depth,
-        ..water()
-    };
+    let env = Environment { depth, ..water() };
     let lt = LineType {
         name: "heavy".into(),
         diameter: 0.1,

@@ -32,7 +32,10 @@ fn submerged_element_carries_the_full_froude_krylov_load_on_every_cpu_path() {
         let (force, acc, scale) = froude_krylov_expected(&lay, &pos, &sea);
         // The water accelerates along and across the element by far more than the
         // tolerances below: the case tests both parts.
-        assert!(acc[0].abs() > 1e-3 * scale && acc[1].abs() > 1e-3 * scale, "{acc:?}");
+        assert!(
+            acc[0].abs() > 1e-3 * scale && acc[1].abs() > 1e-3 * scale,
+            "{acc:?}"
+        );
         let dt = 1e-4;
         let opts = SolverOptions {
             dt,
@@ -49,7 +52,13 @@ fn submerged_element_carries_the_full_froude_krylov_load_on_every_cpu_path() {
             let what = format!("cm {cm}, cat {cat}, exact {exact}");
             close(&format!("{what}: load"), total, force, fscale, 1e-12);
             for i in 0..2 {
-                close(&format!("{what}: node {i} acc"), ev.acc[i], acc, scale, 1e-12);
+                close(
+                    &format!("{what}: node {i} acc"),
+                    ev.acc[i],
+                    acc,
+                    scale,
+                    1e-12,
+                );
             }
             // A first step on each path.
             for chain in [false, true] {

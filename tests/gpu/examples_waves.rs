@@ -22,10 +22,10 @@
 //! more than the tolerance (the comparison shows that both paths apply the waves).
 
 use super::common::*;
+use cablesim::gpu::Precision;
 use cablesim::options::{Backend, Overrides};
 use cablesim::scenario::Scenario;
 use cablesim::sim::Simulation;
-use cablesim::gpu::Precision;
 use std::path::{Path, PathBuf};
 
 /// The chains whose dynamics amplify round-off, compared as the nets are.
@@ -108,7 +108,11 @@ fn run(sc: &Scenario, o: Overrides) -> (f64, Vec<Vec<[f64; 3]>>) {
     let mut sim = Simulation::new(sc.clone(), &o).unwrap();
     sim.advance_to(t).unwrap();
     let snap = sim.snapshot().unwrap();
-    assert!((snap.time - t).abs() < 2.0 * sim.dt(), "stopped at {}", snap.time);
+    assert!(
+        (snap.time - t).abs() < 2.0 * sim.dt(),
+        "stopped at {}",
+        snap.time
+    );
     (
         sim.dt(),
         snap.cables.into_iter().map(|c| c.positions).collect(),
@@ -148,7 +152,11 @@ fn gpu_matches_cpu_in_f64_on_every_example_with_waves() {
         // A net's nodes against the net's size (its longest twine line), a chain's
         // against its cable's length.
         let size = lengths.iter().fold(0.0f64, |m, &l| m.max(l));
-        let scale: Vec<f64> = if net { vec![size; lengths.len()] } else { lengths };
+        let scale: Vec<f64> = if net {
+            vec![size; lengths.len()]
+        } else {
+            lengths
+        };
         let cpu_o = Overrides {
             backend: Some(Backend::Cpu),
             ..Overrides::default()
@@ -189,7 +197,10 @@ fn gpu_matches_cpu_in_f64_on_every_example_with_waves() {
         let ex = path.file_name().unwrap().to_string_lossy().into_owned();
         let chaotic = net || AMPLIFIES.contains(&ex.as_str());
         if AMPLIFIES.contains(&ex.as_str()) {
-            assert!(envelope > 1e-9, "{ex}: its own envelope is only {envelope:e}");
+            assert!(
+                envelope > 1e-9,
+                "{ex}: its own envelope is only {envelope:e}"
+            );
         }
         let tol = if chaotic {
             10.0 * envelope + 1e-9

@@ -461,7 +461,9 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
                     cols.fill(c.n, eta, !cols.unit, u, c.uniform, aw);
                     let under = cols.unit.then_some(false);
                     // SAFETY: the caller's columns.
-                    unsafe { elements::<true, L, St>(c, state, u, aw, eta, wv, hmw, haw, under, None) }
+                    unsafe {
+                        elements::<true, L, St>(c, state, u, aw, eta, wv, hmw, haw, under, None)
+                    }
                 }
             }
         } else {
