@@ -10,8 +10,9 @@
 //! (`(M + dt diag(c)) a = F`, docs/src/model/seabed.md), so for it they bound nothing
 //! and only the seabed stiffness counts; the Runge-Kutta schemes take them explicitly
 //! and keep their bounds. `m` is the node's scalar mass without added
-//! mass (the axial direction has none, and neither has anything above the water
-//! surface), so the estimate errs on the safe side. The
+//! mass (the axial direction has only the tangential added mass `Cat rho A`, which
+//! is zero by default and never negative, and nothing above the water surface has
+//! any), so the estimate errs on the safe side. The
 //! modes of a node are summed for the symplectic scheme (damping only shrinks its step);
 //! RK2 and RK4 steps grow with damping, so there each mode counts only the damping acting
 //! on it (axial waves with internal damping, seabed stiffness with seabed damping). The

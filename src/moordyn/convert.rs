@@ -11,8 +11,9 @@
 //! - Tangential drag: MoorDyn `1/2 rho CdAx pi d l |vq| vq` (surface area pi d l, v1
 //!   `Cdt` alike); cablesim `1/2 rho ct pi d l |vt| vt`: `ct = CdAx`.
 //! - Normal added mass: MoorDyn `Ca rho (pi d^2/4) l` across the line; cablesim
-//!   `cm rho A l` likewise: `cm = Ca`. cablesim has no tangential added mass: a
-//!   nonzero `CaAx` is dropped with a warning.
+//!   `cm rho A l` likewise: `cm = Ca`. Tangential added mass: MoorDyn `CaAx rho (pi
+//!   d^2/4) l` along the line (v1 `Cat`), with the Froude-Krylov load `(1 + CaAx) rho V
+//!   a_t` along it; cablesim `cat rho A l0` and `(1 + cat) rho A l0 a_t`: `cat = CaAx`.
 //! - Internal damping: MoorDyn's segment force is `BA epsdot` (N s); cablesim's is
 //!   `EA c epsdot` with the time constant `c` (s): `c = BA / EA`. A negative entry is
 //!   a damping ratio `zeta = -BA`, for which MoorDyn sets
@@ -222,7 +223,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
     // Line types.
     let mut types: HashMap<&str, (usize, f64, f64)> = HashMap::new();
     for (i, t) in file.line_types.iter().enumerate() {
-        let (ea, ba) = check_type(p, t, &mut warn)?;
+        let (ea, ba) = check_type(p, t, file.version, &mut warn)?;
         if types.insert(t.name.as_str(), (i, ea, ba)).is_some() {
             return Err(err_at(
                 p,
@@ -708,9 +709,9 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         let _ = writeln!(w, "ea = {}  # N", f(ea));
         let _ = writeln!(w, "# {}", lt.note);
         let _ = writeln!(w, "damping = {}  # s", f(lt.c));
-        let (cd, cdax, ca) = match file.version {
-            Version::V1 => ("Cdn", "Cdt", "Can"),
-            Version::V2 => ("Cd", "CdAx", "Ca"),
+        let (cd, cdax, ca, caax) = match file.version {
+            Version::V1 => ("Cdn", "Cdt", "Can", "Cat"),
+            Version::V2 => ("Cd", "CdAx", "Ca", "CaAx"),
         };
         let _ = writeln!(w, "cn = {}  # {cd}, on the frontal area d l", f(t.cd));
         let _ = writeln!(
@@ -719,6 +720,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             f(t.cdax)
         );
         let _ = writeln!(w, "cm = {}  # {ca}, normal added mass", f(t.ca));
+        let _ = writeln!(w, "cat = {}  # {caax}, tangential added mass", f(t.caax));
         if t.ei > 0.0 {
             let _ = writeln!(
                 w,

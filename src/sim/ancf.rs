@@ -110,6 +110,13 @@ pub fn cable_config(
             ));
         }
     }
+    if def.line_types[c.line_type].cat != 0.0 {
+        return Err(unsupported(
+            sc,
+            ci,
+            "has no tangential added mass, and this cable's line type sets `cat`".to_string(),
+        ));
+    }
     let length: f64 = c.l0.iter().sum();
     let l_std = settings
         .element_length

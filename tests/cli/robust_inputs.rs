@@ -356,6 +356,13 @@ fn inputs_whose_squares_overflow_name_their_field() {
             "the added mass of a cable (cm 1e200",
         ),
         (
+            "cm = 0.2",
+            "cm = 0.2\ncat = 1e200",
+            "",
+            "line_types[0] (\"wire\").cat",
+            "the tangential added mass of a cable (cat 1e200",
+        ),
+        (
             "end = { fixed = [0.0, 0.0, -10.0] }",
             "end = { point = \"buoy\" }",
             &format!("{point}mass = 1e200\n"),

@@ -18,6 +18,7 @@ mod chain_kernel;
 mod dynamics;
 mod frames;
 mod free_bodies;
+mod froude_krylov;
 mod net_kernel;
 mod nets;
 mod packed;

@@ -268,8 +268,10 @@ impl<R: GpuReal> GpuEngine<R> {
                 drag_n: R::c(c.drag_n),
                 drag_t: R::c(c.drag_t),
                 froude_krylov: R::c(c.froude_krylov),
+                froude_krylov_t: R::c(c.froude_krylov_t),
                 mass: R::c(c.mass),
                 added_mass: R::c(c.added_mass),
+                added_mass_t: R::c(c.added_mass_t),
                 wet_weight_z: R::c(c.wet_weight_z),
                 compression: R::c(c.compression),
             })
