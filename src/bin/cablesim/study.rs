@@ -396,11 +396,42 @@ fn merge_dirs(dirs: &[PathBuf], out: Option<PathBuf>) -> Result<()> {
     Ok(())
 }
 
-/// Quotes a string for a POSIX shell.
+/// Quotes a string for a POSIX shell: single quotes, in which nothing is special, and
+/// each `'` as `'\''`. The result is one word whatever the string holds (spaces, `$`,
+/// backticks, backslashes, double quotes, newlines).
 fn sh(s: &str) -> String {
     format!("'{}'", s.replace('\'', r"'\''"))
 }
 
+/// A path as UTF-8 for the script, or an error naming the flag: a path that is not
+/// UTF-8 would reach the jobs changed (`to_string_lossy`).
+fn utf8<'a>(p: &'a Path, what: &str) -> Result<&'a str> {
+    p.to_str()
+        .with_context(|| format!("{what} {}: not UTF-8, which the script cannot hold", p.display()))
+}
+
+/// A path for a `#` comment of the script: on one line whatever it holds (a newline in
+/// it would end the comment and make the rest a command).
+fn comment(s: &str) -> String {
+    s.escape_debug().to_string()
+}
+
+/// A here-document of `body`, read as is (`<<'DELIM'`: no expansion, no command
+/// substitution), ended by a delimiter that is no line of the body.
+fn here_doc(body: &str) -> (String, String) {
+    let mut delim = String::from("CABLESIM_JOB");
+    while body.lines().any(|l| l == delim) {
+        delim.push('_');
+    }
+    (format!("<<'{delim}'"), format!("{body}{delim}"))
+}
+
+/// Writes the Slurm submission script. Every path is embedded as a single-quoted word,
+/// both in the script and in the job scripts it submits (quoted here-documents, which
+/// the shell copies without expanding anything), so a path reaches `cablesim` as given
+/// and runs nothing, whatever characters it holds. The jobs' logs are named relative to
+/// their working directory (`--chdir` OUT), so that a `%` or `\` in OUT is not read as
+/// part of sbatch's file-name pattern.
 fn slurm(
     file: &Path,
     shards: usize,
@@ -428,26 +459,38 @@ fn slurm(
         None => std::env::current_exe().context("cannot tell where this cablesim is")?,
     };
     let script = script.unwrap_or_else(|| out.join("submit.sh"));
-    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
-    let (exe, file, outs) = (
-        sh(&exe.to_string_lossy()),
-        sh(&file.to_string_lossy()),
-        sh(&out.to_string_lossy()),
+    let (exe_s, file_s, out_s) = (
+        utf8(&exe, "--cablesim")?,
+        utf8(&file, "the study file")?,
+        utf8(&out, "--out")?,
     );
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let (exe_q, file_q, out_q) = (sh(exe_s), sh(file_s), sh(out_s));
     let shard_dirs: Vec<String> = (1..=shards)
         .map(|k| {
-            format!(
-                "\"$OUT\"/{}",
+            sh(&format!(
+                "{out_s}/{}",
                 shard_dir_name(ShardSpec {
                     index: k,
                     count: shards
                 })
-            )
+            ))
         })
         .collect();
+    // The job scripts, with the paths as single-quoted words; `$SLURM_ARRAY_TASK_ID` is
+    // expanded on the compute node, where it is a number.
+    let (shard_open, shard_body) = here_doc(&format!(
+        "#!/bin/bash\nexec {exe_q} study run {file_q} --resume{run_args} \\\n  \
+         --shard \"$SLURM_ARRAY_TASK_ID/{shards}\" \\\n  \
+         --out {out_q}/\"shard-$SLURM_ARRAY_TASK_ID-of-{shards}\"\n"
+    ));
+    let (merge_open, merge_body) = here_doc(&format!(
+        "#!/bin/bash\nexec {exe_q} study merge {} --out {out_q}\n",
+        shard_dirs.join(" ")
+    ));
     let text = format!(
         r#"#!/bin/bash
-# Written by `cablesim study slurm`: study {file}, {members} members in {shards} shards.
+# Written by `cablesim study slurm`: study {file_c}, {members} members in {shards} shards.
 # Submit it with `bash submit.sh` (extra arguments go to the merge job's sbatch, e.g.
 # --wait to return when the study is merged, with exit status 1 if it was not: the
 # cluster should then cancel a merge job whose shards failed, kill_invalid_depend in
@@ -455,30 +498,32 @@ fn slurm(
 # a task that is cancelled or hits its time limit keeps its finished members, and
 # resubmitting resumes it. The merged study.csv, members.csv and study.json land in $OUT.
 # Add sbatch options (partition, time limit, CPUs per task) in SBATCH_ARGS.
+# The paths are single-quoted words, in the job scripts too (here-documents that are
+# not expanded): they reach cablesim as written.
 set -euo pipefail
-CABLESIM={exe}
-STUDY={file}
-OUT={outs}
+CABLESIM={exe_q}
+STUDY={file_q}
+OUT={out_q}
 mkdir -p "$OUT"
-array_job=$(sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-study \
-  --array=1-{shards} --output="$OUT/slurm-%A_%a.out" <<EOS
-#!/bin/bash
-exec "$CABLESIM" study run "$STUDY" --resume{run_args} \
-  --shard "\$SLURM_ARRAY_TASK_ID/{shards}" --out "$OUT/shard-\$SLURM_ARRAY_TASK_ID-of-{shards}"
-EOS
-)
+# sbatch's answer goes through a file: a here-document inside $(...) is parsed
+# differently by older shells.
+ids="$OUT/.sbatch-$$"
+sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-study \
+  --array=1-{shards} --chdir="$OUT" --output=slurm-%A_%a.out >"$ids" {shard_open}
+{shard_body}
+array_job=$(cat "$ids")
 array_job=${{array_job%%;*}}
 echo "shards: job array $array_job"
 # With --wait, sbatch returns 0 also when the merge job never ran (cancelled because a
 # shard failed): the merged study.json, newer than this submission, says it did.
 stamp="$OUT/.submitted-$array_job"
 touch "$stamp"
-merge_job=$(sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-merge \
-  --dependency=afterok:"$array_job" --output="$OUT/slurm-merge-%j.out" "$@" <<EOS
-#!/bin/bash
-exec "$CABLESIM" study merge {dirs} --out "$OUT"
-EOS
-)
+sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-merge \
+  --dependency=afterok:"$array_job" --chdir="$OUT" --output=slurm-merge-%j.out "$@" \
+  >"$ids" {merge_open}
+{merge_body}
+merge_job=$(cat "$ids")
+rm -f "$ids"
 echo "merge: job ${{merge_job%%;*}}"
 for a in "$@"; do
   if [ "$a" = --wait ] || [ "$a" = -W ]; then
@@ -493,14 +538,14 @@ for a in "$@"; do
 done
 rm -f "$stamp"
 "#,
+        file_c = comment(file_s),
         members = plan.members.len(),
-        dirs = shard_dirs.join(" "),
     );
     std::fs::write(&script, text).with_context(|| format!("cannot write {}", script.display()))?;
     eprintln!(
         "wrote {}: submit it with `bash {}`",
         script.display(),
-        script.display()
+        sh(&script.to_string_lossy())
     );
     Ok(())
 }
