@@ -10,8 +10,10 @@ mod common;
 
 mod ancf_scenario;
 mod end_to_end;
+mod estimates;
 mod examples;
 mod fuzz_scenarios;
+mod logging;
 mod moordyn_input;
 mod robust_inputs;
 mod robust_runs;

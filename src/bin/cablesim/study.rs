@@ -30,9 +30,6 @@ pub enum StudyCmd {
         /// there are kept and not run again.
         #[arg(long)]
         resume: bool,
-        /// No progress bar and no per-sea-state lines (a failed member is still reported).
-        #[arg(long, short)]
-        quiet: bool,
         /// Where the members run: cpu (each member its own run, members in parallel
         /// across the threads), gpu (members packed into one run on the GPU, all in
         /// one layout, in batches of --batch), or auto (packed, on the backend the
@@ -94,14 +91,15 @@ pub enum StudyCmd {
 
 /// Runs a study command; `study run` stopped by Ctrl-C or SIGTERM ends as
 /// [`RunOutcome::Interrupted`] (exit status 130, as a single run).
-pub fn main(cmd: StudyCmd) -> Result<RunOutcome> {
+/// `quiet` (the global `-q`): no progress bar, no estimate, no per-sea-state or closing
+/// lines (a failed member and an interruption are still reported).
+pub fn main(cmd: StudyCmd, quiet: bool) -> Result<RunOutcome> {
     match cmd {
         StudyCmd::Run {
             file,
             shard,
             out,
             resume,
-            quiet,
             backend,
             precision,
             batch,
@@ -207,7 +205,7 @@ fn run(
     let duration = plan.def.duration;
     // Position in member-milliseconds of simulated time.
     let ms = |s: f64| (s * 1e3).round() as u64;
-    let bar = if quiet {
+    let bar = if !crate::show_progress(quiet) {
         indicatif::ProgressBar::hidden()
     } else {
         indicatif::ProgressBar::new(ms(duration) * members.len() as u64)
@@ -246,6 +244,25 @@ fn run(
             done.len(),
             out.display()
         );
+        let est = runner.estimate(remaining.len())?;
+        match &packed {
+            None => eprintln!("work: {}", est.describe()),
+            // Packed: one run of every member's nodes, on a backend chosen when it
+            // starts; the GPU's figure is a predicted lower bound (sim::estimate).
+            Some(p) => {
+                use cablesim::sim::estimate::{duration_words, GPU_HARDWARE_RATE};
+                let rate = GPU_HARDWARE_RATE[(p.precision == Some(Precision::F64)) as usize];
+                eprintln!(
+                    "work: {:.3e} node-steps; packed on a datacenter GPU at least {} (its predicted bandwidth limit, {rate:.1e} node-steps/s, not measured); {}",
+                    est.node_steps,
+                    duration_words(est.node_steps / rate),
+                    est.how.replacen("on the CPU path", &format!("about {} on the CPU path", duration_words(est.seconds)), 1)
+                )
+            }
+        }
+    } else {
+        // The budget is checked all the same (a member beyond it is refused here).
+        runner.estimate(remaining.len())?;
     }
 
     // Per sea state of this shard: members in it, and members finished and failed.
@@ -328,6 +345,12 @@ fn run(
     let shard_result = plan.shard_result(shard, all);
     shard_result.write(&dir.shard_file())?;
     dir.write_status(&st)?;
+    if quiet {
+        if shard == ShardSpec::WHOLE {
+            write_tables(&out, vec![(dir.shard_file(), shard_result)])?;
+        }
+        return Ok(RunOutcome::Done);
+    }
     if shard == ShardSpec::WHOLE {
         write_tables(&out, vec![(dir.shard_file(), shard_result)])?;
         eprintln!(
@@ -429,9 +452,12 @@ fn here_doc(body: &str) -> (String, String) {
 /// Writes the Slurm submission script. Every path is embedded as a single-quoted word,
 /// both in the script and in the job scripts it submits (quoted here-documents, which
 /// the shell copies without expanding anything), so a path reaches `cablesim` as given
-/// and runs nothing, whatever characters it holds. The jobs' logs are named relative to
-/// their working directory (`--chdir` OUT), so that a `%` or `\` in OUT is not read as
-/// part of sbatch's file-name pattern.
+/// and runs nothing, whatever characters it holds. The jobs run in OUT (`--chdir`). Their
+/// logs are sbatch's `--output` pattern, but sbatch reads `%` in the whole path as a
+/// pattern (the working directory included) and a `\` as "no pattern at all": with
+/// either in OUT, sbatch gets `--output=/dev/null` and each job sends its own output to
+/// its log, by a redirection with the path single-quoted (Slurm's own messages about a
+/// job, such as a time limit, are then lost).
 fn slurm(
     file: &Path,
     shards: usize,
@@ -479,13 +505,27 @@ fn slurm(
         .collect();
     // The job scripts, with the paths as single-quoted words; `$SLURM_ARRAY_TASK_ID` is
     // expanded on the compute node, where it is a number.
+    // Logs: sbatch's pattern, or (a `%` or `\` in OUT) the job's own redirection.
+    let plain = !out_s.contains(['%', '\\']);
+    let (shard_log, merge_log, shard_redirect, merge_redirect) = if plain {
+        ("slurm-%A_%a.out", "slurm-merge-%j.out", String::new(), String::new())
+    } else {
+        (
+            "/dev/null",
+            "/dev/null",
+            format!(
+                "exec >{out_q}/\"slurm-${{SLURM_ARRAY_JOB_ID}}_${{SLURM_ARRAY_TASK_ID}}.out\" 2>&1\n"
+            ),
+            format!("exec >{out_q}/\"slurm-merge-${{SLURM_JOB_ID}}.out\" 2>&1\n"),
+        )
+    };
     let (shard_open, shard_body) = here_doc(&format!(
-        "#!/bin/bash\nexec {exe_q} study run {file_q} --resume{run_args} \\\n  \
+        "#!/bin/bash\n{shard_redirect}exec {exe_q} study run {file_q} --resume{run_args} \\\n  \
          --shard \"$SLURM_ARRAY_TASK_ID/{shards}\" \\\n  \
          --out {out_q}/\"shard-$SLURM_ARRAY_TASK_ID-of-{shards}\"\n"
     ));
     let (merge_open, merge_body) = here_doc(&format!(
-        "#!/bin/bash\nexec {exe_q} study merge {} --out {out_q}\n",
+        "#!/bin/bash\n{merge_redirect}exec {exe_q} study merge {} --out {out_q}\n",
         shard_dirs.join(" ")
     ));
     let text = format!(
@@ -509,7 +549,7 @@ mkdir -p "$OUT"
 # differently by older shells.
 ids="$OUT/.sbatch-$$"
 sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-study \
-  --array=1-{shards} --chdir="$OUT" --output=slurm-%A_%a.out >"$ids" {shard_open}
+  --array=1-{shards} --chdir="$OUT" --output={shard_log} >"$ids" {shard_open}
 {shard_body}
 array_job=$(cat "$ids")
 array_job=${{array_job%%;*}}
@@ -519,7 +559,7 @@ echo "shards: job array $array_job"
 stamp="$OUT/.submitted-$array_job"
 touch "$stamp"
 sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-merge \
-  --dependency=afterok:"$array_job" --chdir="$OUT" --output=slurm-merge-%j.out "$@" \
+  --dependency=afterok:"$array_job" --chdir="$OUT" --output={merge_log} "$@" \
   >"$ids" {merge_open}
 {merge_body}
 merge_job=$(cat "$ids")

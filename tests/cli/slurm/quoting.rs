@@ -13,8 +13,10 @@ const STUDY: &str = "examples/study_spread_mooring.toml";
 /// A stand-in for sbatch: takes the options the script passes (`--array=1-N`,
 /// `--chdir=`, `--output=`, `--dependency=afterok:ID`, `--parsable`), reads the job
 /// script from standard input, runs it with bash in the `--chdir` folder (each array
-/// task with its SLURM_ARRAY_TASK_ID), its output in the `--output` file (`%A`, `%a`,
-/// `%j` replaced), and prints the job id. A job whose dependency failed does not run.
+/// task with its SLURM_ARRAY_TASK_ID and SLURM_ARRAY_JOB_ID), its output in the
+/// `--output` file (`%A`, `%a`, `%j` replaced; the script gives `/dev/null` for a path
+/// like these, whose jobs write their own logs), and prints the job id. A job whose
+/// dependency failed does not run.
 const SBATCH: &str = r#"#!/bin/bash
 set -u
 state=${FAKE_SBATCH_STATE:?}
@@ -43,7 +45,8 @@ name() { # the --output pattern for task $1
   printf '%s' "$f"
 }
 run() { # task $1 ("" outside an array); the log relative to the --chdir folder
-  ( cd "$chdir" && SLURM_JOB_ID=$n SLURM_ARRAY_TASK_ID=$1 bash "$job" > "$(name "$1")" 2>&1 ) \
+  ( cd "$chdir" && SLURM_JOB_ID=$n SLURM_ARRAY_JOB_ID=$n SLURM_ARRAY_TASK_ID=$1 \
+    bash "$job" > "$(name "$1")" 2>&1 ) \
     || touch "$state/failed-$n"
 }
 if [ -n "$array" ]; then
