@@ -45,7 +45,7 @@ extremes, the RMS of the difference of the two time series (both sampled at the 
 times) relative to the tension's amplitude, and the line shape: the largest distance
 between the two tools' node positions (same segment count) over the window.
 
-Known differences of the models (see BENCHMARKS.md "cablesim against MoorDyn in
+Known differences of the models (see benchmarks/history/BENCHMARKS-2026-12.md "cablesim against MoorDyn in
 regular waves" for the measured sizes):
 
 * Water acceleration: cablesim applies Froude-Krylov + added mass on the normal part of
