@@ -50,7 +50,7 @@ extremes, the RMS of the difference of the two time series (both sampled at the 
 times) relative to the tension's amplitude, and the line shape: the largest distance
 between the two tools' node positions (same segment count) over the window.
 
-Known differences of the models (see BENCHMARKS.md "cablesim against MoorDyn in
+Known differences of the models (see benchmarks/history/BENCHMARKS-2026-12.md "cablesim against MoorDyn in
 regular waves" for the measured sizes):
 
 * Water acceleration: the same terms, `(1 + Ca) rho V a_n + (1 + CaAx) rho V a_t`

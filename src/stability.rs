@@ -37,6 +37,9 @@ pub struct StepBound {
     pub dt: f64,
     /// The term that sets it, in words (which cable, node, mode).
     pub term: String,
+    /// What sets that term and the scenario key that changes it, in words (empty when
+    /// nothing bounds the step).
+    pub fix: String,
 }
 
 /// What a mode comes from; put in words ([`Term::describe`]) only for the one that
@@ -60,7 +63,11 @@ impl Term {
         let sb = lay.env.seabed;
         let element = |e: usize, l0: f64| {
             let (_, ek) = lay.describe_element(e);
-            format!("(element {ek}, l0 = {l0:.4} m)")
+            if l0 >= 1e-3 {
+                format!("(element {ek}, l0 = {l0:.4} m)")
+            } else {
+                format!("(element {ek}, l0 = {l0:.3e} m)")
+            }
         };
         match self {
             Term::Baumgarte => format!("the Baumgarte gains at cable '{cable}' node {node}"),
@@ -78,6 +85,60 @@ impl Term {
                 "seabed friction (mu = {}, v_eps = {} m/s) at cable '{cable}' node {node}",
                 sb.friction, sb.friction_velocity
             ),
+        }
+    }
+}
+
+impl Term {
+    /// What to change in the scenario to lengthen the step this term sets at node `i`:
+    /// the value behind it and its key.
+    fn fix(self, lay: &Layout, i: usize) -> String {
+        let (cable, _) = lay.describe_node(i);
+        let sb = lay.env.seabed;
+        let line = |e: usize| {
+            let t = lay.elem_line[e] as usize;
+            (&lay.line_types[t].name, lay.line_coefs[t])
+        };
+        match self {
+            Term::Baumgarte => "the held-end constraints' gains: lower `[simulation] \
+                               baumgarte_alpha` and `baumgarte_beta`"
+                .into(),
+            Term::Axial(e, l0) => {
+                let (name, c) = line(e);
+                format!(
+                    "the axial wave crosses an element of {l0:.3e} m in {:.3e} s (the step \
+                     scales with the element length, at the wave speed sqrt(EA / m) = \
+                     {:.3e} m/s of line type '{name}'): give cable '{cable}' fewer \
+                     `segments` (or a smaller `length`)",
+                    l0 / (c.ea / c.mass).sqrt(),
+                    (c.ea / c.mass).sqrt()
+                )
+            }
+            Term::Internal(e, l0) => {
+                let (name, c) = line(e);
+                format!(
+                    "the internal damping of line type '{name}' (`damping` = {:.3e} s) \
+                     damps an element of {l0:.3e} m faster than any step can follow: the \
+                     step is at most about l0^2 m / (2 EA c); lower that `damping` in \
+                     [[line_types]], or give cable '{cable}' fewer `segments` (the step \
+                     grows with the element length squared)",
+                    c.ea_c / c.ea
+                )
+            }
+            Term::SeabedStiffness => format!(
+                "the seabed's stiffness ({:.3e} N/m per m): lower `[environment.seabed] \
+                 stiffness`",
+                sb.stiffness
+            ),
+            Term::SeabedDamping => format!(
+                "the seabed's damping ({:.3e} N s/m per m), explicit in the Runge-Kutta \
+                 schemes: lower `[environment.seabed] damping`, or use the symplectic scheme",
+                sb.damping
+            ),
+            Term::Friction => "the seabed's regularised friction, explicit in the \
+                               Runge-Kutta schemes: raise `[environment.seabed] \
+                               friction_velocity`, or use the symplectic scheme"
+                .into(),
         }
     }
 }
@@ -359,10 +420,12 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
         Some((dt, i, term)) if dt < f64::INFINITY || dt.is_nan() => StepBound {
             dt,
             term: term.describe(lay, i),
+            fix: term.fix(lay, i),
         },
         _ => StepBound {
             dt: f64::INFINITY,
             term: "nothing (no stiff term)".into(),
+            fix: String::new(),
         },
     }
 }

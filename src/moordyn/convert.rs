@@ -60,14 +60,7 @@ impl Default for ConvertOptions {
     }
 }
 
-/// Something dropped or approximated, at a line of the file.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Warning {
-    /// 1-based line number (0: the file as a whole).
-    pub line: usize,
-    /// What was dropped or approximated, and its effect.
-    pub message: String,
-}
+pub use super::Warning;
 
 /// The conversion's result.
 #[derive(Clone, Debug)]

@@ -2,7 +2,7 @@
 //! line each came from, for comments and warnings), and MoorDyn's steady current
 //! profile file (its wave files: `moordyn::waves`).
 
-use super::convert::Warning;
+use super::Warning;
 use super::err_at;
 use super::parse::MoorDynFile;
 use crate::error::Error;

@@ -94,6 +94,51 @@ impl StudyRunner {
         &self.plan
     }
 
+    /// The work of `members` members of this study, before any runs: each member's
+    /// node-steps (the first member's model and step plan at the study's duration;
+    /// every member has the same model and step) and the wall time estimated for them
+    /// on the CPU path, members in parallel on this process's threads
+    /// ([`crate::sim::estimate`]). A member beyond the work budget is refused here, as
+    /// its run would be.
+    pub fn estimate(&self, members: usize) -> Result<crate::sim::estimate::Estimate, Error> {
+        use crate::options::SolverOptions;
+        let Some(first) = self.plan.members.first() else {
+            return Ok(crate::sim::estimate::Estimate {
+                node_steps: 0.0,
+                seconds: 0.0,
+                how: String::new(),
+            });
+        };
+        let sc = self.member_scenario(first)?;
+        let (lay, _) = crate::model::Layout::build(&sc.model)?;
+        let opts = SolverOptions {
+            scheme: sc.sim.scheme,
+            formulation: sc.sim.formulation,
+            baumgarte: sc.sim.baumgarte,
+            ..SolverOptions::default()
+        };
+        let plan = crate::sim::plan_steps(&sc, &lay, &opts, self.plan.def.duration, sc.sim.dt)?;
+        let waves = crate::sim::budget::in_waves(&sc);
+        let one = crate::sim::estimate::lumped(
+            &lay,
+            &opts,
+            plan.total_steps,
+            waves,
+            crate::sim::estimate::Path::Cpu(1),
+        );
+        let threads = rayon::current_num_threads().clamp(1, members.max(1));
+        let seconds = one.seconds * members as f64 / threads as f64;
+        Ok(crate::sim::estimate::Estimate {
+            node_steps: one.node_steps * members as f64,
+            seconds,
+            how: format!(
+                "on the CPU path ({members} members of {:.3e} node-steps, {threads} at a time; {})",
+                one.node_steps,
+                one.how.trim_start_matches("on the CPU path ")
+            ),
+        })
+    }
+
     /// The scenario text member `m` runs (module documentation): writing it to a file
     /// beside the base scenario and running it alone reproduces the member.
     pub fn member_toml(&self, m: &Member) -> String {

@@ -10,9 +10,11 @@ mod common;
 
 mod ancf_scenario;
 mod end_to_end;
+mod estimates;
 mod examples;
 mod fatigue;
 mod fuzz_scenarios;
+mod logging;
 mod moordyn_input;
 mod moordyn_waves;
 mod robust_inputs;

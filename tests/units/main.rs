@@ -2,7 +2,7 @@
 //! had unit tests (`sea_kinematics.rs` holds those of `src/sea/kinematics.rs`). They were
 //! `#[cfg(test)]` modules in `src/`; here `cargo test` builds them into `tests/all.rs`
 //! (module `units`) instead of compiling the whole library a second time with
-//! `cfg(test)` (BENCHMARKS.md, "Test build"). The items they reach that are not part of
+//! `cfg(test)` (benchmarks/history/BENCHMARKS-2026-12.md, "Test build"). The items they reach that are not part of
 //! the API come through `cablesim::testing` (hidden from the docs). Also a binary of
 //! its own, built only when named: `cargo test --release --test units -- sea_kinematics::`.
 

@@ -15,7 +15,7 @@ use crate::gpu::host::{body_rows, rebased_route, route_samples, split, Host};
 use crate::gpu::kernel::{fused_workgroup, STEPS_PER_SUBMISSION, WORKGROUP};
 use crate::gpu::layout::*;
 use crate::gpu::shaders::{self, Stage};
-use crate::gpu::solver::GpuTimings;
+use super::GpuTimings;
 use crate::gpu::wave_schedule::{
     fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_DUE_STRIDE, WAVE_ELEM_ROWS,
     WAVE_ELEM_STRIDE,
