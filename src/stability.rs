@@ -413,7 +413,12 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
     }
     if let Some((dt, term)) = body_best {
         if best.is_none_or(|(b, _, _)| dt < b) {
-            return StepBound { dt, term };
+            return StepBound {
+                dt,
+                term,
+                fix: "a free body's `mass`, `inertia`, `stiffness` or `damping` in `[[bodies]]`"
+                    .to_string(),
+            };
         }
     }
     match best {
