@@ -150,4 +150,5 @@ pub struct RawCable {
 pub struct RawOutput {
     pub positions: Option<toml::Value>,
     pub vtk: Option<bool>,
+    pub format: Option<String>,
 }

@@ -166,6 +166,7 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
         depth_bands: first.depth_bands,
         points,
         vtk: false,
+        output_format: Default::default(),
         // Each member passed its own budget; the packed run is their sum.
         limits: {
             let (n, l) = (members.len() as f64, &first.limits);

@@ -13,6 +13,7 @@ mod end_to_end;
 mod examples;
 mod fuzz_scenarios;
 mod moordyn_input;
+mod output_formats;
 mod robust_inputs;
 mod robust_runs;
 mod scenario;
