@@ -1,5 +1,5 @@
 //! The GPU path's host rows of an RAO body alone, for load-independent instruction
-//! counts (BENCHMARKS.md, "RAO body motion between knots"): the design-check platform
+//! counts (benchmarks/history/BENCHMARKS-2026-12.md, "RAO body motion between knots"): the design-check platform
 //! (`examples/study_design_check.toml`: the synthetic RAO table in the 200-component
 //! JONSWAP sea) through `gpu::solver::body_rows`, the function `write_bodies` calls per
 //! member and submission, in submissions of 75 steps (an output interval of 0.5 s at the

@@ -1,5 +1,5 @@
 //! How often the waves' kinematics cache refreshes in a packed GPU study, and so how
-//! many fused-kernel dispatches a step costs (BENCHMARKS.md, "The design-check study on
+//! many fused-kernel dispatches a step costs (benchmarks/history/BENCHMARKS-2026-12.md, "The design-check study on
 //! the GPU path"):
 //!
 //! `target/release/examples/study_refresh_schedule examples/study_design_check.toml 0.006666666666666667 1620000`

@@ -3,7 +3,7 @@
 //! `above` m of the mean level (default -20: the design member's band 0 and its
 //! fairleads), the output samples at which a node was over the elevation above it
 //! (`z > eta`), and the least submergence `eta - z` seen. Why: the cache's factor near
-//! the surface (BENCHMARKS.md, "Why the surface needs 0.3 of the rule") matters where
+//! the surface (benchmarks/history/BENCHMARKS-2026-12.md, "Why the surface needs 0.3 of the rule") matters where
 //! the surface uncovers nodes.
 //!
 //! `target/release/examples/surface_count examples/study_design_check.toml o/positions.csv`

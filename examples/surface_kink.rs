@@ -92,6 +92,7 @@ fn rope(zf: f64) -> (Layout, Vec<[f64; 3]>) {
         cn: 1.2,
         ct: 0.01,
         cm: 1.0,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     };

@@ -1,5 +1,5 @@
 //! How many components the refresh's decay pass sums per depth band on a member's
-//! actual depths (BENCHMARKS.md, "The GPU step in waves", the counted part): the
+//! actual depths (benchmarks/history/BENCHMARKS-2026-12.md, "The GPU step in waves", the counted part): the
 //! scenario run on the CPU path, and at each sample time every node's band and the
 //! prefix its refresh would sum at its state then (`CpuSolver::wave_decay_prefixes`:
 //! `sea::cut::wave_decay_prefix`, the Rust twin of the shader's), averaged per band

@@ -7,7 +7,7 @@
    names the project's private notes (the shared folder beside the checkout, its model
    page), and no Markdown link climbs out of the repository.
 2. Every link of the built book (`mdbook build docs` first) resolves: the page exists and
-   so does the anchor. Relative links in README.md and BENCHMARKS.md resolve too.
+   so does the anchor. Relative links in README.md, BENCHMARKS.md and the benchmark history resolve too.
 3. The scenario reference lists exactly the keys the scenario parser accepts: every key
    in the first column of a table in docs/src/scenario.md is a key of the code in
    src/scenario/ (or of the serde structs it reads), and every key of the code is in the
@@ -31,6 +31,7 @@ ROOT = Path(__file__).resolve().parent.parent
 TEXT_ROOTS = [
     "README.md",
     "BENCHMARKS.md",
+    "benchmarks",
     "Cargo.toml",
     ".ci",
     "docs/src",
@@ -310,7 +311,9 @@ def main():
     args = ap.parse_args()
     problems = []
     check_outside(problems)
-    check_markdown_links(problems, ["README.md", "BENCHMARKS.md"])
+    check_markdown_links(
+        problems, ["README.md", "BENCHMARKS.md", "benchmarks/history/BENCHMARKS-2026-12.md"]
+    )
     check_book(problems, (ROOT / args.book))
     check_tables(problems, [ROOT / "README.md", *sorted((ROOT / "docs/src").rglob("*.md"))])
     check_keys(problems)

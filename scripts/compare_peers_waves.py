@@ -3,7 +3,7 @@
 
 Run by hand, not by `cargo test`:
 
-    python3 scripts/compare_peers_waves.py --out target/peers-waves
+    python3 scripts/compare_peers_waves.py --out target/peers-waves --caax 0,1
 
 Like scripts/compare_peers.py (whose helpers, virtualenv and MoorDyn input conversion
 it reuses), it makes `.venv-peers/` on first use and re-runs itself there.
@@ -38,6 +38,11 @@ MoorDyn has no start-up ramp, so cablesim runs with `ramp = 0`; both start from 
 still-water static shapes with the full wave at t = 0, and the analysis window is the
 last `--window` periods of `--duration` (150 s), after the start transient.
 
+Each case runs once per tangential added-mass coefficient of `--caax` (a list, default
+0): MoorDyn's `CaAx` and cablesim's `cat`, the same number (`--md-caax` gives MoorDyn
+another one, for experiments). The issue's criteria are checked: the fairlead tension's
+first-harmonic amplitude within 2% and its phase within 3 degrees of MoorDyn's.
+
 What is compared, per case: the fairlead tension over the window, as its mean and its
 first harmonic (least-squares fit of `T0 + a cos(w t) + b sin(w t)`: amplitude and the
 phase of its maximum, in degrees of the wave period after the crest passes x = 0), the
@@ -45,13 +50,14 @@ extremes, the RMS of the difference of the two time series (both sampled at the 
 times) relative to the tension's amplitude, and the line shape: the largest distance
 between the two tools' node positions (same segment count) over the window.
 
-Known differences of the models (see BENCHMARKS.md "cablesim against MoorDyn in
+Known differences of the models (see benchmarks/history/BENCHMARKS-2026-12.md "cablesim against MoorDyn in
 regular waves" for the measured sizes):
 
-* Water acceleration: cablesim applies Froude-Krylov + added mass on the normal part of
-  the water acceleration only, `(1 + Cm) rho A l0 P a` (docs/src/model/glmf.md);
-  MoorDyn also applies the tangential part, `(1 + CaAx) rho V a_t` (Line.cpp, `Aq`),
-  which with CaAx = 0 is a tangential Froude-Krylov force `rho V a_t`.
+* Water acceleration: the same terms, `(1 + Ca) rho V a_n + (1 + CaAx) rho V a_t`
+  (MoorDyn's Line.cpp `Ap`, `Aq`; cablesim's docs/src/model/glmf.md, `cm`, `cat`), and
+  the same tangential added mass `CaAx rho V` in the mass; MoorDyn splits the
+  acceleration at each node along the node's tangent, cablesim at each element's
+  midpoint along the element's.
 * Where the kinematics are taken: MoorDyn per node (node velocity against the water
   velocity at the node); cablesim per element (the mean of its two nodes' wave
   velocities plus the current at the midpoint, against the element's velocity), from
@@ -148,7 +154,8 @@ def fairlead_motion(case: str, line: dict, wave: dict, radius: float, t: float) 
 # ---------------------------------------------------------------------------------
 
 
-def write_cablesim_scenario(path: Path, line: dict, wave: dict, case: str, args) -> None:
+def write_cablesim_scenario(path: Path, line: dict, wave: dict, case: str, args,
+                            caax: float) -> None:
     tv = cp._toml_value
     fx, fy, fz = line["fairlead"]
     if case == "fixed":
@@ -194,6 +201,7 @@ damping = {tv(line['c'])}
 cn = {tv(line['cn'])}
 ct = {tv(line['ct'])}
 cm = {tv(line['cm'])}
+cat = {tv(caax)}
 
 [[cables]]
 name = {tv(line['cable_name'])}
@@ -225,11 +233,12 @@ def read_cablesim(outdir: Path, cable: str) -> tuple[list, dict]:
     return hist, pos
 
 
-def run_cablesim(binary: str, line: dict, wave: dict, case: str, args) -> dict:
-    d = args.out / "cablesim" / case
+def run_cablesim(binary: str, line: dict, wave: dict, case: str, args, caax: float,
+                 tag: str) -> dict:
+    d = args.out / "cablesim" / tag
     d.mkdir(parents=True, exist_ok=True)
     scen = d / "scenario.toml"
-    write_cablesim_scenario(scen, line, wave, case, args)
+    write_cablesim_scenario(scen, line, wave, case, args, caax)
     t0 = time.perf_counter()
     s = cp.cablesim_run(binary, scen, d / "out", "symplectic", args.cablesim_threads)
     wall = time.perf_counter() - t0
@@ -246,7 +255,7 @@ def run_cablesim(binary: str, line: dict, wave: dict, case: str, args) -> dict:
 # ---------------------------------------------------------------------------------
 
 
-def write_moordyn_case(d: Path, line: dict, wave: dict, args) -> Path:
+def write_moordyn_case(d: Path, line: dict, wave: dict, args, caax: float) -> Path:
     """The input file (compare_peers.py's, plus WaveKin 7) and wave_frequencies.txt."""
     d.mkdir(parents=True, exist_ok=True)
     inp = d / "line.dat"
@@ -256,15 +265,15 @@ def write_moordyn_case(d: Path, line: dict, wave: dict, args) -> Path:
         "7          WaveKin       sum of wave_frequencies.txt at the nodes\n"
         "1          disableOutput")
     assert "WaveKin" in text
-    if args.md_caax != 0.0:
-        # the line type row ends with CaAx: `--md-caax -1` removes MoorDyn's tangential
+    if caax != 0.0:
+        # the line type row ends with CaAx (`--md-caax -1` removes MoorDyn's tangential
         # Froude-Krylov term (1 + CaAx) rho V a_t, at the price of a tangential added
-        # mass of -rho V (the axial inertia of the wire less its displaced water)
+        # mass of -rho V: the axial inertia of the wire less its displaced water)
         rows = text.split("\n")
         k = next(i for i, r in enumerate(rows) if r.startswith(line["line_type"] + " "))
         fields = rows[k].split()
         assert len(fields) == 10, rows[k]
-        fields[-1] = repr(args.md_caax)
+        fields[-1] = repr(caax)
         rows[k] = "  ".join(fields)
         text = "\n".join(rows)
     inp.write_text(text)
@@ -330,9 +339,10 @@ def moordyn_worker(spec_path: str, result_path: str) -> None:
         "kinematics_check": kin, "wall_seconds": wall, "steps": round(t / dt), "dt": dt}))
 
 
-def run_moordyn(line: dict, wave: dict, case: str, args, window_start: float) -> dict:
-    d = args.out / "moordyn" / case
-    inp = write_moordyn_case(d, line, wave, args)
+def run_moordyn(line: dict, wave: dict, case: str, args, window_start: float, caax: float,
+                tag: str) -> dict:
+    d = args.out / "moordyn" / tag
+    inp = write_moordyn_case(d, line, wave, args, caax)
     spec = {"line": line, "wave": wave, "case": case, "radius": args.radius,
             "dt": args.md_dt, "chunk": args.chunk, "duration": args.duration,
             "output_interval": args.output_interval, "window_start": window_start,
@@ -439,9 +449,11 @@ def write_markdown(path: Path, rep: dict) -> None:
         f"T = {W['period']:g} s, travelling along {W['direction_deg']:g} deg, "
         f"depth {L['depth']:g} m: k = {W['k']:.5f} rad/m, L = {W['wavelength']:.1f} m, "
         f"kh = {W['kh']:.3f}; Wheeler stretching, no ramp. MoorDyn `WaveKin 7` "
-        f"(components summed at its nodes), CaAx = {rep['md_caax']:g}, RK2 at "
+        f"(components summed at its nodes), RK2 at "
         f"{rep['md_dt']:g} s; cablesim symplectic "
-        "at its auto step, kinematics cache at its default tolerance. Window: "
+        "at its auto step, kinematics cache at its default tolerance; each case with "
+        "the tangential added-mass coefficient in its name (MoorDyn's CaAx, cablesim's "
+        f"cat{rep['md_caax_note']}). Window: "
         f"t = {rep['window'][0]:g} to {rep['window'][1]:g} s.",
         "",
         f"Kinematics check (MoorDyn's `GetWavesKin` against the closed form cablesim "
@@ -500,15 +512,21 @@ def parse_args():
     ap.add_argument("--output-interval", type=float, default=0.1)
     ap.add_argument("--md-dt", type=float, default=1e-4, help="MoorDyn RK2 dtM (1e-4)")
     ap.add_argument("--md-dt-ic", type=float, default=1e-4)
-    ap.add_argument("--md-caax", type=float, default=0.0,
-                    help="MoorDyn's CaAx (0, as cablesim has no tangential added mass; -1 "
-                         "removes its tangential Froude-Krylov force, for the comparison)")
+    ap.add_argument("--caax", default="0",
+                    help="tangential added-mass coefficients, comma-separated: each case "
+                         "runs with each, as MoorDyn's CaAx and cablesim's cat (0)")
+    ap.add_argument("--md-caax", type=float, default=None,
+                    help="MoorDyn's CaAx whatever --caax says (an experiment: -1 removes "
+                         "its tangential Froude-Krylov force)")
     ap.add_argument("--chunk", type=float, default=0.01,
                     help="MoorDyn: seconds per moordyn.Step call (0.01)")
     ap.add_argument("--skip-moordyn", action="store_true")
     ap.add_argument("--skip-cablesim", action="store_true")
     ap.add_argument("--no-venv", action="store_true")
     a = ap.parse_args()
+    a.caax = [float(x) for x in a.caax.split(",") if x.strip()]
+    if any(not (math.isfinite(x) and x >= 0.0) for x in a.caax):
+        ap.error(f"--caax: coefficients must be finite and not negative, got {a.caax}")
     a.out = a.out if a.out.is_absolute() else Path.cwd() / a.out
     a.scenario = a.scenario if a.scenario.is_absolute() else Path.cwd() / a.scenario
     # find_cablesim() reads these two
@@ -546,14 +564,23 @@ def main() -> int:
                     "loadavg_start": " ".join(f"{x:.2f}" for x in os.getloadavg()),
                     "platform": platform.platform()},
         "versions": cp.versions(), "cablesim_rev": cp.git_rev(), "line": line, "wave": wave,
-        "md_dt": args.md_dt, "md_caax": args.md_caax, "window": [t0, t1], "cases": {},
+        "md_dt": args.md_dt, "caax": args.caax, "md_caax": args.md_caax,
+        "md_caax_note": "" if args.md_caax is None else
+        f"; MoorDyn's CaAx {args.md_caax:g} in every case",
+        "window": [t0, t1], "cases": {},
     }
     checks, kin_max = [], 0.0
-    for case in [c.strip() for c in args.cases.split(",") if c.strip()]:
+    plan = [(case, caax) for case in [c.strip() for c in args.cases.split(",") if c.strip()]
+            for caax in args.caax]
+    for case, caax in plan:
+        md_caax = caax if args.md_caax is None else args.md_caax
+        tag = f"{case}_caax{caax:g}"
+        label = f"{case}, CaAx {caax:g}"
         runs: dict = {}
         if not args.skip_moordyn:
-            print(f"moordyn: {case}, RK2 dt {args.md_dt:g} s, {args.duration:g} s ...", flush=True)
-            runs["moordyn"] = run_moordyn(line, wave, case, args, t0)
+            print(f"moordyn: {label}, RK2 dt {args.md_dt:g} s, {args.duration:g} s ...",
+                  flush=True)
+            runs["moordyn"] = run_moordyn(line, wave, case, args, t0, md_caax, tag)
             # relative to the scales A, A w, A w^2 of eta, u, a
             A, w = wave["amplitude"], wave["omega"]
             scale = [A] + [A * w] * 3 + [A * w * w] * 3
@@ -561,13 +588,14 @@ def main() -> int:
                 kin_max = max(kin_max, *(abs(a - b) / s for a, b, s
                                          in zip(k["moordyn"], k["closed_form"], scale)))
         if binary is not None:
-            print(f"cablesim: {case}, symplectic, {args.duration:g} s ...", flush=True)
-            runs["cablesim"] = run_cablesim(binary, line, wave, case, args)
+            print(f"cablesim: {label}, symplectic, {args.duration:g} s ...", flush=True)
+            runs["cablesim"] = run_cablesim(binary, line, wave, case, args, caax, tag)
         for tool, r in runs.items():
             if r.get("status") != "completed":
-                print(f"{tool} {case}: {r.get('status')}: {str(r.get('error'))[-800:]}")
-                checks.append((f"{tool} {case} run", False))
+                print(f"{tool} {label}: {r.get('status')}: {str(r.get('error'))[-800:]}")
+                checks.append((f"{tool} {label} run", False))
         res = compare_case(runs.get("cablesim"), runs.get("moordyn"), wave, t0, t1)
+        case = label
         rep["cases"][case] = {
             "results": res,
             "runs": {k: {n: v for n, v in r.items() if n not in ("history", "positions")}
@@ -585,6 +613,11 @@ def main() -> int:
             print(f"  {case} cablesim - moordyn: mean {d['mean_rel']:+.3%}, amplitude "
                   f"{d['amplitude_rel']:+.2%}, phase {d['phase_deg']:+.2f} deg, RMS {d['rms_N']:.1f} N, "
                   f"max |dT| {d['max_abs_N']:.1f} N, shape {d['shape_max_distance_m']:.4f} m")
+            if md_caax == caax:
+                checks.append((f"{case}: first-harmonic amplitude within 2% of MoorDyn's "
+                               f"({d['amplitude_rel']:+.2%})", abs(d["amplitude_rel"]) <= 0.02))
+                checks.append((f"{case}: phase within 3 deg of MoorDyn's "
+                               f"({d['phase_deg']:+.2f} deg)", abs(d["phase_deg"]) <= 3.0))
     rep["kinematics_check_max"] = kin_max
     if not args.skip_moordyn:
         # MoorDyn's wave number (J. N. Newman's one-step Newton, Waves.cpp WaveNumber)

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Bytes and flops per node-step of the GPU step in waves against still water, counted
-from the shaders (BENCHMARKS.md, "The GPU step in waves: a per-element cache").
+from the shaders (benchmarks/history/BENCHMARKS-2026-12.md, "The GPU step in waves: a per-element cache").
 
 Every read and write of the waves' cache is counted as memory traffic (no device cache
 assumed); the `WaveStep` rows (one per band and step, shared by every invocation) and
@@ -32,7 +32,7 @@ ELEM_PARAMS = {"f32": 32, "f64": 40}
 # since, one ldexp (counted as the one multiply it replaces: 34 in all).
 # wave_depth_decay: before `hgpuref` two wave_exp, their exponents (1 and 3) and the
 # two sums (98); since, the test 2 k (zs + h) > 39 (3) and the seabed's wave_exp with
-# its exponent only where it fails (BENCHMARKS.md, "The seabed term and ldexp in the
+# its exponent only where it fails (benchmarks/history/BENCHMARKS-2026-12.md, "The seabed term and ldexp in the
 # GPU refresh"): 77 with it, 40 without.
 # (Branch `hwgpu`: 240 per component over all 200 before it, about 48,000 per node and
 # refresh, the section "The water surface and waves"; with it 54 + 199 = 253 per
@@ -59,7 +59,7 @@ def decay_flops(new, seabed):
     return DECAY_OTHER_FLOPS + 3 + e + 3 + (e + 3 if seabed else 0)
 
 
-# A proposal, not built (BENCHMARKS.md, "The seabed term and ldexp in the GPU
+# A proposal, not built (benchmarks/history/BENCHMARKS-2026-12.md, "The seabed term and ldexp in the GPU
 # refresh"): the decay pass taking each component's sine, cosine and phase rate from
 # the elevation pass (kept per invocation, 3 scalars a component) instead of forming
 # them again: the same bits, the phase (6), sin_cos (39) and the phase rate (4) saved

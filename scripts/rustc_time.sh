@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CPU time of every compiler run of a build, per unit (BENCHMARKS.md, "Test build"):
+# CPU time of every compiler run of a build, per unit (benchmarks/history/BENCHMARKS-2026-12.md, "Test build"):
 #
 #   UNIT_LOG=/tmp/units.log RUSTC_WRAPPER=$PWD/scripts/rustc_time.sh cargo test --release --no-run
 #

@@ -3,7 +3,7 @@
 # member, a 200-component JONSWAP sea, RAO-driven platform) on the GPU path and on the
 # CPU path, short: wall and CPU time (user + sys of the `cablesim` process, with every
 # thread it starts, lavapipe's included; bash's `time`) against the number of members.
-# BENCHMARKS.md, "The design-check study on the GPU path", holds the figures and how
+# benchmarks/history/BENCHMARKS-2026-12.md, "The design-check study on the GPU path", holds the figures and how
 # they were taken.
 #
 #   bash scripts/study_gpu_speed.sh OUTDIR

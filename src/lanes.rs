@@ -20,7 +20,7 @@ pub fn avx512_wanted() -> bool {
 /// Whether the network loops (`cpu::chain::net`) take 8 lanes: where the CPU has
 /// AVX-512 (F, DQ, VL) and the environment variable `CABLESIM_NET_LANES` is `8`. By
 /// default they take 4 (AVX2): on the development machine 8 lanes were not faster
-/// (BENCHMARKS.md, "Networks: whole chunks of lanes"). Every loop's lanes are
+/// (benchmarks/history/BENCHMARKS-2026-12.md, "Networks: whole chunks of lanes"). Every loop's lanes are
 /// independent (no sum across elements or nodes), so the results are the same bits
 /// with 8 lanes or 4. Read once per process.
 pub fn net_avx512_wanted() -> bool {

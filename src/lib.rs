@@ -34,6 +34,7 @@ pub mod ancf;
 pub mod body;
 pub mod cpu;
 pub mod error;
+pub mod fatigue;
 pub mod gpu;
 pub mod initial;
 pub mod input;

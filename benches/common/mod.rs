@@ -18,6 +18,7 @@ pub fn fleet(n_cables: usize, segments: usize) -> (Layout, Vec<[f64; 3]>) {
         cn: 1.0,
         ct: 0.01,
         cm: 0.2,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     };

@@ -42,7 +42,8 @@ def run_study(
     batch: Optional[int] = None,
 ) -> Dict[str, Any]:
     """Runs every member of the study file ``path`` (a ``[study]`` table), writes
-    ``study.csv``, ``members.csv`` and ``study.json`` into ``out_dir`` and returns the
+    ``study.csv``, ``members.csv`` and ``study.json`` into ``out_dir`` (and
+    ``fatigue.csv`` when the base scenario has a ``[fatigue]`` table) and returns the
     content of ``study.json``. ``backend`` as ``cablesim study run --backend``: "cpu"
     (the default; members across all threads), "gpu" or "auto" (members packed into
     one run, ``batch`` at a time, at ``precision``). Ctrl-C stops it with

@@ -12,9 +12,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 /// Runs every member of the study in `path` and writes `study.csv`, `members.csv` and
-/// `study.json` into `out_dir`; returns the content of `study.json` (a dict: per sea
-/// state and channel, the Gumbel fits, the most probable maximum, the quantile and,
-/// with capacities, the utilisation). `backend` as `study run --backend`: "cpu" (the
+/// `study.json` into `out_dir` (and `fatigue.csv` for a base scenario with `[fatigue]`);
+/// returns the content of `study.json` (a dict: per sea state and channel, the Gumbel
+/// fits, the most probable maximum, the quantile and, with capacities, the
+/// utilisation; with fatigue, `fatigue`: per location the damage per sea state, the
+/// annual damage and the life). `backend` as `study run --backend`: "cpu" (the
 /// default: each member its own run, members across all threads), "gpu" or "auto"
 /// (members packed into one run, `batch` members at a time, `precision` "f32" or
 /// "f64"). Ctrl-C stops the running members and raises KeyboardInterrupt (nothing is

@@ -74,8 +74,10 @@ struct LineParams {
     drag_n: R,
     drag_t: R,
     froude_krylov: R,
+    froude_krylov_t: R,
     mass: R,
     added_mass: R,
+    added_mass_t: R,
     wet_weight_z: R,
     compression: R,
 }
@@ -334,7 +336,8 @@ fn sym3_scalar(s: R) -> Sym3 {
     return Sym3(s, s, s, R(0.0), R(0.0), R(0.0));
 }
 
-// m + s I + a (I - t t^T): a lumped element's half mass and half normal added mass.
+// m + s I + a (I - t t^T): a lumped element's half mass along its tangent and what its
+// normal plane has more (physics::ElementLoads).
 fn sym3_add_element(m: Sym3, s: R, a: R, t: vec3<R>) -> Sym3 {
     var o = m;
     o.xx += s;
@@ -558,12 +561,23 @@ fn glmf_element(c: LineParams, d: vec3<R>, stretch: R, va: vec3<R>, vb: vec3<R>,
     return glmf_element_wet(c, d, stretch, va, vb, l0, u, aw, R(1.0), R(0.0));
 }
 
+// The water-acceleration load on `vol_l0` metres of unstretched line with tangent `t`
+// in water accelerating at `aw` (physics::froude_krylov): `(1 + Cm) rho A P aw` across
+// and `(1 + Cat) rho A (t . aw) t` along the line, per metre.
+fn froude_krylov(c: LineParams, t: vec3<R>, aw: vec3<R>, vol_l0: R) -> vec3<R> {
+    let at = dot(t, aw);
+    let awn = aw - t * at;
+    return awn * (c.froude_krylov * vol_l0) + t * (c.froude_krylov_t * vol_l0 * at);
+}
+
 // The GLMF loads of an element of which the fraction `wet` is under water, in gravity
 // `g` (physics::glmf_element_wet): tension with slack and damping; normal and
 // tangential drag on the relative current `u - (va + vb) / 2`, the water-acceleration
-// load of `aw` and the normal added mass, each times `wet`; the weight less the
-// buoyancy of the wet share, `wet_weight_z - (1 - wet) rho A g` per length with
-// `rho A g = wet_weight_z + mass g`.
+// load of `aw` (froude_krylov) and the added masses, normal and tangential, each times
+// `wet`; the weight less the buoyancy of the wet share, `wet_weight_z - (1 - wet) rho
+// A g` per length with `rho A g = wet_weight_z + mass g`. The mass block is
+// `half_mass I + half_added (I - t t^T)`: half the mass along the tangent, and what
+// the normal plane has more.
 fn glmf_element_wet(c: LineParams, d: vec3<R>, stretch: R, va: vec3<R>, vb: vec3<R>, l0: R, u: vec3<R>, aw: vec3<R>, wet: R, g: R) -> Element {
     let l = norm3(d);
     let t = d / l;
@@ -571,14 +585,15 @@ fn glmf_element_wet(c: LineParams, d: vec3<R>, stretch: R, va: vec3<R>, vb: vec3
     let vrel = u - (va + vb) * R(0.5);
     let vt = dot(t, vrel);
     let vn = vrel - t * vt;
-    let awn = aw - t * dot(t, aw);
     let drag_n = vn * (c.drag_n * l * norm3(vn) * wet);
     let drag_t = t * (c.drag_t * l * abs(vt) * vt * wet);
-    let fk = awn * (c.froude_krylov * l0 * wet);
+    let fk = froude_krylov(c, t, aw, l0 * wet);
     let buoyancy_z = c.wet_weight_z + c.mass * g;
     let w = vec3<R>(R(0.0), R(0.0), (c.wet_weight_z - (R(1.0) - wet) * buoyancy_z) * l0);
     let total = drag_n + drag_t + fk + w;
-    return Element(t, tension, total * R(0.5), c.mass * l0 * R(0.5), c.added_mass * l0 * R(0.5) * wet);
+    let half_mass = (c.mass + c.added_mass_t * wet) * l0 * R(0.5);
+    let half_added = (c.added_mass - c.added_mass_t) * l0 * R(0.5) * wet;
+    return Element(t, tension, total * R(0.5), half_mass, half_added);
 }
 
 // Seabed contact on a node penetrating by `pen` (seabed z minus node z, m) with

@@ -430,7 +430,7 @@ impl Model {
             .norm();
         let per_length = c.wet_weight_z.abs()
             + (c.drag_n + c.drag_t) * u * u
-            + c.froude_krylov * self.water_accel.norm();
+            + c.froude_krylov.max(c.froude_krylov_t) * self.water_accel.norm();
         let mut s = per_length * self.lens.iter().sum::<f64>();
         for e in &self.ends {
             s += e.force.norm() + e.drag * u * u;

@@ -9,7 +9,7 @@
 use super::shape::{gauss_legendre, hermite, AleShapeAt, ShapeAt};
 use crate::math::V3;
 use crate::model::Current;
-use crate::physics::{seabed_force, Coefs, SeabedCoefs};
+use crate::physics::{froude_krylov, seabed_force, Coefs, SeabedCoefs};
 
 type V = V3<f64>;
 
@@ -146,10 +146,9 @@ pub fn external_load(c: &Coefs<f64>, env: &ElementEnv, p: &PointKinematics) -> V
     let t = p.r1 / stretch;
     let vt = t.dot(vrel);
     let vn = vrel - t * vt; // P v_rel
-    let aw_n = env.water_accel - t * t.dot(env.water_accel); // P a_w
     let mut f = vn * (c.drag_n * stretch * vn.norm())
         + t * (c.drag_t * stretch * vt.abs() * vt)
-        + aw_n * c.froude_krylov;
+        + froude_krylov(c, t, env.water_accel, 1.0);
     f.z += c.wet_weight_z;
     if let Some(s) = &env.seabed {
         // Eq. 49: the nodal law with unit tributary length is the law per metre.

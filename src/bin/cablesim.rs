@@ -7,6 +7,7 @@ use cablesim::options::{
 };
 use cablesim::output::{FailedStart, FanOut, FileSink, VtkSink};
 use cablesim::scenario::{LimitOverrides, Scenario};
+use cablesim::stability::AUTO_SAFETY;
 use cablesim::sim::{self, Progress, Simulation};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -26,6 +27,15 @@ mod study;
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
+    /// Warnings and errors only: no information lines, no progress bar, no closing
+    /// summary line (the files and the exit status say how it went).
+    #[arg(long, short, global = true)]
+    quiet: bool,
+    /// More detail: -v adds cablesim's debug lines (a study: its information lines),
+    /// -vv its trace lines and other crates' information, -vvv their debug lines.
+    /// Without -q or -v, RUST_LOG (env_logger's syntax) sets the levels when it is set.
+    #[arg(long, short, action = clap::ArgAction::Count, global = true, conflicts_with = "quiet")]
+    verbose: u8,
 }
 
 #[derive(Subcommand)]
@@ -66,13 +76,10 @@ enum Cmd {
         #[arg(long, value_enum)]
         format: Option<OutputFormat>,
         /// Raise (or lower) a limit of the work budget over the scenario's `[limits]`:
-        /// node_steps (default 1e14), memory_gib (16), output_gib (20); repeatable,
-        /// e.g. `--limit node_steps=1e15`.
+        /// node_steps (default 1e12), memory_gib (16), output_gib (20); repeatable,
+        /// e.g. `--limit node_steps=1e13`.
         #[arg(long, value_name = "KEY=VALUE")]
         limit: Vec<String>,
-        /// No progress bar.
-        #[arg(long, short)]
-        quiet: bool,
     },
     /// Draw PNG charts of a run's output directory (end forces, cable profiles) or a
     /// study's (Gumbel plots of the seed maxima, utilisation).
@@ -127,17 +134,48 @@ fn positive(s: &str) -> Result<f64, String> {
     }
 }
 
+/// The log's filter: `-q` warnings and errors; by default cablesim's information lines
+/// (a study's members would each log their mesh and step plan: a study shows warnings
+/// and its own progress); each `-v` one level more. Other crates (wgpu, naga) say only
+/// warnings until `-vv`. Without `-q` or `-v`, RUST_LOG wins when set.
+fn log_filter(quiet: bool, verbose: u8, study: bool) -> Option<String> {
+    const LEVELS: [&str; 5] = ["warn", "info", "debug", "trace", "trace"];
+    if !quiet && verbose == 0 && std::env::var("RUST_LOG").is_ok_and(|v| !v.trim().is_empty()) {
+        return None;
+    }
+    if quiet {
+        return Some("warn".into());
+    }
+    let own = usize::from(!study) + verbose as usize;
+    let others = own.saturating_sub(2).min(2);
+    Some(format!("{},cablesim={}", LEVELS[others], LEVELS[own.min(4)]))
+}
+
+/// Whether progress bars are drawn: not with `-q`, and not when standard error is not a
+/// terminal (a pipe, a file, a Slurm log), where a bar's redraws would be noise.
+fn show_progress(quiet: bool) -> bool {
+    use std::io::IsTerminal;
+    !quiet && std::io::stderr().is_terminal()
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    // A study builds one simulation per member, each of which would log its mesh and
-    // step plan: a study shows warnings only, and its own progress.
-    let level = match cli.cmd {
-        Cmd::Study { .. } => "warn",
-        _ => "info",
+    let study = matches!(cli.cmd, Cmd::Study { .. });
+    let filter = log_filter(cli.quiet, cli.verbose, study);
+    // RUST_LOG is read only when it sets the levels (else its module directives would
+    // outlive -q); RUST_LOG_STYLE always.
+    let mut logger = match &filter {
+        Some(f) => {
+            let mut b = env_logger::Builder::new();
+            b.parse_filters(f);
+            if let Ok(style) = std::env::var("RUST_LOG_STYLE") {
+                b.parse_write_style(&style);
+            }
+            b
+        }
+        None => env_logger::Builder::from_env(env_logger::Env::default()),
     };
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level))
-        .format_timestamp(None)
-        .init();
+    logger.format_timestamp(None).init();
     match real_main(cli) {
         Ok(RunOutcome::Done) => ExitCode::SUCCESS,
         Ok(RunOutcome::Interrupted) => ExitCode::from(130),
@@ -161,8 +199,9 @@ fn main() -> ExitCode {
 }
 
 fn real_main(cli: Cli) -> Result<RunOutcome> {
+    let quiet = cli.quiet;
     match cli.cmd {
-        Cmd::Study { cmd } => study::main(cmd),
+        Cmd::Study { cmd } => study::main(cmd, quiet),
         Cmd::Convert {
             input,
             output,
@@ -190,7 +229,6 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
             duration,
             vtk,
             format,
-            quiet,
             limit,
         } => {
             let limits = limits(&limit)?;
@@ -251,7 +289,7 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
                     return Err(e).with_context(context);
                 }
             };
-            let bar = if quiet {
+            let bar = if !show_progress(quiet) {
                 indicatif::ProgressBar::hidden()
             } else {
                 let b = indicatif::ProgressBar::new(0);
@@ -265,9 +303,14 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
                 b
             };
             let mut vtk_sink = VtkSink::new(out_dir.join("vtk"));
+            let mut fatigue = (simulation.scenario().fatigue.clone())
+                .map(|f| cablesim::output::FatigueSink::new(&out_dir, f));
             // The file sink last: it takes each frame to its writer thread without a
             // copy (`FanOut` hands the last sink the frame itself).
             let mut sinks = FanOut::new();
+            if let Some(f) = fatigue.as_mut() {
+                sinks = sinks.with(f);
+            }
             if vtk || simulation.scenario().vtk {
                 sinks = sinks.with(&mut vtk_sink);
             }
@@ -301,6 +344,9 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
                     out_dir.display()
                 );
                 return Ok(RunOutcome::Interrupted);
+            }
+            if quiet {
+                return Ok(RunOutcome::Done);
             }
             eprintln!(
                 "done: {} steps of {:.4e} s to t = {} s in {:.3} s of stepping ({:.3e} node-steps/s); output in {}",
@@ -339,14 +385,17 @@ fn check(scenario: &std::path::Path, limits: &LimitOverrides) -> Result<()> {
     let (lay, _) = cablesim::model::Layout::build(&sc.model)?;
     let opts = SolverOptions {
         scheme: sc.sim.scheme,
+        formulation: sc.sim.formulation,
         baumgarte: sc.sim.baumgarte,
         ..Default::default()
     };
     if sc.sim.model == CableModel::Ancf {
         sim::budget::check_output(&sc, sc.sim.duration)?;
         for (name, n, dt, term) in sim::ancf::check(&sc, &sc.ancf, sc.sim.scheme)? {
+            let work = (n + 1) as f64 * (sc.sim.duration / (AUTO_SAFETY * dt)).ceil();
             println!(
-                "{}: ok: cable '{name}': ANCF, {n} elements, stable step {dt:.4e} s ({term})",
+                "{}: ok: cable '{name}': ANCF, {n} elements, stable step {dt:.4e} s ({term}); \
+                 work: {work:.3e} element-node steps (no measured rate of the ANCF model: no time estimate)",
                 scenario.display()
             );
         }
@@ -371,6 +420,30 @@ fn check(scenario: &std::path::Path, limits: &LimitOverrides) -> Result<()> {
         plan.bound.dt,
         plan.bound.term,
         plan.total_steps
+    );
+    let est = sim::budget::cpu_estimate(&sc, &lay, &opts, plan.total_steps);
+    let gpu = match sc.sim.backend {
+        Backend::Cpu => String::new(),
+        // The GPU's rate depends on the adapter, which `check` does not open.
+        _ => format!(
+            "; on a datacenter GPU at least {} (sim::estimate)",
+            sim::estimate::duration_words(
+                sim::estimate::lumped(
+                    &lay,
+                    &opts,
+                    plan.total_steps,
+                    sim::budget::in_waves(&sc),
+                    sim::estimate::Path::Gpu(sc.sim.precision.unwrap_or_default()),
+                )
+                .seconds
+            )
+        ),
+    };
+    println!(
+        "{}: work: {}{gpu}; budget {:e} node-steps",
+        scenario.display(),
+        est.describe(),
+        sc.limits.node_steps
     );
     Ok(())
 }

@@ -16,6 +16,7 @@
 //! WGSL `body_point`). An RAO motion is the same function of time on both paths: the
 //! exact sum at knots, Hermite interpolation between them ([`rao`]).
 
+pub mod free;
 pub mod kinematics;
 pub mod motion;
 pub mod output;
@@ -45,6 +46,21 @@ pub enum Motion {
     Table(MotionTable),
     /// RAOs driven by wave components.
     Rao(RaoMotion),
+    /// Its own dynamics, free or pinned ([`free`]): as a function of time, the
+    /// initial pose (and a pinned body's prescribed translation); the solver steps the
+    /// state.
+    Dynamic(Box<Dynamic>),
+}
+
+/// A body with its own dynamics: its properties and initial state, and a pinned
+/// body's prescribed translation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dynamic {
+    /// Properties and initial state.
+    pub body: free::FreeBody,
+    /// A pinned body's translation (the `x, y, z` columns of its motion file; `None`:
+    /// held at its pose).
+    pub pin: Option<MotionTable>,
 }
 
 /// A body with prescribed motion.
@@ -94,6 +110,34 @@ impl Body {
             Motion::Still => Dofs::default(),
             Motion::Table(m) => m.eval(t),
             Motion::Rao(m) => m.eval(t),
+            Motion::Dynamic(d) => {
+                let mut q = match &d.pin {
+                    Some(m) => m.eval(t),
+                    None => Dofs::default(),
+                };
+                q.q[3..].copy_from_slice(&d.body.spec.angles);
+                q.qd[3..].fill(0.0);
+                q.qdd[3..].fill(0.0);
+                q
+            }
+        }
+    }
+
+    /// The free or pinned body's dynamics, or `None` for a prescribed motion.
+    pub fn dynamic(&self) -> Option<&Dynamic> {
+        match &self.motion {
+            Motion::Dynamic(d) => Some(d),
+            _ => None,
+        }
+    }
+
+    /// The prescribed motion of a pinned body's reference point at `t`.
+    pub fn pin(&self, t: f64) -> free::Pin {
+        let s = self.evaluate(t);
+        free::Pin {
+            x: s.x.to_f64(),
+            v: s.v.to_f64(),
+            a: s.a.to_f64(),
         }
     }
 

@@ -104,6 +104,11 @@ impl MotionTable {
         Self { t, dof }
     }
 
+    /// Whether the roll, pitch and yaw columns are all zero (a pinned body's file).
+    pub fn translation_only(&self) -> bool {
+        self.dof[3..].iter().all(|s| s.y.iter().all(|&a| a == 0.0))
+    }
+
     /// Time span covered, s.
     pub fn span(&self) -> (f64, f64) {
         (self.t[0], self.t[self.t.len() - 1])

@@ -29,18 +29,27 @@ pub fn bodies_of(lay: &Layout) -> Vec<(Arc<Body>, Vec<usize>)> {
     out
 }
 
-/// Total force (N) and moment about the reference point at time `t` (N m) on `body`
-/// from the constraints `held` (route indices), given node positions `r` (packed
-/// order) and the evaluation's reactions.
+/// The state of a free or pinned body now, as its solver steps it.
+#[derive(Clone, Debug)]
+pub struct DynamicState {
+    /// The body.
+    pub body: Arc<Body>,
+    /// Its kinematics at the reference point.
+    pub state: super::BodyState,
+    /// Roll, pitch, yaw, rad.
+    pub angles: [f64; 3],
+}
+
+/// Total force (N) and moment (N m) about the body's reference point `x` from the
+/// constraints `held` (route indices), given node positions `r` (packed order) and the
+/// evaluation's reactions.
 pub fn body_load(
     lay: &Layout,
-    body: &Body,
     held: &[usize],
-    t: f64,
     r: &[[f64; 3]],
     reaction: &[[f64; 3]],
+    x: V3<f64>,
 ) -> ([f64; 3], [f64; 3]) {
-    let x = body.state(t).x;
     let mut f = V3::<f64>::zero();
     let mut m = V3::<f64>::zero();
     for &c in held {
@@ -53,20 +62,36 @@ pub fn body_load(
 }
 
 /// Every body's pose and load at time `t`, from node positions `r` (packed order) and
-/// the evaluation's reactions.
-pub fn body_states(lay: &Layout, t: f64, r: &[[f64; 3]], ev: &Evaluation) -> Vec<BodyState> {
+/// the evaluation's reactions; free and pinned bodies at their states in `dynamic`.
+pub fn body_states(
+    lay: &Layout,
+    t: f64,
+    r: &[[f64; 3]],
+    ev: &Evaluation,
+    dynamic: &[DynamicState],
+) -> Vec<BodyState> {
+    let any_dynamic = !dynamic.is_empty();
     bodies_of(lay)
         .iter()
         .map(|(b, held)| {
-            let s = b.state(t);
-            let d = b.dofs(t);
-            let (force, moment) = body_load(lay, b, held, t, r, &ev.reaction);
+            let (s, angles) = match dynamic.iter().find(|d| Arc::ptr_eq(&d.body, b)) {
+                Some(d) => (d.state, d.angles),
+                None => {
+                    let d = b.dofs(t);
+                    (b.state(t), [d.q[3], d.q[4], d.q[5] + b.pose.heading])
+                }
+            };
+            let (force, moment) = body_load(lay, held, r, &ev.reaction, s.x);
             BodyState {
                 name: b.name.clone(),
                 position: [s.x.x, s.x.y, s.x.z],
-                angles: [d.q[3], d.q[4], d.q[5] + b.pose.heading].map(f64::to_degrees),
+                angles: angles.map(f64::to_degrees),
                 force,
                 moment,
+                velocity: any_dynamic.then(|| {
+                    let (v, w) = (s.v.to_f64(), s.omega.to_f64());
+                    [v[0], v[1], v[2], w[0], w[1], w[2]]
+                }),
             }
         })
         .collect()

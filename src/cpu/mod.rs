@@ -24,6 +24,7 @@
 //! remeshed between steps ([`CpuSolver::with_winches`]).
 
 pub(crate) mod chain;
+mod free;
 mod passes;
 mod solver;
 mod threaded;

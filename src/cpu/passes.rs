@@ -41,6 +41,9 @@ pub(super) struct Ctx<'a> {
     /// node solve, `(M + h diag(c)) a = F` (the symplectic scheme: `h = dt`); 0 for
     /// the explicit acceleration (Runge-Kutta stages, evaluation).
     pub(super) implicit_dt: f64,
+    /// Per route: the target of a node held on a free body, read in place of the
+    /// route (empty without free bodies: `super::free`).
+    pub(super) targets: &'a [Option<crate::model::RouteState>],
 }
 
 /// How a block's elements and nodes are connected, in block-local indices.
@@ -413,7 +416,10 @@ pub(super) fn node_accel_of<T: Topo>(
             m.solve(f)
         }
     } else {
-        let d = lay.routes[c as usize].eval(t);
+        let d = match ctx.targets.get(c as usize) {
+            Some(Some(d)) => *d,
+            _ => lay.routes[c as usize].eval(t),
+        };
         let bg = ctx.opts.baumgarte;
         let (rd, vd, ad) = (V::from_f64(d.r), V::from_f64(d.v), V::from_f64(d.a));
         ad - (vi - vd) * bg.beta - (ri - rd) * bg.alpha

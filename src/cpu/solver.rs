@@ -14,12 +14,14 @@ use super::chain::{
     advance_chain, advance_net, advance_net_threaded, ChainConsts, ChainScratch, NetConsts,
     NetScratch,
 };
-use super::passes::{advance_block, implicit_dt, Ctx, NodeScratch};
+use super::free::{end_tension, Failure, FreeRun};
+use super::passes::{advance_block, implicit_dt, node_accel_of, Ctx, GeneralTopo, NodeScratch};
 use super::threaded::{advance_block_threaded, THREADED_MIN_NODES};
+use super::water::node_water;
 use super::water::{BlockWaves, Water};
 use crate::ale::{advance_with_winches, AleElem, AleState, MeshStepper, Winch};
 use crate::error::Error;
-use crate::math::V3;
+use crate::math::{Sym3, V3};
 use crate::model::{Block, Layout, ModelDef, Route, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::{Coefs, ElementLoads, SeabedCoefs};
@@ -77,6 +79,11 @@ pub struct CpuSolver {
     /// Evaluate the waves' component sum at every stage instead of interpolating the
     /// kinematics cache (the reference the cache is tested against; slow).
     exact_waves: bool,
+    /// Free and pinned bodies, stepped with the lines (`None` without: the steps are
+    /// those of a run without bodies of their own).
+    free: Option<Box<FreeRun>>,
+    /// Cable ends that may fail, and those that did.
+    failures: Vec<Failure>,
 }
 
 impl CpuSolver {
@@ -128,10 +135,13 @@ impl CpuSolver {
             wave_fields: Vec::new(),
             wave_blocks: Vec::new(),
             exact_waves: false,
+            free: None,
+            failures: Vec::new(),
         };
         let r = positions.iter().map(|p| V::from_f64(*p)).collect();
         let v = vec![V::zero(); positions.len()];
         s.install(layout, r, v);
+        s.free = FreeRun::new(&s.layout).map(Box::new);
         s
     }
 
@@ -165,6 +175,15 @@ impl CpuSolver {
                 positions.len(),
                 pos0.len()
             )));
+        }
+        if lay
+            .routes
+            .iter()
+            .any(|r| matches!(r, Route::Body { body, .. } if body.dynamic().is_some()))
+        {
+            return Err(Error::Model(
+                "winch cables and free or pinned bodies in one run are not supported yet".into(),
+            ));
         }
         let mut ale = AleState::new(def, winches, packed)?;
         ale.index(&lay);
@@ -387,6 +406,20 @@ impl CpuSolver {
         Ok(())
     }
 
+    /// The free and pinned bodies' states now (empty without).
+    pub fn dynamic_bodies(&self) -> Vec<crate::body::output::DynamicState> {
+        self.free.as_deref().map_or_else(Vec::new, |f| {
+            f.bodies
+                .iter()
+                .map(|e| crate::body::output::DynamicState {
+                    body: e.body.clone(),
+                    state: e.state.body_state(),
+                    angles: e.state.angles(),
+                })
+                .collect()
+        })
+    }
+
     /// Where each winch cable stands now (empty without winches).
     pub fn winch_status(&self) -> Vec<WinchStatus> {
         self.ale
@@ -420,6 +453,7 @@ impl CpuSolver {
             uniform_current: &self.uniform_current,
             gravity: self.layout.env.gravity,
             implicit_dt: 0.0,
+            targets: self.free.as_deref().map_or(&[], |f| &f.targets[..]),
         }
     }
 
@@ -428,6 +462,152 @@ impl CpuSolver {
         if nsteps == 0 {
             return Ok(());
         }
+        let pending = self.failures.iter().any(|f| f.fired.is_none());
+        if self.free.is_none() && !pending {
+            return self.advance_blocks(nsteps).map(|_| ());
+        }
+        if self.free.is_some() && self.opts.scheme != Scheme::Symplectic {
+            return Err(Error::Model(format!(
+                "free or pinned bodies step with symplectic Euler only so far, not {}",
+                self.opts.scheme.name()
+            )));
+        }
+        // The lines and the bodies step by step together; failures are checked after
+        // each step.
+        for k in 0..nsteps {
+            let t = self.t;
+            let lumps = self.advance_blocks(1)?;
+            if let Some(free) = self.free.as_deref_mut() {
+                free.step(
+                    &self.layout,
+                    t,
+                    self.opts.dt,
+                    &lumps,
+                    &mut self.r,
+                    &mut self.v,
+                )
+                .map_err(|m| Error::Diverged {
+                    cable: m,
+                    node: 0,
+                    time: t + self.opts.dt,
+                    what: "a free body's state".into(),
+                })?;
+            }
+            if pending {
+                self.check_failures();
+                if self.free.is_none() && self.failures.iter().all(|f| f.fired.is_some()) {
+                    return self.advance_blocks(nsteps - k - 1).map(|_| ());
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The cable ends that may fail during the run (each held by a fixed point, a
+    /// route or a body). `Err` names an end that is not held or a cable not found.
+    pub fn set_failures(&mut self, failures: &[crate::model::EndFailure]) -> Result<(), Error> {
+        let lay = &self.layout;
+        let mut out = Vec::with_capacity(failures.len());
+        for f in failures {
+            let c = lay
+                .cables
+                .iter()
+                .find(|c| c.name == f.cable)
+                .ok_or_else(|| {
+                    Error::Model(format!(
+                        "a failure names cable '{}', which the run does not have",
+                        f.cable
+                    ))
+                })?;
+            let (node, elem) = if f.at_start {
+                (c.nodes[0], c.elements[0])
+            } else {
+                (c.nodes[c.nodes.len() - 1], c.elements[c.elements.len() - 1])
+            };
+            if lay.node_constraint[node as usize] == NO_CONSTRAINT {
+                return Err(Error::Model(format!(
+                    "cable '{}': its {} end is not held, so it cannot fail",
+                    f.cable,
+                    if f.at_start { "start" } else { "end" }
+                )));
+            }
+            out.push(Failure {
+                spec: f.clone(),
+                node: node as usize,
+                elem: elem as usize,
+                fired: None,
+            });
+        }
+        self.failures = out;
+        Ok(())
+    }
+
+    /// The failures so far, in the order they fired.
+    pub fn failure_events(&self) -> Vec<crate::model::FailureEvent> {
+        let mut v: Vec<_> = self
+            .failures
+            .iter()
+            .filter_map(|f| f.fired.clone())
+            .collect();
+        v.sort_by(|a, b| a.time.total_cmp(&b.time));
+        v
+    }
+
+    /// Fires the failures due now (time reached, or the end element's tension at or
+    /// above its threshold) and lets their ends go.
+    fn check_failures(&mut self) {
+        let t = self.t;
+        let mut released = Vec::new();
+        for f in self.failures.iter_mut().filter(|f| f.fired.is_none()) {
+            let tension = end_tension(&self.layout, &self.r, f.elem);
+            let trigger = if f.spec.time.is_some_and(|x| t >= x) {
+                "time"
+            } else if f.spec.tension.is_some_and(|x| tension >= x) {
+                "tension"
+            } else {
+                continue;
+            };
+            let end = if f.spec.at_start { "start" } else { "end" };
+            log::warn!(
+                "t = {t} s: cable '{}' failed at its {end} ({trigger}; end tension {tension:.6e} N): the end is free from now on",
+                f.spec.cable
+            );
+            f.fired = Some(crate::model::FailureEvent {
+                time: t,
+                cable: f.spec.cable.clone(),
+                end: end.into(),
+                tension,
+                trigger: trigger.into(),
+            });
+            released.push(f.node);
+        }
+        for node in released {
+            self.release(node);
+        }
+    }
+
+    /// Lets the held node `node` go: free from now on.
+    fn release(&mut self, node: usize) {
+        self.layout.node_constraint[node] = NO_CONSTRAINT;
+        let bi = self
+            .layout
+            .blocks
+            .partition_point(|b| (b.node_end as usize) <= node);
+        let b = self.layout.blocks[bi];
+        if let Some(k) = self.chain_consts[bi].as_mut() {
+            k.refresh_constraints(&self.layout, &b);
+        }
+        if let Some(k) = self.net_consts[bi].as_deref_mut() {
+            k.refresh_constraints(&self.layout, &b);
+        }
+        if let Some(f) = self.free.as_deref_mut() {
+            f.release(node, &self.layout);
+        }
+    }
+
+    /// Advances every block `nsteps` steps; with free bodies (one step), returns the
+    /// force and mass block of each node held on one at the step's starting state.
+    fn advance_blocks(&mut self, nsteps: u64) -> Result<Vec<(usize, V, Sym3<f64>)>, Error> {
         let step0 = self.steps;
         let dt = self.opts.dt;
         let ctx = Ctx {
@@ -439,7 +619,13 @@ impl CpuSolver {
             uniform_current: &self.uniform_current,
             gravity: self.layout.env.gravity,
             implicit_dt: implicit_dt(&self.opts),
+            targets: self.free.as_deref().map_or(&[], |f| &f.targets[..]),
         };
+        let touched = self
+            .free
+            .as_deref()
+            .map(|f| (&f.touched[..], &f.held_local[..]));
+        let is_touched = |bi: usize| touched.is_some_and(|(t, _)| t[bi]);
         let blocks = &self.layout.blocks;
         let chain_consts = &self.chain_consts;
         let ale_state = self.ale.as_deref();
@@ -467,6 +653,7 @@ impl CpuSolver {
                     && self.opts.formulation == Formulation::Glmf
                     && ale_of(ale_state, bi).is_empty()
                     && self.seas.is_none()
+                    && !is_touched(bi)
             })
             .collect();
         // Split the state into disjoint per-chunk slices.
@@ -496,8 +683,10 @@ impl CpuSolver {
                 el = e2;
             }
         }
-        let result: Result<(), StepFailure> =
-            parts.into_par_iter().try_for_each(|(ch, r, v, s, el, wb)| {
+        let result: Result<Vec<Vec<(usize, V, Sym3<f64>)>>, StepFailure> = parts
+            .into_par_iter()
+            .map(|(ch, r, v, s, el, wb)| {
+                let mut lumps = Vec::new();
                 let base = blocks[ch.start];
                 // Stage buffers of the Runge-Kutta schemes, reused across the chunk's blocks.
                 let (mut rs, mut vs) = (Vec::new(), Vec::new());
@@ -515,6 +704,53 @@ impl CpuSolver {
                     let n1 = (b.node_end - base.node_start) as usize;
                     let e0 = (b.elem_start - base.elem_start) as usize;
                     let e1 = (b.elem_end - base.elem_start) as usize;
+                    if is_touched(ch.start + bi) {
+                        // Held on a free body: the general passes (one step), then the
+                        // held nodes' forces and mass blocks at the step's start.
+                        let held = &touched.expect("free bodies").1[ch.start + bi];
+                        let saved: Vec<(usize, V, V)> = held
+                            .iter()
+                            .map(|&li| (li, r[n0 + li], v[n0 + li]))
+                            .collect();
+                        advance_block(
+                            &ctx,
+                            b,
+                            ale,
+                            &mut r[n0..n1],
+                            &mut v[n0..n1],
+                            &mut s[n0..n1],
+                            &mut el[e0..e1],
+                            &mut rs,
+                            &mut vs,
+                            waves,
+                            &mut wbuf,
+                            step0,
+                            dt,
+                            nsteps,
+                        )?;
+                        let topo = GeneralTopo {
+                            lay: ctx.lay,
+                            n0: b.node_start as usize,
+                            e0: b.elem_start as usize,
+                        };
+                        for (li, ri, vi) in saved {
+                            let wn = (!wbuf.is_empty()).then(|| node_water(&wbuf, li));
+                            let (_, f, m) = node_accel_of(
+                                &ctx,
+                                &topo,
+                                b,
+                                li,
+                                ri,
+                                vi,
+                                step0 as f64 * dt,
+                                wn,
+                                &el[e0..e1],
+                                |_, _| {},
+                            );
+                            lumps.push((b.node_start as usize + li, f, m));
+                        }
+                        continue;
+                    }
                     if let Some(nc) = net_of(ch.start + bi) {
                         advance_net(
                             nc,
@@ -566,9 +802,10 @@ impl CpuSolver {
                         )?,
                     }
                 }
-                Ok(())
-            });
-        let result = result.and_then(|_| {
+                Ok(lumps)
+            })
+            .collect();
+        let result = result.and_then(|lumps| {
             let mut net_scratch = NetScratch::default();
             for (bi, b) in blocks.iter().enumerate().filter(|(bi, _)| threaded[*bi]) {
                 let (n0, n1) = (b.node_start as usize, b.node_end as usize);
@@ -601,7 +838,7 @@ impl CpuSolver {
                     threads,
                 )?;
             }
-            Ok(())
+            Ok(lumps.into_iter().flatten().collect())
         });
         self.steps += nsteps;
         self.node_steps += nsteps * self.layout.n_nodes() as u64;

@@ -12,8 +12,7 @@ use super::context::GpuContext;
 use super::host::{split, Host, NodeStates};
 use super::kernel::{GpuKernel, FUSED_FAILED, STEPS_PER_SUBMISSION};
 use super::layout::*;
-use super::solver::GpuTimings;
-use super::wave_schedule::{fused_segments, SeaSchedules, WAVE_MAX_NODES};
+use super::wave_schedule::{check_wave_components, fused_segments, SeaSchedules, WAVE_MAX_NODES};
 use crate::error::Error;
 use crate::model::Layout;
 use crate::options::SolverOptions;
@@ -22,6 +21,30 @@ use crate::sea::SeaSet;
 use crate::step::Evaluation;
 use std::marker::PhantomData;
 use std::time::Instant;
+
+/// Where [`GpuSolver::advance`](super::GpuSolver::advance)'s wall time went, summed over its calls: recording the
+/// command buffers on the host, submitting them, and waiting for the device at the end
+/// of each call (the one read-back of the status). The device runs while the host
+/// records the next submission, so `wait_seconds` is the device time the host could
+/// not hide; on a software adapter (lavapipe) the "device" is the same CPU cores.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GpuTimings {
+    /// Steps taken.
+    pub steps: u64,
+    /// Compute dispatches recorded (two per step on the two-pass path, one per
+    /// submission on the fused path).
+    pub dispatches: u64,
+    /// Command buffers submitted.
+    pub submissions: u64,
+    /// Recording (route and parameter writes, encoding the dispatches), s.
+    pub encode_seconds: f64,
+    /// `Queue::submit`, s.
+    pub submit_seconds: f64,
+    /// Waiting for the device and reading the status back, s.
+    pub wait_seconds: f64,
+    /// All of `advance`, s.
+    pub advance_seconds: f64,
+}
 
 mod install;
 
@@ -369,6 +392,12 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
     fn set_seas(&mut self, lay: &Layout, host: &Host, seas: &SeaSet) -> Result<(), Error> {
         if !seas.is_still() {
             check_wave_nodes(lay.n_nodes())?;
+            check_wave_components(
+                seas,
+                std::mem::size_of::<WaveComp<R>>() as u64,
+                self.ctx.limits.max_storage_buffer_binding_size,
+                self.ctx.info.device_type == wgpu::DeviceType::Cpu,
+            )?;
         }
         self.waves = (!seas.is_still()).then(|| SeaSchedules::new(seas, self.dt64));
         let scope = self

@@ -182,10 +182,14 @@ gpu_struct! {
         drag_t: R,
         /// `(1 + Cm) rho A`, kg/m.
         froude_krylov: R,
+        /// `(1 + Cat) rho A`, kg/m.
+        froude_krylov_t: R,
         /// `mbar`, kg/m.
         mass: R,
         /// `Cm rho A`, kg/m.
         added_mass: R,
+        /// `Cat rho A`, kg/m.
+        added_mass_t: R,
         /// z component of weight less buoyancy per length, N/m.
         wet_weight_z: R,
         /// 1 when the elastic force acts in compression, else 0.

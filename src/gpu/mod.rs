@@ -96,3 +96,4 @@ pub(crate) mod wave_schedule;
 pub use crate::options::Precision;
 pub use context::GpuContext;
 pub use solver::{GpuCheckpoint, GpuKernel, GpuSolver, GpuTimings};
+pub use wave_schedule::SOFTWARE_MAX_COMPONENTS;

@@ -50,6 +50,15 @@ pub use super::kernel::{fused_workgroup, GpuKernel, MAX_FUSED_WORKGROUP, STEPS_P
 
 /// What the GPU solver does not do yet, or `None`.
 pub fn unsupported(lay: &Layout, opts: &SolverOptions) -> Option<String> {
+    if let Some(b) = lay.routes.iter().find_map(|r| match r {
+        crate::model::Route::Body { body, .. } if body.dynamic().is_some() => Some(body),
+        _ => None,
+    }) {
+        return Some(format!(
+            "free or pinned bodies (body '{}'; the CPU path runs them)",
+            b.name
+        ));
+    }
     if opts.formulation != Formulation::Glmf {
         return Some(format!(
             "the {} formulation (the GPU path is GLMF only)",
@@ -72,29 +81,8 @@ pub fn unsupported(lay: &Layout, opts: &SolverOptions) -> Option<String> {
     None
 }
 
-/// Where [`GpuSolver::advance`]'s wall time went, summed over its calls: recording the
-/// command buffers on the host, submitting them, and waiting for the device at the end
-/// of each call (the one read-back of the status). The device runs while the host
-/// records the next submission, so `wait_seconds` is the device time the host could
-/// not hide; on a software adapter (lavapipe) the "device" is the same CPU cores.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct GpuTimings {
-    /// Steps taken.
-    pub steps: u64,
-    /// Compute dispatches recorded (two per step on the two-pass path, one per
-    /// submission on the fused path).
-    pub dispatches: u64,
-    /// Command buffers submitted.
-    pub submissions: u64,
-    /// Recording (route and parameter writes, encoding the dispatches), s.
-    pub encode_seconds: f64,
-    /// `Queue::submit`, s.
-    pub submit_seconds: f64,
-    /// Waiting for the device and reading the status back, s.
-    pub wait_seconds: f64,
-    /// All of `advance`, s.
-    pub advance_seconds: f64,
-}
+pub use super::engine::GpuTimings;
+
 
 /// The GPU solver: the same packed model and options as [`crate::cpu::CpuSolver`],
 /// stepped by WGSL compute shaders at f32 or f64.

@@ -326,3 +326,46 @@ pub(super) fn fused_max_steps(lay: &Layout) -> u64 {
     let per_step = 1 + incidence + profile + search;
     (LOOP_BUDGET / per_step).max(1)
 }
+
+/// The most wave components one sea may have on a software adapter (lavapipe,
+/// llvmpipe, WARP): a refresh evaluation (`wave_kinematics_rates_tau`, one invocation
+/// per node) loops over the components twice (the elevation pass and the decay pass)
+/// plus a bisection, and llvmpipe ends every loop of an invocation after its first
+/// iteration, silently, once 65,535 iterations are spent.
+pub const SOFTWARE_MAX_COMPONENTS: usize = 32_000;
+
+/// Refuses seas the GPU path cannot hold: more components in all than one storage
+/// binding of `component_bytes` each holds (`max_storage_buffer_binding_size`), or, on
+/// a software adapter (`software`), a sea of more than [`SOFTWARE_MAX_COMPONENTS`].
+pub(super) fn check_wave_components(
+    seas: &SeaSet,
+    component_bytes: u64,
+    max_binding: u64,
+    software: bool,
+) -> Result<(), crate::error::Error> {
+    let total: u64 = seas.seas.iter().map(|s| s.components.len() as u64).sum();
+    if total * component_bytes > max_binding {
+        return Err(crate::error::Error::GpuUnsupported(format!(
+            "{total} wave components: the GPU path holds them in one storage buffer of at \
+             most {max_binding} bytes on this adapter, {component_bytes} bytes each, so at \
+             most {} (use the CPU path, or fewer components)",
+            max_binding / component_bytes
+        )));
+    }
+    if software {
+        if let Some(n) = seas
+            .seas
+            .iter()
+            .map(|s| s.components.len())
+            .find(|&n| n > SOFTWARE_MAX_COMPONENTS)
+        {
+            return Err(crate::error::Error::GpuUnsupported(format!(
+                "a sea of {n} wave components on a software adapter: llvmpipe ends every \
+                 loop of a shader invocation once 65,535 iterations are spent, and a refresh \
+                 loops over the components twice, so at most {SOFTWARE_MAX_COMPONENTS} (use \
+                 the CPU path, a hardware adapter, or fewer components)"
+            )));
+        }
+    }
+    Ok(())
+}

@@ -27,6 +27,10 @@ pub struct LineType {
     /// Normal added-mass coefficient `Cm`.
     #[serde(default = "default_cm")]
     pub cm: f64,
+    /// Tangential added-mass coefficient `Cat` (MoorDyn's `CaAx`, v1 `Cat`): the added
+    /// mass along the line, on the displaced volume (default 0, as MoorDyn's).
+    #[serde(default)]
+    pub cat: f64,
     /// Bending stiffness `EI`, N m^2 (ANCF reference only; the lumped-mass model has none).
     #[serde(default)]
     pub ei: f64,
@@ -71,12 +75,18 @@ pub struct LineCoefs {
     pub drag_n: f64,
     /// `1/2 rho Ct pi d`: tangential drag per unit length per (m/s)^2, kg/m^2.
     pub drag_t: f64,
-    /// `(1 + Cm) rho A`: water-acceleration load per unit length per m/s^2, kg/m.
+    /// `(1 + Cm) rho A`: water-acceleration load per unit length per m/s^2 across the
+    /// line, kg/m.
     pub froude_krylov: f64,
+    /// `(1 + Cat) rho A`: water-acceleration load per unit length per m/s^2 along the
+    /// line, kg/m.
+    pub froude_krylov_t: f64,
     /// `mbar`, kg/m.
     pub mass: f64,
     /// `Cm rho A`: normal added mass per unit length, kg/m.
     pub added_mass: f64,
+    /// `Cat rho A`: tangential added mass per unit length, kg/m.
+    pub added_mass_t: f64,
     /// `(mbar - rho A) g`, the z component of weight less buoyancy per length, N/m (negative: down).
     pub wet_weight_z: f64,
     /// 1.0 when the elastic force acts in compression too, else 0.0.
@@ -93,8 +103,10 @@ impl LineCoefs {
             drag_n: 0.5 * rho * lt.cn * lt.diameter,
             drag_t: 0.5 * rho * lt.ct * PI * lt.diameter,
             froude_krylov: (1.0 + lt.cm) * rho * a,
+            froude_krylov_t: (1.0 + lt.cat) * rho * a,
             mass: lt.mass_per_length,
             added_mass: lt.cm * rho * a,
+            added_mass_t: lt.cat * rho * a,
             wet_weight_z: -(lt.mass_per_length - rho * a) * g,
             compression: if lt.allow_compression { 1.0 } else { 0.0 },
         }

@@ -1,12 +1,14 @@
 //! What is simulated: line types, environment, routes, and the packed layout.
 
 pub(crate) mod environment;
+mod failure;
 mod layout;
 mod line_type;
 pub mod net;
 pub(crate) mod route;
 
 pub use environment::{Current, Environment, Seabed};
+pub use failure::{EndFailure, FailureEvent};
 pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};
 pub use line_type::{LineCoefs, LineType};
 pub use net::{add_net, NetShape, NetSpec};

@@ -11,8 +11,9 @@
 //! - Tangential drag: MoorDyn `1/2 rho CdAx pi d l |vq| vq` (surface area pi d l, v1
 //!   `Cdt` alike); cablesim `1/2 rho ct pi d l |vt| vt`: `ct = CdAx`.
 //! - Normal added mass: MoorDyn `Ca rho (pi d^2/4) l` across the line; cablesim
-//!   `cm rho A l` likewise: `cm = Ca`. cablesim has no tangential added mass: a
-//!   nonzero `CaAx` is dropped with a warning.
+//!   `cm rho A l` likewise: `cm = Ca`. Tangential added mass: MoorDyn `CaAx rho (pi
+//!   d^2/4) l` along the line (v1 `Cat`), with the Froude-Krylov load `(1 + CaAx) rho V
+//!   a_t` along it; cablesim `cat rho A l0` and `(1 + cat) rho A l0 a_t`: `cat = CaAx`.
 //! - Internal damping: MoorDyn's segment force is `BA epsdot` (N s); cablesim's is
 //!   `EA c epsdot` with the time constant `c` (s): `c = BA / EA`. A negative entry is
 //!   a damping ratio `zeta = -BA`, for which MoorDyn sets
@@ -59,14 +60,7 @@ impl Default for ConvertOptions {
     }
 }
 
-/// Something dropped or approximated, at a line of the file.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Warning {
-    /// 1-based line number (0: the file as a whole).
-    pub line: usize,
-    /// What was dropped or approximated, and its effect.
-    pub message: String,
-}
+pub use super::Warning;
 
 /// The conversion's result.
 #[derive(Clone, Debug)]
@@ -88,6 +82,57 @@ fn quote(s: &str) -> String {
 
 fn v3(x: [f64; 3]) -> String {
     format!("[{}, {}, {}]", f(x[0]), f(x[1]), f(x[2]))
+}
+
+/// Writes MoorDyn's waves (`moordyn::waves`) as `[environment.waves]` with one
+/// `"components"` train; still water, with a comment, when every amplitude is zero.
+fn write_waves(w: &mut String, md: &super::waves::MdWaves) {
+    let (mode, l) = md.mode;
+    let what = if mode == 7 {
+        "MoorDyn sums these components at the nodes, as cablesim does"
+    } else {
+        "the elevation record resampled and decomposed by FFT as MoorDyn does"
+    };
+    let _ = writeln!(w, "# WaveKin = {mode} (line {l}): {}; {what}.", md.file);
+    for n in &md.notes {
+        let _ = writeln!(w, "# {n}.");
+    }
+    if md.rows.iter().all(|r| r[1] == 0.0) {
+        let _ = writeln!(w, "# Every amplitude is zero: still water.");
+        return;
+    }
+    let _ = writeln!(w, "\n[environment.waves]");
+    let _ = writeln!(
+        w,
+        "# MoorDyn has no start-up ramp and stretches the profile as Wheeler does (cablesim's \
+         default); the components act from t = 0."
+    );
+    let _ = writeln!(w, "\n[[environment.waves.trains]]");
+    let _ = writeln!(w, "type = \"components\"");
+    let rows_are = if mode == 7 {
+        "MoorDyn's complex amplitude a gives A = |a| and phase = 90 - arg(a) in degrees \
+         (MoorDyn writes |a| sin(omega t - k x + arg a))"
+    } else {
+        "FFT bin i of the N resampled samples, X_i, gives A = 2 |X_i| / N and phase = \
+         -arg(X_i) in degrees (the record at the origin from t = 0)"
+    };
+    let _ = writeln!(
+        w,
+        "# [omega (rad/s), amplitude (m), phase (degrees), direction (degrees)] with \
+         eta = A cos(k (x cos b + y sin b) - omega t + phase): {rows_are}."
+    );
+    let _ = writeln!(w, "rows = [");
+    for r in &md.rows {
+        let _ = writeln!(
+            w,
+            "    [{}, {}, {}, {}],",
+            f(r[0]),
+            f(r[1]),
+            f(r[2]),
+            f(r[3])
+        );
+    }
+    let _ = writeln!(w, "]");
 }
 
 /// Maps a parsed MoorDyn file to scenario TOML. `path` names the file in messages.
@@ -157,11 +202,21 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         }
         None => None,
     };
+    let waves = match o.wave_kin {
+        Some((7, l)) => Some(super::waves::frequencies(p, l, &mut warn)?),
+        Some((_, l)) => Some(super::waves::elevation(
+            p,
+            l,
+            o.dt_wave.unwrap_or((super::waves::DEFAULT_DT_WAVE, 0)),
+            &mut warn,
+        )?),
+        None => None,
+    };
 
     // Line types.
     let mut types: HashMap<&str, (usize, f64, f64)> = HashMap::new();
     for (i, t) in file.line_types.iter().enumerate() {
-        let (ea, ba) = check_type(p, t, &mut warn)?;
+        let (ea, ba) = check_type(p, t, file.version, &mut warn)?;
         if types.insert(t.name.as_str(), (i, ea, ba)).is_some() {
             return Err(err_at(
                 p,
@@ -539,11 +594,15 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         f(depth)
     );
     match &current {
-        None => {
+        None if waves.is_none() => {
             let _ = writeln!(
                 w,
-                "# Still water: MoorDyn's WaveKin and Currents are 0 (other values are refused)."
+                "# Still water: MoorDyn's WaveKin and Currents are 0 (WaveKin 3 and 7 and \
+                 Currents 1 and 3 convert; other values are refused)."
             );
+        }
+        None => {
+            let _ = writeln!(w, "# No current: MoorDyn's Currents is 0.");
         }
         Some((mode, l, rows, file)) => {
             let _ = writeln!(
@@ -564,6 +623,9 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             }
             let _ = writeln!(w, "]");
         }
+    }
+    if let Some(md) = &waves {
+        write_waves(w, md);
     }
     let _ = writeln!(w, "\n[environment.seabed]");
     let _ = writeln!(
@@ -640,9 +702,9 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         let _ = writeln!(w, "ea = {}  # N", f(ea));
         let _ = writeln!(w, "# {}", lt.note);
         let _ = writeln!(w, "damping = {}  # s", f(lt.c));
-        let (cd, cdax, ca) = match file.version {
-            Version::V1 => ("Cdn", "Cdt", "Can"),
-            Version::V2 => ("Cd", "CdAx", "Ca"),
+        let (cd, cdax, ca, caax) = match file.version {
+            Version::V1 => ("Cdn", "Cdt", "Can", "Cat"),
+            Version::V2 => ("Cd", "CdAx", "Ca", "CaAx"),
         };
         let _ = writeln!(w, "cn = {}  # {cd}, on the frontal area d l", f(t.cd));
         let _ = writeln!(
@@ -651,6 +713,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             f(t.cdax)
         );
         let _ = writeln!(w, "cm = {}  # {ca}, normal added mass", f(t.ca));
+        let _ = writeln!(w, "cat = {}  # {caax}, tangential added mass", f(t.caax));
         if t.ei > 0.0 {
             let _ = writeln!(
                 w,

@@ -8,12 +8,23 @@ pub mod convert;
 mod options;
 pub mod parse;
 mod tables;
+pub mod waves;
 
-pub use convert::{convert, ConvertOptions, Converted, Warning};
+pub use convert::{convert, ConvertOptions, Converted};
 pub use parse::{looks_like_moordyn, parse, MoorDynFile, Version};
 
 use crate::error::Error;
 use std::path::Path;
+
+/// Something dropped or approximated, at a line of the file (here, not in `convert.rs`,
+/// whose helpers `options.rs` and `tables.rs` report it: no import circle).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Warning {
+    /// 1-based line number (0: the file as a whole).
+    pub line: usize,
+    /// What was dropped or approximated, and its effect.
+    pub message: String,
+}
 
 /// Builds the error for line `line` (1-based; 0 = the file as a whole) of a MoorDyn
 /// file: the field names the line and the column or option.

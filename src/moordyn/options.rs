@@ -1,8 +1,8 @@
 //! The options section of a MoorDyn file read into the values cablesim uses (with the
 //! line each came from, for comments and warnings), and MoorDyn's steady current
-//! profile file.
+//! profile file (its wave files: `moordyn::waves`).
 
-use super::convert::Warning;
+use super::Warning;
 use super::err_at;
 use super::parse::MoorDynFile;
 use crate::error::Error;
@@ -23,6 +23,10 @@ pub(super) struct Opts {
     pub(super) cfl: Option<(f64, usize)>,
     /// `Currents` 1 or 3 (a steady profile in `current_profile.txt`), and its line.
     pub(super) currents: Option<(u8, usize)>,
+    /// `WaveKin` 3 or 7 (`moordyn::waves`), and its line.
+    pub(super) wave_kin: Option<(u8, usize)>,
+    /// `dtWave`, s, and its line (for `WaveKin` 3).
+    pub(super) dt_wave: Option<(f64, usize)>,
     pub(super) scheme: Option<(String, usize)>,
     pub(super) ic: Vec<(String, String, usize)>,
     pub(super) ignored: Vec<(String, usize)>,
@@ -61,6 +65,8 @@ pub(super) fn read_options(
         dt_m: None,
         cfl: None,
         currents: None,
+        wave_kin: None,
+        dt_wave: None,
         scheme: None,
         ic: Vec::new(),
         ignored: Vec::new(),
@@ -127,18 +133,24 @@ pub(super) fn read_options(
                 o.ic.push((r.name.clone(), val.to_string(), l))
             }
             "wavekin" => {
-                if n()? != 0.0 {
+                let mode = n()?;
+                if mode == 3.0 || mode == 7.0 {
+                    o.wave_kin = Some((mode as u8, l));
+                } else if mode != 0.0 {
                     return Err(err_at(
                         p,
                         l,
                         format!("option {}", r.name),
                         format!(
-                            "WaveKin = {val}: MoorDyn's wave kinematics (grids, FFT, \
-                             component files) are not read; only still water converts"
+                            "WaveKin = {val}: only 3 (an elevation record, \
+                             wave_elevation.txt) and 7 (wave components, \
+                             wave_frequencies.txt) convert; MoorDyn's external waves (1) \
+                             and its FFT grid of a frequency file (2) are not read"
                         ),
                     ));
                 }
             }
+            "dtwave" => o.dt_wave = Some((n()?, l)),
             "currents" => {
                 let mode = n()?;
                 if mode == 1.0 || mode == 3.0 {
@@ -174,8 +186,8 @@ pub(super) fn read_options(
                     "a 3D seafloor file is not supported: cablesim's seabed is a flat plane",
                 ))
             }
-            "dtwave" | "unifycurrentgrid" | "writelog" | "writeunits" | "disableoutput"
-            | "disableouttime" | "outswitch" | "echo" | "inertialf" | "inertialf_rampt" => {
+            "unifycurrentgrid" | "writelog" | "writeunits" | "disableoutput" | "disableouttime"
+            | "outswitch" | "echo" | "inertialf" | "inertialf_rampt" => {
                 o.ignored.push((r.name.clone(), l))
             }
             _ => warn.push(Warning {

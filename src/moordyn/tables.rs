@@ -1,9 +1,9 @@
 //! Rows of a MoorDyn file's tables checked for what cablesim can run: what a point
 //! is, which point a line end names, and a line type's stiffness and damping.
 
-use super::convert::Warning;
+use super::Warning;
 use super::err_at;
-use super::parse::{LineRow, LineTypeRow, PointRow};
+use super::parse::{LineRow, LineTypeRow, PointRow, Version};
 use crate::error::Error;
 use std::path::Path;
 
@@ -91,10 +91,12 @@ pub(super) fn attach_point(
     }
 }
 
-/// A line type checked for what cablesim can run: (EA, BA as written).
+/// A line type checked for what cablesim can run: (EA, BA as written). Its columns are
+/// named as the file's `version` names them.
 pub(super) fn check_type(
     p: &Path,
     t: &LineTypeRow,
+    version: Version,
     warn: &mut Vec<Warning>,
 ) -> Result<(f64, f64), Error> {
     let l = t.line;
@@ -138,7 +140,11 @@ pub(super) fn check_type(
             ))
         }
     };
-    for (c, x) in [("Cd", t.cd), ("Ca", t.ca), ("CdAx", t.cdax)] {
+    let [cd, ca, cdax, caax] = match version {
+        Version::V1 => ["Cdn", "Can", "Cdt", "Cat"],
+        Version::V2 => ["Cd", "Ca", "CdAx", "CaAx"],
+    };
+    for (c, x) in [(cd, t.cd), (ca, t.ca), (cdax, t.cdax), (caax, t.caax)] {
         if x < 0.0 {
             return Err(err_at(
                 p,
@@ -155,16 +161,6 @@ pub(super) fn check_type(
                 "line type \"{}\": bending stiffness EI = {} N m^2 is ignored by the \
                  lumped-mass model (kept as `ei` for the ANCF reference)",
                 t.name, t.ei
-            ),
-        });
-    }
-    if t.caax != 0.0 {
-        warn.push(Warning {
-            line: l,
-            message: format!(
-                "line type \"{}\": tangential added mass CaAx = {} is dropped (cablesim has \
-                 none; it only changes axial inertia by Ca rho A / m)",
-                t.name, t.caax
             ),
         });
     }

@@ -146,7 +146,7 @@ impl CsvTables {
                     "bodies" => {
                         for b in &s.bodies {
                             let (x, a, f, m) = (b.position, b.angles, b.force, b.moment);
-                            writeln!(
+                            write!(
                                 w,
                                 "{t},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                                 quoted(q, &b.name),
@@ -163,6 +163,10 @@ impl CsvTables {
                                 m[1],
                                 m[2]
                             )?;
+                            if let Some(u) = b.velocity {
+                                write!(w, ",{},{},{},{},{},{}", u[0], u[1], u[2], u[3], u[4], u[5])?;
+                            }
+                            writeln!(w)?;
                         }
                     }
                     "points" => {
@@ -201,7 +205,7 @@ impl Tables for CsvTables {
         if self.files.is_empty() {
             for t in Table::ALL.iter() {
                 self.files.push(if t.present(s) {
-                    Some(CsvFile::create(&self.dir, t, self.cap)?)
+                    Some(CsvFile::create(&self.dir, &t.for_run(s), self.cap)?)
                 } else {
                     None
                 });

@@ -173,6 +173,7 @@ pub const OWN_FILES: &[&str] = &[
     "bodies.parquet",
     "points.parquet",
     "final_state.parquet",
+    "fatigue.csv",
 ];
 
 /// Folders cablesim writes into an output directory, with the extensions of the files it

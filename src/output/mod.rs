@@ -8,6 +8,7 @@
 
 mod csv_files;
 mod fanout;
+mod fatigue;
 mod files;
 mod guard;
 mod memory;
@@ -19,6 +20,7 @@ mod tables;
 mod vtk;
 
 pub use fanout::FanOut;
+pub use fatigue::FatigueSink;
 pub use files::{FileSink, LOCK_FILE, MARKER_FILE, OWN_DIRS, OWN_FILES};
 pub use memory::MemorySink;
 pub use sink::{BodyState, CableState, OutputSink, PointState, Snapshot};

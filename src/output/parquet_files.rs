@@ -44,6 +44,8 @@ fn perr(path: &Path, e: parquet::errors::ParquetError) -> Error {
 
 /// One Parquet file being written.
 struct PqFile {
+    /// Its table, with the columns this run writes.
+    table: Table,
     path: PathBuf,
     cap: Option<u64>,
     w: Option<SerializedFileWriter<GuardedFile>>,
@@ -116,6 +118,7 @@ impl PqFile {
         w.flush().map_err(|e| perr(&path, e.into()))?;
         let ends = vec![w.bytes_written() as u64];
         Ok(Self {
+            table: *t,
             path,
             cap,
             w: Some(w),
@@ -381,7 +384,9 @@ fn fill(table: &str, col: &str, s: &Snapshot, o: &mut Out) {
                     "pitch" => o.f(b.angles[1]),
                     "yaw" => o.f(b.angles[2]),
                     "fx" | "fy" | "fz" => o.f(b.force[axis(col)]),
-                    _ => o.f(b.moment[axis(col)]),
+                    "mx" | "my" | "mz" => o.f(b.moment[axis(col)]),
+                    "vx" | "vy" | "vz" => o.f(b.velocity.map_or(0.0, |u| u[axis(col)])),
+                    _ => o.f(b.velocity.map_or(0.0, |u| u[3 + axis(col)])),
                 }
             }
         }
@@ -448,10 +453,9 @@ impl ParquetTables {
             return Ok(());
         }
         let frames: Vec<&Snapshot> = self.pending.iter().map(|a| &**a).collect();
-        for (t, f) in Table::ALL.iter().zip(self.files.iter_mut()) {
-            if let Some(f) = f {
-                f.group(t, &frames)?;
-            }
+        for f in self.files.iter_mut().flatten() {
+            let t = f.table;
+            f.group(&t, &frames)?;
         }
         self.group_times.push(frames.last().expect("pending").time);
         self.pending.clear();
@@ -465,7 +469,7 @@ impl Tables for ParquetTables {
         if self.files.is_empty() {
             for t in Table::ALL.iter() {
                 self.files.push(if t.present(s) {
-                    Some(PqFile::create(&self.dir, t, self.cap)?)
+                    Some(PqFile::create(&self.dir, &t.for_run(s), self.cap)?)
                 } else {
                     None
                 });

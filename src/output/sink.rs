@@ -62,6 +62,9 @@ pub struct BodyState {
     pub force: [f64; 3],
     /// Their moment about the reference point, N m.
     pub moment: [f64; 3],
+    /// Velocity of the reference point (m/s) and angular velocity (rad/s), global
+    /// axes: in runs with free or pinned bodies (`None` otherwise).
+    pub velocity: Option<[f64; 6]>,
 }
 
 /// One cable's state at one time.

@@ -196,7 +196,10 @@ pub struct Summary {
     pub threads: usize,
     /// Initial equilibrium: largest residual force left, N (0 when not relaxed).
     pub relax_residual: f64,
-    /// Per cable.
+    /// The line failures, in the order they fired (left out when none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub failures: Vec<crate::model::FailureEvent>,
+    /// Per cable (the last key: [`summary_text`] writes a line per cable).
     pub cables: Vec<CableSummary>,
 }
 
@@ -283,6 +286,7 @@ impl Summary {
             node_steps_per_second: self.node_steps_per_second,
             threads: self.threads,
             relax_residual: self.relax_residual,
+            failures: self.failures.clone(),
             cables: Vec::new(),
         }
     }

@@ -17,7 +17,7 @@ pub enum Kind {
 }
 
 /// One table: its file's stem and its columns `(name, unit, kind)` (`-`: no unit).
-#[derive(Debug)]
+#[derive(Clone, Copy, Debug)]
 pub struct Table {
     /// The file's name without its extension.
     pub name: &'static str,
@@ -105,6 +105,34 @@ impl Table {
         },
     ];
 
+    /// `bodies` of a run with free or pinned bodies: with their velocities (the
+    /// reference point's, m/s, and the angular velocity, rad/s; global axes).
+    pub const BODIES_MOVING: Table = Table {
+        name: "bodies",
+        columns: &[
+            ("time", "s", F64),
+            ("body", "-", Text),
+            ("x", "m", F64),
+            ("y", "m", F64),
+            ("z", "m", F64),
+            ("roll", "deg", F64),
+            ("pitch", "deg", F64),
+            ("yaw", "deg", F64),
+            ("fx", "N", F64),
+            ("fy", "N", F64),
+            ("fz", "N", F64),
+            ("mx", "N m", F64),
+            ("my", "N m", F64),
+            ("mz", "N m", F64),
+            ("vx", "m/s", F64),
+            ("vy", "m/s", F64),
+            ("vz", "m/s", F64),
+            ("wx", "rad/s", F64),
+            ("wy", "rad/s", F64),
+            ("wz", "rad/s", F64),
+        ],
+    };
+
     /// The final state: every node of every cable at the last output time.
     pub const FINAL_STATE: Table = Table {
         name: "final_state",
@@ -134,6 +162,16 @@ impl Table {
             "bodies" => !s.bodies.is_empty(),
             "points" => !s.points.is_empty(),
             _ => true,
+        }
+    }
+
+    /// This table as a run whose first frame is `s` writes it: `bodies` with the
+    /// velocity columns ([`Table::BODIES_MOVING`]) when the bodies have velocities.
+    pub fn for_run(&self, s: &Snapshot) -> Table {
+        if self.name == "bodies" && s.bodies.iter().any(|b| b.velocity.is_some()) {
+            Table::BODIES_MOVING
+        } else {
+            *self
         }
     }
 

@@ -20,10 +20,14 @@ pub struct Coefs<T> {
     pub drag_t: T,
     /// `(1 + Cm) rho A`, kg/m.
     pub froude_krylov: T,
+    /// `(1 + Cat) rho A`, kg/m.
+    pub froude_krylov_t: T,
     /// `mbar`, kg/m.
     pub mass: T,
     /// `Cm rho A`, kg/m.
     pub added_mass: T,
+    /// `Cat rho A`, kg/m.
+    pub added_mass_t: T,
     /// z component of weight less buoyancy per length, N/m.
     pub wet_weight_z: T,
     /// 1 when the elastic force acts in compression, else 0.
@@ -39,8 +43,10 @@ impl<T: Real> Coefs<T> {
             drag_n: T::c(c.drag_n),
             drag_t: T::c(c.drag_t),
             froude_krylov: T::c(c.froude_krylov),
+            froude_krylov_t: T::c(c.froude_krylov_t),
             mass: T::c(c.mass),
             added_mass: T::c(c.added_mass),
+            added_mass_t: T::c(c.added_mass_t),
             wet_weight_z: T::c(c.wet_weight_z),
             compression: T::c(c.compression),
         }
@@ -69,7 +75,10 @@ pub struct ElementInput<T> {
 /// What an element contributes to its two nodes.
 ///
 /// Node a receives `f_half + tension t`, node b `f_half - tension t`; each receives the
-/// mass block `half_mass I + half_added (I - t t^T)`.
+/// mass block `half_mass I + half_added (I - t t^T)`: `half_mass` is the element's half
+/// mass along its tangent (material plus tangential added mass), `half_added` what its
+/// normal plane has more (normal less tangential added mass), so that the block is
+/// `(mbar l0 I + Cm rho A l0 wet P + Cat rho A l0 wet t t^T) / 2`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ElementLoads<T> {
     /// Unit tangent `t = (r_b - r_a) / l`.
@@ -78,9 +87,10 @@ pub struct ElementLoads<T> {
     pub tension: T,
     /// Half of the external load `F_dn + F_dt + F_a + W`, N.
     pub f_half: V3<T>,
-    /// Half of `mbar l0`, kg.
+    /// Half of `(mbar + Cat rho A wet) l0`, kg: the mass along the tangent.
     pub half_mass: T,
-    /// Half of the normal added mass `Cm rho A l0`, kg.
+    /// Half of `(Cm - Cat) rho A l0 wet`, kg: what the normal plane has more (negative
+    /// when `Cat > Cm`).
     pub half_added: T,
 }
 
@@ -91,7 +101,8 @@ pub struct ExternalLoads<T> {
     pub drag_n: V3<T>,
     /// Tangential drag `F_dt`, N.
     pub drag_t: V3<T>,
-    /// Water-acceleration load `F_a`, N.
+    /// Water-acceleration load `F_a` (Froude-Krylov and added mass, across and along
+    /// the element), N.
     pub froude_krylov: V3<T>,
     /// Weight less buoyancy `W`, N.
     pub wet_weight: V3<T>,
@@ -135,8 +146,8 @@ pub fn glmf_external<T: Real>(
 
 /// GLMF external loads of an element with tangent `t` and current length `l` of which
 /// the fraction `wet` (see [`super::surface::wetted_fraction`]) is under water, in
-/// gravity `gravity` (m/s^2). Every water term (drag, the water-acceleration load,
-/// buoyancy) is taken times `wet`; the weight is `(mbar - wet rho A) l0 g`, written as
+/// gravity `gravity` (m/s^2). The water-acceleration load is [`froude_krylov`]'s.
+/// Every water term (drag, the water-acceleration load, buoyancy) is taken times `wet`; the weight is `(mbar - wet rho A) l0 g`, written as
 /// the wet weight less the buoyancy `(1 - wet) rho A g l0` of the dry part, with
 /// `rho A g = wet_weight_z + mbar g`. At `wet = 1` every product is by one and the
 /// subtraction is of zero, so a submerged element's loads are bit for bit those of
@@ -154,15 +165,26 @@ pub fn glmf_external_wet<T: Real>(
     let vrel = e.current - (e.va + e.vb) * half;
     let vt = t.dot(vrel);
     let vn = vrel - t * vt; // P v_rel
-    let aw_n = e.water_accel - t * t.dot(e.water_accel); // P a_w
     let buoyancy_z = c.wet_weight_z + c.mass * gravity;
     let weight_z = c.wet_weight_z - (T::one() - wet) * buoyancy_z;
     ExternalLoads {
         drag_n: vn * (c.drag_n * l * vn.norm() * wet),
         drag_t: t * (c.drag_t * l * vt.abs() * vt * wet),
-        froude_krylov: aw_n * (c.froude_krylov * e.l0 * wet),
+        froude_krylov: froude_krylov(c, t, e.water_accel, e.l0 * wet),
         wet_weight: V3::new(T::zero(), T::zero(), weight_z * e.l0),
     }
+}
+
+/// The water-acceleration load on `vol_l0` metres of unstretched line with tangent `t`
+/// in water accelerating at `aw` (its wetted length `l0 wet`): the undisturbed
+/// pressure gradient `rho A a_w` on the displaced volume in every direction plus the
+/// added masses, `(1 + Cm) rho A P a_w` across and `(1 + Cat) rho A (t . a_w) t`
+/// along the line, per metre.
+#[inline(always)]
+pub fn froude_krylov<T: Real>(c: &Coefs<T>, t: V3<T>, aw: V3<T>, vol_l0: T) -> V3<T> {
+    let at = t.dot(aw);
+    let aw_n = aw - t * at; // P a_w
+    aw_n * (c.froude_krylov * vol_l0) + t * (c.froude_krylov_t * vol_l0 * at)
 }
 
 /// The GLMF loads of one element wholly under water. A zero-length element gives
@@ -174,8 +196,8 @@ pub fn glmf_element<T: Real>(c: &Coefs<T>, e: &ElementInput<T>) -> ElementLoads<
 }
 
 /// The GLMF loads of one element of which the fraction `wet` is under water (see
-/// [`glmf_external_wet`]); its normal added mass is taken times `wet` too. At
-/// `wet = 1` this is [`glmf_element`] bit for bit.
+/// [`glmf_external_wet`]); its added masses, normal and tangential, are taken times
+/// `wet` too. At `wet = 1` this is [`glmf_element`] bit for bit.
 #[inline(always)]
 pub fn glmf_element_wet<T: Real>(
     c: &Coefs<T>,
@@ -193,7 +215,7 @@ pub fn glmf_element_wet<T: Real>(
         t,
         tension,
         f_half: ext.total() * half,
-        half_mass: c.mass * e.l0 * half,
-        half_added: c.added_mass * e.l0 * half * wet,
+        half_mass: (c.mass + c.added_mass_t * wet) * e.l0 * half,
+        half_added: (c.added_mass - c.added_mass_t) * e.l0 * half * wet,
     }
 }

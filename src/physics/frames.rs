@@ -363,13 +363,17 @@ pub fn frame_external<T: Real>(
             fn_local[j] = c.drag_n * l * vl[j].abs() * vl[j];
         }
     }
-    // Eq. 11: (1 + Cm) rho A l0 A diag(normal, normal, 0) A^T a_w.
+    // Eq. 11: (1 + Cm) rho A l0 A diag(normal, normal, 0) A^T a_w, plus the axial part
+    // (1 + Cat) rho A l0 A diag(0, 0, axial) A^T a_w.
     let mut al = arr(ax.to_local(e.water_accel));
+    let mut at = [T::zero(); 3];
+    at[k] = al[k];
     al[k] = T::zero();
     Ok(ExternalLoads {
         drag_n: ax.to_global(vec3(fn_local)),
         drag_t: ax.to_global(vec3(ft_local)),
-        froude_krylov: ax.to_global(vec3(al)) * (c.froude_krylov * e.l0),
+        froude_krylov: ax.to_global(vec3(al)) * (c.froude_krylov * e.l0)
+            + ax.to_global(vec3(at)) * (c.froude_krylov_t * e.l0),
         wet_weight: V3::new(T::zero(), T::zero(), c.wet_weight_z * e.l0),
     })
 }
@@ -391,8 +395,8 @@ pub fn frame_element_with<T: Real>(
         t,
         tension: axial_force(c, l, e.l0, t, e.vb - e.va),
         f_half: ext.total() * half,
-        half_mass: c.mass * e.l0 * half,
-        half_added: c.added_mass * e.l0 * half,
+        half_mass: (c.mass + c.added_mass_t) * e.l0 * half,
+        half_added: (c.added_mass - c.added_mass_t) * e.l0 * half,
     };
     if !(out.t.is_finite()
         && out.tension.is_finite()

@@ -7,8 +7,8 @@ pub mod seabed;
 pub mod surface;
 
 pub use element::{
-    axial_force, glmf_element, glmf_element_wet, glmf_external, glmf_external_wet, Coefs,
-    ElementInput, ElementLoads, ExternalLoads,
+    axial_force, froude_krylov, glmf_element, glmf_element_wet, glmf_external, glmf_external_wet,
+    Coefs, ElementInput, ElementLoads, ExternalLoads,
 };
 pub use seabed::{seabed_damping, seabed_force, SeabedCoefs};
 pub use surface::{point_wetted_fraction, sphere_radius, wetted_fraction};

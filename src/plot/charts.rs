@@ -404,3 +404,81 @@ pub fn utilisation(path: &Path, rows: &[(String, String, f64)]) -> Result<(), Er
         Ok(())
     })
 }
+
+/// Bars of the fatigue damage per location on a logarithmic axis (labels `cable
+/// location`; the axis is `log10` of the damage, labelled in powers of ten), with the
+/// limit 1 drawn where it is in range.
+pub fn fatigue(path: &Path, rows: &[(String, f64)], what: &str) -> Result<(), Error> {
+    draw_png(path, |root| {
+        let logs: Vec<f64> = rows
+            .iter()
+            .map(|r| r.1)
+            .filter(|v| *v > 0.0)
+            .map(f64::log10)
+            .collect();
+        let lo = logs.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = logs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let (lo, hi) = if logs.is_empty() {
+            (-12.0, 0.0)
+        } else {
+            (lo.floor() - 1.0, hi.ceil().max(lo.floor() + 1.0) + 0.5)
+        };
+        let n = rows.len();
+        let mut chart = ChartBuilder::on(root)
+            .caption(format!("Fatigue: {what}"), ("sans-serif", 24))
+            .margin(15)
+            .x_label_area_size(60)
+            .y_label_area_size(100)
+            .build_cartesian_2d(-0.5f64..(n as f64 - 0.5), lo..hi)?;
+        let labels: Vec<String> = rows.iter().map(|r| r.0.clone()).collect();
+        let decades = (hi - lo).ceil() as usize;
+        chart
+            .configure_mesh()
+            .disable_x_mesh()
+            .x_labels(n.max(1))
+            .x_label_formatter(&|x| {
+                let k = x.round();
+                if (x - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < labels.len() {
+                    labels[k as usize].clone()
+                } else {
+                    String::new()
+                }
+            })
+            .y_labels(decades + 1)
+            .y_label_formatter(&|v| {
+                if (v - v.round()).abs() < 1e-6 {
+                    format!("1e{}", v.round() as i64)
+                } else {
+                    String::new()
+                }
+            })
+            .x_desc("line, location")
+            .y_desc("damage (-), logarithmic")
+            .label_style(("sans-serif", 14))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()?;
+        chart.draw_series(
+            rows.iter()
+                .enumerate()
+                .filter(|(_, r)| r.1 > 0.0)
+                .map(|(k, r)| {
+                    let c = if r.1 > 1.0 {
+                        RED.to_rgba()
+                    } else {
+                        RGBColor(0, 110, 190).to_rgba()
+                    };
+                    Rectangle::new(
+                        [(k as f64 - 0.35, lo), (k as f64 + 0.35, r.1.log10())],
+                        c.filled(),
+                    )
+                }),
+        )?;
+        if hi > 0.0 {
+            chart.draw_series(LineSeries::new(
+                [(-0.5, 0.0), (n as f64 - 0.5, 0.0)],
+                BLACK.stroke_width(2),
+            ))?;
+        }
+        Ok(())
+    })
+}

@@ -215,3 +215,41 @@ pub fn utilisation(study: &Path) -> Result<Vec<(String, String, f64)>, Error> {
         })
         .collect())
 }
+
+/// The fatigue damage per location of a `fatigue.csv`, and what it is: for a study's
+/// (with a scatter diagram) `DFF * annual damage` per location (one value per
+/// location, the reciprocal of its life in years); for a run's, the damage of the
+/// record. Labels are `cable location`. Empty for a study without a scatter diagram.
+pub fn fatigue(path: &Path) -> Result<(Vec<(String, f64)>, &'static str), Error> {
+    let rows = rows(path)?;
+    let study = rows
+        .first()
+        .is_some_and(|r| r.contains_key("annual_damage"));
+    let mut out: Vec<(String, f64)> = Vec::new();
+    for r in &rows {
+        let label = format!("{} {}", r["cable"], r["location"]);
+        if out.last().is_some_and(|l| l.0 == label) {
+            continue; // a study's further sea states of the same location
+        }
+        let value = if study {
+            match (
+                opt_num(r, "annual_damage"),
+                opt_num(r, "design_fatigue_factor"),
+            ) {
+                (Some(d), Some(f)) => d * f,
+                _ => continue,
+            }
+        } else {
+            num(path, r, "damage")?
+        };
+        out.push((label, value));
+    }
+    Ok((
+        out,
+        if study {
+            "DFF x annual damage (1 / fatigue life, per year)"
+        } else {
+            "Miner damage of the record"
+        },
+    ))
+}

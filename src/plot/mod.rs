@@ -5,7 +5,8 @@
 //! time) and, with `positions.csv`, `profiles.png` (side view x-z and plan view x-y of
 //! every cable at chosen times). From a study's directory (`study.csv`,
 //! `members.csv`): `gumbel_<sea state>_<channel>.png` (the seed maxima on Gumbel paper
-//! with the fitted line) and, when channels have capacities, `utilisation.png`.
+//! with the fitted line) and, when channels have capacities, `utilisation.png`. With a
+//! `fatigue.csv` (a run's or a study's), `fatigue.png`: the damage per line and location.
 
 mod charts;
 pub mod data;
@@ -50,6 +51,15 @@ pub fn plot_dir(dir: &Path, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, E
         if !u.is_empty() {
             let p = out.join("utilisation.png");
             charts::utilisation(&p, &u)?;
+            written.push(p);
+        }
+    }
+    let fatigue = dir.join("fatigue.csv");
+    if fatigue.exists() {
+        let (rows, what) = data::fatigue(&fatigue)?;
+        if !rows.is_empty() {
+            let p = out.join("fatigue.png");
+            charts::fatigue(&p, &rows, what)?;
             written.push(p);
         }
     }

@@ -3,7 +3,8 @@
 
 use super::route_file::read_numbers_one_of;
 use super::{err, finite};
-use crate::body::{Body, MeanPose, Motion, MotionTable, RaoMotion, RaoTable};
+use crate::body::free::{self, FreeBody, FreeKind, FreeSpec, LoadTable};
+use crate::body::{Body, Dynamic, MeanPose, Motion, MotionTable, RaoMotion, RaoTable};
 use crate::error::Error;
 use crate::model::Route;
 use crate::sea::WaveComponent;
@@ -15,13 +16,52 @@ use std::sync::Arc;
 /// The scenario's bodies by name.
 pub type Bodies = HashMap<String, Arc<Body>>;
 
-const BODY_KEYS: [&str; 6] = [
+const BODY_KEYS: [&str; 24] = [
+    "angles",
     "name",
     "reference",
     "offset",
     "heading",
     "motion_file",
     "rao_file",
+    "motion",
+    "mass",
+    "cg",
+    "inertia",
+    "volume",
+    "cb",
+    "waterplane_area",
+    "waterplane_inertia",
+    "ca",
+    "added_mass",
+    "drag_area",
+    "rotational_drag",
+    "damping",
+    "stiffness",
+    "force",
+    "moment",
+    "load_file",
+];
+
+/// The keys of a free or pinned body only (its own dynamics).
+const DYNAMIC_KEYS: [&str; 17] = [
+    "mass",
+    "cg",
+    "inertia",
+    "volume",
+    "cb",
+    "waterplane_area",
+    "waterplane_inertia",
+    "ca",
+    "added_mass",
+    "drag_area",
+    "rotational_drag",
+    "damping",
+    "stiffness",
+    "force",
+    "moment",
+    "load_file",
+    "angles",
 ];
 
 fn number(p: &Path, field: &str, v: &toml::Value) -> Result<f64, Error> {
@@ -62,6 +102,7 @@ pub fn parse(
     tables: &[toml::Table],
     waves: &[WaveComponent],
     ramp: f64,
+    rho: f64,
 ) -> Result<Bodies, Error> {
     let mut out = Bodies::new();
     for (i, t) in tables.iter().enumerate() {
@@ -106,6 +147,47 @@ pub fn parse(
             },
         };
         let base = p.parent().unwrap_or(Path::new("."));
+        let kind = match t.get("motion") {
+            None => None,
+            Some(v) => match string(p, &f("motion"), v)? {
+                "prescribed" => None,
+                "free" => Some(FreeKind::Free),
+                "pinned" => Some(FreeKind::Pinned),
+                other => {
+                    return Err(err(
+                        p,
+                        f("motion"),
+                        format!(
+                        "unknown motion \"{other}\" (one of \"prescribed\", \"free\", \"pinned\")"
+                    ),
+                    ))
+                }
+            },
+        };
+        if let Some(kind) = kind {
+            let dynamic = parse_dynamic(p, &field, t, base, kind, pose, rho)?;
+            if out
+                .insert(
+                    name.clone(),
+                    Arc::new(Body::new(
+                        name.clone(),
+                        pose,
+                        Motion::Dynamic(Box::new(dynamic)),
+                    )),
+                )
+                .is_some()
+            {
+                return Err(err(p, f("name"), format!("duplicate body name \"{name}\"")));
+            }
+            continue;
+        }
+        if let Some(k) = t.keys().find(|k| DYNAMIC_KEYS.contains(&k.as_str())) {
+            return Err(err(
+                p,
+                f(k),
+                "only a body with its own dynamics has this key (set motion = \"free\" or \"pinned\")",
+            ));
+        }
         let motion = match (t.get("motion_file"), t.get("rao_file")) {
             (Some(_), Some(_)) => return Err(err(
                 p,
@@ -356,4 +438,246 @@ fn check_headings(got: &[f64], want: &[f64], key: f64, first: &str) -> Result<()
     Err(format!(
         "{first} {key} has heading {h}, which the first {first} does not (every {first} needs the same headings: {want:?})"
     ))
+}
+
+fn numbers<const N: usize>(p: &Path, field: &str, v: &toml::Value) -> Result<[f64; N], Error> {
+    match v {
+        toml::Value::Array(a) if a.len() == N => {
+            let mut out = [0.0; N];
+            for (k, x) in a.iter().enumerate() {
+                out[k] = number(p, &format!("{field}[{k}]"), x)?;
+            }
+            Ok(out)
+        }
+        _ => Err(err(p, field, format!("must be an array of {N} numbers"))),
+    }
+}
+
+fn matrix<const N: usize>(p: &Path, field: &str, v: &toml::Value) -> Result<[[f64; N]; N], Error> {
+    match v {
+        toml::Value::Array(rows) if rows.len() == N => {
+            let mut out = [[0.0; N]; N];
+            for (i, r) in rows.iter().enumerate() {
+                out[i] = numbers::<N>(p, &format!("{field}[{i}]"), r).map_err(|_| {
+                    err(
+                        p,
+                        format!("{field}[{i}]"),
+                        format!("must be a row of {N} numbers"),
+                    )
+                })?;
+            }
+            Ok(out)
+        }
+        _ => Err(err(
+            p,
+            field,
+            format!("must be a {N}x{N} matrix: {N} rows of {N} numbers"),
+        )),
+    }
+}
+
+fn symmetric<const N: usize>(p: &Path, field: &str, m: &[[f64; N]; N]) -> Result<(), Error> {
+    let scale = m.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+    for i in 0..N {
+        for j in 0..i {
+            if (m[i][j] - m[j][i]).abs() > 1e-9 * scale {
+                return Err(err(
+                    p,
+                    field,
+                    format!(
+                        "must be symmetric: [{i}][{j}] = {} but [{j}][{i}] = {}",
+                        m[i][j], m[j][i]
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A free or pinned body's keys (docs/src/bodies.md, "Free bodies").
+fn parse_dynamic(
+    p: &Path,
+    field: &str,
+    t: &toml::Table,
+    base: &Path,
+    kind: FreeKind,
+    pose: MeanPose,
+    rho: f64,
+) -> Result<Dynamic, Error> {
+    let f = |k: &str| format!("{field}.{k}");
+    let get3 = |k: &str| -> Result<[f64; 3], Error> {
+        t.get(k).map_or(Ok([0.0; 3]), |v| numbers::<3>(p, &f(k), v))
+    };
+    let get1 =
+        |k: &str| -> Result<f64, Error> { t.get(k).map_or(Ok(0.0), |v| number(p, &f(k), v)) };
+    let get6 = |k: &str| -> Result<[[f64; 6]; 6], Error> {
+        t.get(k)
+            .map_or(Ok([[0.0; 6]; 6]), |v| matrix::<6>(p, &f(k), v))
+    };
+    if t.get("rao_file").is_some() {
+        return Err(err(
+            p,
+            f("rao_file"),
+            "a free or pinned body moves by its own dynamics: it has no RAOs",
+        ));
+    }
+    let pin = match (kind, t.get("motion_file")) {
+        (FreeKind::Free, Some(_)) => {
+            return Err(err(
+                p,
+                f("motion_file"),
+                "a free body moves by its own dynamics: no motion file (a pinned body takes one for its translation)",
+            ))
+        }
+        (FreeKind::Pinned, Some(v)) => {
+            let file = base.join(string(p, &f("motion_file"), v)?);
+            let m = read_motion(&file, p, &f("motion_file"))?;
+            if !m.translation_only() {
+                return Err(err(
+                    p,
+                    f("motion_file"),
+                    format!(
+                        "{}: a pinned body's rotation is free: its roll, pitch and yaw columns must be zero",
+                        file.display()
+                    ),
+                ));
+            }
+            Some(m)
+        }
+        _ => None,
+    };
+    let mass = match t.get("mass") {
+        Some(v) => number(p, &f("mass"), v)?,
+        None => {
+            return Err(err(
+                p,
+                f("mass"),
+                "missing: a free or pinned body's mass, kg",
+            ))
+        }
+    };
+    let inertia = match t.get("inertia") {
+        None => {
+            return Err(err(
+                p,
+                f("inertia"),
+                "missing: the inertia about the centre of gravity, body axes: [Ixx, Iyy, Izz] or a 3x3 matrix, kg m^2",
+            ))
+        }
+        Some(toml::Value::Array(a)) if a.iter().all(|x| x.is_array()) => {
+            let m = matrix::<3>(p, &f("inertia"), &toml::Value::Array(a.clone()))?;
+            symmetric(p, &f("inertia"), &m)?;
+            m
+        }
+        Some(v) => {
+            let d = numbers::<3>(p, &f("inertia"), v)
+                .map_err(|_| err(p, f("inertia"), "must be [Ixx, Iyy, Izz] or a 3x3 matrix, kg m^2"))?;
+            [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]]
+        }
+    };
+    let volume = get1("volume")?;
+    if volume < 0.0 {
+        return Err(err(
+            p,
+            f("volume"),
+            format!("must not be negative, got {volume}"),
+        ));
+    }
+    let waterplane_area = get1("waterplane_area")?;
+    if waterplane_area < 0.0 {
+        return Err(err(
+            p,
+            f("waterplane_area"),
+            format!("must not be negative, got {waterplane_area}"),
+        ));
+    }
+    let waterplane_inertia = t.get("waterplane_inertia").map_or(Ok([0.0; 2]), |v| {
+        numbers::<2>(p, &f("waterplane_inertia"), v)
+    })?;
+    let mut added_mass = match (t.get("ca"), t.get("added_mass")) {
+        (Some(_), Some(_)) => {
+            return Err(err(p, field, "give either `ca` or `added_mass`, not both"))
+        }
+        (None, Some(_)) => {
+            let a = get6("added_mass")?;
+            symmetric(p, &f("added_mass"), &a)?;
+            a
+        }
+        _ => [[0.0; 6]; 6],
+    };
+    if t.get("ca").is_some() {
+        let ca = get3("ca")?;
+        for k in 0..3 {
+            added_mass[k][k] = ca[k] * volume * rho;
+        }
+    }
+    for (k, v) in [
+        ("drag_area", get3("drag_area")?),
+        ("rotational_drag", get3("rotational_drag")?),
+    ] {
+        if let Some(x) = v.iter().find(|x| **x < 0.0) {
+            return Err(err(p, f(k), format!("must not be negative, got {x}")));
+        }
+    }
+    let loads = match t.get("load_file") {
+        None => None,
+        Some(v) => {
+            let file = base.join(string(p, &f("load_file"), v)?);
+            Some(read_loads(&file, p, &f("load_file"))?)
+        }
+    };
+    let angles = get3("angles")?.map(f64::to_radians);
+    let spec = FreeSpec {
+        mass,
+        cg: get3("cg")?,
+        inertia,
+        volume,
+        cb: get3("cb")?,
+        waterplane_area,
+        waterplane_inertia,
+        added_mass,
+        drag_area: get3("drag_area")?,
+        rotational_drag: get3("rotational_drag")?,
+        damping: get6("damping")?,
+        stiffness: get6("stiffness")?,
+        force: get3("force")?,
+        moment: get3("moment")?,
+        loads,
+        angles,
+    };
+    free::check(&spec, kind).map_err(|(k, m)| err(p, f(&k), m))?;
+    Ok(Dynamic {
+        body: FreeBody::new(spec, kind, &pose),
+        pin,
+    })
+}
+
+/// Reads an external load file: header `t,fx,fy,fz,mx,my,mz` (s, N, N m), times
+/// strictly increasing.
+pub fn read_loads(file: &Path, scenario: &Path, field: &str) -> Result<LoadTable, Error> {
+    let shown = file.display();
+    let header = ["t", "fx", "fy", "fz", "mx", "my", "mz"];
+    let (_, rows) = read_numbers_one_of(file, scenario, field, "load", &[&header])?;
+    let mut out = LoadTable {
+        t: Vec::with_capacity(rows.len()),
+        loads: Vec::with_capacity(rows.len()),
+    };
+    for (line, v) in rows {
+        if let Some(&last) = out.t.last() {
+            if v[0] <= last {
+                return Err(err(
+                    scenario,
+                    field,
+                    format!(
+                        "{shown} line {line}, column t: time {} does not increase (previous {last})",
+                        v[0]
+                    ),
+                ));
+            }
+        }
+        out.t.push(v[0]);
+        out.loads.push([v[1], v[2], v[3], v[4], v[5], v[6]]);
+    }
+    Ok(out)
 }

@@ -9,7 +9,7 @@ use super::raw::RawCable;
 use super::{bodies, err, positive, validate, winch, InitialShape};
 use crate::ale::Winch;
 use crate::error::Error;
-use crate::model::{CableDef, ModelDef, NodeDef, PointMass};
+use crate::model::{CableDef, EndFailure, ModelDef, NodeDef, PointMass};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -21,6 +21,86 @@ pub(super) struct Cables {
     pub winches: Vec<Winch>,
     /// Index of each cable by name.
     pub names: HashMap<String, usize>,
+    /// The ends that may fail.
+    pub failures: Vec<EndFailure>,
+}
+
+/// The failure keys of a cable end.
+const FAIL_KEYS: [&str; 2] = ["fail_time", "fail_tension"];
+
+/// The failure of end `t` (`field`) of cable `cable`, if it has one: `fail_time` (s,
+/// finite, not negative) and/or `fail_tension` (N, positive), on an end held by a fixed
+/// point, a route or a body.
+fn failure(
+    p: &Path,
+    field: &str,
+    t: &toml::Table,
+    kind: &EndKind,
+    cable: &str,
+    at_start: bool,
+) -> Result<Option<EndFailure>, Error> {
+    let get = |k: &str| -> Result<Option<f64>, Error> {
+        match t.get(k) {
+            None => Ok(None),
+            Some(toml::Value::Float(x)) => Ok(Some(super::finite(p, &format!("{field}.{k}"), *x)?)),
+            Some(toml::Value::Integer(i)) => Ok(Some(*i as f64)),
+            Some(v) => Err(err(
+                p,
+                format!("{field}.{k}"),
+                format!("must be a number, got {}", v.type_str()),
+            )),
+        }
+    };
+    let (time, tension) = (get("fail_time")?, get("fail_tension")?);
+    if time.is_none() && tension.is_none() {
+        return Ok(None);
+    }
+    let key = if time.is_some() {
+        "fail_time"
+    } else {
+        "fail_tension"
+    };
+    match kind {
+        EndKind::Free(_) => {
+            return Err(err(
+                p,
+                format!("{field}.{key}"),
+                "a free end has no support to leave",
+            ))
+        }
+        EndKind::Point(_) => {
+            return Err(err(
+                p,
+                format!("{field}.{key}"),
+                "an end on a shared [[points]] entry cannot fail yet (give the end its own `fixed`, route or `body` attachment)",
+            ))
+        }
+        _ => {}
+    }
+    if let Some(x) = time {
+        if x < 0.0 {
+            return Err(err(
+                p,
+                format!("{field}.fail_time"),
+                format!("must not be negative, got {x}"),
+            ));
+        }
+    }
+    if let Some(x) = tension {
+        if x <= 0.0 {
+            return Err(err(
+                p,
+                format!("{field}.fail_tension"),
+                format!("must be positive, got {x}"),
+            ));
+        }
+    }
+    Ok(Some(EndFailure {
+        cable: cable.to_string(),
+        at_start,
+        time,
+        tension,
+    }))
 }
 
 /// Adds each cable of `cables` (its field prefix in messages and its table) to `model`:
@@ -39,6 +119,7 @@ pub(super) fn parse(
     let mut initial = Vec::with_capacity(cables.len());
     let mut winches = Vec::new();
     let mut names = HashMap::new();
+    let mut failures = Vec::new();
     let many = cables.len() > 20;
     for (i, (prefix, c)) in cables.iter().enumerate() {
         let f = |k: &str| format!("{prefix}.{k}");
@@ -90,8 +171,14 @@ pub(super) fn parse(
             }
             None => 0,
         };
-        let start = ends::parse_end(p, &f("start"), &c.start, &[], point_index, bodies)?;
-        let end = ends::parse_end(p, &f("end"), &c.end, &[], point_index, bodies)?;
+        let start = ends::parse_end(p, &f("start"), &c.start, &FAIL_KEYS, point_index, bodies)?;
+        let end = ends::parse_end(p, &f("end"), &c.end, &FAIL_KEYS, point_index, bodies)?;
+        for (k, (t, spec)) in [(&c.start, &start), (&c.end, &end)].into_iter().enumerate() {
+            let which = if k == 0 { "start" } else { "end" };
+            if let Some(fl) = failure(p, &f(which), t, &spec.kind, &c.name, k == 0)? {
+                failures.push(fl);
+            }
+        }
         if let Some(w) = &c.winch {
             winches.push(winch::parse(
                 p,
@@ -192,5 +279,6 @@ pub(super) fn parse(
         initial,
         winches,
         names,
+        failures,
     })
 }

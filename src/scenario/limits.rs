@@ -6,7 +6,6 @@
 use super::err;
 use super::raw::{RawNet, RawScenario};
 use crate::error::Error;
-use serde::Deserialize;
 use std::path::Path;
 
 /// The work budget of a run. Each figure is checked before the work it bounds starts;
@@ -31,9 +30,12 @@ impl Default for Limits {
     }
 }
 
-/// Default node-step budget: about a day at 1e9 node-steps per second (a large GPU run),
-/// far more than any example or benchmark here needs.
-pub const DEFAULT_NODE_STEPS: f64 = 1e14;
+/// Default node-step budget: 1e12 node-steps, about an hour and a half of the CPU chain
+/// path on one thread (2e8 node-steps/s, `sim::estimate`), fifteen minutes on eight,
+/// and more than any example, benchmark or design-check study here needs (the 30-member,
+/// 3-hour study packed into one GPU run: 1.6e10). A run a person means to be this long raises
+/// it (`[limits] node_steps`, `--limit node_steps=...`).
+pub const DEFAULT_NODE_STEPS: f64 = 1e12;
 /// Default memory budget, GiB.
 pub const DEFAULT_MEMORY_GIB: f64 = 16.0;
 /// Default output budget, GiB.
@@ -41,22 +43,12 @@ pub const DEFAULT_OUTPUT_GIB: f64 = 20.0;
 
 /// Bytes of memory per node of a lumped-mass model, all copies together (the node as
 /// described, the packed layout, the stepper's state and output buffers), rounded up
-/// from a measured peak (BENCHMARKS.md, "Model size and check time").
+/// from a measured peak (benchmarks/history/BENCHMARKS-2026-12.md, "Model size and check time").
 pub const BYTES_PER_NODE: f64 = 2048.0;
 /// Bytes per cable (name, description, per-cable buffers).
 pub const BYTES_PER_CABLE: f64 = 2048.0;
 
-/// Limits given on the command line or by the caller, over the file's `[limits]`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct LimitOverrides {
-    /// `node_steps`.
-    pub node_steps: Option<f64>,
-    /// `memory_gib`.
-    pub memory_gib: Option<f64>,
-    /// `output_gib`.
-    pub output_gib: Option<f64>,
-}
+pub use super::raw::LimitOverrides;
 
 impl LimitOverrides {
     /// Sets one limit from `KEY=VALUE` (the command line's `--limit`).

@@ -226,6 +226,9 @@ pub struct RawLineType {
     /// Normal added-mass coefficient.
     #[serde(default)]
     pub cm: Option<f64>,
+    /// Tangential added-mass coefficient (default 0).
+    #[serde(default)]
+    pub cat: Option<f64>,
     /// Bending stiffness, N m^2.
     #[serde(default)]
     pub ei: f64,
@@ -236,7 +239,8 @@ pub struct RawLineType {
 
 impl RawLineType {
     /// The line type: given values, else the material's, else the defaults (`cn` 1,
-    /// `ct` 0.01, `cm` 1); `diameter`, `mass_per_length` and `ea` are required without a
+    /// `ct` 0.01, `cm` 1, `cat` 0: the property table has no tangential added mass);
+    /// `diameter`, `mass_per_length` and `ea` are required without a
     /// material.
     pub fn resolve(&self, p: &Path, i: usize) -> Result<LineType, Error> {
         let f = |k: &str| format!("line_types[{i}] (\"{}\").{k}", self.name);
@@ -283,6 +287,7 @@ impl RawLineType {
             cn: self.cn.or(mat.map(|m| m.cn)).unwrap_or(1.0),
             ct: self.ct.or(mat.and_then(|m| m.ct)).unwrap_or(0.01),
             cm: self.cm.or(mat.map(|m| m.cm)).unwrap_or(1.0),
+            cat: self.cat.unwrap_or(0.0),
             ei: self.ei,
             allow_compression: self.allow_compression,
         })
@@ -309,6 +314,7 @@ pub(super) fn line_types(
         non_negative(p, &f("cn"), lt.cn)?;
         non_negative(p, &f("ct"), lt.ct)?;
         non_negative(p, &f("cm"), lt.cm)?;
+        non_negative(p, &f("cat"), lt.cat)?;
         non_negative(p, &f("ei"), lt.ei)?;
         if lt_index.insert(lt.name.clone(), i).is_some() {
             return Err(err(

@@ -13,6 +13,7 @@ mod bodies;
 mod cables;
 mod ends;
 mod environment;
+mod fatigue;
 pub mod limits;
 pub mod materials;
 mod nets;
@@ -25,6 +26,7 @@ mod simulation;
 mod validate;
 pub(crate) mod warnings;
 mod wave_checks;
+pub mod wave_inputs;
 pub use warnings::collect_warnings;
 pub mod waves;
 mod winch;
@@ -117,8 +119,12 @@ pub struct Scenario {
     pub vtk: bool,
     /// `[output] format`: the tables' format (CSV or Parquet).
     pub output_format: crate::options::OutputFormat,
+    /// `[fatigue]`, resolved against the model: a run writes `fatigue.csv`.
+    pub fatigue: Option<crate::fatigue::FatigueSpec>,
     /// The work budget (`[limits]`, with the caller's overrides over it).
     pub limits: Limits,
+    /// The cable ends that may fail during the run.
+    pub failures: Vec<crate::model::EndFailure>,
 }
 
 /// A named shared point (`[[points]]`).
@@ -213,8 +219,13 @@ impl Scenario {
         // [environment]
         let (env, global_current) = environment::environment(p, &raw.environment)?;
         let depth = env.depth;
-        let (sea, sea_warnings) =
-            waves::sea_state(p, raw.environment.waves.as_ref(), depth, env.gravity)?;
+        let (sea, sea_warnings) = waves::sea_state_for_run(
+            p,
+            raw.environment.waves.as_ref(),
+            depth,
+            env.gravity,
+            Some(sim.duration),
+        )?;
         sea_warnings
             .iter()
             .for_each(|w| warnings::warn(w.to_string()));
@@ -245,7 +256,13 @@ impl Scenario {
 
         // [[bodies]]: bodies with prescribed motion that ends attach to (RAO bodies move
         // in the sea state's wave components, ramped in with them).
-        let bodies = bodies::parse(p, &raw.bodies, &sea.components, sea.ramp_duration)?;
+        let bodies = bodies::parse(
+            p,
+            &raw.bodies,
+            &sea.components,
+            sea.ramp_duration,
+            model.env.water_density,
+        )?;
 
         // [[points]]: named shared nodes.
         let points = points::parse(p, &raw.points, &bodies, depth, sim.max_speed, &mut model)?;
@@ -256,6 +273,7 @@ impl Scenario {
             mut initial,
             winches,
             mut names,
+            failures,
         } = cables::parse(
             p,
             &cables,
@@ -345,6 +363,11 @@ impl Scenario {
                 ));
             }
         }
+        let fatigue = raw
+            .fatigue
+            .as_ref()
+            .map(|f| fatigue::resolve(p, f, &model))
+            .transpose()?;
         Ok(Scenario {
             path: p.to_path_buf(),
             sim,
@@ -363,7 +386,9 @@ impl Scenario {
             points: points.named,
             vtk: raw.output.vtk.unwrap_or(false),
             output_format: output::output_format(p, &raw.output.format)?,
+            fatigue,
             limits,
+            failures,
         })
     }
 }

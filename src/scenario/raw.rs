@@ -27,11 +27,13 @@ pub struct RawScenario {
     #[serde(default)]
     pub ancf: RawAncf,
     #[serde(default)]
-    pub limits: super::limits::LimitOverrides,
+    pub limits: LimitOverrides,
     /// A `[study]` table, read by `cablesim study` (`crate::study`); a single run of the
     /// scenario ignores it (the study reads the table from the file's text itself).
     #[allow(dead_code)]
     pub study: Option<toml::Value>,
+    /// `[fatigue]`: T-N curves and the locations whose fatigue a run counts.
+    pub fatigue: Option<super::fatigue::RawFatigue>,
 }
 
 /// A `[[nets]]` entry: a net panel or cylindrical cage (see `model::net`).
@@ -151,4 +153,17 @@ pub struct RawOutput {
     pub positions: Option<toml::Value>,
     pub vtk: Option<bool>,
     pub format: Option<String>,
+}
+
+/// `[limits]` as written, or limits given on the command line or by the caller over
+/// the file's (`LimitOverrides::over`, in `limits.rs`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimitOverrides {
+    /// `node_steps`.
+    pub node_steps: Option<f64>,
+    /// `memory_gib`.
+    pub memory_gib: Option<f64>,
+    /// `output_gib`.
+    pub output_gib: Option<f64>,
 }

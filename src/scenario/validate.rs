@@ -255,6 +255,14 @@ pub fn derived(
                 (d * d) * len * rho.max(1.0) * lt.cm,
             ),
             (
+                "cat",
+                format!(
+                    "the tangential added mass of a cable (cat {:e}, diameter {d:e} m, length {len:e} m, water_density {rho:e} kg/m^3)",
+                    lt.cat
+                ),
+                (d * d) * len * rho.max(1.0) * lt.cat,
+            ),
+            (
                 "ei",
                 format!("bending stiffness EI / l0^3 (EI {:e} N m^2, l0 {l0:e} m)", lt.ei),
                 lt.ei / (l0 * l0 * l0),

@@ -11,12 +11,14 @@
 //!
 //! [[environment.waves.trains]]
 //! type = "jonswap"         # "jonswap" | "pierson_moskowitz" | "table" | "regular"
+//!                          # | "components" | "record" (scenario::wave_inputs)
 //! hs = 6.0
 //! tp = 11.0
 //! direction = 30.0         # degrees, direction of travel from +x towards +y
 //! ```
 
 use super::wave_checks::{self, TrainInputs};
+use super::wave_inputs;
 use super::{err, finite, positive};
 use crate::error::Error;
 use crate::sea::dispersion::wave_number;
@@ -85,6 +87,16 @@ pub struct RawTrain {
     pub phase: Option<f64>,
     /// Direction of travel, degrees from +x towards +y.
     pub direction: Option<f64>,
+    /// `"components"` and `"record"` trains: the CSV file (relative to the scenario's
+    /// folder).
+    pub file: Option<String>,
+    /// `"components"` train: rows `[omega, amplitude, phase, direction]` (rad/s, m,
+    /// degrees, degrees), instead of a file.
+    pub rows: Option<Vec<[f64; 4]>>,
+    /// `"record"` train: the horizontal point `[x, y]` (m) where the record was taken.
+    pub reference: Option<[f64; 2]>,
+    /// `"record"` train: the highest frequency kept, Hz.
+    pub max_frequency: Option<f64>,
 }
 
 /// The validated sea state and the warnings it raised (each names the field).
@@ -93,6 +105,18 @@ pub fn sea_state(
     raw: Option<&RawWaves>,
     depth: f64,
     gravity: f64,
+) -> Result<(SeaState, Vec<String>), Error> {
+    sea_state_for_run(path, raw, depth, gravity, None)
+}
+
+/// [`sea_state`] for a run of `duration` s, when known: a `"record"` train shorter
+/// than the run is accepted with a warning (the run repeats it).
+pub fn sea_state_for_run(
+    path: &Path,
+    raw: Option<&RawWaves>,
+    depth: f64,
+    gravity: f64,
+    duration: Option<f64>,
 ) -> Result<(SeaState, Vec<String>), Error> {
     let mut sea = SeaState::still(depth);
     let mut warnings = Vec::new();
@@ -165,13 +189,15 @@ pub fn sea_state(
             "jonswap" => &["hs", "tp", "gamma", "components", "spreading", "direction"],
             "pierson_moskowitz" => &["hs", "tp", "components", "spreading", "direction"],
             "table" => &["spectrum", "components", "spreading", "direction"],
+            "components" => &["file", "rows", "direction"],
+            "record" => &["file", "reference", "max_frequency", "direction"],
             o => {
                 return Err(err(
                     p,
                     f("type"),
                     format!(
                         "unknown wave train type \"{o}\": one of \"regular\", \"jonswap\", \
-                         \"pierson_moskowitz\", \"table\""
+                         \"pierson_moskowitz\", \"table\", \"components\", \"record\""
                     ),
                 ))
             }
@@ -187,6 +213,10 @@ pub fn sea_state(
             ("height", t.height.is_some()),
             ("period", t.period.is_some()),
             ("phase", t.phase.is_some()),
+            ("file", t.file.is_some()),
+            ("rows", t.rows.is_some()),
+            ("reference", t.reference.is_some()),
+            ("max_frequency", t.max_frequency.is_some()),
         ] {
             if given && !allowed.contains(&key) {
                 return Err(err(
@@ -206,6 +236,27 @@ pub fn sea_state(
                 )),
             }
         };
+        let tolerance = sea.cache_tolerance;
+        let given = match t.kind.as_str() {
+            "components" => Some(wave_inputs::components(
+                p,
+                &f,
+                t,
+                t.direction.map(|_| direction),
+                depth,
+                gravity,
+                tolerance,
+            )?),
+            "record" => Some(wave_inputs::record(
+                p, &f, t, direction, depth, gravity, tolerance, duration,
+            )?),
+            _ => None,
+        };
+        if let Some((components, w)) = given {
+            warnings.extend(w);
+            sea.components.extend(components);
+            continue;
+        }
         if t.kind == "regular" {
             let amplitude = match (t.amplitude, t.height) {
                 (Some(a), None) => positive(p, &f("amplitude"), a)?,

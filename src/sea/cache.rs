@@ -37,6 +37,9 @@
 
 use super::bands::{warn_beyond_margin, wave_band, BandPlan, BAND_LOOK_AHEAD, BAND_MARGIN};
 use super::kinematics::{Kinematics, KinematicsScratch, WaveField};
+// The rule's interval and its factor live with the refresh plan (`schedule.rs`, which
+// this file uses): re-exported here, where they were.
+pub use super::schedule::{hermite_rule_interval, HERMITE_INTERVAL_FACTOR};
 use super::schedule::{RefreshClock, Tick};
 use super::{SeaState, WaveComponent};
 use rayon::prelude::*;
@@ -45,23 +48,6 @@ use std::sync::Arc;
 /// Values per node in the cache: `eta, u (3), a (3)`.
 pub const CACHE_STRIDE: usize = 7;
 
-/// The fraction of the interval of the interpolation rule that the cache uses (see
-/// [`refresh_interval`]). Empirical: at the rule's own interval the fairlead force of
-/// the moored rope in `tests/cpu/waves_steppers.rs` (200-component JONSWAP, nodes up
-/// to 1 m under the mean level) was out by 1e-2 of its largest value at tolerance
-/// 1e-3, ten times the kinematics' tolerance, and by 1e-3 at 0.3 of it. The cause
-/// (BENCHMARKS.md, "Why the surface needs 0.3 of the rule"; `examples/surface_kink.rs`):
-/// the path prediction of nodes that move with the short waves near the surface. The
-/// values at `t1` are evaluated where a node is predicted to be; for the rope's top
-/// nodes that misses by 0.1 to 0.27 m at the rule's interval (third order in it), and
-/// their acceleration errs 10-25 times what the rule allows, while a node at rest, or
-/// the same nodes interpolated from their actual states, err as the rule says. Not the
-/// kink of Wheeler stretching's clamp where the surface crosses a node: that is there,
-/// but the force errs as much with the profile held at `z = 0`. Until the prediction
-/// is better, the cache refreshes at this fraction of the rule when its nodes may come
-/// near the surface (`super::schedule::SUBMERGED_FACTOR` otherwise;
-/// `super::schedule::surface_factor` reads it, with an experiment knob).
-pub const HERMITE_INTERVAL_FACTOR: f64 = 0.3;
 
 /// The refresh interval, s: [`HERMITE_INTERVAL_FACTOR`] times the interval that keeps
 /// the root-mean-square cubic Hermite interpolation error of the water acceleration
@@ -72,17 +58,6 @@ pub fn refresh_interval(components: &[WaveComponent], tolerance: f64) -> f64 {
     HERMITE_INTERVAL_FACTOR * hermite_rule_interval(components, tolerance)
 }
 
-/// The interval of the interpolation rule alone, `(384^2 eps^2 m4 / m12)^(1/8)`.
-pub fn hermite_rule_interval(components: &[WaveComponent], tolerance: f64) -> f64 {
-    let (m4, m12) = components.iter().fold((0.0, 0.0), |(m4, m12), c| {
-        let a2w4 = 0.5 * c.amplitude * c.amplitude * c.omega.powi(4);
-        (m4 + a2w4, m12 + a2w4 * c.omega.powi(8))
-    });
-    if m12 <= 0.0 {
-        return f64::INFINITY;
-    }
-    (384.0 * 384.0 * tolerance * tolerance * m4 / m12).powf(0.125)
-}
 
 /// The cubic Hermite weights at `s = (t - t0) / delta` in `[0, 1]`, `delta = t1 - t0`:
 /// `[h00, delta h10, h01, delta h11]`, so that `f(t) = w0 f0 + w1 f0' + w2 f1 + w3 f1'`.

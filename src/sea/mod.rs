@@ -51,6 +51,7 @@ pub mod cut;
 pub mod dispersion;
 pub mod irregular;
 pub mod kinematics;
+pub mod measured;
 pub mod poly;
 pub mod schedule;
 pub mod set;

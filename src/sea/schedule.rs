@@ -4,7 +4,7 @@
 //! (`gpu::wave_schedule::WaveSchedule`) both follow, through one [`RefreshClock`].
 //!
 //! The interval ([`refresh_plan`]): the interpolation rule
-//! ([`super::cache::hermite_rule_interval`]) is written for a point at the mean level.
+//! ([`hermite_rule_interval`]) is written for a point at the mean level.
 //! A node at depth sees component `j` decayed by `cosh(k_j (z + h)) / cosh(k_j h)`
 //! (`e^{k_j z}` in deep water), so the short waves that set the rule's `m12` are gone
 //! a few metres down. The plan takes the rule with every amplitude times its decay at
@@ -14,7 +14,7 @@
 //! Wheeler stretching a node under a trough is evaluated nearer the mean level). With
 //! `reach` unknown (infinite) that is the rule at the mean level, as before.
 //!
-//! The factor on the rule: [`super::cache::HERMITE_INTERVAL_FACTOR`] (0.3) when a node
+//! The factor on the rule: [`HERMITE_INTERVAL_FACTOR`] (0.3) when a node
 //! may come near the surface (the path prediction of nodes that move with the short
 //! waves there: see that constant); [`SUBMERGED_FACTOR`] when every node stays [`SURFACE_MARGIN`] under the
 //! lowest trough (measured: `tests/cpu/waves_steppers.rs`,
@@ -34,9 +34,38 @@
 //! a fixed ladder and not one fitted to what is packed: a member's results must not
 //! depend on the other members of its batch.
 
-use super::cache::{hermite_rule_interval, HERMITE_INTERVAL_FACTOR};
 use super::kinematics::wave_depth_decay;
 use super::{SeaState, Stretching, WaveComponent};
+
+/// The fraction of the interval of the interpolation rule that the cache uses (see
+/// [`super::cache::refresh_interval`]). Empirical: at the rule's own interval the fairlead force of
+/// the moored rope in `tests/cpu/waves_steppers.rs` (200-component JONSWAP, nodes up
+/// to 1 m under the mean level) was out by 1e-2 of its largest value at tolerance
+/// 1e-3, ten times the kinematics' tolerance, and by 1e-3 at 0.3 of it. The cause
+/// (BENCHMARKS.md, "Why the surface needs 0.3 of the rule"; `examples/surface_kink.rs`):
+/// the path prediction of nodes that move with the short waves near the surface. The
+/// values at `t1` are evaluated where a node is predicted to be; for the rope's top
+/// nodes that misses by 0.1 to 0.27 m at the rule's interval (third order in it), and
+/// their acceleration errs 10-25 times what the rule allows, while a node at rest, or
+/// the same nodes interpolated from their actual states, err as the rule says. Not the
+/// kink of Wheeler stretching's clamp where the surface crosses a node: that is there,
+/// but the force errs as much with the profile held at `z = 0`. Until the prediction
+/// is better, the cache refreshes at this fraction of the rule when its nodes may come
+/// near the surface ([`SUBMERGED_FACTOR`] otherwise;
+/// [`surface_factor`] reads it, with an experiment knob).
+pub const HERMITE_INTERVAL_FACTOR: f64 = 0.3;
+
+/// The interval of the interpolation rule alone, `(384^2 eps^2 m4 / m12)^(1/8)`.
+pub fn hermite_rule_interval(components: &[WaveComponent], tolerance: f64) -> f64 {
+    let (m4, m12) = components.iter().fold((0.0, 0.0), |(m4, m12), c| {
+        let a2w4 = 0.5 * c.amplitude * c.amplitude * c.omega.powi(4);
+        (m4 + a2w4, m12 + a2w4 * c.omega.powi(8))
+    });
+    if m12 <= 0.0 {
+        return f64::INFINITY;
+    }
+    (384.0 * 384.0 * tolerance * tolerance * m4 / m12).powf(0.125)
+}
 
 /// The factor on the rule's interval when no node comes within [`SURFACE_MARGIN`] of
 /// the lowest trough. Measured on a rope whose highest node stays 5 m or more under the

@@ -79,6 +79,9 @@ pub fn cable_config(
 ) -> Result<AncfConfig, Error> {
     let def: &ModelDef = &sc.model;
     let c = &def.cables[ci];
+    if sc.failures.iter().any(|f| f.cable == c.name) {
+        return Err(unsupported(sc, ci, "does not run line failures".into()));
+    }
     for (k, &n) in c.nodes.iter().enumerate() {
         let inner = k > 0 && k + 1 < c.nodes.len();
         let nd = &def.nodes[n];
@@ -90,6 +93,15 @@ pub fn cable_config(
                 format!("runs single cables, and this one shares '{label}' with another cable"),
             ));
         }
+        if let Some(crate::model::Route::Body { body, .. }) = &nd.route {
+            if body.dynamic().is_some() {
+                return Err(unsupported(
+                    sc,
+                    ci,
+                    format!("does not run free or pinned bodies (body '{}')", body.name),
+                ));
+            }
+        }
         if inner && (nd.route.is_some() || nd.point.mass > 0.0 || nd.point.volume > 0.0) {
             return Err(unsupported(
                 sc,
@@ -97,6 +109,13 @@ pub fn cable_config(
                 format!("takes point masses and routes at the ends only (inner node {k})"),
             ));
         }
+    }
+    if def.line_types[c.line_type].cat != 0.0 {
+        return Err(unsupported(
+            sc,
+            ci,
+            "has no tangential added mass, and this cable's line type sets `cat`".to_string(),
+        ));
     }
     let length: f64 = c.l0.iter().sum();
     let l_std = settings

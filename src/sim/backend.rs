@@ -54,6 +54,14 @@ pub fn choose_backend(
     let unsupported = || {
         crate::gpu::solver::unsupported(lay, opts)
             .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
+            .or_else(|| {
+                sc.failures.first().map(|f| {
+                    format!(
+                        "line failures (cable '{}'; the CPU path runs them)",
+                        f.cable
+                    )
+                })
+            })
     };
     let need_f64 = precision == Some(Precision::F64);
     let p = precision.unwrap_or_default();
@@ -146,11 +154,20 @@ impl LumpedStepper {
         opts: SolverOptions,
         seas: &SeaSet,
     ) -> Result<Self, Error> {
+        if !sc.winches.is_empty() && !sc.failures.is_empty() {
+            return Err(Error::Model(
+                "winch cables and line failures in one run are not supported yet".into(),
+            ));
+        }
         let mut s = match choice {
             BackendChoice::Cpu if !sc.winches.is_empty() => LumpedStepper::Cpu(
                 CpuSolver::with_winches(sc.model.clone(), sc.winches.clone(), pos, opts)?,
             ),
-            BackendChoice::Cpu => LumpedStepper::Cpu(CpuSolver::new(lay, pos, opts)),
+            BackendChoice::Cpu => {
+                let mut s = CpuSolver::new(lay, pos, opts);
+                s.set_failures(&sc.failures)?;
+                LumpedStepper::Cpu(s)
+            }
             BackendChoice::Gpu(ctx, p) if !sc.winches.is_empty() => LumpedStepper::Gpu(
                 GpuSolver::with_winches(&ctx, sc.model.clone(), sc.winches.clone(), pos, opts, p)?,
             ),
@@ -307,7 +324,14 @@ impl LumpedStepper {
         }
         let ev = self.evaluate()?;
         let (r, _) = self.state()?;
-        Ok(crate::body::output::body_states(self.layout(), t, &r, &ev))
+        let dynamic = self.dynamic_bodies();
+        Ok(crate::body::output::body_states(
+            self.layout(),
+            t,
+            &r,
+            &ev,
+            &dynamic,
+        ))
     }
 
     /// The shared points' states now. `points` names each point and where it is found:
@@ -332,7 +356,8 @@ impl LumpedStepper {
         let ev = self.evaluate()?;
         let (r, v) = self.state()?;
         let bodies = if self.has_bodies() {
-            crate::body::output::body_states(self.layout(), t, &r, &ev)
+            let dynamic = self.dynamic_bodies();
+            crate::body::output::body_states(self.layout(), t, &r, &ev, &dynamic)
         } else {
             Vec::new()
         };
@@ -341,6 +366,22 @@ impl LumpedStepper {
             bodies,
             self.points_from(points, &ev, &r),
         ))
+    }
+
+    /// The free and pinned bodies' states now (the CPU path steps them).
+    fn dynamic_bodies(&self) -> Vec<crate::body::output::DynamicState> {
+        match self {
+            LumpedStepper::Cpu(s) => s.dynamic_bodies(),
+            LumpedStepper::Gpu(_) => Vec::new(),
+        }
+    }
+
+    /// The line failures so far (the CPU path runs them).
+    pub fn failure_events(&self) -> Vec<crate::model::FailureEvent> {
+        match self {
+            LumpedStepper::Cpu(s) => s.failure_events(),
+            LumpedStepper::Gpu(_) => Vec::new(),
+        }
     }
 
     /// Whether a cable end rides on a vessel body.

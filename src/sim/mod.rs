@@ -20,6 +20,7 @@
 pub mod ancf;
 pub mod backend;
 pub mod budget;
+pub mod estimate;
 pub mod pack;
 pub mod plan;
 pub mod reach;
@@ -212,6 +213,30 @@ impl Simulation {
                 );
                 opts.dt = plan.dt;
                 let choice = choose_backend(backend, precision, &lay, &opts, &sc)?;
+                let path = match &choice {
+                    BackendChoice::Cpu => estimate::Path::Cpu(rayon::current_num_threads()),
+                    BackendChoice::Gpu(ctx, _) if ctx.info.device_type == wgpu::DeviceType::Cpu => {
+                        estimate::Path::GpuSoftware
+                    }
+                    BackendChoice::Gpu(_, p) => estimate::Path::Gpu(*p),
+                };
+                let est = estimate::lumped(
+                    &lay,
+                    &opts,
+                    plan.total_steps,
+                    budget::in_waves(&sc),
+                    path,
+                );
+                log::info!("work: {}", est.describe());
+                log::debug!(
+                    "step plan: {} steps of {:e} s per output interval of {} s, scheme {}, formulation {}, {} thread(s)",
+                    plan.steps_per_output,
+                    plan.dt,
+                    sc.sim.output_interval,
+                    opts.scheme.name(),
+                    opts.formulation.name(),
+                    rayon::current_num_threads()
+                );
                 let mut seas = sc.sea_set();
                 if !seas.is_still() {
                     seas.reach = reach::sea_reach(&lay, &pos, &seas, duration);
@@ -615,6 +640,10 @@ impl Simulation {
             threads: rayon::current_num_threads(),
             relax_residual: self.relax_residual,
             cables,
+            failures: match &self.engine {
+                Engine::Lumped(s, _) => s.failure_events(),
+                _ => Vec::new(),
+            },
         })
     }
 }

@@ -64,6 +64,7 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
     };
     let mut initial = Vec::new();
     let mut points = Vec::new();
+    let mut failures = Vec::new();
     let mut seas = Vec::new();
     let mut cable_sea = Vec::new();
     let mut out = Vec::with_capacity(members.len());
@@ -127,6 +128,10 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
             }
             model.nodes.push(n);
         }
+        failures.extend(sc.failures.iter().map(|f| crate::model::EndFailure {
+            cable: packed_name(prefix, &f.cable),
+            ..f.clone()
+        }));
         for c in &sc.model.cables {
             let mut c = c.clone();
             c.name = packed_name(prefix, &c.name);
@@ -167,6 +172,9 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
         points,
         vtk: false,
         output_format: Default::default(),
+        failures,
+        // The study counts its members' fatigue itself (`study::run`).
+        fatigue: None,
         // Each member passed its own budget; the packed run is their sum.
         limits: {
             let (n, l) = (members.len() as f64, &first.limits);

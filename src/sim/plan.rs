@@ -63,6 +63,7 @@ fn plan_unbounded(
             *bound = StepBound {
                 dt: b.dt,
                 term: format!("{} (winch mesh at its shortest variable element)", b.term),
+                fix: b.fix,
             };
         }
         Ok(())
@@ -180,7 +181,7 @@ fn plan_with(
             format!("the step {dt:e} s is not a positive number"),
         ));
     }
-    super::budget::check_node_steps(sc, lay.n_nodes(), duration, dt, &bound.term)?;
+    super::budget::check_lumped_node_steps(sc, lay, opts, duration, dt, dt_spec, &bound)?;
     let warning = (matches!(dt_spec, DtSpec::Fixed(_)) && dt > bound.dt).then(|| {
         format!(
             "dt = {dt} s is above the stable step {:.4e} s of the {} scheme, set by {}; expect a blow-up or wrong results",

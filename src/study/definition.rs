@@ -31,7 +31,39 @@ pub struct SeaState {
     pub current_speed: f64,
     /// Direction the current flows towards, degrees from +x towards +y.
     pub current_heading: f64,
+    /// Probability of occurrence in the fatigue scatter diagram (fatigue sea states
+    /// only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub probability: Option<f64>,
+    /// Hours per year in the fatigue scatter diagram (fatigue sea states only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hours: Option<f64>,
 }
+
+impl SeaState {
+    /// Whether the sea state is part of the fatigue scatter diagram.
+    pub fn in_scatter(&self) -> bool {
+        self.probability.is_some() || self.hours.is_some()
+    }
+}
+
+/// The fatigue limit state's inputs (`[study.fatigue]`): the scatter diagram is the
+/// sea states that give a `probability` or `hours`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FatigueInputs {
+    /// The design fatigue factor: the fatigue life is `1 / (DFF * annual damage)`.
+    pub design_fatigue_factor: f64,
+    /// The hours of a year (the total the sea states' `hours` sum to, and what their
+    /// probabilities are fractions of), default 8766 (365.25 days).
+    pub hours_per_year: f64,
+}
+
+/// Tolerance of the scatter diagram's sums: probabilities sum to 1, hours to
+/// `hours_per_year`, within this fraction.
+pub const SCATTER_TOLERANCE: f64 = 1.0e-3;
+
+/// The default `hours_per_year`: 365.25 days.
+pub const HOURS_PER_YEAR: f64 = 8766.0;
 
 /// Partial safety factors and line capacities of the design check
 /// `T_d = mean_factor T_mean + dynamic_factor (T_MPM - T_mean)`, utilisation `T_d / S_C`.
@@ -67,6 +99,19 @@ pub struct StudyDef {
     pub fit: GumbelFit,
     /// The design check, when asked for.
     pub design: Option<DesignInputs>,
+    /// The fatigue limit state, when asked for (`[study.fatigue]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fatigue: Option<FatigueInputs>,
+}
+
+impl StudyDef {
+    /// The annual hours of sea state `s` in the scatter diagram (`None` when it is not
+    /// in it, or the study has no fatigue).
+    pub fn annual_hours(&self, s: usize) -> Option<f64> {
+        let f = self.fatigue.as_ref()?;
+        let ss = &self.sea_states[s];
+        ss.hours.or(ss.probability.map(|p| p * f.hours_per_year))
+    }
 }
 
 /// A study file read from disk: the definition and its base scenario.
@@ -101,6 +146,14 @@ struct RawStudy {
     quantile: Option<f64>,
     fit: Option<String>,
     design: Option<RawDesign>,
+    fatigue: Option<RawStudyFatigue>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawStudyFatigue {
+    design_fatigue_factor: Option<f64>,
+    hours_per_year: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -113,6 +166,8 @@ struct RawSeaState {
     heading: Option<f64>,
     current_speed: Option<f64>,
     current_heading: Option<f64>,
+    probability: Option<f64>,
+    hours: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -123,7 +178,7 @@ struct RawDesign {
     capacities: Option<BTreeMap<String, f64>>,
 }
 
-const SEA_STATE_COLUMNS: [&str; 7] = [
+const SEA_STATE_COLUMNS: [&str; 9] = [
     "name",
     "hs",
     "tp",
@@ -131,6 +186,8 @@ const SEA_STATE_COLUMNS: [&str; 7] = [
     "heading",
     "current_speed",
     "current_heading",
+    "probability",
+    "hours",
 ];
 
 impl StudyFile {
@@ -311,6 +368,11 @@ fn validate(raw: &RawStudy, p: &Path) -> Result<StudyDef, Error> {
             })
         }
     };
+    let sea_states_field = match &raw.sea_states_file {
+        Some(f) => format!("study.sea_states_file (\"{f}\")"),
+        None => "study.sea_states".to_string(),
+    };
+    let fatigue = fatigue_inputs(p, raw.fatigue.as_ref(), &sea_states, &sea_states_field)?;
     Ok(StudyDef {
         seed: raw.seed.unwrap_or(0),
         seeds,
@@ -321,7 +383,96 @@ fn validate(raw: &RawStudy, p: &Path) -> Result<StudyDef, Error> {
         quantile,
         fit,
         design,
+        fatigue,
     })
+}
+
+/// `[study.fatigue]` and the scatter diagram of the sea states: probabilities that sum
+/// to 1, or hours that sum to `hours_per_year`, within [`SCATTER_TOLERANCE`].
+fn fatigue_inputs(
+    p: &Path,
+    raw: Option<&RawStudyFatigue>,
+    sea_states: &[SeaState],
+    field: &str,
+) -> Result<Option<FatigueInputs>, Error> {
+    let in_scatter: Vec<&SeaState> = sea_states.iter().filter(|s| s.in_scatter()).collect();
+    let Some(raw) = raw else {
+        if !in_scatter.is_empty() {
+            return Err(err(
+                p,
+                "study.fatigue",
+                "missing: sea states give a `probability` or `hours` (a fatigue scatter \
+                 diagram), which needs [study.fatigue] with its design_fatigue_factor",
+            ));
+        }
+        return Ok(None);
+    };
+    let dff = positive(
+        p,
+        "study.fatigue.design_fatigue_factor",
+        required(
+            p,
+            "study.fatigue.design_fatigue_factor",
+            raw.design_fatigue_factor,
+        )?,
+    )?;
+    let hours_per_year = positive(
+        p,
+        "study.fatigue.hours_per_year",
+        raw.hours_per_year.unwrap_or(HOURS_PER_YEAR),
+    )?;
+    if in_scatter.is_empty() {
+        return Err(err(
+            p,
+            format!("{field}: probability"),
+            "[study.fatigue] needs a scatter diagram: give the fatigue sea states a \
+             `probability` of occurrence or their `hours` per year",
+        ));
+    }
+    let with_p = in_scatter
+        .iter()
+        .filter(|s| s.probability.is_some())
+        .count();
+    if with_p != 0 && with_p != in_scatter.len() {
+        return Err(err(
+            p,
+            format!("{field}: hours"),
+            "the scatter diagram mixes probabilities and hours: give every fatigue sea \
+             state the same one",
+        ));
+    }
+    if with_p > 0 {
+        let sum: f64 = in_scatter.iter().filter_map(|s| s.probability).sum();
+        if (sum - 1.0).abs() > SCATTER_TOLERANCE {
+            return Err(err(
+                p,
+                format!("{field}: probability"),
+                format!(
+                    "the probabilities of the {} fatigue sea states sum to {sum}, not 1 \
+                     (tolerance {SCATTER_TOLERANCE})",
+                    in_scatter.len()
+                ),
+            ));
+        }
+    } else {
+        let sum: f64 = in_scatter.iter().filter_map(|s| s.hours).sum();
+        if (sum - hours_per_year).abs() > SCATTER_TOLERANCE * hours_per_year {
+            return Err(err(
+                p,
+                format!("{field}: hours"),
+                format!(
+                    "the hours of the {} fatigue sea states sum to {sum}, not \
+                     study.fatigue.hours_per_year = {hours_per_year} (tolerance {} h)",
+                    in_scatter.len(),
+                    SCATTER_TOLERANCE * hours_per_year
+                ),
+            ));
+        }
+    }
+    Ok(Some(FatigueInputs {
+        design_fatigue_factor: dff,
+        hours_per_year,
+    }))
 }
 
 /// `seeds = N` (the seed numbers 1 to N) or `seeds = [a, b, ...]` (distinct, >= 0).
@@ -415,6 +566,31 @@ fn sea_state(p: &Path, f: &dyn Fn(&str) -> String, r: &RawSeaState) -> Result<Se
         heading: finite(p, &f("heading"), r.heading.unwrap_or(0.0))?,
         current_speed: non_negative(p, &f("current_speed"), r.current_speed.unwrap_or(0.0))?,
         current_heading: finite(p, &f("current_heading"), r.current_heading.unwrap_or(0.0))?,
+        probability: match (r.probability, r.hours) {
+            (Some(_), Some(_)) => {
+                return Err(err(
+                    p,
+                    f("hours"),
+                    "give either a probability of occurrence or hours per year, not both",
+                ))
+            }
+            (Some(x), None) => {
+                non_negative(p, &f("probability"), x)?;
+                if x > 1.0 {
+                    return Err(err(
+                        p,
+                        f("probability"),
+                        format!("a probability is at most 1, got {x}"),
+                    ));
+                }
+                Some(x)
+            }
+            (None, _) => None,
+        },
+        hours: r
+            .hours
+            .map(|h| non_negative(p, &f("hours"), h))
+            .transpose()?,
     })
 }
 

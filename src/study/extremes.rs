@@ -74,6 +74,9 @@ pub struct StudySummary {
     pub failed_members: Vec<FailedMember>,
     /// Per sea state.
     pub sea_states: Vec<SeaStateSummary>,
+    /// The fatigue of each location (empty without a `[fatigue]` table).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fatigue: Vec<super::fatigue::LocationFatigue>,
 }
 
 /// A member that blew up, as `study.json` lists it.
@@ -141,6 +144,7 @@ pub fn summarise(r: &StudyResults) -> StudySummary {
             })
             .collect(),
         sea_states,
+        fatigue: super::fatigue::summarise(r),
     }
 }
 

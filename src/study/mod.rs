@@ -28,6 +28,7 @@ pub mod channels;
 pub mod definition;
 pub mod design;
 pub mod extremes;
+pub mod fatigue;
 pub mod gumbel;
 pub mod hash;
 pub mod members;
@@ -64,6 +65,9 @@ pub struct StudyPlan {
     pub members: Vec<Member>,
     /// The study hash (hex SHA-256 of the canonical definition and the base scenario).
     pub hash: String,
+    /// The fatigue locations every member counts (the base scenario's `[fatigue]`),
+    /// empty without one.
+    pub fatigue: Vec<crate::fatigue::FatigueLocation>,
 }
 
 impl StudyPlan {
@@ -96,7 +100,39 @@ impl StudyPlan {
             hash: hash::study_hash(&def, scenario_text),
             channels,
             def,
+            fatigue: Vec::new(),
         })
+    }
+
+    /// Adds the fatigue locations of the base scenario's `[fatigue]` table (`spec`);
+    /// a study with a scatter diagram (`[study.fatigue]`) needs one. `path` names the
+    /// study file in messages.
+    pub fn with_fatigue(
+        mut self,
+        spec: Option<&crate::fatigue::FatigueSpec>,
+        path: &Path,
+    ) -> Result<StudyPlan, Error> {
+        match spec {
+            Some(s) => self.fatigue = s.locations.clone(),
+            None if self.def.fatigue.is_some() => {
+                return Err(err(
+                    path,
+                    "study.fatigue",
+                    "the base scenario has no [fatigue] table: give the T-N curve and \
+                     nominal area of its line types there ([fatigue.line_types])",
+                ))
+            }
+            None => {}
+        }
+        Ok(self)
+    }
+
+    /// Empty fatigue counters for one member: one per fatigue location, in order.
+    pub fn new_fatigue(&self) -> Vec<crate::fatigue::DamageCounter> {
+        self.fatigue
+            .iter()
+            .map(|l| crate::fatigue::DamageCounter::new(l, self.def.transient))
+            .collect()
     }
 
     /// The members a shard runs (checked against the study's size; `source` names where
@@ -125,6 +161,7 @@ impl StudyPlan {
             shard,
             study: self.def.clone(),
             channels: self.channels.clone(),
+            fatigue: self.fatigue.clone(),
             members,
         }
     }

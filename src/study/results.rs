@@ -11,6 +11,7 @@ use super::channels::Channel;
 use super::definition::StudyDef;
 use super::members::{self, Member, ShardSpec};
 use crate::error::Error;
+use crate::fatigue::{FatigueLocation, FatigueRecord};
 use crate::scenario::err;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -54,6 +55,9 @@ pub struct MemberResult {
     pub status: MemberStatus,
     /// One per channel, in the study's channel order.
     pub stats: Vec<ChannelStats>,
+    /// One per fatigue location, in the study's order (empty without fatigue).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fatigue: Vec<FatigueRecord>,
 }
 
 /// A shard's results, as written to `shard.json`.
@@ -69,6 +73,9 @@ pub struct ShardResult {
     pub study: StudyDef,
     /// The channels.
     pub channels: Vec<Channel>,
+    /// The fatigue locations (empty without fatigue).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fatigue: Vec<FatigueLocation>,
     /// Its members, in member order.
     pub members: Vec<MemberResult>,
 }
@@ -121,6 +128,8 @@ pub struct StudyResults {
     pub study: StudyDef,
     /// The channels.
     pub channels: Vec<Channel>,
+    /// The fatigue locations (empty without fatigue).
+    pub fatigue: Vec<FatigueLocation>,
     /// Every member, in member order.
     pub members: Vec<MemberResult>,
 }
@@ -186,6 +195,7 @@ pub fn merge(shards: Vec<(PathBuf, ShardResult)>) -> Result<StudyResults, Error>
     let (_, first) = &by_index[&1];
     let all = members::members(&first.study);
     let (study, channels) = (first.study.clone(), first.channels.clone());
+    let fatigue = first.fatigue.clone();
     let mut members = Vec::with_capacity(all.len());
     for (path, s) in by_index.into_values() {
         let expect = &all[s.shard.range(all.len())];
@@ -230,6 +240,17 @@ pub fn merge(shards: Vec<(PathBuf, ShardResult)>) -> Result<StudyResults, Error>
                     ),
                 ));
             }
+            if m.fatigue.len() != fatigue.len() {
+                return Err(err(
+                    &path,
+                    format!("{field}.fatigue"),
+                    format!(
+                        "{} fatigue records where the study has {} fatigue locations",
+                        m.fatigue.len(),
+                        fatigue.len()
+                    ),
+                ));
+            }
             members.push(m);
         }
     }
@@ -250,6 +271,7 @@ pub fn merge(shards: Vec<(PathBuf, ShardResult)>) -> Result<StudyResults, Error>
         study_hash: hash,
         study,
         channels,
+        fatigue,
         members,
     })
 }

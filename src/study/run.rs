@@ -74,7 +74,8 @@ impl StudyRunner {
                 .filter_map(|b| b.get("name").and_then(|n| n.as_str()).map(String::from))
                 .collect();
         }
-        let plan = StudyPlan::new(file, &model)?;
+        let plan =
+            StudyPlan::new(file, &model)?.with_fatigue(scenario.fatigue.as_ref(), &file.path)?;
         let sampler = Sampler::new(&plan.channels, &model);
         let runner = StudyRunner {
             plan,
@@ -91,6 +92,51 @@ impl StudyRunner {
     /// The plan: definition, channels, members, hash.
     pub fn plan(&self) -> &StudyPlan {
         &self.plan
+    }
+
+    /// The work of `members` members of this study, before any runs: each member's
+    /// node-steps (the first member's model and step plan at the study's duration;
+    /// every member has the same model and step) and the wall time estimated for them
+    /// on the CPU path, members in parallel on this process's threads
+    /// ([`crate::sim::estimate`]). A member beyond the work budget is refused here, as
+    /// its run would be.
+    pub fn estimate(&self, members: usize) -> Result<crate::sim::estimate::Estimate, Error> {
+        use crate::options::SolverOptions;
+        let Some(first) = self.plan.members.first() else {
+            return Ok(crate::sim::estimate::Estimate {
+                node_steps: 0.0,
+                seconds: 0.0,
+                how: String::new(),
+            });
+        };
+        let sc = self.member_scenario(first)?;
+        let (lay, _) = crate::model::Layout::build(&sc.model)?;
+        let opts = SolverOptions {
+            scheme: sc.sim.scheme,
+            formulation: sc.sim.formulation,
+            baumgarte: sc.sim.baumgarte,
+            ..SolverOptions::default()
+        };
+        let plan = crate::sim::plan_steps(&sc, &lay, &opts, self.plan.def.duration, sc.sim.dt)?;
+        let waves = crate::sim::budget::in_waves(&sc);
+        let one = crate::sim::estimate::lumped(
+            &lay,
+            &opts,
+            plan.total_steps,
+            waves,
+            crate::sim::estimate::Path::Cpu(1),
+        );
+        let threads = rayon::current_num_threads().clamp(1, members.max(1));
+        let seconds = one.seconds * members as f64 / threads as f64;
+        Ok(crate::sim::estimate::Estimate {
+            node_steps: one.node_steps * members as f64,
+            seconds,
+            how: format!(
+                "on the CPU path ({members} members of {:.3e} node-steps, {threads} at a time; {})",
+                one.node_steps,
+                one.how.trim_start_matches("on the CPU path ")
+            ),
+        })
     }
 
     /// The scenario text member `m` runs (module documentation): writing it to a file
@@ -156,6 +202,7 @@ impl StudyRunner {
         let mut sim = Simulation::new(self.member_scenario(m)?, &overrides)?;
         let interval = sim.scenario().sim.output_interval;
         let mut stats = self.plan.new_stats();
+        let mut fatigue = self.plan.new_fatigue();
         let mut body_index: Option<Vec<Option<usize>>> = None;
         let outputs = (def.duration / interval - 1e-9).ceil().max(1.0) as u64;
         let mut done = 0.0;
@@ -181,12 +228,13 @@ impl StudyRunner {
             }
             let snap = sim.snapshot()?;
             let n = snap.cables.len();
-            self.record(&mut stats, &snap, 0..n, None, &mut body_index);
+            self.record(&mut stats, &mut fatigue, &snap, 0..n, None, &mut body_index);
         }
         Ok(Some(MemberResult {
             member: *m,
             status,
             stats,
+            fatigue: fatigue.into_iter().map(|c| c.finish()).collect(),
         }))
     }
 
@@ -207,13 +255,15 @@ impl StudyRunner {
         )
     }
 
-    /// Records one member's channels from `snap` into `stats`: the member's cables are
+    /// Records one member's channels from `snap` into `stats`, and its fatigue
+    /// locations' values into `fatigue` (one counter per location): the member's cables are
     /// `cables` (in the base scenario's order), its bodies are named `PREFIX/name`
     /// when `prefix` is given (a packed run, `sim::pack`), else by their own names;
     /// `body_index` caches where they are in the snapshots.
     pub(crate) fn record(
         &self,
         stats: &mut [crate::study::ChannelStats],
+        fatigue: &mut [crate::fatigue::DamageCounter],
         snap: &Snapshot,
         cables: Range<usize>,
         prefix: Option<&str>,
@@ -252,6 +302,12 @@ impl StudyRunner {
             })
             .collect();
         self.sampler.record(stats, snap.time, &cables, &bodies);
+        for (loc, counter) in self.plan.fatigue.iter().zip(fatigue) {
+            let c = &cables[loc.cable_index];
+            if let Some(x) = loc.value(c.tensions, c.start_force, c.end_force) {
+                counter.push(snap.time, x);
+            }
+        }
     }
 
     /// Runs `members` in parallel on rayon's threads; `on_done` is called with each

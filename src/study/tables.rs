@@ -176,9 +176,13 @@ pub fn write_study_json(path: &Path, s: &StudySummary) -> Result<(), Error> {
     w.flush().map_err(io)
 }
 
-/// Writes the three files into `dir` (which must exist).
+/// Writes the three files into `dir` (which must exist), and `fatigue.csv` for a study
+/// with fatigue locations.
 pub fn write_all(dir: &Path, r: &StudyResults, s: &StudySummary) -> Result<(), Error> {
     write_members_csv(&dir.join("members.csv"), r)?;
     write_study_csv(&dir.join("study.csv"), s)?;
+    if !r.fatigue.is_empty() {
+        super::fatigue::write_fatigue_csv(&dir.join("fatigue.csv"), r, &s.fatigue)?;
+    }
     write_study_json(&dir.join("study.json"), s)
 }

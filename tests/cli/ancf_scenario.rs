@@ -1,6 +1,6 @@
 //! The ANCF reference selected from a scenario (`formulation = "ancf"`, `--formulation
 //! ancf`): ALE-ANCF against ALE-GLMF on shortened versions of the paper's Cases 2 and 3
-//! (the full runs are `scripts/compare_models.py`, figures in BENCHMARKS.md), the
+//! (the full runs are `scripts/compare_models.py`, figures in benchmarks/history/BENCHMARKS-2026-12.md), the
 //! vertical deployment both must agree on, and clear errors for what the ANCF path
 //! does not take.
 
@@ -144,7 +144,7 @@ fn vertical_deployment_agrees() {
 /// where both models put it (the ANCF from its own static equilibrium, reached from
 /// the analytic catenary): within a millimetre. The suspended span and the newly laid
 /// cable differ by the touchdown transient of the jerked start (2.3 m at 20 s, about
-/// 1 m once laying is steady: BENCHMARKS.md): the bound below only catches gross
+/// 1 m once laying is steady: benchmarks/history/BENCHMARKS-2026-12.md): the bound below only catches gross
 /// errors there.
 #[test]
 fn case3_laid_cable_agrees() {

@@ -10,9 +10,13 @@ mod common;
 
 mod ancf_scenario;
 mod end_to_end;
+mod estimates;
 mod examples;
+mod fatigue;
 mod fuzz_scenarios;
+mod logging;
 mod moordyn_input;
+mod moordyn_waves;
 mod output_formats;
 mod robust_inputs;
 mod robust_runs;
@@ -21,3 +25,4 @@ mod simulation_api;
 mod slurm;
 mod study_run;
 mod viz_output;
+mod wave_inputs;

@@ -123,6 +123,7 @@ fn v2_file_maps_every_field() {
     close(ch.cn, 2.4, "Cd");
     close(ch.ct, 1.15, "CdAx");
     close(ch.cm, 1.0, "Ca");
+    close(ch.cat, 0.0, "CaAx");
     assert_eq!(m.line_types.len(), 3);
     // Cables: names, lengths, segments, line types.
     assert_eq!(m.cables.len(), 3);
@@ -173,6 +174,7 @@ fn v1_file_reads_v1_column_orders() {
     close(lt.cm, 0.9, "Can");
     close(lt.cn, 1.6, "Cdn");
     close(lt.ct, 0.05, "Cdt");
+    close(lt.cat, 0.0, "Cat");
     close(lt.damping, 1.0e4 / 2515288.0, "c = BA/EA");
     // MoorDyn's default gravity; no WtrDpth: the fixed point at z = -70 sets the seabed.
     close(m.env.gravity, 9.80665, "g");
@@ -281,10 +283,8 @@ fn dropped_features_are_warnings_naming_the_line() {
     let n = line_of(&text, "rope       0.08");
     let at: Vec<_> = c.warnings.iter().filter(|w| w.line == n).collect();
     assert!(at.iter().any(|w| w.message.contains("EI = 250")), "{at:?}");
-    assert!(
-        at.iter().any(|w| w.message.contains("CaAx = 0.5")),
-        "{at:?}"
-    );
+    // The tangential added mass is no longer dropped (below): no warning about it.
+    assert!(!at.iter().any(|w| w.message.contains("CaAx")), "{at:?}");
     // The chain and rope differ in diameter: the seabed's per-metre values can only
     // follow one of them, and the warning says so.
     assert!(c
@@ -300,6 +300,51 @@ fn dropped_features_are_warnings_naming_the_line() {
         .find(|t| t.name == "rope")
         .unwrap();
     close(rope.ei, 250.0, "EI");
+    close(rope.cat, 0.5, "CaAx");
+    assert!(
+        c.toml.contains("cat = 0.5  # CaAx, tangential added mass"),
+        "{}",
+        c.toml
+    );
+}
+
+#[test]
+fn tangential_added_mass_is_read_and_checked_in_both_versions() {
+    // v1's `Cat` (the seventh column) becomes `cat`.
+    let v1 = V1.replacen("0.9   0.0   1.6", "0.9   0.3   1.6", 1);
+    assert_ne!(v1, V1);
+    let (toml, sc) = convert(&v1);
+    close(sc.model.line_types[0].cat, 0.3, "Cat");
+    assert!(
+        toml.contains("cat = 0.3  # Cat, tangential added mass"),
+        "{toml}"
+    );
+    // A negative one is refused, naming the file, the line and the column as the
+    // file's version names it.
+    let bad1 = V1.replacen("0.9   0.0   1.6", "0.9   -0.3  1.6", 1);
+    let e = error_of(&bad1);
+    let n = line_of(&bad1, "-0.3");
+    assert!(
+        e.contains(&format!("line {n}:")) && e.contains("Cat") && e.contains("model.dat"),
+        "{e}"
+    );
+    let bad2 = v2_with(
+        "rope       0.08    6.0        2.0e7      4.0e5       0     1.2    0.8    0.008   0.0",
+        "rope       0.08    6.0        2.0e7      4.0e5       0     1.2    0.8    0.008   -1",
+    );
+    let e = error_of(&bad2);
+    let n = line_of(&bad2, "0.008   -1");
+    assert!(
+        e.contains(&format!("line {n}:")) && e.contains("CaAx") && e.contains("negative"),
+        "{e}"
+    );
+    // Not finite: refused by the table's reader.
+    let bad3 = v2_with(
+        "rope       0.08    6.0        2.0e7      4.0e5       0     1.2    0.8    0.008   0.0",
+        "rope       0.08    6.0        2.0e7      4.0e5       0     1.2    0.8    0.008   nan",
+    );
+    let e = error_of(&bad3);
+    assert!(e.contains("CaAx") && e.contains("finite"), "{e}");
 }
 
 #[test]

@@ -114,7 +114,7 @@ fn absurd_work_is_refused_with_the_estimate_before_anything_is_built() {
         d,
         &short,
         "simulation.duration",
-        "node-steps, over the budget",
+        "over the budget of 1e12 node-steps",
     );
     let dense = edit(&c, "output_interval = 1.0", "output_interval = 1e-9", "");
     refused(
@@ -128,7 +128,7 @@ fn absurd_work_is_refused_with_the_estimate_before_anything_is_built() {
         d,
         &long,
         "simulation.duration",
-        "node-steps, over the budget",
+        "over the budget of 1e12 node-steps",
     );
     // A tiny given step, on the command line: refused before stepping.
     let (ok, err) = cli(
@@ -143,7 +143,7 @@ fn absurd_work_is_refused_with_the_estimate_before_anything_is_built() {
             d.join("out").to_str().unwrap(),
         ],
     );
-    assert!(!ok && err.contains("node-steps, over the budget"), "{err}");
+    assert!(!ok && err.contains("over the budget of 1e12 node-steps"), "{err}");
     assert!(!d.join("out/summary.json").exists() || err.contains("simulation.duration"));
 }
 
@@ -200,7 +200,7 @@ fn an_endless_scenario_or_route_file_is_refused_at_once() {
 
 /// `check` of a cable of 10^6 segments: the stable-step search is linear (it put each
 /// node's terms in words and searched the cable's elements per node before, 10^12
-/// steps here); this finishes in about a second (BENCHMARKS.md, "check").
+/// steps here); this finishes in about a second (benchmarks/history/BENCHMARKS-2026-12.md, "check").
 #[test]
 fn check_takes_a_million_node_cable() {
     let dir = tempfile::tempdir().unwrap();
@@ -208,7 +208,10 @@ fn check_takes_a_million_node_cable() {
         .replace("initial = \"catenary\"", "initial = \"straight\"")
         .replace("duration = 60.0 ", "duration = 0.001 ")
         .replace("output_interval = 1.0 ", "output_interval = 0.001 ");
+    // 5e12 node-steps: over the default budget (1e12) and refused, with its size.
     let (ok, err) = check(dir.path(), &big);
+    assert!(!ok && err.contains("is 5.000e12 node-steps"), "{err}");
+    let (ok, err) = cli(dir.path(), &big, &["check", "--limit", "node_steps=1e13"]);
     assert!(ok, "{err}");
 }
 
@@ -356,6 +359,13 @@ fn inputs_whose_squares_overflow_name_their_field() {
             "the added mass of a cable (cm 1e200",
         ),
         (
+            "cm = 0.2",
+            "cm = 0.2\ncat = 1e200",
+            "",
+            "line_types[0] (\"wire\").cat",
+            "the tangential added mass of a cable (cat 1e200",
+        ),
+        (
             "end = { fixed = [0.0, 0.0, -10.0] }",
             "end = { point = \"buoy\" }",
             &format!("{point}mass = 1e200\n"),
@@ -500,6 +510,31 @@ fn an_array_on_a_named_point_blames_the_field_at_fault() {
         f.ends_with("end.mass") && m.contains("on the point"),
         "{f}: {m}"
     );
+}
+
+/// Each point-mass key on a `{ point = ... }` end of a `[[cables]]` entry: an error that
+/// names the cable and the key (the point carries the mass; the key was dropped).
+#[test]
+fn mass_keys_on_a_point_end_name_the_cable_and_key() {
+    let c = catenary();
+    let point = "\n[[points]]\nname = \"buoy\"\nfixed = [0.0, 0.0, -5.0]\n";
+    let (from, end) = c
+        .lines()
+        .find_map(|l| l.strip_prefix("end = ").map(|e| (l, e)))
+        .expect("an end line");
+    assert!(!end.contains("point"));
+    for key in ["mass", "volume", "drag_area", "added_mass"] {
+        let to = format!("end = {{ point = \"buoy\", {key} = 2.0 }}");
+        let (f, m) = parse_error(&edit(&c, from, &to, point));
+        assert!(
+            f.starts_with("cables[0] (\"line1\")") && f.ends_with(&format!(".end.{key}")),
+            "{key}: {f}: {m}"
+        );
+        assert!(m.contains("takes no point mass"), "{key}: {f}: {m}");
+    }
+    // Without the key the same end is accepted.
+    let to = "end = { point = \"buoy\" }";
+    parse(&edit(&c, from, to, point)).unwrap();
 }
 
 /// The rest of the sweep of the examples' numbers (1e200, -1e160, 1e-200): waves whose

@@ -84,6 +84,29 @@ fn negative_length_is_refused() {
 }
 
 #[test]
+fn tangential_added_mass_is_read_and_checked() {
+    // Default 0 (as MoorDyn's CaAx), given as `cat`.
+    assert_eq!(parse(EXAMPLE).unwrap().model.line_types[0].cat, 0.0);
+    let sc = parse(&EXAMPLE.replace("cm = 0.2", "cm = 0.2\ncat = 0.5")).unwrap();
+    assert_eq!(sc.model.line_types[0].cat, 0.5);
+    fails(
+        &EXAMPLE.replace("cm = 0.2", "cm = 0.2\ncat = -0.5"),
+        "line_types[0] (\"wire\").cat",
+        "must not be negative",
+    );
+    fails(
+        &EXAMPLE.replace("cm = 0.2", "cm = 0.2\ncat = nan"),
+        "line_types[0] (\"wire\").cat",
+        "finite",
+    );
+    fails(
+        &EXAMPLE.replace("cm = 0.2", "cm = 0.2\ncat = inf"),
+        "line_types[0] (\"wire\").cat",
+        "finite",
+    );
+}
+
+#[test]
 fn unknown_line_type_lists_known_ones() {
     fails(
         &EXAMPLE.replace("line_type = \"wire\"", "line_type = \"chain\""),

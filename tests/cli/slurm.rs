@@ -9,6 +9,8 @@
 //! a missing cluster is a failure. On the local cluster a study whose shards fail is
 //! submitted too: the script must end with an error, not hang.
 
+mod quoting;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;

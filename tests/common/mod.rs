@@ -22,6 +22,7 @@ pub fn wire() -> LineType {
         cn: 1.0,
         ct: 0.01,
         cm: 0.2,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     }
@@ -38,6 +39,7 @@ pub fn rope() -> LineType {
         cn: 1.2,
         ct: 0.01,
         cm: 1.0,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     }
@@ -240,4 +242,97 @@ pub fn final_state(dir: &std::path::Path) -> Vec<(String, Vec<([f64; 3], [f64; 3
         nodes.push(([v[0], v[1], v[2]], [v[3], v[4], v[5]]));
     }
     out
+}
+
+/// The analytic water-acceleration case (docs/src/model/glmf.md, "External loads"):
+/// one free horizontal element 2 m long along x, 5 m under the mean level of 200 m of
+/// water, without drag, of a line heavier than the water it displaces (`mbar` 30 kg/m,
+/// `rho A` 8.05 kg/m, `cm` and `cat` given), at rest and exactly unstretched, in a
+/// regular wave (amplitude 1 m, period 6 s, travelling 0.5 rad off +x, its phase at the
+/// element 1 rad at t = 0, when the water's acceleration there has all three
+/// components). Returns the layout, the positions and the sea.
+pub fn froude_krylov_case(
+    cm: f64,
+    cat: f64,
+) -> (
+    cablesim::model::Layout,
+    Vec<[f64; 3]>,
+    cablesim::sea::SeaState,
+) {
+    use cablesim::sea::dispersion::wave_number;
+    let depth = 200.0;
+    let env = Environment { depth, ..water() };
+    let lt = LineType {
+        name: "heavy".into(),
+        diameter: 0.1,
+        mass_per_length: 30.0,
+        ea: 1e7,
+        damping: 1e-4,
+        cn: 0.0,
+        ct: 0.0,
+        cm,
+        cat,
+        ei: 0.0,
+        allow_compression: false,
+    };
+    let def = straight_cable(
+        env,
+        lt,
+        [0.0, 0.0, -5.0],
+        [2.0, 0.0, -5.0],
+        2.0,
+        1,
+        None,
+        None,
+        PointMass::default(),
+        [0.0; 3],
+    );
+    let (lay, pos) = cablesim::model::Layout::build(&def).unwrap();
+    let omega = 2.0 * std::f64::consts::PI / 6.0;
+    let sea = cablesim::sea::SeaState {
+        components: vec![cablesim::sea::WaveComponent {
+            amplitude: 1.0,
+            omega,
+            k: wave_number(omega, depth, 9.81),
+            direction: 0.5,
+            phase: 1.0,
+        }],
+        ..cablesim::sea::SeaState::still(depth)
+    };
+    (lay, pos, sea)
+}
+
+/// What [`froude_krylov_case`] gives at t = 0 by the model's equations: the element's
+/// total load (the water-acceleration load `rho A l0 [(1 + cm) P a + (1 + cat) t t^T a]`
+/// plus its weight less buoyancy; no drag, no tension) and each node's acceleration
+/// (its half load over its half mass block `(mbar l0 I + cm rho A l0 P + cat rho A l0
+/// t t^T) / 2`, diagonal along x, y, z here), with `a` the mean of the water's
+/// acceleration at the two nodes (Airy theory, `sea::kinematics`), and the largest of
+/// `|a|` and `g` (the scale of the acceleration).
+pub fn froude_krylov_expected(
+    lay: &cablesim::model::Layout,
+    pos: &[[f64; 3]],
+    sea: &cablesim::sea::SeaState,
+) -> ([f64; 3], [f64; 3], f64) {
+    let lt = &lay.line_types[0];
+    let (rho, g) = (lay.env.water_density, lay.env.gravity);
+    let rho_a = rho * lt.area();
+    let l0 = lay.elem_l0[0];
+    let field = cablesim::sea::kinematics::WaveField::new(sea);
+    let (ka, kb) = (field.kinematics(pos[0], 0.0), field.kinematics(pos[1], 0.0));
+    let a: [f64; 3] = std::array::from_fn(|q| 0.5 * (ka.a[q] + kb.a[q]));
+    // The tangent is +x: along is x, across are y and z.
+    let wz = -(lt.mass_per_length - rho_a) * l0 * g;
+    let force = [
+        (1.0 + lt.cat) * rho_a * l0 * a[0],
+        (1.0 + lt.cm) * rho_a * l0 * a[1],
+        (1.0 + lt.cm) * rho_a * l0 * a[2] + wz,
+    ];
+    let (m_along, m_across) = (
+        (lt.mass_per_length + lt.cat * rho_a) * l0,
+        (lt.mass_per_length + lt.cm * rho_a) * l0,
+    );
+    let acc = [force[0] / m_along, force[1] / m_across, force[2] / m_across];
+    let scale = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt().max(g);
+    (force, acc, scale)
 }

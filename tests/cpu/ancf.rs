@@ -34,6 +34,7 @@ fn rod(mass_per_length: f64) -> LineType {
         cn: 1.0,
         ct: 0.01,
         cm: 0.0,
+        cat: 0.0,
         ei: 1e4,
         allow_compression: true,
     }
@@ -223,6 +224,7 @@ fn case2_line(ei: f64) -> LineType {
         cn: 1.0,
         ct: 0.01,
         cm: 0.2,
+        cat: 0.0,
         ei,
         allow_compression: false,
     }

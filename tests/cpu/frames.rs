@@ -51,6 +51,7 @@ fn line_type(rng: &mut ChaCha8Rng) -> LineType {
         cn: rng.gen_range(0.5..2.5),
         ct: rng.gen_range(0.001..0.1),
         cm: rng.gen_range(0.0..2.0),
+        cat: rng.gen_range(0.0..2.0),
         ei: 0.0,
         allow_compression: rng.gen_bool(0.2),
     }
@@ -102,7 +103,7 @@ fn vrel(e: &ElementInput<f64>) -> V {
 fn load_scale(c: &Coefs<f64>, e: &ElementInput<f64>) -> f64 {
     let l = (e.rb - e.ra).norm();
     (c.drag_n + c.drag_t) * l * vrel(e).norm2()
-        + c.froude_krylov * e.l0 * e.water_accel.norm()
+        + c.froude_krylov.max(c.froude_krylov_t) * e.l0 * e.water_accel.norm()
         + c.wet_weight_z.abs() * e.l0
 }
 
@@ -259,6 +260,7 @@ fn line() -> Coefs<f64> {
         cn: 1.0,
         ct: 0.01,
         cm: 0.2,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     };
@@ -583,6 +585,7 @@ fn hanging_cable(current: [f64; 3], bend: f64) -> (Layout, Vec<[f64; 3]>) {
         cn: 1.0,
         ct: 0.01,
         cm: 0.2,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     };

@@ -17,6 +17,8 @@ mod catenary;
 mod chain_kernel;
 mod dynamics;
 mod frames;
+mod free_bodies;
+mod froude_krylov;
 mod net_kernel;
 mod nets;
 mod packed;

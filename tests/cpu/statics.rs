@@ -25,6 +25,7 @@ fn chain() -> LineType {
         cn: 1.0,
         ct: 0.01,
         cm: 0.2,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     }

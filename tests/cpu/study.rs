@@ -508,6 +508,7 @@ fn synthetic_study() -> (StudyPlan, Vec<MemberResult>) {
                 member: *m,
                 status,
                 stats,
+                fatigue: Vec::new(),
             }
         })
         .collect();

@@ -48,6 +48,11 @@ pub(crate) fn moored_rope() -> (Layout, Vec<[f64; 3]>) {
 
 /// The rope of [`moored_rope`] with its fairlead at height `zf`, m.
 fn moored_rope_at(zf: f64) -> (Layout, Vec<[f64; 3]>) {
+    moored_rope_with(zf, 0.0)
+}
+
+/// The rope of [`moored_rope_at`] with the tangential added-mass coefficient `cat`.
+fn moored_rope_with(zf: f64, cat: f64) -> (Layout, Vec<[f64; 3]>) {
     let env = Environment {
         depth: DEPTH,
         seabed: Seabed::default(),
@@ -55,6 +60,7 @@ fn moored_rope_at(zf: f64) -> (Layout, Vec<[f64; 3]>) {
     };
     let lt = LineType {
         diameter: 0.05,
+        cat,
         ..rope()
     };
     let def: ModelDef = straight_cable(
@@ -141,12 +147,21 @@ fn cached_kinematics_give_the_exact_end_force() {
     );
 }
 
-/// In waves the chain fast path and the general path agree, for every scheme.
+/// In waves the chain fast path and the general path agree, for every scheme, with no
+/// tangential added mass and with one below and above the normal one (`cm` 1; the
+/// top elements pierce the surface, so their added masses take their wetted
+/// fractions).
 #[test]
 fn chain_kernel_matches_the_general_path_in_waves() {
-    let (lay, pos) = moored_rope();
     let sea = jonswap();
-    for scheme in [Scheme::Symplectic, Scheme::Rk2, Scheme::Rk4] {
+    for (scheme, cat) in [
+        (Scheme::Symplectic, 0.0),
+        (Scheme::Rk2, 0.0),
+        (Scheme::Rk4, 0.0),
+        (Scheme::Symplectic, 0.6),
+        (Scheme::Rk4, 1.8),
+    ] {
+        let (lay, pos) = moored_rope_with(-1.0, cat);
         let opts = SolverOptions {
             dt: 2e-4,
             scheme,
@@ -171,14 +186,14 @@ fn chain_kernel_matches_the_general_path_in_waves() {
             .zip(&pos)
             .map(|(a, b)| (a.to_f64()[2] - b[2]).abs())
             .fold(0.0f64, f64::max);
-        println!("{scheme:?}: |dr| {dr:.2e} m, largest heave from rest {moved:.3} m");
+        println!("{scheme:?}, cat {cat}: |dr| {dr:.2e} m, largest heave from rest {moved:.3} m");
         assert!(
             moved > 0.05,
             "{scheme:?}: the waves moved the line {moved} m"
         );
         assert!(
             dr < 1e-8,
-            "{scheme:?}: fast and general paths differ by {dr} m"
+            "{scheme:?}, cat {cat}: fast and general paths differ by {dr} m"
         );
     }
 }
@@ -223,6 +238,7 @@ fn neutrally_buoyant_sphere_follows_the_water() {
         cn: 0.0,
         ct: 0.0,
         cm: 0.0,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     };
@@ -451,7 +467,7 @@ fn deep_catenary() -> (Layout, Vec<[f64; 3]>) {
 /// Refresh per depth band (`sea::bands`) on a line that crosses the bands' tops: a
 /// 300 m-deep catenary whose fairlead moves near the surface. Its nodes spread over
 /// at least three bands, none is ever found above its band's top, and the fairlead
-/// force over 40 s stays within 1e-3 of its largest value against exact evaluation;
+/// force over 40 s stays within 1.5e-3 of its largest value against exact evaluation;
 /// the result is the same (bit for bit) on one thread as on several, and the same
 /// when the line is packed with another cable in another sea.
 #[test]
@@ -520,8 +536,13 @@ fn depth_bands_keep_the_end_force_of_a_deep_line() {
         d_banded / fmax,
         d_one / fmax
     );
+    // 1.5e-3: the axial part of the water-acceleration load (the Froude-Krylov load along
+    // the line, docs/src/model/glmf.md) carries the deep bands' acceleration error
+    // straight into the tension, summed along the line: 1.02e-3 with it, 4.0e-4 before
+    // (one band: 6.0e-5 and 7.3e-5). The band rule was set against the loads across the
+    // line only (docs/src/sea_states.md).
     assert!(
-        d_banded < 1e-3 * fmax,
+        d_banded < 1.5e-3 * fmax,
         "banded cache off by {d_banded} N of {fmax} N"
     );
     // One thread against several, and packed with another cable in another sea.

@@ -342,6 +342,7 @@ fn chain() -> LineType {
         cn: 2.4,
         ct: 0.4,
         cm: 1.0,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     }

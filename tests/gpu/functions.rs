@@ -38,18 +38,33 @@ fn v3out(k: u32, v: vec3<R>) {
     tout[k + 2u] = v.z;
 }
 
+fn line_in(b: u32) -> LineParams {
+    return LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
+        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u]);
+}
+
+// The water-acceleration load of case i: line constants, tangent, acceleration, l0 wet.
+@compute @workgroup_size(64)
+fn t_froude_krylov(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 18u {
+        return;
+    }
+    let b = i * 18u;
+    v3out(i * 3u, froude_krylov(line_in(b), v3in(b + 11u), v3in(b + 14u), tin[b + 17u]));
+}
+
 @compute @workgroup_size(64)
 fn t_element(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
-    if i >= arrayLength(&tin) / 25u {
+    if i >= arrayLength(&tin) / 27u {
         return;
     }
-    let b = i * 25u;
-    let c = LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
-        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u]);
-    let d = v3in(b + 9u);
-    let el = glmf_element(c, d, norm3(d) - tin[b + 18u], v3in(b + 12u), v3in(b + 15u),
-        tin[b + 18u], v3in(b + 19u), v3in(b + 22u));
+    let b = i * 27u;
+    let c = line_in(b);
+    let d = v3in(b + 11u);
+    let el = glmf_element(c, d, norm3(d) - tin[b + 20u], v3in(b + 14u), v3in(b + 17u),
+        tin[b + 20u], v3in(b + 21u), v3in(b + 24u));
     let o = i * 9u;
     v3out(o, el.t);
     tout[o + 3u] = el.tension;
@@ -296,30 +311,60 @@ impl Worst {
     }
 }
 
-/// The line constants and element kinematics of one random element case as the test
-/// kernels read it (`tin[b..b + 25]`: 9 coefficients, then r_b, v_a, v_b, l0, current,
-/// water acceleration; r_a at the origin).
-pub fn element_case(a: &[f64]) -> (Coefs<f64>, ElementInput<f64>) {
-    let c = Coefs::<f64> {
+/// The line constants of a case as the test kernels read them (`line_in`: `tin[b..b +
+/// 11]`, in `LineParams`' order).
+pub fn line_case(a: &[f64]) -> Coefs<f64> {
+    Coefs::<f64> {
         ea: a[0],
         ea_c: a[1],
         drag_n: a[2],
         drag_t: a[3],
         froude_krylov: a[4],
-        mass: a[5],
-        added_mass: a[6],
-        wet_weight_z: a[7],
-        compression: a[8],
-    };
+        froude_krylov_t: a[5],
+        mass: a[6],
+        added_mass: a[7],
+        added_mass_t: a[8],
+        wet_weight_z: a[9],
+        compression: a[10],
+    }
+}
+
+/// Random line constants in `LineParams`' order (case `i`: slack or a rod by its
+/// parity), the water-acceleration and added-mass constants folded from random `Cm`,
+/// `Cat` (below and above each other) on a random `rho A`.
+pub fn random_line(rng: &mut ChaCha8Rng, i: usize) -> [f64; 11] {
+    let ea = 10f64.powf(rng.gen_range(5.0..9.0));
+    let rho_a = rng.gen_range(0.0..3.0);
+    let (cm, cat) = (rng.gen_range(0.0..2.0), rng.gen_range(0.0..2.0));
+    [
+        ea,
+        ea * rng.gen_range(0.0..1e-2),
+        rng.gen_range(0.0..30.0),
+        rng.gen_range(0.0..3.0),
+        (1.0 + cm) * rho_a,
+        (1.0 + cat) * rho_a,
+        rng.gen_range(0.1..100.0),
+        cm * rho_a,
+        cat * rho_a,
+        rng.gen_range(-500.0..50.0),
+        (i % 2) as f64,
+    ]
+}
+
+/// The line constants and element kinematics of one random element case as the test
+/// kernels read it (`tin[b..b + 27]`: 11 coefficients, then r_b, v_a, v_b, l0, current,
+/// water acceleration; r_a at the origin).
+pub fn element_case(a: &[f64]) -> (Coefs<f64>, ElementInput<f64>) {
+    let c = line_case(a);
     let v = |k: usize| V3::new(a[k], a[k + 1], a[k + 2]);
     let inp = ElementInput {
         ra: V3::zero(),
-        rb: v(9),
-        va: v(12),
-        vb: v(15),
-        l0: a[18],
-        current: v(19),
-        water_accel: v(22),
+        rb: v(11),
+        va: v(14),
+        vb: v(17),
+        l0: a[20],
+        current: v(21),
+        water_accel: v(24),
     };
     (c, inp)
 }
@@ -343,22 +388,11 @@ fn check_element<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
     let n = 500;
     let mut x = Vec::new();
     for i in 0..n {
-        let ea = 10f64.powf(rng.gen_range(5.0..9.0));
         let l0 = rng.gen_range(0.5..50.0);
         let l = l0 * (1.0 + rng.gen_range(-0.01..0.01));
         let dir = V3::<f64>::from_f64(rv(rng, 1.0));
         let d = dir / dir.norm() * l;
-        x.extend([
-            ea,
-            ea * rng.gen_range(0.0..1e-2),
-            rng.gen_range(0.0..30.0),
-            rng.gen_range(0.0..3.0),
-            rng.gen_range(0.0..5.0),
-            rng.gen_range(0.1..100.0),
-            rng.gen_range(0.0..5.0),
-            rng.gen_range(-500.0..50.0),
-            (i % 2) as f64,
-        ]);
+        x.extend(random_line(rng, i));
         x.extend(d.to_f64());
         x.extend(rv(rng, 2.0));
         x.extend(rv(rng, 2.0));
@@ -370,7 +404,7 @@ fn check_element<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
     let out = run::<R>(ctx, p, "t_element", &[], &xr, n, 9 * n);
     let mut w = Worst::new::<R>("glmf_element");
     for i in 0..n {
-        let a = &x[25 * i..25 * (i + 1)];
+        let a = &x[27 * i..27 * (i + 1)];
         let (c, inp) = element_case(a);
         let el = glmf_element(&c, &inp);
         let ext = cablesim::physics::glmf_external(&c, &inp, el.t, inp.rb.norm());
@@ -387,7 +421,38 @@ fn check_element<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
                 + norm(ext.wet_weight));
         w.v("f_half", i, &o[4..7], el.f_half, f_scale);
         w.check("half_mass", i, o[7], el.half_mass, el.half_mass);
-        w.check("half_added", i, o[8], el.half_added, el.half_added);
+        let added = 0.5 * (c.added_mass + c.added_mass_t) * inp.l0;
+        w.check("half_added", i, o[8], el.half_added, added);
+    }
+    w.report(p);
+}
+
+/// `froude_krylov`: the water-acceleration load across and along a line (random
+/// tangents, accelerations, coefficients with `Cat` below and above `Cm`), within
+/// `16 eps` of the sum of the two parts' magnitudes.
+fn check_froude_krylov<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
+    let n = 500;
+    let mut x = Vec::new();
+    for i in 0..n {
+        x.extend(random_line(rng, i));
+        let dir = V3::<f64>::from_f64(rv(rng, 1.0));
+        x.extend((dir / dir.norm()).to_f64());
+        x.extend(rv(rng, 3.0));
+        x.push(rng.gen_range(0.0..50.0));
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let out = run::<R>(ctx, p, "t_froude_krylov", &[], &xr, n, 3 * n);
+    let mut w = Worst::new::<R>("froude_krylov");
+    for i in 0..n {
+        let a = &x[18 * i..18 * (i + 1)];
+        let c = line_case(a);
+        let v = |k: usize| V3::new(a[k], a[k + 1], a[k + 2]);
+        // The tangent as the GPU got it: a unit vector to its precision's round-off.
+        let (t, aw, vol) = (v(11), v(14), a[17]);
+        let f = cablesim::physics::froude_krylov(&c, t, aw, vol);
+        let scale = (c.froude_krylov + c.froude_krylov_t) * vol * aw.norm();
+        let o: Vec<f64> = out[3 * i..3 * (i + 1)].iter().map(|v| v.f64()).collect();
+        w.v("F_a", i, &o, f, scale);
     }
     w.report(p);
 }
@@ -549,8 +614,15 @@ fn check_mass<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) 
             0.0
         });
         for _ in 0..2 {
-            x.push(rng.gen_range(1.0..100.0));
-            x.push(rng.gen_range(0.0..50.0));
+            // The normal plane's extra mass is negative where the tangential added mass
+            // exceeds the normal one (`Cat > Cm`), and then smaller than the half mass.
+            let s = rng.gen_range(1.0..100.0);
+            x.push(s);
+            x.push(if rng.gen_bool(0.3) {
+                -rng.gen_range(0.0..0.9) * s
+            } else {
+                rng.gen_range(0.0..50.0)
+            });
             let t = V3::<f64>::from_f64(rv(rng, 1.0));
             x.extend((t / t.norm()).to_f64());
         }
@@ -563,26 +635,31 @@ fn check_mass<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) 
         let a = &x[14 * i..14 * (i + 1)];
         let mut m = Sym3::scalar(a[0]);
         let mut s_tot = a[0];
-        let mut a_tot = 0.0;
+        let (mut a_pos, mut a_neg) = (0.0, 0.0);
         for k in [1usize, 6] {
             m.xx += a[k];
             m.yy += a[k];
             m.zz += a[k];
             m.add_normal_projection(a[k + 1], V3::new(a[k + 2], a[k + 3], a[k + 4]));
             s_tot += a[k];
-            a_tot += a[k + 1];
+            if a[k + 1] > 0.0 {
+                a_pos += a[k + 1];
+            } else {
+                a_neg -= a[k + 1];
+            }
         }
         let b = V3::new(a[11], a[12], a[13]);
         let xs = m.solve(b);
         let o: Vec<f64> = out[12 * i..12 * (i + 1)].iter().map(|v| v.f64()).collect();
-        let mscale = s_tot + a_tot;
+        let mscale = s_tot + a_pos + a_neg;
         for (k, r) in [m.xx, m.yy, m.zz, m.xy, m.xz, m.yz].into_iter().enumerate() {
             w.check("m", i, o[k], r, mscale);
         }
-        // Eigenvalues lie in [s_tot, s_tot + a_tot]: the solve's error is the
-        // condition number times eps times |x|'s scale |b| / s_tot.
-        let cond = (s_tot + a_tot) / s_tot;
-        w.v("solve", i, &o[6..9], xs, cond * cond * b.norm() / s_tot);
+        // Eigenvalues lie in [s_tot - a_neg, s_tot + a_pos]: the solve's error is the
+        // condition number times eps times |x|'s scale |b| / (s_tot - a_neg).
+        let lo = s_tot - a_neg;
+        let cond = (s_tot + a_pos) / lo;
+        w.v("solve", i, &o[6..9], xs, cond * cond * b.norm() / lo);
         w.v("mul", i, &o[9..12], m.mul_vec(b), mscale * b.norm());
     }
     w.report(p);
@@ -605,6 +682,7 @@ fn check_sincos<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
 fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     let mut rng = ChaCha8Rng::seed_from_u64(20240611);
     check_element::<R>(ctx, p, &mut rng);
+    check_froude_krylov::<R>(ctx, p, &mut rng);
     check_stretch::<R>(ctx, p, &mut rng);
     check_seabed::<R>(ctx, p, &mut rng);
     check_mass::<R>(ctx, p, &mut rng);

@@ -38,6 +38,7 @@ fn line_types() -> Vec<LineType> {
         cn: 2.4,
         ct: 0.4,
         cm: 1.0,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     };
@@ -50,6 +51,7 @@ fn line_types() -> Vec<LineType> {
         cn: 1.2,
         ct: 0.008,
         cm: 1.0,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     };

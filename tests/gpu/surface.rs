@@ -55,15 +55,15 @@ fn t_fractions(@builtin(global_invocation_id) gid: vec3<u32>) {
 @compute @workgroup_size(64)
 fn t_element_wet(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
-    if i >= arrayLength(&tin) / 27u {
+    if i >= arrayLength(&tin) / 29u {
         return;
     }
-    let b = i * 27u;
+    let b = i * 29u;
     let c = LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
-        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u]);
-    let d = v3in(b + 9u);
-    let el = glmf_element_wet(c, d, norm3(d) - tin[b + 18u], v3in(b + 12u), v3in(b + 15u),
-        tin[b + 18u], v3in(b + 19u), v3in(b + 22u), tin[b + 25u], tin[b + 26u]);
+        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u]);
+    let d = v3in(b + 11u);
+    let el = glmf_element_wet(c, d, norm3(d) - tin[b + 20u], v3in(b + 14u), v3in(b + 17u),
+        tin[b + 20u], v3in(b + 21u), v3in(b + 24u), tin[b + 27u], tin[b + 28u]);
     let o = i * 9u;
     v3out(o, el.t);
     tout[o + 3u] = el.tension;
@@ -140,15 +140,20 @@ fn check_element_wet<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCh
         let mass = rng.gen_range(0.1..100.0);
         let g = rng.gen_range(9.0..10.0);
         // Weight less buoyancy per length: `-(m - rho A) g` with rho A below or above m.
-        let wz = -(mass - rng.gen_range(0.0..2.0) * mass) * g;
+        let rho_a = rng.gen_range(0.0..2.0) * mass;
+        let wz = -(mass - rho_a) * g;
+        // Added-mass coefficients with `Cat` below and above `Cm`.
+        let (cm, cat) = (rng.gen_range(0.0..2.0), rng.gen_range(0.0..2.0));
         x.extend([
             ea,
             ea * rng.gen_range(0.0..1e-2),
             rng.gen_range(0.0..30.0),
             rng.gen_range(0.0..3.0),
-            rng.gen_range(0.0..5.0),
+            (1.0 + cm) * rho_a,
+            (1.0 + cat) * rho_a,
             mass,
-            rng.gen_range(0.0..5.0),
+            cm * rho_a,
+            cat * rho_a,
             wz,
             (i % 2) as f64,
         ]);
@@ -169,9 +174,9 @@ fn check_element_wet<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCh
     let out = run::<R>(ctx, p, "t_element_wet", &[], &xr, n, 9 * n);
     let mut w = Worst::new::<R>("glmf_element_wet");
     for i in 0..n {
-        let a = &x[27 * i..27 * (i + 1)];
+        let a = &x[29 * i..29 * (i + 1)];
         let (c, inp) = element_case(a);
-        let (wet, g) = (a[25], a[26]);
+        let (wet, g) = (a[27], a[28]);
         let el = glmf_element_wet(&c, &inp, wet, g);
         let l = inp.rb.norm();
         let ext = glmf_external_wet(&c, &inp, el.t, l, 1.0, g);
@@ -188,7 +193,8 @@ fn check_element_wet<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCh
                 + (c.wet_weight_z.abs() + 2.0 * c.mass * g) * inp.l0);
         w.v("f_half", i, &o[4..7], el.f_half, f_scale);
         w.check("half_mass", i, o[7], el.half_mass, el.half_mass);
-        w.check("half_added", i, o[8], el.half_added, c.added_mass * inp.l0);
+        let added = (c.added_mass + c.added_mass_t) * inp.l0;
+        w.check("half_added", i, o[8], el.half_added, added);
     }
     w.report(p);
 }

@@ -47,6 +47,7 @@ fn splice_equals_a_full_rebuild() {
         cn: 1.0,
         ct: 0.0,
         cm: 0.0,
+        cat: 0.0,
         ei: 0.0,
         allow_compression: false,
     };

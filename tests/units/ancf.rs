@@ -21,6 +21,7 @@ fn line(ei: f64, compression: bool) -> LineType {
         cn: 1.0,
         ct: 0.01,
         cm: 0.0,
+        cat: 0.0,
         ei,
         allow_compression: compression,
     }

@@ -94,8 +94,10 @@ fn rvef_matches_glmf_in_f32() {
         drag_n: 20.5,
         drag_t: 0.64,
         froude_krylov: 2.6,
+        froude_krylov_t: 1.5,
         mass: 5.0,
         added_mass: 1.3,
+        added_mass_t: 0.2,
         wet_weight_z: -36.0,
         compression: 0.0,
     };
@@ -105,8 +107,10 @@ fn rvef_matches_glmf_in_f32() {
         drag_n: 20.5,
         drag_t: 0.64,
         froude_krylov: 2.6,
+        froude_krylov_t: 1.5,
         mass: 5.0,
         added_mass: 1.3,
+        added_mass_t: 0.2,
         wet_weight_z: -36.0,
         compression: 0.0,
     };

@@ -295,6 +295,10 @@ fn steep_waves_warn() {
             amplitude: None,
             phase: None,
             direction: None,
+            file: None,
+            rows: None,
+            reference: None,
+            max_frequency: None,
         }],
         ..Default::default()
     };

@@ -30,9 +30,6 @@ pub enum StudyCmd {
         /// there are kept and not run again.
         #[arg(long)]
         resume: bool,
-        /// No progress bar and no per-sea-state lines (a failed member is still reported).
-        #[arg(long, short)]
-        quiet: bool,
         /// Where the members run: cpu (each member its own run, members in parallel
         /// across the threads), gpu (members packed into one run on the GPU, all in
         /// one layout, in batches of --batch), or auto (packed, on the backend the
@@ -94,14 +91,15 @@ pub enum StudyCmd {
 
 /// Runs a study command; `study run` stopped by Ctrl-C or SIGTERM ends as
 /// [`RunOutcome::Interrupted`] (exit status 130, as a single run).
-pub fn main(cmd: StudyCmd) -> Result<RunOutcome> {
+/// `quiet` (the global `-q`): no progress bar, no estimate, no per-sea-state or closing
+/// lines (a failed member and an interruption are still reported).
+pub fn main(cmd: StudyCmd, quiet: bool) -> Result<RunOutcome> {
     match cmd {
         StudyCmd::Run {
             file,
             shard,
             out,
             resume,
-            quiet,
             backend,
             precision,
             batch,
@@ -207,7 +205,7 @@ fn run(
     let duration = plan.def.duration;
     // Position in member-milliseconds of simulated time.
     let ms = |s: f64| (s * 1e3).round() as u64;
-    let bar = if quiet {
+    let bar = if !crate::show_progress(quiet) {
         indicatif::ProgressBar::hidden()
     } else {
         indicatif::ProgressBar::new(ms(duration) * members.len() as u64)
@@ -246,6 +244,25 @@ fn run(
             done.len(),
             out.display()
         );
+        let est = runner.estimate(remaining.len())?;
+        match &packed {
+            None => eprintln!("work: {}", est.describe()),
+            // Packed: one run of every member's nodes, on a backend chosen when it
+            // starts; the GPU's figure is a predicted lower bound (sim::estimate).
+            Some(p) => {
+                use cablesim::sim::estimate::{duration_words, GPU_HARDWARE_RATE};
+                let rate = GPU_HARDWARE_RATE[(p.precision == Some(Precision::F64)) as usize];
+                eprintln!(
+                    "work: {:.3e} node-steps; packed on a datacenter GPU at least {} (its predicted bandwidth limit, {rate:.1e} node-steps/s, not measured); {}",
+                    est.node_steps,
+                    duration_words(est.node_steps / rate),
+                    est.how.replacen("on the CPU path", &format!("about {} on the CPU path", duration_words(est.seconds)), 1)
+                )
+            }
+        }
+    } else {
+        // The budget is checked all the same (a member beyond it is refused here).
+        runner.estimate(remaining.len())?;
     }
 
     // Per sea state of this shard: members in it, and members finished and failed.
@@ -328,6 +345,12 @@ fn run(
     let shard_result = plan.shard_result(shard, all);
     shard_result.write(&dir.shard_file())?;
     dir.write_status(&st)?;
+    if quiet {
+        if shard == ShardSpec::WHOLE {
+            write_tables(&out, vec![(dir.shard_file(), shard_result)])?;
+        }
+        return Ok(RunOutcome::Done);
+    }
     if shard == ShardSpec::WHOLE {
         write_tables(&out, vec![(dir.shard_file(), shard_result)])?;
         eprintln!(
@@ -396,11 +419,45 @@ fn merge_dirs(dirs: &[PathBuf], out: Option<PathBuf>) -> Result<()> {
     Ok(())
 }
 
-/// Quotes a string for a POSIX shell.
+/// Quotes a string for a POSIX shell: single quotes, in which nothing is special, and
+/// each `'` as `'\''`. The result is one word whatever the string holds (spaces, `$`,
+/// backticks, backslashes, double quotes, newlines).
 fn sh(s: &str) -> String {
     format!("'{}'", s.replace('\'', r"'\''"))
 }
 
+/// A path as UTF-8 for the script, or an error naming the flag: a path that is not
+/// UTF-8 would reach the jobs changed (`to_string_lossy`).
+fn utf8<'a>(p: &'a Path, what: &str) -> Result<&'a str> {
+    p.to_str()
+        .with_context(|| format!("{what} {}: not UTF-8, which the script cannot hold", p.display()))
+}
+
+/// A path for a `#` comment of the script: on one line whatever it holds (a newline in
+/// it would end the comment and make the rest a command).
+fn comment(s: &str) -> String {
+    s.escape_debug().to_string()
+}
+
+/// A here-document of `body`, read as is (`<<'DELIM'`: no expansion, no command
+/// substitution), ended by a delimiter that is no line of the body.
+fn here_doc(body: &str) -> (String, String) {
+    let mut delim = String::from("CABLESIM_JOB");
+    while body.lines().any(|l| l == delim) {
+        delim.push('_');
+    }
+    (format!("<<'{delim}'"), format!("{body}{delim}"))
+}
+
+/// Writes the Slurm submission script. Every path is embedded as a single-quoted word,
+/// both in the script and in the job scripts it submits (quoted here-documents, which
+/// the shell copies without expanding anything), so a path reaches `cablesim` as given
+/// and runs nothing, whatever characters it holds. The jobs run in OUT (`--chdir`). Their
+/// logs are sbatch's `--output` pattern, but sbatch reads `%` in the whole path as a
+/// pattern (the working directory included) and a `\` as "no pattern at all": with
+/// either in OUT, sbatch gets `--output=/dev/null` and each job sends its own output to
+/// its log, by a redirection with the path single-quoted (Slurm's own messages about a
+/// job, such as a time limit, are then lost).
 fn slurm(
     file: &Path,
     shards: usize,
@@ -428,26 +485,52 @@ fn slurm(
         None => std::env::current_exe().context("cannot tell where this cablesim is")?,
     };
     let script = script.unwrap_or_else(|| out.join("submit.sh"));
-    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
-    let (exe, file, outs) = (
-        sh(&exe.to_string_lossy()),
-        sh(&file.to_string_lossy()),
-        sh(&out.to_string_lossy()),
+    let (exe_s, file_s, out_s) = (
+        utf8(&exe, "--cablesim")?,
+        utf8(&file, "the study file")?,
+        utf8(&out, "--out")?,
     );
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let (exe_q, file_q, out_q) = (sh(exe_s), sh(file_s), sh(out_s));
     let shard_dirs: Vec<String> = (1..=shards)
         .map(|k| {
-            format!(
-                "\"$OUT\"/{}",
+            sh(&format!(
+                "{out_s}/{}",
                 shard_dir_name(ShardSpec {
                     index: k,
                     count: shards
                 })
-            )
+            ))
         })
         .collect();
+    // The job scripts, with the paths as single-quoted words; `$SLURM_ARRAY_TASK_ID` is
+    // expanded on the compute node, where it is a number.
+    // Logs: sbatch's pattern, or (a `%` or `\` in OUT) the job's own redirection.
+    let plain = !out_s.contains(['%', '\\']);
+    let (shard_log, merge_log, shard_redirect, merge_redirect) = if plain {
+        ("slurm-%A_%a.out", "slurm-merge-%j.out", String::new(), String::new())
+    } else {
+        (
+            "/dev/null",
+            "/dev/null",
+            format!(
+                "exec >{out_q}/\"slurm-${{SLURM_ARRAY_JOB_ID}}_${{SLURM_ARRAY_TASK_ID}}.out\" 2>&1\n"
+            ),
+            format!("exec >{out_q}/\"slurm-merge-${{SLURM_JOB_ID}}.out\" 2>&1\n"),
+        )
+    };
+    let (shard_open, shard_body) = here_doc(&format!(
+        "#!/bin/bash\n{shard_redirect}exec {exe_q} study run {file_q} --resume{run_args} \\\n  \
+         --shard \"$SLURM_ARRAY_TASK_ID/{shards}\" \\\n  \
+         --out {out_q}/\"shard-$SLURM_ARRAY_TASK_ID-of-{shards}\"\n"
+    ));
+    let (merge_open, merge_body) = here_doc(&format!(
+        "#!/bin/bash\n{merge_redirect}exec {exe_q} study merge {} --out {out_q}\n",
+        shard_dirs.join(" ")
+    ));
     let text = format!(
         r#"#!/bin/bash
-# Written by `cablesim study slurm`: study {file}, {members} members in {shards} shards.
+# Written by `cablesim study slurm`: study {file_c}, {members} members in {shards} shards.
 # Submit it with `bash submit.sh` (extra arguments go to the merge job's sbatch, e.g.
 # --wait to return when the study is merged, with exit status 1 if it was not: the
 # cluster should then cancel a merge job whose shards failed, kill_invalid_depend in
@@ -455,30 +538,32 @@ fn slurm(
 # a task that is cancelled or hits its time limit keeps its finished members, and
 # resubmitting resumes it. The merged study.csv, members.csv and study.json land in $OUT.
 # Add sbatch options (partition, time limit, CPUs per task) in SBATCH_ARGS.
+# The paths are single-quoted words, in the job scripts too (here-documents that are
+# not expanded): they reach cablesim as written.
 set -euo pipefail
-CABLESIM={exe}
-STUDY={file}
-OUT={outs}
+CABLESIM={exe_q}
+STUDY={file_q}
+OUT={out_q}
 mkdir -p "$OUT"
-array_job=$(sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-study \
-  --array=1-{shards} --output="$OUT/slurm-%A_%a.out" <<EOS
-#!/bin/bash
-exec "$CABLESIM" study run "$STUDY" --resume{run_args} \
-  --shard "\$SLURM_ARRAY_TASK_ID/{shards}" --out "$OUT/shard-\$SLURM_ARRAY_TASK_ID-of-{shards}"
-EOS
-)
+# sbatch's answer goes through a file: a here-document inside $(...) is parsed
+# differently by older shells.
+ids="$OUT/.sbatch-$$"
+sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-study \
+  --array=1-{shards} --chdir="$OUT" --output={shard_log} >"$ids" {shard_open}
+{shard_body}
+array_job=$(cat "$ids")
 array_job=${{array_job%%;*}}
 echo "shards: job array $array_job"
 # With --wait, sbatch returns 0 also when the merge job never ran (cancelled because a
 # shard failed): the merged study.json, newer than this submission, says it did.
 stamp="$OUT/.submitted-$array_job"
 touch "$stamp"
-merge_job=$(sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-merge \
-  --dependency=afterok:"$array_job" --output="$OUT/slurm-merge-%j.out" "$@" <<EOS
-#!/bin/bash
-exec "$CABLESIM" study merge {dirs} --out "$OUT"
-EOS
-)
+sbatch --parsable ${{SBATCH_ARGS:-}} --job-name=cablesim-merge \
+  --dependency=afterok:"$array_job" --chdir="$OUT" --output={merge_log} "$@" \
+  >"$ids" {merge_open}
+{merge_body}
+merge_job=$(cat "$ids")
+rm -f "$ids"
 echo "merge: job ${{merge_job%%;*}}"
 for a in "$@"; do
   if [ "$a" = --wait ] || [ "$a" = -W ]; then
@@ -493,14 +578,14 @@ for a in "$@"; do
 done
 rm -f "$stamp"
 "#,
+        file_c = comment(file_s),
         members = plan.members.len(),
-        dirs = shard_dirs.join(" "),
     );
     std::fs::write(&script, text).with_context(|| format!("cannot write {}", script.display()))?;
     eprintln!(
         "wrote {}: submit it with `bash {}`",
         script.display(),
-        script.display()
+        sh(&script.to_string_lossy())
     );
     Ok(())
 }

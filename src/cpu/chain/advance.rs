@@ -45,7 +45,9 @@ struct Work {
     aw: [Vec<f64>; 3],
     // Surface elevation over each node, m (zero in still water).
     eta: Vec<f64>,
-    // The half normal added masses of the padded elements times their wetted fractions.
+    // The padded elements' half masses along their tangents and what their normal
+    // planes have more, with the added masses times their wetted fractions.
+    hmw: Vec<f64>,
     haw: Vec<f64>,
 }
 
@@ -337,7 +339,7 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
     resize(&mut sc.x, len);
     resize(&mut sc.w.u, len);
     resize(&mut sc.w.aw, len);
-    for v in [&mut sc.w.eta, &mut sc.w.haw] {
+    for v in [&mut sc.w.eta, &mut sc.w.hmw, &mut sc.w.haw] {
         v.clear();
         v.resize(len, 0.0);
     }
@@ -404,7 +406,13 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
         sc: &mut Work,
         wv: &ColumnsView<'_, St>,
     ) {
-        let Work { u, aw, eta, haw } = sc;
+        let Work {
+            u,
+            aw,
+            eta,
+            hmw,
+            haw,
+        } = sc;
         // Winch cables: the variable elements' constants at this time.
         if !ale.is_empty() {
             // SAFETY: `asc` was prepared for this block, and `wc`'s columns are padded.
@@ -430,7 +438,7 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
                 wb.fill(time, c.n, st, wbuf);
                 add_waves(c.l0.len(), wbuf, u, aw, eta);
                 // SAFETY: the caller's columns.
-                unsafe { elements::<true, L, St>(c, state, u, aw, eta, wv, haw, None, None) }
+                unsafe { elements::<true, L, St>(c, state, u, aw, eta, wv, hmw, haw, None, None) }
             } else {
                 // The per-node values are needed only by the point masses' loads
                 // (`nodes`); the elements read the cache's columns.
@@ -453,12 +461,14 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
                     cols.fill(c.n, eta, !cols.unit, u, c.uniform, aw);
                     let under = cols.unit.then_some(false);
                     // SAFETY: the caller's columns.
-                    unsafe { elements::<true, L, St>(c, state, u, aw, eta, wv, haw, under, None) }
+                    unsafe {
+                        elements::<true, L, St>(c, state, u, aw, eta, wv, hmw, haw, under, None)
+                    }
                 }
             }
         } else {
             // SAFETY: the caller's columns.
-            unsafe { elements::<false, L, St>(c, state, u, aw, eta, wv, haw, under, uni) }
+            unsafe { elements::<false, L, St>(c, state, u, aw, eta, wv, hmw, haw, under, uni) }
         };
         // SAFETY: as `ale_constants`; the tensions' column, reached only here.
         unsafe { ale_tension(asc, state, wv.col_mut(col::TEN)) };
@@ -468,8 +478,8 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
         let m = Masses {
             eta,
             w: wbuf,
-            hm: &c.hm,
-            // Every element wholly wet: the block's half added masses, bit for bit.
+            // Every element wholly wet: the block's half masses, bit for bit.
+            hm: if wholly_wet { &c.hm } else { hmw },
             ha: if wholly_wet { &c.ha } else { haw },
             kl: &c.kl,
             cl: &c.cl,

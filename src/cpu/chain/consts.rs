@@ -23,8 +23,16 @@ pub(crate) struct ChainConsts {
     pub(super) half_wz: Vec<f64>,
     /// Half the element's buoyancy `rho A g l0 / 2` (z), N, which its dry part loses.
     pub(super) half_bz: Vec<f64>,
-    /// Half the element's water-acceleration coefficient `(1 + Cm) rho A l0 / 2`, kg.
+    /// Half the element's water-acceleration coefficient across it, `(1 + Cm) rho A l0
+    /// / 2`, kg.
     pub(super) half_fk: Vec<f64>,
+    /// The same along it, `(1 + Cat) rho A l0 / 2`, kg.
+    pub(super) half_fkt: Vec<f64>,
+    /// Half the element's mass `mbar l0 / 2` and half its tangential added mass `Cat
+    /// rho A l0 / 2`, kg: a partly wet element's half mass along its tangent is
+    /// `hmd + wet hat` (`hm` wholly wet).
+    pub(super) hmd: Vec<f64>,
+    pub(super) hat: Vec<f64>,
     /// The element's diameter, m (its wetted fraction).
     pub(super) diameter: Vec<f64>,
     /// Current profile per element.
@@ -33,7 +41,9 @@ pub(crate) struct ChainConsts {
     pub(super) line: Vec<u32>,
     /// The block's current when every element shares one uniform current.
     pub(super) uniform: Option<[f64; 3]>,
-    // Per padded element (length ne + 2, ghosts zero).
+    // Per padded element (length ne + 2, ghosts zero): wholly wet, the half mass along
+    // the tangent `hmd + hat` and what the normal plane has more, `(Cm - Cat) rho A l0
+    // / 2` (the node's mass block `sum hm I + ha (I - t t^T)`).
     pub(super) hm: Vec<f64>,
     pub(super) ha: Vec<f64>,
     // Per node (length n).
@@ -90,12 +100,17 @@ impl ChainConsts {
             c.half_bz
                 .push(0.5 * (lc.wet_weight_z + lc.mass * env.gravity) * l0);
             c.half_fk.push(0.5 * lc.froude_krylov * l0);
+            c.half_fkt.push(0.5 * lc.froude_krylov_t * l0);
+            let (hmd, hat) = (0.5 * lc.mass * l0, 0.5 * lc.added_mass_t * l0);
+            c.hmd.push(hmd);
+            c.hat.push(hat);
             c.diameter
                 .push(lay.line_types[lay.elem_line[e] as usize].diameter);
             c.current.push(lay.elem_current[e]);
             c.line.push(lay.elem_line[e]);
-            c.hm[k + 1] = 0.5 * lc.mass * l0;
-            c.ha[k + 1] = 0.5 * lc.added_mass * l0;
+            // `hmd + wet hat` at `wet = 1`, the same bits as a partly wet element's.
+            c.hm[k + 1] = hmd + hat;
+            c.ha[k + 1] = 0.5 * (lc.added_mass - lc.added_mass_t) * l0;
         }
         let first = c.current.first().copied().unwrap_or(0);
         if c.current.iter().all(|&x| x == first) && lay.currents[first as usize].table.len() <= 1 {
@@ -171,6 +186,9 @@ impl ChainConsts {
             half_wz,
             half_bz,
             half_fk,
+            half_fkt,
+            hmd,
+            hat,
             diameter,
             current,
             line,
@@ -205,6 +223,9 @@ impl ChainConsts {
             (half_wz, &o.half_wz),
             (half_bz, &o.half_bz),
             (half_fk, &o.half_fk),
+            (half_fkt, &o.half_fkt),
+            (hmd, &o.hmd),
+            (hat, &o.hat),
             (diameter, &o.diameter),
             (hm, &o.hm),
             (ha, &o.ha),
@@ -243,6 +264,9 @@ impl ChainConsts {
             &mut self.half_wz,
             &mut self.half_bz,
             &mut self.half_fk,
+            &mut self.half_fkt,
+            &mut self.hmd,
+            &mut self.hat,
             &mut self.diameter,
             &mut self.hm,
             &mut self.ha,

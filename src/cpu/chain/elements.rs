@@ -1,7 +1,7 @@
 //! The element pass of the chain fast path: per-element water velocity (currents,
 //! waves), then the branch-free element loop ([`element_kernel`], shared with the
 //! network path) writing unit tangents, tensions, half drag plus half weight less
-//! buoyancy, and the wetted half added masses into the padded element columns.
+//! buoyancy, and the wetted half masses into the padded element columns.
 
 use super::consts::ChainConsts;
 use super::lanes::{
@@ -67,14 +67,15 @@ impl<const L: usize> UniformLine<L> {
 
 /// Element pass over SoA positions and velocities `p`, currents `u`, into the padded
 /// element columns of the block `wv` (tangents, tensions, forces: module
-/// [`super::lanes`]'s `col`) and `haw`. `under`: whether
+/// [`super::lanes`]'s `col`), `hmw` and `haw` (the wetted half masses: along the
+/// tangent, and what the normal plane has more). `under`: whether
 /// every node is known to be at or below the surface `eta` (else found here). Returns
-/// whether it was: then the wetted half added masses are the block's `c.ha`, and
-/// `haw` is not written. `uni`: the block's uniform line in still water, if it is one
+/// whether it was: then the wetted half masses are the block's `c.hm` and `c.ha`, and
+/// `hmw`, `haw` are not written. `uni`: the block's uniform line in still water, if it is one
 /// (then `u` is not read).
 ///
 /// # Safety
-/// Every column of `c`, `p`, `u`, `aw`, `eta`, `wv` and `haw` has at least
+/// Every column of `c`, `p`, `u`, `aw`, `eta`, `wv`, `hmw` and `haw` has at least
 /// [`super::lanes::padded_len`]`(c.n)` entries (module [`super::lanes`]), no slice of
 /// `wv`'s columns lives during the call, and `L` is 4 or 8.
 #[inline(always)]
@@ -86,6 +87,7 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize, St: Stride>(
     aw: &[Vec<f64>; 3],
     eta: &[f64],
     wv: &ColumnsView<'_, St>,
+    hmw: &mut [f64],
     haw: &mut [f64],
     under: Option<bool>,
     uni: Option<&UniformLine<L>>,
@@ -174,6 +176,7 @@ pub(super) unsafe fn elements<const WAVES: bool, const L: usize, St: Stride>(
         &mut fx[1..ne + 1],
         &mut fy[1..ne + 1],
         &mut fz[1..ne + 1],
+        &mut hmw[1..ne + 1],
         &mut haw[1..ne + 1],
     );
     false
@@ -205,6 +208,7 @@ pub(super) fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
     fx: &mut [f64],
     fy: &mut [f64],
     fz: &mut [f64],
+    hmw: &mut [f64],
     haw: &mut [f64],
 ) {
     let ne = tx.len();
@@ -230,10 +234,12 @@ pub(super) fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
         &eta_b[..ne],
     );
     let (ux, uy, uz) = (&ux[..ne], &uy[..ne], &uz[..ne]);
-    let haw = &mut haw[..ne];
+    let (hmw, haw) = (&mut hmw[..ne], &mut haw[..ne]);
     let e1 = e0 + ne;
     let (hb, ha) = (&c.half_bz[e0..e1], &c.ha[e0 + 1..e1 + 1]);
-    let (awx, awy, awz, hfk) = (&awx[..ne], &awy[..ne], &awz[..ne], &c.half_fk[e0..e1]);
+    let (hmd, hat) = (&c.hmd[e0..e1], &c.hat[e0..e1]);
+    let (awx, awy, awz) = (&awx[..ne], &awy[..ne], &awz[..ne]);
+    let (hfk, hfkt) = (&c.half_fk[e0..e1], &c.half_fkt[e0..e1]);
     let diam = &c.diameter[e0..e1];
     let (ty, tz, ten, fx, fy, fz) = (
         &mut ty[..ne],
@@ -266,6 +272,9 @@ pub(super) fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
                 hw: hw[k],
                 hb: hb[k],
                 hfk: hfk[k],
+                hfkt: hfkt[k],
+                hmd: hmd[k],
+                hat: hat[k],
                 ha: ha[k],
                 diam: diam[k],
             },
@@ -273,6 +282,7 @@ pub(super) fn element_kernel<const WAVES: bool, const SUBMERGED: bool>(
         fx[k] = o.f[0];
         fy[k] = o.f[1];
         fz[k] = o.f[2];
+        hmw[k] = o.hmw;
         haw[k] = o.haw;
         tx[k] = o.t[0];
         ty[k] = o.t[1];
@@ -315,7 +325,9 @@ pub(super) unsafe fn put_chunk<const L: usize>(s: &mut [f64], o: usize, v: [f64;
     unsafe { s.as_mut_ptr().add(o).cast::<[f64; L]>().write_unaligned(v) }
 }
 
-/// One element's constants (see [`ChainConsts`]); `ha` is its half normal added mass.
+/// One element's constants (see [`ChainConsts`]): `hfk`, `hfkt` its half
+/// water-acceleration coefficients across and along it, `hmd`, `hat` its half mass and
+/// half tangential added mass, `ha` what its normal plane has more when wholly wet.
 #[derive(Clone, Copy)]
 pub(super) struct ElemConsts {
     pub(super) il0: f64,
@@ -327,6 +339,9 @@ pub(super) struct ElemConsts {
     pub(super) hw: f64,
     pub(super) hb: f64,
     pub(super) hfk: f64,
+    pub(super) hfkt: f64,
+    pub(super) hmd: f64,
+    pub(super) hat: f64,
     pub(super) ha: f64,
     pub(super) diam: f64,
 }
@@ -340,7 +355,11 @@ pub(super) struct ElemOut {
     /// Half drag plus half the weight less buoyancy (and, in waves, half the
     /// water-acceleration load), N.
     pub(super) f: [f64; 3],
-    /// Half normal added mass times the wetted fraction, kg.
+    /// Half the mass along the tangent, its tangential added mass times the wetted
+    /// fraction, kg.
+    pub(super) hmw: f64,
+    /// What the normal plane has more (`(Cm - Cat) rho A l0 / 2`) times the wetted
+    /// fraction, kg.
     pub(super) haw: f64,
 }
 
@@ -458,17 +477,20 @@ fn element_lane_len<const WAVES: bool, const SUBMERGED: bool>(
         half * (nz * kn + ez * kt) + hw_wet,
     ];
     if WAVES {
-        // Froude-Krylov and added mass on the normal wave acceleration P a_w.
+        // Froude-Krylov and added mass (physics::froude_krylov): across the element on
+        // the normal wave acceleration P a_w, along it on (t . a_w) t.
         let an = ex * aw[0] + ey * aw[1] + ez * aw[2];
-        let kf = k.hfk * wet;
-        f[0] += kf * (aw[0] - ex * an);
-        f[1] += kf * (aw[1] - ey * an);
-        f[2] += kf * (aw[2] - ez * an);
+        let (kf, kt) = (k.hfk * wet, k.hfkt * wet);
+        let at = kt * an;
+        f[0] += kf * (aw[0] - ex * an) + ex * at;
+        f[1] += kf * (aw[1] - ey * an) + ey * at;
+        f[2] += kf * (aw[2] - ez * an) + ez * at;
     }
     ElemOut {
         t: [ex, ey, ez],
         ten: tension,
         f,
+        hmw: k.hmd + k.hat * wet,
         haw: k.ha * wet,
     }
 }
@@ -547,7 +569,7 @@ pub(super) unsafe fn elements_fused<const L: usize, St: Stride>(
 /// The element loop of a chain whose every node is under the surface, over `nc`
 /// whole chunks of elements of the padded columns (module [`super::lanes`]):
 /// element `k` reads nodes `k` and `k + 1` of `p` and writes padded element `k + 1`
-/// (not its wetted half added mass: wholly wet, that is the block's `ha`). With `UNI`
+/// (not its wetted half masses: wholly wet, they are the block's `hm` and `ha`). With `UNI`
 /// the current and the line's constants are `k`'s, in every lane (the padding lanes
 /// too: their results are dropped or reset, as with zeros). With `FUSED` (waves,
 /// `cols` given, its power basis) the element's wave velocity and acceleration are
@@ -621,7 +643,7 @@ unsafe fn element_chunks<
         at!(&c.half_wz),
         at!(&c.half_bz),
     );
-    let hfk = at!(&c.half_fk);
+    let (hfk, hfkt) = (at!(&c.half_fk), at!(&c.half_fkt));
     // With `FUSED`: `mc[q][side]`, the cache's columns of wave velocity (`q` 0-2) and
     // acceleration (3-5), and the weights of the time. Written out, not with
     // `std::array::from_fn`: its closures, not inlined into the AVX2 caller, left the
@@ -724,7 +746,7 @@ unsafe fn element_chunks<
         } else {
             (ux, uy, uz)
         };
-        let (hw, hb, hfk) = (hw[j], hb[j], hfk[j]);
+        let (hw, hb, hfk, hfkt) = (hw[j], hb[j], hfk[j], hfkt[j]);
         let mut o = [[0.0; L]; 7];
         for l in 0..L {
             let e = element_lane_len::<WAVES, true>(
@@ -742,6 +764,9 @@ unsafe fn element_chunks<
                     hw: hw[l],
                     hb: hb[l],
                     hfk: hfk[l],
+                    hfkt: hfkt[l],
+                    hmd: 0.0,
+                    hat: 0.0,
                     ha: 0.0,
                     diam: 0.0,
                 },

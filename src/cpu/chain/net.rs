@@ -216,11 +216,13 @@ struct Work {
     /// Water velocity (current, plus waves) and wave acceleration per element.
     u: [Vec<f64>; 3],
     aw: [Vec<f64>; 3],
-    /// The element loop's results: tangent, tension, half external load, half normal
-    /// added mass times the wetted fraction.
+    /// The element loop's results: tangent, tension, half external load, the wetted
+    /// half masses (along the tangent, and what the normal plane has more: `hmw`
+    /// written only by the loop over elements, `element_kernel`).
     t: [Vec<f64>; 3],
     ten: Vec<f64>,
     f: [Vec<f64>; 3],
+    hmw: Vec<f64>,
     haw: Vec<f64>,
     /// Per node of the tile being updated ([`NT`] each): point mass and weight (less
     /// what the dry share of a point loses), point loads (drag, water acceleration;
@@ -236,7 +238,7 @@ impl Work {
     fn size(&mut self, ne: usize) {
         let per_elem = (self.u.iter_mut().chain(&mut self.aw))
             .chain(self.t.iter_mut().chain(&mut self.f))
-            .chain([&mut self.ten, &mut self.haw]);
+            .chain([&mut self.ten, &mut self.hmw, &mut self.haw]);
         for v in per_elem {
             // Zero: the surface columns stay so in still water.
             v.clear();
@@ -363,6 +365,7 @@ fn element_tile<const L: usize>(
         t,
         ten,
         f,
+        hmw,
         haw,
         ..
     } = g;
@@ -429,7 +432,7 @@ fn element_tile<const L: usize>(
             return;
         }
     }
-    let (ten, haw) = (&mut ten[..ne], &mut haw[..ne]);
+    let (ten, hmw, haw) = (&mut ten[..ne], &mut hmw[..ne], &mut haw[..ne]);
     {
         let [tx, ty, tz] = t.each_mut().map(|q| &mut q[..ne]);
         let [fx, fy, fz] = f.each_mut().map(|q| &mut q[..ne]);
@@ -453,7 +456,7 @@ fn element_tile<const L: usize>(
                 ($waves:literal, $submerged:literal) => {
                     element_kernel::<$waves, $submerged>(
                         a, b, &u[0], &u[1], &u[2], &aw[0], &aw[1], &aw[2], c, er.start, tx, ty, tz,
-                        &mut *ten, fx, fy, fz, &mut *haw,
+                        &mut *ten, fx, fy, fz, &mut *hmw, &mut *haw,
                     )
                 };
             }
@@ -465,7 +468,14 @@ fn element_tile<const L: usize>(
             }
         }
     }
-    node_shares::<L>(nc, &piece, t, ten, f, haw, out);
+    // Submerged in whole chunks: the block's half masses along the tangents (what the
+    // loop over elements writes to `hmw` wholly wet, bit for bit).
+    let hm = if chunked {
+        &c.hm[er.start + 1..er.start + 1 + ne]
+    } else {
+        &hmw[..]
+    };
+    node_shares::<L>(nc, &piece, t, ten, f, hm, haw, out);
 }
 
 /// Whether the tiles of block nodes `i0 .. i0 + len` (`len` at least 1) are all

@@ -36,10 +36,12 @@ struct AleRun {
     /// `EA c` of its line.
     eac: f64,
     /// Per unit `l0`: half the weight less buoyancy, half the buoyancy, half the
-    /// water-acceleration coefficient, half the mass, half the normal added mass.
-    per_l0: [f64; 5],
-    /// The block's `1/l0`, `half_wz`, `half_bz`, `half_fk`, `hm`, `ha` of the element.
-    base: [f64; 6],
+    /// water-acceleration coefficients across and along, half the mass, half the
+    /// tangential added mass, half the normal less the tangential added mass.
+    per_l0: [f64; 7],
+    /// The block's `1/l0`, `half_wz`, `half_bz`, `half_fk`, `half_fkt`, `hmd`, `hat`,
+    /// `ha` of the element.
+    base: [f64; 8],
     /// Tributary lengths of `m` and `w` at the last remeshing, m.
     trib: [f64; 2],
     /// Payout and `l0` at the current stage.
@@ -110,15 +112,19 @@ impl AleScratch {
                     0.5 * lc.wet_weight_z,
                     0.5 * (lc.wet_weight_z + lc.mass * lay.env.gravity),
                     0.5 * lc.froude_krylov,
+                    0.5 * lc.froude_krylov_t,
                     0.5 * lc.mass,
-                    0.5 * lc.added_mass,
+                    0.5 * lc.added_mass_t,
+                    0.5 * (lc.added_mass - lc.added_mass_t),
                 ],
                 base: [
                     c.il0[k],
                     c.half_wz[k],
                     c.half_bz[k],
                     c.half_fk[k],
-                    c.hm[k + 1],
+                    c.half_fkt[k],
+                    c.hmd[k],
+                    c.hat[k],
                     c.ha[k + 1],
                 ],
                 trib: [c.trib[ae.m], c.trib[ae.w]],
@@ -156,7 +162,7 @@ pub(super) unsafe fn ale_constants(sc: &mut AleScratch, time: f64, wc: &mut Chai
         // `AleElem::l0`.
         let l0 = r.base_l0 + (pay.dl - r.base_dl);
         (r.pay, r.l0) = (pay, l0);
-        let [il0, hw, hb, hfk, hm, ha] = if l0 != r.base_l0 || pay.rate != 0.0 {
+        let [il0, hw, hb, hfk, hfkt, hmd, hat, ha] = if l0 != r.base_l0 || pay.rate != 0.0 {
             let q = r.per_l0;
             [
                 1.0 / l0,
@@ -165,6 +171,8 @@ pub(super) unsafe fn ale_constants(sc: &mut AleScratch, time: f64, wc: &mut Chai
                 q[2] * l0,
                 q[3] * l0,
                 q[4] * l0,
+                q[5] * l0,
+                q[6] * l0,
             ]
         } else {
             r.base
@@ -174,7 +182,11 @@ pub(super) unsafe fn ale_constants(sc: &mut AleScratch, time: f64, wc: &mut Chai
         set!(wc.half_wz, k, hw);
         set!(wc.half_bz, k, hb);
         set!(wc.half_fk, k, hfk);
-        set!(wc.hm, k + 1, hm);
+        set!(wc.half_fkt, k, hfkt);
+        set!(wc.hmd, k, hmd);
+        set!(wc.hat, k, hat);
+        // Wholly wet, the half mass along the tangent (`ChainConsts::new`).
+        set!(wc.hm, k + 1, hmd + hat);
         set!(wc.ha, k + 1, ha);
         // Without a seabed `sb_k = sb_c = 0`, and the node loop does not read these.
         if sc.seabed {

@@ -16,6 +16,8 @@ pub struct CpuCheckpoint {
     /// Steps taken.
     pub steps: u64,
     saved: Saved,
+    /// Free and pinned bodies' states (none without).
+    free: Option<Box<crate::cpu::free::FreeRun>>,
 }
 
 #[derive(Clone)]
@@ -49,7 +51,7 @@ impl std::fmt::Debug for CpuCheckpoint {
 impl CpuSolver {
     /// The state now, to go back to with [`CpuSolver::restore`].
     pub fn checkpoint(&self) -> Option<CpuCheckpoint> {
-        let saved = if self.ale.is_some() {
+        let saved = if self.ale.is_some() || !self.failures.is_empty() {
             Saved::Whole(Box::new(self.clone()))
         } else if !self.wave_blocks.is_empty() {
             Saved::Waves {
@@ -70,11 +72,15 @@ impl CpuSolver {
         Some(CpuCheckpoint {
             steps: self.steps,
             saved,
+            free: self.free.clone(),
         })
     }
 
     /// Goes back to the state `cp`, taken from this solver.
     pub fn restore(&mut self, cp: &CpuCheckpoint) {
+        if cp.free.is_some() {
+            self.free.clone_from(&cp.free);
+        }
         match &cp.saved {
             Saved::State {
                 t,

@@ -15,7 +15,7 @@ use crate::gpu::host::{body_rows, rebased_route, route_samples, split, Host};
 use crate::gpu::kernel::{fused_workgroup, STEPS_PER_SUBMISSION, WORKGROUP};
 use crate::gpu::layout::*;
 use crate::gpu::shaders::{self, Stage};
-use crate::gpu::solver::GpuTimings;
+use super::GpuTimings;
 use crate::gpu::wave_schedule::{
     fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_DUE_STRIDE, WAVE_ELEM_ROWS,
     WAVE_ELEM_STRIDE,
@@ -268,8 +268,10 @@ impl<R: GpuReal> GpuEngine<R> {
                 drag_n: R::c(c.drag_n),
                 drag_t: R::c(c.drag_t),
                 froude_krylov: R::c(c.froude_krylov),
+                froude_krylov_t: R::c(c.froude_krylov_t),
                 mass: R::c(c.mass),
                 added_mass: R::c(c.added_mass),
+                added_mass_t: R::c(c.added_mass_t),
                 wet_weight_z: R::c(c.wet_weight_z),
                 compression: R::c(c.compression),
             })

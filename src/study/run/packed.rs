@@ -162,6 +162,8 @@ impl StudyRunner {
         let interval = sim.scenario().sim.output_interval;
         let mut stats: Vec<Vec<ChannelStats>> =
             batch.iter().map(|_| self.plan.new_stats()).collect();
+        let mut fatigue: Vec<Vec<crate::fatigue::DamageCounter>> =
+            batch.iter().map(|_| self.plan.new_fatigue()).collect();
         let mut body_index: Vec<Option<Vec<Option<usize>>>> = vec![None; batch.len()];
         let outputs = (def.duration / interval - 1e-9).ceil().max(1.0) as u64;
         let mut failed: Option<String> = None;
@@ -189,6 +191,7 @@ impl StudyRunner {
             for (j, pm) in packed.members.iter().enumerate() {
                 self.record(
                     &mut stats[j],
+                    &mut fatigue[j],
                     &snap,
                     pm.cables.clone(),
                     Some(&pm.prefix),
@@ -200,7 +203,8 @@ impl StudyRunner {
             batch
                 .iter()
                 .zip(stats)
-                .map(|(m, stats)| MemberResult {
+                .zip(fatigue)
+                .map(|((m, stats), fatigue)| MemberResult {
                     member: *m,
                     status: match &failed {
                         Some(message) => MemberStatus::Failed {
@@ -209,6 +213,7 @@ impl StudyRunner {
                         None => MemberStatus::Completed,
                     },
                     stats,
+                    fatigue: fatigue.into_iter().map(|c| c.finish()).collect(),
                 })
                 .collect(),
         )))

@@ -96,7 +96,7 @@ pub(super) fn element_chunks_net<const WAVES: bool, const UNIFORM: bool, const L
 
 /// The constants [`element_chunk_net`] reads for the `ne` elements from `e0` on.
 #[inline(always)]
-pub(super) fn net_consts(c: &ChainConsts, e0: usize, ne: usize) -> [&[f64]; 10] {
+pub(super) fn net_consts(c: &ChainConsts, e0: usize, ne: usize) -> [&[f64]; 11] {
     let e1 = e0 + ne;
     [
         &c.il0[e0..e1],
@@ -109,6 +109,7 @@ pub(super) fn net_consts(c: &ChainConsts, e0: usize, ne: usize) -> [&[f64]; 10] 
         &c.half_bz[e0..e1],
         &c.half_fk[e0..e1],
         &c.ha[e0 + 1..e1 + 1],
+        &c.half_fkt[e0..e1],
     ]
 }
 
@@ -141,7 +142,7 @@ pub(super) unsafe fn element_chunk_net<const WAVES: bool, const UNIFORM: bool, c
     u: [&[f64]; 3],
     un: [f64; 3],
     aw: [&[f64]; 3],
-    k: &[&[f64]; 10],
+    k: &[&[f64]; 11],
     o: usize,
 ) -> [[f64; L]; 8] {
     // SAFETY: the caller's bound.
@@ -173,7 +174,7 @@ pub(super) unsafe fn element_chunk_run<const WAVES: bool, const UNIFORM: bool, c
     u: [&[f64]; 3],
     un: [f64; 3],
     aw: [&[f64]; 3],
-    k: &[&[f64]; 10],
+    k: &[&[f64]; 11],
     o: usize,
 ) -> [[f64; L]; 8] {
     // SAFETY: the caller's bounds.
@@ -198,7 +199,7 @@ unsafe fn element_chunk_ends<const WAVES: bool, const UNIFORM: bool, const L: us
     u: [&[f64]; 3],
     un: [f64; 3],
     aw: [&[f64]; 3],
-    k: &[&[f64]; 10],
+    k: &[&[f64]; 11],
     o: usize,
 ) -> [[f64; L]; 8] {
     // SAFETY: the caller's bound.
@@ -224,6 +225,7 @@ unsafe fn element_chunk_ends<const WAVES: bool, const UNIFORM: bool, const L: us
         ld(k[7]),
         ld(k[8]),
         ld(k[9]),
+        ld(k[10]),
     ];
     let mut r = [[0.0; L]; 8];
     for l in 0..L {
@@ -247,6 +249,10 @@ unsafe fn element_chunk_ends<const WAVES: bool, const UNIFORM: bool, const L: us
                 hw: kc[6][l],
                 hb: kc[7][l],
                 hfk: kc[8][l],
+                hfkt: kc[10][l],
+                // Submerged: the mass along the tangent is the block's `hm`.
+                hmd: 0.0,
+                hat: 0.0,
                 ha: kc[9][l],
                 diam: 0.0,
             },
@@ -261,8 +267,8 @@ unsafe fn element_chunk_ends<const WAVES: bool, const UNIFORM: bool, const L: us
 
 /// [`element_lane`] for one element `e` of `c`, its wetted fraction computed (exactly
 /// 1 for an element under the surface, so the same bits as `SUBMERGED`): for the
-/// network path's gathered elements. Returns the tangent, tension, force and `haw` of
-/// [`ElemOut`].
+/// network path's gathered elements. Returns the tangent, tension, force, `hmw` and
+/// `haw` of [`ElemOut`].
 #[inline(always)]
 pub(super) fn element_one<const WAVES: bool>(
     a: [f64; 7],
@@ -271,7 +277,7 @@ pub(super) fn element_one<const WAVES: bool>(
     aw: [f64; 3],
     c: &ChainConsts,
     e: usize,
-) -> ([f64; 3], f64, [f64; 3], f64) {
+) -> ([f64; 3], f64, [f64; 3], f64, f64) {
     let k = ElemConsts {
         il0: c.il0[e],
         ea: c.ea[e],
@@ -282,9 +288,12 @@ pub(super) fn element_one<const WAVES: bool>(
         hw: c.half_wz[e],
         hb: c.half_bz[e],
         hfk: c.half_fk[e],
+        hfkt: c.half_fkt[e],
+        hmd: c.hmd[e],
+        hat: c.hat[e],
         ha: c.ha[e + 1],
         diam: c.diameter[e],
     };
     let o = element_lane::<WAVES, false>(a, b, u, aw, k);
-    (o.t, o.ten, o.f, o.haw)
+    (o.t, o.ten, o.f, o.hmw, o.haw)
 }

@@ -102,16 +102,20 @@ pub(super) fn run_shares<const WAVES: bool, const UNIFORM: bool, const L: usize>
 }
 
 /// Folds the element loop's results for the elements of `piece` into what they add to
-/// their nodes (the general path's `m/2 I + a (I - t t^T)`, and `f/2 + (+-1 T) t` per
+/// their nodes (the general path's `hm I + a (I - t t^T)`, and `f/2 + (+-1 T) t` per
 /// end), written into each end's slot in `out`, for a run (one slot per end along it:
-/// vector stores); gathered elements take [`super::gathered::gathered_shares`].
+/// vector stores); gathered elements take [`super::gathered::gathered_shares`]. `hm`:
+/// the elements' half masses along their tangents (the block's `hm` for submerged
+/// elements, else the element loop's `hmw`), `haw` what the normal plane has more.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 pub(super) fn node_shares<const L: usize>(
     nc: &NetConsts,
     piece: &Piece,
     t: &[Vec<f64>; 3],
     ten: &[f64],
     f: &[Vec<f64>; 3],
+    hm: &[f64],
     haw: &[f64],
     out: LoadsOut,
 ) {
@@ -119,7 +123,7 @@ pub(super) fn node_shares<const L: usize>(
     let ne = ten.len();
     let [tx, ty, tz] = t.each_ref().map(|q| &q[..ne]);
     let [fx, fy, fz] = f.each_ref().map(|q| &q[..ne]);
-    let (haw, hm) = (&haw[..ne], &nc.c.hm[e0 + 1..e0 + 1 + ne]);
+    let (haw, hm) = (&haw[..ne], &hm[..ne]);
     let (sa, sb) = (nc.eslot[0][e0] as usize, nc.eslot[1][e0] as usize);
     // Gathered elements take `gathered_shares`.
     let (a0, b0) = piece.ends.expect("node_shares of a run");

@@ -56,8 +56,7 @@ pub(super) fn gathered_shares<const WAVES: bool>(
                 aw[q] = 0.5 * (aa[q] + ab[q]);
             }
         }
-        let ([tx, ty, tz], tn, f, a) = element_one::<WAVES>(a, b, u, aw, c, e);
-        let hm = c.hm[e + 1];
+        let ([tx, ty, tz], tn, f, hm, a) = element_one::<WAVES>(a, b, u, aw, c, e);
         let ntn = -tn;
         let m = [
             hm + (a - a * tx * tx),

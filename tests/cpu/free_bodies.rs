@@ -1,0 +1,455 @@
+//! Free and pinned bodies on the CPU path, with their lines: a subsurface buoy on three
+//! lines released off its equilibrium settles where it is in equilibrium (the same pose
+//! from two releases, on the axis of symmetry, the lines' force balancing its net
+//! buoyancy), the body's properties through a scenario, the GPU path's refusal and the
+//! errors of bad input.
+
+use cablesim::scenario::Scenario;
+use std::path::Path;
+
+fn write(dir: &Path, name: &str, text: &str) {
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+/// A buoy (3 m^3, 2000 kg) on three taut ropes (clear of the seabed) to anchors 60 m
+/// away in 50 m of water.
+fn buoy(offset: [f64; 3], angles: [f64; 3], duration: f64) -> String {
+    let mut s = format!(
+        r#"
+[simulation]
+duration = {duration}
+output_interval = 1.0
+backend = "cpu"
+
+[environment]
+depth = 50.0
+
+[[line_types]]
+name = "chain"
+diameter = 0.05
+mass_per_length = 2.5
+ea = 1.0e7
+damping = 2.0e-3
+cn = 1.2
+ct = 0.2
+cm = 1.0
+
+[[bodies]]
+name = "buoy"
+motion = "free"
+reference = [0.0, 0.0, -20.0]
+offset = [{}, {}, {}]
+angles = [{}, {}, {}]
+mass = 2000.0
+cg = [0.0, 0.0, -0.5]
+inertia = [2000.0, 2000.0, 3000.0]
+volume = 3.0
+ca = [1.0, 1.0, 1.0]
+drag_area = [2.0, 2.0, 2.0]
+damping = [[1500.0, 0, 0, 0, 0, 0], [0, 1500.0, 0, 0, 0, 0], [0, 0, 3000.0, 0, 0, 0], [0, 0, 0, 2.0e4, 0, 0], [0, 0, 0, 0, 2.0e4, 0], [0, 0, 0, 0, 0, 500.0]]
+"#,
+        offset[0], offset[1], offset[2], angles[0], angles[1], angles[2]
+    );
+    for k in 0..3 {
+        let a = (120.0 * k as f64).to_radians();
+        let (c, sn) = (a.cos(), a.sin());
+        s += &format!(
+            r#"
+[[cables]]
+name = "leg{k}"
+line_type = "chain"
+length = 68.0
+segments = 20
+initial = "catenary"
+start = {{ fixed = [{}, {}, -50.0] }}
+end = {{ body = "buoy", at = [{}, {}, -1.0] }}
+"#,
+            60.0 * c,
+            60.0 * sn,
+            1.5 * c,
+            1.5 * sn
+        );
+    }
+    s
+}
+
+/// Runs scenario `text` in `dir` and returns the last row of `bodies.csv`.
+fn last_body_row(dir: &Path, text: &str) -> Vec<f64> {
+    write(dir, "s.toml", text);
+    let sc = Scenario::load(&dir.join("s.toml")).unwrap();
+    let out = dir.join("out");
+    cablesim::sim::run(
+        &sc,
+        &cablesim::sim::RunOptions {
+            out_dir: out.clone(),
+            overrides: Default::default(),
+            progress: false,
+        },
+    )
+    .unwrap();
+    let csv = std::fs::read_to_string(out.join("bodies.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz,vx,vy,vz,wx,wy,wz"
+    );
+    let last = lines.last().unwrap();
+    last.split(',')
+        .map(|x| x.parse().unwrap_or(f64::NAN))
+        .collect()
+}
+
+#[test]
+fn a_buoy_on_three_lines_settles_at_its_equilibrium() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = last_body_row(dir.path(), &buoy([4.0, 0.0, 0.0], [0.0; 3], 200.0));
+    let dir2 = tempfile::tempdir().unwrap();
+    let b = last_body_row(
+        dir2.path(),
+        &buoy([0.0, -3.0, 2.0], [6.0, -4.0, 10.0], 200.0),
+    );
+    // At rest.
+    for row in [&a, &b] {
+        for k in 14..20 {
+            assert!(row[k].abs() < 1e-3, "still moving: {row:?}");
+        }
+    }
+    // On the axis of symmetry, level, and with no yaw.
+    for row in [&a, &b] {
+        assert!(row[2].abs() < 0.01 && row[3].abs() < 0.01, "{row:?}");
+        for k in 5..8 {
+            assert!(row[k].abs() < 0.05, "angle {k}: {row:?}");
+        }
+    }
+    // The same pose from both releases (within 1 cm and 0.01 degrees).
+    for k in 2..8 {
+        assert!(
+            (a[k] - b[k]).abs() < 0.01,
+            "column {k}: {} vs {}",
+            a[k],
+            b[k]
+        );
+    }
+    // The lines' force balances the net buoyancy (the held end nodes' weight is in
+    // the lines' force).
+    let (rho, g) = (1025.0, 9.81);
+    let net = (rho * 3.0 - 2000.0) * g;
+    assert!(
+        (a[10] + net).abs() < 1e-3 * net,
+        "lines {} N against net buoyancy {net} N",
+        a[10]
+    );
+    assert!(a[8].abs() < 1e-3 * net && a[9].abs() < 1e-3 * net);
+    // It rose from -20 m: the lines hold it against its net buoyancy.
+    assert!(a[4] > -20.0 && a[4] < -1.0, "z {}", a[4]);
+}
+
+#[test]
+fn the_gpu_path_refuses_free_bodies_and_auto_falls_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let text =
+        buoy([1.0, 0.0, 0.0], [0.0; 3], 2.0).replace("backend = \"cpu\"", "backend = \"gpu\"");
+    write(dir.path(), "s.toml", &text);
+    let sc = Scenario::load(&dir.path().join("s.toml")).unwrap();
+    let e = cablesim::sim::run(
+        &sc,
+        &cablesim::sim::RunOptions {
+            out_dir: dir.path().join("out"),
+            overrides: Default::default(),
+            progress: false,
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("free or pinned bodies") && e.contains("buoy"),
+        "{e}"
+    );
+    let text =
+        buoy([1.0, 0.0, 0.0], [0.0; 3], 2.0).replace("backend = \"cpu\"", "backend = \"auto\"");
+    write(dir.path(), "s.toml", &text);
+    let sc = Scenario::load(&dir.path().join("s.toml")).unwrap();
+    cablesim::sim::run(
+        &sc,
+        &cablesim::sim::RunOptions {
+            out_dir: dir.path().join("out2"),
+            overrides: Default::default(),
+            progress: false,
+        },
+    )
+    .unwrap();
+}
+
+fn error_of(text: &str) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "s.toml", text);
+    Scenario::load(&dir.path().join("s.toml"))
+        .unwrap_err()
+        .to_string()
+}
+
+#[test]
+fn bad_free_body_input_names_the_key_and_value() {
+    let base = buoy([0.0; 3], [0.0; 3], 1.0);
+    let e = error_of(&base.replace("mass = 2000.0", "mass = 0.0"));
+    assert!(
+        e.contains("bodies[0] (\"buoy\").mass") && e.contains("positive"),
+        "{e}"
+    );
+    let e = error_of(&base.replace(
+        "inertia = [2000.0, 2000.0, 3000.0]",
+        "inertia = [2000.0, -2000.0, 3000.0]",
+    ));
+    assert!(e.contains(".inertia") && e.contains("negative"), "{e}");
+    let e = error_of(&base.replace(
+        "inertia = [2000.0, 2000.0, 3000.0]",
+        "inertia = [[2000.0, 5.0, 0.0], [0.0, 2000.0, 0.0], [0.0, 0.0, 3000.0]]",
+    ));
+    assert!(e.contains(".inertia") && e.contains("symmetric"), "{e}");
+    let e = error_of(&base.replace("volume = 3.0", "volume = nan"));
+    assert!(e.contains(".volume"), "{e}");
+    let e = error_of(&base.replace("motion = \"free\"", "motion = \"floating\""));
+    assert!(e.contains(".motion") && e.contains("floating"), "{e}");
+    let e = error_of(&base.replace("mass = 2000.0\n", ""));
+    assert!(e.contains(".mass") && e.contains("missing"), "{e}");
+    // A prescribed body with a key of the free ones.
+    let e = error_of(&base.replace("motion = \"free\"\n", ""));
+    assert!(
+        e.contains("motion = \\\"free\\\"") || e.contains("motion = \"free\""),
+        "{e}"
+    );
+}
+
+/// Runs scenario `text` in `dir` and returns the output directory.
+fn run_in(dir: &Path, text: &str) -> std::path::PathBuf {
+    write(dir, "s.toml", text);
+    let sc = Scenario::load(&dir.join("s.toml")).unwrap();
+    let out = dir.join("out");
+    cablesim::sim::run(
+        &sc,
+        &cablesim::sim::RunOptions {
+            out_dir: out.clone(),
+            overrides: Default::default(),
+            progress: false,
+        },
+    )
+    .unwrap();
+    out
+}
+
+const ROPE: &str = r#"
+[simulation]
+duration = 8.0
+output_interval = 0.5
+backend = "cpu"
+
+[output]
+positions = "all"
+
+[[line_types]]
+name = "rope"
+diameter = 0.02
+mass_per_length = 1.0
+ea = 2.0e6
+damping = 1.0e-3
+cn = 1.2
+ct = 0.01
+cm = 1.0
+"#;
+
+fn failures_of(out: &Path) -> Vec<serde_json::Value> {
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    s["failures"].as_array().cloned().unwrap_or_default()
+}
+
+#[test]
+fn an_end_fails_at_its_time_and_falls_free() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = format!(
+        r#"{ROPE}
+[[cables]]
+name = "span"
+line_type = "rope"
+length = 10.0
+segments = 10
+start = {{ fixed = [0.0, 0.0, -10.0] }}
+end = {{ fixed = [10.0, 0.0, -10.0], mass = 50.0, fail_time = 2.0 }}
+"#
+    );
+    let out = run_in(dir.path(), &text);
+    let f = failures_of(&out);
+    assert_eq!(f.len(), 1, "{f:?}");
+    assert_eq!(f[0]["cable"], "span");
+    assert_eq!(f[0]["end"], "end");
+    assert_eq!(f[0]["trigger"], "time");
+    let t = f[0]["time"].as_f64().unwrap();
+    assert!((2.0..2.01).contains(&t), "fired at {t}");
+    // The end node (node 10) held until 2 s, then falls with its 50 kg clump.
+    let pos = std::fs::read_to_string(out.join("positions.csv")).unwrap();
+    let end_z = |time: f64| -> f64 {
+        pos.lines()
+            .skip(1)
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .find(|v| v[0].parse::<f64>().unwrap() == time && v[2] == "10")
+            .map(|v| v[5].parse().unwrap())
+            .unwrap()
+    };
+    assert!((end_z(2.0) + 10.0).abs() < 1e-6, "{}", end_z(2.0));
+    assert!(end_z(8.0) < -12.0, "the freed end fell: z {}", end_z(8.0));
+    // Held before it failed.
+    assert!((end_z(1.0) + 10.0).abs() < 1e-6, "{}", end_z(1.0));
+}
+
+#[test]
+fn an_end_fails_when_its_tension_first_reaches_the_threshold() {
+    let dir = tempfile::tempdir().unwrap();
+    // Pulled away at 1 m/s from 15 m to beyond its 20 m length.
+    let text = format!(
+        r#"{ROPE}
+[[cables]]
+name = "pulled"
+line_type = "rope"
+length = 20.0
+segments = 10
+start = {{ fixed = [0.0, 0.0, -10.0] }}
+end = {{ route = "line", start = [15.0, 0.0, -10.0], velocity = [1.0, 0.0, 0.0], fail_tension = 1.0e4 }}
+"#
+    );
+    let out = run_in(dir.path(), &text);
+    let f = failures_of(&out);
+    assert_eq!(f.len(), 1, "{f:?}");
+    assert_eq!(f[0]["trigger"], "tension");
+    let (t, tension) = (
+        f[0]["time"].as_f64().unwrap(),
+        f[0]["tension"].as_f64().unwrap(),
+    );
+    assert!((1.0e4..1.05e4).contains(&tension), "tension {tension}");
+    // The line is taut once the ends are 20 m apart, and 1e4 N is 10 cm more.
+    assert!(t > 5.0 && t < 5.5, "fired at {t}");
+}
+
+#[test]
+fn a_buoy_drifts_away_from_a_failed_leg() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = buoy([0.0; 3], [0.0; 3], 60.0).replace(
+        "end = { body = \"buoy\", at = [1.5, 0, -1.0] }",
+        "end = { body = \"buoy\", at = [1.5, 0, -1.0], fail_time = 5.0 }",
+    );
+    assert!(text.contains("fail_time"), "the replacement matched");
+    let out = run_in(dir.path(), &text);
+    let f = failures_of(&out);
+    assert_eq!(f.len(), 1);
+    assert_eq!(f[0]["cable"], "leg0");
+    let csv = std::fs::read_to_string(out.join("bodies.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| {
+            l.split(',')
+                .map(|x| x.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    // Leg 0 held it towards +x: without it the other two pull it to -x.
+    let at = |t: f64| rows.iter().find(|r| r[0] == t).unwrap();
+    assert!(at(5.0)[2].abs() < 0.05, "{:?}", at(5.0));
+    assert!(at(60.0)[2] < -1.0, "x {}", at(60.0)[2]);
+    assert!(at(60.0)[3].abs() < 0.05, "y {}", at(60.0)[3]);
+}
+
+#[test]
+fn bad_failure_input_names_the_key() {
+    let e = error_of(&format!(
+        r#"{ROPE}
+[[cables]]
+name = "c"
+line_type = "rope"
+length = 10.0
+segments = 2
+start = {{ fixed = [0.0, 0.0, -10.0] }}
+end = {{ fixed = [5.0, 0.0, -10.0], fail_tension = 0.0 }}
+"#
+    ));
+    assert!(
+        e.contains("cables[0] (\"c\").end.fail_tension") && e.contains("positive"),
+        "{e}"
+    );
+    let e = error_of(&format!(
+        r#"{ROPE}
+[[cables]]
+name = "c"
+line_type = "rope"
+length = 10.0
+segments = 2
+start = {{ fixed = [0.0, 0.0, -10.0] }}
+end = {{ free = [5.0, 0.0, -10.0], fail_time = 1.0 }}
+"#
+    ));
+    assert!(e.contains("end.fail_time") && e.contains("free end"), "{e}");
+    let e = error_of(&format!(
+        r#"{ROPE}
+[[cables]]
+name = "c"
+line_type = "rope"
+length = 10.0
+segments = 2
+start = {{ fixed = [0.0, 0.0, -10.0] }}
+end = {{ fixed = [5.0, 0.0, -10.0], fail_time = -1.0 }}
+"#
+    ));
+    assert!(e.contains("end.fail_time") && e.contains("negative"), "{e}");
+}
+
+#[test]
+fn a_pinned_body_swings_about_its_pin_with_its_line() {
+    // A pinned body (centre of gravity 2 m below the pin) with a line and a clump
+    // hanging from a point 1 m out, released rolled 10 degrees: the reference point
+    // stays at the pin, the roll swings back through zero and decays.
+    let dir = tempfile::tempdir().unwrap();
+    let text = format!(
+        r#"{ROPE}
+[[bodies]]
+name = "arm"
+motion = "pinned"
+reference = [0.0, 0.0, -5.0]
+angles = [10.0, 0.0, 0.0]
+mass = 500.0
+cg = [0.0, 0.0, -2.0]
+inertia = [100.0, 100.0, 100.0]
+rotational_drag = [50.0, 50.0, 50.0]
+
+[[cables]]
+name = "hang"
+line_type = "rope"
+length = 5.0
+segments = 5
+start = {{ body = "arm", at = [0.0, 1.0, -0.5] }}
+end = {{ free = [0.0, 1.0, -10.5], mass = 20.0 }}
+"#
+    )
+    .replace("duration = 8.0", "duration = 20.0");
+    let out = run_in(dir.path(), &text);
+    let csv = std::fs::read_to_string(out.join("bodies.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| {
+            l.split(',')
+                .map(|x| x.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    let mut crossed = false;
+    for r in &rows {
+        assert!(
+            r[2].abs() < 1e-9 && r[3].abs() < 1e-9 && (r[4] + 5.0).abs() < 1e-9,
+            "the pin moved: {r:?}"
+        );
+        assert!(r[14].abs() < 1e-9 && r[15].abs() < 1e-9 && r[16].abs() < 1e-9);
+        crossed |= r[5] < -1.0;
+    }
+    assert!(crossed, "the roll swings through zero");
+    let last = rows.last().unwrap();
+    assert!(last[5].abs() < 5.0, "decaying: roll {}", last[5]);
+}
