@@ -10,8 +10,9 @@
 //! (`(M + dt diag(c)) a = F`, docs/src/model/seabed.md), so for it they bound nothing
 //! and only the seabed stiffness counts; the Runge-Kutta schemes take them explicitly
 //! and keep their bounds. `m` is the node's scalar mass without added
-//! mass (the axial direction has none, and neither has anything above the water
-//! surface), so the estimate errs on the safe side. The
+//! mass (the axial direction has only the tangential added mass `Cat rho A`, which
+//! is zero by default and never negative, and nothing above the water surface has
+//! any), so the estimate errs on the safe side. The
 //! modes of a node are summed for the symplectic scheme (damping only shrinks its step);
 //! RK2 and RK4 steps grow with damping, so there each mode counts only the damping acting
 //! on it (axial waves with internal damping, seabed stiffness with seabed damping). The
@@ -36,6 +37,9 @@ pub struct StepBound {
     pub dt: f64,
     /// The term that sets it, in words (which cable, node, mode).
     pub term: String,
+    /// What sets that term and the scenario key that changes it, in words (empty when
+    /// nothing bounds the step).
+    pub fix: String,
 }
 
 /// What a mode comes from; put in words ([`Term::describe`]) only for the one that
@@ -59,7 +63,11 @@ impl Term {
         let sb = lay.env.seabed;
         let element = |e: usize, l0: f64| {
             let (_, ek) = lay.describe_element(e);
-            format!("(element {ek}, l0 = {l0:.4} m)")
+            if l0 >= 1e-3 {
+                format!("(element {ek}, l0 = {l0:.4} m)")
+            } else {
+                format!("(element {ek}, l0 = {l0:.3e} m)")
+            }
         };
         match self {
             Term::Baumgarte => format!("the Baumgarte gains at cable '{cable}' node {node}"),
@@ -77,6 +85,60 @@ impl Term {
                 "seabed friction (mu = {}, v_eps = {} m/s) at cable '{cable}' node {node}",
                 sb.friction, sb.friction_velocity
             ),
+        }
+    }
+}
+
+impl Term {
+    /// What to change in the scenario to lengthen the step this term sets at node `i`:
+    /// the value behind it and its key.
+    fn fix(self, lay: &Layout, i: usize) -> String {
+        let (cable, _) = lay.describe_node(i);
+        let sb = lay.env.seabed;
+        let line = |e: usize| {
+            let t = lay.elem_line[e] as usize;
+            (&lay.line_types[t].name, lay.line_coefs[t])
+        };
+        match self {
+            Term::Baumgarte => "the held-end constraints' gains: lower `[simulation] \
+                               baumgarte_alpha` and `baumgarte_beta`"
+                .into(),
+            Term::Axial(e, l0) => {
+                let (name, c) = line(e);
+                format!(
+                    "the axial wave crosses an element of {l0:.3e} m in {:.3e} s (the step \
+                     scales with the element length, at the wave speed sqrt(EA / m) = \
+                     {:.3e} m/s of line type '{name}'): give cable '{cable}' fewer \
+                     `segments` (or a smaller `length`)",
+                    l0 / (c.ea / c.mass).sqrt(),
+                    (c.ea / c.mass).sqrt()
+                )
+            }
+            Term::Internal(e, l0) => {
+                let (name, c) = line(e);
+                format!(
+                    "the internal damping of line type '{name}' (`damping` = {:.3e} s) \
+                     damps an element of {l0:.3e} m faster than any step can follow: the \
+                     step is at most about l0^2 m / (2 EA c); lower that `damping` in \
+                     [[line_types]], or give cable '{cable}' fewer `segments` (the step \
+                     grows with the element length squared)",
+                    c.ea_c / c.ea
+                )
+            }
+            Term::SeabedStiffness => format!(
+                "the seabed's stiffness ({:.3e} N/m per m): lower `[environment.seabed] \
+                 stiffness`",
+                sb.stiffness
+            ),
+            Term::SeabedDamping => format!(
+                "the seabed's damping ({:.3e} N s/m per m), explicit in the Runge-Kutta \
+                 schemes: lower `[environment.seabed] damping`, or use the symplectic scheme",
+                sb.damping
+            ),
+            Term::Friction => "the seabed's regularised friction, explicit in the \
+                               Runge-Kutta schemes: raise `[environment.seabed] \
+                               friction_velocity`, or use the symplectic scheme"
+                .into(),
         }
     }
 }
@@ -159,6 +221,7 @@ fn amplification(scheme: Scheme, x: f64, y: f64) -> f64 {
 pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
     // (step, node, term) of the smallest step so far.
     let mut best: Option<(f64, usize, Term)> = None;
+    let mut body_best: Option<(f64, String)> = None;
     let sb = lay.env.seabed;
     // The symplectic node solve takes the seabed's damping and friction implicitly
     // (cpu::stepper::implicit_dt and node_advance in shared/prelude.wgsl).
@@ -310,14 +373,66 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
             best = Some((dt, i, term));
         }
     }
+    // Free and pinned bodies: their own stiffness and linear damping per degree of
+    // freedom (the held nodes are lumped into them, which only lowers the lines'
+    // frequencies: docs/src/bodies.md, "Free bodies").
+    let fluid = crate::body::free::Fluid {
+        rho: lay.env.water_density,
+        g: lay.env.gravity,
+    };
+    let mut seen: Vec<*const crate::body::Body> = Vec::new();
+    for r in &lay.routes {
+        let crate::model::Route::Body { body, .. } = r else {
+            continue;
+        };
+        let Some(d) = body.dynamic() else { continue };
+        if seen.contains(&std::sync::Arc::as_ptr(body)) {
+            continue;
+        }
+        seen.push(std::sync::Arc::as_ptr(body));
+        for (k, (omega2, gamma)) in d.body.modes(fluid).into_iter().enumerate() {
+            if omega2 == 0.0 && gamma == 0.0 {
+                continue;
+            }
+            let dt = mode_step(scheme, omega2, gamma);
+            if best.is_none_or(|(b, _, _)| dt < b)
+                && dt
+                    < body_best
+                        .as_ref()
+                        .map_or(f64::INFINITY, |b: &(f64, String)| b.0)
+            {
+                body_best = Some((
+                    dt,
+                    format!(
+                        "the stiffness or damping of free body '{}' (degree of freedom {k})",
+                        body.name
+                    ),
+                ));
+            }
+        }
+    }
+    if let Some((dt, term)) = body_best {
+        if best.is_none_or(|(b, _, _)| dt < b) {
+            return StepBound {
+                dt,
+                term,
+                fix: "the body's linear `stiffness` or `damping` (6x6, `[[bodies]]`) against \
+                      its mass and inertia: lower those terms, or give the body more `mass` \
+                      or `inertia`"
+                    .into(),
+            };
+        }
+    }
     match best {
         Some((dt, i, term)) if dt < f64::INFINITY || dt.is_nan() => StepBound {
             dt,
             term: term.describe(lay, i),
+            fix: term.fix(lay, i),
         },
         _ => StepBound {
             dt: f64::INFINITY,
             term: "nothing (no stiff term)".into(),
+            fix: String::new(),
         },
     }
 }
