@@ -416,10 +416,8 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
             return StepBound {
                 dt,
                 term,
-                fix: "the body's linear `stiffness` or `damping` (6x6, `[[bodies]]`) against \
-                      its mass and inertia: lower those terms, or give the body more `mass` \
-                      or `inertia`"
-                    .into(),
+                fix: "a free body's `mass`, `inertia`, `stiffness` or `damping` in `[[bodies]]`"
+                    .to_string(),
             };
         }
     }

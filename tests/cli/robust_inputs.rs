@@ -116,7 +116,8 @@ fn absurd_work_is_refused_with_the_estimate_before_anything_is_built() {
         "simulation.duration",
         "over the budget of 1e12 node-steps",
     );
-    let dense = edit(&c, "output_interval = 1.0", "output_interval = 1e-9", "");
+    // 6e7 frames (3e9 node-steps, within that budget) of 51 rows: about 230 GiB.
+    let dense = edit(&c, "output_interval = 1.0", "output_interval = 1e-6", "");
     refused(
         d,
         &dense,

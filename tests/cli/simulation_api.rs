@@ -195,7 +195,6 @@ fn a_good_run_prints_no_error_lines() {
             "examples/catenary.toml",
             "--duration",
             "1",
-            "-q",
             "--out",
         ])
         .arg(dir.path())
