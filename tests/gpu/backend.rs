@@ -131,7 +131,7 @@ fn table_route_scenario_runs_on_the_gpu() {
         let o = Command::new(env!("CARGO_BIN_EXE_cablesim"))
             .arg("run")
             .arg(&scen)
-            .args(["--out", out.to_str().unwrap(), "-q", "--duration", "3"])
+            .args(["--out", out.to_str().unwrap(), "--duration", "3"])
             .args(["--backend", backend])
             .env("WGPU_BACKEND", &env)
             .output()
