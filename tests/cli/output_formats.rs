@@ -89,11 +89,13 @@ mod parquet_tables {
     #[test]
     fn parquet_tables_hold_the_csv_numbers_bit_for_bit() {
         let dir = tempfile::tempdir().unwrap();
-        // Points (a buoy), bodies (a vessel in waves), a winch: every table.
+        // Points (a buoy), bodies (a vessel in waves; a free buoy), a winch: every table.
         let cases = [
             ("examples/buoy_spread.toml", "points"),
             ("examples/spread_mooring_waves.toml", "bodies"),
             ("examples/winch_deploy.toml", "winches"),
+            // A free body: bodies with their velocity columns.
+            ("tests/data/free_buoy.toml", "bodies"),
         ];
         for (scenario, table) in cases {
             let (c, p) = (dir.path().join("csv"), dir.path().join("pq"));
