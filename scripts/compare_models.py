@@ -27,6 +27,23 @@ import sys
 import tomllib
 
 
+
+def with_final_positions(summary: dict, out) -> dict:
+    """Puts each cable's node positions at the end of the run (``final_state.csv``,
+    beside ``summary.json``) into its summary entry as ``final_positions``."""
+    import csv as _csv
+    import os as _os
+    nodes = {}
+    path = _os.path.join(str(out), "final_state.csv")
+    if _os.path.exists(path):
+        with open(path, newline="") as f:
+            for r in _csv.DictReader(f):
+                nodes.setdefault(r["cable"], []).append(
+                    [float(r["x"]), float(r["y"]), float(r["z"])])
+    for c in summary.get("cables", []):
+        c["final_positions"] = nodes.get(c["name"], [])
+    return summary
+
 def run(binary, scenario, out, extra):
     cmd = [binary, "run", scenario, "--out", out, "-q"] + extra
     print("$", " ".join(cmd), flush=True)
@@ -34,7 +51,7 @@ def run(binary, scenario, out, extra):
     if r.returncode != 0:
         sys.exit(f"run failed:\n{r.stderr}")
     with open(os.path.join(out, "summary.json")) as f:
-        return json.load(f)
+        return with_final_positions(json.load(f), out)
 
 
 def last_nodes(out):

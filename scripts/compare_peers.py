@@ -672,6 +672,23 @@ def find_cablesim(args) -> tuple[str | None, str]:
     return binary, ""
 
 
+
+def with_final_positions(summary: dict, out) -> dict:
+    """Puts each cable's node positions at the end of the run (``final_state.csv``,
+    beside ``summary.json``) into its summary entry as ``final_positions``."""
+    import csv as _csv
+    import os as _os
+    nodes = {}
+    path = _os.path.join(str(out), "final_state.csv")
+    if _os.path.exists(path):
+        with open(path, newline="") as f:
+            for r in _csv.DictReader(f):
+                nodes.setdefault(r["cable"], []).append(
+                    [float(r["x"]), float(r["y"]), float(r["z"])])
+    for c in summary.get("cables", []):
+        c["final_positions"] = nodes.get(c["name"], [])
+    return summary
+
 def cablesim_run(binary: str, scenario: Path, outdir: Path, scheme: str, threads: int,
                  dt: float | None = None, duration: float | None = None) -> dict:
     """One `cablesim run`; returns summary.json (plus `error` where it failed)."""
@@ -692,7 +709,7 @@ def cablesim_run(binary: str, scenario: Path, outdir: Path, scheme: str, threads
     if not summ.exists():
         return {"error": f"exit {p.returncode}: {(p.stderr or p.stdout)[-1500:]}",
                 "command": cmd}
-    s = json.loads(summ.read_text())
+    s = with_final_positions(json.loads(summ.read_text()), outdir)
     s["command"] = cmd
     s["warnings"] = [ln.strip() for ln in (p.stderr + p.stdout).splitlines() if "WARN" in ln]
     if p.returncode != 0:

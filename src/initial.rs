@@ -6,6 +6,7 @@ use crate::model::{Block, Layout, NO_CONSTRAINT};
 use crate::physics::catenary::catenary_positions;
 use crate::scenario::{InitialShape, Scenario};
 use crate::statics::{relax_blocks, static_forces, RelaxOptions};
+use rayon::prelude::*;
 
 /// Builds the layout and the initial state (catenary first guesses relaxed to the
 /// discrete static equilibrium). Returns the layout, positions and the largest
@@ -41,32 +42,42 @@ pub fn apply_with(
 ) -> Result<f64, Error> {
     let env = &lay.env;
     let mut relax = vec![false; lay.blocks.len()];
-    for (ci, shape) in sc.initial.iter().enumerate() {
-        if *shape != InitialShape::Catenary {
-            continue;
-        }
+    // Each cable's catenary on its own (a fleet's thousands in parallel), then written
+    // into the packed positions.
+    let guesses: Vec<(usize, Vec<[f64; 3]>)> = sc
+        .initial
+        .par_iter()
+        .enumerate()
+        .filter(|(_, shape)| **shape == InitialShape::Catenary)
+        .map(|(ci, _)| {
+            let cable = &lay.cables[ci];
+            let lt = &lay.line_types[cable.line_type];
+            let n = cable.elements.len();
+            let length: f64 = cable
+                .elements
+                .iter()
+                .map(|&e| lay.elem_l0[e as usize])
+                .sum();
+            let a = pos[cable.nodes[0] as usize];
+            let b = pos[cable.nodes[n] as usize];
+            let w = lt.wet_weight_per_length(env.gravity, env.water_density);
+            (ci, catenary_positions(a, b, length, n, lt.ea, w, -env.depth))
+        })
+        .collect();
+    for (ci, guess) in guesses {
         let cable = &lay.cables[ci];
-        let lt = &lay.line_types[cable.line_type];
         let n = cable.elements.len();
-        let length: f64 = cable
-            .elements
-            .iter()
-            .map(|&e| lay.elem_l0[e as usize])
-            .sum();
-        let a = pos[cable.nodes[0] as usize];
-        let b = pos[cable.nodes[n] as usize];
-        let w = lt.wet_weight_per_length(env.gravity, env.water_density);
-        let guess = catenary_positions(a, b, length, n, lt.ea, w, -env.depth);
         // The ends stay where the scenario puts them (shared points included).
         for k in 1..n {
             pos[cable.nodes[k] as usize] = guess[k];
         }
+        // The block holding the cable (blocks are contiguous, in node order).
         let first = cable.nodes[0];
-        let bi = lay
-            .blocks
-            .iter()
-            .position(|b| b.node_start <= first && first < b.node_end)
-            .expect("every node is in a block");
+        let bi = lay.blocks.partition_point(|b| b.node_end <= first);
+        assert!(
+            bi < lay.blocks.len() && lay.blocks[bi].node_start <= first,
+            "every node is in a block"
+        );
         relax[bi] = true;
     }
     if !relax.iter().any(|&x| x) {

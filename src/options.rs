@@ -43,8 +43,55 @@ deserialize_by_name!(
     Scheme,
     CableModel,
     FormulationChoice,
-    AddedMass
+    AddedMass,
+    OutputFormat
 );
+
+/// The format of a run's tables (end forces, tensions, positions, ...): `[output]
+/// format` in a scenario, `cablesim run --format`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum OutputFormat {
+    /// CSV text, one row per line: small runs, any tool.
+    #[default]
+    Csv,
+    /// Apache Parquet (compressed columns, one row group per frame or several small
+    /// frames): large runs, read by pandas, polars, DuckDB, pyarrow. Needs the
+    /// `parquet` cargo feature (on by default).
+    Parquet,
+}
+
+impl OutputFormat {
+    /// The name used in files and messages (also the files' extension).
+    pub fn name(self) -> &'static str {
+        match self {
+            OutputFormat::Csv => "csv",
+            OutputFormat::Parquet => "parquet",
+        }
+    }
+
+    /// Whether this build can write the format: Parquet needs the `parquet` feature.
+    pub fn available(self) -> bool {
+        match self {
+            OutputFormat::Csv => true,
+            OutputFormat::Parquet => cfg!(feature = "parquet"),
+        }
+    }
+
+    /// `Err` with a message that says what to do when this build cannot write the
+    /// format.
+    pub fn check_available(self) -> Result<(), String> {
+        if self.available() {
+            Ok(())
+        } else {
+            let n = self.name();
+            Err(format!(
+                "\"{n}\" output is not in this build of cablesim (built without the `{n}` \
+                 cargo feature); use \"csv\", or rebuild with `--features {n}`"
+            ))
+        }
+    }
+}
 
 /// Which computing path runs the simulation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, ValueEnum)]

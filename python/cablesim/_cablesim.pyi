@@ -161,12 +161,19 @@ class Simulation:
         """Advances to time ``t`` (s), to the step nearest it; a time already passed
         does nothing."""
     @overload
-    def run(self, out_dir: None = None) -> "RunOutput":
+    def run(
+        self, out_dir: None = None, format: Optional[Literal["csv", "parquet"]] = None
+    ) -> "RunOutput":
         """Runs on to the end of the duration, keeping every output time in memory."""
     @overload
-    def run(self, out_dir: Union[str, os.PathLike[str]]) -> Dict[str, Any]:
+    def run(
+        self,
+        out_dir: Union[str, os.PathLike[str]],
+        format: Optional[Literal["csv", "parquet"]] = None,
+    ) -> Dict[str, Any]:
         """Runs on to the end of the duration, writing the output files into
-        ``out_dir`` (as the command line does); returns the summary."""
+        ``out_dir`` (as the command line does; ``format`` "csv" or "parquet", default
+        the scenario's ``[output] format``); returns the summary."""
     def snapshot(self) -> "Snapshot":
         """Every cable's (and body's) state now (a copy)."""
     def positions(self, cable: _Cable) -> _FloatArray:

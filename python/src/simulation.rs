@@ -300,14 +300,22 @@ impl PySimulation {
 
     /// Runs on to the end of the duration. With `out_dir`, writes the output files
     /// there (`end_forces.csv`, `tensions.csv`, ..., `summary.json`, as the command
-    /// line does) and returns the summary as a dict; without, keeps every output time
+    /// line does; `format` "csv" or "parquet", default the scenario's `[output]
+    /// format`) and returns the summary as a dict; without, keeps every output time
     /// in memory and returns a RunOutput. A blow-up raises DivergedError (the files
     /// then end with a summary whose status is "diverged").
-    #[pyo3(signature = (out_dir=None))]
-    fn run<'py>(&mut self, py: Python<'py>, out_dir: Option<PathBuf>) -> PyResult<Py<PyAny>> {
+    #[pyo3(signature = (out_dir=None, format=None))]
+    fn run<'py>(
+        &mut self,
+        py: Python<'py>,
+        out_dir: Option<PathBuf>,
+        format: Option<&str>,
+    ) -> PyResult<Py<PyAny>> {
+        let format = crate::select::option::<cablesim::options::OutputFormat>("format", format)?
+            .unwrap_or(self.sim().scenario().output_format);
         match out_dir {
             Some(dir) => {
-                let mut sink = FileSink::new(dir);
+                let mut sink = FileSink::new(dir).format(format).py(py)?;
                 let summary = self.run_into(py, &mut sink)?;
                 Ok(summary_dict(py, &summary)?.unbind())
             }

@@ -2,7 +2,8 @@
 
 use anyhow::{Context, Result};
 use cablesim::options::{
-    Backend, CableModel, FormulationChoice, Overrides, Precision, Scheme, SolverOptions,
+    Backend, CableModel, FormulationChoice, OutputFormat, Overrides, Precision, Scheme,
+    SolverOptions,
 };
 use cablesim::output::{FailedStart, FanOut, FileSink, VtkSink};
 use cablesim::scenario::{LimitOverrides, Scenario};
@@ -70,6 +71,10 @@ enum Cmd {
         /// Also write ParaView files into OUT/vtk (as `[output] vtk = true` does).
         #[arg(long)]
         vtk: bool,
+        /// Format of the tables (end forces, tensions, positions, ...; default: the
+        /// scenario's `[output] format`, else csv): csv, or parquet for large runs.
+        #[arg(long, value_enum)]
+        format: Option<OutputFormat>,
         /// Raise (or lower) a limit of the work budget over the scenario's `[limits]`:
         /// node_steps (default 1e12), memory_gib (16), output_gib (20); repeatable,
         /// e.g. `--limit node_steps=1e13`.
@@ -223,6 +228,7 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
             dt,
             duration,
             vtk,
+            format,
             limit,
         } => {
             let limits = limits(&limit)?;
@@ -247,7 +253,10 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
             });
             let context = || {
                 // Name the output only when the run got as far as writing some.
-                if out_dir.join("end_forces.csv").exists() {
+                if ["end_forces.csv", "end_forces.parquet"]
+                    .iter()
+                    .any(|f| out_dir.join(f).exists())
+                {
                     format!(
                         "run of {} (output so far kept in {})",
                         scenario.display(),
@@ -261,7 +270,12 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
             // directory: an earlier run's files go before the build can fail, and a
             // directory in use or not ours is refused before any work.
             let sc = Scenario::load_any_with(&scenario, &limits).with_context(context)?;
-            let mut sink = FileSink::claim(&out_dir)?;
+            let format = format.unwrap_or(sc.output_format);
+            format
+                .check_available()
+                .map_err(anyhow::Error::msg)
+                .context("--format")?;
+            let mut sink = FileSink::claim(&out_dir)?.format(format)?;
             let scenario_path = sc.path.clone();
             let mut simulation = match Simulation::new(sc, &overrides) {
                 Ok(s) => s,
@@ -291,13 +305,16 @@ fn real_main(cli: Cli) -> Result<RunOutcome> {
             let mut vtk_sink = VtkSink::new(out_dir.join("vtk"));
             let mut fatigue = (simulation.scenario().fatigue.clone())
                 .map(|f| cablesim::output::FatigueSink::new(&out_dir, f));
-            let mut sinks = FanOut::new().with(&mut sink);
+            // The file sink last: it takes each frame to its writer thread without a
+            // copy (`FanOut` hands the last sink the frame itself).
+            let mut sinks = FanOut::new();
             if let Some(f) = fatigue.as_mut() {
                 sinks = sinks.with(f);
             }
             if vtk || simulation.scenario().vtk {
                 sinks = sinks.with(&mut vtk_sink);
             }
+            let mut sinks = sinks.with(&mut sink);
             // Ctrl-C and SIGTERM ask the run to stop at the next step boundary; it then
             // writes its last frame and an `interrupted` summary.
             let stop = Arc::new(AtomicBool::new(false));

@@ -29,6 +29,15 @@ impl OutputSink for FanOut<'_> {
         self.sinks.iter_mut().try_for_each(|s| s.frame(snapshot))
     }
 
+    fn frame_owned(&mut self, snapshot: Snapshot) -> Result<(), Error> {
+        // Every sink but the last reads it; the last takes it.
+        let Some((last, rest)) = self.sinks.split_last_mut() else {
+            return Ok(());
+        };
+        rest.iter_mut().try_for_each(|s| s.frame(&snapshot))?;
+        last.frame_owned(snapshot)
+    }
+
     fn finish(&mut self, summary: &Summary) -> Result<(), Error> {
         self.sinks.iter_mut().try_for_each(|s| s.finish(summary))
     }

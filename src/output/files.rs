@@ -2,27 +2,42 @@
 
 use super::sink::{OutputSink, Snapshot};
 use super::summary::{write_summary, Summary};
+use super::tables::Tables;
 use crate::error::Error;
-use std::collections::HashMap;
+use crate::options::OutputFormat;
 use std::fs::File;
-use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::mpsc::{sync_channel, SyncSender};
+use std::sync::Arc;
+use std::thread::JoinHandle;
 
 /// Writes a run's output files into one directory, streaming each output time as it
-/// comes so that a run that stops early keeps what it wrote:
-/// - `end_forces.csv`: `time,cable,end,fx,fy,fz`, two rows per cable (`start`, `end`),
+/// comes so that a run that stops early keeps what it wrote. The tables, in CSV
+/// (`.csv`, the default) or Parquet (`.parquet`, [`FileSink::format`]), with the same
+/// columns in either:
+/// - `end_forces`: `time,cable,end,fx,fy,fz`, two rows per cable (`start`, `end`),
 ///   the force the cable exerts on each end support, N;
-/// - `tensions.csv`: `time,cable,element,tension`, N;
-/// - `positions.csv`: `time,cable,node,x,y,z`, m, for the cables whose positions are
+/// - `tensions`: `time,cable,element,tension`, N;
+/// - `positions`: `time,cable,node,x,y,z`, m, for the cables whose positions are
 ///   output (the file only when there is one);
-/// - `winches.csv`: `time,cable,deployed_length,variable_l0,elements` (the file only
+/// - `winches`: `time,cable,deployed_length,variable_l0,elements` (the file only
 ///   with winches);
-/// - `bodies.csv`: `time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz` (m, degrees, N,
+/// - `bodies`: `time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz` (m, degrees, N,
 ///   N m about the reference point; the file only when cable ends are on bodies);
-/// - `points.csv`: `time,point,x,y,z,fx,fy,fz` (m, N), per shared point
+/// - `points`: `time,point,x,y,z,fx,fy,fz` (m, N), per shared point
 ///   (`[[points]]`) its position and the net force of its cables on it, or the reaction
 ///   for a held point ([`super::PointState`]; the file only with such points);
-/// - `summary.json`: the [`Summary`].
+/// - `final_state`: `cable,node,x,y,z,vx,vy,vz` (m, m/s), every node at the last
+///   frame, written when the run ends;
+///
+/// and `summary.json`, the [`Summary`] (a fixed handful of numbers per cable).
+///
+/// The tables are written on a thread of their own: each frame is handed over (the run
+/// waits only while the writer is still busy with the frame before, so at most two
+/// frames exist at once and memory stays flat), and the run steps on while the frame
+/// is formatted, compressed and written. The sink's `finish` (or its drop, when the run stops on an error) closes
+/// every file; after a failed write (a full disk) each file is cut back to its last
+/// whole frame, and the error names the file and the cause.
 ///
 /// Cable and body names are quoted where CSV needs it (a comma, a quote, a line break).
 ///
@@ -35,13 +50,104 @@ use std::path::{Path, PathBuf};
 /// deleted.
 pub struct FileSink {
     dir: PathBuf,
-    files: Option<Files>,
+    format: OutputFormat,
     /// The held lock, once the directory is claimed.
     lock: Option<File>,
-    /// Each name as one CSV field ([`csv_field`]), formed at its first output: a
-    /// `csv::Writer` per field allocates and zeroes an 8 KiB buffer, which at every
-    /// output time of every cable cost about 4% of a moored run's instructions.
-    quoted: HashMap<String, String>,
+    /// The writer thread, from the first frame.
+    writer: Option<Writer>,
+    /// A test's stand-in for a full disk: files fail past this many bytes.
+    cap: Option<u64>,
+    /// Node rows gathered into a Parquet row group (default
+    /// [`super::parquet_files::GROUP_ROWS`]).
+    group_rows: Option<usize>,
+}
+
+/// The writer thread and its queue.
+struct Writer {
+    dir: PathBuf,
+    tx: Option<SyncSender<Snapshot>>,
+    handle: Option<JoinHandle<Result<(), Error>>>,
+}
+
+impl Writer {
+    fn start(dir: &Path, mut tables: Box<dyn Tables>) -> Self {
+        // A hand-over, no queue: the run waits only while the writer is still busy
+        // with the frame before, and at most two frames exist at once (the one being
+        // written and the one being handed over).
+        let (tx, rx) = sync_channel::<Snapshot>(0);
+        let handle = std::thread::Builder::new()
+            .name("cablesim-output".into())
+            .spawn(move || {
+                let mut last: Option<Arc<Snapshot>> = None;
+                let fail = |tables: &mut Box<dyn Tables>, e: Error| -> Result<(), Error> {
+                    let kept = match tables.abort() {
+                        Some(t) => format!("the files hold the frames up to t = {t} s"),
+                        None => "the files hold no frame".to_string(),
+                    };
+                    Err(with_kept(e, &kept))
+                };
+                for snap in rx {
+                    // The frame before goes now: one frame held at a time.
+                    drop(last.take());
+                    let snap = Arc::new(snap);
+                    if let Err(e) = tables.frame(&snap) {
+                        return fail(&mut tables, e);
+                    }
+                    last = Some(snap);
+                }
+                if let Err(e) = tables.finish(last.as_deref()) {
+                    return fail(&mut tables, e);
+                }
+                Ok(())
+            })
+            .expect("a thread can be started");
+        Self {
+            dir: dir.to_path_buf(),
+            tx: Some(tx),
+            handle: Some(handle),
+        }
+    }
+
+    /// Hands `s` to the thread; its error if it has stopped on one.
+    fn send(&mut self, s: Snapshot) -> Result<(), Error> {
+        let Some(tx) = self.tx.as_ref() else {
+            return Err(output_error(
+                &self.dir,
+                "the output writer stopped on an earlier error".into(),
+            ));
+        };
+        if tx.send(s).is_err() {
+            return self.close();
+        }
+        Ok(())
+    }
+
+    /// Closes the queue and waits for the thread to write what it holds and close
+    /// the files.
+    fn close(&mut self) -> Result<(), Error> {
+        drop(self.tx.take());
+        match self.handle.take().map(|h| h.join()) {
+            None => Ok(()),
+            Some(Ok(r)) => r,
+            Some(Err(p)) => std::panic::resume_unwind(p),
+        }
+    }
+}
+
+impl Drop for Writer {
+    fn drop(&mut self) {
+        if let Err(e) = self.close() {
+            log::warn!("{e}");
+        }
+    }
+}
+
+/// `e`, with what the files hold after it.
+fn with_kept(e: Error, kept: &str) -> Error {
+    match e {
+        Error::Output { path, source } => super::guard::write_error(&path, source, kept),
+        other => other,
+    }
 }
 
 /// The marker file of a cablesim output folder.
@@ -59,6 +165,14 @@ pub const OWN_FILES: &[&str] = &[
     "winches.csv",
     "bodies.csv",
     "points.csv",
+    "final_state.csv",
+    "end_forces.parquet",
+    "tensions.parquet",
+    "positions.parquet",
+    "winches.parquet",
+    "bodies.parquet",
+    "points.parquet",
+    "final_state.parquet",
     "fatigue.csv",
 ];
 
@@ -82,40 +196,12 @@ fn own_dir_files(dir: &Path, exts: &[&str]) -> Option<Vec<PathBuf>> {
     Some(files)
 }
 
-/// `name` as one CSV field: quoted where it holds a comma, a quote or a line break.
-fn csv_field(name: &str) -> String {
-    let mut w = csv::WriterBuilder::new()
-        .terminator(csv::Terminator::Any(b'\n'))
-        .from_writer(Vec::new());
-    w.write_record([name]).expect("writes to memory");
-    let mut bytes = w.into_inner().expect("writes to memory");
-    bytes.pop(); // the record's terminator
-    String::from_utf8(bytes).expect("a field of a UTF-8 string is UTF-8")
-}
-
-/// `name` as one CSV field, from `cache` or formed there ([`csv_field`]).
-fn quoted<'a>(cache: &'a mut HashMap<String, String>, name: &str) -> &'a str {
-    if !cache.contains_key(name) {
-        cache.insert(name.to_string(), csv_field(name));
-    }
-    &cache[name]
-}
-
 /// An output error on `path` with message `what`.
 fn output_error(path: &Path, what: String) -> Error {
     Error::Output {
         path: path.to_path_buf(),
         source: std::io::Error::other(what),
     }
-}
-
-struct Files {
-    end_forces: BufWriter<File>,
-    tensions: BufWriter<File>,
-    positions: Option<BufWriter<File>>,
-    winches: Option<BufWriter<File>>,
-    bodies: Option<BufWriter<File>>,
-    points: Option<BufWriter<File>>,
 }
 
 /// The error of an I/O failure on file `name` in `dir`.
@@ -132,10 +218,36 @@ impl FileSink {
     pub fn new(dir: impl Into<PathBuf>) -> Self {
         Self {
             dir: dir.into(),
-            files: None,
+            format: OutputFormat::Csv,
             lock: None,
-            quoted: HashMap::new(),
+            writer: None,
+            cap: None,
+            group_rows: None,
         }
+    }
+
+    /// The tables' format (CSV by default); Parquet in a build without the `parquet`
+    /// feature is an error that says so.
+    pub fn format(mut self, format: OutputFormat) -> Result<Self, Error> {
+        format.check_available().map_err(|m| output_error(&self.dir, m))?;
+        self.format = format;
+        Ok(self)
+    }
+
+    /// For tests: Parquet row groups of at least `rows` node rows (1: a row group per
+    /// frame).
+    #[doc(hidden)]
+    pub fn with_group_rows(mut self, rows: usize) -> Self {
+        self.group_rows = Some(rows);
+        self
+    }
+
+    /// For tests: every table file acts as a full disk past `bytes` (its writes fail
+    /// with "no space left on device").
+    #[doc(hidden)]
+    pub fn with_disk_limit(mut self, bytes: u64) -> Self {
+        self.cap = Some(bytes);
+        self
     }
 
     /// A sink that claims `dir` now: creates it if needed, locks it, clears an earlier
@@ -244,174 +356,42 @@ impl FileSink {
         &self.dir
     }
 
-    fn open(&self, name: &str, header: &str) -> Result<BufWriter<File>, Error> {
-        let mut f =
-            BufWriter::new(File::create(self.dir.join(name)).map_err(err(&self.dir, name))?);
-        writeln!(f, "{header}").map_err(err(&self.dir, name))?;
-        Ok(f)
-    }
-
-    fn create(&mut self, first: &Snapshot) -> Result<Files, Error> {
+    fn start(&mut self) -> Result<(), Error> {
         self.claim_dir()?;
-        let positions = first.cables.iter().any(|c| c.output_positions);
-        let winches = first.cables.iter().any(|c| c.winch.is_some());
-        let bodies = !first.bodies.is_empty();
-        let points = !first.points.is_empty();
-        Ok(Files {
-            end_forces: self.open("end_forces.csv", "time,cable,end,fx,fy,fz")?,
-            tensions: self.open("tensions.csv", "time,cable,element,tension")?,
-            positions: if positions {
-                Some(self.open("positions.csv", "time,cable,node,x,y,z")?)
-            } else {
-                None
-            },
-            winches: if winches {
-                Some(self.open(
-                    "winches.csv",
-                    "time,cable,deployed_length,variable_l0,elements",
-                )?)
-            } else {
-                None
-            },
-            bodies: if bodies {
-                Some(self.open(
-                    "bodies.csv",
-                    if first.bodies.iter().any(|b| b.velocity.is_some()) {
-                        "time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz,vx,vy,vz,wx,wy,wz"
-                    } else {
-                        "time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz"
-                    },
-                )?)
-            } else {
-                None
-            },
-            points: if points {
-                Some(self.open("points.csv", "time,point,x,y,z,fx,fy,fz")?)
-            } else {
-                None
-            },
-        })
+        let tables: Box<dyn Tables> = match self.format {
+            OutputFormat::Csv => Box::new(super::csv_files::CsvTables::new(&self.dir, self.cap)),
+            #[cfg(feature = "parquet")]
+            OutputFormat::Parquet => {
+                Box::new(super::parquet_files::ParquetTables::new(
+                    &self.dir,
+                    self.cap,
+                    self.group_rows.unwrap_or(super::parquet_files::GROUP_ROWS),
+                ))
+            }
+            #[cfg(not(feature = "parquet"))]
+            OutputFormat::Parquet => unreachable!("refused by FileSink::format"),
+        };
+        self.writer = Some(Writer::start(&self.dir, tables));
+        Ok(())
     }
 }
 
 impl OutputSink for FileSink {
     fn frame(&mut self, s: &Snapshot) -> Result<(), Error> {
-        if self.files.is_none() {
-            self.files = Some(self.create(s)?);
+        self.frame_owned(s.clone())
+    }
+
+    fn frame_owned(&mut self, s: Snapshot) -> Result<(), Error> {
+        if self.writer.is_none() {
+            self.start()?;
         }
-        let t = s.time;
-        let (e_ef, e_tn, e_pos, e_w) = (
-            err(&self.dir, "end_forces.csv"),
-            err(&self.dir, "tensions.csv"),
-            err(&self.dir, "positions.csv"),
-            err(&self.dir, "winches.csv"),
-        );
-        let f = self.files.as_mut().expect("created above");
-        for c in &s.cables {
-            let name = quoted(&mut self.quoted, &c.name);
-            let (a, b) = (c.end_forces.start, c.end_forces.end);
-            writeln!(f.end_forces, "{t},{name},start,{},{},{}", a[0], a[1], a[2])
-                .and_then(|_| writeln!(f.end_forces, "{t},{name},end,{},{},{}", b[0], b[1], b[2]))
-                .map_err(&e_ef)?;
-        }
-        for c in &s.cables {
-            let name = quoted(&mut self.quoted, &c.name);
-            for (k, x) in c.tensions.iter().enumerate() {
-                writeln!(f.tensions, "{t},{name},{k},{x}").map_err(&e_tn)?;
-            }
-        }
-        if let Some(p) = f.positions.as_mut() {
-            for c in s.cables.iter().filter(|c| c.output_positions) {
-                let name = quoted(&mut self.quoted, &c.name);
-                for (k, x) in c.positions.iter().enumerate() {
-                    writeln!(p, "{t},{name},{k},{},{},{}", x[0], x[1], x[2]).map_err(&e_pos)?;
-                }
-            }
-        }
-        if let Some(w) = f.winches.as_mut() {
-            for c in &s.cables {
-                if let Some(ws) = &c.winch {
-                    writeln!(
-                        w,
-                        "{t},{},{},{},{}",
-                        quoted(&mut self.quoted, &c.name),
-                        ws.deployed_length,
-                        ws.variable_l0,
-                        ws.elements
-                    )
-                    .map_err(&e_w)?;
-                }
-            }
-        }
-        if let Some(w) = f.bodies.as_mut() {
-            let e_b = err(&self.dir, "bodies.csv");
-            for b in &s.bodies {
-                let (x, a, f, m) = (b.position, b.angles, b.force, b.moment);
-                write!(
-                    w,
-                    "{t},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                    quoted(&mut self.quoted, &b.name),
-                    x[0],
-                    x[1],
-                    x[2],
-                    a[0],
-                    a[1],
-                    a[2],
-                    f[0],
-                    f[1],
-                    f[2],
-                    m[0],
-                    m[1],
-                    m[2]
-                )
-                .map_err(&e_b)?;
-                if let Some(u) = b.velocity {
-                    write!(w, ",{},{},{},{},{},{}", u[0], u[1], u[2], u[3], u[4], u[5])
-                        .map_err(&e_b)?;
-                }
-                writeln!(w).map_err(&e_b)?;
-            }
-        }
-        if let Some(w) = f.points.as_mut() {
-            let e_p = err(&self.dir, "points.csv");
-            for p in &s.points {
-                let (x, f) = (p.position, p.force);
-                writeln!(
-                    w,
-                    "{t},{},{},{},{},{},{},{}",
-                    quoted(&mut self.quoted, &p.name),
-                    x[0],
-                    x[1],
-                    x[2],
-                    f[0],
-                    f[1],
-                    f[2]
-                )
-                .map_err(&e_p)?;
-            }
-        }
-        Ok(())
+        self.writer.as_mut().expect("started above").send(s)
     }
 
     fn finish(&mut self, summary: &Summary) -> Result<(), Error> {
-        let dir = &self.dir;
-        if let Some(f) = self.files.as_mut() {
-            f.end_forces.flush().map_err(err(dir, "end_forces.csv"))?;
-            f.tensions.flush().map_err(err(dir, "tensions.csv"))?;
-            if let Some(p) = f.positions.as_mut() {
-                p.flush().map_err(err(dir, "positions.csv"))?;
-            }
-            if let Some(w) = f.winches.as_mut() {
-                w.flush().map_err(err(dir, "winches.csv"))?;
-            }
-            if let Some(w) = f.bodies.as_mut() {
-                w.flush().map_err(err(dir, "bodies.csv"))?;
-            }
-            if let Some(w) = f.points.as_mut() {
-                w.flush().map_err(err(dir, "points.csv"))?;
-            }
-        } else {
-            self.claim_dir()?;
+        match self.writer.as_mut() {
+            Some(w) => w.close()?,
+            None => self.claim_dir()?,
         }
         write_summary(&self.dir, summary)
     }

@@ -1,17 +1,22 @@
 //! Stage 6 of the run pipeline: what a run hands out. At each output time the
 //! simulation gives an [`OutputSink`] a [`Snapshot`] (every cable's node positions and
 //! velocities, element tensions, end forces, winch state), and at the end the
-//! [`Summary`]. [`FileSink`] writes the files users read (`end_forces.csv`,
-//! `tensions.csv`, `positions.csv`, `winches.csv`, `bodies.csv`, `points.csv`,
+//! [`Summary`]. [`FileSink`] writes the files users read (`end_forces`, `tensions`,
+//! `positions`, `winches`, `bodies`, `points`, `final_state` as CSV or Parquet,
 //! `summary.json`); [`VtkSink`] writes ParaView files; [`MemorySink`] keeps everything
 //! in memory; [`FanOut`] hands the output to several; a caller may write its own.
 
+mod csv_files;
 mod fanout;
 mod fatigue;
 mod files;
+mod guard;
 mod memory;
+#[cfg(feature = "parquet")]
+mod parquet_files;
 mod sink;
 mod summary;
+mod tables;
 mod vtk;
 
 pub use fanout::FanOut;
@@ -19,7 +24,13 @@ pub use fatigue::FatigueSink;
 pub use files::{FileSink, LOCK_FILE, MARKER_FILE, OWN_DIRS, OWN_FILES};
 pub use memory::MemorySink;
 pub use sink::{BodyState, CableState, OutputSink, PointState, Snapshot};
-pub use summary::{write_summary, CableSummary, EndForces, FailedStart, Summary, WinchSummary};
+pub use summary::{
+    summary_text, write_summary, CableSummary, EndForces, Extremes, FailedStart, Summary,
+    TensionExtreme, WinchSummary,
+};
+#[cfg(feature = "parquet")]
+pub use parquet_files::{read_parquet, Column, ParquetTable};
+pub use tables::{Kind as ColumnKind, Table};
 pub use vtk::{cables_vtp, points_vtp, VtkSink};
 
 use crate::math::{Sym3, V3};

@@ -8,6 +8,12 @@ use crate::error::Error;
 pub trait OutputSink {
     /// Takes the state at one output time.
     fn frame(&mut self, snapshot: &Snapshot) -> Result<(), Error>;
+    /// Takes the state at one output time, owned: what the run hands out, so that a
+    /// sink that keeps or sends a frame on (the file writer's thread) need not copy it.
+    /// By default [`OutputSink::frame`].
+    fn frame_owned(&mut self, snapshot: Snapshot) -> Result<(), Error> {
+        self.frame(&snapshot)
+    }
     /// Takes the summary of the run (after its last frame; also when it diverged).
     fn finish(&mut self, summary: &Summary) -> Result<(), Error>;
 }

@@ -64,10 +64,16 @@ pub fn plot_dir(dir: &Path, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, E
         }
     }
     if written.is_empty() {
+        let parquet = dir.join("end_forces.parquet").exists();
         return Err(Error::Plot {
             path: dir.to_path_buf(),
-            message: "nothing to plot: no end_forces.csv, positions.csv or study.csv/members.csv"
-                .into(),
+            message: if parquet {
+                "the run wrote Parquet tables (`--format parquet`): `cablesim plot` reads the CSV \
+                 ones; run again with `--format csv`, or plot the Parquet files with pandas"
+                    .into()
+            } else {
+                "nothing to plot: no end_forces.csv, positions.csv or study.csv/members.csv".into()
+            },
         });
     }
     Ok(written)

@@ -117,6 +117,8 @@ pub struct Scenario {
     pub points: Vec<NamedPoint>,
     /// `[output] vtk`: also write ParaView files (`vtk/`).
     pub vtk: bool,
+    /// `[output] format`: the tables' format (CSV or Parquet).
+    pub output_format: crate::options::OutputFormat,
     /// `[fatigue]`, resolved against the model: a run writes `fatigue.csv`.
     pub fatigue: Option<crate::fatigue::FatigueSpec>,
     /// The work budget (`[limits]`, with the caller's overrides over it).
@@ -383,6 +385,7 @@ impl Scenario {
                 .unwrap_or(true),
             points: points.named,
             vtk: raw.output.vtk.unwrap_or(false),
+            output_format: output::output_format(p, &raw.output.format)?,
             fatigue,
             limits,
             failures,

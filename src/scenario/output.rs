@@ -1,4 +1,5 @@
-//! `[output] positions`: which cables' node positions are written.
+//! `[output]`: which cables' node positions are written (`positions`), and in which
+//! format the tables are (`format`).
 
 use super::err;
 use crate::error::Error;
@@ -48,4 +49,19 @@ pub(super) fn output_selection(p: &Path, v: &Option<toml::Value>) -> Result<Sele
             ))
         }
     })
+}
+
+/// `[output] format`: `"csv"` or `"parquet"`; Parquet in a build without the `parquet`
+/// feature is an error that says so.
+pub(super) fn output_format(
+    p: &Path,
+    v: &Option<String>,
+) -> Result<crate::options::OutputFormat, Error> {
+    let Some(s) = v else {
+        return Ok(Default::default());
+    };
+    let f: crate::options::OutputFormat =
+        crate::options::parse_option(s).map_err(|m| err(p, "output.format", m))?;
+    f.check_available().map_err(|m| err(p, "output.format", m))?;
+    Ok(f)
 }

@@ -152,6 +152,7 @@ pub struct RawCable {
 pub struct RawOutput {
     pub positions: Option<toml::Value>,
     pub vtk: Option<bool>,
+    pub format: Option<String>,
 }
 
 /// `[limits]` as written, or limits given on the command line or by the caller over

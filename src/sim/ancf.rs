@@ -35,7 +35,7 @@ use crate::ancf::{AncfCable, AncfConfig, AncfEnd, StaticOptions};
 use crate::error::Error;
 use crate::model::{Layout, ModelDef};
 use crate::options::{AncfSettings, Scheme};
-use crate::output::{CableState, CableSummary, EndForces, WinchSummary};
+use crate::output::{CableState, EndForces, WinchSummary};
 use crate::physics::catenary::catenary_positions;
 use crate::scenario::{DtSpec, InitialShape, Scenario};
 use crate::stability::AUTO_SAFETY;
@@ -467,29 +467,6 @@ impl AncfFleet {
                     },
                     winch: winch(c),
                 })
-            })
-            .collect()
-    }
-
-    /// Every cable's final state for the summary (after a blow-up: no tensions, zero
-    /// end forces where they cannot be evaluated).
-    pub fn final_cables(&mut self) -> Vec<CableSummary> {
-        self.runners
-            .iter_mut()
-            .map(|r| {
-                let c = &mut r.cable;
-                let tensions = c.node_tensions().unwrap_or_default();
-                let ef = c.end_forces().unwrap_or([None, None]);
-                CableSummary {
-                    name: c.name().to_string(),
-                    winch: winch(c),
-                    final_positions: c.node_positions(),
-                    final_tensions: tensions.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect(),
-                    end_forces: EndForces {
-                        start: ef[0].unwrap_or([0.0; 3]),
-                        end: ef[1].unwrap_or([0.0; 3]),
-                    },
-                }
             })
             .collect()
     }

@@ -19,7 +19,7 @@ use crate::gpu::{GpuContext, GpuSolver};
 use crate::model::{Layout, Route, NO_CONSTRAINT};
 use crate::options::{Backend, Precision, SolverOptions};
 use crate::output::{
-    end_forces, BodyState, CableState, CableSummary, EndForces, PointState, WinchSummary,
+    end_forces, BodyState, CableState, EndForces, PointState, WinchSummary,
 };
 use crate::scenario::Scenario;
 use crate::sea::SeaSet;
@@ -456,37 +456,6 @@ impl LumpedStepper {
                 }
             })
             .collect()
-    }
-
-    /// Every cable's final state for the summary: tensions and end forces are NaN when
-    /// the state cannot be evaluated (after a blow-up).
-    pub fn final_cables(&mut self) -> Result<Vec<CableSummary>, Error> {
-        let ev = self.evaluate().ok();
-        let (r, _) = self.state()?;
-        let winches = self.winch_status();
-        let lay = self.layout();
-        Ok(lay
-            .cables
-            .iter()
-            .enumerate()
-            .map(|(ci, c)| CableSummary {
-                winch: winch_summary(&winches, ci),
-                name: c.name.clone(),
-                final_positions: c.nodes.iter().map(|&i| r[i as usize]).collect(),
-                final_tensions: c
-                    .elements
-                    .iter()
-                    .map(|&e| ev.as_ref().map_or(f64::NAN, |ev| ev.tension[e as usize]))
-                    .collect(),
-                end_forces: ev.as_ref().map_or(
-                    EndForces {
-                        start: [f64::NAN; 3],
-                        end: [f64::NAN; 3],
-                    },
-                    |ev| end_forces(lay, ev, c),
-                ),
-            })
-            .collect())
     }
 }
 

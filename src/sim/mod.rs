@@ -33,7 +33,7 @@ pub use plan::{fit_step, plan_steps, StepPlan};
 
 use crate::error::Error;
 use crate::options::{CableModel, Formulation, Scheme, SolverOptions};
-use crate::output::{CableSummary, OutputSink};
+use crate::output::{Extremes, OutputSink};
 use crate::scenario::{Backend, DtSpec, Scenario};
 use ancf::AncfFleet;
 use backend::LumpedStepper;
@@ -57,7 +57,8 @@ pub struct RunOptions {
 pub fn run(sc: &Scenario, ro: &RunOptions) -> Result<Summary, Error> {
     let mut sim = Simulation::new(sc.clone(), &ro.overrides)?;
     let log_progress = ro.progress;
-    sim.run(&mut FileSink::new(&ro.out_dir), |p: Progress| {
+    let mut sink = FileSink::new(&ro.out_dir).format(sc.output_format)?;
+    sim.run(&mut sink, |p: Progress| {
         if log_progress && p.at_output {
             log::info!("t = {:.2} s ({} of {} steps)", p.time, p.done, p.total);
         }
@@ -126,6 +127,8 @@ pub struct Simulation {
     points: Vec<(String, usize, bool)>,
     /// The check that no node rises above its sea's reach (lumped mass in waves).
     reach_watch: Option<ReachWatch>,
+    /// The summary's per-cable part, followed over every snapshot taken.
+    extremes: Extremes,
 }
 
 impl Simulation {
@@ -251,6 +254,7 @@ impl Simulation {
         Ok(Self {
             points,
             reach_watch,
+            extremes: Extremes::default(),
             scenario: sc,
             engine,
             scheme,
@@ -410,6 +414,7 @@ impl Simulation {
         if let Some(w) = &mut self.reach_watch {
             w.check(&snap);
         }
+        self.extremes.observe(&snap);
         Ok(snap)
     }
 
@@ -474,7 +479,7 @@ impl Simulation {
         mut progress: impl FnMut(Progress),
         mut stop: impl FnMut() -> bool,
     ) -> Result<Summary, Error> {
-        sink.frame(&self.snapshot()?)?;
+        sink.frame_owned(self.snapshot()?)?;
         // Steps at the last frame handed out: a stop right at an output time does not
         // repeat it.
         let mut framed = self.steps();
@@ -523,7 +528,7 @@ impl Simulation {
             };
             match r {
                 Ok(Chunked::Done) => {
-                    sink.frame(&self.snapshot()?)?;
+                    sink.frame_owned(self.snapshot()?)?;
                     framed = self.steps();
                     self.log_wave_band_census();
                 }
@@ -541,7 +546,7 @@ impl Simulation {
             // The last frame: where the run stopped. After a blow-up the state may not
             // evaluate; then the summary alone tells.
             match self.snapshot() {
-                Ok(s) => sink.frame(&s)?,
+                Ok(s) => sink.frame_owned(s)?,
                 Err(e) => log::warn!("no frame at the failure: {e}"),
             }
         }
@@ -571,44 +576,43 @@ impl Simulation {
         let (backend, device, precision) = self.describe();
         let sim_time = self.time();
         let steps = self.steps();
-        let (cables, dt, dt_stable, limited_by, nodes, elements, node_steps, formulation): (
-            Vec<CableSummary>,
-            _,
-            _,
-            _,
-            _,
-            _,
-            _,
-            _,
-        ) = match &mut self.engine {
-            Engine::Lumped(s, plan) => {
-                let cables = s.final_cables()?;
-                let lay = s.layout();
-                (
-                    cables,
-                    plan.dt,
-                    plan.bound.dt,
-                    plan.bound.term.clone(),
-                    lay.n_nodes(),
-                    lay.n_elements(),
-                    s.node_steps() as f64,
-                    self.formulation.name(),
-                )
+        // The per-cable part from the last snapshot, taken now if the state moved on
+        // since (a caller that advanced without one); a state that cannot be evaluated
+        // (after a blow-up) leaves the end forces unknown.
+        if self.extremes.steps != Some(steps) {
+            if let Err(e) = self.snapshot() {
+                log::debug!("no final state for the summary: {e}");
+                self.extremes.unevaluable(steps);
             }
-            Engine::Ancf(f) => {
-                let (dt_stable, term) = f.stable_dt();
-                (
-                    f.final_cables(),
-                    f.dt(),
-                    dt_stable,
-                    term,
-                    f.n_nodes(),
-                    f.n_elements(),
-                    f.node_steps(),
-                    "ancf",
-                )
-            }
-        };
+        }
+        let cables = self.extremes.cables.clone();
+        let (dt, dt_stable, limited_by, nodes, elements, node_steps, formulation) =
+            match &mut self.engine {
+                Engine::Lumped(s, plan) => {
+                    let lay = s.layout();
+                    (
+                        plan.dt,
+                        plan.bound.dt,
+                        plan.bound.term.clone(),
+                        lay.n_nodes(),
+                        lay.n_elements(),
+                        s.node_steps() as f64,
+                        self.formulation.name(),
+                    )
+                }
+                Engine::Ancf(f) => {
+                    let (dt_stable, term) = f.stable_dt();
+                    (
+                        f.dt(),
+                        dt_stable,
+                        term,
+                        f.n_nodes(),
+                        f.n_elements(),
+                        f.node_steps(),
+                        "ancf",
+                    )
+                }
+            };
         Ok(Summary {
             status: status.into(),
             error: error.map(|e| e.to_string()),

@@ -171,6 +171,7 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
         depth_bands: first.depth_bands,
         points,
         vtk: false,
+        output_format: Default::default(),
         failures,
         // The study counts its members' fatigue itself (`study::run`).
         fatigue: None,

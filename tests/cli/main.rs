@@ -17,6 +17,7 @@ mod fuzz_scenarios;
 mod logging;
 mod moordyn_input;
 mod moordyn_waves;
+mod output_formats;
 mod robust_inputs;
 mod robust_runs;
 mod scenario;

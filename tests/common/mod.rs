@@ -221,6 +221,29 @@ sea_states = [
     path
 }
 
+/// `final_state.csv` of output directory `dir`: per cable (in file order) its name
+/// and its nodes' `(position, velocity)`, m and m/s.
+pub fn final_state(dir: &std::path::Path) -> Vec<(String, Vec<([f64; 3], [f64; 3])>)> {
+    let path = dir.join("final_state.csv");
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("cable,node,x,y,z,vx,vy,vz"));
+    let mut out: Vec<(String, Vec<([f64; 3], [f64; 3])>)> = Vec::new();
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        let v: Vec<f64> = f[2..8].iter().map(|x| x.parse().unwrap()).collect();
+        let node: usize = f[1].parse().unwrap();
+        if out.last().is_none_or(|(n, _)| n != f[0]) {
+            out.push((f[0].to_string(), Vec::new()));
+        }
+        let nodes = &mut out.last_mut().unwrap().1;
+        assert_eq!(nodes.len(), node, "{}: nodes in order", path.display());
+        nodes.push(([v[0], v[1], v[2]], [v[3], v[4], v[5]]));
+    }
+    out
+}
+
 /// The analytic water-acceleration case (docs/src/model/glmf.md, "External loads"):
 /// one free horizontal element 2 m long along x, 5 m under the mean level of 200 m of
 /// water, without drag, of a line heavier than the water it displaces (`mbar` 30 kg/m,

@@ -172,7 +172,7 @@ fn table_route_scenario_runs_on_the_gpu() {
     let n = c.iter().map(|a| a * a).sum::<f64>().sqrt();
     eprintln!("table route: fairlead force GPU {g:?} N, CPU {c:?} N");
     assert!(d < 0.01 * n, "fairlead force {g:?} vs CPU {c:?}");
-    let x = gpu["cables"][0]["final_positions"][50][0].as_f64().unwrap();
+    let x = super::common::final_state(&dir.path().join("out-gpu"))[0].1[50].0[0];
     assert!(
         (x - 1.0).abs() < 1e-3,
         "the fairlead should be held at x = 1 m: {x}"
