@@ -61,7 +61,10 @@ pub fn apply_with(
             let a = pos[cable.nodes[0] as usize];
             let b = pos[cable.nodes[n] as usize];
             let w = lt.wet_weight_per_length(env.gravity, env.water_density);
-            (ci, catenary_positions(a, b, length, n, lt.ea, w, -env.depth))
+            (
+                ci,
+                catenary_positions(a, b, length, n, lt.ea, w, -env.depth),
+            )
         })
         .collect();
     for (ci, guess) in guesses {

@@ -7,8 +7,8 @@ use cablesim::options::{
 };
 use cablesim::output::{FailedStart, FanOut, FileSink, VtkSink};
 use cablesim::scenario::{LimitOverrides, Scenario};
-use cablesim::stability::AUTO_SAFETY;
 use cablesim::sim::{self, Progress, Simulation};
+use cablesim::stability::AUTO_SAFETY;
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -148,7 +148,11 @@ fn log_filter(quiet: bool, verbose: u8, study: bool) -> Option<String> {
     }
     let own = usize::from(!study) + verbose as usize;
     let others = own.saturating_sub(2).min(2);
-    Some(format!("{},cablesim={}", LEVELS[others], LEVELS[own.min(4)]))
+    Some(format!(
+        "{},cablesim={}",
+        LEVELS[others],
+        LEVELS[own.min(4)]
+    ))
 }
 
 /// Whether progress bars are drawn: not with `-q`, and not when standard error is not a

@@ -83,7 +83,6 @@ pub fn unsupported(lay: &Layout, opts: &SolverOptions) -> Option<String> {
 
 pub use super::engine::GpuTimings;
 
-
 /// The GPU solver: the same packed model and options as [`crate::cpu::CpuSolver`],
 /// stepped by WGSL compute shaders at f32 or f64.
 ///

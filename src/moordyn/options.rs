@@ -2,9 +2,9 @@
 //! line each came from, for comments and warnings), and MoorDyn's steady current
 //! profile file (its wave files: `moordyn::waves`).
 
-use super::Warning;
 use super::err_at;
 use super::parse::MoorDynFile;
+use super::Warning;
 use crate::error::Error;
 use std::path::Path;
 

@@ -1,9 +1,9 @@
 //! Rows of a MoorDyn file's tables checked for what cablesim can run: what a point
 //! is, which point a line end names, and a line type's stiffness and damping.
 
-use super::Warning;
 use super::err_at;
 use super::parse::{LineRow, LineTypeRow, PointRow, Version};
+use super::Warning;
 use crate::error::Error;
 use std::path::Path;
 

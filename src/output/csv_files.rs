@@ -26,7 +26,10 @@ impl CsvFile {
         let mut w = BufWriter::with_capacity(1 << 18, GuardedFile::create(&path, cap)?);
         let header: Vec<&str> = t.columns.iter().map(|c| c.0).collect();
         writeln!(w, "{}", header.join(",")).map_err(|e| io(&path, e))?;
-        let mut f = Self { w, marks: Vec::new() };
+        let mut f = Self {
+            w,
+            marks: Vec::new(),
+        };
         f.mark();
         Ok(f)
     }
@@ -164,7 +167,11 @@ impl CsvTables {
                                 m[2]
                             )?;
                             if let Some(u) = b.velocity {
-                                write!(w, ",{},{},{},{},{},{}", u[0], u[1], u[2], u[3], u[4], u[5])?;
+                                write!(
+                                    w,
+                                    ",{},{},{},{},{},{}",
+                                    u[0], u[1], u[2], u[3], u[4], u[5]
+                                )?;
                             }
                             writeln!(w)?;
                         }
@@ -257,7 +264,12 @@ impl Tables for CsvTables {
             let (g, _) = w.into_parts();
             let on_disk = g.written();
             // marks[0] is the header; marks[k] the end of frame k (1-based).
-            let frames = f.marks.iter().filter(|&&m| m <= on_disk).count().saturating_sub(1);
+            let frames = f
+                .marks
+                .iter()
+                .filter(|&&m| m <= on_disk)
+                .count()
+                .saturating_sub(1);
             whole = whole.min(frames);
             files.push((g, f.marks));
         }
@@ -265,7 +277,10 @@ impl Tables for CsvTables {
             let keep = marks.get(whole).copied().unwrap_or(0);
             let keep = if g.written() >= keep { keep } else { 0 };
             if let Err(e) = g.cut_back(keep, b"") {
-                log::warn!("{}: could not cut back to its last whole frame: {e}", g.path().display());
+                log::warn!(
+                    "{}: could not cut back to its last whole frame: {e}",
+                    g.path().display()
+                );
             }
         }
         whole.checked_sub(1).map(|k| self.times[k])

@@ -229,7 +229,9 @@ impl FileSink {
     /// The tables' format (CSV by default); Parquet in a build without the `parquet`
     /// feature is an error that says so.
     pub fn format(mut self, format: OutputFormat) -> Result<Self, Error> {
-        format.check_available().map_err(|m| output_error(&self.dir, m))?;
+        format
+            .check_available()
+            .map_err(|m| output_error(&self.dir, m))?;
         self.format = format;
         Ok(self)
     }
@@ -361,13 +363,11 @@ impl FileSink {
         let tables: Box<dyn Tables> = match self.format {
             OutputFormat::Csv => Box::new(super::csv_files::CsvTables::new(&self.dir, self.cap)),
             #[cfg(feature = "parquet")]
-            OutputFormat::Parquet => {
-                Box::new(super::parquet_files::ParquetTables::new(
-                    &self.dir,
-                    self.cap,
-                    self.group_rows.unwrap_or(super::parquet_files::GROUP_ROWS),
-                ))
-            }
+            OutputFormat::Parquet => Box::new(super::parquet_files::ParquetTables::new(
+                &self.dir,
+                self.cap,
+                self.group_rows.unwrap_or(super::parquet_files::GROUP_ROWS),
+            )),
             #[cfg(not(feature = "parquet"))]
             OutputFormat::Parquet => unreachable!("refused by FileSink::format"),
         };

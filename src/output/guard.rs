@@ -69,7 +69,9 @@ impl GuardedFile {
 
 impl Write for GuardedFile {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        let room = self.cap.map_or(u64::MAX, |c| c.saturating_sub(self.written));
+        let room = self
+            .cap
+            .map_or(u64::MAX, |c| c.saturating_sub(self.written));
         if room == 0 && !buf.is_empty() {
             return Err(std::io::Error::new(
                 std::io::ErrorKind::StorageFull,

@@ -23,13 +23,13 @@ pub use fanout::FanOut;
 pub use fatigue::FatigueSink;
 pub use files::{FileSink, LOCK_FILE, MARKER_FILE, OWN_DIRS, OWN_FILES};
 pub use memory::MemorySink;
+#[cfg(feature = "parquet")]
+pub use parquet_files::{read_parquet, Column, ParquetTable};
 pub use sink::{BodyState, CableState, OutputSink, PointState, Snapshot};
 pub use summary::{
     summary_text, write_summary, CableSummary, EndForces, Extremes, FailedStart, Summary,
     TensionExtreme, WinchSummary,
 };
-#[cfg(feature = "parquet")]
-pub use parquet_files::{read_parquet, Column, ParquetTable};
 pub use tables::{Kind as ColumnKind, Table};
 pub use vtk::{cables_vtp, points_vtp, VtkSink};
 

@@ -187,7 +187,8 @@ impl PqFile {
                 return;
             }
         };
-        let r = GuardedFile::reopen(&self.path, self.cap).and_then(|mut g| g.cut_back(len, &footer));
+        let r =
+            GuardedFile::reopen(&self.path, self.cap).and_then(|mut g| g.cut_back(len, &footer));
         if let Err(e) = r {
             log::warn!(
                 "{}: could not be closed after the write error ({e}): it has no footer",
@@ -582,10 +583,8 @@ pub fn read_parquet(path: &Path) -> Result<ParquetTable, Error> {
     let mut units = Vec::new();
     if let Some(kv) = meta.file_metadata().key_value_metadata() {
         for k in kv.iter().filter(|k| k.key == "units") {
-            let v: serde_json::Value =
-                serde_json::from_str(k.value.as_deref().unwrap_or("{}")).map_err(|x| {
-                    perr(path, parquet::errors::ParquetError::General(x.to_string()))
-                })?;
+            let v: serde_json::Value = serde_json::from_str(k.value.as_deref().unwrap_or("{}"))
+                .map_err(|x| perr(path, parquet::errors::ParquetError::General(x.to_string())))?;
             if let Some(m) = v.as_object() {
                 for (c, u) in m {
                     units.push((c.clone(), u.as_str().unwrap_or_default().to_string()));
@@ -593,7 +592,11 @@ pub fn read_parquet(path: &Path) -> Result<ParquetTable, Error> {
             }
         }
     }
-    let row_groups = meta.row_groups().iter().map(|g| g.num_rows() as usize).collect();
+    let row_groups = meta
+        .row_groups()
+        .iter()
+        .map(|g| g.num_rows() as usize)
+        .collect();
     for row in r.get_row_iter(None).map_err(e)? {
         let row = row.map_err(e)?;
         for ((_, col), (_, f)) in columns.iter_mut().zip(row.get_column_iter()) {

@@ -257,7 +257,11 @@ pub fn summary_text(s: &Summary) -> String {
         text.push_str(if i == 0 { "\n  " } else { ",\n  " });
         text.push_str(&serde_json::to_string(c).expect("summary serialises"));
     }
-    text.push_str(if s.cables.is_empty() { "]\n}\n" } else { "\n]\n}\n" });
+    text.push_str(if s.cables.is_empty() {
+        "]\n}\n"
+    } else {
+        "\n]\n}\n"
+    });
     text
 }
 

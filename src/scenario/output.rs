@@ -62,6 +62,7 @@ pub(super) fn output_format(
     };
     let f: crate::options::OutputFormat =
         crate::options::parse_option(s).map_err(|m| err(p, "output.format", m))?;
-    f.check_available().map_err(|m| err(p, "output.format", m))?;
+    f.check_available()
+        .map_err(|m| err(p, "output.format", m))?;
     Ok(f)
 }

@@ -48,7 +48,6 @@ use std::sync::Arc;
 /// Values per node in the cache: `eta, u (3), a (3)`.
 pub const CACHE_STRIDE: usize = 7;
 
-
 /// The refresh interval, s: [`HERMITE_INTERVAL_FACTOR`] times the interval that keeps
 /// the root-mean-square cubic Hermite interpolation error of the water acceleration
 /// within `tolerance` of its root-mean-square value at a fixed point (see the module
@@ -57,7 +56,6 @@ pub const CACHE_STRIDE: usize = 7;
 pub fn refresh_interval(components: &[WaveComponent], tolerance: f64) -> f64 {
     HERMITE_INTERVAL_FACTOR * hermite_rule_interval(components, tolerance)
 }
-
 
 /// The cubic Hermite weights at `s = (t - t0) / delta` in `[0, 1]`, `delta = t1 - t0`:
 /// `[h00, delta h10, h01, delta h11]`, so that `f(t) = w0 f0 + w1 f0' + w2 f1 + w3 f1'`.

@@ -18,9 +18,7 @@ use crate::gpu::solver::NodeStates;
 use crate::gpu::{GpuContext, GpuSolver};
 use crate::model::{Layout, Route, NO_CONSTRAINT};
 use crate::options::{Backend, Precision, SolverOptions};
-use crate::output::{
-    end_forces, BodyState, CableState, EndForces, PointState, WinchSummary,
-};
+use crate::output::{end_forces, BodyState, CableState, EndForces, PointState, WinchSummary};
 use crate::scenario::Scenario;
 use crate::sea::SeaSet;
 use crate::step::{Evaluation, WinchStatus};

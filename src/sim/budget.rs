@@ -31,9 +31,7 @@ pub fn check_node_steps(
     refuse_over(
         sc,
         work,
-        format!(
-            "{duration} s at dt = {dt:e} s over {nodes} nodes is {work:.3e} node-steps"
-        ),
+        format!("{duration} s at dt = {dt:e} s over {nodes} nodes is {work:.3e} node-steps"),
         format!("the step is set by {term}: shorten the run, coarsen the mesh or change that term"),
     )
 }

@@ -220,13 +220,8 @@ impl Simulation {
                     }
                     BackendChoice::Gpu(_, p) => estimate::Path::Gpu(*p),
                 };
-                let est = estimate::lumped(
-                    &lay,
-                    &opts,
-                    plan.total_steps,
-                    budget::in_waves(&sc),
-                    path,
-                );
+                let est =
+                    estimate::lumped(&lay, &opts, plan.total_steps, budget::in_waves(&sc), path);
                 log::info!("work: {}", est.describe());
                 log::debug!(
                     "step plan: {} steps of {:e} s per output interval of {} s, scheme {}, formulation {}, {} thread(s)",

@@ -49,8 +49,16 @@ fn damped() -> String {
     let c = edit(&catenary(), "damping = 1.0e-5 ", "damping = 1.0e6 ");
     let c = edit(&c, "length = 250.0", "length = 20.0");
     let c = edit(&c, "segments = 50", "segments = 4");
-    let c = edit(&c, "start = { fixed = [-220.0, 0.0, -100.0] }", "start = { fixed = [0.0, 0.0, -50.0] }");
-    let c = edit(&c, "end = { fixed = [0.0, 0.0, -10.0] }", "end = { fixed = [0.0, 0.0, -30.5] }");
+    let c = edit(
+        &c,
+        "start = { fixed = [-220.0, 0.0, -100.0] }",
+        "start = { fixed = [0.0, 0.0, -50.0] }",
+    );
+    let c = edit(
+        &c,
+        "end = { fixed = [0.0, 0.0, -10.0] }",
+        "end = { fixed = [0.0, 0.0, -30.5] }",
+    );
     let c = edit(&c, "initial = \"catenary\"", "initial = \"straight\"");
     edit(&c, "duration = 60.0", "duration = 1.0")
 }
@@ -98,15 +106,26 @@ fn the_issues_runs_are_refused_with_why_how_long_and_what_to_change() {
         (
             "micrometre",
             micrometre(),
-            &["internal damping of line type 'wire'", "an element of 2.000e-8 m", "cable 'line1' fewer `segments`"][..],
+            &[
+                "internal damping of line type 'wire'",
+                "an element of 2.000e-8 m",
+                "cable 'line1' fewer `segments`",
+            ][..],
         ),
         (
             "damped",
             damped(),
-            &["internal damping of line type 'wire'", "`damping` = 1.000e6 s", "lower that `damping`"][..],
+            &[
+                "internal damping of line type 'wire'",
+                "`damping` = 1.000e6 s",
+                "lower that `damping`",
+            ][..],
         ),
     ] {
-        for args in [&["check"][..], &["run", "--backend", "cpu", "--out", out][..]] {
+        for args in [
+            &["check"][..],
+            &["run", "--backend", "cpu", "--out", out][..],
+        ] {
             let (ok, _, err) = cli(d, &text, args);
             assert!(!ok, "{case} {args:?} accepted: {err}");
             assert!(
@@ -126,13 +145,22 @@ fn the_issues_runs_are_refused_with_why_how_long_and_what_to_change() {
     }
     // Their sizes: 4e19 node-steps (thousands of years), and 6.25e12 as the issue counts.
     let (_, _, err) = cli(d, &micrometre(), &["check"]);
-    assert!(err.contains("is 3.98") && err.contains("e19 node-steps") && err.contains(" years "), "{err}");
+    assert!(
+        err.contains("is 3.98") && err.contains("e19 node-steps") && err.contains(" years "),
+        "{err}"
+    );
     let (_, _, err) = cli(d, &damped(), &["check"]);
-    assert!(err.contains("is 6.2") && err.contains("e12 node-steps"), "{err}");
+    assert!(
+        err.contains("is 6.2") && err.contains("e12 node-steps"),
+        "{err}"
+    );
     // `--limit` goes on: check accepts the damped wire and prints its estimate.
     let (ok, out, err) = cli(d, &damped(), &["check", "--limit", "node_steps=1e13"]);
     assert!(ok, "{err}");
-    assert!(out.contains("set by internal damping") && out.contains("budget 1e13"), "{out}");
+    assert!(
+        out.contains("set by internal damping") && out.contains("budget 1e13"),
+        "{out}"
+    );
 }
 
 #[test]
@@ -141,12 +169,30 @@ fn the_default_budget_is_1e12_node_steps() {
     let d = dir.path();
     // The catenary example simulates about 5.2e4 node-steps a second (51 nodes at
     // about 9.9e-4 s): 1.5e7 s is 7.8e11 node-steps, 2.5e7 s 1.3e12.
-    let c = edit(&catenary(), "output_interval = 1.0 ", "output_interval = 1000.0 ");
-    let (ok, out, err) = cli(d, &edit(&c, "duration = 60.0", "duration = 1.5e7"), &["check"]);
+    let c = edit(
+        &catenary(),
+        "output_interval = 1.0 ",
+        "output_interval = 1000.0 ",
+    );
+    let (ok, out, err) = cli(
+        d,
+        &edit(&c, "duration = 60.0", "duration = 1.5e7"),
+        &["check"],
+    );
     assert!(ok, "{err}");
     assert!(out.contains("e11 node-steps"), "{out}");
-    let (ok, _, err) = cli(d, &edit(&c, "duration = 60.0", "duration = 2.5e7"), &["check"]);
-    assert!(!ok && err.contains("over the budget of 1e12 node-steps"), "{err}");
+    let (ok, _, err) = cli(
+        d,
+        &edit(&c, "duration = 60.0", "duration = 2.5e7"),
+        &["check"],
+    );
+    assert!(
+        !ok && err.contains("over the budget of 1e12 node-steps"),
+        "{err}"
+    );
     // What sets this step is the wire's axial wave: the message says so, and how long.
-    assert!(err.contains("set by axial waves") && err.contains(" h on the CPU path"), "{err}");
+    assert!(
+        err.contains("set by axial waves") && err.contains(" h on the CPU path"),
+        "{err}"
+    );
 }

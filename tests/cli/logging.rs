@@ -11,11 +11,18 @@ const BIN: &str = env!("CARGO_BIN_EXE_cablesim");
 fn run(args: &[&str], env: Option<(&str, &str)>) -> (Output, String) {
     let dir = tempfile::tempdir().unwrap();
     let mut c = Command::new(BIN);
-    c.args(["run", "examples/catenary.toml", "--backend", "cpu", "--duration", "2"])
-        .args(args)
-        .arg("--out")
-        .arg(dir.path())
-        .env_remove("RUST_LOG");
+    c.args([
+        "run",
+        "examples/catenary.toml",
+        "--backend",
+        "cpu",
+        "--duration",
+        "2",
+    ])
+    .args(args)
+    .arg("--out")
+    .arg(dir.path())
+    .env_remove("RUST_LOG");
     if let Some((k, v)) = env {
         c.env(k, v);
     }
@@ -31,7 +38,10 @@ fn quiet_prints_warnings_and_errors_only() {
     // the closing line.
     let (_, err) = run(&[], None);
     assert!(err.contains("INFO") && err.contains("work: "), "{err}");
-    assert!(err.contains("backend cpu") && err.contains("done: "), "{err}");
+    assert!(
+        err.contains("backend cpu") && err.contains("done: "),
+        "{err}"
+    );
     // -q, before or after the subcommand: nothing of that.
     for q in [&["-q"][..], &["--quiet"][..]] {
         let (_, err) = run(q, None);
@@ -39,7 +49,15 @@ fn quiet_prints_warnings_and_errors_only() {
     }
     let dir = tempfile::tempdir().unwrap();
     let out = Command::new(BIN)
-        .args(["-q", "run", "examples/catenary.toml", "--backend", "cpu", "--duration", "1"])
+        .args([
+            "-q",
+            "run",
+            "examples/catenary.toml",
+            "--backend",
+            "cpu",
+            "--duration",
+            "1",
+        ])
         .arg("--out")
         .arg(dir.path())
         .env_remove("RUST_LOG")
@@ -82,7 +100,10 @@ fn verbose_adds_detail_and_rust_log_still_works() {
 fn no_progress_bar_when_stderr_is_not_a_terminal() {
     // Standard error is a pipe here: no bar, none of its redraws, even without -q.
     let (_, err) = run(&[], None);
-    assert!(!err.contains('\r') && !err.contains("eta") && !err.contains("[="), "{err}");
+    assert!(
+        !err.contains('\r') && !err.contains("eta") && !err.contains("[="),
+        "{err}"
+    );
     // The same for a study.
     let dir = tempfile::tempdir().unwrap();
     let study = dir.path().join("study.toml");

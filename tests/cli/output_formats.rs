@@ -43,8 +43,8 @@ fn csv_columns(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
 #[cfg(feature = "parquet")]
 mod parquet_tables {
     use super::*;
-    use cablesim::output::{read_parquet, Column, Table};
     use cablesim::options::OutputFormat;
+    use cablesim::output::{read_parquet, Column, Table};
 
     /// Every table of a CSV run against the same table of a Parquet run: the same
     /// columns, rows and values (floats bit for bit: CSV writes the shortest text that
@@ -53,7 +53,13 @@ mod parquet_tables {
         let mut compared = 0;
         for t in Table::ALL.iter().chain([&Table::FINAL_STATE]) {
             let (c, p) = (csv_dir.join(t.file("csv")), pq_dir.join(t.file("parquet")));
-            assert_eq!(c.exists(), p.exists(), "{} and {}", c.display(), p.display());
+            assert_eq!(
+                c.exists(),
+                p.exists(),
+                "{} and {}",
+                c.display(),
+                p.display()
+            );
             if !c.exists() {
                 continue;
             }
@@ -63,7 +69,12 @@ mod parquet_tables {
             assert_eq!(names, pnames, "{}", t.name);
             for (n, unit, _) in t.columns {
                 let u = pt.units.iter().find(|(c, _)| c.as_str() == *n);
-                assert_eq!(u.map(|x| x.1.as_str()), Some(*unit), "{}: unit of {n}", t.name);
+                assert_eq!(
+                    u.map(|x| x.1.as_str()),
+                    Some(*unit),
+                    "{}: unit of {n}",
+                    t.name
+                );
             }
             for ((name, text), (_, col)) in names.iter().zip(&cols).zip(&pt.columns) {
                 match col {
@@ -127,7 +138,11 @@ mod parquet_tables {
         assert_eq!(t.rows(), 2 * 50);
         // The flag wins over the key.
         let out2 = dir.path().join("out2");
-        run_cli(path.to_str().unwrap(), &out2, &["--duration", "1", "--format", "csv"]);
+        run_cli(
+            path.to_str().unwrap(),
+            &out2,
+            &["--duration", "1", "--format", "csv"],
+        );
         assert!(out2.join("tensions.csv").exists());
         assert!(!out2.join("tensions.parquet").exists());
         // An unknown format is refused with the names allowed.
@@ -155,7 +170,10 @@ mod parquet_tables {
             .unwrap()
             .replace("duration = 60.0 ", &format!("duration = {duration:e} "))
             .replace("output_interval = 1.0 ", "output_interval = 0.05 ");
-        assert!(text.contains("output_interval = 0.05"), "the example changed");
+        assert!(
+            text.contains("output_interval = 0.05"),
+            "the example changed"
+        );
         let path = dir.join("dense.toml");
         std::fs::write(&path, text).unwrap();
         path
@@ -194,7 +212,10 @@ mod parquet_tables {
                 std::thread::sleep(Duration::from_millis(50));
             }
             std::thread::sleep(Duration::from_millis(1500));
-            assert!(child.try_wait().unwrap().is_none(), "the run ended by itself");
+            assert!(
+                child.try_wait().unwrap().is_none(),
+                "the run ended by itself"
+            );
             let killed = Command::new("kill")
                 .args([signal, &child.id().to_string()])
                 .status()
@@ -209,10 +230,9 @@ mod parquet_tables {
                 std::thread::sleep(Duration::from_millis(50));
             };
             assert_eq!(status.code(), Some(130), "{signal}");
-            let s: serde_json::Value = serde_json::from_str(
-                &std::fs::read_to_string(out.join("summary.json")).unwrap(),
-            )
-            .unwrap();
+            let s: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                    .unwrap();
             assert_eq!(s["status"], "interrupted");
             let t_end = s["simulated_time"].as_f64().unwrap();
             for name in ["tensions", "end_forces", "positions"] {
@@ -232,7 +252,11 @@ mod parquet_tables {
                     "end_forces" => 2,
                     _ => 51,
                 };
-                assert_eq!(t.rows(), per_frame * ts.len(), "{signal} {name}: whole frames");
+                assert_eq!(
+                    t.rows(),
+                    per_frame * ts.len(),
+                    "{signal} {name}: whole frames"
+                );
             }
             let fin = read_parquet(&out.join("final_state.parquet")).unwrap();
             assert_eq!(fin.rows(), 51);
@@ -284,8 +308,7 @@ mod parquet_tables {
                 }
                 OutputFormat::Csv => {
                     for t in ["tensions", "end_forces", "positions"] {
-                        let text =
-                            std::fs::read_to_string(out.join(format!("{t}.csv"))).unwrap();
+                        let text = std::fs::read_to_string(out.join(format!("{t}.csv"))).unwrap();
                         assert!(text.ends_with('\n'), "{t} ends mid-row");
                         let (_, cols) = csv_columns(&out.join(format!("{t}.csv")));
                         let n = cols[0].len();
@@ -323,7 +346,10 @@ fn the_summary_stays_small_per_cable() {
     let cables = s["cables"].as_array().unwrap();
     assert_eq!(cables.len(), 200);
     // A line per cable; what grows with the fleet is those lines.
-    let lines: Vec<&str> = text.lines().filter(|l| l.starts_with("  {\"name\"")).collect();
+    let lines: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("  {\"name\""))
+        .collect();
     assert_eq!(lines.len(), 200);
     let per_cable = lines.iter().map(|l| l.len() + 1).sum::<usize>() / 200;
     println!("summary.json: {} bytes, {per_cable} a cable", text.len());
@@ -353,10 +379,13 @@ fn the_summary_stays_small_per_cable() {
 /// forces of the last frame.
 #[test]
 fn the_summary_end_forces_are_the_last_frames() {
-    let mut sim = Simulation::from_file("examples/catenary.toml", &Overrides {
-        duration: Some(2.0),
-        ..Overrides::default()
-    })
+    let mut sim = Simulation::from_file(
+        "examples/catenary.toml",
+        &Overrides {
+            duration: Some(2.0),
+            ..Overrides::default()
+        },
+    )
     .unwrap();
     let mut sink = MemorySink::new();
     let s = sim.run(&mut sink, |_| {}).unwrap();

@@ -144,7 +144,10 @@ fn absurd_work_is_refused_with_the_estimate_before_anything_is_built() {
             d.join("out").to_str().unwrap(),
         ],
     );
-    assert!(!ok && err.contains("over the budget of 1e12 node-steps"), "{err}");
+    assert!(
+        !ok && err.contains("over the budget of 1e12 node-steps"),
+        "{err}"
+    );
     assert!(!d.join("out/summary.json").exists() || err.contains("simulation.duration"));
 }
 

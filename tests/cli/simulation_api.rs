@@ -190,13 +190,7 @@ fn option_values_are_checked_and_listed() {
 fn a_good_run_prints_no_error_lines() {
     let dir = tempfile::tempdir().unwrap();
     let out = Command::new(BIN)
-        .args([
-            "run",
-            "examples/catenary.toml",
-            "--duration",
-            "1",
-            "--out",
-        ])
+        .args(["run", "examples/catenary.toml", "--duration", "1", "--out"])
         .arg(dir.path())
         .env_remove("XDG_RUNTIME_DIR")
         .env_remove("RUST_LOG")

@@ -225,8 +225,7 @@ sea_states = [
 /// and its nodes' `(position, velocity)`, m and m/s.
 pub fn final_state(dir: &std::path::Path) -> Vec<(String, Vec<([f64; 3], [f64; 3])>)> {
     let path = dir.join("final_state.csv");
-    let text = std::fs::read_to_string(&path)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("cable,node,x,y,z,vx,vy,vz"));
     let mut out: Vec<(String, Vec<([f64; 3], [f64; 3])>)> = Vec::new();

@@ -135,7 +135,11 @@ fn table_route_scenario_runs_on_the_gpu() {
             .args(["--backend", backend])
             // `auto` says at the information level why it chose the CPU, which `-q`
             // hides (warnings and errors only).
-            .args(if backend == "auto" { &[][..] } else { &["-q"][..] })
+            .args(if backend == "auto" {
+                &[][..]
+            } else {
+                &["-q"][..]
+            })
             .env("WGPU_BACKEND", &env)
             .output()
             .unwrap();

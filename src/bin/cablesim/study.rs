@@ -429,8 +429,12 @@ fn sh(s: &str) -> String {
 /// A path as UTF-8 for the script, or an error naming the flag: a path that is not
 /// UTF-8 would reach the jobs changed (`to_string_lossy`).
 fn utf8<'a>(p: &'a Path, what: &str) -> Result<&'a str> {
-    p.to_str()
-        .with_context(|| format!("{what} {}: not UTF-8, which the script cannot hold", p.display()))
+    p.to_str().with_context(|| {
+        format!(
+            "{what} {}: not UTF-8, which the script cannot hold",
+            p.display()
+        )
+    })
 }
 
 /// A path for a `#` comment of the script: on one line whatever it holds (a newline in
@@ -508,7 +512,12 @@ fn slurm(
     // Logs: sbatch's pattern, or (a `%` or `\` in OUT) the job's own redirection.
     let plain = !out_s.contains(['%', '\\']);
     let (shard_log, merge_log, shard_redirect, merge_redirect) = if plain {
-        ("slurm-%A_%a.out", "slurm-merge-%j.out", String::new(), String::new())
+        (
+            "slurm-%A_%a.out",
+            "slurm-merge-%j.out",
+            String::new(),
+            String::new(),
+        )
     } else {
         (
             "/dev/null",

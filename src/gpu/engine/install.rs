@@ -6,6 +6,7 @@
 //! Split out of `engine.rs` to keep each file under ~800 lines: this is the
 //! "what goes on the device" half, `engine.rs` the "how a step runs" half.
 
+use super::GpuTimings;
 use super::{
     align_up, bytes_or_one, decode, Buffers, Engine, FusedPipelines, GpuEngine, Installed,
 };
@@ -15,7 +16,6 @@ use crate::gpu::host::{body_rows, rebased_route, route_samples, split, Host};
 use crate::gpu::kernel::{fused_workgroup, STEPS_PER_SUBMISSION, WORKGROUP};
 use crate::gpu::layout::*;
 use crate::gpu::shaders::{self, Stage};
-use super::GpuTimings;
 use crate::gpu::wave_schedule::{
     fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_DUE_STRIDE, WAVE_ELEM_ROWS,
     WAVE_ELEM_STRIDE,

@@ -169,7 +169,11 @@ fn the_slurm_script_passes_odd_paths_as_given_and_runs_nothing_in_them() {
     // Every output in the folder named: the shards' and the merged tables, the logs.
     for k in 1..=2 {
         let shard = out.join(format!("shard-{k}-of-2"));
-        assert!(shard.join("shard.json").is_file(), "{}\n{said}", shard.display());
+        assert!(
+            shard.join("shard.json").is_file(),
+            "{}\n{said}",
+            shard.display()
+        );
     }
     for f in ["study.csv", "members.csv", "study.json"] {
         assert!(out.join(f).is_file(), "{f}\n{said}");
