@@ -16,8 +16,11 @@ one regular wave train, `--height` 4 m, `--period` 12 s, travelling along +x
 * `fixed`: the fairlead held still; the tension varies only through the wave loads
   (drag on the relative velocity, Froude-Krylov and added mass) on the line.
 * `moving`: the fairlead moves on a vertical circle in the x-z plane of radius
-  `--radius` (1 m) at the wave period, as a water particle of the wave does (crest
-  over the fairlead at t = 0: forward at the top), plus the same waves on the line.
+  `--radius` (1 m) at the wave period, starting at the top of the circle with the
+  crest over the fairlead at t = 0, plus the same waves on the line. The fairlead goes
+  round against the wave's water particles (at the top it moves along -x, towards the
+  anchor, where a particle under the crest moves along +x): both tools are given the
+  same circle, so the comparison holds, but it is not the particle's orbit.
   cablesim: `route = "circle"`, axis [0, -1, 0], phase 90 degrees, centre 1 m below
   the static fairlead, so the fairlead starts where it hangs statically. MoorDyn: a
   coupled point given the same circle's position at the start of every `--chunk`
