@@ -214,6 +214,7 @@ fn model() -> ModelChannels {
             },
         ],
         bodies: vec!["ship".into()],
+        ..Default::default()
     }
 }
 
