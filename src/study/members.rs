@@ -1,11 +1,12 @@
 //! The members of a study (sea state x seed), their wave seeds, and shards.
 //!
 //! Members are numbered condition by condition (the study's mooring conditions, the
-//! intact one first), then sea state by sea state, seeds in the order given; for a study
-//! of the intact mooring alone `index = sea_state * seeds.len() + j`. A damaged condition
-//! runs the sea states outside the fatigue scatter diagram only. That number orders
-//! every table and every reduction, so results do not depend on which thread or machine
-//! ran a member.
+//! intact one first), then sea state by sea state, seeds in the order given (a sea state
+//! with its own `seeds` count runs the first ones); for a study of the intact mooring
+//! alone, every sea state with every seed, `index = sea_state * seeds.len() + j`. A
+//! damaged condition runs the sea states outside the fatigue scatter diagram only. That
+//! number orders every table and every reduction, so results do not depend on which
+//! thread or machine ran a member.
 //!
 //! A member's wave seed (the seed of its random phases) is the first 64-bit word of the
 //! ChaCha20 stream whose 256-bit key is the study seed, the sea-state index and the seed

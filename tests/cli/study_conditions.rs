@@ -304,12 +304,16 @@ capacities = { rope = 1.0e5 }
     }
     // The design check: ULS factors (class 1: 1.1, 1.5) intact, ALS (1.0, 1.1) damaged;
     // the broken line has none in its own condition.
-    let f = |c: &str, ch: &str| (num(&t[&(c.into(), ch.into())], "mean_factor"), num(&t[&(c.into(), ch.into())], "dynamic_factor"));
+    let row_of = |c: &str, ch: &str| t[&(c.to_string(), ch.to_string())].clone();
+    let f = |c: &str, ch: &str| {
+        let r = row_of(c, ch);
+        (num(&r, "mean_factor"), num(&r, "dynamic_factor"))
+    };
     assert_eq!(f("intact", "leg0.end_force"), (1.1, 1.5));
     assert_eq!(f("leg0", "leg1.end_force"), (1.0, 1.1));
-    assert_eq!(t[&("leg0".into(), "leg1.end_force".into())]["limit_state"], "als");
-    assert!(t[&("leg0".into(), "leg0.end_force".into())]["utilisation"].is_empty());
-    let row = &t[&("leg0".into(), "leg1.end_force".into())];
+    assert_eq!(row_of("leg0", "leg1.end_force")["limit_state"], "als");
+    assert!(row_of("leg0", "leg0.end_force")["utilisation"].is_empty());
+    let row = &row_of("leg0", "leg1.end_force");
     let (mean, mpm) = (num(row, "mean"), num(row, "mpm"));
     let td = 1.0 * mean + 1.1 * (mpm - mean);
     assert!((num(row, "design_tension") - td).abs() <= 1e-9 * td);
@@ -448,6 +452,36 @@ area_m2 = 0.00098
         let b = std::fs::read(merged.join(f)).unwrap();
         assert!(a == b, "{f} differs between one machine and the merged shards");
     }
+    // The Slurm path (the submission script under a stand-in `sbatch` that runs each
+    // task at once): three shards and their merge give the same four files.
+    let bin = tmp.path().join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    let sbatch = bin.join("sbatch");
+    std::fs::write(&sbatch, super::study_run::FAKE_SBATCH).unwrap();
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(&sbatch, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let runs = tmp.path().join("runs");
+    run_ok(&["study", "slurm", s, "--shards", "3", "--out", runs.to_str().unwrap()]);
+    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
+    let out = Command::new("bash")
+        .arg(runs.join("submit.sh"))
+        .arg("--wait")
+        .env("PATH", path)
+        .env("RAYON_NUM_THREADS", "1")
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("merged: study.csv, members.csv, study.json, fatigue.csv in"), "{text}");
+    for f in ["study.csv", "members.csv", "study.json", "fatigue.csv"] {
+        let a = std::fs::read(one.join(f)).unwrap();
+        let b = std::fs::read(runs.join(f)).unwrap();
+        assert!(a == b, "{f} differs between one machine and the Slurm path");
+    }
+    // The command line's closing line lists fatigue.csv.
+    let out = run(&["study", "merge", s1.to_str().unwrap(), s2.to_str().unwrap(), "--out", merged.to_str().unwrap()]);
+    let e = String::from_utf8_lossy(&out.stderr);
+    assert!(e.contains("study.csv, members.csv, study.json, fatigue.csv in"), "{e}");
 }
 
 /// Bad `[study.conditions]` and design factors are refused by key.
