@@ -245,7 +245,7 @@ fn a_broken_lines_neighbours_carry_the_damaged_moorings_static_tensions() {
         r#"
 [study]
 seed = 7
-seeds = 1
+seeds = 2
 duration = 400.0
 transient = 300.0
 sea_states = [ { name = "calm", hs = 0.1, tp = 6.0 } ]
@@ -264,7 +264,7 @@ capacities = { rope = 1.0e5 }
     run_ok(&["study", "run", s, "-q", "--out", one.to_str().unwrap()]);
     let rows = read_csv(&one.join("study.csv"));
     let t = by_condition(&rows, 0);
-    // Two conditions x one sea state x one seed.
+    // Two conditions x one sea state x two seeds.
     let members = read_csv(&one.join("members.csv"));
     let mut conds: Vec<&str> = members.iter().map(|r| r["condition"].as_str()).collect();
     conds.dedup();
@@ -361,7 +361,8 @@ capacities = { rope = 1.0e5 }
 /// tensions; after it, the broken line's fairlead force drops to nothing and its
 /// neighbours take up the load (their maximum, in the transient, above the intact
 /// mean). With a fatigue scatter diagram the damaged condition runs the extreme sea
-/// state only, the fatigue is the intact mooring's, and the shards carry both.
+/// state only, a sea state of its own `seeds` count runs that many, the fatigue is the
+/// intact mooring's, and the shards and the Slurm path carry both.
 #[test]
 fn a_line_failing_in_the_record_and_a_scatter_diagram_run_as_their_own_members() {
     let tmp = tempfile::tempdir().unwrap();
@@ -370,11 +371,11 @@ fn a_line_failing_in_the_record_and_a_scatter_diagram_run_as_their_own_members()
         r#"
 [study]
 seed = 7
-seeds = 1
+seeds = 2
 duration = 120.0
 transient = 20.0
 sea_states = [
-  { name = "fatigue", hs = 0.1, tp = 6.0, probability = 1.0 },
+  { name = "fatigue", hs = 0.1, tp = 6.0, seeds = 1, probability = 1.0 },
   { name = "extreme", hs = 0.2, tp = 7.0 },
 ]
 channels = ["default"]
@@ -433,7 +434,12 @@ area_m2 = 0.00098
     // Fatigue: the intact members only (3 legs x 2 ends x 2 sea states).
     let fat = read_csv(&one.join("fatigue.csv"));
     assert_eq!(fat.len(), 12);
-    assert!(fat.iter().all(|r| r["seeds"] == "1"));
+    // The fatigue sea state runs its one seed, the extreme one the study's two.
+    for r in &fat {
+        let want = if r["sea_state"] == "0" { "1" } else { "2" };
+        assert_eq!(r["seeds"], want, "{r:?}");
+    }
+    assert_eq!(members.iter().filter(|r| r["sea_state"] == "0").count(), 10, "one member x 10 channels");
     // Two shards, merged: the one machine's files, fatigue.csv among them.
     let (s1, s2, merged) = (tmp.path().join("s1"), tmp.path().join("s2"), tmp.path().join("m"));
     for (k, d) in [("1/2", &s1), ("2/2", &s2)] {
