@@ -178,7 +178,9 @@ fn first_condition(row: &BTreeMap<String, String>, first: &Option<String>) -> bo
 pub fn gumbel_data(members: &Path, study: &Path) -> Result<Vec<GumbelData>, Error> {
     let mut out: Vec<GumbelData> = Vec::new();
     let member_rows = rows(members)?;
-    let first = member_rows.first().and_then(|r| r.get("condition").cloned());
+    let first = member_rows
+        .first()
+        .and_then(|r| r.get("condition").cloned());
     for row in member_rows {
         if !first_condition(&row, &first) {
             continue;
@@ -247,7 +249,11 @@ pub fn governing(study: &Path) -> Result<Vec<(String, String, f64)>, Error> {
         let (Some(c), Some(u)) = (r.get("condition"), opt_num(r, "utilisation")) else {
             continue;
         };
-        let label = format!("{} ({})", c, r.get("limit_state").map_or("", |s| s.as_str()));
+        let label = format!(
+            "{} ({})",
+            c,
+            r.get("limit_state").map_or("", |s| s.as_str())
+        );
         let what = format!("{}, {}", r["channel"], r["sea_state_name"]);
         match out.iter_mut().find(|g| g.0 == label) {
             Some(g) if u > g.2 => *g = (label, what, u),

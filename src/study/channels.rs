@@ -297,11 +297,10 @@ pub fn resolve(
                 }
             };
             if of_cable {
-                let cables: Vec<&CableChannels> =
-                    match &p.owner {
-                        None => model.cables.iter().collect(),
-                        Some(name) => {
-                            vec![model.cables.iter().find(|c| &c.name == name).ok_or_else(
+                let cables: Vec<&CableChannels> = match &p.owner {
+                    None => model.cables.iter().collect(),
+                    Some(name) => {
+                        vec![model.cables.iter().find(|c| &c.name == name).ok_or_else(
                                 || {
                                     err(format!(
                                         "\"{e}\": no cable named \"{name}\" in the base scenario{}",
@@ -313,8 +312,8 @@ pub fn resolve(
                                     ))
                                 },
                             )?]
-                        }
-                    };
+                    }
+                };
                 for c in cables {
                     let ch = |q| Channel {
                         owner: c.name.clone(),

@@ -412,7 +412,9 @@ fn validate(raw: &RawStudy, p: &Path) -> Result<StudyDef, Error> {
             return Err(err(
                 p,
                 match &raw.sea_states_file {
-                    Some(file) => format!("study.sea_states_file (\"{file}\"): row {}: seeds", i + 1),
+                    Some(file) => {
+                        format!("study.sea_states_file (\"{file}\"): row {}: seeds", i + 1)
+                    }
                     None => format!("study.sea_states[{i}].seeds"),
                 },
                 format!(
@@ -483,16 +485,18 @@ fn validate(raw: &RawStudy, p: &Path) -> Result<StudyDef, Error> {
 fn design_inputs(p: &Path, d: &RawDesign, damaged: bool) -> Result<DesignInputs, Error> {
     let class = match d.consequence_class {
         None => None,
-        Some(c) => Some(match u8::try_from(c).ok().filter(|c| dnv_factors(*c).is_some()) {
-            Some(c) => c,
-            None => {
-                return Err(err(
-                    p,
-                    "study.design.consequence_class",
-                    format!("must be 1 or 2 (DNV-OS-E301), got {c}"),
-                ))
-            }
-        }),
+        Some(c) => Some(
+            match u8::try_from(c).ok().filter(|c| dnv_factors(*c).is_some()) {
+                Some(c) => c,
+                None => {
+                    return Err(err(
+                        p,
+                        "study.design.consequence_class",
+                        format!("must be 1 or 2 (DNV-OS-E301), got {c}"),
+                    ))
+                }
+            },
+        ),
     };
     let table = class.and_then(dnv_factors);
     let factor = |key: &str, given: Option<f64>, from_class: Option<f64>, what: &str| {

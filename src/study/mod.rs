@@ -41,7 +41,9 @@ pub mod tables;
 pub use channel_stats::{ChannelStats, Extreme};
 pub use channels::{BodyComponent, Channel, ModelChannels, Quantity};
 pub use definition::{Condition, DesignInputs, SeaState, StudyDef, StudyFile};
-pub use extremes::{summarise, ChannelSummary, FailedMember, Governing, SeaStateSummary, StudySummary};
+pub use extremes::{
+    summarise, ChannelSummary, FailedMember, Governing, SeaStateSummary, StudySummary,
+};
 pub use gumbel::{Gumbel, GumbelFit};
 pub use members::{Member, ShardSpec};
 pub use results::{merge, MemberResult, MemberStatus, ShardResult, StudyResults};
@@ -235,9 +237,7 @@ fn expand_conditions(
              keep intact = true",
         ));
     }
-    if out.iter().any(|c| c.is_damaged())
-        && def.sea_states.iter().all(|s| s.in_scatter())
-    {
+    if out.iter().any(|c| c.is_damaged()) && def.sea_states.iter().all(|s| s.in_scatter()) {
         return Err(err(
             path,
             "study.conditions.broken",

@@ -111,7 +111,10 @@ impl StudyRunner {
                     .map(|a| {
                         let mut x = [0.0; 3];
                         for (k, v) in a.iter().take(3).enumerate() {
-                            x[k] = v.as_float().or(v.as_integer().map(|i| i as f64)).unwrap_or(0.0);
+                            x[k] = v
+                                .as_float()
+                                .or(v.as_integer().map(|i| i as f64))
+                                .unwrap_or(0.0);
                         }
                         x
                     })
@@ -175,7 +178,11 @@ impl StudyRunner {
                 return Err(err(
                     &self.study_path,
                     "study.conditions.broken",
-                    format!("condition \"{}\" (cable \"{}\" broken): {e}", cond.name, cond.broken.join(", ")),
+                    format!(
+                        "condition \"{}\" (cable \"{}\" broken): {e}",
+                        cond.name,
+                        cond.broken.join(", ")
+                    ),
                 ));
             }
         }

@@ -223,7 +223,10 @@ fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 /// Each row of `study.csv` by (condition, channel), for sea state `ss`.
-fn by_condition(rows: &[BTreeMap<String, String>], ss: usize) -> BTreeMap<(String, String), BTreeMap<String, String>> {
+fn by_condition(
+    rows: &[BTreeMap<String, String>],
+    ss: usize,
+) -> BTreeMap<(String, String), BTreeMap<String, String>> {
     rows.iter()
         .filter(|r| r["sea_state"] == ss.to_string())
         .map(|r| ((r["condition"].clone(), r["channel"].clone()), r.clone()))
@@ -274,8 +277,14 @@ capacities = { rope = 1.0e5 }
     let damaged = equilibrium([-25.0, -5.0, 0.0], &[1, 2]);
     let (_, t_intact) = balance(intact, &[0, 1, 2]);
     let (_, t_damaged) = balance(damaged, &[1, 2]);
-    assert!(intact[0].abs() < 1e-6, "the intact pose is centred: {intact:?}");
-    assert!(damaged[0] < -10.0, "the damaged mooring lets the buoy drift: {damaged:?}");
+    assert!(
+        intact[0].abs() < 1e-6,
+        "the intact pose is centred: {intact:?}"
+    );
+    assert!(
+        damaged[0] < -10.0,
+        "the damaged mooring lets the buoy drift: {damaged:?}"
+    );
     for (cond, legs, tensions) in [
         ("intact", vec![0, 1, 2], &t_intact),
         ("leg0", vec![1, 2], &t_damaged),
@@ -288,7 +297,10 @@ capacities = { rope = 1.0e5 }
                 "{cond}: leg{k} carries {mean} N, the static equilibrium {want} N"
             );
             // At rest after the transient.
-            assert!(std <= 0.01 * mean, "{cond}: leg{k} still moving (std {std} N)");
+            assert!(
+                std <= 0.01 * mean,
+                "{cond}: leg{k} still moving (std {std} N)"
+            );
         }
     }
     // The buoy's offset from its reference position.
@@ -338,9 +350,22 @@ capacities = { rope = 1.0e5 }
     assert_eq!(json["conditions"].as_array().unwrap().len(), 2);
 
     // Two shards, merged: the one machine's files.
-    let (s1, s2, merged) = (tmp.path().join("s1"), tmp.path().join("s2"), tmp.path().join("m"));
+    let (s1, s2, merged) = (
+        tmp.path().join("s1"),
+        tmp.path().join("s2"),
+        tmp.path().join("m"),
+    );
     for (k, d) in [("1/2", &s1), ("2/2", &s2)] {
-        run_ok(&["study", "run", s, "-q", "--shard", k, "--out", d.to_str().unwrap()]);
+        run_ok(&[
+            "study",
+            "run",
+            s,
+            "-q",
+            "--shard",
+            k,
+            "--out",
+            d.to_str().unwrap(),
+        ]);
     }
     run_ok(&[
         "study",
@@ -353,7 +378,10 @@ capacities = { rope = 1.0e5 }
     for f in ["study.csv", "members.csv", "study.json"] {
         let a = std::fs::read(one.join(f)).unwrap();
         let b = std::fs::read(merged.join(f)).unwrap();
-        assert!(a == b, "{f} differs between one machine and the merged shards");
+        assert!(
+            a == b,
+            "{f} differs between one machine and the merged shards"
+        );
     }
 }
 
@@ -439,11 +467,28 @@ area_m2 = 0.00098
         let want = if r["sea_state"] == "0" { "1" } else { "2" };
         assert_eq!(r["seeds"], want, "{r:?}");
     }
-    assert_eq!(members.iter().filter(|r| r["sea_state"] == "0").count(), 10, "one member x 10 channels");
+    assert_eq!(
+        members.iter().filter(|r| r["sea_state"] == "0").count(),
+        10,
+        "one member x 10 channels"
+    );
     // Two shards, merged: the one machine's files, fatigue.csv among them.
-    let (s1, s2, merged) = (tmp.path().join("s1"), tmp.path().join("s2"), tmp.path().join("m"));
+    let (s1, s2, merged) = (
+        tmp.path().join("s1"),
+        tmp.path().join("s2"),
+        tmp.path().join("m"),
+    );
     for (k, d) in [("1/2", &s1), ("2/2", &s2)] {
-        run_ok(&["study", "run", s, "-q", "--shard", k, "--out", d.to_str().unwrap()]);
+        run_ok(&[
+            "study",
+            "run",
+            s,
+            "-q",
+            "--shard",
+            k,
+            "--out",
+            d.to_str().unwrap(),
+        ]);
     }
     run_ok(&[
         "study",
@@ -456,7 +501,10 @@ area_m2 = 0.00098
     for f in ["study.csv", "members.csv", "study.json", "fatigue.csv"] {
         let a = std::fs::read(one.join(f)).unwrap();
         let b = std::fs::read(merged.join(f)).unwrap();
-        assert!(a == b, "{f} differs between one machine and the merged shards");
+        assert!(
+            a == b,
+            "{f} differs between one machine and the merged shards"
+        );
     }
     // The Slurm path (the submission script under a stand-in `sbatch` that runs each
     // task at once): three shards and their merge give the same four files.
@@ -467,7 +515,15 @@ area_m2 = 0.00098
     use std::os::unix::fs::PermissionsExt;
     std::fs::set_permissions(&sbatch, std::fs::Permissions::from_mode(0o755)).unwrap();
     let runs = tmp.path().join("runs");
-    run_ok(&["study", "slurm", s, "--shards", "3", "--out", runs.to_str().unwrap()]);
+    run_ok(&[
+        "study",
+        "slurm",
+        s,
+        "--shards",
+        "3",
+        "--out",
+        runs.to_str().unwrap(),
+    ]);
     let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
     let out = Command::new("bash")
         .arg(runs.join("submit.sh"))
@@ -477,17 +533,34 @@ area_m2 = 0.00098
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{text}{}", String::from_utf8_lossy(&out.stderr));
-    assert!(text.contains("merged: study.csv, members.csv, study.json, fatigue.csv in"), "{text}");
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains("merged: study.csv, members.csv, study.json, fatigue.csv in"),
+        "{text}"
+    );
     for f in ["study.csv", "members.csv", "study.json", "fatigue.csv"] {
         let a = std::fs::read(one.join(f)).unwrap();
         let b = std::fs::read(runs.join(f)).unwrap();
         assert!(a == b, "{f} differs between one machine and the Slurm path");
     }
     // The command line's closing line lists fatigue.csv.
-    let out = run(&["study", "merge", s1.to_str().unwrap(), s2.to_str().unwrap(), "--out", merged.to_str().unwrap()]);
+    let out = run(&[
+        "study",
+        "merge",
+        s1.to_str().unwrap(),
+        s2.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
     let e = String::from_utf8_lossy(&out.stderr);
-    assert!(e.contains("study.csv, members.csv, study.json, fatigue.csv in"), "{e}");
+    assert!(
+        e.contains("study.csv, members.csv, study.json, fatigue.csv in"),
+        "{e}"
+    );
 }
 
 /// Bad `[study.conditions]` and design factors are refused by key.

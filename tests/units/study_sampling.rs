@@ -83,10 +83,22 @@ fn each_channel_reads_its_own_owner_and_quantity() {
         ]
     );
     // A body not in the snapshot has no offset (rather than one from the origin).
-    let absent = [bodies[0], BodySnapshot { position: None, ..bodies[1] }];
+    let absent = [
+        bodies[0],
+        BodySnapshot {
+            position: None,
+            ..bodies[1]
+        },
+    ];
     assert_eq!(sampler.value(6, &cables, &absent), None);
     // `default` adds the free body's offset (not the prescribed hull's).
-    let d = resolve(Path::new("s"), "study.channels", &["default".to_string()], &model).unwrap();
+    let d = resolve(
+        Path::new("s"),
+        "study.channels",
+        &["default".to_string()],
+        &model,
+    )
+    .unwrap();
     let names: Vec<String> = d.iter().map(|c| c.name()).collect();
     assert!(names.contains(&"buoy.offset".to_string()), "{names:?}");
     assert!(!names.contains(&"hull.offset".to_string()), "{names:?}");

@@ -413,7 +413,11 @@ fn merge_dirs(dirs: &[PathBuf], out: Option<PathBuf>) -> Result<()> {
     });
     let n = shards.len();
     let files = write_tables(&out, shards)?;
-    eprintln!("merged {n} shards: {} in {}", files.join(", "), out.display());
+    eprintln!(
+        "merged {n} shards: {} in {}",
+        files.join(", "),
+        out.display()
+    );
     Ok(())
 }
 
