@@ -21,8 +21,9 @@ STUDY_STATS = ["mean", "std", "max_mean", "max_std", "max_largest", "min_smalles
 
 
 def read(path: Path, key: list) -> dict:
+    # `condition` (a study of several mooring conditions) is part of a study.csv row's key.
     with path.open(newline="") as f:
-        return {tuple(r[k] for k in key): r for r in csv.DictReader(f)}
+        return {tuple(r.get(k, "") for k in ["condition"] + key): r for r in csv.DictReader(f)}
 
 
 def compare(name: str, a: dict, b: dict, stats: list) -> None:

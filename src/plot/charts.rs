@@ -350,17 +350,57 @@ pub fn gumbel(path: &Path, g: &GumbelData) -> Result<(), Error> {
 
 /// `utilisation.png`: one bar per sea state and channel, with the limit 1 drawn.
 pub fn utilisation(path: &Path, rows: &[(String, String, f64)]) -> Result<(), Error> {
+    utilisation_bars(
+        path,
+        rows,
+        "Utilisation (design value / capacity)",
+        "sea state, channel",
+        false,
+    )
+}
+
+/// `conditions.png`: the governing utilisation of each mooring condition (one bar
+/// each, labelled by the condition; the channel and sea state written on the bar),
+/// with the limit 1 drawn.
+pub fn governing(path: &Path, rows: &[(String, String, f64)]) -> Result<(), Error> {
+    utilisation_bars(
+        path,
+        rows,
+        "Governing utilisation per mooring condition",
+        "condition (limit state)",
+        true,
+    )
+}
+
+/// Bars of utilisation `rows` (`(label, second label, value)`); `annotate` writes the
+/// second label on its bar instead of beside the first under the axis.
+fn utilisation_bars(
+    path: &Path,
+    rows: &[(String, String, f64)],
+    caption: &str,
+    x_desc: &str,
+    annotate: bool,
+) -> Result<(), Error> {
     draw_png(path, |root| {
         // Room above the tallest bar for the legend.
         let top = rows.iter().map(|r| r.2).fold(1.0f64, f64::max) * 1.3;
         let n = rows.len();
         let mut chart = ChartBuilder::on(root)
-            .caption("Utilisation (design value / capacity)", ("sans-serif", 26))
+            .caption(caption, ("sans-serif", 26))
             .margin(15)
             .x_label_area_size(60)
             .y_label_area_size(90)
             .build_cartesian_2d(-0.5f64..(n as f64 - 0.5), 0.0..top)?;
-        let labels: Vec<String> = rows.iter().map(|r| format!("{} {}", r.0, r.1)).collect();
+        let labels: Vec<String> = rows
+            .iter()
+            .map(|r| {
+                if annotate {
+                    r.0.clone()
+                } else {
+                    format!("{} {}", r.0, r.1)
+                }
+            })
+            .collect();
         chart
             .configure_mesh()
             .disable_x_mesh()
@@ -373,7 +413,7 @@ pub fn utilisation(path: &Path, rows: &[(String, String, f64)]) -> Result<(), Er
                     String::new()
                 }
             })
-            .x_desc("sea state, channel")
+            .x_desc(x_desc)
             .y_desc("utilisation (-)")
             .y_label_formatter(&tick)
             .label_style(("sans-serif", 14))
@@ -387,6 +427,15 @@ pub fn utilisation(path: &Path, rows: &[(String, String, f64)]) -> Result<(), Er
             };
             Rectangle::new([(k as f64 - 0.35, 0.0), (k as f64 + 0.35, r.2)], c.filled())
         }))?;
+        if annotate {
+            chart.draw_series(rows.iter().enumerate().map(|(k, r)| {
+                Text::new(
+                    format!("{:.3}: {}", r.2, r.1),
+                    (k as f64 - 0.35, r.2 + 0.02 * top),
+                    ("sans-serif", 12),
+                )
+            }))?;
+        }
         chart
             .draw_series(LineSeries::new(
                 [(-0.5, 1.0), (n as f64 - 0.5, 1.0)],

@@ -164,11 +164,27 @@ impl GumbelData {
     }
 }
 
+/// Whether a row of `members.csv` or `study.csv` is of the study's first mooring
+/// condition (the intact one; every row of a table without the `condition` column).
+fn first_condition(row: &BTreeMap<String, String>, first: &Option<String>) -> bool {
+    match (row.get("condition"), first) {
+        (Some(c), Some(f)) => c == f,
+        _ => true,
+    }
+}
+
 /// `members.csv` and `study.csv`: the seed maxima per sea state and channel (members
-/// that completed), with the fits.
+/// that completed), with the fits, of the study's first mooring condition.
 pub fn gumbel_data(members: &Path, study: &Path) -> Result<Vec<GumbelData>, Error> {
     let mut out: Vec<GumbelData> = Vec::new();
-    for row in rows(members)? {
+    let member_rows = rows(members)?;
+    let first = member_rows
+        .first()
+        .and_then(|r| r.get("condition").cloned());
+    for row in member_rows {
+        if !first_condition(&row, &first) {
+            continue;
+        }
         let Some(max) = opt_num(&row, "max") else {
             continue;
         };
@@ -191,6 +207,9 @@ pub fn gumbel_data(members: &Path, study: &Path) -> Result<Vec<GumbelData>, Erro
         }
     }
     for row in rows(study)? {
+        if !first_condition(&row, &first) {
+            continue;
+        }
         let ss = num(study, &row, "sea_state")? as usize;
         if let Some(g) = out
             .iter_mut()
@@ -205,15 +224,47 @@ pub fn gumbel_data(members: &Path, study: &Path) -> Result<Vec<GumbelData>, Erro
     Ok(out)
 }
 
-/// `study.csv`: `(sea state name, channel, utilisation)` for every row with a capacity.
+/// `study.csv`: `(sea state name, channel, utilisation)` for every row with a capacity
+/// of the study's first mooring condition (the intact one).
 pub fn utilisation(study: &Path) -> Result<Vec<(String, String, f64)>, Error> {
-    Ok(rows(study)?
+    let all = rows(study)?;
+    let first = all.first().and_then(|r| r.get("condition").cloned());
+    Ok(all
         .into_iter()
+        .filter(|r| first_condition(r, &first))
         .filter_map(|r| {
             let u = opt_num(&r, "utilisation")?;
             Some((r["sea_state_name"].clone(), r["channel"].clone(), u))
         })
         .collect())
+}
+
+/// `study.csv`: per mooring condition, in table order, its governing utilisation:
+/// `(condition (limit state), "channel, sea state", utilisation)`, the largest of its
+/// rows. Empty for a study of one condition or without capacities.
+pub fn governing(study: &Path) -> Result<Vec<(String, String, f64)>, Error> {
+    let mut out: Vec<(String, String, f64)> = Vec::new();
+    let all = rows(study)?;
+    for r in &all {
+        let (Some(c), Some(u)) = (r.get("condition"), opt_num(r, "utilisation")) else {
+            continue;
+        };
+        let label = format!(
+            "{} ({})",
+            c,
+            r.get("limit_state").map_or("", |s| s.as_str())
+        );
+        let what = format!("{}, {}", r["channel"], r["sea_state_name"]);
+        match out.iter_mut().find(|g| g.0 == label) {
+            Some(g) if u > g.2 => *g = (label, what, u),
+            Some(_) => {}
+            None => out.push((label, what, u)),
+        }
+    }
+    if out.len() < 2 {
+        out.clear();
+    }
+    Ok(out)
 }
 
 /// The fatigue damage per location of a `fatigue.csv`, and what it is: for a study's

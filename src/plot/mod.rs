@@ -5,8 +5,11 @@
 //! time) and, with `positions.csv`, `profiles.png` (side view x-z and plan view x-y of
 //! every cable at chosen times). From a study's directory (`study.csv`,
 //! `members.csv`): `gumbel_<sea state>_<channel>.png` (the seed maxima on Gumbel paper
-//! with the fitted line) and, when channels have capacities, `utilisation.png`. With a
-//! `fatigue.csv` (a run's or a study's), `fatigue.png`: the damage per line and location.
+//! with the fitted line) and, when channels have capacities, `utilisation.png` (both of
+//! the study's first mooring condition, the intact one) and, for a study of several
+//! conditions, `conditions.png` (the governing utilisation of each condition, with its
+//! line and sea state). With a `fatigue.csv` (a run's or a study's), `fatigue.png`: the
+//! damage per line and location.
 
 mod charts;
 pub mod data;
@@ -51,6 +54,12 @@ pub fn plot_dir(dir: &Path, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, E
         if !u.is_empty() {
             let p = out.join("utilisation.png");
             charts::utilisation(&p, &u)?;
+            written.push(p);
+        }
+        let g = data::governing(&study)?;
+        if !g.is_empty() {
+            let p = out.join("conditions.png");
+            charts::governing(&p, &g)?;
             written.push(p);
         }
     }

@@ -11,9 +11,10 @@
 //! | `tension[K]`  | cable | the tension of element `K` (0 at the start), or `tension[*]`, N |
 //! | `fx` ... `fz` | body  | the total force of the cables on the body, N                   |
 //! | `mx` ... `mz` | body  | their moment about the body's reference point, N m             |
+//! | `offset`      | body  | the horizontal distance of its reference point from `reference`, m |
 //!
-//! and `default` stands for `*.tension_max`, `*.start_force`, `*.end_force`: what a
-//! mooring check needs. Patterns are resolved against the base model: an unknown cable or
+//! and `default` stands for `*.tension_max`, `*.start_force`, `*.end_force` and the
+//! `offset` of every free body: what a mooring check needs. Patterns are resolved against the base model: an unknown cable or
 //! body, or an element past a cable's last, is an error naming the entry.
 
 use crate::error::Error;
@@ -63,12 +64,15 @@ pub enum Quantity {
     Tension(usize),
     /// A component of the cables' load on a body.
     Body(BodyComponent),
+    /// A body's horizontal offset: the distance in plan of its reference point from
+    /// its `reference` position, m.
+    Offset,
 }
 
 impl Quantity {
     /// Whether the owner is a cable (else a body).
     pub fn of_cable(self) -> bool {
-        !matches!(self, Quantity::Body(_))
+        !matches!(self, Quantity::Body(_) | Quantity::Offset)
     }
 
     /// Whether the channel is a line tension, which a line capacity applies to.
@@ -80,6 +84,7 @@ impl Quantity {
     pub fn unit(self) -> &'static str {
         match self {
             Quantity::Body(BodyComponent::Mx | BodyComponent::My | BodyComponent::Mz) => "N m",
+            Quantity::Offset => "m",
             _ => "N",
         }
     }
@@ -92,6 +97,7 @@ impl fmt::Display for Quantity {
             Quantity::StartForce => write!(f, "start_force"),
             Quantity::EndForce => write!(f, "end_force"),
             Quantity::Tension(k) => write!(f, "tension[{k}]"),
+            Quantity::Offset => write!(f, "offset"),
             Quantity::Body(c) => {
                 let name = BODY_COMPONENTS.iter().find(|(_, b)| b == c).unwrap().0;
                 write!(f, "{name}")
@@ -136,6 +142,11 @@ pub struct ModelChannels {
     pub cables: Vec<CableChannels>,
     /// Body names.
     pub bodies: Vec<String>,
+    /// Each body's `reference` position, m (in `bodies` order; a body missing here
+    /// has its offset measured from the origin).
+    pub body_references: Vec<[f64; 3]>,
+    /// Whether each body is free (`motion = "free"`), in `bodies` order.
+    pub free_bodies: Vec<bool>,
 }
 
 impl ModelChannels {
@@ -153,6 +164,8 @@ impl ModelChannels {
                 })
                 .collect(),
             bodies: Vec::new(),
+            body_references: Vec::new(),
+            free_bodies: Vec::new(),
         }
     }
 }
@@ -168,6 +181,8 @@ enum Elements {
 enum PatternQuantity {
     Fixed(Quantity),
     Tensions(Elements),
+    /// The offsets of the free bodies (`default`).
+    FreeOffsets,
 }
 
 /// A channel entry as written, parsed but not yet resolved against a model.
@@ -179,11 +194,11 @@ struct Pattern {
 }
 
 const QUANTITIES: &str = "tension_max, start_force, end_force, tension[K], tension[*], \
-                          fx, fy, fz, mx, my, mz";
+                          fx, fy, fz, mx, my, mz, offset";
 
 fn parse(entry: &str) -> Result<Vec<Pattern>, String> {
     if entry == "default" {
-        return Ok([
+        let mut v = [
             Quantity::TensionMax,
             Quantity::StartForce,
             Quantity::EndForce,
@@ -192,7 +207,12 @@ fn parse(entry: &str) -> Result<Vec<Pattern>, String> {
             owner: None,
             quantity: PatternQuantity::Fixed(q),
         })
-        .to_vec());
+        .to_vec();
+        v.push(Pattern {
+            owner: None,
+            quantity: PatternQuantity::FreeOffsets,
+        });
+        return Ok(v);
     }
     let (owner, q) = entry.rsplit_once('.').ok_or_else(|| {
         format!("\"{entry}\" is not `default` nor `OWNER.QUANTITY` (a cable or body name, or *)")
@@ -206,6 +226,7 @@ fn parse(entry: &str) -> Result<Vec<Pattern>, String> {
         "tension_max" => PatternQuantity::Fixed(Quantity::TensionMax),
         "start_force" => PatternQuantity::Fixed(Quantity::StartForce),
         "end_force" => PatternQuantity::Fixed(Quantity::EndForce),
+        "offset" => PatternQuantity::Fixed(Quantity::Offset),
         _ => {
             if let Some((_, c)) = BODY_COMPONENTS.iter().find(|(n, _)| *n == q) {
                 PatternQuantity::Fixed(Quantity::Body(*c))
@@ -262,26 +283,37 @@ pub fn resolve(
             let of_cable = match p.quantity {
                 PatternQuantity::Fixed(q) => q.of_cable(),
                 PatternQuantity::Tensions(_) => true,
+                PatternQuantity::FreeOffsets => {
+                    for (k, b) in model.bodies.iter().enumerate() {
+                        if model.free_bodies.get(k).copied().unwrap_or(false) {
+                            push(Channel {
+                                owner: b.clone(),
+                                quantity: Quantity::Offset,
+                                line_type: None,
+                            });
+                        }
+                    }
+                    continue;
+                }
             };
             if of_cable {
-                let cables: Vec<&CableChannels> =
-                    match &p.owner {
-                        None => model.cables.iter().collect(),
-                        Some(name) => {
-                            vec![model.cables.iter().find(|c| &c.name == name).ok_or_else(
+                let cables: Vec<&CableChannels> = match &p.owner {
+                    None => model.cables.iter().collect(),
+                    Some(name) => {
+                        vec![model.cables.iter().find(|c| &c.name == name).ok_or_else(
                                 || {
                                     err(format!(
                                         "\"{e}\": no cable named \"{name}\" in the base scenario{}",
                                         if model.bodies.contains(name) {
-                                            " (it is a body: bodies have fx, fy, fz, mx, my, mz)"
+                                            " (it is a body: bodies have fx, fy, fz, mx, my, mz, offset)"
                                         } else {
                                             ""
                                         }
                                     ))
                                 },
                             )?]
-                        }
-                    };
+                    }
+                };
                 for c in cables {
                     let ch = |q| Channel {
                         owner: c.name.clone(),
@@ -293,6 +325,7 @@ pub fn resolve(
                         PatternQuantity::Tensions(Elements::All) => {
                             (0..c.elements).for_each(|k| push(ch(Quantity::Tension(k))))
                         }
+                        PatternQuantity::FreeOffsets => unreachable!("handled above"),
                         PatternQuantity::Tensions(Elements::One(k)) => {
                             if k >= c.elements {
                                 return Err(err(format!(

@@ -38,6 +38,9 @@ pub struct SeaState {
     /// Hours per year in the fatigue scatter diagram (fatigue sea states only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub hours: Option<f64>,
+    /// How many of the study's seeds this sea state runs (the first ones; `None`: all).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seeds: Option<usize>,
 }
 
 impl SeaState {
@@ -69,12 +72,84 @@ pub const HOURS_PER_YEAR: f64 = 8766.0;
 /// `T_d = mean_factor T_mean + dynamic_factor (T_MPM - T_mean)`, utilisation `T_d / S_C`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DesignInputs {
-    /// Partial safety factor on the mean tension `g_mean`.
+    /// Partial safety factor on the mean tension `g_mean` (ULS: the intact condition).
     pub mean_factor: f64,
-    /// Partial safety factor on the dynamic tension `g_dyn`.
+    /// Partial safety factor on the dynamic tension `g_dyn` (ULS: the intact condition).
     pub dynamic_factor: f64,
     /// Characteristic strength `S_C` per line type name, N.
     pub capacities: BTreeMap<String, f64>,
+    /// The consequence class (1 or 2) the factors were taken from, when given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub consequence_class: Option<u8>,
+    /// ALS factors `(g_mean, g_dyn)` of the damaged conditions (`None`: the study has
+    /// none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accidental: Option<(f64, f64)>,
+}
+
+/// The partial safety factors of DNV-OS-E301 (Ch.2 Sec.2) for a dynamic analysis:
+/// `(g_mean, g_dyn)` of the ultimate limit state and of the accidental limit state, by
+/// consequence class 1 or 2 (docs/src/studies.md says what was and was not checked).
+pub fn dnv_factors(class: u8) -> Option<((f64, f64), (f64, f64))> {
+    match class {
+        1 => Some(((1.1, 1.5), (1.0, 1.1))),
+        2 => Some(((1.4, 2.1), (1.0, 1.25))),
+        _ => None,
+    }
+}
+
+/// Which lines a study breaks (`study.conditions.broken`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Broken {
+    /// Each cable of the base scenario, one at a time.
+    Each,
+    /// These cables, one at a time.
+    Lines(Vec<String>),
+}
+
+/// The mooring conditions a study runs (`[study.conditions]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ConditionsSpec {
+    /// Whether the intact mooring is run.
+    pub intact: bool,
+    /// The lines broken, one damaged condition each.
+    pub broken: Broken,
+    /// When the broken line fails, s (`None`: broken from the start).
+    pub fail_time: Option<f64>,
+}
+
+/// One mooring condition of a study, as the plan expands it.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Condition {
+    /// `intact`, or the broken cable's name.
+    pub name: String,
+    /// The cables broken (empty: intact).
+    pub broken: Vec<String>,
+}
+
+impl Condition {
+    /// The intact mooring.
+    pub fn intact() -> Condition {
+        Condition {
+            name: "intact".into(),
+            broken: Vec::new(),
+        }
+    }
+
+    /// Whether it is a damaged condition (the accidental limit state).
+    pub fn is_damaged(&self) -> bool {
+        !self.broken.is_empty()
+    }
+
+    /// `uls` (intact) or `als` (damaged): the limit state its design check is of.
+    pub fn limit_state(&self) -> &'static str {
+        if self.is_damaged() {
+            "als"
+        } else {
+            "uls"
+        }
+    }
 }
 
 /// A validated study definition. Its JSON form (field order as here) is the canonical
@@ -102,9 +177,20 @@ pub struct StudyDef {
     /// The fatigue limit state, when asked for (`[study.fatigue]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fatigue: Option<FatigueInputs>,
+    /// The mooring conditions (`[study.conditions]`; `None`: the intact mooring only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub conditions: Option<ConditionsSpec>,
 }
 
 impl StudyDef {
+    /// The seed numbers sea state `s` runs: the study's, or the first `seeds` of them.
+    pub fn seeds_of(&self, s: usize) -> &[u64] {
+        match self.sea_states[s].seeds {
+            Some(n) => &self.seeds[..n.min(self.seeds.len())],
+            None => &self.seeds,
+        }
+    }
+
     /// The annual hours of sea state `s` in the scatter diagram (`None` when it is not
     /// in it, or the study has no fatigue).
     pub fn annual_hours(&self, s: usize) -> Option<f64> {
@@ -147,6 +233,15 @@ struct RawStudy {
     fit: Option<String>,
     design: Option<RawDesign>,
     fatigue: Option<RawStudyFatigue>,
+    conditions: Option<RawConditions>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawConditions {
+    intact: Option<bool>,
+    broken: Option<toml::Value>,
+    fail_time: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -168,17 +263,21 @@ struct RawSeaState {
     current_heading: Option<f64>,
     probability: Option<f64>,
     hours: Option<f64>,
+    seeds: Option<i64>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawDesign {
+    consequence_class: Option<i64>,
     mean_factor: Option<f64>,
     dynamic_factor: Option<f64>,
+    accidental_mean_factor: Option<f64>,
+    accidental_dynamic_factor: Option<f64>,
     capacities: Option<BTreeMap<String, f64>>,
 }
 
-const SEA_STATE_COLUMNS: [&str; 9] = [
+const SEA_STATE_COLUMNS: [&str; 10] = [
     "name",
     "hs",
     "tp",
@@ -188,6 +287,7 @@ const SEA_STATE_COLUMNS: [&str; 9] = [
     "current_heading",
     "probability",
     "hours",
+    "seeds",
 ];
 
 impl StudyFile {
@@ -307,6 +407,23 @@ fn validate(raw: &RawStudy, p: &Path) -> Result<StudyDef, Error> {
     if sea_states.is_empty() {
         return Err(err(p, "study.sea_states", "no sea state given"));
     }
+    for (i, ss) in sea_states.iter().enumerate() {
+        if let Some(n) = ss.seeds.filter(|n| *n > seeds.len()) {
+            return Err(err(
+                p,
+                match &raw.sea_states_file {
+                    Some(file) => {
+                        format!("study.sea_states_file (\"{file}\"): row {}: seeds", i + 1)
+                    }
+                    None => format!("study.sea_states[{i}].seeds"),
+                },
+                format!(
+                    "{n} seeds, more than the study's {} (study.seeds)",
+                    seeds.len()
+                ),
+            ));
+        }
+    }
     let channels = raw
         .channels
         .clone()
@@ -335,38 +452,13 @@ fn validate(raw: &RawStudy, p: &Path) -> Result<StudyDef, Error> {
             ))
         }
     };
+    let conditions = conditions(p, raw.conditions.as_ref(), duration)?;
+    let damaged = conditions
+        .as_ref()
+        .is_some_and(|c| !matches!(&c.broken, Broken::Lines(l) if l.is_empty()));
     let design = match &raw.design {
         None => None,
-        Some(d) => {
-            let mean_factor = positive(
-                p,
-                "study.design.mean_factor",
-                required(p, "study.design.mean_factor", d.mean_factor)?,
-            )?;
-            let dynamic_factor = positive(
-                p,
-                "study.design.dynamic_factor",
-                required(p, "study.design.dynamic_factor", d.dynamic_factor)?,
-            )?;
-            let capacities = d.capacities.clone().ok_or_else(|| {
-                err(
-                    p,
-                    "study.design.capacities",
-                    "missing: the capacity S_C of each line type, N",
-                )
-            })?;
-            if capacities.is_empty() {
-                return Err(err(p, "study.design.capacities", "the table is empty"));
-            }
-            for (name, c) in &capacities {
-                positive(p, &format!("study.design.capacities.{name}"), *c)?;
-            }
-            Some(DesignInputs {
-                mean_factor,
-                dynamic_factor,
-                capacities,
-            })
-        }
+        Some(d) => Some(design_inputs(p, d, damaged)?),
     };
     let sea_states_field = match &raw.sea_states_file {
         Some(f) => format!("study.sea_states_file (\"{f}\")"),
@@ -384,7 +476,186 @@ fn validate(raw: &RawStudy, p: &Path) -> Result<StudyDef, Error> {
         fit,
         design,
         fatigue,
+        conditions,
     })
+}
+
+/// `[study.design]`: the factors from `consequence_class` (DNV-OS-E301) or given, the
+/// ALS ones needed when the study has damaged conditions (`damaged`).
+fn design_inputs(p: &Path, d: &RawDesign, damaged: bool) -> Result<DesignInputs, Error> {
+    let class = match d.consequence_class {
+        None => None,
+        Some(c) => Some(
+            match u8::try_from(c).ok().filter(|c| dnv_factors(*c).is_some()) {
+                Some(c) => c,
+                None => {
+                    return Err(err(
+                        p,
+                        "study.design.consequence_class",
+                        format!("must be 1 or 2 (DNV-OS-E301), got {c}"),
+                    ))
+                }
+            },
+        ),
+    };
+    let table = class.and_then(dnv_factors);
+    let factor = |key: &str, given: Option<f64>, from_class: Option<f64>, what: &str| {
+        let f = format!("study.design.{key}");
+        match given.or(from_class) {
+            Some(x) => positive(p, &f, x),
+            None => Err(err(
+                p,
+                f,
+                format!("missing: the partial safety factor on {what}, or a consequence_class (1 or 2) to take it from DNV-OS-E301"),
+            )),
+        }
+    };
+    let mean_factor = factor(
+        "mean_factor",
+        d.mean_factor,
+        table.map(|t| t.0 .0),
+        "the mean tension (ULS)",
+    )?;
+    let dynamic_factor = factor(
+        "dynamic_factor",
+        d.dynamic_factor,
+        table.map(|t| t.0 .1),
+        "the dynamic tension (ULS)",
+    )?;
+    let accidental = if damaged {
+        Some((
+            factor(
+                "accidental_mean_factor",
+                d.accidental_mean_factor,
+                table.map(|t| t.1 .0),
+                "the mean tension of the damaged conditions (ALS)",
+            )?,
+            factor(
+                "accidental_dynamic_factor",
+                d.accidental_dynamic_factor,
+                table.map(|t| t.1 .1),
+                "the dynamic tension of the damaged conditions (ALS)",
+            )?,
+        ))
+    } else {
+        for (k, v) in [
+            ("accidental_mean_factor", d.accidental_mean_factor),
+            ("accidental_dynamic_factor", d.accidental_dynamic_factor),
+        ] {
+            if v.is_some() {
+                return Err(err(
+                    p,
+                    format!("study.design.{k}"),
+                    "the study has no damaged condition to apply it to: break lines with \
+                     [study.conditions] broken = \"each\" or a list of cables",
+                ));
+            }
+        }
+        None
+    };
+    let capacities = d.capacities.clone().ok_or_else(|| {
+        err(
+            p,
+            "study.design.capacities",
+            "missing: the capacity S_C of each line type, N",
+        )
+    })?;
+    if capacities.is_empty() {
+        return Err(err(p, "study.design.capacities", "the table is empty"));
+    }
+    for (name, c) in &capacities {
+        positive(p, &format!("study.design.capacities.{name}"), *c)?;
+    }
+    Ok(DesignInputs {
+        mean_factor,
+        dynamic_factor,
+        capacities,
+        consequence_class: class,
+        accidental,
+    })
+}
+
+/// `[study.conditions]`: `intact` (default true), `broken` (`"each"` or a list of
+/// cable names, checked against the base model by the plan), `fail_time` (s, before
+/// the end of the record).
+fn conditions(
+    p: &Path,
+    raw: Option<&RawConditions>,
+    duration: f64,
+) -> Result<Option<ConditionsSpec>, Error> {
+    let Some(raw) = raw else {
+        return Ok(None);
+    };
+    let broken = match &raw.broken {
+        None => Broken::Lines(Vec::new()),
+        Some(toml::Value::String(s)) if s == "each" => Broken::Each,
+        Some(toml::Value::Array(a)) => {
+            let mut names: Vec<String> = Vec::new();
+            for (i, v) in a.iter().enumerate() {
+                let f = format!("study.conditions.broken[{i}]");
+                let Some(n) = v.as_str() else {
+                    return Err(err(
+                        p,
+                        f,
+                        format!("must be a cable name, got {}", v.type_str()),
+                    ));
+                };
+                if names.iter().any(|x| x == n) {
+                    return Err(err(p, f, format!("cable \"{n}\" is listed twice")));
+                }
+                names.push(n.to_string());
+            }
+            if names.is_empty() {
+                return Err(err(
+                    p,
+                    "study.conditions.broken",
+                    "the list is empty: name the cables to break, or \"each\"",
+                ));
+            }
+            Broken::Lines(names)
+        }
+        Some(v) => {
+            return Err(err(
+                p,
+                "study.conditions.broken",
+                format!("must be \"each\" or a list of cable names, got {v}"),
+            ))
+        }
+    };
+    let intact = raw.intact.unwrap_or(true);
+    if !intact && matches!(&broken, Broken::Lines(l) if l.is_empty()) {
+        return Err(err(
+            p,
+            "study.conditions.intact",
+            "false with no line broken leaves no condition to run",
+        ));
+    }
+    let fail_time = match raw.fail_time {
+        None => None,
+        Some(t) => {
+            let t = non_negative(p, "study.conditions.fail_time", t)?;
+            if t >= duration {
+                return Err(err(
+                    p,
+                    "study.conditions.fail_time",
+                    format!("the line would fail at {t} s, after the record ends ({duration} s)"),
+                ));
+            }
+            if matches!(&broken, Broken::Lines(l) if l.is_empty()) {
+                return Err(err(
+                    p,
+                    "study.conditions.fail_time",
+                    "no line is broken (study.conditions.broken)",
+                ));
+            }
+            Some(t)
+        }
+    };
+    Ok(Some(ConditionsSpec {
+        intact,
+        broken,
+        fail_time,
+    }))
 }
 
 /// `[study.fatigue]` and the scatter diagram of the sea states: probabilities that sum
@@ -591,6 +862,17 @@ fn sea_state(p: &Path, f: &dyn Fn(&str) -> String, r: &RawSeaState) -> Result<Se
             .hours
             .map(|h| non_negative(p, &f("hours"), h))
             .transpose()?,
+        seeds: match r.seeds {
+            None => None,
+            Some(n) if n >= 1 => Some(n as usize),
+            Some(n) => {
+                return Err(err(
+                    p,
+                    f("seeds"),
+                    format!("a sea state runs at least one seed, got {n}"),
+                ))
+            }
+        },
     })
 }
 

@@ -2,8 +2,9 @@
 //! the design tension `T_d = g_mean T_mean + g_dyn (T_MPM - T_mean)` from the mean
 //! tension and the most probable maximum, and the utilisation `T_d / S_C` against the
 //! line's characteristic strength. The partial safety factors `g_mean`, `g_dyn` and the
-//! capacities are inputs: the standard's values depend on the consequence class and the
-//! analysis (e.g. 1.1 and 1.5, or 1.4 and 2.1), which are the user's call.
+//! capacities are inputs, or the factors are taken by consequence class
+//! ([`super::definition::dnv_factors`]): the intact mooring's (ULS) and the damaged
+//! conditions' (ALS).
 
 use serde::{Deserialize, Serialize};
 
@@ -20,6 +21,12 @@ pub struct DesignCheck {
     pub design_tension: f64,
     /// `T_d / S_C` (the line passes when at most 1).
     pub utilisation: f64,
+    /// The partial safety factor applied to the mean tension `g_mean`.
+    #[serde(default)]
+    pub mean_factor: f64,
+    /// The partial safety factor applied to the dynamic tension `g_dyn`.
+    #[serde(default)]
+    pub dynamic_factor: f64,
 }
 
 /// `g_mean T_mean + g_dyn (T_MPM - T_mean)`, N.
@@ -44,6 +51,8 @@ impl DesignCheck {
             mpm_tension: mpm,
             design_tension,
             utilisation: design_tension / capacity,
+            mean_factor,
+            dynamic_factor,
         }
     }
 }

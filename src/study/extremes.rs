@@ -48,15 +48,57 @@ pub struct ChannelSummary {
     pub design: Option<DesignCheck>,
 }
 
-/// One sea state.
+/// One sea state in one mooring condition.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SeaStateSummary {
+    /// Index of the mooring condition in the study (0 without conditions).
+    #[serde(default)]
+    pub condition: usize,
+    /// The condition's name (`intact`, or the broken cable's).
+    #[serde(default = "intact_name")]
+    pub condition_name: String,
+    /// `uls` (intact) or `als` (damaged): whose factors the design check applies.
+    #[serde(default = "uls_name")]
+    pub limit_state: String,
     /// Index of the sea state in the study.
     pub index: usize,
     /// The sea state.
     pub sea_state: SeaState,
     /// Per channel, in channel order.
     pub channels: Vec<ChannelSummary>,
+}
+
+fn intact_name() -> String {
+    "intact".into()
+}
+
+fn uls_name() -> String {
+    "uls".into()
+}
+
+/// The largest utilisation of one mooring condition (or of one limit state): where it
+/// is, and how large.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Governing {
+    /// `uls` or `als`.
+    pub limit_state: String,
+    /// The condition's index and name.
+    pub condition: usize,
+    /// The condition's name.
+    pub condition_name: String,
+    /// The cables broken in it.
+    pub broken: Vec<String>,
+    /// The sea state where the largest utilisation is (`None`: no channel has a design
+    /// check in this condition).
+    pub sea_state: Option<usize>,
+    /// Its name.
+    pub sea_state_name: Option<String>,
+    /// The channel (`LINE.QUANTITY`).
+    pub channel: Option<String>,
+    /// The line (the channel's cable).
+    pub line: Option<String>,
+    /// The utilisation `T_d / S_C`.
+    pub utilisation: Option<f64>,
 }
 
 /// The whole study, as `study.json` holds it.
@@ -77,6 +119,14 @@ pub struct StudySummary {
     /// The fatigue of each location (empty without a `[fatigue]` table).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub fatigue: Vec<super::fatigue::LocationFatigue>,
+    /// Per mooring condition, its largest utilisation (empty without a design check).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub conditions: Vec<Governing>,
+    /// The governing condition and line of each limit state run (`uls`, then `als`):
+    /// the largest utilisation over its conditions, sea states and channels (empty
+    /// without a design check).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub governing: Vec<Governing>,
 }
 
 /// A member that blew up, as `study.json` lists it.
@@ -92,15 +142,16 @@ pub struct FailedMember {
 /// Reduces a whole study (module documentation).
 pub fn summarise(r: &StudyResults) -> StudySummary {
     let def = &r.study;
-    let sea_states = def
-        .sea_states
-        .iter()
-        .enumerate()
-        .map(|(s, sea_state)| {
+    let mut sea_states = Vec::new();
+    for (c, cond) in r.conditions.iter().enumerate() {
+        for (s, sea_state) in def.sea_states.iter().enumerate() {
+            if !super::members::runs(def, cond, s) {
+                continue;
+            }
             let of_state: Vec<_> = r
                 .members
                 .iter()
-                .filter(|m| m.member.sea_state == s)
+                .filter(|m| m.member.sea_state == s && m.member.condition == c)
                 .collect();
             let done: Vec<_> = of_state
                 .iter()
@@ -111,18 +162,22 @@ pub fn summarise(r: &StudyResults) -> StudySummary {
                 .channels
                 .iter()
                 .enumerate()
-                .map(|(c, ch)| {
-                    let records: Vec<&ChannelStats> = done.iter().map(|m| &m.stats[c]).collect();
-                    channel_summary(def, ch, &records, failed)
+                .map(|(k, ch)| {
+                    let records: Vec<&ChannelStats> = done.iter().map(|m| &m.stats[k]).collect();
+                    channel_summary(def, cond, ch, &records, failed)
                 })
                 .collect();
-            SeaStateSummary {
+            sea_states.push(SeaStateSummary {
+                condition: c,
+                condition_name: cond.name.clone(),
+                limit_state: cond.limit_state().into(),
                 index: s,
                 sea_state: sea_state.clone(),
                 channels,
-            }
-        })
-        .collect();
+            });
+        }
+    }
+    let (conditions, governing) = governing(r, &sea_states);
     StudySummary {
         study_hash: r.study_hash.clone(),
         study: def.clone(),
@@ -145,11 +200,71 @@ pub fn summarise(r: &StudyResults) -> StudySummary {
             .collect(),
         sea_states,
         fatigue: super::fatigue::summarise(r),
+        conditions,
+        governing,
     }
+}
+
+/// Per condition its largest utilisation, and per limit state the governing one (the
+/// first of equal ones in condition, sea state and channel order). Empty without a
+/// design check.
+fn governing(r: &StudyResults, sea_states: &[SeaStateSummary]) -> (Vec<Governing>, Vec<Governing>) {
+    if r.study.design.is_none() {
+        return (Vec::new(), Vec::new());
+    }
+    let per_condition: Vec<Governing> = r
+        .conditions
+        .iter()
+        .enumerate()
+        .map(|(c, cond)| {
+            let mut g = Governing {
+                limit_state: cond.limit_state().into(),
+                condition: c,
+                condition_name: cond.name.clone(),
+                broken: cond.broken.clone(),
+                sea_state: None,
+                sea_state_name: None,
+                channel: None,
+                line: None,
+                utilisation: None,
+            };
+            for ss in sea_states.iter().filter(|s| s.condition == c) {
+                for (k, ch) in ss.channels.iter().enumerate() {
+                    let Some(u) = ch.design.map(|d| d.utilisation) else {
+                        continue;
+                    };
+                    if g.utilisation.is_none_or(|x| u > x) {
+                        g.sea_state = Some(ss.index);
+                        g.sea_state_name = ss.sea_state.name.clone();
+                        g.channel = Some(ch.channel.clone());
+                        g.line = Some(r.channels[k].owner.clone());
+                        g.utilisation = Some(u);
+                    }
+                }
+            }
+            g
+        })
+        .collect();
+    let mut by_state: Vec<Governing> = Vec::new();
+    for state in ["uls", "als"] {
+        let best = per_condition
+            .iter()
+            .filter(|g| g.limit_state == state)
+            .fold(None::<&Governing>, |best, g| match (best, g.utilisation) {
+                (None, _) => Some(g),
+                (Some(b), Some(u)) if b.utilisation.is_none_or(|x| u > x) => Some(g),
+                (b, _) => b,
+            });
+        if let Some(b) = best {
+            by_state.push(b.clone());
+        }
+    }
+    (per_condition, by_state)
 }
 
 fn channel_summary(
     def: &StudyDef,
+    cond: &super::definition::Condition,
     ch: &super::channels::Channel,
     records: &[&ChannelStats],
     failed: usize,
@@ -174,11 +289,19 @@ fn channel_summary(
         GumbelFit::Moments => gumbel_moments,
     };
     let mpm = chosen.map(|g| g.most_probable());
+    // A broken line's own channels are not checked in its damaged condition.
+    let broken = cond.broken.contains(&ch.owner);
     let design = match (&def.design, &ch.line_type, pooled.mean(), mpm) {
-        (Some(d), Some(lt), Some(mean), Some(mpm)) if ch.quantity.is_tension() => d
-            .capacities
-            .get(lt)
-            .map(|&cap| DesignCheck::new(cap, d.mean_factor, d.dynamic_factor, mean, mpm)),
+        (Some(d), Some(lt), Some(mean), Some(mpm)) if ch.quantity.is_tension() && !broken => {
+            let (gm, gd) = if cond.is_damaged() {
+                d.accidental.unwrap_or((d.mean_factor, d.dynamic_factor))
+            } else {
+                (d.mean_factor, d.dynamic_factor)
+            };
+            d.capacities
+                .get(lt)
+                .map(|&cap| DesignCheck::new(cap, gm, gd, mean, mpm))
+        }
         _ => None,
     };
     ChannelSummary {

@@ -3,6 +3,8 @@
 //! (rainflow-counted as each member ran, `crate::fatigue`), scaled to the sea state's
 //! hours per year in the scatter diagram; summed over the scatter diagram, the annual
 //! damage and the fatigue life `1 / (DFF * annual damage)`. Written as `fatigue.csv`.
+//! The fatigue is the intact mooring's: the members of the first condition (the intact
+//! one, which a study with a scatter diagram keeps).
 //!
 //! Every sum runs over members in member order and sea states in study order, so a
 //! merged study gives the same bits as one machine.
@@ -63,7 +65,11 @@ pub fn summarise(r: &StudyResults) -> Vec<LocationFatigue> {
                     let records: Vec<_> = r
                         .members
                         .iter()
-                        .filter(|m| m.member.sea_state == s && m.status == MemberStatus::Completed)
+                        .filter(|m| {
+                            m.member.sea_state == s
+                                && m.member.condition == 0
+                                && m.status == MemberStatus::Completed
+                        })
                         .map(|m| m.fatigue[l])
                         .collect();
                     let n = records.len();

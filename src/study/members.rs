@@ -1,8 +1,12 @@
 //! The members of a study (sea state x seed), their wave seeds, and shards.
 //!
-//! Members are numbered sea state by sea state, seeds in the order given:
-//! `index = sea_state * seeds.len() + j`. That number orders every table and every
-//! reduction, so results do not depend on which thread or machine ran a member.
+//! Members are numbered condition by condition (the study's mooring conditions, the
+//! intact one first), then sea state by sea state, seeds in the order given (a sea state
+//! with its own `seeds` count runs the first ones); for a study of the intact mooring
+//! alone, every sea state with every seed, `index = sea_state * seeds.len() + j`. A
+//! damaged condition runs the sea states outside the fatigue scatter diagram only. That
+//! number orders every table and every reduction, so results do not depend on which
+//! thread or machine ran a member.
 //!
 //! A member's wave seed (the seed of its random phases) is the first 64-bit word of the
 //! ChaCha20 stream whose 256-bit key is the study seed, the sea-state index and the seed
@@ -13,6 +17,8 @@
 //! same waves. Keying by the seed number rather than the flat index means that adding a
 //! seed or a sea state at the end leaves the existing members' waves unchanged, and the
 //! sea-state index in the key gives each sea state its own phases for the same seed number.
+//! The condition is not in the key: a damaged condition meets the same seas as the
+//! intact mooring.
 
 use crate::error::Error;
 use crate::scenario::err;
@@ -23,13 +29,16 @@ use serde::{Deserialize, Serialize};
 use std::ops::Range;
 use std::path::Path;
 
-use super::definition::StudyDef;
+use super::definition::{Condition, StudyDef};
 
 /// One member: a sea state run with one seed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Member {
-    /// Position in the study, `sea_state * seeds + j`.
+    /// Position in the study (module documentation).
     pub index: usize,
+    /// Index of the mooring condition (0, the first, for a study without conditions).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub condition: usize,
     /// Index of the sea state in the study.
     pub sea_state: usize,
     /// The seed number (from the study's `seeds`).
@@ -48,19 +57,36 @@ pub fn wave_seed(study_seed: u64, sea_state: usize, seed: u64) -> u64 {
     ChaCha20Rng::from_seed(key).next_u64() >> 1
 }
 
-/// Every member of a study, in member order.
-pub fn members(def: &StudyDef) -> Vec<Member> {
-    let n = def.seeds.len();
-    (0..def.sea_states.len())
-        .flat_map(|s| {
-            def.seeds.iter().enumerate().map(move |(j, &seed)| Member {
-                index: s * n + j,
-                sea_state: s,
-                seed,
-                wave_seed: wave_seed(def.seed, s, seed),
-            })
-        })
-        .collect()
+fn is_zero(x: &usize) -> bool {
+    *x == 0
+}
+
+/// Whether condition `c` runs sea state `s`: the intact mooring every sea state, a
+/// damaged one those outside the fatigue scatter diagram.
+pub fn runs(def: &StudyDef, c: &Condition, s: usize) -> bool {
+    !c.is_damaged() || !def.sea_states[s].in_scatter()
+}
+
+/// Every member of a study with the mooring conditions `conditions`, in member order.
+pub fn members(def: &StudyDef, conditions: &[Condition]) -> Vec<Member> {
+    let mut out = Vec::new();
+    for (c, cond) in conditions.iter().enumerate() {
+        for s in 0..def.sea_states.len() {
+            if !runs(def, cond, s) {
+                continue;
+            }
+            for &seed in def.seeds_of(s) {
+                out.push(Member {
+                    index: out.len(),
+                    condition: c,
+                    sea_state: s,
+                    seed,
+                    wave_seed: wave_seed(def.seed, s, seed),
+                });
+            }
+        }
+    }
+    out
 }
 
 /// A slice of a study's members, `K/N`: shard `K` (1 to `N`) of `N`.

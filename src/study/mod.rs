@@ -40,8 +40,10 @@ pub mod tables;
 
 pub use channel_stats::{ChannelStats, Extreme};
 pub use channels::{BodyComponent, Channel, ModelChannels, Quantity};
-pub use definition::{DesignInputs, SeaState, StudyDef, StudyFile};
-pub use extremes::{summarise, ChannelSummary, FailedMember, SeaStateSummary, StudySummary};
+pub use definition::{Condition, DesignInputs, SeaState, StudyDef, StudyFile};
+pub use extremes::{
+    summarise, ChannelSummary, FailedMember, Governing, SeaStateSummary, StudySummary,
+};
 pub use gumbel::{Gumbel, GumbelFit};
 pub use members::{Member, ShardSpec};
 pub use results::{merge, MemberResult, MemberStatus, ShardResult, StudyResults};
@@ -68,6 +70,9 @@ pub struct StudyPlan {
     /// The fatigue locations every member counts (the base scenario's `[fatigue]`),
     /// empty without one.
     pub fatigue: Vec<crate::fatigue::FatigueLocation>,
+    /// The mooring conditions, in condition order (the intact mooring alone for a
+    /// study without `[study.conditions]`).
+    pub conditions: Vec<Condition>,
 }
 
 impl StudyPlan {
@@ -95,12 +100,14 @@ impl StudyPlan {
                 }
             }
         }
+        let conditions = expand_conditions(&def, path, model)?;
         Ok(StudyPlan {
-            members: members::members(&def),
+            members: members::members(&def, &conditions),
             hash: hash::study_hash(&def, scenario_text),
             channels,
             def,
             fatigue: Vec::new(),
+            conditions,
         })
     }
 
@@ -162,7 +169,81 @@ impl StudyPlan {
             study: self.def.clone(),
             channels: self.channels.clone(),
             fatigue: self.fatigue.clone(),
+            conditions: if self.def.conditions.is_some() {
+                self.conditions.clone()
+            } else {
+                Vec::new()
+            },
             members,
         }
     }
+
+    /// The condition member `m` runs.
+    pub fn condition_of(&self, m: &Member) -> &Condition {
+        &self.conditions[m.condition]
+    }
+}
+
+/// The mooring conditions of `def` against the base model: the intact one (unless
+/// `intact = false`), then one per broken cable, in the order given (`"each"`: model
+/// order). A cable the base scenario lacks is an error naming its key.
+fn expand_conditions(
+    def: &StudyDef,
+    path: &Path,
+    model: &ModelChannels,
+) -> Result<Vec<Condition>, Error> {
+    use definition::Broken;
+    let Some(spec) = &def.conditions else {
+        return Ok(vec![Condition::intact()]);
+    };
+    let mut out = Vec::new();
+    if spec.intact {
+        out.push(Condition::intact());
+    }
+    let names: Vec<String> = match &spec.broken {
+        Broken::Each => model.cables.iter().map(|c| c.name.clone()).collect(),
+        Broken::Lines(l) => {
+            for (i, n) in l.iter().enumerate() {
+                if !model.cables.iter().any(|c| &c.name == n) {
+                    return Err(err(
+                        path,
+                        format!("study.conditions.broken[{i}]"),
+                        format!(
+                            "no cable named \"{n}\" in the base scenario (its cables: {})",
+                            model
+                                .cables
+                                .iter()
+                                .map(|c| c.name.as_str())
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    ));
+                }
+            }
+            l.clone()
+        }
+    };
+    for n in names {
+        out.push(Condition {
+            name: n.clone(),
+            broken: vec![n],
+        });
+    }
+    if !spec.intact && def.fatigue.is_some() {
+        return Err(err(
+            path,
+            "study.conditions.intact",
+            "the fatigue scatter diagram ([study.fatigue]) runs in the intact condition: \
+             keep intact = true",
+        ));
+    }
+    if out.iter().any(|c| c.is_damaged()) && def.sea_states.iter().all(|s| s.in_scatter()) {
+        return Err(err(
+            path,
+            "study.conditions.broken",
+            "a damaged condition runs the sea states outside the fatigue scatter diagram, \
+             and every sea state is in it: add an extreme sea state (no probability or hours)",
+        ));
+    }
+    Ok(out)
 }

@@ -8,7 +8,7 @@
 
 use super::channel_stats::ChannelStats;
 use super::channels::Channel;
-use super::definition::StudyDef;
+use super::definition::{Condition, StudyDef};
 use super::members::{self, Member, ShardSpec};
 use crate::error::Error;
 use crate::fatigue::{FatigueLocation, FatigueRecord};
@@ -76,6 +76,9 @@ pub struct ShardResult {
     /// The fatigue locations (empty without fatigue).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub fatigue: Vec<FatigueLocation>,
+    /// The mooring conditions (empty: the intact mooring alone).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub conditions: Vec<Condition>,
     /// Its members, in member order.
     pub members: Vec<MemberResult>,
 }
@@ -130,6 +133,8 @@ pub struct StudyResults {
     pub channels: Vec<Channel>,
     /// The fatigue locations (empty without fatigue).
     pub fatigue: Vec<FatigueLocation>,
+    /// The mooring conditions, in condition order (at least the one, intact or not).
+    pub conditions: Vec<Condition>,
     /// Every member, in member order.
     pub members: Vec<MemberResult>,
 }
@@ -193,7 +198,12 @@ pub fn merge(shards: Vec<(PathBuf, ShardResult)>) -> Result<StudyResults, Error>
         ));
     }
     let (_, first) = &by_index[&1];
-    let all = members::members(&first.study);
+    let conditions = if first.conditions.is_empty() {
+        vec![Condition::intact()]
+    } else {
+        first.conditions.clone()
+    };
+    let all = members::members(&first.study, &conditions);
     let (study, channels) = (first.study.clone(), first.channels.clone());
     let fatigue = first.fatigue.clone();
     let mut members = Vec::with_capacity(all.len());
@@ -272,6 +282,7 @@ pub fn merge(shards: Vec<(PathBuf, ShardResult)>) -> Result<StudyResults, Error>
         study,
         channels,
         fatigue,
+        conditions,
         members,
     })
 }

@@ -49,6 +49,37 @@ pub struct StudyRunner {
     sampler: Sampler,
 }
 
+/// Breaks cable `name` of scenario `doc` at time `t` (s): the end held by a body (its
+/// `end` when both are), else its `end`, fails at `t` (`fail_time`; 0: from the first
+/// step). A cable that is not a `[[cables]]` entry is left to the plan's check
+/// ([`StudyRunner::check_conditions`]).
+fn break_cable(doc: &mut toml::Table, name: &str, t: f64) {
+    let Some(toml::Value::Array(cables)) = doc.get_mut("cables") else {
+        return;
+    };
+    let Some(cable) = cables
+        .iter_mut()
+        .filter_map(|c| c.as_table_mut())
+        .find(|c| c.get("name").and_then(|n| n.as_str()) == Some(name))
+    else {
+        return;
+    };
+    let on_body = |k: &str| {
+        cable
+            .get(k)
+            .and_then(|e| e.as_table())
+            .is_some_and(|e| e.contains_key("body"))
+    };
+    let which = if on_body("end") || !on_body("start") {
+        "end"
+    } else {
+        "start"
+    };
+    if let Some(end) = cable.get_mut(which).and_then(|e| e.as_table_mut()) {
+        end.insert("fail_time".into(), toml::Value::Float(t));
+    }
+}
+
 /// Whether an error is a member's own blow-up (the member fails, the study goes on)
 /// rather than a problem of the study's input (the study stops).
 pub(crate) fn is_blow_up(e: &Error) -> bool {
@@ -69,10 +100,30 @@ impl StudyRunner {
         )?;
         let mut model = ModelChannels::from_model(&scenario.model);
         if let Some(toml::Value::Array(bodies)) = base.get("bodies") {
-            model.bodies = bodies
-                .iter()
-                .filter_map(|b| b.get("name").and_then(|n| n.as_str()).map(String::from))
-                .collect();
+            for b in bodies {
+                let Some(name) = b.get("name").and_then(|n| n.as_str()) else {
+                    continue;
+                };
+                model.bodies.push(name.to_string());
+                let reference = b
+                    .get("reference")
+                    .and_then(|r| r.as_array())
+                    .map(|a| {
+                        let mut x = [0.0; 3];
+                        for (k, v) in a.iter().take(3).enumerate() {
+                            x[k] = v
+                                .as_float()
+                                .or(v.as_integer().map(|i| i as f64))
+                                .unwrap_or(0.0);
+                        }
+                        x
+                    })
+                    .unwrap_or_default();
+                model.body_references.push(reference);
+                model
+                    .free_bodies
+                    .push(b.get("motion").and_then(|m| m.as_str()) == Some("free"));
+            }
         }
         let plan =
             StudyPlan::new(file, &model)?.with_fatigue(scenario.fatigue.as_ref(), &file.path)?;
@@ -86,7 +137,56 @@ impl StudyRunner {
             sampler,
         };
         runner.check_sea_states()?;
+        runner.check_conditions()?;
         Ok(runner)
+    }
+
+    /// Checks that each damaged condition's cable is a `[[cables]]` entry of the base
+    /// scenario, and validates each damaged condition's first member (an end that cannot
+    /// fail is named by the study's key).
+    fn check_conditions(&self) -> Result<(), Error> {
+        let listed: Vec<&str> = match self.base.get("cables") {
+            Some(toml::Value::Array(a)) => a
+                .iter()
+                .filter_map(|c| c.get("name").and_then(|n| n.as_str()))
+                .collect(),
+            _ => Vec::new(),
+        };
+        for (c, cond) in self.plan.conditions.iter().enumerate() {
+            if !cond.is_damaged() {
+                continue;
+            }
+            for name in &cond.broken {
+                if !listed.contains(&name.as_str()) {
+                    return Err(err(
+                        &self.study_path,
+                        "study.conditions.broken",
+                        format!(
+                            "cable \"{name}\" is not a [[cables]] entry of the base scenario \
+                             (cables of arrays and nets cannot be broken by a study yet)"
+                        ),
+                    ));
+                }
+            }
+            let Some(m) = self.plan.members.iter().find(|m| m.condition == c) else {
+                continue;
+            };
+            let (sc, _) = crate::scenario::collect_warnings(|| {
+                Scenario::parse(&self.member_toml(m), &self.scenario_path)
+            });
+            if let Err(e) = sc {
+                return Err(err(
+                    &self.study_path,
+                    "study.conditions.broken",
+                    format!(
+                        "condition \"{}\" (cable \"{}\" broken): {e}",
+                        cond.name,
+                        cond.broken.join(", ")
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The plan: definition, channels, members, hash.
@@ -179,6 +279,16 @@ impl StudyRunner {
             "trains".into(),
             toml::Value::Array(vec![toml::Value::Table(train)]),
         );
+        let fail_time = self
+            .plan
+            .def
+            .conditions
+            .as_ref()
+            .and_then(|c| c.fail_time)
+            .unwrap_or(0.0);
+        for cable in &self.plan.condition_of(m).broken {
+            break_cable(&mut doc, cable, fail_time);
+        }
         toml::to_string(&doc).expect("a TOML table")
     }
 
@@ -242,8 +352,12 @@ impl StudyRunner {
     /// the error (which names the cable, node and time).
     pub(crate) fn failure_message(&self, m: &Member, e: &Error) -> String {
         let ss = self.plan.sea_state_of(m);
+        let condition = match self.plan.def.conditions {
+            Some(_) => format!("condition \"{}\", ", self.plan.condition_of(m).name),
+            None => String::new(),
+        };
         format!(
-            "member {} (sea state {}{}, seed {}, wave seed {}): {e}",
+            "member {} ({condition}sea state {}{}, seed {}, wave seed {}): {e}",
             m.index,
             m.sea_state,
             ss.name
@@ -297,6 +411,7 @@ impl StudyRunner {
                 Some(i) => BodySnapshot {
                     force: snap.bodies[*i].force,
                     moment: snap.bodies[*i].moment,
+                    position: Some(snap.bodies[*i].position),
                 },
                 None => BodySnapshot::default(),
             })

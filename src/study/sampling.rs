@@ -26,12 +26,16 @@ pub struct BodySnapshot {
     pub force: [f64; 3],
     /// Their moment about the body's reference point, N m.
     pub moment: [f64; 3],
+    /// Its reference point, m (`None`: the body is not in the snapshot).
+    pub position: Option<[f64; 3]>,
 }
 
 /// Where each channel's value comes from: its owner's index in the snapshot.
 #[derive(Clone, Debug)]
 pub struct Sampler {
     sources: Vec<(usize, Quantity)>,
+    /// Each body's `reference` position (the origin of its offset), in model order.
+    references: Vec<[f64; 3]>,
 }
 
 fn norm(v: [f64; 3]) -> f64 {
@@ -56,7 +60,10 @@ impl Sampler {
                 (owner, c.quantity)
             })
             .collect();
-        Sampler { sources }
+        Sampler {
+            sources,
+            references: model.body_references.clone(),
+        }
     }
 
     /// The value of channel `i` in a snapshot; `None` for an element a winch has
@@ -73,6 +80,11 @@ impl Sampler {
             Quantity::StartForce => norm(cables[owner].start_force),
             Quantity::EndForce => norm(cables[owner].end_force),
             Quantity::Tension(k) => *cables[owner].tensions.get(k)?,
+            Quantity::Offset => {
+                let x = bodies[owner].position?;
+                let r = self.references.get(owner).copied().unwrap_or_default();
+                (x[0] - r[0]).hypot(x[1] - r[1])
+            }
             Quantity::Body(c) => {
                 let b = &bodies[owner];
                 match c {

@@ -1,5 +1,5 @@
 //! The study's output files: `members.csv` (member x channel), `study.csv`
-//! (sea state x channel) and `study.json` (the whole summary). The columns are listed in
+//! (condition x sea state x channel) and `study.json` (the whole summary). The columns are listed in
 //! `docs/src/studies.md`. Both CSVs are long ("tidy") tables, one row per pair, which
 //! spreadsheets pivot and data-frame libraries read as they are; text fields are quoted
 //! where they need it (a name holding a comma), empty cells mean "not defined" (a fit of
@@ -17,6 +17,7 @@ use std::path::Path;
 #[derive(Serialize)]
 struct MemberRow<'a> {
     member: usize,
+    condition: &'a str,
     sea_state: usize,
     sea_state_name: &'a str,
     seed: u64,
@@ -38,6 +39,8 @@ struct MemberRow<'a> {
 
 #[derive(Serialize)]
 struct StudyRow<'a> {
+    condition: &'a str,
+    limit_state: &'a str,
     sea_state: usize,
     sea_state_name: &'a str,
     hs: f64,
@@ -65,6 +68,8 @@ struct StudyRow<'a> {
     mpm: Option<f64>,
     quantile_p: f64,
     quantile: Option<f64>,
+    mean_factor: Option<f64>,
+    dynamic_factor: Option<f64>,
     capacity: Option<f64>,
     design_tension: Option<f64>,
     utilisation: Option<f64>,
@@ -99,6 +104,7 @@ pub fn write_members_csv(path: &Path, r: &StudyResults) -> Result<(), Error> {
         for (ch, s) in r.channels.iter().zip(&m.stats) {
             w.serialize(MemberRow {
                 member: m.member.index,
+                condition: &r.conditions[m.member.condition].name,
                 sea_state: m.member.sea_state,
                 sea_state_name: name,
                 seed: m.member.seed,
@@ -130,6 +136,8 @@ pub fn write_study_csv(path: &Path, s: &StudySummary) -> Result<(), Error> {
         let st = &ss.sea_state;
         for c in &ss.channels {
             w.serialize(StudyRow {
+                condition: &ss.condition_name,
+                limit_state: &ss.limit_state,
                 sea_state: ss.index,
                 sea_state_name: st.name.as_deref().unwrap_or(""),
                 hs: st.hs,
@@ -157,6 +165,8 @@ pub fn write_study_csv(path: &Path, s: &StudySummary) -> Result<(), Error> {
                 mpm: c.mpm,
                 quantile_p: s.study.quantile,
                 quantile: c.quantile,
+                mean_factor: c.design.map(|d| d.mean_factor),
+                dynamic_factor: c.design.map(|d| d.dynamic_factor),
                 capacity: c.design.map(|d| d.capacity),
                 design_tension: c.design.map(|d| d.design_tension),
                 utilisation: c.design.map(|d| d.utilisation),
@@ -177,12 +187,19 @@ pub fn write_study_json(path: &Path, s: &StudySummary) -> Result<(), Error> {
 }
 
 /// Writes the three files into `dir` (which must exist), and `fatigue.csv` for a study
-/// with fatigue locations.
-pub fn write_all(dir: &Path, r: &StudyResults, s: &StudySummary) -> Result<(), Error> {
+/// with fatigue locations; returns the names of the files written.
+pub fn write_all(
+    dir: &Path,
+    r: &StudyResults,
+    s: &StudySummary,
+) -> Result<Vec<&'static str>, Error> {
+    let mut written = vec!["study.csv", "members.csv", "study.json"];
     write_members_csv(&dir.join("members.csv"), r)?;
     write_study_csv(&dir.join("study.csv"), s)?;
     if !r.fatigue.is_empty() {
         super::fatigue::write_fatigue_csv(&dir.join("fatigue.csv"), r, &s.fatigue)?;
+        written.push("fatigue.csv");
     }
-    write_study_json(&dir.join("study.json"), s)
+    write_study_json(&dir.join("study.json"), s)?;
+    Ok(written)
 }

@@ -23,6 +23,7 @@ mod robust_runs;
 mod scenario;
 mod simulation_api;
 mod slurm;
+mod study_conditions;
 mod study_run;
 mod viz_output;
 mod wave_inputs;

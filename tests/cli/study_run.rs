@@ -384,7 +384,7 @@ fn bad_shards_and_foreign_directories_are_refused_by_name() {
 /// job array (`--array=1-N`) with its `SLURM_ARRAY_TASK_ID`, and prints a job id as
 /// `--parsable` does. It checks the submission script's logic (shard arguments, output
 /// folders, the merge job and its dependency); a real cluster is not needed for that.
-const FAKE_SBATCH: &str = r#"#!/bin/bash
+pub(crate) const FAKE_SBATCH: &str = r#"#!/bin/bash
 set -euo pipefail
 array=""; dep=""
 for a in "$@"; do

@@ -214,6 +214,7 @@ fn model() -> ModelChannels {
             },
         ],
         bodies: vec!["ship".into()],
+        ..Default::default()
     }
 }
 
@@ -573,7 +574,7 @@ fn merged_shards_equal_the_one_machine_study_byte_for_byte() {
     let members = std::fs::read_to_string(base.path().join("members.csv")).unwrap();
     assert_eq!(members.lines().count(), 1 + 12 * 8);
     assert!(members.lines().next().unwrap().starts_with(
-        "member,sea_state,sea_state_name,seed,wave_seed,status,channel,unit,samples,max,time_of_max"
+        "member,condition,sea_state,sea_state_name,seed,wave_seed,status,channel,unit,samples,max,time_of_max"
     ));
     let study = std::fs::read_to_string(base.path().join("study.csv")).unwrap();
     assert_eq!(study.lines().count(), 1 + 3 * 8);

@@ -20,6 +20,7 @@ fn model() -> ModelChannels {
             },
         ],
         bodies: vec!["ship".into()],
+        ..Default::default()
     }
 }
 

@@ -23,6 +23,8 @@ fn each_channel_reads_its_own_owner_and_quantity() {
             },
         ],
         bodies: vec!["hull".into(), "buoy".into()],
+        body_references: vec![[0.0; 3], [10.0, 0.0, -5.0]],
+        free_bodies: vec![false, true],
     };
     let entries: Vec<String> = [
         "b.tension_max",
@@ -31,6 +33,7 @@ fn each_channel_reads_its_own_owner_and_quantity() {
         "a.tension[2]",
         "buoy.fz",
         "hull.my",
+        "buoy.offset",
     ]
     .iter()
     .map(|s| s.to_string())
@@ -55,10 +58,13 @@ fn each_channel_reads_its_own_owner_and_quantity() {
         BodySnapshot {
             force: [0.0; 3],
             moment: [1.0, 2.0, 3.0],
+            position: Some([0.5, 0.0, 0.0]),
         },
         BodySnapshot {
             force: [4.0, 5.0, -6.0],
             moment: [0.0; 3],
+            // 3 m along x and 4 m along y from its reference, 1 m up: 5 m in plan.
+            position: Some([13.0, 4.0, -4.0]),
         },
     ];
     let got: Vec<Option<f64>> = (0..channels.len())
@@ -72,9 +78,30 @@ fn each_channel_reads_its_own_owner_and_quantity() {
             Some(10.0),
             Some(20.0),
             Some(-6.0),
-            Some(2.0)
+            Some(2.0),
+            Some(5.0)
         ]
     );
+    // A body not in the snapshot has no offset (rather than one from the origin).
+    let absent = [
+        bodies[0],
+        BodySnapshot {
+            position: None,
+            ..bodies[1]
+        },
+    ];
+    assert_eq!(sampler.value(6, &cables, &absent), None);
+    // `default` adds the free body's offset (not the prescribed hull's).
+    let d = resolve(
+        Path::new("s"),
+        "study.channels",
+        &["default".to_string()],
+        &model,
+    )
+    .unwrap();
+    let names: Vec<String> = d.iter().map(|c| c.name()).collect();
+    assert!(names.contains(&"buoy.offset".to_string()), "{names:?}");
+    assert!(!names.contains(&"hull.offset".to_string()), "{names:?}");
     // A hauled-in element gives no sample instead of a wrong one.
     let short = [
         CableSnapshot {

@@ -352,11 +352,12 @@ fn run(
         return Ok(RunOutcome::Done);
     }
     if shard == ShardSpec::WHOLE {
-        write_tables(&out, vec![(dir.shard_file(), shard_result)])?;
+        let files = write_tables(&out, vec![(dir.shard_file(), shard_result)])?;
         eprintln!(
-            "done: {} members ({} failed); study.csv, members.csv, study.json in {}",
+            "done: {} members ({} failed); {} in {}",
             st.members,
             st.failed,
+            files.join(", "),
             out.display()
         );
     } else {
@@ -371,12 +372,12 @@ fn run(
     Ok(RunOutcome::Done)
 }
 
-fn write_tables(out: &Path, shards: Vec<(PathBuf, ShardResult)>) -> Result<()> {
+/// Merges `shards` and writes the study's tables into `out`; returns the files written.
+fn write_tables(out: &Path, shards: Vec<(PathBuf, ShardResult)>) -> Result<Vec<&'static str>> {
     let results = merge(shards)?;
     let summary = summarise(&results);
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
-    tables::write_all(out, &results, &summary)?;
-    Ok(())
+    Ok(tables::write_all(out, &results, &summary)?)
 }
 
 fn merge_dirs(dirs: &[PathBuf], out: Option<PathBuf>) -> Result<()> {
@@ -411,9 +412,10 @@ fn merge_dirs(dirs: &[PathBuf], out: Option<PathBuf>) -> Result<()> {
             .unwrap_or_else(|| PathBuf::from("."))
     });
     let n = shards.len();
-    write_tables(&out, shards)?;
+    let files = write_tables(&out, shards)?;
     eprintln!(
-        "merged {n} shards: study.csv, members.csv, study.json in {}",
+        "merged {n} shards: {} in {}",
+        files.join(", "),
         out.display()
     );
     Ok(())
@@ -545,7 +547,8 @@ fn slurm(
 # cluster should then cancel a merge job whose shards failed, kill_invalid_depend in
 # DependencyParameters, or the wait never ends). Shard K runs in $OUT/shard-K-of-{shards};
 # a task that is cancelled or hits its time limit keeps its finished members, and
-# resubmitting resumes it. The merged study.csv, members.csv and study.json land in $OUT.
+# resubmitting resumes it. The merged study.csv, members.csv and study.json (and
+# fatigue.csv for a study with fatigue) land in $OUT.
 # Add sbatch options (partition, time limit, CPUs per task) in SBATCH_ARGS.
 # The paths are single-quoted words, in the job scripts too (here-documents that are
 # not expanded): they reach cablesim as written.
@@ -582,7 +585,9 @@ for a in "$@"; do
       rm -f "$stamp"
       exit 1
     fi
-    echo "merged: study.csv, members.csv, study.json in $OUT"
+    files="study.csv, members.csv, study.json"
+    if [ -f "$OUT/fatigue.csv" ]; then files="$files, fatigue.csv"; fi
+    echo "merged: $files in $OUT"
   fi
 done
 rm -f "$stamp"
