@@ -14,8 +14,9 @@
 // body's point at step n and leaves the node's force and mass block at step n in
 // node_out (and reactions[c].x: the mass block's yz); then `free_bodies`, one
 // invocation per body, lumps its held nodes in, solves the 6x6 (free) or 3x3 (pinned)
-// equations about the centre of gravity or the pin, steps symplectic Euler, and writes
-// the body's row that the held nodes' targets read at the next step (body_point); then
+// equations about the centre of gravity or the pin, steps symplectic Euler, writes
+// the body's row that the held nodes' targets read at the next step (body_point), and
+// places its held nodes at their points with their points' velocities; then
 // `line_failures`, one invocation per failure, fires the failures due and marks their
 // constraints released (reactions[c].w = 1), after which node_accel treats the node as
 // free and the body lumps it no more.
@@ -481,6 +482,21 @@ fn free_body_step(b: u32, k: u32) {
     fb_set3(o + 15u, aref);
     fb_set3(o + 18u, w);
     fb_set3(o + 21u, alpha);
+    // The held nodes placed rigidly at their points with the points' velocities
+    // (cpu::free::FreeRun::step): the next step's element pass reads them there.
+    let row = body_row_at(o + FREE_ROW);
+    let hs = u32(body_rows[c + 113u]);
+    let hn = u32(body_rows[c + 114u]);
+    for (var h = 0u; h < hn; h += 1u) {
+        let rc = u32(body_rows[hs + h]);
+        if !node_held(rc) {
+            continue;
+        }
+        let q = routes[rc];
+        let t = body_point(q, row);
+        let rr = add_compensated(t.r_hi, vec3<R>(R(0.0)), t.r_lo);
+        state[q.node] = NodeState(vec4<R>(rr[0], R(0.0)), vec4<R>(rr[1], R(0.0)), vec4<R>(t.v, R(0.0)));
+    }
 }
 
 // The elastic tension of element `e` (cpu::free::end_tension): EA times its strain,
