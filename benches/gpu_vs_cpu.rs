@@ -111,7 +111,11 @@ rotational_drag = [20.0, 20.0, 10.0]
             let a = (120.0 * k as f64).to_radians();
             let (c, sn) = (a.cos(), a.sin());
             let end = if free {
-                format!("{{ body = \"b{j}\", at = [{}, {}, -1.0] }}", 1.5 * c, 1.5 * sn)
+                format!(
+                    "{{ body = \"b{j}\", at = [{}, {}, -1.0] }}",
+                    1.5 * c,
+                    1.5 * sn
+                )
             } else {
                 format!(
                     "{{ fixed = [{}, {}, -21.0] }}",
@@ -398,7 +402,13 @@ fn main() {
             continue;
         };
         let nodes = nc * 3 * (segments + 1);
-        let names = ["CPU all cores", "GPU f32 fused", "GPU f32 two-pass", "GPU f64 fused", "GPU f64 two-pass"];
+        let names = [
+            "CPU all cores",
+            "GPU f32 fused",
+            "GPU f32 two-pass",
+            "GPU f64 fused",
+            "GPU f64 two-pass",
+        ];
         for k in 0..5 {
             if t[k].is_nan() || f[k].is_nan() {
                 continue;

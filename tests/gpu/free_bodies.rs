@@ -164,7 +164,11 @@ fn parity(p: Precision) {
     advance_unevenly(steps, |n| cpu.advance(n).unwrap());
     let c = Snapshot::cpu("CPU f64", &mut cpu);
     let cpu_fail = cpu.failure_events();
-    assert_eq!(cpu_fail.len(), 2, "{name}: both failures fire: {cpu_fail:?}");
+    assert_eq!(
+        cpu_fail.len(),
+        2,
+        "{name}: both failures fire: {cpu_fail:?}"
+    );
     let cpu_bodies = cpu.dynamic_bodies();
     // The bodies moved by far more than any tolerance below.
     let b0 = &cpu_bodies[0].state;
@@ -185,9 +189,16 @@ fn parity(p: Precision) {
         // The failures: the same step, the same trigger, the tension within the
         // tension tolerance below.
         let gpu_fail = gpu.failure_events();
-        assert_eq!(gpu_fail.len(), cpu_fail.len(), "{name} {label}: {gpu_fail:?}");
+        assert_eq!(
+            gpu_fail.len(),
+            cpu_fail.len(),
+            "{name} {label}: {gpu_fail:?}"
+        );
         for (a, b) in gpu_fail.iter().zip(&cpu_fail) {
-            assert_eq!((&a.cable, &a.end, &a.trigger), (&b.cable, &b.end, &b.trigger));
+            assert_eq!(
+                (&a.cable, &a.end, &a.trigger),
+                (&b.cable, &b.end, &b.trigger)
+            );
             assert!(
                 (a.time - b.time).abs() < 0.5 * opts.dt,
                 "{name} {label}: {a:?} against {b:?}"
@@ -203,7 +214,8 @@ fn parity(p: Precision) {
         let check = Check::new(&name, &lay, &g, &c);
         match p {
             Precision::F64 => {
-                let bounds = RoundOff::new(&lay, &c, steps, f64::EPSILON, ea, l0_min, 2.0 / bound.dt);
+                let bounds =
+                    RoundOff::new(&lay, &c, steps, f64::EPSILON, ea, l0_min, 2.0 / bound.dt);
                 let d = bounds.check(&name, &lay, &g, &c);
                 eprintln!("{name} ({label}): {}", d.report(&lay));
                 for (a, b) in gb.iter().zip(&cpu_bodies) {
@@ -211,9 +223,20 @@ fn parity(p: Precision) {
                     let da = (0..3)
                         .map(|k| (a.angles[k] - b.angles[k]).abs())
                         .fold(0.0, f64::max);
-                    eprintln!("{name} ({label}): body '{}': |dx| {dx:.3e} m, |dangle| {da:.3e} rad", b.body.name);
-                    assert!(dx <= bounds.r, "{name} ({label}): body '{}' off by {dx:e} m", b.body.name);
-                    assert!(da <= bounds.r, "{name} ({label}): body '{}' turned by {da:e} rad", b.body.name);
+                    eprintln!(
+                        "{name} ({label}): body '{}': |dx| {dx:.3e} m, |dangle| {da:.3e} rad",
+                        b.body.name
+                    );
+                    assert!(
+                        dx <= bounds.r,
+                        "{name} ({label}): body '{}' off by {dx:e} m",
+                        b.body.name
+                    );
+                    assert!(
+                        da <= bounds.r,
+                        "{name} ({label}): body '{}' turned by {da:e} rad",
+                        b.body.name
+                    );
                 }
             }
             Precision::F32 => {
@@ -223,7 +246,11 @@ fn parity(p: Precision) {
                 for (a, b) in gb.iter().zip(&cpu_bodies) {
                     let dx = dist(a.state.x.to_f64(), b.state.x.to_f64());
                     eprintln!("{name} ({label}): body '{}': |dx| {dx:.3e} m", b.body.name);
-                    assert!(dx <= 1e-4 * lmin, "{name} ({label}): body '{}' off by {dx:e} m", b.body.name);
+                    assert!(
+                        dx <= 1e-4 * lmin,
+                        "{name} ({label}): body '{}' off by {dx:e} m",
+                        b.body.name
+                    );
                 }
             }
         }
@@ -261,7 +288,11 @@ fn rows(path: &Path) -> Vec<Vec<f64>> {
         .unwrap()
         .lines()
         .skip(1)
-        .map(|l| l.split(',').map(|x| x.parse().unwrap_or(f64::NAN)).collect())
+        .map(|l| {
+            l.split(',')
+                .map(|x| x.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
         .collect()
 }
 
@@ -273,8 +304,16 @@ fn a_scenario_with_free_bodies_and_failures_writes_the_same_outputs_on_the_gpu()
     };
     let dir = tempfile::tempdir().unwrap();
     let sc = load(dir.path(), &scenario(0.75, 0.3, 330.0));
-    run_on(&sc, &dir.path().join("cpu"), cablesim::scenario::Backend::Cpu);
-    run_on(&sc, &dir.path().join("gpu"), cablesim::scenario::Backend::Gpu);
+    run_on(
+        &sc,
+        &dir.path().join("cpu"),
+        cablesim::scenario::Backend::Cpu,
+    );
+    run_on(
+        &sc,
+        &dir.path().join("gpu"),
+        cablesim::scenario::Backend::Gpu,
+    );
     let (a, b) = (
         rows(&dir.path().join("cpu/bodies.csv")),
         rows(&dir.path().join("gpu/bodies.csv")),
@@ -287,7 +326,10 @@ fn a_scenario_with_free_bodies_and_failures_writes_the_same_outputs_on_the_gpu()
         // Pose (x, y, z, roll, pitch, yaw) and velocities.
         for k in (2..8).chain(14..20) {
             worst = worst.max((x[k] - y[k]).abs());
-            assert!((x[k] - y[k]).abs() < 1e-6, "{name}: column {k}: {x:?} against {y:?}");
+            assert!(
+                (x[k] - y[k]).abs() < 1e-6,
+                "{name}: column {k}: {x:?} against {y:?}"
+            );
         }
     }
     eprintln!("{name}: bodies.csv within {worst:.3e}");
@@ -306,7 +348,10 @@ fn a_scenario_with_free_bodies_and_failures_writes_the_same_outputs_on_the_gpu()
         assert_eq!(x["end"], y["end"]);
         assert_eq!(x["trigger"], y["trigger"]);
         assert_eq!(x["time"], y["time"]);
-        let (tx, ty) = (x["tension"].as_f64().unwrap(), y["tension"].as_f64().unwrap());
+        let (tx, ty) = (
+            x["tension"].as_f64().unwrap(),
+            y["tension"].as_f64().unwrap(),
+        );
         assert!((tx - ty).abs() < 1e-6 * tx, "{x} against {y}");
     }
 }

@@ -100,7 +100,11 @@ fn check<R: GpuReal>(ctx: &GpuContext, p: Precision) {
             inertia: sym3(&mut rng, 0.5 * mass..1.5 * mass, 0.05 * mass),
             volume: rng.gen_range(0.0..4.0),
             cb: rv(&mut rng, 0.3),
-            waterplane_area: if i % 2 == 0 { rng.gen_range(0.5..3.0) } else { 0.0 },
+            waterplane_area: if i % 2 == 0 {
+                rng.gen_range(0.5..3.0)
+            } else {
+                0.0
+            },
             waterplane_inertia: [rng.gen_range(0.0..2.0), rng.gen_range(0.0..2.0)],
             added_mass: added,
             drag_area: rv(&mut rng, 1.0).map(|x| x.abs() * 3.0),
@@ -130,8 +134,9 @@ fn check<R: GpuReal>(ctx: &GpuContext, p: Precision) {
         b.x_g += nalgebra::Vector3::from(rv(&mut rng, 2.0));
         b.v_g = nalgebra::Vector3::from(rv(&mut rng, 1.0));
         b.w = nalgebra::Vector3::from(rv(&mut rng, 0.5));
-        b.q = nalgebra::UnitQuaternion::from_scaled_axis(nalgebra::Vector3::from(rv(&mut rng, 0.4)))
-            * b.q;
+        b.q =
+            nalgebra::UnitQuaternion::from_scaled_axis(nalgebra::Vector3::from(rv(&mut rng, 0.4)))
+                * b.q;
         let pin = Pin {
             x: (xr + nalgebra::Vector3::from(rv(&mut rng, 1.0))).into(),
             v: rv(&mut rng, 1.0),
