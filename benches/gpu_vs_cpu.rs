@@ -70,6 +70,7 @@ fn buoys(n: usize, segments: usize, free: bool) -> (cablesim::model::Layout, Vec
         r#"
 [simulation]
 duration = 1.0
+output_interval = 1.0
 backend = "cpu"
 
 [environment]
