@@ -21,6 +21,14 @@
 //! JONSWAP sea, Hs 4 m, Tp 9 s, in 100 m of water, as `benches/waves.rs`: through each
 //! path's kinematics cache at its default tolerance).
 //!
+//! `--buoys LIST` (e.g. `--buoys 1000`) runs a fleet of moored buoys instead: each a free
+//! rigid body (`motion = "free"`, the buoy of `examples/moored_buoy.toml`) on three
+//! lines of `--segments` elements (default here 20), the buoys 200 m apart, every buoy
+//! one body of the one dispatch of the GPU's body stage; each size is followed by a
+//! row of the same lines with their fairleads fixed where the buoy holds them (the
+//! `fixed` row), so that a free body's cost per step is the difference of the two
+//! rows' wall times per step over the number of buoys (printed as "a body costs").
+//!
 //! The model is `benches/common`'s fleet: copies of the catenary example's line, each
 //! between its anchor and fairlead, starting straight in a 0.5 m/s current, so tension,
 //! drag and seabed contact are all active. Each figure is nodes x steps / wall seconds
@@ -51,6 +59,89 @@ struct Args {
     steps: Option<u64>,
     /// Run in a 200-component JONSWAP sea.
     waves: bool,
+    /// Fleets of moored free buoys (three lines each) instead of the cables.
+    buoys: Vec<usize>,
+}
+
+/// `n` buoys on three lines of `segments` elements each (free bodies), or, with
+/// `free` false, the same lines with their fairleads fixed where the buoys hold them.
+fn buoys(n: usize, segments: usize, free: bool) -> (cablesim::model::Layout, Vec<[f64; 3]>) {
+    let mut s = String::from(
+        r#"
+[simulation]
+duration = 1.0
+output_interval = 1.0
+backend = "cpu"
+
+[environment]
+depth = 50.0
+current = [0.3, 0.0, 0.0]
+
+[[line_types]]
+name = "chain"
+diameter = 0.05
+mass_per_length = 2.5
+ea = 1.0e7
+damping = 2.0e-3
+cn = 1.2
+ct = 0.2
+cm = 1.0
+"#,
+    );
+    for j in 0..n {
+        let (x0, y0) = ((j % 32) as f64 * 200.0, (j / 32) as f64 * 200.0);
+        if free {
+            s += &format!(
+                r#"
+[[bodies]]
+name = "b{j}"
+motion = "free"
+reference = [{x0}, {y0}, -20.0]
+offset = [1.0, 0.0, 0.0]
+mass = 2000.0
+cg = [0.0, 0.0, -0.5]
+inertia = [2000.0, 2000.0, 3000.0]
+volume = 3.0
+ca = [1.0, 1.0, 1.0]
+drag_area = [2.0, 2.0, 2.0]
+rotational_drag = [20.0, 20.0, 10.0]
+"#
+            );
+        }
+        for k in 0..3 {
+            let a = (120.0 * k as f64).to_radians();
+            let (c, sn) = (a.cos(), a.sin());
+            let end = if free {
+                format!(
+                    "{{ body = \"b{j}\", at = [{}, {}, -1.0] }}",
+                    1.5 * c,
+                    1.5 * sn
+                )
+            } else {
+                format!(
+                    "{{ fixed = [{}, {}, -21.0] }}",
+                    x0 + 1.0 + 1.5 * c,
+                    y0 + 1.5 * sn
+                )
+            };
+            s += &format!(
+                r#"
+[[cables]]
+name = "b{j}_{k}"
+line_type = "chain"
+length = 68.0
+segments = {segments}
+start = {{ fixed = [{}, {}, -50.0] }}
+end = {end}
+"#,
+                x0 + 60.0 * c,
+                y0 + 60.0 * sn
+            );
+        }
+    }
+    let sc = cablesim::scenario::Scenario::parse(&s, std::path::Path::new("buoys.toml")).unwrap();
+    let (lay, pos, _) = cablesim::sim::prepare(&sc).unwrap();
+    (lay, pos)
 }
 
 /// The sea of `--waves` (the one of `benches/waves.rs`).
@@ -86,6 +177,7 @@ fn args() -> Args {
         dt: 1e-4,
         steps: None,
         waves: false,
+        buoys: Vec::new(),
     };
     let argv: Vec<String> = std::env::args().skip(1).collect();
     let mut i = 0;
@@ -100,6 +192,7 @@ fn args() -> Args {
             "--gpu-max-nodes" => a.gpu_max_nodes = val().parse().unwrap(),
             "--dt" => a.dt = val().parse().unwrap(),
             "--steps" => a.steps = Some(val().parse().unwrap()),
+            "--buoys" => a.buoys = val().split(',').map(|x| x.parse().unwrap()).collect(),
             "--waves" => {
                 a.waves = true;
                 i += 1;
@@ -198,8 +291,27 @@ fn main() {
          CPU 1 core us/step | f32 fused us/step | f32 two-pass us/step | f64 fused us/step | f64 two-pass us/step |"
     );
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    for &nc in &a.cables {
-        let (lay, pos) = common::fleet(nc, a.segments);
+    // The cases: cables of the fleet, or buoys (free, then their lines fixed).
+    let cases: Vec<(usize, Option<bool>)> = if a.buoys.is_empty() {
+        a.cables.iter().map(|&n| (n, None)).collect()
+    } else {
+        a.buoys
+            .iter()
+            .flat_map(|&n| [(n, Some(true)), (n, Some(false))])
+            .collect()
+    };
+    let segments = if a.buoys.is_empty() || std::env::args().any(|x| x == "--segments") {
+        a.segments
+    } else {
+        20
+    };
+    // Per buoy count: us/step of the free buoys and of their fixed lines, per path.
+    let mut per_step: Vec<(usize, bool, [f64; 5])> = Vec::new();
+    for &(nc, buoy) in &cases {
+        let (lay, pos) = match buoy {
+            None => common::fleet(nc, segments),
+            Some(free) => buoys(nc, segments, free),
+        };
         let nodes = lay.n_nodes();
         let opts = SolverOptions {
             dt: a.dt,
@@ -260,8 +372,16 @@ fn main() {
         let g32tp = gpu(Precision::F32, GpuKernel::TwoPass);
         let g64 = gpu(Precision::F64, GpuKernel::Fused);
         let g64tp = gpu(Precision::F64, GpuKernel::TwoPass);
+        let label = match buoy {
+            None => format!("{nc}"),
+            Some(true) => format!("{nc} buoys"),
+            Some(false) => format!("{nc} buoys' lines, fixed"),
+        };
+        if let Some(free) = buoy {
+            per_step.push((nc, free, [cpu.1, g32.1, g32tp.1, g64.1, g64tp.1]));
+        }
         println!(
-            "| {nc} | {nodes} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} |",
+            "| {label} | {nodes} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} |",
             sci(cpu1.0),
             sci(cpu.0),
             sci(g32.0),
@@ -274,6 +394,36 @@ fn main() {
             g64.1 * 1e6,
             g64tp.1 * 1e6
         );
+    }
+    for (nc, free, t) in &per_step {
+        if !free {
+            continue;
+        }
+        let Some((_, _, f)) = per_step.iter().find(|(m, fr, _)| m == nc && !fr) else {
+            continue;
+        };
+        let nodes = nc * 3 * (segments + 1);
+        let names = [
+            "CPU all cores",
+            "GPU f32 fused",
+            "GPU f32 two-pass",
+            "GPU f64 fused",
+            "GPU f64 two-pass",
+        ];
+        for k in 0..5 {
+            if t[k].is_nan() || f[k].is_nan() {
+                continue;
+            }
+            let body = (t[k] - f[k]) / *nc as f64;
+            let node = f[k] / nodes as f64;
+            println!(
+                "{nc} buoys, {}: a body costs {:.3e} us/step, a line node {:.3e} us/step: a body = {:.1} nodes",
+                names[k],
+                body * 1e6,
+                node * 1e6,
+                body / node
+            );
+        }
     }
     if !split.is_empty() {
         println!();

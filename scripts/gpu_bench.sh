@@ -2,7 +2,10 @@
 # The GPU benchmark in one command, for a session that is lent a real GPU for a few
 # minutes: builds the `gpu_vs_cpu` bench, says which adapter wgpu picks, and prints
 # node-steps/s for the fused and two-pass kernels in f32 and f64 (and the CPU path on
-# all cores, for scale) from 1 to 100,000 cables of 51 nodes. Then the design-check
+# all cores, for scale) from 1 to 100,000 cables of 51 nodes. Then a fleet of BUOYS
+# moored free buoys (three lines of 21 nodes each; default 1000; BUOYS=0 skips it) on
+# every path, beside the same lines with fixed fairleads, and what a free body costs
+# per step in line nodes. Then the design-check
 # study on both paths (scripts/study_gpu_speed.sh: 1 to 1000 members of STUDY_DURATION
 # simulated seconds, f32 and f64, and the study's own 30 members compared with the CPU
 # run; STUDY=0 skips it). Output goes to stdout and, when $OUT is set (the device tool's
@@ -18,6 +21,7 @@ SECONDS_PER=${BENCH_SECONDS:-0.5}
 REPEATS=${REPEATS:-2}
 PATHS=${PATHS:-gpu32,gpu64,gpu32tp,gpu64tp,cpu}
 STUDY=${STUDY:-1}
+BUOYS=${BUOYS:-1000}
 STUDY_MEMBERS=${STUDY_MEMBERS:-1 10 100 1000}
 STUDY_DURATION=${STUDY_DURATION:-2}
 dest=${OUT:-}
@@ -44,6 +48,19 @@ if [ -n "$dest" ]; then
   run 2>&1 | tee "$dest/gpu_bench.md"
 else
   run
+fi
+
+if [ "$BUOYS" != 0 ]; then
+  echo "== $BUOYS moored free buoys (paths $PATHS)"
+  buoys() {
+    cargo bench --bench gpu_vs_cpu -- --buoys "$BUOYS" --paths "$PATHS" \
+      --seconds "$SECONDS_PER" --repeats "$REPEATS"
+  }
+  if [ -n "$dest" ]; then
+    buoys 2>&1 | tee "$dest/gpu_bench_buoys.md"
+  else
+    buoys
+  fi
 fi
 
 if [ "$STUDY" = 1 ]; then

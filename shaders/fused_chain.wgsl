@@ -127,6 +127,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
                 nf = gather_add(nf, wg_loads[(entry >> 1u) - blk.elem_start], entry);
             }
             nf = gather_end(i, nd, s, nf, blk, k, w);
+            free_lump_store(i, nd, nf);
             s = node_advance(nd, s, nf, R(k) * params.dt, k);
             wg_state[j] = wg_pack(s);
             let what = node_check(blk, s);

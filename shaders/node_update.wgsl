@@ -18,6 +18,7 @@ fn node_update(@builtin(global_invocation_id) gid: vec3<u32>) {
     let s = state[i];
     let tau = R(step.k) * params.dt;
     let nf = gather_node(i, nd, s, step.k);
+    free_lump_store(i, nd, nf);
     let sn = node_advance(nd, s, nf, tau, step.k);
     state[i] = sn;
     let what = node_check(blocks[nd.block], sn);
@@ -44,8 +45,11 @@ fn node_evaluate(@builtin(global_invocation_id) gid: vec3<u32>) {
     let nf = gather_node(i, nd, s, step.k);
     let a = node_accel(nd, s, nf, tau, step.k);
     node_out[i] = NodeOut(vec4<R>(nf.f, R(0.0)), vec4<R>(a, R(0.0)));
-    if nd.constraint != NO_CONSTRAINT {
+    if node_held(nd.constraint) {
         reactions[nd.constraint] = vec4<R>(nf.f - sym3_mul(nf.m, a), R(0.0));
+    } else if nd.constraint != NO_CONSTRAINT {
+        // Released by a line failure: no reaction (as on the CPU path), still released.
+        reactions[nd.constraint] = vec4<R>(R(0.0), R(0.0), R(0.0), R(1.0));
     }
 }
 
@@ -86,4 +90,26 @@ fn wave_refresh_elems(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     wave_elem_form(e, step.k);
+}
+
+// Free and pinned bodies, after the node pass of a step: one invocation per body
+// (shared/free_body.wgsl: free_body_step).
+@compute @workgroup_size(64)
+fn free_bodies(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let b = gid.x;
+    if b >= params.n_free || atomicLoad(&status.failed) != 0u {
+        return;
+    }
+    free_body_step(b, step.k);
+}
+
+// Line failures, after the bodies of a step: one invocation per failure
+// (shared/free_body.wgsl: line_failure_check).
+@compute @workgroup_size(64)
+fn line_failures(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let f = gid.x;
+    if f >= params.n_fail || atomicLoad(&status.failed) != 0u {
+        return;
+    }
+    line_failure_check(f, step.k);
 }

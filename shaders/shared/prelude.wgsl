@@ -42,6 +42,13 @@ struct Params {
     n_steps: u32,
     // Bodies: rows of `body_rows` per step.
     n_bodies: u32,
+    // Free and pinned bodies, and where their records start in `body_rows` (values of
+    // R; shared/free_body.wgsl).
+    n_free: u32,
+    free_at: u32,
+    // Line failures, and where their records start in `body_rows`.
+    n_fail: u32,
+    fail_at: u32,
     dt: R,
     alpha: R,
     beta: R,
@@ -55,6 +62,8 @@ struct Params {
     one: R,
     // Gravity, m/s^2 (the dry weight of what is above the water surface).
     gravity: R,
+    // Water density, kg/m^3 (free bodies' buoyancy and drag).
+    water_density: R,
 }
 
 // The step within the current submission (a dynamic-offset uniform). Rust: StepInfo.
@@ -318,7 +327,9 @@ struct Status {
 @group(0) @binding(14) var<storage, read_write> status: Status;
 @group(0) @binding(15) var<storage, read> route_samples: array<RouteSample>;
 @group(0) @binding(16) var<storage, read> payout: array<Payout>;
-@group(0) @binding(18) var<storage, read> body_rows: array<BodyRow>;
+// The prescribed bodies' rows per step (BodyRow after BodyRow: body_row_at), then
+// the free bodies' and line failures' records (shared/free_body.wgsl), as values.
+@group(0) @binding(18) var<storage, read_write> body_rows: array<R>;
 
 // ---- Small math ----
 
@@ -754,7 +765,11 @@ fn body_point(q: RouteParams, b: BodyRow) -> RouteState {
 fn constraint_target(c: u32, tau: R, k: u32) -> RouteState {
     let q = routes[c];
     if q.kind == ROUTE_BODY {
-        return body_point(q, body_rows[k * params.n_bodies + q.body]);
+        return body_point(q, body_row_at((k * params.n_bodies + q.body) * 24u));
+    }
+    if q.kind == ROUTE_FREE {
+        // A point on a free or pinned body: its row as the body stage left it.
+        return body_point(q, body_row_at(params.free_at + q.body * FREE_STRIDE + FREE_ROW));
     }
     return route_eval(q, tau);
 }

@@ -198,7 +198,8 @@ fn gather_node(i: u32, nd: NodeParams, s: NodeState, k: u32) -> NodeForce {
 // Baumgarte stabilisation `a = a_d - beta (v - v_d) - alpha (r - r_d)`, at `tau`
 // into the submission, its step `k`.
 fn node_accel(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R, k: u32) -> vec3<R> {
-    if nd.constraint == NO_CONSTRAINT {
+    // A constraint released by a line failure leaves its node free (node_held).
+    if !node_held(nd.constraint) {
         return sym3_solve(nf.m, nf.f);
     }
     let d = constraint_target(nd.constraint, tau, k);

@@ -80,6 +80,16 @@ pub(super) trait Engine: Send {
     fn set_kernel(&mut self, k: GpuKernel) -> Result<(), Error>;
     /// Runs in `seas` from now on (still water without components), keeping the state.
     fn set_seas(&mut self, lay: &Layout, host: &Host, seas: &SeaSet) -> Result<(), Error>;
+    /// The free bodies' and line failures' records (values of `body_rows` from
+    /// `free_at`, as f64) and the reactions' flags (one per route): what a checkpoint
+    /// keeps and the host reads after each `advance`.
+    fn read_free(&mut self) -> Result<(Vec<f64>, Vec<f64>), Error>;
+    /// Writes back what [`Engine::read_free`] read.
+    fn write_free(&mut self, rec: &[f64], flags: &[f64]);
+    /// Writes the line failures' records (values from `fail_at`), `n` of them.
+    fn write_failures(&mut self, rec: &[f64], n: usize);
+    /// Where the line failures' records start, relative to the free bodies'.
+    fn fail_offset(&self) -> usize;
     /// Replaces the layout (after a remeshing) with state `r`, `v`.
     fn install(
         &mut self,
@@ -120,6 +130,10 @@ pub(super) struct GpuEngine<R: GpuReal> {
     pipe_refresh_due: wgpu::ComputePipeline,
     /// The element part of the refresh (`wave_refresh_elems`), right after it.
     pipe_refresh_elems: wgpu::ComputePipeline,
+    /// The free bodies' stage (`free_bodies`), after the node pass of each step.
+    pipe_free: wgpu::ComputePipeline,
+    /// The line failures' check (`line_failures`), after the bodies.
+    pipe_fail: wgpu::ComputePipeline,
     /// The waves (`None`: still water).
     waves: Option<SeaSchedules>,
     /// The fused kernel's pipelines and workgroup size, or why there is none.
@@ -187,6 +201,13 @@ fn align_up(x: u64, a: u64) -> u64 {
 /// Everything on the device that depends on the layout (rebuilt at each remeshing of
 /// a winch cable); the pipelines do not.
 struct Installed<R: GpuReal> {
+    /// Free and pinned bodies.
+    n_free: usize,
+    /// Where their records, and the line failures', start in `body_rows` (values).
+    free_at: usize,
+    fail_at: usize,
+    /// Values of `body_rows`.
+    body_values: usize,
     params: Params<R>,
     buf: Buffers,
     bind_group: wgpu::BindGroup,
@@ -252,7 +273,35 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                     label: Some("step"),
                     timestamp_writes: None,
                 });
+                let bodies = self.inst.n_free > 0 || self.inst.params.n_fail > 0;
                 match (&self.pipe_fused, self.use_fused) {
+                    (Ok(fused), true) if bodies => {
+                        // Free bodies or failures couple the blocks at every step: a
+                        // fused dispatch per step, then the bodies and the failures.
+                        let pipe = fused.pick(self.waves.is_some());
+                        let mut steps = vec![0u8; (chunk * self.step_stride) as usize];
+                        for k in 0..chunk {
+                            let info = StepInfo {
+                                k: k as u32,
+                                end: k as u32 + 1,
+                                ..Default::default()
+                            };
+                            let o = (k * self.step_stride) as usize;
+                            steps[o..o + 16].copy_from_slice(bytemuck::bytes_of(&info));
+                        }
+                        ctx.queue.write_buffer(&self.inst.buf.step, 0, &steps);
+                        for k in 0..chunk {
+                            let off = (k * self.step_stride) as u32;
+                            pass.set_bind_group(0, &self.inst.bind_group, &[off]);
+                            if refresh[k as usize] {
+                                self.dispatch_refresh(&mut pass);
+                                self.timings.dispatches += 3;
+                            }
+                            pass.set_pipeline(pipe);
+                            pass.dispatch_workgroups(self.inst.n_blocks as u32, 1, 1);
+                            self.dispatch_bodies(&mut pass);
+                        }
+                    }
                     (Ok(fused), true) => {
                         let pipe = fused.pick(self.waves.is_some());
                         // One workgroup per block, stepping from one refresh of the
@@ -289,6 +338,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                             }
                             self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
                             self.dispatch(&mut pass, &self.pipe_node, self.inst.n_nodes);
+                            self.dispatch_bodies(&mut pass);
                         }
                         self.timings.dispatches += 2 * chunk;
                     }
@@ -333,6 +383,60 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
 
     fn timings(&self) -> GpuTimings {
         self.timings
+    }
+
+    fn read_free(&mut self) -> Result<(Vec<f64>, Vec<f64>), Error> {
+        let body_bytes = (self.inst.body_values.max(1) * std::mem::size_of::<R>()) as u64;
+        let react_bytes = (self.inst.n_routes.max(1) * std::mem::size_of::<[R; 4]>()) as u64;
+        let out = self.read_back(&[
+            (&self.inst.buf.body_rows, body_bytes),
+            (&self.inst.buf.reactions, react_bytes),
+        ])?;
+        let vals: Vec<R> = decode(&out[0]);
+        let react: Vec<[R; 4]> = decode(&out[1]);
+        Ok((
+            vals[self.inst.free_at.min(vals.len())..]
+                .iter()
+                .map(|x| x.f64())
+                .collect(),
+            react.iter().map(|x| x[3].f64()).collect(),
+        ))
+    }
+
+    fn write_free(&mut self, rec: &[f64], flags: &[f64]) {
+        let size = std::mem::size_of::<R>() as u64;
+        if !rec.is_empty() {
+            let v: Vec<R> = rec.iter().map(|&x| R::c(x)).collect();
+            self.ctx.queue.write_buffer(
+                &self.inst.buf.body_rows,
+                self.inst.free_at as u64 * size,
+                bytemuck::cast_slice(&v),
+            );
+        }
+        for (c, &f) in flags.iter().enumerate().take(self.inst.n_routes) {
+            self.ctx.queue.write_buffer(
+                &self.inst.buf.reactions,
+                (4 * c as u64 + 3) * size,
+                bytemuck::bytes_of(&R::c(f)),
+            );
+        }
+    }
+
+    fn write_failures(&mut self, rec: &[f64], n: usize) {
+        let size = std::mem::size_of::<R>() as u64;
+        self.inst.params.n_fail = n as u32;
+        if !rec.is_empty() {
+            let v: Vec<R> = rec.iter().map(|&x| R::c(x)).collect();
+            self.ctx.queue.write_buffer(
+                &self.inst.buf.body_rows,
+                self.inst.fail_at as u64 * size,
+                bytemuck::cast_slice(&v),
+            );
+        }
+    }
+
+    fn fail_offset(&self) -> usize {
+        self.inst.fail_at - self.inst.free_at
     }
 
     fn kernel(&self) -> GpuKernel {
@@ -426,6 +530,12 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                 label: Some("set_sea"),
             });
         enc.copy_buffer_to_buffer(&old.buf.state, 0, &self.inst.buf.state, 0, bytes);
+        // So do the free bodies, the failures and the released constraints' flags.
+        let body_bytes = (self.inst.body_values.max(1) * std::mem::size_of::<R>()) as u64;
+        enc.copy_buffer_to_buffer(&old.buf.body_rows, 0, &self.inst.buf.body_rows, 0, body_bytes);
+        let react_bytes = (self.inst.n_routes.max(1) * std::mem::size_of::<[R; 4]>()) as u64;
+        enc.copy_buffer_to_buffer(&old.buf.reactions, 0, &self.inst.buf.reactions, 0, react_bytes);
+        self.inst.params.n_fail = old.params.n_fail;
         self.ctx.queue.submit([enc.finish()]);
         self.write_routes(lay, host, 0.0);
         if let Some(e) = pollster::block_on(scope.pop()) {

@@ -36,8 +36,31 @@ pub(super) struct Host {
     pub(super) winches: Vec<AleElem>,
     /// The bodies that ends are attached to (the columns of the `body_rows` buffer).
     pub(super) bodies: Vec<Arc<Body>>,
-    /// Per route: its body's index in `bodies` (routes on bodies only; else 0).
+    /// Per route: its body's index in `bodies` (routes on prescribed bodies), or in
+    /// `free` (routes on free and pinned bodies); else 0.
     pub(super) route_body: Vec<u32>,
+    /// The free and pinned bodies (records in `body_rows` from `Params::free_at`).
+    pub(super) free: Vec<FreeHost>,
+}
+
+/// A free or pinned body on the GPU path.
+#[derive(Clone)]
+pub(super) struct FreeHost {
+    /// The body (its `Dynamic` motion holds the initial state).
+    pub(super) body: Arc<Body>,
+    /// The routes of its held nodes.
+    pub(super) routes: Vec<u32>,
+    /// A pinned body's column in the per-step rows (its pin's motion), else 0.
+    pub(super) col: u32,
+}
+
+impl FreeHost {
+    /// The initial reference point, absolute (what the records are relative to).
+    pub(super) fn xr(&self) -> [f64; 3] {
+        let d = self.body.dynamic().expect("a free body");
+        let x = d.body.reference();
+        [x.x, x.y, x.z]
+    }
 }
 
 /// `ElemParams::winch` and `NodeParams::winch` of what is not a variable element.
@@ -73,8 +96,26 @@ impl Host {
         }
         let mut bodies: Vec<Arc<Body>> = Vec::new();
         let mut route_body = vec![0u32; lay.routes.len()];
+        let mut free: Vec<FreeHost> = Vec::new();
         for (c, r) in lay.routes.iter().enumerate() {
             if let Route::Body { body, .. } = r {
+                if body.dynamic().is_some() {
+                    route_body[c] = match free.iter().position(|f| Arc::ptr_eq(&f.body, body)) {
+                        Some(i) => {
+                            free[i].routes.push(c as u32);
+                            i
+                        }
+                        None => {
+                            free.push(FreeHost {
+                                body: body.clone(),
+                                routes: vec![c as u32],
+                                col: 0,
+                            });
+                            free.len() - 1
+                        }
+                    } as u32;
+                    continue;
+                }
                 route_body[c] = match bodies.iter().position(|b| Arc::ptr_eq(b, body)) {
                     Some(i) => i,
                     None => {
@@ -102,6 +143,14 @@ impl Host {
                 winches.push(ae.clone());
             }
         }
+        // A pinned body's pin motion goes in the per-step rows, as a column after the
+        // prescribed bodies.
+        for f in &mut free {
+            if f.body.dynamic().expect("free").body.kind == crate::body::free::FreeKind::Pinned {
+                f.col = bodies.len() as u32;
+                bodies.push(f.body.clone());
+            }
+        }
         Ok(Self {
             origin,
             node_block,
@@ -111,6 +160,7 @@ impl Host {
             winches,
             bodies,
             route_body,
+            free,
         })
     }
 
@@ -177,6 +227,18 @@ pub fn rebased_route<R: GpuReal>(
         return q;
     }
     if let Route::Body { body, at } = route {
+        if let Some(d) = body.dynamic() {
+            // A free or pinned body: `p` is its initial reference point, the body's
+            // row holds its displacement since then and its whole rotation (e1 = 0).
+            q.kind = 5;
+            let x = d.body.reference();
+            let p = sub([x.x, x.y, x.z], o);
+            (q.p_hi_x, q.p_lo_x) = split(p[0]);
+            (q.p_hi_y, q.p_lo_y) = split(p[1]);
+            (q.p_hi_z, q.p_lo_z) = split(p[2]);
+            (q.e2_x, q.e2_y, q.e2_z) = (R::c(at[0]), R::c(at[1]), R::c(at[2]));
+            return q;
+        }
         q.kind = 4;
         let s = body.state(t0);
         let p = sub(attachment(&s, *at).r, o);
@@ -280,4 +342,142 @@ pub fn body_rows<R: GpuReal>(
             }
         })
         .collect()
+}
+
+/// Values of `R` per free body record (shaders/shared/free_body.wgsl: FREE_STRIDE).
+pub const FREE_STRIDE: usize = 168;
+/// Values of `R` per line failure record (FAIL_STRIDE).
+pub const FAIL_STRIDE: usize = 12;
+
+/// The row (a [`BodyRow`]) of free body `f` in state `b`: its reference point's
+/// displacement since `xr`, its rotation, the reference point's velocity and
+/// acceleration, its angular velocity and acceleration (what `free_body_step` writes).
+fn free_row(b: &crate::body::free::FreeBody, xr: [f64; 3]) -> [f64; 24] {
+    let s = b.body_state();
+    let mut row = [0.0; 24];
+    for d in 0..3 {
+        row[d] = s.x.to_f64()[d] - xr[d];
+        row[12 + d] = s.v.to_f64()[d];
+        row[15 + d] = s.a.to_f64()[d];
+        row[18 + d] = s.omega.to_f64()[d];
+        row[21 + d] = s.alpha.to_f64()[d];
+        for j in 0..3 {
+            row[3 + 3 * d + j] = s.rot[d][j];
+        }
+    }
+    row
+}
+
+/// The free bodies' records (from [`Params::free_at`]) in states `states` (one per
+/// `host.free`), then their held routes' lists; `list_at` is the value offset of the
+/// lists in `body_rows`.
+pub(super) fn free_records<R: GpuReal>(
+    host: &Host,
+    states: &[crate::body::free::FreeBody],
+    list_at: usize,
+) -> Vec<R> {
+    use crate::body::free::FreeKind;
+    let n = host.free.len();
+    let mut out = vec![0.0f64; n * FREE_STRIDE];
+    let mut lists: Vec<f64> = Vec::new();
+    let mut hi_lo: Vec<(usize, f64)> = Vec::new();
+    for (i, (f, b)) in host.free.iter().zip(states).enumerate() {
+        let o = i * FREE_STRIDE;
+        let init = &f.body.dynamic().expect("free").body;
+        let xr = f.xr();
+        let sp = &b.spec;
+        out[o..o + 24].copy_from_slice(&free_row(b, xr));
+        let s = o + 24;
+        // The centre of gravity's displacement since its initial position, split
+        // into a compensated pair below.
+        for d in 0..3 {
+            hi_lo.push((s + d, b.x_g[d] - init.x_g[d]));
+            out[s + 6 + d] = b.v_g[d];
+            out[s + 13 + d] = b.w[d];
+            out[s + 16 + d] = b.last_acc.0[d];
+            out[s + 19 + d] = b.last_acc.1[d];
+        }
+        let q = b.q.quaternion();
+        out[s + 9] = q.i;
+        out[s + 10] = q.j;
+        out[s + 11] = q.k;
+        out[s + 12] = q.w;
+        let c = o + 48;
+        out[c] = (b.kind == FreeKind::Pinned) as u8 as f64;
+        out[c + 1] = f.col as f64;
+        out[c + 2] = sp.mass;
+        out[c + 3..c + 6].copy_from_slice(&sp.cg);
+        for r in 0..3 {
+            out[c + 6 + 3 * r..c + 9 + 3 * r].copy_from_slice(&sp.inertia[r]);
+        }
+        out[c + 15] = sp.volume;
+        out[c + 16..c + 19].copy_from_slice(&sp.cb);
+        out[c + 19] = sp.waterplane_area;
+        out[c + 20..c + 22].copy_from_slice(&sp.waterplane_inertia);
+        for r in 0..6 {
+            out[c + 22 + 6 * r..c + 28 + 6 * r].copy_from_slice(&sp.added_mass[r]);
+            out[c + 64 + 6 * r..c + 70 + 6 * r].copy_from_slice(&sp.damping[r]);
+        }
+        out[c + 58..c + 61].copy_from_slice(&sp.drag_area);
+        out[c + 61..c + 64].copy_from_slice(&sp.rotational_drag);
+        out[c + 100..c + 103].copy_from_slice(&sp.force);
+        out[c + 103..c + 106].copy_from_slice(&sp.moment);
+        for d in 0..3 {
+            out[c + 106 + d] = init.x_g[d] - xr[d];
+            out[c + 109 + d] = xr[d];
+        }
+        out[c + 112] = xr[2] - b.x0[2];
+        out[c + 113] = (list_at + lists.len()) as f64;
+        out[c + 114] = f.routes.len() as f64;
+        lists.extend(f.routes.iter().map(|&r| r as f64));
+    }
+    let mut v: Vec<R> = out.iter().map(|&x| R::c(x)).collect();
+    for (at, x) in hi_lo {
+        let (h, l) = split::<R>(x);
+        v[at] = h;
+        v[at + 3] = l;
+    }
+    v.extend(lists.iter().map(|&x| R::c(x)));
+    v
+}
+
+/// Free body `f`'s state from its record `rec` (FREE_STRIDE values read back), in f64.
+pub(super) fn free_state_of<R: GpuReal>(f: &FreeHost, rec: &[R]) -> crate::body::free::FreeBody {
+    use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+    let init = &f.body.dynamic().expect("free").body;
+    let mut b = init.clone();
+    let x = |j: usize| rec[j].f64();
+    let s = 24;
+    b.x_g = init.x_g
+        + Vector3::new(
+            x(s) + x(s + 3),
+            x(s + 1) + x(s + 4),
+            x(s + 2) + x(s + 5),
+        );
+    b.v_g = Vector3::new(x(s + 6), x(s + 7), x(s + 8));
+    b.q = UnitQuaternion::new_normalize(Quaternion::new(x(s + 12), x(s + 9), x(s + 10), x(s + 11)));
+    b.w = Vector3::new(x(s + 13), x(s + 14), x(s + 15));
+    b.last_acc = (
+        Vector3::new(x(s + 16), x(s + 17), x(s + 18)),
+        Vector3::new(x(s + 19), x(s + 20), x(s + 21)),
+    );
+    b
+}
+
+/// The per-step row of pinned body `body` at `t`: its pin's displacement since `xr`,
+/// velocity and acceleration.
+pub(super) fn pin_row<R: GpuReal>(body: &Body, xr: [f64; 3], t: f64) -> BodyRow<R> {
+    let p = body.pin(t);
+    BodyRow {
+        dx: R::c(p.x[0] - xr[0]),
+        dy: R::c(p.x[1] - xr[1]),
+        dz: R::c(p.x[2] - xr[2]),
+        vx: R::c(p.v[0]),
+        vy: R::c(p.v[1]),
+        vz: R::c(p.v[2]),
+        ax: R::c(p.a[0]),
+        ay: R::c(p.a[1]),
+        az: R::c(p.a[2]),
+        ..Default::default()
+    }
 }

@@ -129,6 +129,14 @@ gpu_struct! {
         n_steps: u32,
         /// Number of bodies (rows of the `body_rows` buffer per step).
         n_bodies: u32,
+        /// Number of free and pinned bodies.
+        n_free: u32,
+        /// Where their records start in `body_rows` (values of `R`).
+        free_at: u32,
+        /// Number of line failures.
+        n_fail: u32,
+        /// Where their records start in `body_rows` (values of `R`).
+        fail_at: u32,
         /// Time step, s.
         dt: R,
         /// Baumgarte position gain, s^-2.
@@ -151,6 +159,8 @@ gpu_struct! {
         one: R,
         /// Gravity, m/s^2 (the dry weight of what is above the water surface).
         gravity: R,
+        /// Water density, kg/m^3 (free bodies).
+        water_density: R,
     }
 }
 

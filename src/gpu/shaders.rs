@@ -21,6 +21,9 @@ pub const STEP: &str = include_str!("../../shaders/shared/step.wgsl");
 /// The wave kinematics (`shaders/shared/waves.wgsl`), appended after the prelude.
 pub const WAVES: &str = include_str!("../../shaders/shared/waves.wgsl");
 
+/// Free and pinned bodies and line failures (`shaders/shared/free_body.wgsl`).
+pub const FREE_BODY: &str = include_str!("../../shaders/shared/free_body.wgsl");
+
 /// A compute stage: one WGSL file in `shaders/`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
@@ -70,6 +73,8 @@ impl Stage {
                 "wave_refresh",
                 "wave_refresh_due",
                 "wave_refresh_elems",
+                "free_bodies",
+                "line_failures",
             ],
             Stage::FusedSteps => &["fused_steps"],
         }
@@ -166,6 +171,8 @@ pub fn source_with(
     s.push('\n');
     s.push_str(WAVES);
     s.push('\n');
+    s.push_str(FREE_BODY);
+    s.push('\n');
     s.push_str(stage.body());
     s
 }
@@ -179,5 +186,7 @@ pub fn prelude(p: Precision) -> String {
     s.push_str(STEP);
     s.push('\n');
     s.push_str(WAVES);
+    s.push('\n');
+    s.push_str(FREE_BODY);
     s
 }

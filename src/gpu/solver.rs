@@ -50,14 +50,28 @@ pub use super::kernel::{fused_workgroup, GpuKernel, MAX_FUSED_WORKGROUP, STEPS_P
 
 /// What the GPU solver does not do yet, or `None`.
 pub fn unsupported(lay: &Layout, opts: &SolverOptions) -> Option<String> {
-    if let Some(b) = lay.routes.iter().find_map(|r| match r {
-        crate::model::Route::Body { body, .. } if body.dynamic().is_some() => Some(body),
-        _ => None,
-    }) {
-        return Some(format!(
-            "free or pinned bodies (body '{}'; the CPU path runs them)",
-            b.name
-        ));
+    // Free and pinned bodies run on the GPU (shaders/shared/free_body.wgsl) but for
+    // a 6x6 stiffness matrix (its rotation's logarithm) and a table of loads.
+    for r in &lay.routes {
+        let crate::model::Route::Body { body, .. } = r else {
+            continue;
+        };
+        let Some(d) = body.dynamic() else {
+            continue;
+        };
+        let sp = &d.body.spec;
+        if sp.stiffness.iter().flatten().any(|&x| x != 0.0) {
+            return Some(format!(
+                "a free body's 6x6 stiffness matrix (body '{}'; the CPU path runs it)",
+                body.name
+            ));
+        }
+        if sp.loads.is_some() {
+            return Some(format!(
+                "a free body's table of external loads (body '{}'; the CPU path runs it)",
+                body.name
+            ));
+        }
     }
     if opts.formulation != Formulation::Glmf {
         return Some(format!(
@@ -118,6 +132,21 @@ pub struct GpuSolver {
     engine: Box<dyn Engine>,
     /// Winch cables, if any.
     ale: Option<Box<AleState>>,
+    /// The free and pinned bodies' states, read back after each `advance` call (one
+    /// per `host.free`).
+    free_states: Vec<crate::body::free::FreeBody>,
+    /// Cable ends that may fail, and those that did.
+    failures: Vec<GpuFailure>,
+}
+
+/// A cable end that may fail on the GPU path.
+#[derive(Clone, Debug)]
+struct GpuFailure {
+    spec: crate::model::EndFailure,
+    node: usize,
+    elem: usize,
+    constraint: usize,
+    fired: Option<crate::model::FailureEvent>,
 }
 
 impl GpuSolver {
@@ -222,7 +251,19 @@ impl GpuSolver {
         if let Some(k) = kernel_from_env()? {
             engine.set_kernel(k)?;
         }
+        if ale.is_some() && !host.free.is_empty() {
+            return Err(Error::GpuUnsupported(
+                "winch cables and free or pinned bodies in one run are not supported yet".into(),
+            ));
+        }
+        let free_states = host
+            .free
+            .iter()
+            .map(|f| f.body.dynamic().expect("free").body.clone())
+            .collect();
         Ok(Self {
+            free_states,
+            failures: Vec::new(),
             layout,
             opts,
             precision,
@@ -315,6 +356,7 @@ impl GpuSolver {
         self.steps += nsteps;
         self.node_steps += nsteps * self.layout.n_nodes() as u64;
         self.t = self.steps as f64 * self.opts.dt;
+        self.read_free(step0)?;
         if let Some((k, node)) = failed {
             let (r, v) = self.engine.download(&self.host)?;
             let i = node as usize;
@@ -331,6 +373,161 @@ impl GpuSolver {
             }
         }
         Ok(())
+    }
+
+    /// Reads the free bodies' states and the failures' records back after an
+    /// `advance` call from step `step0` (nothing without them), logs and records the
+    /// failures that fired, and writes the unfired ones' time steps for the next call.
+    fn read_free(&mut self, step0: u64) -> Result<(), Error> {
+        if self.host.free.is_empty() && self.failures.is_empty() {
+            return Ok(());
+        }
+        let (rec, _) = self.engine.read_free()?;
+        let dyn_stride = super::host::FREE_STRIDE;
+        for (i, f) in self.host.free.iter().enumerate() {
+            self.free_states[i] =
+                super::host::free_state_of(f, &rec[i * dyn_stride..(i + 1) * dyn_stride]);
+        }
+        let fo = self.engine.fail_offset();
+        let fs = super::host::FAIL_STRIDE;
+        let mut fired = false;
+        for (j, f) in self.failures.iter_mut().enumerate() {
+            let r = &rec[fo + j * fs..fo + (j + 1) * fs];
+            if f.fired.is_some() || r[5] == 0.0 {
+                continue;
+            }
+            let t = (step0 + r[6] as u64) as f64 * self.opts.dt;
+            let tension = r[7];
+            let trigger = if r[5] == 1.0 { "time" } else { "tension" };
+            let end = if f.spec.at_start { "start" } else { "end" };
+            log::warn!(
+                "t = {t} s: cable '{}' failed at its {end} ({trigger}; end tension {tension:.6e} N): the end is free from now on (GPU)",
+                f.spec.cable
+            );
+            f.fired = Some(crate::model::FailureEvent {
+                time: t,
+                cable: f.spec.cable.clone(),
+                end: end.into(),
+                tension,
+                trigger: trigger.into(),
+            });
+            self.layout.node_constraint[f.node] = crate::model::NO_CONSTRAINT;
+            fired = true;
+        }
+        let _ = fired;
+        self.write_failures();
+        Ok(())
+    }
+
+    /// Writes the failures' records for the next `advance` call: each unfired one's
+    /// time as a step count from the call's start.
+    fn write_failures(&mut self) {
+        let fs = super::host::FAIL_STRIDE;
+        let mut rec = vec![0.0; self.failures.len() * fs];
+        for (j, f) in self.failures.iter().enumerate() {
+            let r = &mut rec[j * fs..(j + 1) * fs];
+            r[0] = f.node as f64;
+            r[1] = f.elem as f64;
+            r[2] = f.constraint as f64;
+            // The first step count n with n dt >= time (the CPU path's test, after
+            // each step, of t = n dt).
+            r[3] = match f.spec.time {
+                Some(time) => {
+                    let dt = self.opts.dt;
+                    let mut n = (time / dt).ceil().max(0.0) as u64;
+                    while (n as f64) * dt < time {
+                        n += 1;
+                    }
+                    while n > 0 && ((n - 1) as f64) * dt >= time {
+                        n -= 1;
+                    }
+                    n.saturating_sub(self.steps) as f64
+                }
+                None => -1.0,
+            };
+            r[4] = f.spec.tension.unwrap_or(0.0);
+            if let Some(e) = &f.fired {
+                r[5] = if e.trigger == "time" { 1.0 } else { 2.0 };
+            }
+        }
+        self.engine.write_failures(&rec, self.failures.len());
+    }
+
+    /// The cable ends that may fail during the run (each held by a fixed point, a
+    /// route or a body), as [`crate::cpu::CpuSolver::set_failures`]: detected on the
+    /// device after each step, read back at the end of each `advance` call. `Err`
+    /// names an end that is not held or a cable not found.
+    pub fn set_failures(&mut self, failures: &[crate::model::EndFailure]) -> Result<(), Error> {
+        let lay = &self.layout;
+        let mut out = Vec::with_capacity(failures.len());
+        for f in failures {
+            let c = lay
+                .cables
+                .iter()
+                .find(|c| c.name == f.cable)
+                .ok_or_else(|| {
+                    Error::Model(format!(
+                        "a failure names cable '{}', which the run does not have",
+                        f.cable
+                    ))
+                })?;
+            let (node, elem) = if f.at_start {
+                (c.nodes[0], c.elements[0])
+            } else {
+                (c.nodes[c.nodes.len() - 1], c.elements[c.elements.len() - 1])
+            };
+            let k = lay.node_constraint[node as usize];
+            if k == crate::model::NO_CONSTRAINT {
+                return Err(Error::Model(format!(
+                    "cable '{}': its {} end is not held, so it cannot fail",
+                    f.cable,
+                    if f.at_start { "start" } else { "end" }
+                )));
+            }
+            out.push(GpuFailure {
+                spec: f.clone(),
+                node: node as usize,
+                elem: elem as usize,
+                constraint: k as usize,
+                fired: None,
+            });
+        }
+        if out.len() > lay.routes.len() {
+            return Err(Error::GpuUnsupported(format!(
+                "{} line failures on {} held ends",
+                out.len(),
+                lay.routes.len()
+            )));
+        }
+        self.failures = out;
+        self.write_failures();
+        Ok(())
+    }
+
+    /// The failures so far, in the order they fired.
+    pub fn failure_events(&self) -> Vec<crate::model::FailureEvent> {
+        let mut v: Vec<_> = self
+            .failures
+            .iter()
+            .filter_map(|f| f.fired.clone())
+            .collect();
+        v.sort_by(|a, b| a.time.total_cmp(&b.time));
+        v
+    }
+
+    /// The free and pinned bodies' states now (as read back after the last `advance`
+    /// call; empty without).
+    pub fn dynamic_bodies(&self) -> Vec<crate::body::output::DynamicState> {
+        self.host
+            .free
+            .iter()
+            .zip(&self.free_states)
+            .map(|(f, s)| crate::body::output::DynamicState {
+                body: f.body.clone(),
+                state: s.body_state(),
+                angles: s.angles(),
+            })
+            .collect()
     }
 
     /// Runs in the sea state `sea` from now on (still water when it has no
@@ -365,12 +562,25 @@ impl GpuSolver {
                 remeshes: self.remeshes,
             })
         });
+        let free = if self.host.free.is_empty() && self.failures.is_empty() {
+            None
+        } else {
+            let (rec, flags) = self.engine.read_free()?;
+            Some(Box::new(SavedFree {
+                rec,
+                flags,
+                states: self.free_states.clone(),
+                failures: self.failures.clone(),
+                constraints: self.layout.node_constraint.clone(),
+            }))
+        };
         Ok(GpuCheckpoint {
             steps: self.steps,
             node_steps: self.node_steps,
             r,
             v,
             mesh,
+            free,
         })
     }
 
@@ -391,6 +601,14 @@ impl GpuSolver {
         self.node_steps = cp.node_steps;
         self.t = self.steps as f64 * self.opts.dt;
         self.engine.upload(&self.host, &cp.r, &cp.v);
+        if let Some(f) = &cp.free {
+            self.engine.write_free(&f.rec, &f.flags);
+            self.free_states.clone_from(&f.states);
+            self.failures.clone_from(&f.failures);
+            self.layout.node_constraint.clone_from(&f.constraints);
+            // The unfired failures' steps counted from the next call's start.
+            self.write_failures();
+        }
         // The cache holds values for times ahead of the state now: it starts afresh
         // (so a replay agrees with the first pass within the cache's tolerance).
         self.engine.restart_waves();
@@ -457,6 +675,17 @@ pub struct GpuCheckpoint {
     v: Vec<[f64; 3]>,
     /// With winches: the mesh then.
     mesh: Option<Box<SavedMesh>>,
+    /// With free bodies or failures: their records then.
+    free: Option<Box<SavedFree>>,
+}
+
+/// The free bodies' and failures' side of a checkpoint.
+struct SavedFree {
+    rec: Vec<f64>,
+    flags: Vec<f64>,
+    states: Vec<crate::body::free::FreeBody>,
+    failures: Vec<GpuFailure>,
+    constraints: Vec<u32>,
 }
 
 /// The host's side of a winch run's mesh at a checkpoint.

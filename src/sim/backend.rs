@@ -52,14 +52,7 @@ pub fn choose_backend(
     let unsupported = || {
         crate::gpu::solver::unsupported(lay, opts)
             .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
-            .or_else(|| {
-                sc.failures.first().map(|f| {
-                    format!(
-                        "line failures (cable '{}'; the CPU path runs them)",
-                        f.cable
-                    )
-                })
-            })
+
     };
     let need_f64 = precision == Some(Precision::F64);
     let p = precision.unwrap_or_default();
@@ -170,7 +163,9 @@ impl LumpedStepper {
                 GpuSolver::with_winches(&ctx, sc.model.clone(), sc.winches.clone(), pos, opts, p)?,
             ),
             BackendChoice::Gpu(ctx, p) => {
-                LumpedStepper::Gpu(GpuSolver::new(&ctx, lay, pos, opts, p)?)
+                let mut g = GpuSolver::new(&ctx, lay, pos, opts, p)?;
+                g.set_failures(&sc.failures)?;
+                LumpedStepper::Gpu(g)
             }
         };
         match &mut s {
@@ -366,19 +361,19 @@ impl LumpedStepper {
         ))
     }
 
-    /// The free and pinned bodies' states now (the CPU path steps them).
+    /// The free and pinned bodies' states now (both paths step them).
     fn dynamic_bodies(&self) -> Vec<crate::body::output::DynamicState> {
         match self {
             LumpedStepper::Cpu(s) => s.dynamic_bodies(),
-            LumpedStepper::Gpu(_) => Vec::new(),
+            LumpedStepper::Gpu(s) => s.dynamic_bodies(),
         }
     }
 
-    /// The line failures so far (the CPU path runs them).
+    /// The line failures so far (both paths run them).
     pub fn failure_events(&self) -> Vec<crate::model::FailureEvent> {
         match self {
             LumpedStepper::Cpu(s) => s.failure_events(),
-            LumpedStepper::Gpu(_) => Vec::new(),
+            LumpedStepper::Gpu(s) => s.failure_events(),
         }
     }
 

@@ -40,7 +40,7 @@ fn t_body(@builtin(global_invocation_id) gid: vec3<u32>) {
     if i >= arrayLength(&tout) / 12u {
         return;
     }
-    let s = body_point(routes[i], body_rows[i]);
+    let s = body_point(routes[i], body_row_at(i * 24u));
     let o = i * 12u;
     tout[o] = s.r_hi.x;
     tout[o + 1u] = s.r_hi.y;

@@ -21,6 +21,7 @@ use cablesim::physics::{
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+mod free_body;
 mod routes;
 use routes::*;
 

@@ -19,6 +19,7 @@ mod backend;
 mod bodies;
 mod compare;
 mod examples_waves;
+mod free_bodies;
 mod f32_vs_f64;
 mod froude_krylov;
 mod functions;

@@ -12,7 +12,10 @@ use super::{
 };
 use crate::error::Error;
 use crate::gpu::context::GpuContext;
-use crate::gpu::host::{body_rows, rebased_route, route_samples, split, Host};
+use crate::gpu::host::{
+    body_rows, free_records, pin_row, rebased_route, route_samples, split, Host, FAIL_STRIDE,
+    FREE_STRIDE,
+};
 use crate::gpu::kernel::{fused_workgroup, STEPS_PER_SUBMISSION, WORKGROUP};
 use crate::gpu::layout::*;
 use crate::gpu::shaders::{self, Stage};
@@ -112,7 +115,9 @@ impl<R: GpuReal> GpuEngine<R> {
         // The wave components, bodies, the waves' cache, per-step rows and the
         // elements' cache.
         entries.push(storage(17, true));
-        entries.push(storage(18, true));
+        // The bodies' rows, and the free bodies' and line failures' records (written by
+        // the body stage).
+        entries.push(storage(18, false));
         entries.push(storage(19, false));
         entries.push(storage(20, true));
         entries.push(storage(21, false));
@@ -154,6 +159,8 @@ impl<R: GpuReal> GpuEngine<R> {
         let pipe_refresh = pipeline(&m_node, "wave_refresh");
         let pipe_refresh_due = pipeline(&m_node, "wave_refresh_due");
         let pipe_refresh_elems = pipeline(&m_node, "wave_refresh_elems");
+        let pipe_free = pipeline(&m_node, "free_bodies");
+        let pipe_fail = pipeline(&m_node, "line_failures");
         // The fused kernel for still water here; set_seas adds the one with the waves'
         // code when a sea has waves (shaders::header_with).
         let pipe_fused = fused_workgroup(lay, precision, &ctx.limits, !host.winches.is_empty())
@@ -181,6 +188,8 @@ impl<R: GpuReal> GpuEngine<R> {
             pipe_refresh,
             pipe_refresh_due,
             pipe_refresh_elems,
+            pipe_free,
+            pipe_fail,
             waves: None,
             pipe_fused,
             pipe_layout: pl,
@@ -238,6 +247,14 @@ impl<R: GpuReal> GpuEngine<R> {
         let env = &lay.env;
         let seabed = env.depth.is_finite();
         let n_winch = host.winches.len();
+        // body_rows: the per-step rows (one more step than a submission: a pinned
+        // body reads its pin at the step's end), the free bodies' records and held
+        // routes' lists, room for a failure per route.
+        let free_at = (STEPS_PER_SUBMISSION as usize + 1) * host.bodies.len() * 24;
+        let n_held: usize = host.free.iter().map(|f| f.routes.len()).sum();
+        let list_at = free_at + host.free.len() * FREE_STRIDE;
+        let fail_at = list_at + n_held;
+        let body_values = fail_at + lay.routes.len() * FAIL_STRIDE;
         let params = Params::<R> {
             n_nodes: lay.n_nodes() as u32,
             n_elems: lay.n_elements() as u32,
@@ -247,6 +264,10 @@ impl<R: GpuReal> GpuEngine<R> {
             n_winch: n_winch as u32,
             n_steps: 0,
             n_bodies: host.bodies.len() as u32,
+            n_free: host.free.len() as u32,
+            free_at: free_at as u32,
+            n_fail: 0,
+            fail_at: fail_at as u32,
             dt: R::c(opts.dt),
             alpha: R::c(opts.baumgarte.alpha),
             beta: R::c(opts.baumgarte.beta),
@@ -258,6 +279,7 @@ impl<R: GpuReal> GpuEngine<R> {
             seabed_v_eps: R::c(env.seabed.friction_velocity),
             one: R::c(1.0),
             gravity: R::c(env.gravity),
+            water_density: R::c(env.water_density),
         };
         let lines: Vec<LineParams<R>> = lay
             .line_coefs
@@ -370,9 +392,18 @@ impl<R: GpuReal> GpuEngine<R> {
         let react_bytes = (n_routes.max(1) * std::mem::size_of::<[R; 4]>()) as u64;
         let payout_bytes = ((STEPS_PER_SUBMISSION as usize * n_winch).max(1)
             * std::mem::size_of::<Payout<R>>()) as u64;
-        let body_bytes = ((STEPS_PER_SUBMISSION as usize * host.bodies.len()).max(1)
-            * std::mem::size_of::<BodyRow<R>>()) as u64;
-        let staging_bytes = [state_bytes, loads_bytes, out_bytes, react_bytes, 16]
+        let body_bytes = (body_values.max(1) * std::mem::size_of::<R>()) as u64;
+        let mut body_init = vec![R::c(0.0); body_values.max(1)];
+        if !host.free.is_empty() {
+            let states: Vec<_> = host
+                .free
+                .iter()
+                .map(|f| f.body.dynamic().expect("free").body.clone())
+                .collect();
+            let rec = free_records::<R>(host, &states, list_at);
+            body_init[free_at..free_at + rec.len()].copy_from_slice(&rec);
+        }
+        let staging_bytes = [state_bytes, loads_bytes, out_bytes, react_bytes, 16, body_bytes]
             .iter()
             .map(|&b| align_up(b, 256))
             .sum();
@@ -391,7 +422,7 @@ impl<R: GpuReal> GpuEngine<R> {
             reactions: init("reactions", &zeros(react_bytes), rw),
             status: init("status", &zeros(std::mem::size_of::<Status>() as u64), rw),
             payout: init("payout", &zeros(payout_bytes), ro | U::COPY_DST),
-            body_rows: init("body_rows", &zeros(body_bytes), ro | U::COPY_DST),
+            body_rows: init("body_rows", bytemuck::cast_slice(&body_init), rw),
             wave_comps: init(
                 "wave_comps",
                 &zeros((n_comps.max(1) * std::mem::size_of::<WaveComp<R>>()) as u64),
@@ -501,6 +532,10 @@ impl<R: GpuReal> GpuEngine<R> {
             ],
         });
         Installed {
+            n_free: host.free.len(),
+            free_at,
+            fail_at,
+            body_values,
             params,
             buf,
             wave_cache: cache_b,
@@ -551,18 +586,25 @@ impl<R: GpuReal> GpuEngine<R> {
         let dt = self.dt64;
         // Bodies in parallel (a packed study has one per member); each row a function
         // of its time alone, so the rows do not depend on the thread count.
+        // One row more than the steps: a pinned body reads its pin at each step's end.
         let per_body: Vec<Vec<BodyRow<R>>> = host
             .bodies
             .par_iter()
-            .map(|b| {
-                body_rows(
+            .map(|b| match host.free.iter().find(|f| std::sync::Arc::ptr_eq(&f.body, b)) {
+                Some(f) => {
+                    let xr = f.xr();
+                    (0..=n)
+                        .map(|k| pin_row(b, xr, (step0 + k) as f64 * dt))
+                        .collect()
+                }
+                None => body_rows(
                     b,
                     step0 as f64 * dt,
-                    (0..n).map(|k| (step0 + k) as f64 * dt),
-                )
+                    (0..=n).map(|k| (step0 + k) as f64 * dt),
+                ),
             })
             .collect();
-        let rows: Vec<BodyRow<R>> = (0..n as usize)
+        let rows: Vec<BodyRow<R>> = (0..=n as usize)
             .flat_map(|k| per_body.iter().map(move |b| b[k]))
             .collect();
         self.ctx
@@ -637,6 +679,17 @@ impl<R: GpuReal> GpuEngine<R> {
     ) {
         pass.set_pipeline(pipe);
         pass.dispatch_workgroups((n as u32).div_ceil(WORKGROUP).max(1), 1, 1);
+    }
+
+    /// The free bodies' stage and the line failures' check after a step's node pass
+    /// (nothing without them).
+    pub(super) fn dispatch_bodies(&self, pass: &mut wgpu::ComputePass<'_>) {
+        if self.inst.n_free > 0 {
+            self.dispatch(pass, &self.pipe_free, self.inst.n_free);
+        }
+        if self.inst.params.n_fail > 0 {
+            self.dispatch(pass, &self.pipe_fail, self.inst.params.n_fail as usize);
+        }
     }
 
     /// The waves' refresh: the nodes' decisions, putting their evaluations on a work

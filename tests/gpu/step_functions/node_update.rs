@@ -123,6 +123,8 @@ pub(super) fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mu
         (4, bytes(&nodes)),
         (6, bytes(&routes)),
         (15, bytes(&samples)),
+        // The released flags `node_held` reads (no line failures here: never read).
+        (13, bytes(&[R::c(0.0); 4])),
         // The body rows `constraint_target` reads (none of these routes is on a body).
         (18, bytes(&[<BodyRow<R> as bytemuck::Zeroable>::zeroed()])),
     ];
