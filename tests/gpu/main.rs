@@ -27,6 +27,7 @@ mod layout;
 mod packed;
 mod parity;
 mod shaders;
+mod seabed_grid;
 mod step_functions;
 mod surface;
 mod wave_breach;
