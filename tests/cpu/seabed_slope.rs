@@ -196,8 +196,11 @@ fn ends_off_or_under_the_grid_are_errors() {
         e.contains("cables[0]") && e.contains("below the seabed") && e.contains("slope.txt"),
         "{e}"
     );
-    // The fairlead beyond the grid's last x (600 m).
-    let far = text.replace(&format!("fixed = [{SPAN:e}, 0.0"), "fixed = [650.0, 0.0");
+    // The fairlead beyond the grid's last x (600 m), the anchor on the grid.
+    let (_, on) = slope_case(10, 0.0, "under");
+    assert!(load(&dir, &on).is_ok());
+    let far = on.replace(&format!("fixed = [{SPAN:e}, 0.0"), "fixed = [650.0, 0.0");
+    assert_ne!(far, on);
     let e = load(&dir, &far).unwrap_err();
     assert!(
         e.contains("outside the seabed grid") && e.contains("x in [-50, 600]"),
