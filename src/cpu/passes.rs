@@ -403,7 +403,11 @@ pub(super) fn node_accel_of<T: Topo>(
     extra(&mut trib, &mut f);
     // A seabed grid: contact along the local normal (its height and slopes looked up
     // once per node and stage).
-    let slope = lay.env.seabed.grid.map(|g| seabed_height(&g.packed[..], ri.x, ri.y));
+    let slope = lay
+        .env
+        .seabed
+        .grid
+        .map(|g| seabed_height(&g.packed[..], ri.x, ri.y));
     f += match slope {
         None => seabed_force(&ctx.seabed, trib, ri, vi),
         Some(g) => seabed_slope_force(&ctx.seabed, trib, ri, vi, g),

@@ -48,7 +48,10 @@ fn ticks(path: &Path, line: usize, axis: &str, n: usize, toks: &[&str]) -> Resul
         return Err(bad(
             path,
             line,
-            format!("the {axis} row has {} values; the first line says {n}", toks.len()),
+            format!(
+                "the {axis} row has {} values; the first line says {n}",
+                toks.len()
+            ),
         ));
     }
     let mut v = Vec::with_capacity(n);
@@ -85,28 +88,54 @@ impl Bathymetry {
             .filter(|(_, l)| !l.is_empty() && !l.starts_with('#') && !l.starts_with("--"));
         let toks = |l: &str| -> Vec<String> { l.split_whitespace().map(str::to_string).collect() };
         let Some((l1, first)) = lines.next() else {
-            return Err(bad(path, 1, "empty file: expected `nx ny`, the x row, the y row and `x y z` rows"));
+            return Err(bad(
+                path,
+                1,
+                "empty file: expected `nx ny`, the x row, the y row and `x y z` rows",
+            ));
         };
         let t = toks(first);
         let count = |k: usize, what: &str| -> Result<usize, Error> {
-            let s = t.get(k).ok_or_else(|| bad(path, l1, format!("expected `nx ny`, found \"{first}\"")))?;
+            let s = t
+                .get(k)
+                .ok_or_else(|| bad(path, l1, format!("expected `nx ny`, found \"{first}\"")))?;
             match s.parse::<usize>() {
                 Ok(n) if n >= 1 => Ok(n),
-                _ => Err(bad(path, l1, format!("{what} = \"{s}\": must be a whole number of at least 1"))),
+                _ => Err(bad(
+                    path,
+                    l1,
+                    format!("{what} = \"{s}\": must be a whole number of at least 1"),
+                )),
             }
         };
         let (nx, ny) = (count(0, "nx")?, count(1, "ny")?);
         if t.len() != 2 {
-            return Err(bad(path, l1, format!("expected `nx ny`, found \"{first}\"")));
+            return Err(bad(
+                path,
+                l1,
+                format!("expected `nx ny`, found \"{first}\""),
+            ));
         }
         let Some((lx, xrow)) = lines.next() else {
             return Err(bad(path, l1 + 1, "the x row is missing"));
         };
-        let xs = ticks(path, lx, "x", nx, &xrow.split_whitespace().collect::<Vec<_>>())?;
+        let xs = ticks(
+            path,
+            lx,
+            "x",
+            nx,
+            &xrow.split_whitespace().collect::<Vec<_>>(),
+        )?;
         let Some((ly, yrow)) = lines.next() else {
             return Err(bad(path, lx + 1, "the y row is missing"));
         };
-        let ys = ticks(path, ly, "y", ny, &yrow.split_whitespace().collect::<Vec<_>>())?;
+        let ys = ticks(
+            path,
+            ly,
+            "y",
+            ny,
+            &yrow.split_whitespace().collect::<Vec<_>>(),
+        )?;
         let mut z = vec![f64::NAN; nx * ny];
         let mut given = vec![0usize; nx * ny];
         let mut last = ly;
@@ -120,16 +149,27 @@ impl Bathymetry {
             let y = number(path, l, "y", t[1])?;
             let h = number(path, l, "z", t[2])?;
             let i = index_of(&xs, x).ok_or_else(|| {
-                bad(path, l, format!("x = {x} is not one of the grid's x values (line {lx})"))
+                bad(
+                    path,
+                    l,
+                    format!("x = {x} is not one of the grid's x values (line {lx})"),
+                )
             })?;
             let j = index_of(&ys, y).ok_or_else(|| {
-                bad(path, l, format!("y = {y} is not one of the grid's y values (line {ly})"))
+                bad(
+                    path,
+                    l,
+                    format!("y = {y} is not one of the grid's y values (line {ly})"),
+                )
             })?;
             if given[i * ny + j] != 0 {
                 return Err(bad(
                     path,
                     l,
-                    format!("the point x = {x}, y = {y} is given twice (also on line {})", given[i * ny + j]),
+                    format!(
+                        "the point x = {x}, y = {y} is given twice (also on line {})",
+                        given[i * ny + j]
+                    ),
                 ));
             }
             if h > 0.0 {

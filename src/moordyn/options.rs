@@ -181,7 +181,9 @@ pub(super) fn read_options(
                     ));
                 }
             }
-            "seafloorfile" => o.seafloor = Some((seafloor_path(p, l, &r.name, val)?, val.to_string(), l)),
+            "seafloorfile" => {
+                o.seafloor = Some((seafloor_path(p, l, &r.name, val)?, val.to_string(), l))
+            }
             "unifycurrentgrid" | "writelog" | "writeunits" | "disableoutput" | "disableouttime"
             | "outswitch" | "echo" | "inertialf" | "inertialf_rampt" => {
                 o.ignored.push((r.name.clone(), l))
@@ -269,7 +271,12 @@ pub(super) fn read_current_profile(
 /// which for its own test files is a folder above the input file's; so the file is
 /// looked for from the input file's folder and each folder above it, then from the
 /// working directory. The grid is read (and checked) by the scenario that names it.
-fn seafloor_path(p: &Path, line: usize, name: &str, val: &str) -> Result<std::path::PathBuf, Error> {
+fn seafloor_path(
+    p: &Path,
+    line: usize,
+    name: &str,
+    val: &str,
+) -> Result<std::path::PathBuf, Error> {
     let val = val.trim_matches('"');
     let rel = Path::new(val);
     let mut tried = Vec::new();

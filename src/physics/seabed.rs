@@ -135,7 +135,13 @@ fn slope_normal<T: Real>(g: V3<T>) -> V3<T> {
 /// `v_t = v - (v.n) n` the regularised friction `-mu K lt p v_t / max(|v_t|, v_eps)`.
 /// On a flat seabed (`g = (z_b, 0, 0)`) it is [`seabed_force`]. Zero above the seabed.
 #[inline]
-pub fn seabed_slope_force<T: Real>(s: &SeabedCoefs<T>, lt: T, r: V3<T>, v: V3<T>, g: V3<T>) -> V3<T> {
+pub fn seabed_slope_force<T: Real>(
+    s: &SeabedCoefs<T>,
+    lt: T,
+    r: V3<T>,
+    v: V3<T>,
+    g: V3<T>,
+) -> V3<T> {
     let gap = g.x - r.z;
     if gap <= T::zero() {
         return V3::zero();
@@ -157,7 +163,13 @@ pub fn seabed_slope_force<T: Real>(s: &SeabedCoefs<T>, lt: T, r: V3<T>, v: V3<T>
 /// damping part is `-(c_t I + (c_n - c_t) n n^T) v`; zero above the seabed. The
 /// symplectic stepper adds `dt` times that matrix to the node's mass block.
 #[inline]
-pub fn seabed_slope_damping<T: Real>(s: &SeabedCoefs<T>, lt: T, r: V3<T>, v: V3<T>, g: V3<T>) -> (T, T) {
+pub fn seabed_slope_damping<T: Real>(
+    s: &SeabedCoefs<T>,
+    lt: T,
+    r: V3<T>,
+    v: V3<T>,
+    g: V3<T>,
+) -> (T, T) {
     let gap = g.x - r.z;
     if gap <= T::zero() {
         return (T::zero(), T::zero());

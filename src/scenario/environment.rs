@@ -22,7 +22,9 @@ pub(super) fn environment(p: &Path, e: &RawEnvironment) -> Result<(Environment, 
                 return Err(err(
                     p,
                     "environment.seabed_file",
-                    format!("the grid's mean height is {mean} m (lowest {low} m): no water over it"),
+                    format!(
+                        "the grid's mean height is {mean} m (lowest {low} m): no water over it"
+                    ),
                 ));
             }
             -mean

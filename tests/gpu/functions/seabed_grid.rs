@@ -82,7 +82,15 @@ pub(super) fn check_seabed_grid<R: GpuReal>(ctx: &GpuContext, p: Precision, rng:
             }
         }
         let (xr, x) = to_r::<R>(&x);
-        let out = run::<R>(ctx, p, "t_seabed_height", &grid_buffers::<R>(&g), &xr, n, 3 * n);
+        let out = run::<R>(
+            ctx,
+            p,
+            "t_seabed_height",
+            &grid_buffers::<R>(&g),
+            &xr,
+            n,
+            3 * n,
+        );
         let mut w = Worst::new::<R>("seabed_height");
         let z_scale = g[2 + nx + ny..].iter().fold(0.0f64, |a, z| a.max(z.abs()));
         let mut sloped = 0;

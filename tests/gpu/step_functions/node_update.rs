@@ -124,8 +124,14 @@ pub(super) fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mu
         (6, bytes(&routes)),
         // The blocks and the current profiles' buffer, where node_advance finds a
         // seabed grid (none here: params.seabed < 2, so they are not read).
-        (7, bytes(&[<BlockParams<R> as bytemuck::Zeroable>::zeroed()])),
-        (8, bytes(&[<CurrentPoint<R> as bytemuck::Zeroable>::zeroed()])),
+        (
+            7,
+            bytes(&[<BlockParams<R> as bytemuck::Zeroable>::zeroed()]),
+        ),
+        (
+            8,
+            bytes(&[<CurrentPoint<R> as bytemuck::Zeroable>::zeroed()]),
+        ),
         (9, bytes(&[<CurrentRange as bytemuck::Zeroable>::zeroed()])),
         (15, bytes(&samples)),
         // The body rows `constraint_target` reads (none of these routes is on a body).
