@@ -61,10 +61,24 @@ pub fn apply_with(
             let a = pos[cable.nodes[0] as usize];
             let b = pos[cable.nodes[n] as usize];
             let w = lt.wet_weight_per_length(env.gravity, env.water_density);
-            (
-                ci,
-                catenary_positions(a, b, length, n, lt.ea, w, -env.depth),
-            )
+            match env.seabed.grid {
+                None => (
+                    ci,
+                    catenary_positions(a, b, length, n, lt.ea, w, -env.depth),
+                ),
+                // A seabed grid: the catenary over a flat seabed at the grid's height
+                // under the lower end, its nodes then lifted onto the grid where they
+                // lie below it; the relaxation then lays the line on the slope.
+                Some(g) => {
+                    let low = if a[2] <= b[2] { a } else { b };
+                    let mut guess =
+                        catenary_positions(a, b, length, n, lt.ea, w, g.height(low[0], low[1]));
+                    for p in guess.iter_mut() {
+                        p[2] = p[2].max(g.height(p[0], p[1]));
+                    }
+                    (ci, guess)
+                }
+            }
         })
         .collect();
     for (ci, guess) in guesses {

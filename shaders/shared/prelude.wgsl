@@ -642,6 +642,112 @@ fn seabed_damping(pen: R, lt: R, v: vec3<R>) -> vec3<R> {
     return vec3<R>(ch, ch, cz);
 }
 
+// The seabed grid's k-th packed value ([nx, ny, x.., y.., z..], physics::seabed_height),
+// four to a row of `current_pts` from the range `current_ranges[params.seabed - 2u]`
+// (params.seabed: 0 no seabed, 1 the plane, 2 + i the grid in range i).
+fn seabed_grid_value(k: u32) -> R {
+    let p = current_pts[current_ranges[params.seabed - 2u].start + k / 4u];
+    switch k % 4u {
+        case 0u: { return p.z; }
+        case 1u: { return p.ux; }
+        case 2u: { return p.uy; }
+        default: { return p.uz; }
+    }
+}
+
+// One axis of the seabed grid (`n` ticks from packed value `off`): the cell, the
+// fraction across it and 1 / its width, or 0 outside (physics::seabed_axis).
+fn seabed_axis(off: u32, n: u32, x: R) -> vec3<R> {
+    if n < 2u || x <= seabed_grid_value(off) {
+        return vec3<R>(R(0.0), R(0.0), R(0.0));
+    }
+    if x >= seabed_grid_value(off + n - 1u) {
+        return vec3<R>(R(n - 2u), R(1.0), R(0.0));
+    }
+    var lo = 0u;
+    var hi = n - 1u;
+    while hi - lo > 1u {
+        let mid = (lo + hi) / 2u;
+        if seabed_grid_value(off + mid) <= x {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let x0 = seabed_grid_value(off + lo);
+    let inv = R(1.0) / (seabed_grid_value(off + hi) - x0);
+    return vec3<R>(R(lo), (x - x0) * inv, inv);
+}
+
+// The seabed grid at absolute (x, y): (z_b, dz_b/dx, dz_b/dy), bilinear, the edge values
+// continued flat outside (physics::seabed_height).
+fn seabed_height(x: R, y: R) -> vec3<R> {
+    let nx = u32(seabed_grid_value(0u));
+    let ny = u32(seabed_grid_value(1u));
+    let ax = seabed_axis(2u, nx, x);
+    let ay = seabed_axis(2u + nx, ny, y);
+    let i = u32(ax.x);
+    let j = u32(ay.x);
+    let z0 = 2u + nx + ny;
+    let i1 = select(i, i + 1u, nx > 1u);
+    let j1 = select(j, j + 1u, ny > 1u);
+    let z00 = seabed_grid_value(z0 + i * ny + j);
+    let z01 = seabed_grid_value(z0 + i * ny + j1);
+    let z10 = seabed_grid_value(z0 + i1 * ny + j);
+    let z11 = seabed_grid_value(z0 + i1 * ny + j1);
+    let fx = ax.y;
+    let fy = ay.y;
+    let zy0 = z00 + (z10 - z00) * fx;
+    let zy1 = z01 + (z11 - z01) * fx;
+    let z = zy0 + (zy1 - zy0) * fy;
+    let dzdx = ((z10 - z00) * (R(1.0) - fy) + (z11 - z01) * fy) * ax.z;
+    let dzdy = (zy1 - zy0) * ay.z;
+    return vec3<R>(z, dzdx, dzdy);
+}
+
+// The seabed's upward unit normal where its slopes are (g.y, g.z)
+// (physics::seabed_slope_normal).
+fn seabed_slope_normal(g: vec3<R>) -> vec3<R> {
+    let nz = R(1.0) / sqrt(R(1.0) + g.y * g.y + g.z * g.z);
+    return vec3<R>(-g.y * nz, -g.z * nz, nz);
+}
+
+// Contact with the seabed grid on a node `gap` below it (z_b - z, m), tributary length
+// `lt`, moving at `v`, the grid's height and slopes there `g` (seabed_height): along
+// the normal n, K lt gap n_z n - C lt (v.n) n, and the regularised friction on the
+// sliding velocity v - (v.n) n (physics::seabed_slope_force).
+fn seabed_slope_force(gap: R, lt: R, v: vec3<R>, g: vec3<R>) -> vec3<R> {
+    if !(gap > R(0.0)) {
+        return vec3<R>(R(0.0), R(0.0), R(0.0));
+    }
+    let n = seabed_slope_normal(g);
+    let fnorm = params.seabed_k * lt * gap * n.z;
+    let vn = dot(v, n);
+    var f = n * (fnorm - params.seabed_c * lt * vn);
+    if params.seabed_mu > R(0.0) {
+        let vt = v - n * vn;
+        let speed = max(norm3(vt), params.seabed_v_eps);
+        f += vt * (-params.seabed_mu * fnorm / speed);
+    }
+    return f;
+}
+
+// The damping slopes (c_n, c_t) of seabed_slope_force (physics::seabed_slope_damping):
+// node_advance adds dt (c_t I + (c_n - c_t) n n^T) to the mass block.
+fn seabed_slope_damping(gap: R, lt: R, v: vec3<R>, g: vec3<R>) -> vec2<R> {
+    if !(gap > R(0.0)) {
+        return vec2<R>(R(0.0), R(0.0));
+    }
+    let n = seabed_slope_normal(g);
+    var ct = R(0.0);
+    if params.seabed_mu > R(0.0) {
+        let fnorm = params.seabed_k * lt * gap * n.z;
+        let vt = v - n * dot(v, n);
+        ct = params.seabed_mu * fnorm / max(norm3(vt), params.seabed_v_eps);
+    }
+    return vec2<R>(params.seabed_c * lt, ct);
+}
+
 // Target position (relative to the origin, as a compensated pair r_hi + r_lo),
 // velocity and acceleration of a route at `tau` seconds after the rebase time.
 struct RouteState {

@@ -172,10 +172,17 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
         }
     }
     var c = nf.c;
-    if params.seabed != 0u {
+    if params.seabed == 1u {
         let pen = (blk.zb - s.r_hi.z) - s.r_lo.z;
         f += seabed_force(pen, trib, v);
         c = seabed_damping(pen, trib, v);
+    } else if params.seabed > 1u {
+        // The seabed grid: along its normal; c carries (c_n, c_t, 0), which
+        // node_advance turns into the damping matrix with the normal looked up again.
+        let g = seabed_height(blk.ox + (s.r_hi.x + s.r_lo.x), blk.oy + (s.r_hi.y + s.r_lo.y));
+        let gap = ((g.x - blk.oz) - s.r_hi.z) - s.r_lo.z;
+        f += seabed_slope_force(gap, trib, v, g);
+        c = vec3<R>(seabed_slope_damping(gap, trib, v, g), R(0.0));
     }
     return NodeForce(f, nf.m, c);
 }
@@ -213,9 +220,26 @@ fn node_accel(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R, k: u32) -> ve
 // cpu::stepper node_accel_of with implicit_dt), so it does not bound the step.
 fn node_advance(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R, k: u32) -> NodeState {
     var nfi = nf;
-    nfi.m.xx += params.dt * nf.c.x;
-    nfi.m.yy += params.dt * nf.c.y;
-    nfi.m.zz += params.dt * nf.c.z;
+    if params.seabed > 1u {
+        // The seabed grid: (M + dt (c_t I + (c_n - c_t) n n^T)) a = F, c = (c_n, c_t, 0)
+        // from gather_end (cpu::passes node_accel_of).
+        if nf.c.x > R(0.0) || nf.c.y > R(0.0) {
+            let blk = blocks[nd.block];
+            let n = seabed_slope_normal(seabed_height(blk.ox + (s.r_hi.x + s.r_lo.x), blk.oy + (s.r_hi.y + s.r_lo.y)));
+            let ct = params.dt * nf.c.y;
+            let d = params.dt * (nf.c.x - nf.c.y);
+            nfi.m.xx += ct + d * n.x * n.x;
+            nfi.m.yy += ct + d * n.y * n.y;
+            nfi.m.zz += ct + d * n.z * n.z;
+            nfi.m.xy += d * n.x * n.y;
+            nfi.m.xz += d * n.x * n.z;
+            nfi.m.yz += d * n.y * n.z;
+        }
+    } else {
+        nfi.m.xx += params.dt * nf.c.x;
+        nfi.m.yy += params.dt * nf.c.y;
+        nfi.m.zz += params.dt * nf.c.z;
+    }
     let a = node_accel(nd, s, nfi, tau, k);
     let vn = s.v.xyz + a * params.dt;
     let r = add_compensated(s.r_hi.xyz, s.r_lo.xyz, opaque3(vn * params.dt));

@@ -9,7 +9,8 @@ use crate::model::{Block, Layout, NO_CONSTRAINT};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{
-    glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force, wetted_fraction, Coefs,
+    glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force, seabed_height,
+    seabed_slope_damping, seabed_slope_force, seabed_slope_normal, wetted_fraction, Coefs,
     ElementInput, ElementLoads, SeabedCoefs,
 };
 use crate::step::{blow_up, StepFailure};
@@ -400,17 +401,40 @@ pub(super) fn node_accel_of<T: Topo>(
     }
     let mut trib = lay.node_tributary[i];
     extra(&mut trib, &mut f);
-    f += seabed_force(&ctx.seabed, trib, ri, vi);
+    // A seabed grid: contact along the local normal (its height and slopes looked up
+    // once per node and stage).
+    let slope = lay
+        .env
+        .seabed
+        .grid
+        .map(|g| seabed_height(&g.packed[..], ri.x, ri.y));
+    f += match slope {
+        None => seabed_force(&ctx.seabed, trib, ri, vi),
+        Some(g) => seabed_slope_force(&ctx.seabed, trib, ri, vi, g),
+    };
     let c = lay.node_constraint[i];
     let a = if c == NO_CONSTRAINT {
         if ctx.implicit_dt > 0.0 {
             // The seabed's damping taken implicitly (linearised at this state), so it
-            // does not bound the step: (M + dt diag(c)) a = F.
-            let cd = seabed_damping(&ctx.seabed, trib, ri, vi) * ctx.implicit_dt;
+            // does not bound the step: (M + dt diag(c)) a = F, or on a sloped seabed
+            // (M + dt (c_t I + (c_n - c_t) n n^T)) a = F.
             let mut mi = m;
-            mi.xx += cd.x;
-            mi.yy += cd.y;
-            mi.zz += cd.z;
+            match slope {
+                None => {
+                    let cd = seabed_damping(&ctx.seabed, trib, ri, vi) * ctx.implicit_dt;
+                    mi.xx += cd.x;
+                    mi.yy += cd.y;
+                    mi.zz += cd.z;
+                }
+                Some(g) => {
+                    let (cn, ct) = seabed_slope_damping(&ctx.seabed, trib, ri, vi, g);
+                    let (cn, ct) = (cn * ctx.implicit_dt, ct * ctx.implicit_dt);
+                    mi.xx += cn;
+                    mi.yy += cn;
+                    mi.zz += cn;
+                    mi.add_normal_projection(ct - cn, seabed_slope_normal(g));
+                }
+            }
             mi.solve(f)
         } else {
             m.solve(f)

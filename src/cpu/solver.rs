@@ -629,10 +629,14 @@ impl CpuSolver {
         let blocks = &self.layout.blocks;
         let chain_consts = &self.chain_consts;
         let ale_state = self.ale.as_deref();
-        let fast = self.use_chain_kernel && self.opts.formulation == Formulation::Glmf;
+        // A seabed grid takes the general passes: the fast paths' node loops know the
+        // flat seabed only (docs/src/limitations.md).
+        let flat = self.layout.env.seabed.grid.is_none();
+        let fast = self.use_chain_kernel && self.opts.formulation == Formulation::Glmf && flat;
         // The network fast path: GLMF, symplectic, no winch elements in the block.
         let net_consts = &self.net_consts;
         let net_fast = self.use_net_kernel
+            && flat
             && self.opts.formulation == Formulation::Glmf
             && self.opts.scheme == Scheme::Symplectic;
         let net_of = |bi: usize| {

@@ -118,7 +118,8 @@ gpu_struct! {
         n_elems: u32,
         /// Number of routes (constrained nodes).
         n_routes: u32,
-        /// 1 when there is a seabed plane, else 0.
+        /// 0 without a seabed, 1 for the plane, `2 + i` for a seabed grid packed in
+        /// the current profiles' range `i` (WGSL `seabed_grid_value`).
         seabed: u32,
         /// Steps taken in this `advance` call before the current submission (so a
         /// blow-up's step is `step_base + StepInfo::k`).

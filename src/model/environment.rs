@@ -20,6 +20,10 @@ pub struct Seabed {
     /// grows linearly with sliding speed instead of jumping (so a line at rest feels none).
     #[serde(default = "default_v_eps")]
     pub friction_velocity: f64,
+    /// A seabed grid (`[environment] seabed_file`): contact with it instead of the plane
+    /// `z = -depth` (docs/src/model/seabed.md). Not a key of `[environment.seabed]`.
+    #[serde(skip)]
+    pub grid: Option<&'static super::Bathymetry>,
 }
 
 fn default_k() -> f64 {
@@ -39,6 +43,7 @@ impl Default for Seabed {
             damping: default_c(),
             friction: 0.0,
             friction_velocity: default_v_eps(),
+            grid: None,
         }
     }
 }

@@ -1,5 +1,6 @@
 //! What is simulated: line types, environment, routes, and the packed layout.
 
+mod bathymetry;
 pub(crate) mod environment;
 mod failure;
 mod layout;
@@ -7,6 +8,7 @@ mod line_type;
 pub mod net;
 pub(crate) mod route;
 
+pub use bathymetry::Bathymetry;
 pub use environment::{Current, Environment, Seabed};
 pub use failure::{EndFailure, FailureEvent};
 pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};

@@ -588,11 +588,23 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         f(o.rho.0),
         src(o.rho.1, "rho")
     );
-    let _ = writeln!(
-        w,
-        "depth = {}  # m, seabed at z = -depth ({depth_note})",
-        f(depth)
-    );
+    match &o.seafloor {
+        None => {
+            let _ = writeln!(
+                w,
+                "depth = {}  # m, seabed at z = -depth ({depth_note})",
+                f(depth)
+            );
+        }
+        Some((path, val, l)) => {
+            let _ = writeln!(
+                w,
+                "# SeafloorFile = {val} (line {l}): the seabed is that grid, bilinear; the \
+                 waves' depth is its mean depth, as MoorDyn takes it."
+            );
+            let _ = writeln!(w, "seabed_file = {:?}", path.display().to_string());
+        }
+    }
     match &current {
         None if waves.is_none() => {
             let _ = writeln!(

@@ -17,6 +17,8 @@ pub(super) struct Opts {
     pub(super) cbot: (f64, usize),
     pub(super) mu: Option<(f64, usize)>,
     pub(super) mu_axial: Option<(f64, usize)>,
+    /// `SeafloorFile`: the grid file found (absolute), its value as written, its line.
+    pub(super) seafloor: Option<(std::path::PathBuf, String, usize)>,
     pub(super) fric_damp: Option<(f64, usize)>,
     pub(super) dt_out: Option<(f64, usize)>,
     pub(super) dt_m: Option<(f64, usize)>,
@@ -60,6 +62,7 @@ pub(super) fn read_options(
         cbot: (3.0e5, 0),
         mu: None,
         mu_axial: None,
+        seafloor: None,
         fric_damp: None,
         dt_out: None,
         dt_m: None,
@@ -103,8 +106,8 @@ pub(super) fn read_options(
                         l,
                         format!("option {}", r.name),
                         format!(
-                            "\"{val}\" is a bathymetry file; cablesim's seabed is a flat plane \
-                             (give the depth in metres)"
+                            "\"{val}\" is not a depth in metres: a bathymetry grid is given \
+                             by the option SeafloorFile"
                         ),
                     ))
                 }
@@ -179,12 +182,7 @@ pub(super) fn read_options(
                 }
             }
             "seafloorfile" => {
-                return Err(err_at(
-                    p,
-                    l,
-                    format!("option {}", r.name),
-                    "a 3D seafloor file is not supported: cablesim's seabed is a flat plane",
-                ))
+                o.seafloor = Some((seafloor_path(p, l, &r.name, val)?, val.to_string(), l))
             }
             "unifycurrentgrid" | "writelog" | "writeunits" | "disableoutput" | "disableouttime"
             | "outswitch" | "echo" | "inertialf" | "inertialf_rampt" => {
@@ -266,5 +264,41 @@ pub(super) fn read_current_profile(
     Ok((
         rows.into_iter().map(|r| r.0).collect(),
         file.display().to_string(),
+    ))
+}
+
+/// Where a `SeafloorFile` value points: MoorDyn opens it from its working directory,
+/// which for its own test files is a folder above the input file's; so the file is
+/// looked for from the input file's folder and each folder above it, then from the
+/// working directory. The grid is read (and checked) by the scenario that names it.
+fn seafloor_path(
+    p: &Path,
+    line: usize,
+    name: &str,
+    val: &str,
+) -> Result<std::path::PathBuf, Error> {
+    let val = val.trim_matches('"');
+    let rel = Path::new(val);
+    let mut tried = Vec::new();
+    let mut dir = p.parent();
+    while let Some(d) = dir {
+        let c = d.join(rel);
+        if c.is_file() {
+            return Ok(c.canonicalize().unwrap_or(c));
+        }
+        tried.push(c.display().to_string());
+        dir = d.parent();
+    }
+    if rel.is_file() {
+        return Ok(rel.canonicalize().unwrap_or_else(|_| rel.to_path_buf()));
+    }
+    Err(err_at(
+        p,
+        line,
+        format!("option {name}"),
+        format!(
+            "the seabed file \"{val}\" is not found (looked for {} and in the working directory)",
+            tried.join(", ")
+        ),
     ))
 }

@@ -10,5 +10,8 @@ pub use element::{
     axial_force, froude_krylov, glmf_element, glmf_element_wet, glmf_external, glmf_external_wet,
     Coefs, ElementInput, ElementLoads, ExternalLoads,
 };
-pub use seabed::{seabed_damping, seabed_force, SeabedCoefs};
+pub use seabed::{
+    seabed_damping, seabed_force, seabed_height, seabed_slope_damping, seabed_slope_force,
+    seabed_slope_normal, SeabedCoefs,
+};
 pub use surface::{point_wetted_fraction, sphere_radius, wetted_fraction};

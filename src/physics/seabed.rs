@@ -63,3 +63,129 @@ pub fn seabed_damping<T: Real>(s: &SeabedCoefs<T>, lt: T, r: V3<T>, v: V3<T>) ->
     }
     V3::new(ch, ch, cz)
 }
+
+/// One axis of a seabed grid (`n` ticks at `grid[off..off + n]`, increasing): the cell
+/// `i` whose ticks bracket `x`, the fraction `f` of the way from tick `i` to `i + 1`,
+/// and `1 / (x_{i+1} - x_i)`, or 0 outside the ticks, where `f` is clamped to 0 or 1 and
+/// the grid is continued by its edge values (no slope). A single tick: `(0, 0, 0)`.
+#[inline(always)]
+fn seabed_axis<T: Real>(grid: &[T], off: usize, n: usize, x: T) -> (usize, T, T) {
+    if n < 2 {
+        return (0, T::zero(), T::zero());
+    }
+    if x <= grid[off] {
+        return (0, T::zero(), T::zero());
+    }
+    if x >= grid[off + n - 1] {
+        return (n - 2, T::one(), T::zero());
+    }
+    // Bisection: ticks[lo] <= x < ticks[hi].
+    let (mut lo, mut hi) = (0usize, n - 1);
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        if grid[off + mid] <= x {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let inv = T::one() / (grid[off + hi] - grid[off + lo]);
+    (lo, (x - grid[off + lo]) * inv, inv)
+}
+
+/// The seabed of a grid at `(x, y)`: `(z_b, dz_b/dx, dz_b/dy)`, bilinear between the
+/// grid points, the edge values continued flat outside the grid. `grid` is packed as
+/// `[nx, ny, x_0..x_{nx-1}, y_0..y_{ny-1}, z..]` with `z[i ny + j]` at `(x_i, y_j)`
+/// (`model::Bathymetry::packed`).
+#[inline]
+pub fn seabed_height<T: Real>(grid: &[T], x: T, y: T) -> V3<T> {
+    let nx = grid[0].f64() as usize;
+    let ny = grid[1].f64() as usize;
+    let (i, fx, ix) = seabed_axis(grid, 2, nx, x);
+    let (j, fy, iy) = seabed_axis(grid, 2 + nx, ny, y);
+    let z0 = 2 + nx + ny;
+    let i1 = if nx > 1 { i + 1 } else { i };
+    let j1 = if ny > 1 { j + 1 } else { j };
+    let z00 = grid[z0 + i * ny + j];
+    let z01 = grid[z0 + i * ny + j1];
+    let z10 = grid[z0 + i1 * ny + j];
+    let z11 = grid[z0 + i1 * ny + j1];
+    let one = T::one();
+    let zy0 = z00 + (z10 - z00) * fx; // along x at y_j
+    let zy1 = z01 + (z11 - z01) * fx; // along x at y_{j+1}
+    let z = zy0 + (zy1 - zy0) * fy;
+    let dzdx = ((z10 - z00) * (one - fy) + (z11 - z01) * fy) * ix;
+    let dzdy = (zy1 - zy0) * iy;
+    V3::new(z, dzdx, dzdy)
+}
+
+/// The seabed's unit normal (upward) where its slopes are `(g.y, g.z) = (dz/dx, dz/dy)`,
+/// and `n_z = 1 / sqrt(1 + |grad z|^2)`.
+#[inline(always)]
+fn slope_normal<T: Real>(g: V3<T>) -> V3<T> {
+    let nz = T::one() / (T::one() + g.y * g.y + g.z * g.z).sqrt();
+    V3::new(-g.y * nz, -g.z * nz, nz)
+}
+
+/// Contact force on a node at `r` moving at `v` (tributary length `lt`) with a sloped
+/// seabed whose height and slopes at the node are `g = (z_b, dz/dx, dz/dy)`
+/// ([`seabed_height`]): along the seabed's normal `n`, the penetration
+/// `p = (z_b - z) n_z` (the depth below the local tangent plane) gives `K lt p n`, the
+/// normal velocity `v.n` the damping `-C lt (v.n) n`, and the sliding velocity
+/// `v_t = v - (v.n) n` the regularised friction `-mu K lt p v_t / max(|v_t|, v_eps)`.
+/// On a flat seabed (`g = (z_b, 0, 0)`) it is [`seabed_force`]. Zero above the seabed.
+#[inline]
+pub fn seabed_slope_force<T: Real>(
+    s: &SeabedCoefs<T>,
+    lt: T,
+    r: V3<T>,
+    v: V3<T>,
+    g: V3<T>,
+) -> V3<T> {
+    let gap = g.x - r.z;
+    if gap <= T::zero() {
+        return V3::zero();
+    }
+    let n = slope_normal(g);
+    let fnorm = s.k * lt * gap * n.z;
+    let vn = v.dot(n);
+    let mut f = n * (fnorm - s.c * lt * vn);
+    if s.mu > T::zero() {
+        let vt = v - n * vn;
+        let speed = vt.norm().max(s.v_eps);
+        f += vt * (-s.mu * fnorm / speed);
+    }
+    f
+}
+
+/// The damping slopes of [`seabed_slope_force`]: `(c_n, c_t)` with `c_n = C lt` along
+/// the normal and `c_t = mu F_N / max(|v_t|, v_eps)` along the seabed, so that its
+/// damping part is `-(c_t I + (c_n - c_t) n n^T) v`; zero above the seabed. The
+/// symplectic stepper adds `dt` times that matrix to the node's mass block.
+#[inline]
+pub fn seabed_slope_damping<T: Real>(
+    s: &SeabedCoefs<T>,
+    lt: T,
+    r: V3<T>,
+    v: V3<T>,
+    g: V3<T>,
+) -> (T, T) {
+    let gap = g.x - r.z;
+    if gap <= T::zero() {
+        return (T::zero(), T::zero());
+    }
+    let n = slope_normal(g);
+    let mut ct = T::zero();
+    if s.mu > T::zero() {
+        let fnorm = s.k * lt * gap * n.z;
+        let vt = v - n * v.dot(n);
+        ct = s.mu * fnorm / vt.norm().max(s.v_eps);
+    }
+    (s.c * lt, ct)
+}
+
+/// The seabed's normal at slopes `g` ([`seabed_height`]), for the implicit damping.
+#[inline]
+pub fn seabed_slope_normal<T: Real>(g: V3<T>) -> V3<T> {
+    slope_normal(g)
+}

@@ -201,7 +201,7 @@ pub(super) fn parse(
                     _ => [0.0; 3],
                 };
                 validate::position(p, &f(which), x)?;
-                validate::height(p, &f(which), x[2], depth)?;
+                validate::height(p, &f(which), x, depth, model.env.seabed.grid)?;
                 if let Some(r) = &spec.route {
                     validate::route_speed(p, &f(which), r, max_speed)?;
                 }

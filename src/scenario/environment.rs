@@ -4,16 +4,35 @@
 use super::raw::RawEnvironment;
 use super::{err, finite, non_negative, positive, validate};
 use crate::error::Error;
-use crate::model::{Current, Environment};
+use crate::model::{Bathymetry, Current, Environment};
 use std::path::Path;
 
 /// The `[environment]` table, validated, and its current (still water without one).
 pub(super) fn environment(p: &Path, e: &RawEnvironment) -> Result<(Environment, Current), Error> {
-    let depth = match e.depth {
-        Some(d) => positive(p, "environment.depth", d)?,
-        None => f64::INFINITY,
+    let grid = match &e.seabed_file {
+        Some(f) => Some(Bathymetry::read(&p.parent().unwrap_or(Path::new(".")).join(f))?.keep()),
+        None => None,
     };
-    let sb = e.seabed;
+    let depth = match (e.depth, grid) {
+        (Some(d), _) => positive(p, "environment.depth", d)?,
+        // The waves' depth over a seabed grid: its mean depth, as MoorDyn takes it.
+        (None, Some(g)) => {
+            let (low, mean) = g.lowest_and_mean();
+            if mean >= 0.0 {
+                return Err(err(
+                    p,
+                    "environment.seabed_file",
+                    format!(
+                        "the grid's mean height is {mean} m (lowest {low} m): no water over it"
+                    ),
+                ));
+            }
+            -mean
+        }
+        (None, None) => f64::INFINITY,
+    };
+    let mut sb = e.seabed;
+    sb.grid = grid;
     non_negative(p, "environment.seabed.stiffness", sb.stiffness)?;
     non_negative(p, "environment.seabed.damping", sb.damping)?;
     non_negative(p, "environment.seabed.friction", sb.friction)?;

@@ -61,7 +61,7 @@ pub(super) fn parse(
             ),
         };
         validate::position(p, &field, position)?;
-        validate::height(p, &field, position[2], depth)?;
+        validate::height(p, &field, position, depth, model.env.seabed.grid)?;
         if let Some(r) = &route {
             validate::route_speed(p, &field, r, max_speed)?;
         }

@@ -103,6 +103,7 @@ pub struct RawEnvironment {
     #[serde(default = "default_rho")]
     pub water_density: f64,
     pub depth: Option<f64>,
+    pub seabed_file: Option<String>,
     pub current: Option<[f64; 3]>,
     pub current_profile: Option<Vec<[f64; 4]>>,
     #[serde(default)]
@@ -116,6 +117,7 @@ impl Default for RawEnvironment {
             gravity: default_g(),
             water_density: default_rho(),
             depth: None,
+            seabed_file: None,
             current: None,
             current_profile: None,
             seabed: Seabed::default(),

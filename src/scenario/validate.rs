@@ -140,10 +140,46 @@ fn above_warning(depth: f64) -> f64 {
     }
 }
 
-/// An end or point at height `z` (m) against the seabed (an error below it) and the
-/// surface (a warning far above it).
-pub fn height(p: &Path, field: &str, z: f64, depth: f64) -> Result<(), Error> {
-    if depth.is_finite() && z < -depth - below_tolerance(depth) {
+/// An end or point at `pos` (m) against the seabed (an error below it: the plane
+/// `z = -depth`, or the seabed grid `grid` at the point's `x`, `y`, which must lie
+/// within the grid) and the surface (a warning far above it).
+pub fn height(
+    p: &Path,
+    field: &str,
+    pos: [f64; 3],
+    depth: f64,
+    grid: Option<&crate::model::Bathymetry>,
+) -> Result<(), Error> {
+    let z = pos[2];
+    if let Some(g) = grid {
+        if !g.covers(pos[0], pos[1], 0.0) {
+            return Err(err(
+                p,
+                field,
+                format!(
+                    "x = {}, y = {} m lies outside the seabed grid of {} ({}): the grid must cover every end and point",
+                    pos[0],
+                    pos[1],
+                    g.path.display(),
+                    g.extent()
+                ),
+            ));
+        }
+        let zb = g.height(pos[0], pos[1]);
+        if z < zb - below_tolerance(-zb) {
+            return Err(err(
+                p,
+                field,
+                format!(
+                    "z = {z} m is {:.3} m below the seabed, which the grid of {} puts at z = {zb:.3} m at x = {}, y = {}",
+                    zb - z,
+                    g.path.display(),
+                    pos[0],
+                    pos[1]
+                ),
+            ));
+        }
+    } else if depth.is_finite() && z < -depth - below_tolerance(depth) {
         return Err(err(
             p,
             field,

@@ -19,7 +19,7 @@ impl Sys<'_> {
             for (li, mi) in m.iter_mut().enumerate() {
                 // Seabed stiffness only where contact is near: elsewhere it would only
                 // slow the node down.
-                *mi = if r[li].z < self.seabed.z + near {
+                *mi = if r[li].z < self.seabed_z(r[li]) + near {
                     self.seabed.k * lay.node_tributary[self.n0 + li]
                 } else {
                     0.0

@@ -3,8 +3,8 @@
 use super::{M3, V};
 use crate::model::{Block, Layout, NO_CONSTRAINT};
 use crate::physics::{
-    glmf_element_wet, point_wetted_fraction, seabed_force, wetted_fraction, Coefs, ElementInput,
-    ElementLoads, SeabedCoefs,
+    glmf_element_wet, point_wetted_fraction, seabed_force, seabed_height, seabed_slope_force,
+    wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
 };
 use nalgebra::Vector3;
 use std::borrow::Cow;
@@ -134,7 +134,30 @@ impl<'a> Sys<'a> {
     /// Static loads of packed node `i`'s own: point loads and seabed contact.
     #[inline]
     pub(super) fn node(&self, i: usize, r: V) -> V {
-        self.point(i, r) + seabed_force(&self.seabed, self.lay.node_tributary[i], r, V::zero())
+        self.point(i, r) + self.contact(i, r)
+    }
+
+    /// Seabed contact on packed node `i` at rest at `r`: on the plane, or along the
+    /// local normal of the seabed grid.
+    #[inline]
+    pub(super) fn contact(&self, i: usize, r: V) -> V {
+        let lt = self.lay.node_tributary[i];
+        match self.lay.env.seabed.grid {
+            None => seabed_force(&self.seabed, lt, r, V::zero()),
+            Some(g) => {
+                let h = seabed_height(&g.packed[..], r.x, r.y);
+                seabed_slope_force(&self.seabed, lt, r, V::zero(), h)
+            }
+        }
+    }
+
+    /// The seabed's height under `r`: the plane's, or the grid's at `r`'s `x`, `y`.
+    #[inline]
+    pub(super) fn seabed_z(&self, r: V) -> f64 {
+        match self.lay.env.seabed.grid {
+            None => self.seabed.z,
+            Some(g) => seabed_height(&g.packed[..], r.x, r.y).x,
+        }
     }
 
     /// The external loads at `r` that [`Self::energy_change`] holds fixed over a step:
@@ -193,6 +216,18 @@ impl<'a> Sys<'a> {
                 continue;
             }
             de -= own[li].dot(dx[li]);
+            if let Some(g) = lay.env.seabed.grid {
+                // A seabed grid: the energy 1/2 K lt p^2 of the penetration along the
+                // local normal, p = (z_b - z) n_z, at both ends of the step.
+                let k = self.seabed.k * lay.node_tributary[self.n0 + li];
+                let pen = |x: V| {
+                    let h = seabed_height(&g.packed[..], x.x, x.y);
+                    (h.x - x.z).max(0.0) / (1.0 + h.y * h.y + h.z * h.z).sqrt()
+                };
+                let (pa, pb) = (pen(r[li]), pen(r[li] + dx[li]));
+                de += 0.5 * k * (pb - pa) * (pa + pb);
+                continue;
+            }
             let (za, zb) = (r[li].z, r[li].z + dx[li].z);
             let (pa, pb) = ((self.seabed.z - za).max(0.0), (self.seabed.z - zb).max(0.0));
             if pa > 0.0 || pb > 0.0 {
@@ -277,7 +312,7 @@ impl<'a> Sys<'a> {
                 point.to_f64()
             );
         }
-        let contact = seabed_force(&self.seabed, self.lay.node_tributary[i], r[li], V::zero());
+        let contact = self.contact(i, r[li]);
         if bad(contact) {
             return format!(
                 "its seabed contact force is {:?} N, whose square overflows f64",
@@ -396,7 +431,7 @@ impl<'a> Sys<'a> {
             let lay = self.lay;
             // Only the seabed, a current profile and the water surface (a point mass
             // crossing it) make a node's own loads vary.
-            let near_seabed = ri.z < self.seabed.z + 1.0;
+            let near_seabed = ri.z < self.seabed_z(ri) + 1.0;
             let profile = lay.node_point_drag[i] > 0.0
                 && lay.currents[lay.node_current[i] as usize].table.len() > 1;
             let has_point = lay.node_point_displaced[i] > 0.0 || lay.node_point_drag[i] > 0.0;

@@ -522,6 +522,58 @@ fn steady_current_profile_is_read_from_current_profile_txt() {
 }
 
 #[test]
+fn seafloor_file_becomes_the_seabed_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    // MoorDyn opens the name from its working directory: here the folder above the
+    // input file's, as in MoorDyn's own tests.
+    let sub = dir.path().join("Mooring");
+    std::fs::create_dir_all(&sub).unwrap();
+    let text = v2_with("80      WtrDpth", "Mooring/bed.txt SeafloorFile");
+    let dat = sub.join("model.dat");
+    std::fs::write(&dat, &text).unwrap();
+    std::fs::write(
+        sub.join("bed.txt"),
+        "3 2\n-400 0 200\n-50 300\n-400 -50 -80\n-400 300 -80\n0 -50 -80\n0 300 -80\n\
+         200 -50 -81\n200 300 -81\n",
+    )
+    .unwrap();
+    let c = convert_text(&text, &dat, &ConvertOptions::default()).unwrap();
+    assert!(
+        c.toml.contains("seabed_file = ") && c.toml.contains("bed.txt"),
+        "{}",
+        c.toml
+    );
+    assert!(!c.toml.contains("\ndepth = "), "{}", c.toml);
+    let sc = Scenario::load_any(&dat).unwrap();
+    let g = sc.model.env.seabed.grid.expect("a seabed grid");
+    assert_eq!((g.xs.len(), g.ys.len()), (3, 2));
+    // The waves' depth: the grid's mean depth, as MoorDyn takes it.
+    close(sc.model.env.depth, (4.0 * 80.0 + 2.0 * 81.0) / 6.0, "depth");
+    // The second anchor (x = 150) lies 0.75 m above the grid there; moved below it, it
+    // is an error naming the point and the file.
+    let under = text.replace(
+        "4   Anchor      150     260    -80 ",
+        "4   Anchor      150     260    -82 ",
+    );
+    std::fs::write(&dat, &under).unwrap();
+    let e = Scenario::load_any(&dat).unwrap_err().to_string();
+    assert!(
+        e.contains("below the seabed") && e.contains("bed.txt"),
+        "{e}"
+    );
+    // A missing grid file names the option's line.
+    let e = error_of(&v2_with("80      WtrDpth", "nothing.txt SeafloorFile"));
+    let n = line_of(
+        &v2_with("80      WtrDpth", "nothing.txt SeafloorFile"),
+        "nothing.txt SeafloorFile",
+    );
+    assert!(
+        e.contains(&format!("line {n}:")) && e.contains("not found"),
+        "{e}"
+    );
+}
+
+#[test]
 fn default_option_values_fall_back_with_a_warning() {
     // MoorDyn-F's `DEFAULT` (OpenFAST's value): the depth falls back to the lowest
     // point, as MoorDyn-C does without the option.

@@ -24,6 +24,7 @@ mod nets;
 mod packed;
 mod parallel;
 mod seabed_implicit;
+mod seabed_slope;
 mod statics;
 mod stiff_statics;
 mod study;

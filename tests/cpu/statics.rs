@@ -41,6 +41,7 @@ fn env(depth: f64) -> Environment {
             damping: 3e4,
             friction: 0.0,
             friction_velocity: 0.01,
+            ..Seabed::default()
         },
     }
 }

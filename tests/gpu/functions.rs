@@ -24,6 +24,8 @@ use rand_chacha::ChaCha8Rng;
 mod free_body;
 mod routes;
 use routes::*;
+mod seabed_grid;
+use seabed_grid::*;
 
 const KERNELS: &str = r#"
 @group(1) @binding(0) var<storage, read> tin: array<R>;
@@ -102,6 +104,33 @@ fn t_seabed_damping(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let b = i * 5u;
     v3out(i * 3u, seabed_damping(tin[b], tin[b + 1u], v3in(b + 2u)));
+}
+
+// The seabed grid (bound as current range 0, params.seabed = 2) at (x, y) of case i.
+@compute @workgroup_size(64)
+fn t_seabed_height(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 2u {
+        return;
+    }
+    v3out(i * 3u, seabed_height(tin[2u * i], tin[2u * i + 1u]));
+}
+
+// Sloped contact of case i: gap, lt, v, g (seabed_height's output); out: the force,
+// the damping slopes (c_n, c_t) and the normal.
+@compute @workgroup_size(64)
+fn t_seabed_slope(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 8u {
+        return;
+    }
+    let b = i * 8u;
+    let g = v3in(b + 5u);
+    v3out(b, seabed_slope_force(tin[b], tin[b + 1u], v3in(b + 2u), g));
+    let d = seabed_slope_damping(tin[b], tin[b + 1u], v3in(b + 2u), g);
+    tout[b + 3u] = d.x;
+    tout[b + 4u] = d.y;
+    v3out(b + 5u, seabed_slope_normal(g));
 }
 
 @compute @workgroup_size(64)
@@ -520,7 +549,7 @@ fn check_stretch<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
     w.report(p);
 }
 
-fn params<R: GpuReal>(k: f64, c: f64, mu: f64, v_eps: f64) -> Vec<u8> {
+pub(crate) fn params<R: GpuReal>(k: f64, c: f64, mu: f64, v_eps: f64) -> Vec<u8> {
     let p = Params::<R> {
         seabed: 1,
         seabed_k: R::c(k),
@@ -686,6 +715,8 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_froude_krylov::<R>(ctx, p, &mut rng);
     check_stretch::<R>(ctx, p, &mut rng);
     check_seabed::<R>(ctx, p, &mut rng);
+    check_seabed_grid::<R>(ctx, p, &mut rng);
+    check_seabed_slope::<R>(ctx, p, &mut rng);
     check_mass::<R>(ctx, p, &mut rng);
     check_sincos::<R>(ctx, p, &mut rng);
     check_route::<R>(ctx, p, &mut rng);

@@ -27,6 +27,7 @@ mod fused;
 mod layout;
 mod packed;
 mod parity;
+mod seabed_grid;
 mod shaders;
 mod step_functions;
 mod surface;

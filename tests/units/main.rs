@@ -24,6 +24,7 @@ mod cpu_chain_net_plan;
 mod fatigue;
 mod gpu_wave_schedule;
 mod math;
+mod model_bathymetry;
 mod model_environment;
 mod model_net;
 mod model_route;

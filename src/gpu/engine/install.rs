@@ -259,7 +259,12 @@ impl<R: GpuReal> GpuEngine<R> {
             n_nodes: lay.n_nodes() as u32,
             n_elems: lay.n_elements() as u32,
             n_routes: lay.routes.len() as u32,
-            seabed: seabed as u32,
+            // 0 no seabed, 1 the plane, 2 + i a seabed grid packed in current range
+            // i (after the current profiles: see below).
+            seabed: match env.seabed.grid {
+                Some(_) => 2 + lay.currents.len() as u32,
+                None => seabed as u32,
+            },
             step_base: 0,
             n_winch: n_winch as u32,
             n_steps: 0,
@@ -358,6 +363,23 @@ impl<R: GpuReal> GpuEngine<R> {
                     ux: R::c(u[0]),
                     uy: R::c(u[1]),
                     uz: R::c(u[2]),
+                });
+            }
+        }
+        // A seabed grid rides in the current profiles' buffer (no binding of its own):
+        // its packed values (physics::seabed_height) four to a row, as one more range.
+        if let Some(g) = env.seabed.grid {
+            current_ranges.push(CurrentRange {
+                start: current_pts.len() as u32,
+                len: g.packed.len().div_ceil(4) as u32,
+            });
+            for q in g.packed.chunks(4) {
+                let at = |k: usize| R::c(q.get(k).copied().unwrap_or(0.0));
+                current_pts.push(CurrentPoint {
+                    z: at(0),
+                    ux: at(1),
+                    uy: at(2),
+                    uz: at(3),
                 });
             }
         }

@@ -122,6 +122,17 @@ pub(super) fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mu
         (0, run_params::<R>(n, 0, dt, &sb)),
         (4, bytes(&nodes)),
         (6, bytes(&routes)),
+        // The blocks and the current profiles' buffer, where node_advance finds a
+        // seabed grid (none here: params.seabed < 2, so they are not read).
+        (
+            7,
+            bytes(&[<BlockParams<R> as bytemuck::Zeroable>::zeroed()]),
+        ),
+        (
+            8,
+            bytes(&[<CurrentPoint<R> as bytemuck::Zeroable>::zeroed()]),
+        ),
+        (9, bytes(&[<CurrentRange as bytemuck::Zeroable>::zeroed()])),
         (15, bytes(&samples)),
         // The released flags `node_held` reads (no line failures here: never read).
         (13, bytes(&[R::c(0.0); 4])),
