@@ -11,6 +11,7 @@ mod common;
 mod ale;
 mod ancf;
 mod bodies;
+mod body_statics;
 mod body_knots;
 mod case1;
 mod catenary;
