@@ -11,16 +11,19 @@
 //! held node's lines exert on it (the route reaction at rest, as `static_forces` gives
 //! it, which includes a point mass's weight and buoyancy at that node).
 //!
-//! The outer solve is Newton's method on the six (three) pose coordinates with a
-//! Levenberg-Marquardt shift: the stiffness `K = -dF/dpose` by forward differences
-//! (each a relaxation of the lines; translations `1e-4` m, rotations `1e-4` rad, a
-//! rotation applied as `exp(theta) q`, so there is no singular attitude), every body
-//! perturbed at once in the same coordinate. Bodies whose lines share no block are
-//! independent, so this block-diagonal `K` is exact for them; bodies joined by lines
-//! get a quasi-Newton step, still globalised by the residual test. A step solves
-//! `(K + mu diag|K|) d = F`, capped at 2 m and 0.2 rad, and is accepted when the
-//! scaled residual `|F| + |M| / L` (`L` the largest distance of a held point from the
-//! reference point, at least 1 m) falls; otherwise `mu` grows tenfold.
+//! The outer solve is a Levenberg-Marquardt least-squares solve on the six (three) pose
+//! coordinates: the Jacobian `dF/dpose` by forward differences (each a relaxation of the
+//! lines; translations `1e-4` m, rotations `1e-4` rad, a rotation applied as
+//! `exp(theta) q`, so there is no singular attitude), every body perturbed at once in
+//! the same coordinate. Bodies whose lines share no block are independent, so this
+//! block-diagonal Jacobian is exact for them; bodies joined by lines get a quasi-Newton
+//! step, still globalised by the residual test. A step solves
+//! `(H + mu diag H) d = -Jw^T W F` (`Jw = W dF/dpose`, `H = Jw^T Jw`, `W` dividing the
+//! moments by `L`, the largest distance of a held point from the reference point, at
+//! least 1 m), its translation capped at 2 m and its rotation at 0.2 rad, and is
+//! accepted when `|W F|` falls; otherwise `mu` grows tenfold. Where no such step is
+//! found (a slack line: the load does not change as the body moves), the body moves
+//! along its load, 0.5 m and 0.05 rad, unless that makes the residual grow.
 //! Converged when `|F| <= tol` and `|M| <= tol L` for every body, with
 //! `tol = 1e-8` of the body's load scale (its weight, buoyancy and the held nodes'
 //! forces at the first guess) or 1e-4 N, whichever is larger.
@@ -170,9 +173,10 @@ pub fn relax_bodies(
             .zip(f)
             .map(|(e, r)| {
                 let (fo, mo) = parts(e, r);
-                fo + mo / e.len
+                fo * fo + (mo / e.len) * (mo / e.len)
             })
-            .sum()
+            .sum::<f64>()
+            .sqrt()
     };
     let done = |es: &[Entry], f: &[[f64; 6]]| {
         es.iter().zip(f).all(|(e, r)| {
@@ -180,9 +184,9 @@ pub fn relax_bodies(
             fo <= e.tol && mo <= e.tol * e.len
         })
     };
-    let mut mu = 1e-6;
+    let mut mu = 1e-3;
     let mut iterations = 0;
-    let max_iter = 60;
+    let max_iter = 200;
     while iterations < max_iter && !done(&es, &f) {
         iterations += 1;
         // Stiffness by forward differences, all bodies at once per coordinate.
@@ -209,48 +213,56 @@ pub fn relax_bodies(
                 }
             }
         }
-        // Levenberg-Marquardt steps until the residual falls.
+        // Levenberg-Marquardt on the scaled least squares `|W F|^2` (`W` divides the
+        // moments by the body's length): `(H + mu diag H) d = -g`, `H = Jw^T Jw`,
+        // `g = Jw^T W F`, `Jw = W dF/dpose = -W K`; for a large `mu` a short step down
+        // the gradient, so a step that lowers the residual exists unless it is at a
+        // minimum. Translations capped at 2 m, rotations at 0.2 rad, each on its own.
         let n0 = norm(&es, &f);
         let mut accepted = false;
-        for _ in 0..12 {
-            let saved: Vec<(Vec3, UnitQuaternion<f64>)> = es.iter().map(|e| (e.x, e.q)).collect();
+        let saved: Vec<(Vec3, UnitQuaternion<f64>)> = es.iter().map(|e| (e.x, e.q)).collect();
+        for _ in 0..20 {
+            let mut solved = true;
             for (i, e) in es.iter_mut().enumerate() {
                 let n = e.ndof;
-                let mut a = k[i].clone();
-                // The shift: mu times each diagonal term, and a floor of 1e-8 of the
-                // largest diagonal term of the same kind (translation, rotation), so a
-                // direction with no stiffness (the yaw of a body on one vertical line)
-                // takes no step rather than making the system singular.
-                let group = |d: usize| if n == 6 && d < 3 { 0..3 } else if n == 6 { 3..6 } else { 0..3 };
+                let w = DVector::from_fn(n, |r, _| {
+                    if n == 6 && r < 3 {
+                        1.0
+                    } else {
+                        1.0 / e.len
+                    }
+                });
+                let jw = DMatrix::from_fn(n, n, |r, c| -w[r] * k[i][(r, c)]);
+                let rw = DVector::from_fn(n, |r, _| w[r] * dofs(e, &f[i])[r]);
+                let h = jw.transpose() * &jw;
+                let g = jw.transpose() * rw;
+                let mut a = h.clone();
+                let floor = 1e-12 * h.trace().max(1e-300);
                 for d in 0..n {
-                    let top = group(d).map(|g| k[i][(g, g)].abs()).fold(0.0, f64::max);
-                    a[(d, d)] += mu * k[i][(d, d)].abs() + 1e-8 * top.max(1e-300);
+                    a[(d, d)] += mu * h[(d, d)] + floor;
                 }
-                let rhs = DVector::from_vec(dofs(e, &f[i]));
-                let Some(mut d) = a.lu().solve(&rhs) else {
+                let Some(mut d) = a.lu().solve(&(-g)) else {
+                    solved = false;
                     continue;
                 };
-                // Cap the step: 2 m, 0.2 rad.
-                let (nt, nr) = if n == 6 {
-                    (
-                        d.rows(0, 3).norm(),
-                        d.rows(3, 3).norm(),
-                    )
-                } else {
-                    (0.0, d.norm())
-                };
-                let s = 1.0f64.min(2.0 / nt.max(1e-300)).min(0.2 / nr.max(1e-300));
-                d *= s;
+                cap(&mut d, n);
                 for j in 0..n {
                     perturb(e, j, d[j]);
                 }
+            }
+            if !solved {
+                for (i, e) in es.iter_mut().enumerate() {
+                    (e.x, e.q) = saved[i];
+                }
+                mu *= 10.0;
+                continue;
             }
             let mut p = pos.clone();
             let fnew = ev.residuals(&es, &mut p)?;
             if norm(&es, &fnew) < n0 {
                 pos = p;
                 f = fnew;
-                mu = (mu / 3.0).max(1e-9);
+                mu = (mu / 10.0).max(1e-12);
                 accepted = true;
                 break;
             }
@@ -258,6 +270,41 @@ pub fn relax_bodies(
                 (e.x, e.q) = saved[i];
             }
             mu *= 10.0;
+        }
+        if !accepted {
+            // No information in the stiffness (a line gone slack leaves a body whose
+            // load does not change as it moves): a step along the load itself, 0.5 m
+            // and 0.05 rad at most, taken unless the residual grows.
+            for (i, e) in es.iter_mut().enumerate() {
+                let r = dofs(e, &f[i]);
+                let n = e.ndof;
+                let (t, rot) = if n == 6 { (&r[..3], &r[3..]) } else { (&r[..0], &r[..]) };
+                let nt = t.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let nr = rot.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let mut d = DVector::zeros(n);
+                for (j, x) in t.iter().enumerate() {
+                    d[j] = if nt > 0.0 { 0.5 * x / nt } else { 0.0 };
+                }
+                let off = t.len();
+                for (j, x) in rot.iter().enumerate() {
+                    d[off + j] = if nr > 0.0 { 0.05 * x / nr } else { 0.0 };
+                }
+                for j in 0..n {
+                    perturb(e, j, d[j]);
+                }
+            }
+            let mut p = pos.clone();
+            let fnew = ev.residuals(&es, &mut p)?;
+            if norm(&es, &fnew) <= n0 {
+                pos = p;
+                f = fnew;
+                mu = 1e-3;
+                accepted = true;
+            } else {
+                for (i, e) in es.iter_mut().enumerate() {
+                    (e.x, e.q) = saved[i];
+                }
+            }
         }
         if !accepted {
             break;
@@ -316,6 +363,23 @@ fn moved(body: &Body, x: Vec3, q: UnitQuaternion<f64>) -> Body {
             equilibrium: d.equilibrium,
         })),
     )
+}
+
+/// Caps a step: its translation at 2 m, its rotation at 0.2 rad, each on its own.
+fn cap(d: &mut DVector<f64>, n: usize) {
+    let (t, r) = if n == 6 { (0..3, 3..6) } else { (0..0, 0..3) };
+    let nt = t.clone().map(|j| d[j] * d[j]).sum::<f64>().sqrt();
+    let nr = r.clone().map(|j| d[j] * d[j]).sum::<f64>().sqrt();
+    if nt > 2.0 {
+        for j in t {
+            d[j] *= 2.0 / nt;
+        }
+    }
+    if nr > 0.2 {
+        for j in r {
+            d[j] *= 0.2 / nr;
+        }
+    }
 }
 
 /// Moves pose coordinate `j` of `e` by `d` (0-2 translation of a free body, then

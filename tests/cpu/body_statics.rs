@@ -90,7 +90,7 @@ end = {{ body = "buoy", at = [0.0, 0.0, -1.0] }}
 #[test]
 fn a_buoy_on_a_weightless_line_rests_where_the_closed_form_puts_it() {
     let dir = tempfile::tempdir().unwrap();
-    let r = rows(dir.path(), &one_line("equilibrium", 0.01));
+    let r = rows(dir.path(), &one_line("equilibrium", 0.1));
     let first = &r[0];
     // The line's tension is the net buoyancy; it stretches by T L0 / EA and stands
     // vertical under the buoy, which hangs level above it.
@@ -101,9 +101,12 @@ fn a_buoy_on_a_weightless_line_rests_where_the_closed_form_puts_it() {
     assert!(first[5].abs() < 1e-4 && first[6].abs() < 1e-4, "{first:?}");
     // The line's pull on the body is the net buoyancy, straight down.
     assert!((first[10] + t).abs() < 1e-6 * t, "fz {} against {t}", first[10]);
-    // And it stays there: nothing moves over the run.
+    // And it stays there: after 0.1 s nothing moves (a force of 1 N left on the body
+    // would give it 2e-5 m/s by then).
+    let last = r.last().unwrap();
+    assert!(last[0] > 0.09, "{last:?}");
     for k in 14..20 {
-        assert!(first[k].abs() < 1e-6, "moving at the start: {first:?}");
+        assert!(last[k].abs() < 1e-6, "moving: {last:?}");
     }
 }
 
@@ -183,13 +186,14 @@ fn the_statics_finds_the_pose_a_released_buoy_settles_at() {
     // heeled and turned. The statics' pose at t = 0 against the last row of a run
     // released from the file's pose (damped, 250 s).
     let dir = tempfile::tempdir().unwrap();
-    let s = rows(dir.path(), &three_lines("equilibrium", 0.01));
+    let s = rows(dir.path(), &three_lines("equilibrium", 0.1));
     let dir2 = tempfile::tempdir().unwrap();
     let d = rows(dir2.path(), &three_lines("pose", 250.0));
     let (a, b) = (&s[0], d.last().unwrap());
+    let a_later = s.last().unwrap();
     for k in 14..20 {
         assert!(b[k].abs() < 1e-4, "the released buoy is still moving: {b:?}");
-        assert!(a[k].abs() < 1e-6, "the statics' buoy moves: {a:?}");
+        assert!(a_later[k].abs() < 1e-5, "the statics' buoy moves: {a_later:?}");
     }
     assert!(a[2].abs() > 0.05, "the side force moves it off the axis: {a:?}");
     for k in 2..5 {
@@ -197,5 +201,60 @@ fn the_statics_finds_the_pose_a_released_buoy_settles_at() {
     }
     for k in 5..8 {
         assert!((a[k] - b[k]).abs() < 0.02, "column {k}: {} vs {}", a[k], b[k]);
+    }
+}
+
+#[test]
+fn a_pinned_arm_heels_until_its_weight_balances_the_moment() {
+    // A pinned body, 500 kg with its centre of gravity 2 m below the pin, under a
+    // constant moment of 2000 N m about x, a clump hanging on a rope from the pin
+    // itself (no moment about it): at rest, 2 m g sin(roll) = 2000 N m.
+    let dir = tempfile::tempdir().unwrap();
+    let text = r#"
+[simulation]
+duration = 0.1
+output_interval = 0.1
+backend = "cpu"
+
+[environment]
+depth = 50.0
+
+[[line_types]]
+name = "rope"
+diameter = 0.02
+mass_per_length = 1.0
+ea = 2.0e6
+damping = 1.0e-3
+cn = 1.2
+ct = 0.01
+cm = 1.0
+
+[[bodies]]
+name = "arm"
+motion = "pinned"
+reference = [0.0, 0.0, -5.0]
+angles = [-20.0, 5.0, 0.0]
+mass = 500.0
+cg = [0.0, 0.0, -2.0]
+inertia = [100.0, 100.0, 100.0]
+moment = [2000.0, 0.0, 0.0]
+
+[[cables]]
+name = "hang"
+line_type = "rope"
+length = 5.0
+segments = 5
+initial = "catenary"
+start = { body = "arm", at = [0.0, 0.0, 0.0] }
+end = { free = [0.0, 0.3, -10.0], mass = 20.0 }
+"#;
+    let r = rows(dir.path(), text);
+    let (first, last) = (&r[0], r.last().unwrap());
+    let roll = (2000.0f64 / (2.0 * 500.0 * 9.81)).asin().to_degrees();
+    assert!((first[5] - roll).abs() < 1e-4, "roll {} against {roll}", first[5]);
+    assert!(first[6].abs() < 1e-4, "pitch {}", first[6]);
+    assert!((first[4] + 5.0).abs() < 1e-12, "the pin stays: {first:?}");
+    for k in 17..20 {
+        assert!(last[k].abs() < 1e-5, "turning: {last:?}");
     }
 }
