@@ -92,7 +92,8 @@ def cablesim_run(exe: str, d: Path, text: str, duration: float) -> list[list[flo
     subprocess.run([exe, "convert", str(d / "buoy.dat"), "-o", str(d / "buoy.toml"),
                     "--duration", repr(duration)], check=True, stdout=subprocess.DEVNULL,
                    stderr=subprocess.DEVNULL)
-    toml = (d / "buoy.toml").read_text().replace('backend = "auto"', 'backend = "cpu"')
+    # (a converter older than this script wrote MoorDyn's RK2, which bodies refuse)
+    toml = (d / "buoy.toml").read_text().replace('scheme = "rk2"', '')
     (d / "buoy.toml").write_text(toml)
     subprocess.run([exe, "run", str(d / "buoy.toml"), "--out", str(d / "out"), "--backend",
                     "cpu"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -134,15 +135,24 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cablesim", default=str(REPO / "target" / "ci" / "cablesim"))
     ap.add_argument("--out", type=Path, default=REPO / "target" / "free_decay")
+    ap.add_argument("--settle", action="store_true",
+                    help="find the equilibrium by a released run instead of the statics")
     ap.add_argument("--python", help="use this interpreter as it is, no .venv-peers")
     args = ap.parse_args()
     if not args.python:
         compare_peers.ensure_venv_and_reexec(Path(__file__))
     out = args.out.resolve()
-    # 1. The equilibrium, from cablesim's statics with the body's degrees of freedom.
-    eq = cablesim_run(args.cablesim, out / "equilibrium",
-                      moordyn_file([0.0, 0.0, -20.0, 0.0, 0.0, 0.0], 60.0), 0.2)[0]
-    print(f"equilibrium (cablesim statics): x {eq[1]:.4f} y {eq[2]:.4f} z {eq[3]:.4f} m, "
+    # 1. The equilibrium: cablesim's statics with the body's degrees of freedom (TmaxIC
+    # > 0), or with --settle, the body released near it and run until at rest.
+    if args.settle:
+        eq = cablesim_run(args.cablesim, out / "equilibrium",
+                          moordyn_file([0.0, 0.0, -14.3, 0.0, 0.0, 0.0], 0.0), 200.0)[-1]
+        how = "released and run for 200 s"
+    else:
+        eq = cablesim_run(args.cablesim, out / "equilibrium",
+                          moordyn_file([0.0, 0.0, -20.0, 0.0, 0.0, 0.0], 60.0), 0.2)[0]
+        how = "cablesim's statics"
+    print(f"equilibrium ({how}): x {eq[1]:.4f} y {eq[2]:.4f} z {eq[3]:.4f} m, "
           f"roll {eq[4]:.4f} pitch {eq[5]:.4f} yaw {eq[6]:.4f} deg")
     pose = [eq[1] + OFFSET[0], eq[2] + OFFSET[1], eq[3] + OFFSET[2], 0.0, 0.0, 0.0]
     text = moordyn_file(pose, 0.0)

@@ -138,7 +138,10 @@ fn a_free_body_and_its_cells_map_to_a_free_body() {
         }
     }
     // The point on it carries its mass, and sits at its body coordinates.
-    assert!(toml.contains("body = \"body1\", at = [1.5, 0.0, -1.0], mass = 10.0, volume = 0.02"), "{toml}");
+    assert!(
+        toml.contains("name = \"point2\"\nbody = \"body1\"\nat = [1.5, 0.0, -1.0]\nmass = 10.0"),
+        "{toml}"
+    );
 }
 
 #[test]
