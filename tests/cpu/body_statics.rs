@@ -195,7 +195,10 @@ fn the_statics_finds_the_pose_a_released_buoy_settles_at() {
         assert!(b[k].abs() < 1e-4, "the released buoy is still moving: {b:?}");
         assert!(a_later[k].abs() < 1e-5, "the statics' buoy moves: {a_later:?}");
     }
-    assert!(a[2].abs() > 0.05, "the side force moves it off the axis: {a:?}");
+    assert!(
+        a[2].abs() > 0.01 && a[6].abs() > 5.0,
+        "the side force and the eccentric centre of gravity move and heel it: {a:?}"
+    );
     for k in 2..5 {
         assert!((a[k] - b[k]).abs() < 2e-3, "column {k}: {} vs {}", a[k], b[k]);
     }
@@ -208,7 +211,7 @@ fn the_statics_finds_the_pose_a_released_buoy_settles_at() {
 fn a_pinned_arm_heels_until_its_weight_balances_the_moment() {
     // A pinned body, 500 kg with its centre of gravity 2 m below the pin, under a
     // constant moment of 2000 N m about x, a clump hanging on a rope from the pin
-    // itself (no moment about it): at rest, 2 m g sin(roll) = 2000 N m.
+    // itself (no moment about it): at rest the weight's arm is M / (m g).
     let dir = tempfile::tempdir().unwrap();
     let text = r#"
 [simulation]
@@ -250,9 +253,16 @@ end = { free = [0.0, 0.3, -10.0], mass = 20.0 }
 "#;
     let r = rows(dir.path(), text);
     let (first, last) = (&r[0], r.last().unwrap());
-    let roll = (2000.0f64 / (2.0 * 500.0 * 9.81)).asin().to_degrees();
-    assert!((first[5] - roll).abs() < 1e-4, "roll {} against {roll}", first[5]);
-    assert!(first[6].abs() < 1e-4, "pitch {}", first[6]);
+    // The equilibria are a family (any turn about the line from the pin to the centre of
+    // gravity): the centre of gravity, R (0, 0, -2), is where the moment balances,
+    // (0, M / (m g), -sqrt(4 - (M / (m g))^2)).
+    let [roll, pitch, yaw] = [first[5], first[6], first[7]].map(f64::to_radians);
+    let rot = cablesim::body::kinematics::rotation(roll, pitch, yaw);
+    let cg: Vec<f64> = (0..3).map(|i| -2.0 * rot[i][2]).collect();
+    let arm = 2000.0 / (500.0 * 9.81);
+    assert!(cg[0].abs() < 1e-5, "{cg:?}");
+    assert!((cg[1] - arm).abs() < 1e-5, "{cg:?} against {arm}");
+    assert!((cg[2] + (4.0 - arm * arm).sqrt()).abs() < 1e-5, "{cg:?}");
     assert!((first[4] + 5.0).abs() < 1e-12, "the pin stays: {first:?}");
     for k in 17..20 {
         assert!(last[k].abs() < 1e-5, "turning: {last:?}");
