@@ -519,7 +519,13 @@ impl FreeBody {
     /// drag in the current `u`, external loads, and the forces `f` at the points `r`
     /// of the nodes held on it (`(r, f)`, the lines' pull). The residual of the
     /// statics with body degrees of freedom (docs/src/bodies.md, "Initial state").
-    pub fn static_load(&self, t: f64, fluid: Fluid, u: [f64; 3], held: &[([f64; 3], [f64; 3])]) -> [f64; 6] {
+    pub fn static_load(
+        &self,
+        t: f64,
+        fluid: Fluid,
+        u: [f64; 3],
+        held: &[([f64; 3], [f64; 3])],
+    ) -> [f64; 6] {
         let mut still = self.clone();
         still.v_g = Vec3::zeros();
         still.w = Vec3::zeros();

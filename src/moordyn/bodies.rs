@@ -195,7 +195,11 @@ pub(super) fn read_bodies(
                         format!(
                             "a {} body needs a positive moment of inertia about each axis, \
                              got {x} about {}",
-                            if kind == BodyKind::Free { "free" } else { "pinned" },
+                            if kind == BodyKind::Free {
+                                "free"
+                            } else {
+                                "pinned"
+                            },
                             ["x", "y", "z"][k]
                         ),
                     ));
@@ -266,7 +270,10 @@ pub(super) fn read_failures(
                 p,
                 l,
                 what("Point"),
-                format!("\"{}\": failures at rod ends are not supported (no rods)", r.point),
+                format!(
+                    "\"{}\": failures at rod ends are not supported (no rods)",
+                    r.point
+                ),
             ));
         }
         let point = match (w.as_str(), num.parse::<usize>()) {
@@ -314,7 +321,12 @@ pub(super) fn read_failures(
                 ));
             }
             if a == point && b == point {
-                return Err(err_at(p, l, what("Line(s)"), format!("line {id} has both ends at point {point}")));
+                return Err(err_at(
+                    p,
+                    l,
+                    what("Line(s)"),
+                    format!("line {id} has both ends at point {point}"),
+                ));
             }
             if !lines.contains(&id) {
                 lines.push(id);

@@ -31,10 +31,10 @@
 //!   (`1/2 rho CdA |v| v`) and `Ca` (added mass `Ca rho V`, isotropic) are cablesim's
 //!   `mass`, `volume`, `drag_area`, `added_mass` unchanged.
 
+use super::bodies::{fail_keys, read_bodies, read_failures, BodyKind, MdBody, MdFailure};
 use super::err_at;
 use super::options::{read_current_profile, read_options};
 use super::parse::{MoorDynFile, Version};
-use super::bodies::{fail_keys, read_bodies, read_failures, BodyKind, MdBody, MdFailure};
 use super::tables::{attach_point, check_type, point_kind, PointKind};
 use crate::error::Error;
 use std::collections::{BTreeMap, HashMap};
@@ -682,7 +682,9 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         .iter()
         .any(|b| matches!(b.kind, BodyKind::Free | BodyKind::Pinned));
     match &o.scheme {
-        Some((sch, l)) if dynamic_bodies && ["RK2", "RK4"].contains(&sch.to_uppercase().as_str()) => {
+        Some((sch, l))
+            if dynamic_bodies && ["RK2", "RK4"].contains(&sch.to_uppercase().as_str()) =>
+        {
             let _ = writeln!(
                 w,
                 "# tScheme {sch} (line {l}): cablesim steps free and pinned bodies with \
@@ -806,11 +808,10 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
     }
     // MoorDyn's TmaxIC: > 0 (default 120 s) finds the initial equilibrium, free bodies
     // included; 0 starts from the file's pose.
-    let tmax_ic = o
-        .ic
-        .iter()
-        .find(|(n, _, _)| ["tmaxic", "ictmax"].contains(&n.to_lowercase().as_str()))
-        .map(|(_, v, l)| (v.parse::<f64>().unwrap_or(120.0), *l));
+    let tmax_ic =
+        o.ic.iter()
+            .find(|(n, _, _)| ["tmaxic", "ictmax"].contains(&n.to_lowercase().as_str()))
+            .map(|(_, v, l)| (v.parse::<f64>().unwrap_or(120.0), *l));
     let body_initial = match tmax_ic {
         Some((t, l)) if t <= 0.0 => (
             "pose",
@@ -836,7 +837,10 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
              from the elastic catenary relaxed to the static equilibrium by Newton's method \
              (initial = \"catenary\"){}.",
             list.join(", "),
-            if bodies.iter().any(|b| matches!(b.kind, BodyKind::Free | BodyKind::Pinned)) {
+            if bodies
+                .iter()
+                .any(|b| matches!(b.kind, BodyKind::Free | BodyKind::Pinned))
+            {
                 "; TmaxIC decides whether the free and pinned bodies start in equilibrium \
                  (their `initial`)"
             } else {
@@ -958,7 +962,10 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
                 match md.kind {
                     BodyKind::Fixed => format!(
                         "point {} ({}, line {}): on fixed body {b}, held at its place {}",
-                        r.id, r.attachment, r.line, v3(md.place(r.pos))
+                        r.id,
+                        r.attachment,
+                        r.line,
+                        v3(md.place(r.pos))
                     ),
                     BodyKind::Coupled => format!(
                         "point {} ({}, line {}): on coupled body {b}{}",
@@ -1029,7 +1036,13 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         let _ = writeln!(w, "\n[[points]]");
         let _ = writeln!(w, "# {}", point_note(i));
         let _ = writeln!(w, "name = \"point{}\"", r.id);
-        let _ = writeln!(w, "{}", end_table(i).replace(", file", "\nfile").replace(", at", "\nat"));
+        let _ = writeln!(
+            w,
+            "{}",
+            end_table(i)
+                .replace(", file", "\nfile")
+                .replace(", at", "\nat")
+        );
         point_mass(w, i);
         if let Some(fl) = whole[i] {
             let _ = writeln!(
@@ -1050,12 +1063,22 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             "# {}: lines {} leave point {} together (MoorDyn joins them at a new massless \
              free point): they are held here, at point {}'s place, until then.",
             fail_note(fl),
-            fl.lines.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", "),
+            fl.lines
+                .iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
             fl.point,
             fl.point
         );
         let _ = writeln!(w, "name = \"point{}_failure{}\"", fl.point, fl.id);
-        let _ = writeln!(w, "{}", end_table(i).replace(", file", "\nfile").replace(", at", "\nat"));
+        let _ = writeln!(
+            w,
+            "{}",
+            end_table(i)
+                .replace(", file", "\nfile")
+                .replace(", at", "\nat")
+        );
         for kv in fail_keys(fl).trim_start_matches(", ").split(", ") {
             let _ = writeln!(w, "{kv}");
         }

@@ -309,10 +309,31 @@ pub fn bodies(path: &Path, m: &BodyMotion) -> Result<(), Error> {
         } else {
             root.split_evenly((1, 2))
         };
-        lines(&panels[0], "Reference point", "time (s)", "position (m)", &m.position, Axes::Data)?;
-        lines(&panels[1], "Attitude", "time (s)", "angle (deg)", &m.angles, Axes::Data)?;
+        lines(
+            &panels[0],
+            "Reference point",
+            "time (s)",
+            "position (m)",
+            &m.position,
+            Axes::Data,
+        )?;
+        lines(
+            &panels[1],
+            "Attitude",
+            "time (s)",
+            "angle (deg)",
+            &m.angles,
+            Axes::Data,
+        )?;
         if moving {
-            lines(&panels[2], "Velocity", "time (s)", "velocity (m/s)", &m.velocity, Axes::Data)?;
+            lines(
+                &panels[2],
+                "Velocity",
+                "time (s)",
+                "velocity (m/s)",
+                &m.velocity,
+                Axes::Data,
+            )?;
             lines(
                 &panels[3],
                 "Angular velocity",

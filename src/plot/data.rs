@@ -115,10 +115,20 @@ pub fn body_motion(path: &Path) -> Result<BodyMotion, Error> {
             .ok_or_else(|| bad(path, "no column `body`"))?
             .clone();
         for c in ["x", "y", "z"] {
-            push(&mut out.position, format!("{body} {c}"), t, num(path, &row, c)?);
+            push(
+                &mut out.position,
+                format!("{body} {c}"),
+                t,
+                num(path, &row, c)?,
+            );
         }
         for c in ["roll", "pitch", "yaw"] {
-            push(&mut out.angles, format!("{body} {c}"), t, num(path, &row, c)?);
+            push(
+                &mut out.angles,
+                format!("{body} {c}"),
+                t,
+                num(path, &row, c)?,
+            );
         }
         for c in ["vx", "vy", "vz"] {
             if let Some(v) = opt_num(&row, c) {

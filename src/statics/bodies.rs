@@ -30,7 +30,7 @@
 
 use super::{relax_blocks_held, seabed_coefs, RelaxOptions, Sys, V};
 use crate::body::free::{Fluid, FreeBody, FreeKind};
-use crate::body::{attachment, Body, Dynamic, Motion, MeanPose};
+use crate::body::{attachment, Body, Dynamic, MeanPose, Motion};
 use crate::error::Error;
 use crate::model::{Layout, Route};
 use crate::physics::Coefs;
@@ -119,7 +119,8 @@ fn entries(lay: &Layout, relaxed: &[bool]) -> Vec<Entry> {
 }
 
 fn block_of(lay: &Layout, node: usize) -> usize {
-    lay.blocks.partition_point(|b| (b.node_end as usize) <= node)
+    lay.blocks
+        .partition_point(|b| (b.node_end as usize) <= node)
 }
 
 /// Moves every free or pinned body that takes its equilibrium, and the lines of the
@@ -225,13 +226,7 @@ pub fn relax_bodies(
             let mut solved = true;
             for (i, e) in es.iter_mut().enumerate() {
                 let n = e.ndof;
-                let w = DVector::from_fn(n, |r, _| {
-                    if n == 6 && r < 3 {
-                        1.0
-                    } else {
-                        1.0 / e.len
-                    }
-                });
+                let w = DVector::from_fn(n, |r, _| if n == 6 && r < 3 { 1.0 } else { 1.0 / e.len });
                 let jw = DMatrix::from_fn(n, n, |r, c| -w[r] * k[i][(r, c)]);
                 let rw = DVector::from_fn(n, |r, _| w[r] * dofs(e, &f[i])[r]);
                 let h = jw.transpose() * &jw;
@@ -278,7 +273,11 @@ pub fn relax_bodies(
             for (i, e) in es.iter_mut().enumerate() {
                 let r = dofs(e, &f[i]);
                 let n = e.ndof;
-                let (t, rot) = if n == 6 { (&r[..3], &r[3..]) } else { (&r[..0], &r[..]) };
+                let (t, rot) = if n == 6 {
+                    (&r[..3], &r[3..])
+                } else {
+                    (&r[..0], &r[..])
+                };
                 let nt = t.iter().map(|x| x * x).sum::<f64>().sqrt();
                 let nr = rot.iter().map(|x| x * x).sum::<f64>().sqrt();
                 let mut d = DVector::zeros(n);
@@ -385,7 +384,11 @@ fn cap(d: &mut DVector<f64>, n: usize) {
 /// Moves pose coordinate `j` of `e` by `d` (0-2 translation of a free body, then
 /// rotation about the global axes; a pinned body's 0-2 are its rotation).
 fn perturb(e: &mut Entry, j: usize, d: f64) {
-    let rot = if e.ndof == 6 { j.checked_sub(3) } else { Some(j) };
+    let rot = if e.ndof == 6 {
+        j.checked_sub(3)
+    } else {
+        Some(j)
+    };
     match rot {
         None => e.x[j] += d,
         Some(a) => {
@@ -446,7 +449,10 @@ impl Eval<'_> {
                 let b = e.state.placed(e.x, e.q);
                 let held: Vec<([f64; 3], [f64; 3])> =
                     e.held.iter().map(|&(n, _)| (pos[n], forces[n])).collect();
-                let u = lay.currents.first().map_or([0.0; 3], |c| c.at(e.x.z).to_f64());
+                let u = lay
+                    .currents
+                    .first()
+                    .map_or([0.0; 3], |c| c.at(e.x.z).to_f64());
                 b.static_load(0.0, fluid, u, &held)
             })
             .collect())

@@ -93,9 +93,21 @@ fn body(sc: &Scenario, name: &str) -> std::sync::Arc<cablesim::body::Body> {
 /// MoorDyn's attitude, `R = Rx(r) Ry(p) Rz(y)`.
 fn moordyn_rotation(r: f64, p: f64, y: f64) -> [[f64; 3]; 3] {
     let (r, p, y) = (r.to_radians(), p.to_radians(), y.to_radians());
-    let rx = [[1.0, 0.0, 0.0], [0.0, r.cos(), -r.sin()], [0.0, r.sin(), r.cos()]];
-    let ry = [[p.cos(), 0.0, p.sin()], [0.0, 1.0, 0.0], [-p.sin(), 0.0, p.cos()]];
-    let rz = [[y.cos(), -y.sin(), 0.0], [y.sin(), y.cos(), 0.0], [0.0, 0.0, 1.0]];
+    let rx = [
+        [1.0, 0.0, 0.0],
+        [0.0, r.cos(), -r.sin()],
+        [0.0, r.sin(), r.cos()],
+    ];
+    let ry = [
+        [p.cos(), 0.0, p.sin()],
+        [0.0, 1.0, 0.0],
+        [-p.sin(), 0.0, p.cos()],
+    ];
+    let rz = [
+        [y.cos(), -y.sin(), 0.0],
+        [y.sin(), y.cos(), 0.0],
+        [0.0, 0.0, 1.0],
+    ];
     let mul = |a: [[f64; 3]; 3], b: [[f64; 3]; 3]| {
         let mut c = [[0.0; 3]; 3];
         for i in 0..3 {
@@ -118,8 +130,14 @@ fn a_free_body_and_its_cells_map_to_a_free_body() {
     let s = &d.body.spec;
     assert_eq!(s.mass, 2000.0);
     assert_eq!(s.cg, [0.1, 0.0, -0.5]);
-    assert_eq!(s.cb, s.cg, "MoorDyn's buoyancy acts at the centre of gravity");
-    assert_eq!(s.inertia, [[2000.0, 0.0, 0.0], [0.0, 2100.0, 0.0], [0.0, 0.0, 3000.0]]);
+    assert_eq!(
+        s.cb, s.cg,
+        "MoorDyn's buoyancy acts at the centre of gravity"
+    );
+    assert_eq!(
+        s.inertia,
+        [[2000.0, 0.0, 0.0], [0.0, 2100.0, 0.0], [0.0, 0.0, 3000.0]]
+    );
     assert_eq!(s.volume, 3.0);
     assert_eq!(s.drag_area, [2.0; 3]);
     assert_eq!(s.rotational_drag, [5.0; 3]);
@@ -134,7 +152,10 @@ fn a_free_body_and_its_cells_map_to_a_free_body() {
     let want = moordyn_rotation(2.0, -3.0, 4.0);
     for i in 0..3 {
         for j in 0..3 {
-            assert!((got[i][j] - want[i][j]).abs() < 1e-12, "{got:?} vs {want:?}");
+            assert!(
+                (got[i][j] - want[i][j]).abs() < 1e-12,
+                "{got:?} vs {want:?}"
+            );
         }
     }
     // The point on it carries its mass, and sits at its body coordinates.
@@ -176,7 +197,10 @@ fn tmaxic_zero_starts_the_bodies_at_the_files_pose() {
     assert!(toml.contains("initial = \"pose\""), "{toml}");
     assert!(!body(&sc, "body1").dynamic().unwrap().equilibrium);
     let (_, sc) = convert(&with("30      TmaxIC\n", ""));
-    assert!(body(&sc, "body1").dynamic().unwrap().equilibrium, "MoorDyn's default is 120 s");
+    assert!(
+        body(&sc, "body1").dynamic().unwrap().equilibrium,
+        "MoorDyn's default is 120 s"
+    );
 }
 
 #[test]
@@ -201,7 +225,10 @@ fn failures_map_to_ends_points_and_points_of_their_own() {
         "{toml}"
     );
     assert!(toml.contains("name = \"point2_failure1\""), "{toml}");
-    assert!(toml.contains("end = { point = \"point2_failure1\" }"), "{toml}");
+    assert!(
+        toml.contains("end = { point = \"point2_failure1\" }"),
+        "{toml}"
+    );
     // Line 2 stays on point 2 itself.
     assert!(toml.contains("end = { point = \"point2\" }"), "{toml}");
     // The failing point carries its own mass: it is point 2's (10 kg) on the body, and
@@ -216,21 +243,84 @@ fn failures_map_to_ends_points_and_points_of_their_own() {
 fn bad_bodies_and_failures_are_errors_naming_the_row_and_field() {
     let cases: Vec<(String, &str, &str)> = vec![
         (with("0.1|0.0|-0.5", "0.1|-0.5"), "0.1|-0.5", "body 1 CG"),
-        (with("2000|2100|3000", "2000|x|3000"), "2000|x|3000", "body 1 I"),
-        (with("2.0|5.0  1.0", "2.0|5.0|1|1  1.0"), "2.0|5.0|1|1", "body 1 CdA"),
-        (with("3.0  2.0|5.0  1.0", "3.0  2.0|5.0  1|2"), "2.0|5.0  1|2", "body 1 Ca"),
-        (with("1   Free ", "1   Floating "), "1   Floating", "body 1 Attachment"),
-        (with("2   Fixed    40.0", "3   Fixed    40.0"), "3   Fixed    40.0", "body ID"),
-        (with("1   Free     0.0  0.0  -20.0  2.0  -3.0  4.0  2000.0", "1   Free     0.0  0.0  -20.0  2.0  -3.0  4.0  0.0"), "-3.0  4.0  0.0", "body 1 Mass"),
-        (with("2000|2100|3000", "2000|0|3000"), "2000|0|3000", "body 1 I"),
-        (with("2   Body1   1.5", "2   Body7   1.5"), "2   Body7", "point 2 attachment"),
-        (with("1          P2     1 ", "1          P9     1 "), "1          P9", "failure 1 Point"),
-        (with("1          P2     1 ", "1          P2     7 "), "1          P2     7", "failure 1 Line(s)"),
-        (with("1          P2     1 ", "1          P2     3 "), "1          P2     3", "failure 1 Line(s)"),
-        (with("0         3.0e5", "0         -3.0e5"), "-3.0e5", "failure 1 FailTen"),
-        (with("0         3.0e5", "0         0"), "1          P2     1        0         0", "failure 1 FailTime"),
-        (with("1          P2     1 ", "1          R1A    1 "), "R1A", "failure 1 Point"),
-        (with("2          6      3,4", "2          6      1,3"), "6      1,3", "failure 2 Line(s)"),
+        (
+            with("2000|2100|3000", "2000|x|3000"),
+            "2000|x|3000",
+            "body 1 I",
+        ),
+        (
+            with("2.0|5.0  1.0", "2.0|5.0|1|1  1.0"),
+            "2.0|5.0|1|1",
+            "body 1 CdA",
+        ),
+        (
+            with("3.0  2.0|5.0  1.0", "3.0  2.0|5.0  1|2"),
+            "2.0|5.0  1|2",
+            "body 1 Ca",
+        ),
+        (
+            with("1   Free ", "1   Floating "),
+            "1   Floating",
+            "body 1 Attachment",
+        ),
+        (
+            with("2   Fixed    40.0", "3   Fixed    40.0"),
+            "3   Fixed    40.0",
+            "body ID",
+        ),
+        (
+            with(
+                "1   Free     0.0  0.0  -20.0  2.0  -3.0  4.0  2000.0",
+                "1   Free     0.0  0.0  -20.0  2.0  -3.0  4.0  0.0",
+            ),
+            "-3.0  4.0  0.0",
+            "body 1 Mass",
+        ),
+        (
+            with("2000|2100|3000", "2000|0|3000"),
+            "2000|0|3000",
+            "body 1 I",
+        ),
+        (
+            with("2   Body1   1.5", "2   Body7   1.5"),
+            "2   Body7",
+            "point 2 attachment",
+        ),
+        (
+            with("1          P2     1 ", "1          P9     1 "),
+            "1          P9",
+            "failure 1 Point",
+        ),
+        (
+            with("1          P2     1 ", "1          P2     7 "),
+            "1          P2     7",
+            "failure 1 Line(s)",
+        ),
+        (
+            with("1          P2     1 ", "1          P2     3 "),
+            "1          P2     3",
+            "failure 1 Line(s)",
+        ),
+        (
+            with("0         3.0e5", "0         -3.0e5"),
+            "-3.0e5",
+            "failure 1 FailTen",
+        ),
+        (
+            with("0         3.0e5", "0         0"),
+            "1          P2     1        0         0",
+            "failure 1 FailTime",
+        ),
+        (
+            with("1          P2     1 ", "1          R1A    1 "),
+            "R1A",
+            "failure 1 Point",
+        ),
+        (
+            with("2          6      3,4", "2          6      1,3"),
+            "6      1,3",
+            "failure 2 Line(s)",
+        ),
     ];
     for (text, needle, what) in cases {
         let e = error_of(&text);

@@ -363,9 +363,8 @@ fn body_plot_draws_the_pose_and_the_velocities() {
     // vx = cos t, wx = 10 deg/s cos t in rad/s.
     let out = tempfile::tempdir().unwrap();
     let csv = out.path().join("bodies.csv");
-    let mut text = String::from(
-        "time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz,vx,vy,vz,wx,wy,wz\n",
-    );
+    let mut text =
+        String::from("time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz,vx,vy,vz,wx,wy,wz\n");
     for k in 0..=60 {
         let t = k as f64 * 0.1;
         let w = 10f64.to_radians() * t.cos();

@@ -100,7 +100,11 @@ fn a_buoy_on_a_weightless_line_rests_where_the_closed_form_puts_it() {
     assert!((first[4] - z).abs() < 1e-6, "z {} against {z}", first[4]);
     assert!(first[5].abs() < 1e-4 && first[6].abs() < 1e-4, "{first:?}");
     // The line's pull on the body is the net buoyancy, straight down.
-    assert!((first[10] + t).abs() < 1e-6 * t, "fz {} against {t}", first[10]);
+    assert!(
+        (first[10] + t).abs() < 1e-6 * t,
+        "fz {} against {t}",
+        first[10]
+    );
     // And it stays there: after 0.1 s nothing moves (a force of 1 N left on the body
     // would give it 2e-5 m/s by then).
     let last = r.last().unwrap();
@@ -116,7 +120,10 @@ fn initial_pose_holds_the_body_where_the_file_puts_it() {
     let r = rows(dir.path(), &one_line("pose", 0.001));
     let first = &r[0];
     assert!((first[2] - 2.0).abs() < 1e-3 && (first[3] + 1.5).abs() < 1e-3);
-    assert!((first[5] - 6.0).abs() < 0.05 && (first[6] + 5.0).abs() < 0.05, "{first:?}");
+    assert!(
+        (first[5] - 6.0).abs() < 0.05 && (first[6] + 5.0).abs() < 0.05,
+        "{first:?}"
+    );
 }
 
 /// The buoy of tests/cpu/free_bodies.rs on three ropes to anchors 60 m away.
@@ -192,18 +199,34 @@ fn the_statics_finds_the_pose_a_released_buoy_settles_at() {
     let (a, b) = (&s[0], d.last().unwrap());
     let a_later = s.last().unwrap();
     for k in 14..20 {
-        assert!(b[k].abs() < 1e-4, "the released buoy is still moving: {b:?}");
-        assert!(a_later[k].abs() < 1e-5, "the statics' buoy moves: {a_later:?}");
+        assert!(
+            b[k].abs() < 1e-4,
+            "the released buoy is still moving: {b:?}"
+        );
+        assert!(
+            a_later[k].abs() < 1e-5,
+            "the statics' buoy moves: {a_later:?}"
+        );
     }
     assert!(
         a[2].abs() > 0.01 && a[6].abs() > 5.0,
         "the side force and the eccentric centre of gravity move and heel it: {a:?}"
     );
     for k in 2..5 {
-        assert!((a[k] - b[k]).abs() < 2e-3, "column {k}: {} vs {}", a[k], b[k]);
+        assert!(
+            (a[k] - b[k]).abs() < 2e-3,
+            "column {k}: {} vs {}",
+            a[k],
+            b[k]
+        );
     }
     for k in 5..8 {
-        assert!((a[k] - b[k]).abs() < 0.02, "column {k}: {} vs {}", a[k], b[k]);
+        assert!(
+            (a[k] - b[k]).abs() < 0.02,
+            "column {k}: {} vs {}",
+            a[k],
+            b[k]
+        );
     }
 }
 
