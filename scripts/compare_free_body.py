@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Static equilibrium of a free body on three lines: cablesim (released off its
-equilibrium, run until it is at rest) against MoorPy 1.3.0 (its equilibrium solver),
-intact and after one line has failed.
+"""Static equilibrium of a free body on three lines: cablesim against MoorPy 1.3.0 (its
+equilibrium solver), intact (cablesim's statics with the body's degrees of freedom,
+`initial = "equilibrium"`, and the same buoy released off its equilibrium and run
+until it is at rest) and after one line has failed (the run through the failure).
 
     python3 scripts/compare_free_body.py [--cablesim target/ci/cablesim]
 
@@ -34,7 +35,7 @@ ANCHOR_R, FAIRLEAD_R, FAIRLEAD_Z = 60.0, 1.5, -1.0
 REFERENCE_Z = -20.0
 
 
-def scenario(failed: bool, duration: float) -> str:
+def scenario(failed: bool, duration: float, initial: str = "pose") -> str:
     s = f"""
 [simulation]
 duration = {duration}
@@ -59,6 +60,7 @@ cm = 1.0
 [[bodies]]
 name = "buoy"
 motion = "free"
+initial = "{initial}"
 reference = [0.0, 0.0, {REFERENCE_Z}]
 offset = [3.0, -2.0, 1.0]
 angles = [4.0, -3.0, 5.0]
@@ -86,14 +88,18 @@ end = {{ body = "buoy", at = [{FAIRLEAD_R * math.cos(a)}, {FAIRLEAD_R * math.sin
     return s
 
 
-def run_cablesim(exe: str, failed: bool) -> list[float]:
+def run_cablesim(exe: str, failed: bool, initial: str = "pose") -> list[float]:
+    """The pose at the end of the run (released from the file's pose), or at t = 0
+    (`initial = "equilibrium"`: the statics' pose)."""
     with tempfile.TemporaryDirectory() as d:
         p = Path(d) / "buoy.toml"
-        p.write_text(scenario(failed, 300.0))
+        statics = initial == "equilibrium"
+        p.write_text(scenario(failed, 0.01 if statics else 300.0, initial))
         subprocess.run([exe, "run", str(p), "--out", str(Path(d) / "out")], check=True,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         rows = (Path(d) / "out" / "bodies.csv").read_text().splitlines()
-        v = [float(x) if i != 1 else 0.0 for i, x in enumerate(rows[-1].split(","))]
+        row = rows[1] if statics else rows[-1]
+        v = [float(x) if i != 1 else 0.0 for i, x in enumerate(row.split(","))]
         speed = max(abs(x) for x in v[14:20])
         if speed > 1e-4:
             print(f"  cablesim: not at rest at the end ({speed:.2e})")
@@ -132,10 +138,11 @@ def main() -> None:
     if not args.python:
         compare_peers.ensure_venv_and_reexec(Path(__file__))
     names = ["x", "y", "z", "roll", "pitch", "yaw"]
-    for failed in (False, True):
-        c = run_cablesim(args.cablesim, failed)
+    for failed, initial in ((False, "equilibrium"), (False, "pose"), (True, "pose")):
+        c = run_cablesim(args.cablesim, failed, initial)
         m = run_moorpy(failed)
-        print(("after leg 0 failed" if failed else "intact") + ":")
+        how = "statics" if initial == "equilibrium" else "released, at rest after 300 s"
+        print(("after leg 0 failed" if failed else "intact") + f" (cablesim: {how}):")
         for n, a, b in zip(names, c, m):
             print(f"  {n:5s} cablesim {a:12.5f}  moorpy {b:12.5f}  diff {a - b:+.5f}")
 

@@ -12,8 +12,8 @@ use rayon::prelude::*;
 /// discrete static equilibrium). Returns the layout, positions and the largest
 /// residual force left by the relaxation.
 pub fn prepare(sc: &Scenario) -> Result<(Layout, Vec<[f64; 3]>, f64), Error> {
-    let (lay, mut pos) = Layout::build(&sc.model)?;
-    let residual = apply(sc, &lay, &mut pos)?;
+    let (mut lay, mut pos) = Layout::build(&sc.model)?;
+    let residual = apply(sc, &mut lay, &mut pos)?;
     Ok((lay, pos, residual))
 }
 
@@ -28,8 +28,42 @@ pub fn prepare(sc: &Scenario) -> Result<(Layout, Vec<[f64; 3]>, f64), Error> {
 /// the analytic catenary, with a warning. A block with free ends (a buoy, a free point)
 /// is an error that says what to change: the point's net lift against the wet weight
 /// of the cables it carries.
-pub fn apply(sc: &Scenario, lay: &Layout, pos: &mut [[f64; 3]]) -> Result<f64, Error> {
-    apply_with(sc, lay, pos, &RelaxOptions::default())
+///
+/// Free and pinned bodies that take their equilibrium (`initial = "equilibrium"`, the
+/// default) with lines in a relaxed block are then moved to their static equilibrium
+/// with those lines (`statics::bodies`): `lay`'s routes then hold the bodies at that
+/// pose.
+pub fn apply(sc: &Scenario, lay: &mut Layout, pos: &mut [[f64; 3]]) -> Result<f64, Error> {
+    let opts = RelaxOptions::default();
+    let residual = apply_with(sc, lay, pos, &opts)?;
+    // The blocks relaxed: those holding a catenary cable.
+    let mut relax = vec![false; lay.blocks.len()];
+    for (ci, shape) in sc.initial.iter().enumerate() {
+        if *shape == InitialShape::Catenary {
+            let first = lay.cables[ci].nodes[0];
+            relax[lay.blocks.partition_point(|b| b.node_end <= first)] = true;
+        }
+    }
+    let bodies = crate::statics::bodies::relax_bodies(lay, pos, &opts, &relax)?;
+    for b in &bodies.bodies {
+        let [r, p, y] = b.angles.map(f64::to_degrees);
+        let at = format!(
+            "reference point ({:.4}, {:.4}, {:.4}) m, roll {r:.3}, pitch {p:.3}, yaw {y:.3} deg",
+            b.position[0], b.position[1], b.position[2]
+        );
+        if b.converged {
+            log::info!(
+                "initial equilibrium: body '{}' at rest with its lines at {at} (residual {:.2e} N, {:.2e} N m)",
+                b.name, b.residual.0, b.residual.1
+            );
+        } else {
+            log::warn!(
+                "initial equilibrium: body '{}' did not reach its static equilibrium with its lines; starting from the best pose found, {at}, where {:.3e} N and {:.3e} N m are left: expect a start-up transient (or set initial = \"pose\" on the body)",
+                b.name, b.residual.0, b.residual.1
+            );
+        }
+    }
+    Ok(residual)
 }
 
 /// [`apply`] with the relaxation's options (`require_convergence` is ignored: what a

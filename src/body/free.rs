@@ -514,6 +514,45 @@ impl FreeBody {
         Ok(())
     }
 
+    /// The load on the body at rest (every velocity zero) at time `t`, about its
+    /// reference point, global axes: weight, buoyancy, hydrostatics, linear stiffness,
+    /// drag in the current `u`, external loads, and the forces `f` at the points `r`
+    /// of the nodes held on it (`(r, f)`, the lines' pull). The residual of the
+    /// statics with body degrees of freedom (docs/src/bodies.md, "Initial state").
+    pub fn static_load(
+        &self,
+        t: f64,
+        fluid: Fluid,
+        u: [f64; 3],
+        held: &[([f64; 3], [f64; 3])],
+    ) -> [f64; 6] {
+        let mut still = self.clone();
+        still.v_g = Vec3::zeros();
+        still.w = Vec3::zeros();
+        let lumps: Vec<Lump> = held
+            .iter()
+            .map(|(r, f)| Lump {
+                r: *r,
+                m: [[0.0; 3]; 3],
+                f: *f,
+            })
+            .collect();
+        let x = still.reference();
+        let (_, f) = still.system(t, fluid, u, &lumps, x);
+        std::array::from_fn(|k| f[k])
+    }
+
+    /// The body placed with its reference point at `x` and attitude `q`, at rest.
+    pub fn placed(&self, x: Vec3, q: UnitQuaternion<f64>) -> Self {
+        let mut b = self.clone();
+        b.q = q;
+        b.x_g = x + q * v3(self.spec.cg);
+        b.v_g = Vec3::zeros();
+        b.w = Vec3::zeros();
+        b.last_acc = (Vec3::zeros(), Vec3::zeros());
+        b
+    }
+
     /// The highest natural frequency squared and damping rate of the body's own
     /// stiffness and linear damping, per degree of freedom (`(omega^2, gamma)`, the
     /// diagonal terms over the diagonal of the mass matrix at rest, without lumps).

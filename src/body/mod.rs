@@ -61,6 +61,10 @@ pub struct Dynamic {
     /// A pinned body's translation (the `x, y, z` columns of its motion file; `None`:
     /// held at its pose).
     pub pin: Option<MotionTable>,
+    /// Whether the statics (`initial = "catenary"` lines) move the body to its static
+    /// equilibrium with its lines (`initial = "equilibrium"`, the default), or hold it
+    /// at its pose (`initial = "pose"`: the run is the release from there).
+    pub equilibrium: bool,
 }
 
 /// A body with prescribed motion.

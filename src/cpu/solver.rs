@@ -579,9 +579,31 @@ impl CpuSolver {
                 tension,
                 trigger: trigger.into(),
             });
-            released.push(f.node);
+            released.push((f.node, trigger));
         }
-        for node in released {
+        // The other ends on a node let go fail with it (the cables of a `[[points]]`
+        // entry that fails), each with its own tension.
+        for f in self.failures.iter_mut().filter(|f| f.fired.is_none()) {
+            let Some(&(_, trigger)) = released.iter().find(|(n, _)| *n == f.node) else {
+                continue;
+            };
+            let tension = end_tension(&self.layout, &self.r, f.elem);
+            let end = if f.spec.at_start { "start" } else { "end" };
+            log::warn!(
+                "t = {t} s: cable '{}' failed at its {end} with the other cables of its point ({trigger}; end tension {tension:.6e} N)",
+                f.spec.cable
+            );
+            f.fired = Some(crate::model::FailureEvent {
+                time: t,
+                cable: f.spec.cable.clone(),
+                end: end.into(),
+                tension,
+                trigger: trigger.into(),
+            });
+        }
+        released.sort_by_key(|x| x.0);
+        released.dedup_by_key(|x| x.0);
+        for (node, _) in released {
             self.release(node);
         }
     }

@@ -492,6 +492,9 @@ impl GpuSolver {
                 fired: None,
             });
         }
+        if let Some(what) = unsupported_failures(lay, failures) {
+            return Err(Error::GpuUnsupported(what));
+        }
         if out.len() > lay.routes.len() {
             return Err(Error::GpuUnsupported(format!(
                 "{} line failures on {} held ends",
@@ -695,6 +698,38 @@ struct SavedMesh {
     ale: Box<AleState>,
     /// [`GpuSolver::remeshes`] then: the device holds another layout where it differs.
     remeshes: u64,
+}
+
+/// What of a run's line failures the GPU path does not do, or `None`: the cables of a
+/// failing `[[points]]` entry share its node and go together (the CPU path releases
+/// the others when one fires); the device tests each failure on its own, so by time
+/// they fire at the same step, by tension they would not, and that case stays on the
+/// CPU.
+pub fn unsupported_failures(
+    lay: &Layout,
+    failures: &[crate::model::EndFailure],
+) -> Option<String> {
+    let node = |f: &crate::model::EndFailure| {
+        let c = lay.cables.iter().find(|c| c.name == f.cable)?;
+        Some(if f.at_start {
+            c.nodes[0]
+        } else {
+            c.nodes[c.nodes.len() - 1]
+        })
+    };
+    failures.iter().enumerate().find_map(|(i, a)| {
+        let na = node(a)?;
+        let shared = failures
+            .iter()
+            .enumerate()
+            .any(|(j, b)| j != i && node(b) == Some(na));
+        (a.tension.is_some() && shared).then(|| {
+            format!(
+                "a point that fails by tension with several cables (cable '{}'; the CPU path runs it)",
+                a.cable
+            )
+        })
+    })
 }
 
 /// What the GPU path cannot do with these winches, or `None`: two winch cables that

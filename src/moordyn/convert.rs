@@ -31,6 +31,7 @@
 //!   (`1/2 rho CdA |v| v`) and `Ca` (added mass `Ca rho V`, isotropic) are cablesim's
 //!   `mass`, `volume`, `drag_area`, `added_mass` unchanged.
 
+use super::bodies::{fail_keys, read_bodies, read_failures, BodyKind, MdBody, MdFailure};
 use super::err_at;
 use super::options::{read_current_profile, read_options};
 use super::parse::{MoorDynFile, Version};
@@ -135,6 +136,101 @@ fn write_waves(w: &mut String, md: &super::waves::MdWaves) {
     let _ = writeln!(w, "]");
 }
 
+/// Writes one MoorDyn body as `[[bodies]]`; `initial` is the free and pinned bodies'
+/// `initial` key and the note on it (from TmaxIC).
+fn write_body(w: &mut String, b: &MdBody, initial: &(&str, String)) {
+    let r = &b.row;
+    let name = b.name();
+    let x = [r.r6[0], r.r6[1], r.r6[2]];
+    let attitude = format!(
+        "r0, p0, y0 = {}, {}, {} deg in MoorDyn's order (R = Rx Ry Rz)",
+        f(r.r6[3]),
+        f(r.r6[4]),
+        f(r.r6[5])
+    );
+    match b.kind {
+        BodyKind::Fixed => {
+            let _ = writeln!(
+                w,
+                "\n# Body {} ({}, line {}): fixed; its points are written as fixed points at \
+                 their places ({attitude}).",
+                r.id, r.attachment, r.line
+            );
+            return;
+        }
+        BodyKind::Coupled => {
+            let _ = writeln!(w, "\n[[bodies]]");
+            let _ = writeln!(
+                w,
+                "# Body {} ({}, line {}): coupled (its motion comes from MoorDyn's caller): \
+                 held still at its pose here; give it a `motion_file` (t,x,y,z,roll,pitch,yaw) \
+                 to drive it ({attitude}).",
+                r.id, r.attachment, r.line
+            );
+            let _ = writeln!(w, "name = {}", quote(&name));
+            let _ = writeln!(w, "reference = {}  # X0, Y0, Z0", v3(x));
+            return;
+        }
+        _ => {}
+    }
+    let _ = writeln!(w, "\n[[bodies]]");
+    let pinned = b.kind == BodyKind::Pinned;
+    let _ = writeln!(
+        w,
+        "# Body {} ({}, line {}): {}.",
+        r.id,
+        r.attachment,
+        r.line,
+        if pinned {
+            "coupled pinned: its reference point is held (still here; a `motion_file` with \
+             zero angles drives it), its rotation free"
+        } else {
+            "free, moved by its own dynamics"
+        }
+    );
+    let _ = writeln!(w, "name = {}", quote(&name));
+    let _ = writeln!(w, "motion = \"{}\"", if pinned { "pinned" } else { "free" });
+    let _ = writeln!(w, "# {}.", initial.1);
+    let _ = writeln!(w, "initial = \"{}\"", initial.0);
+    let _ = writeln!(w, "reference = {}  # X0, Y0, Z0", v3(x));
+    let _ = writeln!(
+        w,
+        "angles = {}  # roll, pitch, yaw (R = Rz Ry Rx) of MoorDyn's {attitude}",
+        v3(b.angles)
+    );
+    let _ = writeln!(w, "mass = {}  # kg, Mass", f(r.mass));
+    let _ = writeln!(w, "cg = {}  # m, CG \"{}\"", v3(b.cg), r.cg);
+    let _ = writeln!(
+        w,
+        "inertia = {}  # kg m^2 about the centre of gravity, I \"{}\"",
+        v3(b.inertia),
+        r.inertia
+    );
+    let _ = writeln!(w, "volume = {}  # m^3, Volume", f(r.volume));
+    let _ = writeln!(
+        w,
+        "cb = {}  # MoorDyn's buoyancy acts at the centre of gravity",
+        v3(b.cg)
+    );
+    let _ = writeln!(
+        w,
+        "ca = {}  # Ca \"{}\": added mass Ca rho V per body axis at the reference point",
+        v3(b.ca),
+        r.ca
+    );
+    let _ = writeln!(
+        w,
+        "drag_area = {}  # m^2, CdA \"{}\" (translations)",
+        v3([b.cda[0], b.cda[1], b.cda[2]]),
+        r.cda
+    );
+    let _ = writeln!(
+        w,
+        "rotational_drag = {}  # CdA (rotations): -1/2 rho CdA w |w| per body axis",
+        v3([b.cda[3], b.cda[4], b.cda[5]])
+    );
+}
+
 /// Maps a parsed MoorDyn file to scenario TOML. `path` names the file in messages.
 pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result<Converted, Error> {
     let p = path;
@@ -156,15 +252,6 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
                     first,
                     "RODS",
                     "rods are not supported (cablesim has no rigid or pinned rod objects)",
-                ))
-            }
-            "BODIES" => {
-                return Err(err_at(
-                    p,
-                    first,
-                    "BODIES",
-                    "bodies with their own dynamics are not supported; a coupled body's \
-                     fairleads can be given as Coupled points instead",
                 ))
             }
             kind => {
@@ -227,6 +314,9 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         }
     }
 
+    // Bodies.
+    let bodies = read_bodies(p, &file.bodies, &mut warn)?;
+
     // Points.
     let mut kinds = Vec::with_capacity(file.points.len());
     for (i, r) in file.points.iter().enumerate() {
@@ -242,7 +332,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
                 ),
             ));
         }
-        let k = point_kind(p, r)?;
+        let k = point_kind(p, r, bodies.len())?;
         if r.force != [0.0; 3] {
             return Err(err_at(
                 p,
@@ -343,6 +433,41 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         ends.push((a, b));
     }
 
+    // Failures: a row listing every line at its point fails the point (its lines go
+    // together, with the point's mass); a row listing some of them moves those ends to
+    // a point of their own at the same place, which fails.
+    let failures = read_failures(p, &file.failures, file.points.len(), &ends, &mut warn)?;
+    let mut whole: Vec<Option<&MdFailure>> = vec![None; file.points.len()];
+    let mut split: Vec<&MdFailure> = Vec::new();
+    for fl in &failures {
+        let i = fl.point - 1;
+        if kinds[i] == PointKind::Free {
+            return Err(err_at(
+                p,
+                fl.line,
+                format!("failure {} Point", fl.id),
+                format!(
+                    "point {} is free: it has no support for its lines to leave (cablesim \
+                     fails lines at fixed, coupled or body points)",
+                    fl.point
+                ),
+            ));
+        }
+        if fl.lines.len() == uses[i] {
+            whole[i] = Some(fl);
+        } else {
+            split.push(fl);
+        }
+    }
+    // Per line end (line index, 0 = A / 1 = B): the split failure that moves it.
+    let split_of = |k: usize, end: usize| -> Option<&MdFailure> {
+        let id = ends[k].0 * (1 - end) + ends[k].1 * end;
+        split
+            .iter()
+            .find(|fl| fl.point == id && fl.lines.contains(&(k + 1)))
+            .copied()
+    };
+
     for (i, r) in file.points.iter().enumerate() {
         if uses[i] == 0 {
             warn.push(Warning {
@@ -354,10 +479,14 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
 
     // Water depth: MoorDyn-C takes WtrDpth (default 0) and lowers the seabed to any
     // point below it, so an anchor given at the bottom sets the depth.
-    let lowest = file
-        .points
-        .iter()
-        .map(|r| -r.pos[2])
+    let global = |i: usize| -> [f64; 3] {
+        match kinds[i] {
+            PointKind::Body(b) => bodies[b - 1].place(file.points[i].pos),
+            _ => file.points[i].pos,
+        }
+    };
+    let lowest = (0..file.points.len())
+        .map(|i| -global(i)[2])
         .fold(f64::NEG_INFINITY, f64::max);
     let (depth, depth_note) = match o.depth {
         Some((d, l)) if d >= lowest => (d, format!("WtrDpth, line {l}")),
@@ -549,7 +678,19 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         }
     };
     let _ = writeln!(w, "output_interval = {}", f(out_int));
+    let dynamic_bodies = bodies
+        .iter()
+        .any(|b| matches!(b.kind, BodyKind::Free | BodyKind::Pinned));
     match &o.scheme {
+        Some((sch, l))
+            if dynamic_bodies && ["RK2", "RK4"].contains(&sch.to_uppercase().as_str()) =>
+        {
+            let _ = writeln!(
+                w,
+                "# tScheme {sch} (line {l}): cablesim steps free and pinned bodies with \
+                 symplectic Euler only (its default), which is used."
+            );
+        }
         Some((sch, l)) => match sch.to_uppercase().as_str() {
             "RK2" => {
                 let _ = writeln!(w, "scheme = \"rk2\"  # tScheme RK2, line {l}");
@@ -677,6 +818,26 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             let _ = writeln!(w, "friction = {}  # no FrictionCoefficient option", f(mu));
         }
     }
+    // MoorDyn's TmaxIC: > 0 (default 120 s) finds the initial equilibrium, free bodies
+    // included; 0 starts from the file's pose.
+    let tmax_ic =
+        o.ic.iter()
+            .find(|(n, _, _)| ["tmaxic", "ictmax"].contains(&n.to_lowercase().as_str()))
+            .map(|(_, v, l)| (v.parse::<f64>().unwrap_or(120.0), *l));
+    let body_initial = match tmax_ic {
+        Some((t, l)) if t <= 0.0 => (
+            "pose",
+            format!("TmaxIC = 0 (line {l}): MoorDyn starts from the file's pose, its lines as catenaries between their ends; the run is the release from there"),
+        ),
+        Some((t, l)) => (
+            "equilibrium",
+            format!("TmaxIC = {} (line {l}): MoorDyn finds the static equilibrium of the body with its lines first; cablesim solves for it (Newton on the body's pose)", f(t)),
+        ),
+        None => (
+            "equilibrium",
+            "no TmaxIC (MoorDyn's default 120 s): MoorDyn finds the static equilibrium of the body with its lines first; cablesim solves for it (Newton on the body's pose)".to_string(),
+        ),
+    };
     if !o.ic.is_empty() {
         let list: Vec<String> =
             o.ic.iter()
@@ -686,8 +847,17 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             w,
             "\n# MoorDyn's initial-condition settings ({}) are not needed: each cable starts \
              from the elastic catenary relaxed to the static equilibrium by Newton's method \
-             (initial = \"catenary\").",
-            list.join(", ")
+             (initial = \"catenary\"){}.",
+            list.join(", "),
+            if bodies
+                .iter()
+                .any(|b| matches!(b.kind, BodyKind::Free | BodyKind::Pinned))
+            {
+                "; TmaxIC decides whether the free and pinned bodies start in equilibrium \
+                 (their `initial`)"
+            } else {
+                ""
+            }
         );
     }
     if !o.ignored.is_empty() {
@@ -735,11 +905,14 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         }
     }
 
-    // Points: free points, and fixed or coupled ones that several lines share, are
-    // `[[points]]`; a fixed or coupled point of one line is written at that line's end.
-    // A coupled (vessel) point is a held end, still or following a motion file: the
-    // scenario format has no bodies yet (`[[bodies]]` is being added), so a vessel's
-    // fairleads cannot yet share one rigid body's motion; once it exists they could.
+    // Bodies.
+    for b in &bodies {
+        write_body(w, b, &body_initial);
+    }
+
+    // Points: free points, and fixed, coupled or body points that several lines share
+    // or that fail, are `[[points]]`; any other is written at its line's end. A coupled
+    // (vessel) point is a held end, still or following a motion file.
     let named: Vec<bool> = (0..file.points.len())
         .map(|i| kinds[i] == PointKind::Free || uses[i] > 1)
         .collect();
@@ -752,7 +925,26 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
                 None => format!("fixed = {}", v3(r.pos)),
             },
             PointKind::Free => format!("free = {}", v3(r.pos)),
+            PointKind::Body(b) => {
+                let md = &bodies[b - 1];
+                match md.kind {
+                    BodyKind::Fixed => format!("fixed = {}", v3(md.place(r.pos))),
+                    BodyKind::Coupled => format!(
+                        "body = {}, at = {}",
+                        quote(&md.name()),
+                        v3(md.turned(r.pos))
+                    ),
+                    BodyKind::Free | BodyKind::Pinned => {
+                        format!("body = {}, at = {}", quote(&md.name()), v3(r.pos))
+                    }
+                }
+            }
         }
+    };
+    // A point on a free or pinned body carries its mass, volume and drag into it.
+    let on_dynamic = |i: usize| match kinds[i] {
+        PointKind::Body(b) => matches!(bodies[b - 1].kind, BodyKind::Free | BodyKind::Pinned),
+        _ => false,
     };
     let point_note = |i: usize| -> String {
         let r = &file.points[i];
@@ -763,14 +955,12 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             ),
             PointKind::Coupled => match opts.motions.get(&r.id) {
                 Some(_) => format!(
-                    "point {} ({}, line {}): driven by the motion file (t,x,y,z); a body \
-                     attachment once cablesim has bodies",
+                    "point {} ({}, line {}): driven by the motion file (t,x,y,z)",
                     r.id, r.attachment, r.line
                 ),
                 None => format!(
                     "point {} ({}, line {}): the vessel's point, held still (no motion file \
-                     given; `cablesim convert --motion {}=FILE.csv` drives it); a body \
-                     attachment once cablesim has bodies",
+                     given; `cablesim convert --motion {}=FILE.csv` drives it)",
                     r.id, r.attachment, r.line, r.id
                 ),
             },
@@ -779,11 +969,69 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
                  equilibrium",
                 r.id, r.attachment, r.line
             ),
+            PointKind::Body(b) => {
+                let md = &bodies[b - 1];
+                match md.kind {
+                    BodyKind::Fixed => format!(
+                        "point {} ({}, line {}): on fixed body {b}, held at its place {}",
+                        r.id,
+                        r.attachment,
+                        r.line,
+                        v3(md.place(r.pos))
+                    ),
+                    BodyKind::Coupled => format!(
+                        "point {} ({}, line {}): on coupled body {b}{}",
+                        r.id,
+                        r.attachment,
+                        r.line,
+                        if md.rot == nalgebra::Matrix3::identity() {
+                            String::new()
+                        } else {
+                            " (its body coordinates turned by the body's initial attitude, as the prescribed body is written level)".to_string()
+                        }
+                    ),
+                    _ => format!(
+                        "point {} ({}, line {}): on body {b}, at its body coordinates; its mass, \
+                         volume and drag are lumped into the body",
+                        r.id, r.attachment, r.line
+                    ),
+                }
+            }
         };
-        if kinds[i] != PointKind::Free && (r.mass != 0.0 || r.volume != 0.0 || r.cda != 0.0) {
+        if kinds[i] != PointKind::Free
+            && !on_dynamic(i)
+            && (r.mass != 0.0 || r.volume != 0.0 || r.cda != 0.0)
+        {
             n.push_str("; its mass, volume and CdA do not act on a held point");
         }
         n
+    };
+    let point_mass = |w: &mut String, i: usize| {
+        let r = &file.points[i];
+        if kinds[i] == PointKind::Free
+            || (on_dynamic(i) && (r.mass != 0.0 || r.volume != 0.0 || r.cda != 0.0))
+        {
+            let _ = writeln!(w, "mass = {}  # kg", f(r.mass));
+            let _ = writeln!(w, "volume = {}  # m^3, buoyancy rho V g", f(r.volume));
+            let _ = writeln!(w, "drag_area = {}  # m^2, CdA", f(r.cda));
+            let _ = writeln!(w, "added_mass = {}  # Ca, on the volume", f(r.ca));
+        }
+    };
+    let fail_note = |fl: &MdFailure| -> String {
+        format!(
+            "FAILURE {} (line {}): {}{}",
+            fl.id,
+            fl.line,
+            match fl.time {
+                Some(t) => format!("at t >= {} s", f(t)),
+                None => String::new(),
+            },
+            match (fl.time, fl.tension) {
+                (Some(_), Some(x)) => format!(" or when an end tension reaches {} N", f(x)),
+                (None, Some(x)) => format!("when an end tension reaches {} N", f(x)),
+                _ => String::new(),
+            }
+        )
     };
     for (i, r) in file.points.iter().enumerate() {
         if uses[i] == 0 {
@@ -800,12 +1048,51 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         let _ = writeln!(w, "\n[[points]]");
         let _ = writeln!(w, "# {}", point_note(i));
         let _ = writeln!(w, "name = \"point{}\"", r.id);
-        let _ = writeln!(w, "{}", end_table(i).replace(", file", "\nfile"));
-        if kinds[i] == PointKind::Free {
-            let _ = writeln!(w, "mass = {}  # kg", f(r.mass));
-            let _ = writeln!(w, "volume = {}  # m^3, buoyancy rho V g", f(r.volume));
-            let _ = writeln!(w, "drag_area = {}  # m^2, CdA", f(r.cda));
-            let _ = writeln!(w, "added_mass = {}  # Ca, on the volume", f(r.ca));
+        let _ = writeln!(
+            w,
+            "{}",
+            end_table(i)
+                .replace(", file", "\nfile")
+                .replace(", at", "\nat")
+        );
+        point_mass(w, i);
+        if let Some(fl) = whole[i] {
+            let _ = writeln!(
+                w,
+                "# {}: every line here fails together; the point leaves its support with them.",
+                fail_note(fl)
+            );
+            for kv in fail_keys(fl).trim_start_matches(", ").split(", ") {
+                let _ = writeln!(w, "{kv}");
+            }
+        }
+    }
+    for fl in &split {
+        let i = fl.point - 1;
+        let _ = writeln!(w, "\n[[points]]");
+        let _ = writeln!(
+            w,
+            "# {}: lines {} leave point {} together (MoorDyn joins them at a new massless \
+             free point): they are held here, at point {}'s place, until then.",
+            fail_note(fl),
+            fl.lines
+                .iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            fl.point,
+            fl.point
+        );
+        let _ = writeln!(w, "name = \"point{}_failure{}\"", fl.point, fl.id);
+        let _ = writeln!(
+            w,
+            "{}",
+            end_table(i)
+                .replace(", file", "\nfile")
+                .replace(", at", "\nat")
+        );
+        for kv in fail_keys(fl).trim_start_matches(", ").split(", ") {
+            let _ = writeln!(w, "{kv}");
         }
     }
 
@@ -822,13 +1109,30 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         let _ = writeln!(w, "line_type = {}", quote(&lt.name));
         let _ = writeln!(w, "length = {}  # m, UnstrLen", f(l.length));
         let _ = writeln!(w, "segments = {}  # NumSegs", l.segments);
-        for (key, id) in [("start", a), ("end", b)] {
+        for (e, (key, id)) in [("start", a), ("end", b)].into_iter().enumerate() {
             let i = id - 1;
-            if named[i] {
+            if let Some(fl) = split_of(k, e) {
+                let _ = writeln!(w, "{key} = {{ point = \"point{id}_failure{}\" }}", fl.id);
+            } else if named[i] {
                 let _ = writeln!(w, "{key} = {{ point = \"point{id}\" }}");
             } else {
                 let _ = writeln!(w, "# {}", point_note(i));
-                let _ = writeln!(w, "{key} = {{ {} }}", end_table(i));
+                let mut extra = String::new();
+                let r = &file.points[i];
+                if on_dynamic(i) && (r.mass != 0.0 || r.volume != 0.0 || r.cda != 0.0) {
+                    extra = format!(
+                        ", mass = {}, volume = {}, drag_area = {}, added_mass = {}",
+                        f(r.mass),
+                        f(r.volume),
+                        f(r.cda),
+                        f(r.ca)
+                    );
+                }
+                if let Some(fl) = whole[i] {
+                    let _ = writeln!(w, "# {}.", fail_note(fl));
+                    extra += &fail_keys(fl);
+                }
+                let _ = writeln!(w, "{key} = {{ {}{extra} }}", end_table(i));
             }
         }
         let _ = writeln!(

@@ -4,6 +4,7 @@
 //! [`Scenario::load_any`](crate::scenario::Scenario::load_any); `cablesim convert model.dat -o model.toml` writes the
 //! TOML. docs/src/moordyn.md lists what is read, how each field maps and what is refused.
 
+mod bodies;
 pub mod convert;
 mod options;
 pub mod parse;

@@ -108,6 +108,52 @@ pub struct LineRow {
     pub flags: String,
 }
 
+/// A row of the bodies table: `ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG I Volume CdA
+/// Ca`. The cells that may hold several `|`-separated values are kept as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyRow {
+    /// 1-based line number in the file.
+    pub line: usize,
+    /// Body ID (sequential from 1).
+    pub id: usize,
+    /// Attachment word as written (`Free`, `Fixed`, `Coupled`, `CoupledPinned`, ...).
+    pub attachment: String,
+    /// Reference point, m, and roll, pitch, yaw, degrees (MoorDyn's order: `R = Rx(r)
+    /// Ry(p) Rz(y)`).
+    pub r6: [f64; 6],
+    /// Mass, kg.
+    pub mass: f64,
+    /// Centre of gravity as written (`z`, or `x|y|z`), m.
+    pub cg: String,
+    /// Inertia as written (`I`, or `Ixx|Iyy|Izz`), kg m^2.
+    pub inertia: String,
+    /// Displaced volume, m^3.
+    pub volume: f64,
+    /// Drag coefficient times area as written (1, 2, 3 or 6 values), m^2 (m^5 for the
+    /// rotations).
+    pub cda: String,
+    /// Added-mass coefficients as written (1 or 3 values).
+    pub ca: String,
+}
+
+/// A row of the FAILURE section (MoorDyn-F): `FailureID Point Line(s) FailTime
+/// FailTen`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FailureRow {
+    /// 1-based line number in the file.
+    pub line: usize,
+    /// Failure ID as written.
+    pub id: String,
+    /// The point as written (`5`, `P5`, `C5`, `Point5`; `R1a` names a rod end).
+    pub point: String,
+    /// The lines as written (`1,2,3`).
+    pub lines: String,
+    /// Failure time, s (0: none).
+    pub time: f64,
+    /// Failure tension, N (0: none).
+    pub tension: f64,
+}
+
 /// An `OPTIONS` row: `value name [description]`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OptionRow {
@@ -146,6 +192,10 @@ pub struct MoorDynFile {
     pub options: Vec<OptionRow>,
     /// Output channels, with their line numbers.
     pub outputs: Vec<(usize, String)>,
+    /// Bodies.
+    pub bodies: Vec<BodyRow>,
+    /// Failures (MoorDyn-F).
+    pub failures: Vec<FailureRow>,
     /// Sections cablesim does not read.
     pub others: Vec<OtherSection>,
 }
@@ -158,6 +208,8 @@ pub enum Kind {
     Lines,
     Options,
     Outputs,
+    Bodies,
+    Failure,
     Other(&'static str),
     /// A header with no known key phrase (the title line, `need this line`).
     Unknown,
@@ -174,7 +226,7 @@ pub fn kind_of(header: &str) -> Kind {
     } else if has(&["ROD DICTIONARY", "ROD TYPES"]) {
         Kind::Other("ROD TYPES")
     } else if has(&["BODIES", "BODY LIST", "BODY PROPERTIES"]) {
-        Kind::Other("BODIES")
+        Kind::Bodies
     } else if has(&["RODS", "ROD LIST", "ROD PROPERTIES"]) {
         Kind::Other("RODS")
     } else if has(&[
@@ -192,7 +244,7 @@ pub fn kind_of(header: &str) -> Kind {
     } else if has(&["OUTPUT"]) {
         Kind::Outputs
     } else if has(&["FAILURE"]) {
-        Kind::Other("FAILURE")
+        Kind::Failure
     } else if has(&["CONTROL"]) {
         Kind::Other("CONTROL")
     } else if has(&["EXTERNAL LOADS"]) {
@@ -336,6 +388,8 @@ pub fn parse(text: &str, path: &Path) -> Result<MoorDynFile, Error> {
         lines: Vec::new(),
         options: Vec::new(),
         outputs: Vec::new(),
+        bodies: Vec::new(),
+        failures: Vec::new(),
         others: Vec::new(),
     };
     for s in &secs {
@@ -480,6 +534,42 @@ pub fn parse(text: &str, path: &Path) -> Result<MoorDynFile, Error> {
                     for w in f {
                         file.outputs.push((*line, w.clone()));
                     }
+                }
+            }
+            Kind::Bodies => {
+                for (line, f) in &s.rows {
+                    let l = *line;
+                    need(p, l, "BODIES row", f, 14)?;
+                    let mut r6 = [0.0; 6];
+                    for (k, name) in ["X0", "Y0", "Z0", "r0", "p0", "y0"].iter().enumerate() {
+                        r6[k] = num(p, l, name, &f[2 + k])?;
+                    }
+                    file.bodies.push(BodyRow {
+                        line: l,
+                        id: int(p, l, "ID", &f[0])?.max(0) as usize,
+                        attachment: f[1].clone(),
+                        r6,
+                        mass: num(p, l, "Mass", &f[8])?,
+                        cg: f[9].clone(),
+                        inertia: f[10].clone(),
+                        volume: num(p, l, "Volume", &f[11])?,
+                        cda: f[12].clone(),
+                        ca: f[13].clone(),
+                    });
+                }
+            }
+            Kind::Failure => {
+                for (line, f) in &s.rows {
+                    let l = *line;
+                    need(p, l, "FAILURE row", f, 5)?;
+                    file.failures.push(FailureRow {
+                        line: l,
+                        id: f[0].clone(),
+                        point: f[1].clone(),
+                        lines: f[2].clone(),
+                        time: num(p, l, "FailTime", &f[3])?,
+                        tension: num(p, l, "FailTen", &f[4])?,
+                    });
                 }
             }
             Kind::Other(kind) => file.others.push(OtherSection {

@@ -13,6 +13,8 @@ pub(super) enum PointKind {
     Fixed,
     Coupled,
     Free,
+    /// On body N (1-based): its position is in the body's coordinates.
+    Body(usize),
 }
 
 /// Splits `Body12` into (`BODY`, `12`).
@@ -22,31 +24,33 @@ pub(super) fn word_and_number(s: &str) -> (String, String) {
     (letters.to_uppercase(), rest.to_string())
 }
 
-pub(super) fn point_kind(p: &Path, r: &PointRow) -> Result<PointKind, Error> {
-    let (w, _) = word_and_number(&r.attachment);
+pub(super) fn point_kind(p: &Path, r: &PointRow, n_bodies: usize) -> Result<PointKind, Error> {
+    let (w, num) = word_and_number(&r.attachment);
     Ok(match w.as_str() {
         "FIXED" | "FIX" | "ANCHOR" => PointKind::Fixed,
         "VESSEL" | "VES" | "FAIRLEAD" | "COUPLED" | "CPLD" => PointKind::Coupled,
         "POINT" | "CONNECT" | "CON" | "FREE" => PointKind::Free,
-        "BODY" => {
-            return Err(err_at(
-                p,
-                r.line,
-                format!("point {} attachment", r.id),
-                format!(
-                    "\"{}\": points on bodies are not supported (cablesim has no MoorDyn \
-                     bodies); make it Fixed or Coupled",
-                    r.attachment
-                ),
-            ))
-        }
+        "BODY" => match num.parse::<usize>() {
+            Ok(b) if b >= 1 && b <= n_bodies => PointKind::Body(b),
+            _ => {
+                return Err(err_at(
+                    p,
+                    r.line,
+                    format!("point {} attachment", r.id),
+                    format!(
+                        "\"{}\" names no body of the BODIES section ({} bodies)",
+                        r.attachment, n_bodies
+                    ),
+                ))
+            }
+        },
         _ => {
             return Err(err_at(
                 p,
                 r.line,
                 format!("point {} attachment", r.id),
                 format!(
-                    "unknown attachment \"{}\" (Fixed, Vessel/Coupled, Free/Connect)",
+                    "unknown attachment \"{}\" (Fixed, Vessel/Coupled, Free/Connect, BodyN)",
                     r.attachment
                 ),
             ))

@@ -1,6 +1,6 @@
 //! The drawing: one function per chart.
 
-use super::data::{GumbelData, Profile, Series};
+use super::data::{BodyMotion, GumbelData, Profile, Series};
 use super::SIZE;
 use crate::error::Error;
 use plotters::prelude::*;
@@ -111,6 +111,8 @@ enum Axes {
     FromZero,
     /// Same metres per pixel on both axes, so that shapes are not distorted.
     Equal,
+    /// Each axis around its data.
+    Data,
 }
 
 /// The legend corner holding the fewest points of `series` (a corner is the outer 35%
@@ -177,6 +179,7 @@ fn ranges(
             };
             yr = 0.0..top * (1.1 + extra);
         }
+        Axes::Data => {}
         Axes::Equal => {
             let (pw, ph) = plot_pixels(dim);
             let (sx, sy) = ((xr.end - xr.start) / pw, (yr.end - yr.start) / ph);
@@ -292,6 +295,54 @@ pub fn profiles(path: &Path, profiles: &[Profile]) -> Result<(), Error> {
         };
         lines(&side, "Side view", "x (m)", "z (m)", &xz, Axes::Equal)?;
         lines(&plan, "Plan view", "x (m)", "y (m)", &xy, Axes::Equal)?;
+        Ok(())
+    })
+}
+
+/// `bodies.png`: each body's reference point and angles against time, and (runs with
+/// free or pinned bodies) its velocity and angular velocity: two or four panels.
+pub fn bodies(path: &Path, m: &BodyMotion) -> Result<(), Error> {
+    draw_png(path, |root| {
+        let moving = !m.velocity.is_empty();
+        let panels = if moving {
+            root.split_evenly((2, 2))
+        } else {
+            root.split_evenly((1, 2))
+        };
+        lines(
+            &panels[0],
+            "Reference point",
+            "time (s)",
+            "position (m)",
+            &m.position,
+            Axes::Data,
+        )?;
+        lines(
+            &panels[1],
+            "Attitude",
+            "time (s)",
+            "angle (deg)",
+            &m.angles,
+            Axes::Data,
+        )?;
+        if moving {
+            lines(
+                &panels[2],
+                "Velocity",
+                "time (s)",
+                "velocity (m/s)",
+                &m.velocity,
+                Axes::Data,
+            )?;
+            lines(
+                &panels[3],
+                "Angular velocity",
+                "time (s)",
+                "rate (deg/s)",
+                &m.rates,
+                Axes::Data,
+            )?;
+        }
         Ok(())
     })
 }

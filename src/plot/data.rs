@@ -77,6 +77,73 @@ pub fn end_force_series(path: &Path) -> Result<Vec<Series>, Error> {
     Ok(out)
 }
 
+/// `bodies.csv`: per body, its motion against time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyMotion {
+    /// `x`, `y`, `z` of each body's reference point, m (labels `body x`, ...).
+    pub position: Vec<Series>,
+    /// Roll, pitch, yaw, degrees.
+    pub angles: Vec<Series>,
+    /// The reference point's velocity, m/s (runs with free or pinned bodies only).
+    pub velocity: Vec<Series>,
+    /// The angular velocity, deg/s (likewise).
+    pub rates: Vec<Series>,
+}
+
+/// Reads `bodies.csv` (`time,body,x,y,z,roll,pitch,yaw,...[,vx,vy,vz,wx,wy,wz]`).
+pub fn body_motion(path: &Path) -> Result<BodyMotion, Error> {
+    let mut out = BodyMotion {
+        position: Vec::new(),
+        angles: Vec::new(),
+        velocity: Vec::new(),
+        rates: Vec::new(),
+    };
+    let push = |v: &mut Vec<Series>, label: String, t: f64, y: f64| match v
+        .iter_mut()
+        .find(|s| s.label == label)
+    {
+        Some(s) => s.points.push((t, y)),
+        None => v.push(Series {
+            label,
+            points: vec![(t, y)],
+        }),
+    };
+    for row in rows(path)? {
+        let t = num(path, &row, "time")?;
+        let body = row
+            .get("body")
+            .ok_or_else(|| bad(path, "no column `body`"))?
+            .clone();
+        for c in ["x", "y", "z"] {
+            push(
+                &mut out.position,
+                format!("{body} {c}"),
+                t,
+                num(path, &row, c)?,
+            );
+        }
+        for c in ["roll", "pitch", "yaw"] {
+            push(
+                &mut out.angles,
+                format!("{body} {c}"),
+                t,
+                num(path, &row, c)?,
+            );
+        }
+        for c in ["vx", "vy", "vz"] {
+            if let Some(v) = opt_num(&row, c) {
+                push(&mut out.velocity, format!("{body} {c}"), t, v);
+            }
+        }
+        for c in ["wx", "wy", "wz"] {
+            if let Some(v) = opt_num(&row, c) {
+                push(&mut out.rates, format!("{body} {c}"), t, v.to_degrees());
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// A cable's node positions at one time, m.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Profile {

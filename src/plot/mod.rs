@@ -3,7 +3,9 @@
 //!
 //! From a run's directory: `end_forces.png` (force magnitude at each cable end against
 //! time) and, with `positions.csv`, `profiles.png` (side view x-z and plan view x-y of
-//! every cable at chosen times). From a study's directory (`study.csv`,
+//! every cable at chosen times), and with `bodies.csv`, `bodies.png` (each body's
+//! reference point and angles against time, and its velocities where the run has them).
+//! From a study's directory (`study.csv`,
 //! `members.csv`): `gumbel_<sea state>_<channel>.png` (the seed maxima on Gumbel paper
 //! with the fitted line) and, when channels have capacities, `utilisation.png` (both of
 //! the study's first mooring condition, the intact one) and, for a study of several
@@ -34,6 +36,12 @@ pub fn plot_dir(dir: &Path, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, E
     if ef.exists() {
         let p = out.join("end_forces.png");
         charts::end_forces(&p, &data::end_force_series(&ef)?)?;
+        written.push(p);
+    }
+    let bodies = dir.join("bodies.csv");
+    if bodies.exists() {
+        let p = out.join("bodies.png");
+        charts::bodies(&p, &data::body_motion(&bodies)?)?;
         written.push(p);
     }
     let pos = dir.join("positions.csv");

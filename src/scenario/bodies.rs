@@ -16,8 +16,9 @@ use std::sync::Arc;
 /// The scenario's bodies by name.
 pub type Bodies = HashMap<String, Arc<Body>>;
 
-const BODY_KEYS: [&str; 24] = [
+const BODY_KEYS: [&str; 25] = [
     "angles",
+    "initial",
     "name",
     "reference",
     "offset",
@@ -44,7 +45,8 @@ const BODY_KEYS: [&str; 24] = [
 ];
 
 /// The keys of a free or pinned body only (its own dynamics).
-const DYNAMIC_KEYS: [&str; 17] = [
+const DYNAMIC_KEYS: [&str; 18] = [
+    "initial",
     "mass",
     "cg",
     "inertia",
@@ -647,9 +649,24 @@ fn parse_dynamic(
         angles,
     };
     free::check(&spec, kind).map_err(|(k, m)| err(p, f(&k), m))?;
+    let equilibrium = match t.get("initial") {
+        None => true,
+        Some(v) => match string(p, &f("initial"), v)? {
+            "equilibrium" => true,
+            "pose" => false,
+            other => {
+                return Err(err(
+                    p,
+                    f("initial"),
+                    format!("unknown initial state \"{other}\" (one of \"equilibrium\", \"pose\")"),
+                ))
+            }
+        },
+    };
     Ok(Dynamic {
         body: FreeBody::new(spec, kind, &pose),
         pin,
+        equilibrium,
     })
 }
 

@@ -25,13 +25,14 @@ pub(super) struct Cables {
     pub failures: Vec<EndFailure>,
 }
 
-/// The failure keys of a cable end.
-const FAIL_KEYS: [&str; 2] = ["fail_time", "fail_tension"];
+/// The failure keys of a cable end (and of a `[[points]]` entry).
+pub(super) const FAIL_KEYS: [&str; 2] = ["fail_time", "fail_tension"];
 
 /// The failure of end `t` (`field`) of cable `cable`, if it has one: `fail_time` (s,
 /// finite, not negative) and/or `fail_tension` (N, positive), on an end held by a fixed
-/// point, a route or a body.
-fn failure(
+/// point, a route or a body. (A `[[points]]` entry's are read the same way, with the
+/// point's name for `cable`.)
+pub(super) fn failure(
     p: &Path,
     field: &str,
     t: &toml::Table,
@@ -72,7 +73,7 @@ fn failure(
             return Err(err(
                 p,
                 format!("{field}.{key}"),
-                "an end on a shared [[points]] entry cannot fail yet (give the end its own `fixed`, route or `body` attachment)",
+                "an end on a named [[points]] entry fails with its point: give `fail_time` or `fail_tension` on the point (all its cables fail together), or give the ends that fail a [[points]] entry of their own at the same place",
             ))
         }
         _ => {}

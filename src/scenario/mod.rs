@@ -273,7 +273,7 @@ impl Scenario {
             mut initial,
             winches,
             mut names,
-            failures,
+            mut failures,
         } = cables::parse(
             p,
             &cables,
@@ -353,6 +353,21 @@ impl Scenario {
             (sim.baumgarte.alpha, sim.baumgarte.beta),
         )?;
         validate::unused_points(p, &model, &points.fields)?;
+        // A point that fails takes every cable end on it along.
+        for (_, node, fl) in &points.failures {
+            for c in &model.cables {
+                for (at_start, k) in [(true, c.nodes.first()), (false, c.nodes.last())] {
+                    if k == Some(node) {
+                        failures.push(crate::model::EndFailure {
+                            cable: c.name.clone(),
+                            at_start,
+                            time: fl.time,
+                            tension: fl.tension,
+                        });
+                    }
+                }
+            }
+        }
         validate::unused_line_types(p, &model, line_field);
         if let Selection::Names(v) = &positions_sel {
             if let Some(bad) = v.iter().find(|n| !names.contains_key(*n)) {

@@ -15,6 +15,9 @@ pub(super) struct Points {
     pub named: Vec<NamedPoint>,
     /// (field, node, free) of each point, for the check of unused points.
     pub fields: Vec<(String, usize, bool)>,
+    /// (field, node, failure) of each point that fails (its `cable` is the point's
+    /// name): every cable end on it fails with it.
+    pub failures: Vec<(String, usize, crate::model::EndFailure)>,
 }
 
 /// Adds a node to `model` for each `[[points]]` table, validated (positions above the
@@ -31,6 +34,7 @@ pub(super) fn parse(
     let mut named_points = Vec::with_capacity(tables.len());
     // (field, node, free) of each point, for the check of unused points.
     let mut point_fields = Vec::with_capacity(tables.len());
+    let mut point_failures = Vec::new();
     for (i, t) in tables.iter().enumerate() {
         let field = format!("points[{i}]");
         let name = match t.get("name") {
@@ -44,7 +48,17 @@ pub(super) fn parse(
             }
         };
         let field = format!("points[{i}] (\"{name}\")");
-        let spec = ends::parse_end(p, &field, t, &["name"], &HashMap::new(), bodies)?;
+        let spec = ends::parse_end(
+            p,
+            &field,
+            t,
+            &["name", "fail_time", "fail_tension"],
+            &HashMap::new(),
+            bodies,
+        )?;
+        if let Some(fl) = super::cables::failure(p, &field, t, &spec.kind, &name, true)? {
+            point_failures.push((field.clone(), model.nodes.len(), fl));
+        }
         let free = matches!(spec.kind, EndKind::Free(_));
         let (position, route, point) = match spec.kind {
             EndKind::Point(_) => {
@@ -91,5 +105,6 @@ pub(super) fn parse(
         index: point_index,
         named: named_points,
         fields: point_fields,
+        failures: point_failures,
     })
 }

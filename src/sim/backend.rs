@@ -52,6 +52,7 @@ pub fn choose_backend(
     let unsupported = || {
         crate::gpu::solver::unsupported(lay, opts)
             .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
+            .or_else(|| crate::gpu::solver::unsupported_failures(lay, &sc.failures))
 
     };
     let need_f64 = precision == Some(Precision::F64);

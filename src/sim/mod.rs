@@ -172,7 +172,7 @@ impl Simulation {
         if model == CableModel::Ancf && precision.is_some() {
             log::warn!("the ANCF model runs on the CPU in f64: precision is ignored");
         }
-        let (lay, mut pos) = crate::model::Layout::build(&sc.model)?;
+        let (mut lay, mut pos) = crate::model::Layout::build(&sc.model)?;
         let mut opts = SolverOptions {
             formulation,
             scheme,
@@ -186,7 +186,7 @@ impl Simulation {
             CableModel::LumpedMass => Some(plan_steps(&sc, &lay, &opts, duration, dt_spec)?),
             CableModel::Ancf => None,
         };
-        let relax_residual = crate::initial::apply(&sc, &lay, &mut pos)?;
+        let relax_residual = crate::initial::apply(&sc, &mut lay, &mut pos)?;
         let mut reach_watch = None;
         let engine = match model {
             CableModel::Ancf => {

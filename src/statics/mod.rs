@@ -81,6 +81,7 @@ use crate::model::Layout;
 use crate::physics::{Coefs, SeabedCoefs};
 use rayon::prelude::*;
 
+pub mod bodies;
 mod dynamic;
 mod linear;
 mod newton;
@@ -224,6 +225,17 @@ pub fn relax_blocks(
     for (c, &n) in layout.constraint_node.iter().enumerate() {
         positions[n as usize] = layout.routes[c].eval(0.0).r;
     }
+    relax_blocks_held(layout, positions, opts, which)
+}
+
+/// [`relax_blocks`] with the route-held nodes left where `positions` has them (the
+/// nodes held on a free body, placed by the body statics).
+pub(crate) fn relax_blocks_held(
+    layout: &Layout,
+    positions: &mut [[f64; 3]],
+    opts: &RelaxOptions,
+    which: &[bool],
+) -> Result<RelaxReport, Error> {
     let coefs: Vec<Coefs<f64>> = layout.line_coefs.iter().map(Coefs::from_line).collect();
     let seabed = seabed_coefs(layout);
     // Disjoint per-block slices (blocks are contiguous, in node order).

@@ -356,3 +356,50 @@ fn study_tables_give_gumbel_points_and_utilisation_chart() {
         assert_eq!(decode(p).dimensions(), cablesim::plot::SIZE);
     }
 }
+
+#[test]
+fn body_plot_draws_the_pose_and_the_velocities() {
+    // A bodies.csv with a free body's columns: x = sin t, roll = 10 sin t (deg),
+    // vx = cos t, wx = 10 deg/s cos t in rad/s.
+    let out = tempfile::tempdir().unwrap();
+    let csv = out.path().join("bodies.csv");
+    let mut text =
+        String::from("time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz,vx,vy,vz,wx,wy,wz\n");
+    for k in 0..=60 {
+        let t = k as f64 * 0.1;
+        let w = 10f64.to_radians() * t.cos();
+        text += &format!(
+            "{t},buoy,{},0,-20,{},0,0,0,0,0,0,0,0,{},0,0,{w},0,0\n",
+            t.sin(),
+            10.0 * t.sin(),
+            t.cos()
+        );
+    }
+    std::fs::write(&csv, text).unwrap();
+    let m = cablesim::plot::data::body_motion(&csv).unwrap();
+    let labels: Vec<&str> = m.position.iter().map(|s| s.label.as_str()).collect();
+    assert_eq!(labels, ["buoy x", "buoy y", "buoy z"]);
+    assert_eq!(m.angles[0].label, "buoy roll");
+    assert_eq!(m.velocity.len(), 3);
+    assert_eq!(m.rates[0].points.len(), 61);
+    // Rates in degrees per second.
+    assert!((m.rates[0].points[0].1 - 10.0).abs() < 1e-12);
+    assert!((m.position[0].points[10].1 - 1f64.sin()).abs() < 1e-12);
+    let png = out.path().join("plots");
+    let written = cablesim::plot::plot_dir(out.path(), &png, &[]).unwrap();
+    assert!(written.iter().any(|p| p.ends_with("bodies.png")));
+    let img = decode(&png.join("bodies.png"));
+    let inked = img.pixels().filter(|p| **p != [255, 255, 255]).count();
+    assert!(inked > 5_000, "{inked} pixels drawn");
+    // Without velocity columns (prescribed bodies) it still draws, two panels.
+    let csv2 = out.path().join("p");
+    std::fs::create_dir_all(&csv2).unwrap();
+    std::fs::write(
+        csv2.join("bodies.csv"),
+        "time,body,x,y,z,roll,pitch,yaw,fx,fy,fz,mx,my,mz\n0,ship,0,0,0,0,0,0,0,0,0,0,0,0\n1,ship,1,0,0,2,0,0,0,0,0,0,0,0\n",
+    )
+    .unwrap();
+    let m2 = cablesim::plot::data::body_motion(&csv2.join("bodies.csv")).unwrap();
+    assert!(m2.velocity.is_empty() && m2.rates.is_empty());
+    cablesim::plot::plot_dir(&csv2, &csv2.join("plots"), &[]).unwrap();
+}

@@ -37,6 +37,7 @@ cm = 1.0
 [[bodies]]
 name = "buoy"
 motion = "free"
+initial = "pose"
 reference = [0.0, 0.0, -20.0]
 offset = [{}, {}, {}]
 angles = [{}, {}, {}]

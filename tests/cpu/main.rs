@@ -12,6 +12,7 @@ mod ale;
 mod ancf;
 mod bodies;
 mod body_knots;
+mod body_statics;
 mod case1;
 mod catenary;
 mod chain_kernel;
