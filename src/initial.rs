@@ -60,11 +60,41 @@ pub fn apply_with(
                 .sum();
             let a = pos[cable.nodes[0] as usize];
             let b = pos[cable.nodes[n] as usize];
-            let w = lt.wet_weight_per_length(env.gravity, env.water_density);
-            (
-                ci,
-                catenary_positions(a, b, length, n, lt.ea, w, -env.depth),
-            )
+            let sections = cable
+                .elements
+                .iter()
+                .any(|&e| lay.elem_line[e as usize] as usize != cable.line_type);
+            if !sections {
+                let w = lt.wet_weight_per_length(env.gravity, env.water_density);
+                return (
+                    ci,
+                    catenary_positions(a, b, length, n, lt.ea, w, -env.depth),
+                );
+            }
+            // Several sections: one catenary of the length-weighted wet weight and the
+            // series stiffness as the first guess, each node at its arc length along it.
+            let (mut wl, mut compliance) = (0.0, 0.0);
+            for &e in &cable.elements {
+                let t = &lay.line_types[lay.elem_line[e as usize] as usize];
+                let l0 = lay.elem_l0[e as usize];
+                wl += t.wet_weight_per_length(env.gravity, env.water_density) * l0;
+                compliance += l0 / t.ea;
+            }
+            let fine = (4 * n).max(64);
+            let curve = catenary_positions(a, b, length, fine, length / compliance, wl / length, -env.depth);
+            let mut out = Vec::with_capacity(n + 1);
+            let mut arc = 0.0;
+            for k in 0..=n {
+                if k > 0 {
+                    arc += lay.elem_l0[cable.elements[k - 1] as usize];
+                }
+                let x = (arc / length * fine as f64).clamp(0.0, fine as f64);
+                let j = (x.floor() as usize).min(fine - 1);
+                let f = x - j as f64;
+                let (p, q) = (curve[j], curve[j + 1]);
+                out.push([0, 1, 2].map(|d| p[d] + f * (q[d] - p[d])));
+            }
+            (ci, out)
         })
         .collect();
     for (ci, guess) in guesses {

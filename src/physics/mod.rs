@@ -1,5 +1,6 @@
 //! Force laws as small functions, generic over the float type.
 
+pub mod axial;
 pub mod catenary;
 pub mod element;
 pub mod frames;
@@ -10,5 +11,6 @@ pub use element::{
     axial_force, froude_krylov, glmf_element, glmf_element_wet, glmf_external, glmf_external_wet,
     Coefs, ElementInput, ElementLoads, ExternalLoads,
 };
+pub use axial::{tabulated_max_slope, tabulated_slope, tabulated_tension, tabulated_work};
 pub use seabed::{seabed_damping, seabed_force, SeabedCoefs};
 pub use surface::{point_wetted_fraction, sphere_radius, wetted_fraction};
