@@ -355,7 +355,7 @@ impl RawLineType {
             cat: self.cat.unwrap_or(0.0),
             ei: self.ei,
             allow_compression: self.allow_compression,
-            ea_curve: None,
+            ea_curve: curve.map(|c| c.0),
         })
     }
 }
