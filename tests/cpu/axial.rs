@@ -156,9 +156,10 @@ fn check_against_reference(name: &str, text: &str, secs: &[Section]) -> f64 {
     let (t, ends, lay) = relaxed_tensions(text);
     let dx = ((ends[1][0] - ends[0][0]).powi(2) + (ends[1][1] - ends[0][1]).powi(2)).sqrt();
     let dz = ends[1][2] - ends[0][2];
-    // Start Newton from a straight taut guess: the weight shared half and half.
+    // Start Newton from the anchor tension along the chord, less half the weight.
     let total_w: f64 = secs.iter().map(|s| s.w * s.length).sum();
-    let (h, v0) = solve(secs, dx, dz, (t[0] * 0.8, -0.5 * total_w));
+    let chord = (dx * dx + dz * dz).sqrt();
+    let (h, v0) = solve(secs, dx, dz, (t[0] * dx / chord, t[0] * dz / chord - 0.5 * total_w));
     let ta = (h * h + v0 * v0).sqrt();
     let tb = (h * h + (v0 + total_w).powi(2)).sqrt();
     let ea = (t[0] - ta).abs() / ta;
@@ -336,4 +337,34 @@ fn curve_files_are_read_and_their_errors_name_the_line() {
     let e = Scenario::load(&scenario).err().unwrap().to_string();
     assert!(e.contains("rope_curve.txt") && e.contains("line 2") && e.contains("0.01 x"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `sections` with `line_type`, an unknown line type in a section, a section of zero
+/// segments: errors naming the cable and the section's key.
+#[test]
+fn bad_sections_are_refused_naming_the_section() {
+    let case = |cable: &str| {
+        let text = format!(
+            "{HEAD}{}\n[[cables]]\nname = \"m\"\nstart = {{ fixed = [0.0, 0.0, -900.0] }}\n\
+             end = {{ fixed = [500.0, 0.0, -100.0] }}\n{cable}\n",
+            poly_toml()
+        );
+        Scenario::parse(&text, Path::new("/tmp/bad_sections.toml"))
+            .err()
+            .expect("refused")
+            .to_string()
+    };
+    let e = case(
+        "line_type = \"chain\"\nsections = [{ line_type = \"chain\", length = 10.0, segments = 2 }]",
+    );
+    assert!(e.contains("cables[0]") && e.contains("sections") && e.contains("not both"), "{e}");
+    let e = case(
+        "sections = [{ line_type = \"chain\", length = 10.0, segments = 2 }, \
+         { line_type = \"nylon\", length = 10.0, segments = 2 }]",
+    );
+    assert!(e.contains("sections[1].line_type") && e.contains("\"nylon\""), "{e}");
+    let e = case("sections = [{ line_type = \"chain\", length = 10.0, segments = 0 }]");
+    assert!(e.contains("sections[0].segments") && e.contains("got 0"), "{e}");
+    let e = case("length = 10.0\nsegments = 2");
+    assert!(e.contains("line_type") && e.contains("sections"), "{e}");
 }
