@@ -81,7 +81,15 @@ pub fn apply_with(
                 compliance += l0 / t.ea;
             }
             let fine = (4 * n).max(64);
-            let curve = catenary_positions(a, b, length, fine, length / compliance, wl / length, -env.depth);
+            let curve = catenary_positions(
+                a,
+                b,
+                length,
+                fine,
+                length / compliance,
+                wl / length,
+                -env.depth,
+            );
             let mut out = Vec::with_capacity(n + 1);
             let mut arc = 0.0;
             for k in 0..=n {

@@ -10,8 +10,7 @@ use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{
     glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force, tabulated_tension,
-    wetted_fraction, Coefs,
-    ElementInput, ElementLoads, SeabedCoefs,
+    wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
 };
 use crate::step::{blow_up, StepFailure};
 

@@ -198,8 +198,11 @@ impl Layout {
     /// blocks take the CPU path's general passes, not the chain and network fast paths).
     pub fn block_has_curves(&self, b: &Block) -> bool {
         self.line_types.iter().any(|lt| lt.ea_curve.is_some())
-            && (b.elem_start..b.elem_end)
-                .any(|e| self.line_types[self.elem_line[e as usize] as usize].ea_curve.is_some())
+            && (b.elem_start..b.elem_end).any(|e| {
+                self.line_types[self.elem_line[e as usize] as usize]
+                    .ea_curve
+                    .is_some()
+            })
     }
     /// Where a packed node sits, for messages: `(cable name, node index in cable)`.
     pub fn describe_node(&self, i: usize) -> (String, usize) {

@@ -112,7 +112,10 @@ fn read_ea_curve(p: &Path, line: usize, what: &str, entry: &str) -> Result<EaCur
             p,
             line,
             what,
-            format!("\"{entry}\" is neither a number nor a readable curve file ({}: {e})", file.display()),
+            format!(
+                "\"{entry}\" is neither a number nor a readable curve file ({}: {e})",
+                file.display()
+            ),
         )
     })?;
     let mut rows = Vec::new();
@@ -129,13 +132,22 @@ fn read_ea_curve(p: &Path, line: usize, what: &str, entry: &str) -> Result<EaCur
                     &file,
                     i + 1,
                     "curve row",
-                    format!("needs two numbers, strain and tension, got \"{}\"", l.trim()),
+                    format!(
+                        "needs two numbers, strain and tension, got \"{}\"",
+                        l.trim()
+                    ),
                 ))
             }
         }
     }
-    crate::physics::axial::check_curve(&rows)
-        .map_err(|m| err_at(&file, 0, "strain-tension curve (rows after the 3 header lines)", m))?;
+    crate::physics::axial::check_curve(&rows).map_err(|m| {
+        err_at(
+            &file,
+            0,
+            "strain-tension curve (rows after the 3 header lines)",
+            m,
+        )
+    })?;
     let last = rows[rows.len() - 1];
     Ok(EaCurve {
         secant: last[1] / last[0],
@@ -167,7 +179,12 @@ pub(super) fn check_type(
     let (ea, curve) = match t.ea.parse::<f64>() {
         Ok(x) if x.is_finite() => (pos("EA", x)?, None),
         Ok(_) => {
-            return Err(err_at(p, l, name("EA"), format!("must be finite, got {}", t.ea)));
+            return Err(err_at(
+                p,
+                l,
+                name("EA"),
+                format!("must be finite, got {}", t.ea),
+            ));
         }
         Err(_) if t.ea.contains('|') || t.ea.starts_with("SYROPE:") => {
             return Err(err_at(

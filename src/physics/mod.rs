@@ -7,10 +7,10 @@ pub mod frames;
 pub mod seabed;
 pub mod surface;
 
+pub use axial::{tabulated_max_slope, tabulated_slope, tabulated_tension, tabulated_work};
 pub use element::{
     axial_force, froude_krylov, glmf_element, glmf_element_wet, glmf_external, glmf_external_wet,
     Coefs, ElementInput, ElementLoads, ExternalLoads,
 };
-pub use axial::{tabulated_max_slope, tabulated_slope, tabulated_tension, tabulated_work};
 pub use seabed::{seabed_damping, seabed_force, SeabedCoefs};
 pub use surface::{point_wetted_fraction, sphere_radius, wetted_fraction};

@@ -354,7 +354,11 @@ pub(super) fn parse(
             current: cur,
             output_positions,
             // One section: every element is `line_type` (no per-element list).
-            elem_lines: if parts.len() > 1 { elem_lines } else { Vec::new() },
+            elem_lines: if parts.len() > 1 {
+                elem_lines
+            } else {
+                Vec::new()
+            },
         });
         initial.push(shape);
     }

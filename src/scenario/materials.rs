@@ -312,7 +312,11 @@ impl RawLineType {
         };
         let curve = match (&self.ea_curve, &self.ea_curve_file) {
             (Some(_), Some(_)) => {
-                return Err(err(p, f("ea_curve"), "give `ea_curve` or `ea_curve_file`, not both"));
+                return Err(err(
+                    p,
+                    f("ea_curve"),
+                    "give `ea_curve` or `ea_curve_file`, not both",
+                ));
             }
             (Some(rows), None) => Some((rows.clone(), p.to_path_buf(), f("ea_curve"))),
             (None, Some(file)) => {
@@ -325,7 +329,11 @@ impl RawLineType {
         let ea_given = match &curve {
             Some((rows, file, what)) => {
                 if self.ea.is_some() {
-                    return Err(err(p, f("ea"), "give `ea` or a strain-tension curve, not both"));
+                    return Err(err(
+                        p,
+                        f("ea"),
+                        "give `ea` or a strain-tension curve, not both",
+                    ));
                 }
                 if self.allow_compression {
                     return Err(err(

@@ -51,7 +51,9 @@ fn moordyn_ea_curve_file_converts_and_runs() {
     std::fs::write(dir.join("poly_ea.txt"), CURVE).unwrap();
     let c = convert_text(MODEL, &model, &ConvertOptions::default()).expect("converts");
     assert!(
-        c.toml.contains("ea_curve = [[0.005, 100000.0], [0.01, 300000.0], [0.02, 900000.0], [0.05, 4000000.0]]"),
+        c.toml.contains(
+            "ea_curve = [[0.005, 100000.0], [0.01, 300000.0], [0.02, 900000.0], [0.05, 4000000.0]]"
+        ),
         "{}",
         c.toml
     );
@@ -62,7 +64,11 @@ fn moordyn_ea_curve_file_converts_and_runs() {
     let ea_max = (4.0e6 - 9.0e5) / 0.03;
     assert!((lt.ea - ea_max).abs() < 1e-6 * ea_max, "{}", lt.ea);
     let c_expected = 0.5 * 10.0 * (8.0e7f64 * 40.0).sqrt() / ea_max;
-    assert!((lt.damping - c_expected).abs() < 1e-12 * c_expected, "{}", lt.damping);
+    assert!(
+        (lt.damping - c_expected).abs() < 1e-12 * c_expected,
+        "{}",
+        lt.damping
+    );
     // It runs: the static start holds its strain inside the curve.
     let (lay, pos, residual) = cablesim::initial::prepare(&sc).unwrap();
     assert!(residual < 1e-2, "{residual}");
@@ -74,12 +80,22 @@ fn moordyn_ea_curve_file_converts_and_runs() {
     let e = convert_text(MODEL, &model, &ConvertOptions::default())
         .expect_err("refused")
         .to_string();
-    assert!(e.contains("poly_ea.txt") && e.contains("row 3") && e.contains("0.004"), "{e}");
+    assert!(
+        e.contains("poly_ea.txt") && e.contains("row 3") && e.contains("0.004"),
+        "{e}"
+    );
     // A row that is not two numbers: the curve file's line.
-    std::fs::write(dir.join("poly_ea.txt"), CURVE.replace("0.02     9.0e5", "0.02 x")).unwrap();
+    std::fs::write(
+        dir.join("poly_ea.txt"),
+        CURVE.replace("0.02     9.0e5", "0.02 x"),
+    )
+    .unwrap();
     let e = convert_text(MODEL, &model, &ConvertOptions::default())
         .expect_err("refused")
         .to_string();
-    assert!(e.contains("poly_ea.txt") && e.contains("line 6") && e.contains("0.02 x"), "{e}");
+    assert!(
+        e.contains("poly_ea.txt") && e.contains("line 6") && e.contains("0.02 x"),
+        "{e}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

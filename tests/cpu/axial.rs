@@ -70,16 +70,25 @@ fn solve(secs: &[Section], x: f64, z: f64, guess: (f64, f64)) -> (f64, f64) {
         if rx.abs() + rz.abs() < 1e-9 {
             break;
         }
-        let (dh, dv) = (1e-6 * h.abs().max(1.0), 1e-6 * (h.abs() + v0.abs()).max(1.0));
+        let (dh, dv) = (
+            1e-6 * h.abs().max(1.0),
+            1e-6 * (h.abs() + v0.abs()).max(1.0),
+        );
         let (hx, hz) = far_end(secs, h + dh, v0);
         let (vx, vz) = far_end(secs, h, v0 + dv);
-        let j = [[(hx - fx) / dh, (vx - fx) / dv], [(hz - fz) / dh, (vz - fz) / dv]];
+        let j = [
+            [(hx - fx) / dh, (vx - fx) / dv],
+            [(hz - fz) / dh, (vz - fz) / dv],
+        ];
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         h -= (j[1][1] * rx - j[0][1] * rz) / det;
         v0 -= (-j[1][0] * rx + j[0][0] * rz) / det;
     }
     let (fx, fz) = far_end(secs, h, v0);
-    assert!((fx - x).abs() + (fz - z).abs() < 1e-6, "reference not converged");
+    assert!(
+        (fx - x).abs() + (fz - z).abs() < 1e-6,
+        "reference not converged"
+    );
     (h, v0)
 }
 
@@ -113,7 +122,10 @@ const POLY: [[f64; 2]; 5] = [
 ];
 
 fn poly_toml() -> String {
-    let rows: Vec<String> = POLY.iter().map(|r| format!("[{:?}, {:?}]", r[0], r[1])).collect();
+    let rows: Vec<String> = POLY
+        .iter()
+        .map(|r| format!("[{:?}, {:?}]", r[0], r[1]))
+        .collect();
     format!(
         r#"
 [[line_types]]
@@ -147,7 +159,10 @@ fn relaxed_tensions(text: &str) -> ([f64; 2], [[f64; 3]; 2], cablesim::model::La
     let c = &lay.cables[0];
     (
         [n(f.start), n(f.end)],
-        [pos[c.nodes[0] as usize], pos[*c.nodes.last().unwrap() as usize]],
+        [
+            pos[c.nodes[0] as usize],
+            pos[*c.nodes.last().unwrap() as usize],
+        ],
         lay,
     )
 }
@@ -159,7 +174,12 @@ fn check_against_reference(name: &str, text: &str, secs: &[Section]) -> f64 {
     // Start Newton from the anchor tension along the chord, less half the weight.
     let total_w: f64 = secs.iter().map(|s| s.w * s.length).sum();
     let chord = (dx * dx + dz * dz).sqrt();
-    let (h, v0) = solve(secs, dx, dz, (t[0] * dx / chord, t[0] * dz / chord - 0.5 * total_w));
+    let (h, v0) = solve(
+        secs,
+        dx,
+        dz,
+        (t[0] * dx / chord, t[0] * dz / chord - 0.5 * total_w),
+    );
     let ta = (h * h + v0 * v0).sqrt();
     let tb = (h * h + (v0 + total_w).powi(2)).sqrt();
     let ea = (t[0] - ta).abs() / ta;
@@ -173,7 +193,10 @@ fn check_against_reference(name: &str, text: &str, secs: &[Section]) -> f64 {
         t[1],
         100.0 * eb
     );
-    assert!(ea < 0.005 && eb < 0.005, "{name}: end tensions off the reference by more than 0.5%");
+    assert!(
+        ea < 0.005 && eb < 0.005,
+        "{name}: end tensions off the reference by more than 0.5%"
+    );
     ea.max(eb)
 }
 
@@ -271,7 +294,10 @@ fn tabulated_curve_functions() {
     let w = 0.5 * 0.005 * 1.0e5 + 0.5 * 0.005 * (1.0e5 + 3.0e5);
     assert!((tabulated_work(&rows, 0.0, 0.01) - w).abs() < 1e-9 * w);
     // Additive, and odd in the increment.
-    let (a, b) = (tabulated_work(&rows, 0.0, 0.013), tabulated_work(&rows, 0.013, 0.024));
+    let (a, b) = (
+        tabulated_work(&rows, 0.0, 0.013),
+        tabulated_work(&rows, 0.013, 0.024),
+    );
     assert!((a + b - tabulated_work(&rows, 0.0, 0.037)).abs() < 1e-9 * (a + b));
     assert!((tabulated_work(&rows, 0.037, -0.024) + b).abs() < 1e-9 * b);
 }
@@ -293,16 +319,24 @@ fn bad_curves_are_refused_with_the_row_and_value() {
     };
     let e = case("[[0.01, 1e5], [0.02, 3e5], [0.015, 4e5]]");
     assert!(
-        e.contains("/tmp/bad_curve.toml") && e.contains("line_types[0]") && e.contains("row 3")
+        e.contains("/tmp/bad_curve.toml")
+            && e.contains("line_types[0]")
+            && e.contains("row 3")
             && e.contains("0.015"),
         "{e}"
     );
     let e = case("[[0.01, 1e5], [0.02, 0.9e5]]");
-    assert!(e.contains("row 2") && e.contains("tensions must increase") && e.contains("90000"), "{e}");
+    assert!(
+        e.contains("row 2") && e.contains("tensions must increase") && e.contains("90000"),
+        "{e}"
+    );
     let e = case("[[0.01, 1e5]]");
     assert!(e.contains("at least two rows"), "{e}");
     let e = case("[[0.01, 1e5], [0.02, nan]]");
-    assert!(e.contains("row 2") && e.contains("finite") && e.contains("NaN"), "{e}");
+    assert!(
+        e.contains("row 2") && e.contains("finite") && e.contains("NaN"),
+        "{e}"
+    );
     let e = case("[[0.0, 1e3], [0.02, 3e5]]");
     assert!(e.contains("row 1") && e.contains("zero strain"), "{e}");
 }
@@ -335,7 +369,10 @@ fn curve_files_are_read_and_their_errors_name_the_line() {
     assert!((sc.model.line_types[0].ea - 6.0e7).abs() < 1e-3);
     std::fs::write(dir.join("rope_curve.txt"), "0.005 1.0e5\n0.01 x\n").unwrap();
     let e = Scenario::load(&scenario).err().unwrap().to_string();
-    assert!(e.contains("rope_curve.txt") && e.contains("line 2") && e.contains("0.01 x"), "{e}");
+    assert!(
+        e.contains("rope_curve.txt") && e.contains("line 2") && e.contains("0.01 x"),
+        "{e}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -357,14 +394,23 @@ fn bad_sections_are_refused_naming_the_section() {
     let e = case(
         "line_type = \"chain\"\nsections = [{ line_type = \"chain\", length = 10.0, segments = 2 }]",
     );
-    assert!(e.contains("cables[0]") && e.contains("sections") && e.contains("not both"), "{e}");
+    assert!(
+        e.contains("cables[0]") && e.contains("sections") && e.contains("not both"),
+        "{e}"
+    );
     let e = case(
         "sections = [{ line_type = \"chain\", length = 10.0, segments = 2 }, \
          { line_type = \"nylon\", length = 10.0, segments = 2 }]",
     );
-    assert!(e.contains("sections[1].line_type") && e.contains("\"nylon\""), "{e}");
+    assert!(
+        e.contains("sections[1].line_type") && e.contains("\"nylon\""),
+        "{e}"
+    );
     let e = case("sections = [{ line_type = \"chain\", length = 10.0, segments = 0 }]");
-    assert!(e.contains("sections[0].segments") && e.contains("got 0"), "{e}");
+    assert!(
+        e.contains("sections[0].segments") && e.contains("got 0"),
+        "{e}"
+    );
     let e = case("length = 10.0\nsegments = 2");
     assert!(e.contains("line_type") && e.contains("sections"), "{e}");
 }

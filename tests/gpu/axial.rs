@@ -78,7 +78,10 @@ fn gpu_run(
 }
 
 fn compare(p: Precision) {
-    let name = format!("tabulated_and_sectioned_lines_gpu_match_cpu_in_{}", p.name());
+    let name = format!(
+        "tabulated_and_sectioned_lines_gpu_match_cpu_in_{}",
+        p.name()
+    );
     let Some(ctx) = gpu_context(&name, p == Precision::F64) else {
         return;
     };
@@ -99,7 +102,10 @@ fn compare(p: Precision) {
         .elements
         .iter()
         .map(|&e| {
-            let (a, b) = (lay.elem_a[e as usize] as usize, lay.elem_b[e as usize] as usize);
+            let (a, b) = (
+                lay.elem_a[e as usize] as usize,
+                lay.elem_b[e as usize] as usize,
+            );
             super::compare::dist(reference.r[a], reference.r[b]) / lay.elem_l0[e as usize] - 1.0
         })
         .fold(0.0, f64::max);
@@ -120,7 +126,8 @@ fn compare(p: Precision) {
         let g = gpu_run(&ctx, &lay, &pos, opts, p, kernel, steps);
         match p {
             Precision::F64 => {
-                let bounds = RoundOff::new(&lay, &reference, steps, eps, ea, l0_min, 2.0 / bound.dt);
+                let bounds =
+                    RoundOff::new(&lay, &reference, steps, eps, ea, l0_min, 2.0 / bound.dt);
                 let d = bounds.check(&name, &lay, &g, &reference);
                 eprintln!("{name} ({}): {}", kernel.name(), d.report(&lay));
             }
@@ -143,7 +150,10 @@ fn compare(p: Precision) {
                     Place::Element,
                     &g.eval.tension,
                     &reference.eval.tension,
-                    |e| 0.01 * reference.eval.tension[e].abs() + 1e-3 * tmax[lay.elem_cable[e] as usize],
+                    |e| {
+                        0.01 * reference.eval.tension[e].abs()
+                            + 1e-3 * tmax[lay.elem_cable[e] as usize]
+                    },
                 );
             }
         }
