@@ -95,6 +95,7 @@ fn rope(zf: f64) -> (Layout, Vec<[f64; 3]>) {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     let (a, b, n, length) = ([-60.0, 0.0, -DEPTH], [0.0, 0.0, zf], 20usize, 80.0);
     let nodes = (0..=n)
@@ -123,6 +124,7 @@ fn rope(zf: f64) -> (Layout, Vec<[f64; 3]>) {
             l0: vec![length / n as f64; n],
             current: 0,
             output_positions: true,
+            elem_lines: Vec::new(),
         }],
         nodes,
     };

@@ -94,25 +94,68 @@ pub fn apply_with(
                 .sum();
             let a = pos[cable.nodes[0] as usize];
             let b = pos[cable.nodes[n] as usize];
-            let w = lt.wet_weight_per_length(env.gravity, env.water_density);
-            match env.seabed.grid {
-                None => (
-                    ci,
-                    catenary_positions(a, b, length, n, lt.ea, w, -env.depth),
-                ),
-                // A seabed grid: the catenary over a flat seabed at the grid's height
-                // under the lower end, its nodes then lifted onto the grid where they
-                // lie below it; the relaxation then lays the line on the slope.
+            // The seabed under the catenary: the plane, or with a seabed grid a flat
+            // seabed at the grid's height under the lower end, the nodes then lifted onto
+            // the grid where they lie below it; the relaxation then lays the line on the
+            // slope.
+            let bed = match env.seabed.grid {
+                None => -env.depth,
                 Some(g) => {
                     let low = if a[2] <= b[2] { a } else { b };
-                    let mut guess =
-                        catenary_positions(a, b, length, n, lt.ea, w, g.height(low[0], low[1]));
+                    g.height(low[0], low[1])
+                }
+            };
+            let lift = |mut guess: Vec<[f64; 3]>| {
+                if let Some(g) = env.seabed.grid {
                     for p in guess.iter_mut() {
                         p[2] = p[2].max(g.height(p[0], p[1]));
                     }
-                    (ci, guess)
                 }
+                guess
+            };
+            let sections = cable
+                .elements
+                .iter()
+                .any(|&e| lay.elem_line[e as usize] as usize != cable.line_type);
+            if !sections {
+                let w = lt.wet_weight_per_length(env.gravity, env.water_density);
+                return (
+                    ci,
+                    lift(catenary_positions(a, b, length, n, lt.ea, w, bed)),
+                );
             }
+            // Several sections: one catenary of the length-weighted wet weight and the
+            // series stiffness as the first guess, each node at its arc length along it.
+            let (mut wl, mut compliance) = (0.0, 0.0);
+            for &e in &cable.elements {
+                let t = &lay.line_types[lay.elem_line[e as usize] as usize];
+                let l0 = lay.elem_l0[e as usize];
+                wl += t.wet_weight_per_length(env.gravity, env.water_density) * l0;
+                compliance += l0 / t.ea;
+            }
+            let fine = (4 * n).max(64);
+            let curve = catenary_positions(
+                a,
+                b,
+                length,
+                fine,
+                length / compliance,
+                wl / length,
+                bed,
+            );
+            let mut out = Vec::with_capacity(n + 1);
+            let mut arc = 0.0;
+            for k in 0..=n {
+                if k > 0 {
+                    arc += lay.elem_l0[cable.elements[k - 1] as usize];
+                }
+                let x = (arc / length * fine as f64).clamp(0.0, fine as f64);
+                let j = (x.floor() as usize).min(fine - 1);
+                let f = x - j as f64;
+                let (p, q) = (curve[j], curve[j + 1]);
+                out.push([0, 1, 2].map(|d| p[d] + f * (q[d] - p[d])));
+            }
+            (ci, lift(out))
         })
         .collect();
     for (ci, guess) in guesses {

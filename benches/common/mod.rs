@@ -21,6 +21,7 @@ pub fn fleet(n_cables: usize, segments: usize) -> (Layout, Vec<[f64; 3]>) {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     let mut def = ModelDef {
         env: Environment::default(),
@@ -56,6 +57,7 @@ pub fn fleet(n_cables: usize, segments: usize) -> (Layout, Vec<[f64; 3]>) {
             l0: vec![250.0 / segments as f64; segments],
             current: 0,
             output_positions: false,
+            elem_lines: Vec::new(),
         });
     }
     Layout::build(&def).unwrap()

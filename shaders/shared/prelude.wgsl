@@ -89,6 +89,9 @@ struct LineParams {
     added_mass_t: R,
     wet_weight_z: R,
     compression: R,
+    // 1 + the index in current_ranges of the line's strain-tension curve (its rows in
+    // current_pts: z the strain, ux the tension), 0 without one (physics::axial).
+    table: R,
 }
 
 // One element; its unstretched length is the compensated pair l0 + l0_lo (l0_lo is
@@ -511,6 +514,34 @@ fn current_at(ci: u32, z: R) -> vec3<R> {
 }
 
 // ---- Physics (twins of src/physics) ----
+
+// Tension of a tabulated strain-tension curve at strain `eps` (physics::tabulated_tension):
+// the rows `rg` of current_pts, z the strain and ux the tension; zero at and below zero
+// strain, linear from (0, 0) to the first row and between rows, the last segment's
+// slope past the last row.
+fn tabulated_tension(rg: CurrentRange, eps: R) -> R {
+    if !(eps > R(0.0)) {
+        return R(0.0);
+    }
+    let first = current_pts[rg.start];
+    var x0 = R(0.0);
+    var y0 = R(0.0);
+    var x1 = first.z;
+    var y1 = first.ux;
+    if eps > first.z {
+        var i = 1u;
+        while i + 1u < rg.len && current_pts[rg.start + i].z < eps {
+            i += 1u;
+        }
+        let p0 = current_pts[rg.start + i - 1u];
+        let p1 = current_pts[rg.start + i];
+        x0 = p0.z;
+        y0 = p0.ux;
+        x1 = p1.z;
+        y1 = p1.ux;
+    }
+    return y0 + (eps - x0) * ((y1 - y0) / (x1 - x0));
+}
 
 // Fraction of a straight element of diameter `d` under water from the submergences
 // (surface elevation minus height, m) of its two nodes (physics::wetted_fraction):

@@ -59,6 +59,12 @@ fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb
     }
     let el = glmf_element_wet(lp, d, stretch, sa.v.xyz, sb.v.xyz, l0, u, aw, wet, params.gravity);
     var tension = el.tension;
+    if lp.table > R(0.0) {
+        // A tabulated strain-tension curve: the elastic part from it, the damping as
+        // before (cpu::passes tabulated_pass; no winch cable has one).
+        let rg = current_ranges[u32(lp.table) - 1u];
+        tension = tabulated_tension(rg, stretch / l0) + lp.ea_c * (dot(el.t, sb.v.xyz - sa.v.xyz) / l0);
+    }
     if var_elem {
         tension = variable_element(ep, lp, py, d, sa.v.xyz, sb.v.xyz, tension);
     }

@@ -317,6 +317,7 @@ impl AleState {
                     l0: c.l0.clone(),
                     current: 0,
                     output_positions: c.output_positions,
+                    elem_lines: Vec::new(),
                 }],
             };
             let (one, _, _) = Layout::build_indexed(&one_def)?;

@@ -201,12 +201,16 @@ pub(crate) struct Failure {
     pub fired: Option<crate::model::FailureEvent>,
 }
 
-/// The elastic tension of element `e` at positions `r`, N: `EA` times its strain,
-/// zero in slack.
+/// The elastic tension of element `e` at positions `r`, N: `EA` times its strain (a
+/// tabulated line's curve), zero in slack.
 pub(crate) fn end_tension(lay: &Layout, r: &[V], e: usize) -> f64 {
     let (a, b) = (lay.elem_a[e] as usize, lay.elem_b[e] as usize);
     let l = (r[b] - r[a]).norm();
     let l0 = lay.elem_l0[e];
-    let ea = lay.line_coefs[lay.elem_line[e] as usize].ea;
+    let line = lay.elem_line[e] as usize;
+    if let Some(rows) = lay.line_types[line].ea_curve.as_deref() {
+        return crate::physics::tabulated_tension(rows, l / l0 - 1.0);
+    }
+    let ea = lay.line_coefs[line].ea;
     (ea * (l - l0) / l0).max(0.0)
 }

@@ -10,8 +10,8 @@ use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{
     glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force, seabed_height,
-    seabed_slope_damping, seabed_slope_force, seabed_slope_normal, wetted_fraction, Coefs,
-    ElementInput, ElementLoads, SeabedCoefs,
+    seabed_slope_damping, seabed_slope_force, seabed_slope_normal, tabulated_tension,
+    wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
 };
 use crate::step::{blow_up, StepFailure};
 
@@ -258,6 +258,11 @@ pub(super) fn element_pass<T: Topo>(
                     out[k].tension -= c.ea_c * l * pay.rate / (l0 * l0);
                 }
             }
+            // Tabulated strain-tension curves (physics::axial): the elastic part from the
+            // curve, the damping as before. Skipped whole where no line type has one.
+            if lay.line_types.iter().any(|lt| lt.ea_curve.is_some()) {
+                tabulated_pass(ctx, topo, r, v, l0s, lines, out);
+            }
         }
         Formulation::Frame(frame) => {
             let n0 = b.node_start as usize;
@@ -283,6 +288,34 @@ pub(super) fn element_pass<T: Topo>(
         }
     }
     Ok(())
+}
+
+/// Replaces the tension of every element of a tabulated line by the curve's (winch
+/// cables of a tabulated line are refused where the scenario is read).
+#[cold]
+fn tabulated_pass<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    r: &[V],
+    v: &[V],
+    l0s: &[f64],
+    lines: &[u32],
+    out: &mut [ElementLoads<f64>],
+) {
+    let lay = ctx.lay;
+    for (k, o) in out.iter_mut().enumerate() {
+        let line = lines[k] as usize;
+        let Some(rows) = lay.line_types[line].ea_curve.as_deref() else {
+            continue;
+        };
+        let (a, bn) = topo.ends(k);
+        let l = (r[bn] - r[a]).norm();
+        let l0 = l0s[k];
+        let c = &ctx.coefs[line];
+        let eps = l / l0 - 1.0;
+        let epsdot = o.t.dot(v[bn] - v[a]) / l0;
+        o.tension = tabulated_tension(rows, eps) + c.ea_c * epsdot;
+    }
 }
 
 /// The node's mass block at position `r` under surface elevation `eta`: point mass,

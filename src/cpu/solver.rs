@@ -328,7 +328,7 @@ impl CpuSolver {
                     k.refresh_constraints(lay, b);
                     Some(k)
                 }
-                (true, _) => Some(ChainConsts::new(lay, b)),
+                (true, _) => (!lay.block_has_curves(b)).then(|| ChainConsts::new(lay, b)),
                 (false, _) => None,
             };
         }
@@ -353,7 +353,8 @@ impl CpuSolver {
         self.chain_consts = lay
             .blocks
             .iter()
-            .map(|b| b.is_chain.then(|| ChainConsts::new(lay, b)))
+            // A block with a tabulated strain-tension curve takes the general passes.
+            .map(|b| (b.is_chain && !lay.block_has_curves(b)).then(|| ChainConsts::new(lay, b)))
             .collect();
         self.net_consts = lay
             .blocks
@@ -680,6 +681,7 @@ impl CpuSolver {
                     && ale_of(ale_state, bi).is_empty()
                     && self.seas.is_none()
                     && !is_touched(bi)
+                    && !self.layout.block_has_curves(b)
             })
             .collect();
         // Split the state into disjoint per-chunk slices.

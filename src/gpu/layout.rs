@@ -205,6 +205,10 @@ gpu_struct! {
         wet_weight_z: R,
         /// 1 when the elastic force acts in compression, else 0.
         compression: R,
+        /// 1 + the index in `current_ranges` of the line's strain-tension curve (its
+        /// rows packed in `current_pts` after the current profiles', `z` the strain and
+        /// `ux` the tension), 0 without one.
+        table: R,
     }
 }
 

@@ -46,8 +46,12 @@ pub struct NodeDef {
 pub struct CableDef {
     /// Name, unique in the run.
     pub name: String,
-    /// Index into `ModelDef::line_types`.
+    /// Index into `ModelDef::line_types` (the first section's when the cable has
+    /// several).
     pub line_type: usize,
+    /// Per element: its line type, for a cable of several sections (chain - rope -
+    /// chain); empty when every element is `line_type`.
+    pub elem_lines: Vec<usize>,
     /// The chain of node indices (into `ModelDef::nodes`), start to end.
     pub nodes: Vec<usize>,
     /// Unstretched length of each element (`nodes.len() - 1` of them), m.
@@ -189,6 +193,16 @@ impl Layout {
     #[inline(always)]
     pub fn incidence(&self, i: usize) -> &[u32] {
         &self.inc[self.inc_start[i] as usize..self.inc_start[i + 1] as usize]
+    }
+    /// Whether any element of block `b` has a tabulated strain-tension curve (such
+    /// blocks take the CPU path's general passes, not the chain and network fast paths).
+    pub fn block_has_curves(&self, b: &Block) -> bool {
+        self.line_types.iter().any(|lt| lt.ea_curve.is_some())
+            && (b.elem_start..b.elem_end).any(|e| {
+                self.line_types[self.elem_line[e as usize] as usize]
+                    .ea_curve
+                    .is_some()
+            })
     }
     /// Where a packed node sits, for messages: `(cable name, node index in cable)`.
     pub fn describe_node(&self, i: usize) -> (String, usize) {
@@ -407,7 +421,11 @@ impl Layout {
                     c.name
                 )));
             }
-            if c.line_type >= def.line_types.len() || c.current >= def.currents.len() {
+            if c.line_type >= def.line_types.len()
+                || c.current >= def.currents.len()
+                || c.elem_lines.iter().any(|&l| l >= def.line_types.len())
+                || !(c.elem_lines.is_empty() || c.elem_lines.len() == c.l0.len())
+            {
                 return Err(Error::Model(format!(
                     "cable {ci} refers to a missing line type or current"
                 )));
@@ -566,7 +584,8 @@ impl Layout {
                 lay.elem_a.push(new_index[c.nodes[k]]);
                 lay.elem_b.push(new_index[c.nodes[k + 1]]);
                 lay.elem_l0.push(c.l0[k]);
-                lay.elem_line.push(c.line_type as u32);
+                lay.elem_line
+                    .push(c.elem_lines.get(k).copied().unwrap_or(c.line_type) as u32);
                 lay.elem_cable.push(ci as u32);
                 lay.elem_current.push(c.current as u32);
             }

@@ -37,6 +37,11 @@ pub struct LineType {
     /// When true, the elastic force also acts in compression (a rod, not a rope).
     #[serde(default)]
     pub allow_compression: bool,
+    /// Nonlinear axial stiffness: the tension as a function of the strain, rows
+    /// `(strain, tension)` (`physics::axial`). When given, `ea` is the curve's largest
+    /// slope (the stable step and the internal damping `EA c` take it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ea_curve: Option<Vec<[f64; 2]>>,
 }
 
 fn default_cn() -> f64 {

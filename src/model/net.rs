@@ -171,6 +171,7 @@ pub fn add_net(def: &mut ModelDef, spec: &NetSpec) -> Result<usize, Error> {
             l0: vec![bar / n as f64; n],
             current: spec.current,
             output_positions: spec.output_positions,
+            elem_lines: Vec::new(),
         });
         added += 1;
     };

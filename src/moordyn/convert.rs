@@ -302,8 +302,12 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
 
     // Line types.
     let mut types: HashMap<&str, (usize, f64, f64)> = HashMap::new();
+    let mut curves: HashMap<&str, super::tables::EaCurve> = HashMap::new();
     for (i, t) in file.line_types.iter().enumerate() {
-        let (ea, ba) = check_type(p, t, file.version, &mut warn)?;
+        let (ea, ba, curve) = check_type(p, t, file.version, &mut warn)?;
+        if let Some(c) = curve {
+            curves.insert(t.name.as_str(), c);
+        }
         if types.insert(t.name.as_str(), (i, ea, ba)).is_some() {
             return Err(err_at(
                 p,
@@ -571,7 +575,25 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         let (ti, ea, ba) = types[l.line_type.as_str()];
         let t = &file.line_types[ti];
         let seg = l.length / l.segments as f64;
-        let (c, note) = if ba < 0.0 {
+        let curve = curves.get(t.name.as_str());
+        let (c, note) = if let (true, Some(cv)) = (ba < 0.0, curve) {
+            // A curve: MoorDyn takes the last row's secant for the damping ratio.
+            let zeta = -ba;
+            (
+                zeta * seg * (cv.secant * t.mass).sqrt() / ea,
+                format!(
+                    "BA/-zeta = {} (line {}): damping ratio zeta = {}; MoorDyn sets BA = zeta \
+                     (L/N) sqrt(EA m) with EA the curve's last secant {} N, and c = BA/EA with \
+                     EA the curve's largest slope {} N, L/N = {} m",
+                    t.ba,
+                    t.line,
+                    f(zeta),
+                    f(cv.secant),
+                    f(ea),
+                    f(seg)
+                ),
+            )
+        } else if ba < 0.0 {
             let zeta = -ba;
             (
                 zeta * seg * (t.mass / ea).sqrt(),
@@ -881,7 +903,26 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         let _ = writeln!(w, "name = {}", quote(&lt.name));
         let _ = writeln!(w, "diameter = {}  # m, Diam (volume-equivalent)", f(t.diam));
         let _ = writeln!(w, "mass_per_length = {}  # kg/m", f(t.mass));
-        let _ = writeln!(w, "ea = {}  # N", f(ea));
+        match curves.get(t.name.as_str()) {
+            Some(cv) => {
+                let _ = writeln!(
+                    w,
+                    "# EA: the strain-tension curve of \"{}\" (largest slope {} N). Past its last \
+                     row cablesim goes on with the last slope, where MoorDyn holds the last tension.",
+                    cv.file,
+                    f(ea)
+                );
+                let rows: Vec<String> = cv
+                    .rows
+                    .iter()
+                    .map(|r| format!("[{}, {}]", f(r[0]), f(r[1])))
+                    .collect();
+                let _ = writeln!(w, "ea_curve = [{}]", rows.join(", "));
+            }
+            None => {
+                let _ = writeln!(w, "ea = {}  # N", f(ea));
+            }
+        }
         let _ = writeln!(w, "# {}", lt.note);
         let _ = writeln!(w, "damping = {}  # s", f(lt.c));
         let (cd, cdax, ca, caax) = match file.version {

@@ -95,14 +95,80 @@ pub(super) fn attach_point(
     }
 }
 
-/// A line type checked for what cablesim can run: (EA, BA as written). Its columns are
-/// named as the file's `version` names them.
+/// A strain-tension curve read from a MoorDyn curve file (EA given as a file name).
+#[derive(Clone, Debug)]
+pub(super) struct EaCurve {
+    /// Rows `(strain, tension)`.
+    pub rows: Vec<[f64; 2]>,
+    /// The file, as the line type names it.
+    pub file: String,
+    /// MoorDyn's stiffness for a damping ratio: the last row's secant, N.
+    pub secant: f64,
+}
+
+/// Reads a MoorDyn curve file (path relative to the input file's folder): three header
+/// lines, then a row per line of at least two numbers, strain and tension. Errors name
+/// the curve file and its line.
+fn read_ea_curve(p: &Path, line: usize, what: &str, entry: &str) -> Result<EaCurve, Error> {
+    let file = p.parent().unwrap_or(Path::new(".")).join(entry);
+    let text = crate::input::read_text(&file).map_err(|e| {
+        err_at(
+            p,
+            line,
+            what,
+            format!(
+                "\"{entry}\" is neither a number nor a readable curve file ({}: {e})",
+                file.display()
+            ),
+        )
+    })?;
+    let mut rows = Vec::new();
+    for (i, l) in text.lines().enumerate().skip(3) {
+        let f: Vec<&str> = l.split_whitespace().collect();
+        if f.is_empty() {
+            continue;
+        }
+        let num = |k: usize| f.get(k).and_then(|x| x.parse::<f64>().ok());
+        match (num(0), num(1)) {
+            (Some(x), Some(y)) => rows.push([x, y]),
+            _ => {
+                return Err(err_at(
+                    &file,
+                    i + 1,
+                    "curve row",
+                    format!(
+                        "needs two numbers, strain and tension, got \"{}\"",
+                        l.trim()
+                    ),
+                ))
+            }
+        }
+    }
+    crate::physics::axial::check_curve(&rows).map_err(|m| {
+        err_at(
+            &file,
+            0,
+            "strain-tension curve (rows after the 3 header lines)",
+            m,
+        )
+    })?;
+    let last = rows[rows.len() - 1];
+    Ok(EaCurve {
+        secant: last[1] / last[0],
+        rows,
+        file: entry.to_string(),
+    })
+}
+
+/// A line type checked for what cablesim can run: (EA, BA as written, the
+/// strain-tension curve when EA names a curve file; EA is then the curve's largest
+/// slope). Its columns are named as the file's `version` names them.
 pub(super) fn check_type(
     p: &Path,
     t: &LineTypeRow,
     version: Version,
     warn: &mut Vec<Warning>,
-) -> Result<(f64, f64), Error> {
+) -> Result<(f64, f64, Option<EaCurve>), Error> {
     let l = t.line;
     let name = |c: &str| format!("line type \"{}\" {c}", t.name);
     let pos = |c: &str, x: f64| {
@@ -114,19 +180,31 @@ pub(super) fn check_type(
     };
     pos("Diam", t.diam)?;
     pos("Mass/m", t.mass)?;
-    let ea = match t.ea.parse::<f64>() {
-        Ok(x) if x.is_finite() => pos("EA", x)?,
-        _ => {
+    let (ea, curve) = match t.ea.parse::<f64>() {
+        Ok(x) if x.is_finite() => (pos("EA", x)?, None),
+        Ok(_) => {
+            return Err(err_at(
+                p,
+                l,
+                name("EA"),
+                format!("must be finite, got {}", t.ea),
+            ));
+        }
+        Err(_) if t.ea.contains('|') || t.ea.starts_with("SYROPE:") => {
             return Err(err_at(
                 p,
                 l,
                 name("EA"),
                 format!(
-                    "\"{}\": nonlinear, viscoelastic or Syrope stiffness is not supported \
-                     (cablesim's lines are linear elastic: give one EA in N)",
+                    "\"{}\": viscoelastic (EA_s|EA_d) or Syrope stiffness is not supported \
+                     yet (give one EA in N, or a strain-tension curve file)",
                     t.ea
                 ),
             ))
+        }
+        Err(_) => {
+            let c = read_ea_curve(p, l, &name("EA"), &t.ea)?;
+            (crate::physics::tabulated_max_slope(&c.rows), Some(c))
         }
     };
     let ba = match t.ba.parse::<f64>() {
@@ -178,5 +256,5 @@ pub(super) fn check_type(
             ),
         });
     }
-    Ok((ea, ba))
+    Ok((ea, ba, curve))
 }

@@ -1,11 +1,13 @@
 //! Force laws as small functions, generic over the float type.
 
+pub mod axial;
 pub mod catenary;
 pub mod element;
 pub mod frames;
 pub mod seabed;
 pub mod surface;
 
+pub use axial::{tabulated_max_slope, tabulated_slope, tabulated_tension, tabulated_work};
 pub use element::{
     axial_force, froude_krylov, glmf_element, glmf_element_wet, glmf_external, glmf_external_wet,
     Coefs, ElementInput, ElementLoads, ExternalLoads,

@@ -412,6 +412,7 @@ pub fn expand(p: &Path, arrays: &[toml::Table]) -> Result<Vec<(String, RawCable)
                 line_type: line_types[i].clone(),
                 length: lengths[i][0],
                 segments: seg as i64,
+                sections: None,
                 start,
                 end,
                 initial: initial.clone(),

@@ -131,29 +131,104 @@ pub(super) fn parse(
                 format!("duplicate cable name \"{}\"", c.name),
             ));
         }
-        let &lt = lt_index.get(&c.line_type).ok_or_else(|| {
-            let mut known: Vec<_> = lt_index.keys().cloned().collect();
-            known.sort();
-            err(
-                p,
-                f("line_type"),
-                format!(
-                    "unknown line type \"{}\" (defined: {})",
-                    c.line_type,
-                    known.join(", ")
-                ),
-            )
-        })?;
-        let length = positive(p, &f("length"), c.length)?;
-        validate::magnitude(p, &f("length"), length, "m")?;
-        if c.segments < 1 || c.segments > 1_000_000 {
+        let line = |name: &str, field: String| {
+            lt_index.get(name).copied().ok_or_else(|| {
+                let mut known: Vec<_> = lt_index.keys().cloned().collect();
+                known.sort();
+                err(
+                    p,
+                    field,
+                    format!(
+                        "unknown line type \"{name}\" (defined: {})",
+                        known.join(", ")
+                    ),
+                )
+            })
+        };
+        let segments = |field: String, s: i64| {
+            if !(1..=1_000_000).contains(&s) {
+                return Err(err(
+                    p,
+                    field,
+                    format!("must be an integer from 1 to 1000000, got {s}"),
+                ));
+            }
+            Ok(s as usize)
+        };
+        // One line type, or sections (chain - rope - chain) each with its own line
+        // type, length and segment count: `(line type, length, segments)` per section.
+        let parts: Vec<(usize, f64, usize)> = match &c.sections {
+            None => {
+                if c.line_type.is_empty() {
+                    return Err(err(
+                        p,
+                        f("line_type"),
+                        "missing field `line_type` (or give `sections`)",
+                    ));
+                }
+                let lt = line(&c.line_type, f("line_type"))?;
+                for (key, missing) in [
+                    ("length", c.length.is_nan()),
+                    ("segments", c.segments == i64::MIN),
+                ] {
+                    if missing {
+                        return Err(err(
+                            p,
+                            f(key),
+                            format!("missing field `{key}` (or give `sections`)"),
+                        ));
+                    }
+                }
+                let length = positive(p, &f("length"), c.length)?;
+                validate::magnitude(p, &f("length"), length, "m")?;
+                vec![(lt, length, segments(f("segments"), c.segments)?)]
+            }
+            Some(secs) => {
+                if !c.line_type.is_empty() || !c.length.is_nan() || c.segments != i64::MIN {
+                    return Err(err(
+                        p,
+                        f("sections"),
+                        "give `sections` or `line_type`, `length` and `segments`, not both",
+                    ));
+                }
+                if secs.is_empty() {
+                    return Err(err(p, f("sections"), "needs at least one section"));
+                }
+                if c.winch.is_some() {
+                    return Err(err(
+                        p,
+                        f("winch"),
+                        "a cable of several sections cannot have a winch yet",
+                    ));
+                }
+                let mut v = Vec::with_capacity(secs.len());
+                for (k, s) in secs.iter().enumerate() {
+                    let g = |key: &str| f(&format!("sections[{k}].{key}"));
+                    let lt = line(&s.line_type, g("line_type"))?;
+                    let length = positive(p, &g("length"), s.length)?;
+                    validate::magnitude(p, &g("length"), length, "m")?;
+                    v.push((lt, length, segments(g("segments"), s.segments)?));
+                }
+                v
+            }
+        };
+        let lt = parts[0].0;
+        if c.winch.is_some() && model.line_types[lt].ea_curve.is_some() {
             return Err(err(
                 p,
-                f("segments"),
-                format!("must be an integer from 1 to 1000000, got {}", c.segments),
+                f("winch"),
+                "a winch cable cannot have a line type with a strain-tension curve yet",
             ));
         }
-        let n = c.segments as usize;
+        let length: f64 = parts.iter().map(|s| s.1).sum();
+        let n: usize = parts.iter().map(|s| s.2).sum();
+        if n > 1_000_000 {
+            return Err(err(
+                p,
+                f("sections"),
+                format!("at most 1000000 segments in all, got {n}"),
+            ));
+        }
         let shape = match c.initial.as_deref() {
             None | Some("straight") => InitialShape::Straight,
             Some("catenary") => InitialShape::Catenary,
@@ -243,13 +318,31 @@ pub(super) fn parse(
             ));
         }
         if shape == InitialShape::Straight {
-            let ea = model.line_types[lt].ea;
+            // The softest section's stiffness: the largest strain.
+            let ea = parts
+                .iter()
+                .map(|s| model.line_types[s.0].ea)
+                .fold(f64::INFINITY, f64::min);
             validate::straight_strain(p, &prefix.to_string(), length, ea, pos[0], pos[1]);
+        }
+        // Element lengths and line types, section by section; the nodes between the ends
+        // at their unstretched arc length along the chord.
+        let mut l0 = Vec::with_capacity(n);
+        let mut elem_lines = Vec::with_capacity(n);
+        for &(lt, len, m) in &parts {
+            l0.extend(std::iter::repeat_n(len / m as f64, m));
+            elem_lines.extend(std::iter::repeat_n(lt, m));
         }
         let mut nodes = Vec::with_capacity(n + 1);
         nodes.push(ids[0]);
+        let mut arc = 0.0;
         for k in 1..n {
-            let s = k as f64 / n as f64;
+            arc += l0[k - 1];
+            let s = if parts.len() > 1 {
+                arc / length
+            } else {
+                k as f64 / n as f64
+            };
             let x = [0, 1, 2].map(|d| pos[0][d] + s * (pos[1][d] - pos[0][d]));
             nodes.push(model.nodes.len());
             model.nodes.push(NodeDef {
@@ -270,9 +363,15 @@ pub(super) fn parse(
             name: c.name.clone(),
             line_type: lt,
             nodes,
-            l0: vec![length / n as f64; n],
+            l0,
             current: cur,
             output_positions,
+            // One section: every element is `line_type` (no per-element list).
+            elem_lines: if parts.len() > 1 {
+                elem_lines
+            } else {
+                Vec::new()
+            },
         });
         initial.push(shape);
     }

@@ -178,6 +178,13 @@ pub(super) fn resolve(p: &Path, raw: &RawFatigue, model: &ModelDef) -> Result<Fa
                 format!("no cable is named \"{name}\""),
             ));
         };
+        if c.elem_lines.iter().any(|&l| l != c.line_type) {
+            return Err(err(
+                p,
+                format!("fatigue.cables.{name}"),
+                format!("cable \"{name}\" has several sections: fatigue is not computed on such cables yet"),
+            ));
+        }
         let lt = &model.line_types[c.line_type].name;
         if !curves.contains_key(lt) {
             return Err(err(
@@ -200,6 +207,10 @@ pub(super) fn resolve(p: &Path, raw: &RawFatigue, model: &ModelDef) -> Result<Fa
         let Some((curve, area)) = curves.get(lt) else {
             continue;
         };
+        if c.elem_lines.iter().any(|&l| l != c.line_type) {
+            // Several sections: left out (named cables are refused above).
+            continue;
+        }
         let (field, list) = match raw.cables.get(&c.name).and_then(|x| x.locations.as_ref()) {
             Some(l) => (format!("fatigue.cables.{}.locations", c.name), l),
             None => (

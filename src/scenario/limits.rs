@@ -119,7 +119,7 @@ pub fn check_model_size(p: &Path, raw: &RawScenario, limits: &Limits) -> Result<
     };
     for (i, c) in raw.cables.iter().enumerate() {
         note(
-            c.segments.max(1) as f64 + 1.0,
+            c.total_segments().max(1) as f64 + 1.0,
             1.0,
             format!("cables[{i}] (\"{}\").segments", c.name),
         );

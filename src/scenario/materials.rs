@@ -235,6 +235,42 @@ pub struct RawLineType {
     /// Elastic force in compression too.
     #[serde(default)]
     pub allow_compression: bool,
+    /// Nonlinear axial stiffness: rows `[strain, tension]` (in place of `ea`).
+    #[serde(default)]
+    pub ea_curve: Option<Vec<[f64; 2]>>,
+    /// The same read from a file of two columns, strain and tension (path relative to
+    /// the scenario file; `#` starts a comment).
+    #[serde(default)]
+    pub ea_curve_file: Option<String>,
+}
+
+/// Reads a strain-tension curve file: a row of two numbers (whitespace or a comma
+/// between) per line, blank lines and text after `#` left out. Errors name the file and
+/// the line.
+pub fn read_curve_file(path: &Path) -> Result<Vec<[f64; 2]>, Error> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| err(path, "curve file", format!("cannot be read: {e}")))?;
+    let mut rows = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let body = line.split('#').next().unwrap_or("").trim();
+        if body.is_empty() {
+            continue;
+        }
+        let cells: Vec<&str> = body
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|c| !c.is_empty())
+            .collect();
+        let nums: Vec<f64> = cells.iter().filter_map(|c| c.parse().ok()).collect();
+        if cells.len() != 2 || nums.len() != 2 {
+            return Err(err(
+                path,
+                format!("line {}", n + 1),
+                format!("expected two numbers (strain, tension), got \"{body}\""),
+            ));
+        }
+        rows.push([nums[0], nums[1]]);
+    }
+    Ok(rows)
 }
 
 impl RawLineType {
@@ -274,6 +310,43 @@ impl RawLineType {
                 )
             })
         };
+        let curve = match (&self.ea_curve, &self.ea_curve_file) {
+            (Some(_), Some(_)) => {
+                return Err(err(
+                    p,
+                    f("ea_curve"),
+                    "give `ea_curve` or `ea_curve_file`, not both",
+                ));
+            }
+            (Some(rows), None) => Some((rows.clone(), p.to_path_buf(), f("ea_curve"))),
+            (None, Some(file)) => {
+                let path = p.parent().unwrap_or(Path::new(".")).join(file);
+                let rows = read_curve_file(&path)?;
+                Some((rows, path, format!("curve of {}", f("ea_curve_file"))))
+            }
+            (None, None) => None,
+        };
+        let ea_given = match &curve {
+            Some((rows, file, what)) => {
+                if self.ea.is_some() {
+                    return Err(err(
+                        p,
+                        f("ea"),
+                        "give `ea` or a strain-tension curve, not both",
+                    ));
+                }
+                if self.allow_compression {
+                    return Err(err(
+                        p,
+                        f("allow_compression"),
+                        "a line with a strain-tension curve is slack in compression",
+                    ));
+                }
+                crate::physics::axial::check_curve(rows).map_err(|m| err(file, what.clone(), m))?;
+                Some(crate::physics::tabulated_max_slope(rows))
+            }
+            None => self.ea,
+        };
         Ok(LineType {
             name: self.name.clone(),
             diameter: need(self.diameter, mat.map(|m| m.diameter), "diameter")?,
@@ -282,7 +355,7 @@ impl RawLineType {
                 mat.map(|m| m.mass_per_length),
                 "mass_per_length",
             )?,
-            ea: need(self.ea, mat.map(|m| m.ea), "ea")?,
+            ea: need(ea_given, mat.map(|m| m.ea), "ea")?,
             damping: self.damping,
             cn: self.cn.or(mat.map(|m| m.cn)).unwrap_or(1.0),
             ct: self.ct.or(mat.and_then(|m| m.ct)).unwrap_or(0.01),
@@ -290,6 +363,7 @@ impl RawLineType {
             cat: self.cat.unwrap_or(0.0),
             ei: self.ei,
             allow_compression: self.allow_compression,
+            ea_curve: curve.map(|c| c.0),
         })
     }
 }

@@ -133,13 +133,51 @@ fn default_rho() -> f64 {
     1025.0
 }
 
+/// One section of a cable of several (chain - rope - chain).
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawSection {
+    pub line_type: String,
+    pub length: f64,
+    pub segments: i64,
+}
+
+/// A cable's `length` when the file leaves it out (NaN: told from a written 0).
+fn missing_length() -> f64 {
+    f64::NAN
+}
+
+/// A cable's `segments` when the file leaves it out.
+fn missing_segments() -> i64 {
+    i64::MIN
+}
+
+impl RawCable {
+    /// The number of segments, over all sections.
+    pub fn total_segments(&self) -> i64 {
+        match &self.sections {
+            Some(s) => s.iter().map(|x| x.segments.max(0)).sum(),
+            None => self.segments,
+        }
+    }
+}
+
 #[derive(Debug, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct RawCable {
     pub name: String,
+    /// Empty when the cable is given as `sections`.
+    #[serde(default)]
     pub line_type: String,
+    /// NaN when not given (`missing_length`).
+    #[serde(default = "missing_length")]
     pub length: f64,
+    /// `i64::MIN` when not given (`missing_segments`).
+    #[serde(default = "missing_segments")]
     pub segments: i64,
+    /// Several sections, start to end, in place of `line_type`, `length`, `segments`.
+    #[serde(default)]
+    pub sections: Option<Vec<RawSection>>,
     pub start: toml::Table,
     pub end: toml::Table,
     pub initial: Option<String>,

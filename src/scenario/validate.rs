@@ -233,9 +233,18 @@ pub fn derived(
     let (mut shortest, mut longest) = (vec![f64::INFINITY; n], vec![0.0f64; n]);
     for c in &model.cables {
         let total: f64 = c.l0.iter().sum();
-        let lt = c.line_type;
-        shortest[lt] = c.l0.iter().copied().fold(shortest[lt], f64::min);
-        longest[lt] = longest[lt].max(total);
+        if c.elem_lines.is_empty() {
+            let lt = c.line_type;
+            shortest[lt] = c.l0.iter().copied().fold(shortest[lt], f64::min);
+            longest[lt] = longest[lt].max(total);
+        } else {
+            // A cable of several sections: each line type's elements, and the whole
+            // cable's length for each.
+            for (&lt, &l0) in c.elem_lines.iter().zip(&c.l0) {
+                shortest[lt] = shortest[lt].min(l0);
+                longest[lt] = longest[lt].max(total);
+            }
+        }
     }
     let env = &model.env;
     let g_rho = env.gravity * env.water_density;
@@ -435,6 +444,9 @@ pub fn unused_line_types(p: &Path, model: &ModelDef, line_field: impl Fn(usize) 
     let mut used = vec![false; model.line_types.len()];
     for c in &model.cables {
         used[c.line_type] = true;
+        for &lt in &c.elem_lines {
+            used[lt] = true;
+        }
     }
     for (i, u) in used.iter().enumerate() {
         if !u {

@@ -136,6 +136,9 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
             let mut c = c.clone();
             c.name = packed_name(prefix, &c.name);
             c.line_type += lt0;
+            for l in &mut c.elem_lines {
+                *l += lt0;
+            }
             c.current += cu0;
             for n in &mut c.nodes {
                 *n += nd0;

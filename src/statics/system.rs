@@ -4,7 +4,8 @@ use super::{M3, V};
 use crate::model::{Block, Layout, NO_CONSTRAINT};
 use crate::physics::{
     glmf_element_wet, point_wetted_fraction, seabed_force, seabed_height, seabed_slope_force,
-    wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
+    tabulated_slope, tabulated_tension, tabulated_work, wetted_fraction, Coefs, ElementInput,
+    ElementLoads, SeabedCoefs,
 };
 use nalgebra::Vector3;
 use std::borrow::Cow;
@@ -21,6 +22,8 @@ pub(super) struct Sys<'a> {
     pub(super) e1: usize,
     /// Per block-local node: not held by a route.
     pub(super) free: Vec<bool>,
+    /// The factor on the tabulated strain-tension curves (continuation; 1 otherwise).
+    pub(super) curve_scale: f64,
 }
 
 impl<'a> Sys<'a> {
@@ -43,6 +46,7 @@ impl<'a> Sys<'a> {
             free: (n0..n1)
                 .map(|i| lay.node_constraint[i] == NO_CONSTRAINT)
                 .collect(),
+            curve_scale: 1.0,
         }
     }
 
@@ -71,6 +75,7 @@ impl<'a> Sys<'a> {
             e0: self.e0,
             e1: self.e1,
             free: self.free.clone(),
+            curve_scale: self.curve_scale * s,
         }
     }
 
@@ -108,7 +113,21 @@ impl<'a> Sys<'a> {
         let line = lay.elem_line[e] as usize;
         let wet = wetted_fraction(-ra.z, -rb.z, lay.line_types[line].diameter);
         let c = &self.coefs[line];
-        glmf_element_wet(c, &input, wet, lay.env.gravity)
+        let mut el = glmf_element_wet(c, &input, wet, lay.env.gravity);
+        if let Some(rows) = self.curve(e) {
+            // At rest: the curve's tension, no damping.
+            let eps = (rb - ra).norm() / input.l0 - 1.0;
+            el.tension = self.curve_scale * tabulated_tension(rows, eps);
+        }
+        el
+    }
+
+    /// The strain-tension curve of packed element `e`'s line type, if it has one.
+    #[inline]
+    pub(super) fn curve(&self, e: usize) -> Option<&'a [[f64; 2]]> {
+        self.lay.line_types[self.lay.elem_line[e] as usize]
+            .ea_curve
+            .as_deref()
     }
 
     /// The point loads of packed node `i`: weight less the buoyancy of the share of
@@ -208,7 +227,11 @@ impl<'a> Sys<'a> {
             } else {
                 pb - pa
             };
-            de += 0.5 * c.ea * l0 * dp * (pa + pb);
+            de += match self.curve(e) {
+                // The curve's work from strain `ea` to `eb`, from the increment itself.
+                Some(rows) => self.curve_scale * l0 * tabulated_work(rows, ea, dl / l0),
+                None => 0.5 * c.ea * l0 * dp * (pa + pb),
+            };
             de -= ext[e - self.e0].dot((dx[a] + dx[b]) * 0.5);
         }
         for li in 0..self.nn {
@@ -385,7 +408,12 @@ impl<'a> Sys<'a> {
                 let t = vec3(d / l);
                 let tt = t * t.transpose();
                 let eps = l / l0 - 1.0;
-                let (k_ax, tension) = if eps > 0.0 {
+                let (k_ax, tension) = if let Some(rows) = self.curve(e) {
+                    (
+                        self.curve_scale * tabulated_slope(rows, eps) / l0,
+                        self.curve_scale * tabulated_tension(rows, eps),
+                    )
+                } else if eps > 0.0 {
                     (c.ea / l0, c.ea * eps)
                 } else {
                     (c.ea * c.compression / l0, c.ea * eps * c.compression)

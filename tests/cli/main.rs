@@ -16,6 +16,7 @@ mod fatigue;
 mod fuzz_scenarios;
 mod logging;
 mod moordyn_bodies;
+mod moordyn_curves;
 mod moordyn_input;
 mod moordyn_waves;
 mod output_formats;

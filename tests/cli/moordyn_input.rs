@@ -217,7 +217,7 @@ fn unsupported_features_are_errors_naming_the_line() {
                 "chain      0.1     150.0      1.0e9|2.0e9 ",
             ),
             "chain      0.1",
-            "nonlinear",
+            "viscoelastic",
         ),
         (
             v2_with("3   Coupled ", "3   Body1   "),
@@ -255,7 +255,7 @@ fn unsupported_features_are_errors_naming_the_line() {
         (
             v2_with("150.0      1.0e9", "150.0      1.0e9x"),
             "150.0      1.0e9x",
-            "nonlinear",
+            "neither a number nor a readable curve file",
         ),
         (
             v2_with("2   Free        -40     0      -30     200    2.5 ", "2   Free        -40     0      -30     200    abc "),

@@ -25,6 +25,7 @@ pub fn wire() -> LineType {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     }
 }
 
@@ -42,6 +43,7 @@ pub fn rope() -> LineType {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     }
 }
 
@@ -107,6 +109,7 @@ pub fn straight_cable(
             l0: vec![length / n as f64; n],
             current: 0,
             output_positions: true,
+            elem_lines: Vec::new(),
         }],
         nodes,
     }
@@ -273,6 +276,7 @@ pub fn froude_krylov_case(
         cat,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     let def = straight_cable(
         env,

@@ -37,6 +37,7 @@ fn rod(mass_per_length: f64) -> LineType {
         cat: 0.0,
         ei: 1e4,
         allow_compression: true,
+        ea_curve: None,
     }
 }
 
@@ -227,6 +228,7 @@ fn case2_line(ei: f64) -> LineType {
         cat: 0.0,
         ei,
         allow_compression: false,
+        ea_curve: None,
     }
 }
 

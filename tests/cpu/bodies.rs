@@ -133,6 +133,7 @@ fn a_body_moves_by_its_rao_in_a_regular_wave() {
             l0: vec![2.0; 5],
             current: 0,
             output_positions: true,
+            elem_lines: Vec::new(),
         });
     }
     let (lay, pos) = Layout::build(&def).unwrap();

@@ -54,6 +54,7 @@ fn line_type(rng: &mut ChaCha8Rng) -> LineType {
         cat: rng.gen_range(0.0..2.0),
         ei: 0.0,
         allow_compression: rng.gen_bool(0.2),
+        ea_curve: None,
     }
 }
 
@@ -263,6 +264,7 @@ fn line() -> Coefs<f64> {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     Coefs::from_line(&LineCoefs::new(&lt, 1025.0, 9.81))
 }
@@ -588,6 +590,7 @@ fn hanging_cable(current: [f64; 3], bend: f64) -> (Layout, Vec<[f64; 3]>) {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     let n = 11;
     let pos: Vec<[f64; 3]> = (0..n)
@@ -621,6 +624,7 @@ fn hanging_cable(current: [f64; 3], bend: f64) -> (Layout, Vec<[f64; 3]>) {
             l0,
             current: 0,
             output_positions: false,
+            elem_lines: Vec::new(),
         }],
     };
     Layout::build(&def).unwrap()

@@ -10,6 +10,7 @@ mod common;
 
 mod ale;
 mod ancf;
+mod axial;
 mod bodies;
 mod body_knots;
 mod body_statics;

@@ -28,6 +28,7 @@ fn chain() -> LineType {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     }
 }
 
@@ -78,6 +79,7 @@ fn single_line(pts: &[[f64; 3]], length: f64, depth: f64, current: [f64; 3]) -> 
             l0: vec![length / n as f64; n],
             current: 0,
             output_positions: true,
+            elem_lines: Vec::new(),
         }],
     }
 }
@@ -311,6 +313,7 @@ fn net() -> ModelDef {
             l0: vec![3.0; 4],
             current: 0,
             output_positions: true,
+            elem_lines: Vec::new(),
         });
     }
     def
@@ -450,6 +453,7 @@ fn independent_blocks_and_errors() {
             l0: vec![LENGTH / 25.0; 25],
             current: 0,
             output_positions: true,
+            elem_lines: Vec::new(),
         });
     }
     // A taut two-node cable: both ends held.
@@ -463,6 +467,7 @@ fn independent_blocks_and_errors() {
         l0: vec![10.0],
         current: 0,
         output_positions: true,
+        elem_lines: Vec::new(),
     });
     let (lay, mut pos) = Layout::build(&def).unwrap();
     let rep = relaxed(&lay, &mut pos);

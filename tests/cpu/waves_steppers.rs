@@ -241,6 +241,7 @@ fn neutrally_buoyant_sphere_follows_the_water() {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     let z0 = -30.0;
     let mut def = straight_cable(

@@ -345,6 +345,7 @@ fn chain() -> LineType {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     }
 }
 
@@ -415,6 +416,7 @@ fn moored_bodies() -> (Layout, Vec<[f64; 3]>) {
             l0: vec![1.1 * chord / segments as f64; segments],
             current: 0,
             output_positions: false,
+            elem_lines: Vec::new(),
         });
     }
     let (lay, mut pos) = Layout::build(&def).unwrap();

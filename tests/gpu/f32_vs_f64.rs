@@ -490,6 +490,7 @@ fn line_types() -> Vec<LineType> {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     let rope = LineType {
         name: "rope".into(),
@@ -503,6 +504,7 @@ fn line_types() -> Vec<LineType> {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     let wire = LineType {
         damping: 2e-4,
@@ -685,6 +687,7 @@ fn random_cables(n: usize, seed: u64) -> (Layout, Vec<[f64; 3]>, Vec<[f64; 3]>) 
             l0: vec![length / segments as f64; segments],
             current: c,
             output_positions: false,
+            elem_lines: Vec::new(),
         });
     }
     let (lay, mut pos) = Layout::build(&def).unwrap();

@@ -16,13 +16,16 @@ use cablesim::gpu::{shaders, GpuContext, Precision};
 use cablesim::math::{Sym3, V3};
 use cablesim::model::{Current, Route};
 use cablesim::physics::{
-    glmf_element, seabed_damping, seabed_force, Coefs, ElementInput, SeabedCoefs,
+    glmf_element, seabed_damping, seabed_force, tabulated_max_slope, tabulated_tension, Coefs,
+    ElementInput, SeabedCoefs,
 };
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 mod free_body;
+mod axial;
 mod routes;
+use axial::*;
 use routes::*;
 mod seabed_grid;
 use seabed_grid::*;
@@ -43,7 +46,7 @@ fn v3out(k: u32, v: vec3<R>) {
 
 fn line_in(b: u32) -> LineParams {
     return LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
-        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u]);
+        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u], R(0.0));
 }
 
 // The water-acceleration load of case i: line constants, tangent, acceleration, l0 wet.
@@ -721,6 +724,7 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_sincos::<R>(ctx, p, &mut rng);
     check_route::<R>(ctx, p, &mut rng);
     check_current::<R>(ctx, p, &mut rng);
+    check_tabulated::<R>(ctx, p, &mut rng);
 }
 
 #[test]

@@ -41,6 +41,7 @@ fn line_types() -> Vec<LineType> {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     let rope = LineType {
         name: "rope".into(),
@@ -54,6 +55,7 @@ fn line_types() -> Vec<LineType> {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     let wire = LineType {
         damping: 1e-4,
@@ -200,6 +202,7 @@ fn fleet_with_profiles(n: usize, seed: u64, points: usize) -> (Layout, Vec<[f64;
             l0: vec![length / segments as f64; segments],
             current: c,
             output_positions: false,
+            elem_lines: Vec::new(),
         });
     }
     let (lay, mut pos) = Layout::build(&def).unwrap();
@@ -435,6 +438,7 @@ fn fused_blow_up_names_the_cable_node_and_time() {
         l0: vec![0.5; 40],
         current: 0,
         output_positions: false,
+        elem_lines: Vec::new(),
     });
     let (lay, pos) = Layout::build(&def).unwrap();
     let opts = SolverOptions {

@@ -15,6 +15,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod axial;
 mod backend;
 mod bodies;
 mod compare;

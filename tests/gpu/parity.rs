@@ -142,6 +142,7 @@ fn net_model() -> (Layout, Vec<[f64; 3]>) {
             l0: vec![spacing / seg as f64 * 1.02; seg],
             current: 0,
             output_positions: true,
+            elem_lines: Vec::new(),
         });
     };
     for i in 0..k {
@@ -179,6 +180,7 @@ fn net_model() -> (Layout, Vec<[f64; 3]>) {
         l0: vec![5.0; 10],
         current: 0,
         output_positions: true,
+        elem_lines: Vec::new(),
     });
     let def = ModelDef {
         env,

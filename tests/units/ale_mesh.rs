@@ -29,6 +29,7 @@ fn cable(def: &mut ModelDef, name: &str, x: f64, n: usize, top_route: bool) -> u
         l0: vec![5.0; n],
         current: def.cables.len() % 2,
         output_positions: false,
+        elem_lines: Vec::new(),
     });
     def.cables.len() - 1
 }
@@ -50,6 +51,7 @@ fn splice_equals_a_full_rebuild() {
         cat: 0.0,
         ei: 0.0,
         allow_compression: false,
+        ea_curve: None,
     };
     let mut def = ModelDef {
         env: Environment::default(),

@@ -24,6 +24,7 @@ fn line(ei: f64, compression: bool) -> LineType {
         cat: 0.0,
         ei,
         allow_compression: compression,
+        ea_curve: None,
     }
 }
 

@@ -80,6 +80,10 @@ impl NetConsts {
     /// Folds the layout's constants for network block `b`; `None` when a node has
     /// more than 8 incident elements (the block takes the general path).
     pub(crate) fn new(lay: &Layout, b: &Block) -> Option<Self> {
+        // Tabulated strain-tension curves: the general passes.
+        if lay.block_has_curves(b) {
+            return None;
+        }
         let (n0, e0) = (b.node_start as usize, b.elem_start as usize);
         let n = (b.node_end - b.node_start) as usize;
         let deg = (0..n).map(|i| lay.incidence(n0 + i).len()).max()?;

@@ -120,7 +120,8 @@ impl CpuSolver {
         ke
     }
 
-    /// Elastic strain energy `sum 1/2 EA l0 eps^2` over stretched elements, J.
+    /// Elastic strain energy `sum 1/2 EA l0 eps^2` over stretched elements (a tabulated
+    /// line's `l0 int T deps`), J.
     pub fn strain_energy(&self) -> f64 {
         let lay = &self.layout;
         let l0s = self.element_l0();
@@ -130,7 +131,11 @@ impl CpuSolver {
                 let l0 = l0s[e];
                 let c = &self.coefs[lay.elem_line[e] as usize];
                 let eps = l / l0 - 1.0;
-                if eps > 0.0 || c.compression > 0.0 {
+                let line = &lay.line_types[lay.elem_line[e] as usize];
+                if let Some(rows) = line.ea_curve.as_deref() {
+                    // The curve's work from zero strain.
+                    l0 * crate::physics::tabulated_work(rows, 0.0, eps)
+                } else if eps > 0.0 || c.compression > 0.0 {
                     0.5 * c.ea * l0 * eps * eps
                 } else {
                     0.0

@@ -286,10 +286,65 @@ impl<R: GpuReal> GpuEngine<R> {
             gravity: R::c(env.gravity),
             water_density: R::c(env.water_density),
         };
+        // The current profiles' rows, a seabed grid's, then each line type's strain-tension
+        // curve as rows of its own range (`z` the strain, `ux` the tension): no buffer of their own.
+        let mut current_pts = Vec::new();
+        let mut current_ranges = Vec::new();
+        for c in &lay.currents {
+            current_ranges.push(CurrentRange {
+                start: current_pts.len() as u32,
+                len: c.table.len() as u32,
+            });
+            for (z, u) in &c.table {
+                current_pts.push(CurrentPoint {
+                    z: R::c(*z),
+                    ux: R::c(u[0]),
+                    uy: R::c(u[1]),
+                    uz: R::c(u[2]),
+                });
+            }
+        }
+        // A seabed grid rides in the current profiles' buffer (no binding of its own):
+        // its packed values (physics::seabed_height) four to a row, as one more range,
+        // right after the current profiles (Params.seabed counts on it).
+        if let Some(g) = env.seabed.grid {
+            current_ranges.push(CurrentRange {
+                start: current_pts.len() as u32,
+                len: g.packed.len().div_ceil(4) as u32,
+            });
+            for q in g.packed.chunks(4) {
+                let at = |k: usize| R::c(q.get(k).copied().unwrap_or(0.0));
+                current_pts.push(CurrentPoint {
+                    z: at(0),
+                    ux: at(1),
+                    uy: at(2),
+                    uz: at(3),
+                });
+            }
+        }
+        let mut line_table = vec![0u32; lay.line_types.len()];
+        for (lt, slot) in lay.line_types.iter().zip(&mut line_table) {
+            if let Some(rows) = &lt.ea_curve {
+                current_ranges.push(CurrentRange {
+                    start: current_pts.len() as u32,
+                    len: rows.len() as u32,
+                });
+                *slot = current_ranges.len() as u32;
+                for r in rows {
+                    current_pts.push(CurrentPoint {
+                        z: R::c(r[0]),
+                        ux: R::c(r[1]),
+                        uy: R::c(0.0),
+                        uz: R::c(0.0),
+                    });
+                }
+            }
+        }
         let lines: Vec<LineParams<R>> = lay
             .line_coefs
             .iter()
-            .map(|c| LineParams {
+            .zip(&line_table)
+            .map(|(c, &table)| LineParams {
                 ea: R::c(c.ea),
                 ea_c: R::c(c.ea_c),
                 drag_n: R::c(c.drag_n),
@@ -301,6 +356,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 added_mass_t: R::c(c.added_mass_t),
                 wet_weight_z: R::c(c.wet_weight_z),
                 compression: R::c(c.compression),
+                table: R::c(table as f64),
             })
             .collect();
         let elems: Vec<ElemParams<R>> = (0..lay.n_elements())
@@ -350,39 +406,6 @@ impl<R: GpuReal> GpuEngine<R> {
                 pad: 0,
             })
             .collect();
-        let mut current_pts = Vec::new();
-        let mut current_ranges = Vec::new();
-        for c in &lay.currents {
-            current_ranges.push(CurrentRange {
-                start: current_pts.len() as u32,
-                len: c.table.len() as u32,
-            });
-            for (z, u) in &c.table {
-                current_pts.push(CurrentPoint {
-                    z: R::c(*z),
-                    ux: R::c(u[0]),
-                    uy: R::c(u[1]),
-                    uz: R::c(u[2]),
-                });
-            }
-        }
-        // A seabed grid rides in the current profiles' buffer (no binding of its own):
-        // its packed values (physics::seabed_height) four to a row, as one more range.
-        if let Some(g) = env.seabed.grid {
-            current_ranges.push(CurrentRange {
-                start: current_pts.len() as u32,
-                len: g.packed.len().div_ceil(4) as u32,
-            });
-            for q in g.packed.chunks(4) {
-                let at = |k: usize| R::c(q.get(k).copied().unwrap_or(0.0));
-                current_pts.push(CurrentPoint {
-                    z: at(0),
-                    ux: at(1),
-                    uy: at(2),
-                    uz: at(3),
-                });
-            }
-        }
         let n_nodes = lay.n_nodes();
         let n_elems = lay.n_elements();
         let n_routes = lay.routes.len();
