@@ -125,6 +125,7 @@ fn rope(zf: f64) -> (Layout, Vec<[f64; 3]>) {
             output_positions: true,
         }],
         nodes,
+        clamps: Vec::new(),
     };
     let (lay, mut pos) = Layout::build(&def).unwrap();
     relax(&lay, &mut pos, &RelaxOptions::default()).unwrap();

@@ -318,6 +318,8 @@ impl AleState {
                     current: 0,
                     output_positions: c.output_positions,
                 }],
+                // A winch cable has no bending stiffness (refused by the scenario).
+                clamps: Vec::new(),
             };
             let (one, _, _) = Layout::build_indexed(&one_def)?;
             let b = lay.blocks[bi];

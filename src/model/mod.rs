@@ -4,9 +4,11 @@ pub(crate) mod environment;
 mod failure;
 mod layout;
 mod line_type;
+pub mod bending;
 pub mod net;
 pub(crate) mod route;
 
+pub use bending::{block_hinges, Clamp, Hinge, NO_ELEM};
 pub use environment::{Current, Environment, Seabed};
 pub use failure::{EndFailure, FailureEvent};
 pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};

@@ -24,7 +24,9 @@ impl Sys<'_> {
             Method::Fixed
         } else if opts.force_dynamic_relaxation {
             Method::DynamicRelaxation
-        } else if self.block.is_chain {
+        } else if self.block.is_chain && self.hinges.is_empty() {
+            // Bending couples a node with its neighbours' neighbours: no longer
+            // block-tridiagonal, such a chain takes the dense solve.
             Method::Chain
         } else if 3 * n_free <= opts.max_dense_dof {
             Method::Dense

@@ -109,6 +109,7 @@ pub fn straight_cable(
             output_positions: true,
         }],
         nodes,
+        clamps: Vec::new(),
     }
 }
 

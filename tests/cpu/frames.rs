@@ -622,6 +622,7 @@ fn hanging_cable(current: [f64; 3], bend: f64) -> (Layout, Vec<[f64; 3]>) {
             current: 0,
             output_positions: false,
         }],
+        clamps: Vec::new(),
     };
     Layout::build(&def).unwrap()
 }

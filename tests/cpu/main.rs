@@ -10,6 +10,7 @@ mod common;
 
 mod ale;
 mod ancf;
+mod bending;
 mod bodies;
 mod body_knots;
 mod case1;

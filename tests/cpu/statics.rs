@@ -78,6 +78,7 @@ fn single_line(pts: &[[f64; 3]], length: f64, depth: f64, current: [f64; 3]) -> 
             current: 0,
             output_positions: true,
         }],
+        clamps: Vec::new(),
     }
 }
 
