@@ -475,7 +475,11 @@ fn bending_stiffness(lay: &Layout) -> Vec<f64> {
         let side = |e: u32| {
             (e != crate::model::NO_ELEM).then(|| {
                 let e = e as usize;
-                (lay.elem_l0[e], lay.elem_a[e] as usize, lay.elem_b[e] as usize)
+                (
+                    lay.elem_l0[e],
+                    lay.elem_a[e] as usize,
+                    lay.elem_b[e] as usize,
+                )
             })
         };
         let (p, n) = (side(h.prev), side(h.next));

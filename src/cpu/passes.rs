@@ -9,8 +9,8 @@ use crate::model::{block_hinges, Block, Hinge, Layout, NO_CONSTRAINT, NO_ELEM};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{
-    bending_hinge, glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force, wetted_fraction, Coefs,
-    ElementInput, ElementLoads, SeabedCoefs,
+    bending_hinge, glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force,
+    wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
 };
 use crate::step::{blow_up, StepFailure};
 

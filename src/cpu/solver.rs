@@ -307,8 +307,12 @@ impl CpuSolver {
             .blocks
             .iter()
             .map(|b| {
-                !crate::model::block_hinges(&self.hinges, b.elem_start as usize, b.elem_end as usize)
-                    .is_empty()
+                !crate::model::block_hinges(
+                    &self.hinges,
+                    b.elem_start as usize,
+                    b.elem_end as usize,
+                )
+                .is_empty()
             })
             .collect();
         self.r = r;

@@ -1,10 +1,10 @@
 //! What is simulated: line types, environment, routes, and the packed layout.
 
+pub mod bending;
 pub(crate) mod environment;
 mod failure;
 mod layout;
 mod line_type;
-pub mod bending;
 pub mod net;
 pub(crate) mod route;
 

@@ -3,8 +3,8 @@
 use super::{M3, V};
 use crate::model::{block_hinges, Block, Hinge, Layout, NO_CONSTRAINT, NO_ELEM};
 use crate::physics::{
-    bending_energy, bending_hinge, glmf_element_wet, point_wetted_fraction, seabed_force, wetted_fraction, Coefs, ElementInput,
-    ElementLoads, SeabedCoefs,
+    bending_energy, bending_hinge, glmf_element_wet, point_wetted_fraction, seabed_force,
+    wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
 };
 use nalgebra::Vector3;
 use std::borrow::Cow;
@@ -244,7 +244,13 @@ impl<'a> Sys<'a> {
     /// The side of hinge `h` on packed element `e` (or its held direction where `e` is
     /// [`NO_ELEM`]): unit tangent, length, block-local far node (the node not at the
     /// hinge) and hinge node; `last` says whether `e` ends at the hinge.
-    fn hinge_side(&self, h: &Hinge, e: u32, r: &[V], last: bool) -> (V, f64, Option<usize>, Option<usize>) {
+    fn hinge_side(
+        &self,
+        h: &Hinge,
+        e: u32,
+        r: &[V],
+        last: bool,
+    ) -> (V, f64, Option<usize>, Option<usize>) {
         if e == NO_ELEM {
             return (V::from_f64(h.dir), 1.0, None, None);
         }

@@ -15,6 +15,7 @@ mod examples;
 mod fatigue;
 mod fuzz_scenarios;
 mod logging;
+mod moordyn_bending;
 mod moordyn_input;
 mod moordyn_waves;
 mod output_formats;
