@@ -66,6 +66,7 @@ fn scenario_error(extra_type: &str, start: &str) -> String {
         r#"
 [simulation]
 duration = 1.0
+output_interval = 0.5
 dt = "auto"
 
 [environment]
@@ -126,6 +127,7 @@ fn a_net_of_a_bending_line_type_is_an_error() {
     let text = r#"
 [simulation]
 duration = 1.0
+output_interval = 0.5
 dt = "auto"
 
 [environment]
