@@ -127,6 +127,7 @@ fn rope(zf: f64) -> (Layout, Vec<[f64; 3]>) {
             elem_lines: Vec::new(),
         }],
         nodes,
+        clamps: Vec::new(),
     };
     let (lay, mut pos) = Layout::build(&def).unwrap();
     relax(&lay, &mut pos, &RelaxOptions::default()).unwrap();

@@ -54,6 +54,8 @@ enum Term {
     SeabedStiffness,
     SeabedDamping,
     Friction,
+    /// Bending waves, with the node's shortest element and its length.
+    Bending(usize, f64),
 }
 
 impl Term {
@@ -77,6 +79,10 @@ impl Term {
             ),
             Term::Internal(e, l0) => format!(
                 "internal damping at cable '{cable}' node {node} {}",
+                element(e, l0)
+            ),
+            Term::Bending(e, l0) => format!(
+                "bending waves at cable '{cable}' node {node} {}",
                 element(e, l0)
             ),
             Term::SeabedStiffness => format!("seabed stiffness at cable '{cable}' node {node}"),
@@ -123,6 +129,16 @@ impl Term {
                      [[line_types]], or give cable '{cable}' fewer `segments` (the step \
                      grows with the element length squared)",
                     c.ea_c / c.ea
+                )
+            }
+            Term::Bending(e, l0) => {
+                let t = lay.elem_line[e] as usize;
+                let (name, ei) = (&lay.line_types[t].name, lay.line_types[t].ei);
+                format!(
+                    "the bending wave of line type '{name}' (`ei` = {ei:.3e} N m^2) crosses \
+                     an element of {l0:.3e} m: the step is about l0^2 sqrt(m / EI) / 2 and \
+                     grows with the element length squared: give cable '{cable}' fewer \
+                     `segments`, or lower that `ei`"
                 )
             }
             Term::SeabedStiffness => format!(
@@ -228,7 +244,8 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
     let contact_damping_bounds = scheme != Scheme::Symplectic;
     // Without a seabed (infinite depth) no node can touch one.
     let has_seabed = lay.env.depth.is_finite();
-    let mut parts: Vec<(Mode, Term, u8)> = Vec::with_capacity(6);
+    let mut parts: Vec<(Mode, Term, u8)> = Vec::with_capacity(7);
+    let bend = bending_stiffness(lay);
     for i in 0..lay.n_nodes() {
         parts.clear();
         if lay.node_constraint[i] != NO_CONSTRAINT {
@@ -283,6 +300,16 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                         0,
                     ));
                 }
+            }
+            if bend[i] > 0.0 {
+                parts.push((
+                    Mode {
+                        omega2: bend[i] / m,
+                        gamma: 0.0,
+                    },
+                    Term::Bending(shortest.1, shortest.0),
+                    4,
+                ));
             }
             if has_seabed && lt > 0.0 && sb.stiffness > 0.0 {
                 parts.push((
@@ -344,7 +371,7 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
             // Runge-Kutta steps grow with damping, so a mode may only count the damping
             // that acts on it: axial waves with internal damping, seabed stiffness with
             // seabed damping (another direction), friction, the constraint gains.
-            Scheme::Rk2 | Scheme::Rk4 => (0..4u8)
+            Scheme::Rk2 | Scheme::Rk4 => (0..5u8)
                 .filter(|g| parts.iter().any(|(_, _, x)| x == g))
                 .map(|g| {
                     let m = sum(Some(g));
@@ -433,4 +460,42 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
             fix: String::new(),
         },
     }
+}
+
+/// Per node: a Gershgorin bound of its bending stiffness, N/m. A hinge of stiffness
+/// `k = EI / lbar` (`crate::model::Hinge`) turns small transverse displacements `w`
+/// of its nodes into the angle `b . w`, `b = (1/l1, -(1/l1 + 1/l2), 1/l2)` (the
+/// held side of a clamp left out), and has the stiffness `k b b^T`; each node's row
+/// of it sums in absolute value to `2 k s |b_i|` with `s = 1/l1 + 1/l2`. For a
+/// uniform cable the sum over a node's three hinges is `16 EI / l0^3`, so that
+/// `omega^2 = 16 EI / (m l0^4)`: the highest bending mode of the chain.
+fn bending_stiffness(lay: &Layout) -> Vec<f64> {
+    let mut out = vec![0.0; lay.n_nodes()];
+    for h in lay.hinges() {
+        let side = |e: u32| {
+            (e != crate::model::NO_ELEM).then(|| {
+                let e = e as usize;
+                (
+                    lay.elem_l0[e],
+                    lay.elem_a[e] as usize,
+                    lay.elem_b[e] as usize,
+                )
+            })
+        };
+        let (p, n) = (side(h.prev), side(h.next));
+        let s = p.map_or(0.0, |x| 1.0 / x.0) + n.map_or(0.0, |x| 1.0 / x.0);
+        let hinge_node = match (p, n) {
+            (Some(p), _) => p.2,
+            (None, Some(n)) => n.1,
+            (None, None) => continue,
+        };
+        out[hinge_node] += 2.0 * h.k * s * s;
+        if let Some((l, a, _)) = p {
+            out[a] += 2.0 * h.k * s / l;
+        }
+        if let Some((l, _, b)) = n {
+            out[b] += 2.0 * h.k * s / l;
+        }
+    }
+    out
 }

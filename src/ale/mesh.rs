@@ -319,6 +319,8 @@ impl AleState {
                     output_positions: c.output_positions,
                     elem_lines: Vec::new(),
                 }],
+                // A winch cable has no bending stiffness (refused by the scenario).
+                clamps: Vec::new(),
             };
             let (one, _, _) = Layout::build_indexed(&one_def)?;
             let b = lay.blocks[bi];

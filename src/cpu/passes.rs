@@ -5,12 +5,13 @@
 use super::water::{node_water, BlockWaves, Water};
 use crate::ale::{mass_flow_forces, AleElem};
 use crate::math::{Sym3, V3};
-use crate::model::{Block, Layout, NO_CONSTRAINT};
+use crate::model::{block_hinges, Block, Hinge, Layout, NO_CONSTRAINT, NO_ELEM};
 use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{
-    glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force, seabed_height,
-    seabed_slope_damping, seabed_slope_force, seabed_slope_normal, tabulated_tension,
+    bending_hinge, glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force,
+    seabed_height, seabed_slope_damping, seabed_slope_force, seabed_slope_normal,
+    tabulated_tension,
     wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
 };
 use crate::step::{blow_up, StepFailure};
@@ -45,6 +46,8 @@ pub(super) struct Ctx<'a> {
     /// Per route: the target of a node held on a free body, read in place of the
     /// route (empty without free bodies: `super::free`).
     pub(super) targets: &'a [Option<crate::model::RouteState>],
+    /// Every bending hinge of the layout (`Layout::hinges`), ordered by anchor.
+    pub(super) hinges: &'a [Hinge],
 }
 
 /// How a block's elements and nodes are connected, in block-local indices.
@@ -287,6 +290,9 @@ pub(super) fn element_pass<T: Topo>(
             }
         }
     }
+    if !ctx.hinges.is_empty() {
+        bending_pass(ctx, topo, e0, r, out);
+    }
     Ok(())
 }
 
@@ -315,6 +321,39 @@ fn tabulated_pass<T: Topo>(
         let eps = l / l0 - 1.0;
         let epsdot = o.t.dot(v[bn] - v[a]) / l0;
         o.tension = tabulated_tension(rows, eps) + c.ea_c * epsdot;
+    }
+}
+
+/// The bending hinges of the block of elements `e0..e0 + out.len()`: each hinge's
+/// forces ([`bending_hinge`]) added to the shear of the elements beside it, after
+/// the element loop has left every element's tangent in `out`.
+#[inline(always)]
+pub(super) fn bending_pass<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    e0: usize,
+    r: &[V],
+    out: &mut [ElementLoads<f64>],
+) {
+    let len = |k: usize| {
+        let (a, b) = topo.ends(k);
+        (r[b] - r[a]).norm()
+    };
+    for h in block_hinges(ctx.hinges, e0, e0 + out.len()) {
+        let p = (h.prev != NO_ELEM).then(|| h.prev as usize - e0);
+        let n = (h.next != NO_ELEM).then(|| h.next as usize - e0);
+        let dir = V::from_f64(h.dir);
+        let (q1, l1) = p.map_or((dir, 1.0), |p| (out[p].t, len(p)));
+        let (q2, l2) = n.map_or((dir, 1.0), |n| (out[n].t, len(n)));
+        let (f1, f2) = bending_hinge(q1, l1, q2, l2, h.k);
+        // f1 acts on node a of the element before (which receives -shear), f2 on
+        // node b of the element after (which receives +shear).
+        if let Some(p) = p {
+            out[p].shear -= f1;
+        }
+        if let Some(n) = n {
+            out[n].shear += f2;
+        }
     }
 }
 
@@ -409,7 +448,7 @@ pub(super) fn node_accel_of<T: Topo>(
     let mut m = Sym3::scalar(lay.node_point_mass[i] - dry * lay.node_point_added[i]);
     for (e, sign) in topo.incident(li) {
         let el = &elems[e];
-        f += el.f_half + el.t * (sign * el.tension);
+        f += el.f_half + (el.t * el.tension - el.shear) * sign;
         let s = el.half_mass;
         m.xx += s;
         m.yy += s;

@@ -84,6 +84,11 @@ pub struct CpuSolver {
     free: Option<Box<FreeRun>>,
     /// Cable ends that may fail, and those that did.
     failures: Vec<Failure>,
+    /// Every bending hinge (`Layout::hinges`; empty without bending stiffness).
+    hinges: Vec<crate::model::Hinge>,
+    /// Per block: whether it has a bending hinge (such a block takes the general
+    /// passes: the chain and network fast paths have no bending).
+    bent: Vec<bool>,
 }
 
 impl CpuSolver {
@@ -137,6 +142,8 @@ impl CpuSolver {
             exact_waves: false,
             free: None,
             failures: Vec::new(),
+            hinges: Vec::new(),
+            bent: Vec::new(),
         };
         let r = positions.iter().map(|p| V::from_f64(*p)).collect();
         let v = vec![V::zero(); positions.len()];
@@ -295,6 +302,19 @@ impl CpuSolver {
             .collect();
         self.elems = vec![ElementLoads::default(); layout.n_elements()];
         self.scratch = vec![NodeScratch::default(); layout.n_nodes()];
+        self.hinges = layout.hinges();
+        self.bent = layout
+            .blocks
+            .iter()
+            .map(|b| {
+                !crate::model::block_hinges(
+                    &self.hinges,
+                    b.elem_start as usize,
+                    b.elem_end as usize,
+                )
+                .is_empty()
+            })
+            .collect();
         self.r = r;
         self.v = v;
         self.layout = layout;
@@ -344,6 +364,17 @@ impl CpuSolver {
         }
         self.chain_consts = old;
         self.net_consts = old_net;
+        self.drop_bent_consts();
+    }
+
+    /// Blocks with bending hinges take the general passes: no fast-path constants.
+    fn drop_bent_consts(&mut self) {
+        for (bi, &bent) in self.bent.iter().enumerate() {
+            if bent {
+                self.chain_consts[bi] = None;
+                self.net_consts[bi] = None;
+            }
+        }
     }
 
     /// Chain fast-path constants for chain blocks (winch cables included: the fast
@@ -367,6 +398,7 @@ impl CpuSolver {
                 }
             })
             .collect();
+        self.drop_bent_consts();
     }
 
     /// The variable elements of block `bi` (none without winches).
@@ -455,6 +487,7 @@ impl CpuSolver {
             gravity: self.layout.env.gravity,
             implicit_dt: 0.0,
             targets: self.free.as_deref().map_or(&[], |f| &f.targets[..]),
+            hinges: &self.hinges,
         }
     }
 
@@ -643,6 +676,7 @@ impl CpuSolver {
             gravity: self.layout.env.gravity,
             implicit_dt: implicit_dt(&self.opts),
             targets: self.free.as_deref().map_or(&[], |f| &f.targets[..]),
+            hinges: &self.hinges,
         };
         let touched = self
             .free
@@ -682,6 +716,7 @@ impl CpuSolver {
                     && self.seas.is_none()
                     && !is_touched(bi)
                     && !self.layout.block_has_curves(b)
+                    && !self.bent[bi]
             })
             .collect();
         // Split the state into disjoint per-chunk slices.

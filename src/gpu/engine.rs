@@ -664,6 +664,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                     f_half: crate::math::V3::new(l.fx.f64(), l.fy.f64(), l.fz.f64()),
                     half_mass: l.half_mass.f64(),
                     half_added: l.half_added.f64(),
+                    shear: crate::math::V3::zero(),
                 })
                 .collect(),
         })

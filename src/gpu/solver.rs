@@ -73,6 +73,17 @@ pub fn unsupported(lay: &Layout, opts: &SolverOptions) -> Option<String> {
             ));
         }
     }
+    if let Some(&l) = lay
+        .elem_line
+        .iter()
+        .find(|&&l| lay.line_types[l as usize].ei > 0.0)
+    {
+        let lt = &lay.line_types[l as usize];
+        return Some(format!(
+            "bending stiffness (line type '{}', ei = {:e} N m^2; the CPU path runs it)",
+            lt.name, lt.ei
+        ));
+    }
     if opts.formulation != Formulation::Glmf {
         return Some(format!(
             "the {} formulation (the GPU path is GLMF only)",

@@ -75,6 +75,8 @@ pub struct ModelDef {
     pub nodes: Vec<NodeDef>,
     /// Cables.
     pub cables: Vec<CableDef>,
+    /// Cable ends whose direction is held (bending, `super::bending`).
+    pub clamps: Vec<super::Clamp>,
 }
 
 /// A cable in the packed layout.
@@ -178,6 +180,8 @@ pub struct Layout {
     pub constraint_node: Vec<u32>,
     /// Per constraint: its route.
     pub routes: Vec<Route>,
+    /// Cable ends whose direction is held (`ModelDef::clamps`).
+    pub clamps: Vec<super::Clamp>,
 }
 
 impl Layout {
@@ -561,6 +565,7 @@ impl Layout {
             elem_current: Vec::with_capacity(ne),
             constraint_node: Vec::new(),
             routes: Vec::new(),
+            clamps: def.clamps.clone(),
         };
         let mut positions = vec![[0.0; 3]; nn];
         for (old, nd) in def.nodes.iter().enumerate() {

@@ -31,7 +31,7 @@ pub struct LineType {
     /// mass along the line, on the displaced volume (default 0, as MoorDyn's).
     #[serde(default)]
     pub cat: f64,
-    /// Bending stiffness `EI`, N m^2 (ANCF reference only; the lumped-mass model has none).
+    /// Bending stiffness `EI`, N m^2 (0: a cable without bending; docs/src/model/bending.md).
     #[serde(default)]
     pub ei: f64,
     /// When true, the elastic force also acts in compression (a rod, not a rope).

@@ -1,6 +1,7 @@
 //! What is simulated: line types, environment, routes, and the packed layout.
 
 mod bathymetry;
+pub mod bending;
 pub(crate) mod environment;
 mod failure;
 mod layout;
@@ -9,6 +10,7 @@ pub mod net;
 pub(crate) mod route;
 
 pub use bathymetry::Bathymetry;
+pub use bending::{block_hinges, Clamp, Hinge, NO_ELEM};
 pub use environment::{Current, Environment, Seabed};
 pub use failure::{EndFailure, FailureEvent};
 pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};

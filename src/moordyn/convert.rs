@@ -940,7 +940,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         if t.ei > 0.0 {
             let _ = writeln!(
                 w,
-                "ei = {}  # N m^2: used by the ANCF reference only, ignored by the lumped-mass model",
+                "ei = {}  # N m^2, bending stiffness (the line's ends pinned)",
                 f(t.ei)
             );
         }

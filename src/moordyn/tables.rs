@@ -236,16 +236,6 @@ pub(super) fn check_type(
             ));
         }
     }
-    if t.ei > 0.0 {
-        warn.push(Warning {
-            line: l,
-            message: format!(
-                "line type \"{}\": bending stiffness EI = {} N m^2 is ignored by the \
-                 lumped-mass model (kept as `ei` for the ANCF reference)",
-                t.name, t.ei
-            ),
-        });
-    }
     if t.cl != 0.0 {
         warn.push(Warning {
             line: l,

@@ -59,7 +59,7 @@ pub fn end_forces(lay: &Layout, ev: &Evaluation, cable: &CableInfo) -> EndForces
         let a = V3::from_f64(ev.acc[i]);
         let mut m = Sym3::scalar(el.half_mass);
         m.add_normal_projection(el.half_added, el.t);
-        (el.f_half + el.t * (sign * el.tension) - m.mul_vec(a)).to_f64()
+        (el.f_half + (el.t * el.tension - el.shear) * sign - m.mul_vec(a)).to_f64()
     };
     EndForces {
         start: one(cable.nodes[0], cable.elements[0], 1.0),

@@ -74,7 +74,8 @@ pub struct ElementInput<T> {
 
 /// What an element contributes to its two nodes.
 ///
-/// Node a receives `f_half + tension t`, node b `f_half - tension t`; each receives the
+/// Node a receives `f_half + tension t - shear`, node b `f_half - tension t + shear`
+/// (`shear` from the bending hinges, zero without them); each receives the
 /// mass block `half_mass I + half_added (I - t t^T)`: `half_mass` is the element's half
 /// mass along its tangent (material plus tangential added mass), `half_added` what its
 /// normal plane has more (normal less tangential added mass), so that the block is
@@ -92,6 +93,9 @@ pub struct ElementLoads<T> {
     /// Half of `(Cm - Cat) rho A l0 wet`, kg: what the normal plane has more (negative
     /// when `Cat > Cm`).
     pub half_added: T,
+    /// The bending shear of the element (`super::bending`), N: node b receives
+    /// `+shear`, node a `-shear` (zero without bending stiffness).
+    pub shear: V3<T>,
 }
 
 /// External load parts of an element, kept apart for the frame comparisons and tests.
@@ -217,5 +221,6 @@ pub fn glmf_element_wet<T: Real>(
         f_half: ext.total() * half,
         half_mass: (c.mass + c.added_mass_t * wet) * e.l0 * half,
         half_added: (c.added_mass - c.added_mass_t) * e.l0 * half * wet,
+        shear: V3::zero(),
     }
 }

@@ -1,6 +1,7 @@
 //! Force laws as small functions, generic over the float type.
 
 pub mod axial;
+pub mod bending;
 pub mod catenary;
 pub mod element;
 pub mod frames;
@@ -8,6 +9,7 @@ pub mod seabed;
 pub mod surface;
 
 pub use axial::{tabulated_max_slope, tabulated_slope, tabulated_tension, tabulated_work};
+pub use bending::{bending_angle, bending_energy, bending_hinge, hinge_stiffness};
 pub use element::{
     axial_force, froude_krylov, glmf_element, glmf_element_wet, glmf_external, glmf_external_wet,
     Coefs, ElementInput, ElementLoads, ExternalLoads,

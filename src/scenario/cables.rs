@@ -6,7 +6,7 @@ use super::ends::{self, EndKind};
 use super::environment::current;
 use super::output::Selection;
 use super::raw::RawCable;
-use super::{bodies, err, positive, validate, winch, InitialShape};
+use super::{bodies, err, finite, positive, validate, winch, InitialShape};
 use crate::ale::Winch;
 use crate::error::Error;
 use crate::model::{CableDef, EndFailure, ModelDef, NodeDef, PointMass};
@@ -25,8 +25,41 @@ pub(super) struct Cables {
     pub failures: Vec<EndFailure>,
 }
 
-/// The failure keys of a cable end (and of a `[[points]]` entry).
-pub(super) const FAIL_KEYS: [&str; 2] = ["fail_time", "fail_tension"];
+/// The keys a cable end takes besides its holding: the failure keys and `clamp`.
+const END_KEYS: [&str; 3] = ["fail_time", "fail_tension", "clamp"];
+
+/// The `clamp = [x, y, z]` of end table `t` (field `field`): the direction in which
+/// the cable leaves that end, held (made a unit vector); `None` without the key.
+fn clamp_dir(p: &Path, field: &str, t: &toml::Table) -> Result<Option<[f64; 3]>, Error> {
+    let Some(v) = t.get("clamp") else {
+        return Ok(None);
+    };
+    let f = format!("{field}.clamp");
+    let a = match v {
+        toml::Value::Array(a) if a.len() == 3 => a,
+        _ => {
+            return Err(err(
+                p,
+                f,
+                "must be an array of three numbers [x, y, z]: the direction in which the \
+                 cable leaves this end",
+            ))
+        }
+    };
+    let mut d = [0.0; 3];
+    for (k, x) in a.iter().enumerate() {
+        d[k] = match x {
+            toml::Value::Float(x) => finite(p, &format!("{f}[{k}]"), *x)?,
+            toml::Value::Integer(i) => *i as f64,
+            _ => return Err(err(p, format!("{f}[{k}]"), "must be a number")),
+        };
+    }
+    let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    if !(l > 0.0 && l.is_finite()) {
+        return Err(err(p, f, "must not be the zero vector"));
+    }
+    Ok(Some(d.map(|x| x / l)))
+}
 
 /// The failure of end `t` (`field`) of cable `cable`, if it has one: `fail_time` (s,
 /// finite, not negative) and/or `fail_tension` (N, positive), on an end held by a fixed
@@ -247,8 +280,49 @@ pub(super) fn parse(
             }
             None => 0,
         };
-        let start = ends::parse_end(p, &f("start"), &c.start, &FAIL_KEYS, point_index, bodies)?;
-        let end = ends::parse_end(p, &f("end"), &c.end, &FAIL_KEYS, point_index, bodies)?;
+        let start = ends::parse_end(p, &f("start"), &c.start, &END_KEYS, point_index, bodies)?;
+        let end = ends::parse_end(p, &f("end"), &c.end, &END_KEYS, point_index, bodies)?;
+        let ei = model.line_types[lt].ei;
+        if ei > 0.0 && c.winch.is_some() {
+            return Err(err(
+                p,
+                f("winch"),
+                format!(
+                    "line type \"{}\" has bending stiffness ei = {ei:e} N m^2: winch cables \
+                     have no bending yet; give this cable a line type with ei = 0",
+                    c.line_type
+                ),
+            ));
+        }
+        for (k, (t, spec)) in [(&c.start, &start), (&c.end, &end)].into_iter().enumerate() {
+            let which = if k == 0 { "start" } else { "end" };
+            let Some(d) = clamp_dir(p, &f(which), t)? else {
+                continue;
+            };
+            if ei <= 0.0 {
+                return Err(err(
+                    p,
+                    format!("{}.clamp", f(which)),
+                    format!(
+                        "a clamped end needs bending stiffness: line type \"{}\" has ei = 0",
+                        c.line_type
+                    ),
+                ));
+            }
+            if !matches!(spec.kind, EndKind::Fixed(_)) {
+                return Err(err(
+                    p,
+                    format!("{}.clamp", f(which)),
+                    "only a `fixed` end can be clamped yet (not a free, route, point or body end)",
+                ));
+            }
+            model.clamps.push(crate::model::Clamp {
+                cable: model.cables.len(),
+                end_b: k == 1,
+                // Held as the tangent from end a towards end b.
+                tangent: if k == 0 { d } else { d.map(|x| -x) },
+            });
+        }
         for (k, (t, spec)) in [(&c.start, &start), (&c.end, &end)].into_iter().enumerate() {
             let which = if k == 0 { "start" } else { "end" };
             if let Some(fl) = failure(p, &f(which), t, &spec.kind, &c.name, k == 0)? {

@@ -27,6 +27,18 @@ pub fn parse(
             format!("unknown line type \"{}\"", n.line_type),
         )
     })?;
+    let ei = model.line_types[line_type].ei;
+    if ei > 0.0 {
+        return Err(err(
+            p,
+            f("line_type"),
+            format!(
+                "line type \"{}\" has bending stiffness ei = {ei:e} N m^2: nets have no \
+                 bending along their twines yet; give the net a line type with ei = 0",
+                n.line_type
+            ),
+        ));
+    }
     let [a, b] = n.knots;
     let closed = match n.shape.as_str() {
         "panel" => false,

@@ -82,6 +82,13 @@ pub fn cable_config(
     if sc.failures.iter().any(|f| f.cable == c.name) {
         return Err(unsupported(sc, ci, "does not run line failures".into()));
     }
+    if def.clamps.iter().any(|k| k.cable == ci) {
+        return Err(unsupported(
+            sc,
+            ci,
+            "does not run clamped ends (`clamp`): its ends are pinned".into(),
+        ));
+    }
     for (k, &n) in c.nodes.iter().enumerate() {
         let inner = k > 0 && k + 1 < c.nodes.len();
         let nd = &def.nodes[n];

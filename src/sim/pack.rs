@@ -146,6 +146,12 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
             model.cables.push(c);
             cable_sea.push(sea as u32);
         }
+        model
+            .clamps
+            .extend(sc.model.clamps.iter().map(|k| crate::model::Clamp {
+                cable: k.cable + ca0,
+                ..*k
+            }));
         initial.extend(sc.initial.iter().copied());
         points.extend(sc.points.iter().map(|p| NamedPoint {
             name: packed_name(prefix, &p.name),

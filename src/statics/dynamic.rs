@@ -36,6 +36,21 @@ impl Sys<'_> {
                 m[a] += k;
                 m[b] += k;
             }
+            // Bending hinges: the Gershgorin bound of crate::stability's, 2 k s |b_i|
+            // on each of a hinge's nodes.
+            for h in self.hinges {
+                let fs = self.hinge_forces(h, r);
+                let mut s = 0.0;
+                for e in [h.prev, h.next] {
+                    if e != crate::model::NO_ELEM {
+                        let (a, b) = self.ends(e as usize);
+                        s += 1.0 / (r[b] - r[a]).norm();
+                    }
+                }
+                for (li, _) in fs {
+                    m[li] += 2.0 * h.k * s * s;
+                }
+            }
             for mi in m.iter_mut() {
                 // Gershgorin: |lambda| <= 2 sum_e k_e + k_seabed <= 2 m, so omega dt
                 // <= sqrt(2) < 2 with dt = 1; the margin covers the drag terms.

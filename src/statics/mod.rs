@@ -238,6 +238,7 @@ pub(crate) fn relax_blocks_held(
 ) -> Result<RelaxReport, Error> {
     let coefs: Vec<Coefs<f64>> = layout.line_coefs.iter().map(Coefs::from_line).collect();
     let seabed = seabed_coefs(layout);
+    let hinges = layout.hinges();
     // Disjoint per-block slices (blocks are contiguous, in node order).
     let mut parts = Vec::with_capacity(layout.blocks.len());
     let mut rest = &mut positions[..];
@@ -255,7 +256,7 @@ pub(crate) fn relax_blocks_held(
     let reports: Vec<Result<BlockReport, Error>> = parts
         .into_par_iter()
         .map(|(bi, b, pos)| {
-            let sys = Sys::new(layout, &coefs, seabed, b);
+            let sys = Sys::new(layout, &coefs, seabed, b, &hinges);
             sys.solve(bi, pos, opts)
         })
         .collect();
@@ -295,9 +296,10 @@ pub(crate) fn relax_blocks_held(
 pub fn static_forces(layout: &Layout, positions: &[[f64; 3]]) -> Vec<[f64; 3]> {
     let coefs: Vec<Coefs<f64>> = layout.line_coefs.iter().map(Coefs::from_line).collect();
     let seabed = seabed_coefs(layout);
+    let hinges = layout.hinges();
     let mut out = vec![[0.0; 3]; layout.n_nodes()];
     for b in &layout.blocks {
-        let sys = Sys::new(layout, &coefs, seabed, *b);
+        let sys = Sys::new(layout, &coefs, seabed, *b, &hinges);
         let (n0, n1) = (b.node_start as usize, b.node_end as usize);
         let r: Vec<V> = positions[n0..n1].iter().map(|p| V::from_f64(*p)).collect();
         let mut f = vec![V::zero(); r.len()];

@@ -24,7 +24,9 @@ impl Sys<'_> {
             Method::Fixed
         } else if opts.force_dynamic_relaxation {
             Method::DynamicRelaxation
-        } else if self.block.is_chain {
+        } else if self.block.is_chain && self.hinges.is_empty() {
+            // Bending couples a node with its neighbours' neighbours: no longer
+            // block-tridiagonal, such a chain takes the dense solve.
             Method::Chain
         } else if 3 * n_free <= opts.max_dense_dof {
             Method::Dense
@@ -203,7 +205,11 @@ impl Sys<'_> {
                         nu = 2.0;
                         true
                     } else {
-                        false
+                        // The bending energy's change is a difference of two angles'
+                        // squares: near convergence its round-off swamps the decrease
+                        // the model predicts, so a block with bending hinges also
+                        // accepts a lower residual.
+                        !self.hinges.is_empty() && tmerit < merit
                     }
                 } else {
                     // Not a descent direction of the energy (drag): a lower residual.

@@ -1,11 +1,11 @@
 //! One block's static problem: its loads, potential energy, residual and stiffness.
 
 use super::{M3, V};
-use crate::model::{Block, Layout, NO_CONSTRAINT};
+use crate::model::{block_hinges, Block, Hinge, Layout, NO_CONSTRAINT, NO_ELEM};
 use crate::physics::{
-    glmf_element_wet, point_wetted_fraction, seabed_force, seabed_height, seabed_slope_force,
-    tabulated_slope, tabulated_tension, tabulated_work, wetted_fraction, Coefs, ElementInput,
-    ElementLoads, SeabedCoefs,
+    bending_energy, bending_hinge, glmf_element_wet, point_wetted_fraction, seabed_force,
+    seabed_height, seabed_slope_force, tabulated_slope, tabulated_tension, tabulated_work,
+    wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
 };
 use nalgebra::Vector3;
 use std::borrow::Cow;
@@ -24,6 +24,8 @@ pub(super) struct Sys<'a> {
     pub(super) free: Vec<bool>,
     /// The factor on the tabulated strain-tension curves (continuation; 1 otherwise).
     pub(super) curve_scale: f64,
+    /// The block's bending hinges (`Layout::hinges`).
+    pub(super) hinges: &'a [Hinge],
 }
 
 impl<'a> Sys<'a> {
@@ -32,6 +34,7 @@ impl<'a> Sys<'a> {
         coefs: &'a [Coefs<f64>],
         seabed: SeabedCoefs<f64>,
         block: Block,
+        all_hinges: &'a [Hinge],
     ) -> Self {
         let (n0, n1) = (block.node_start as usize, block.node_end as usize);
         Self {
@@ -47,6 +50,11 @@ impl<'a> Sys<'a> {
                 .map(|i| lay.node_constraint[i] == NO_CONSTRAINT)
                 .collect(),
             curve_scale: 1.0,
+            hinges: block_hinges(
+                all_hinges,
+                block.elem_start as usize,
+                block.elem_end as usize,
+            ),
         }
     }
 
@@ -76,6 +84,7 @@ impl<'a> Sys<'a> {
             e1: self.e1,
             free: self.free.clone(),
             curve_scale: self.curve_scale * s,
+            hinges: self.hinges,
         }
     }
 
@@ -234,6 +243,12 @@ impl<'a> Sys<'a> {
             };
             de -= ext[e - self.e0].dot((dx[a] + dx[b]) * 0.5);
         }
+        if !self.hinges.is_empty() {
+            let r1: Vec<V> = r.iter().zip(dx).map(|(p, d)| *p + *d).collect();
+            for h in self.hinges {
+                de += self.hinge_energy(h, &r1) - self.hinge_energy(h, r);
+            }
+        }
         for li in 0..self.nn {
             if !self.free[li] {
                 continue;
@@ -277,6 +292,62 @@ impl<'a> Sys<'a> {
             f[a] += fa;
             f[b] += fb;
         }
+        for h in self.hinges {
+            for (li, fh) in self.hinge_forces(h, r) {
+                f[li] += fh;
+            }
+        }
+    }
+
+    /// The side of hinge `h` on packed element `e` (or its held direction where `e` is
+    /// [`NO_ELEM`]): unit tangent, length, block-local far node (the node not at the
+    /// hinge) and hinge node; `last` says whether `e` ends at the hinge.
+    fn hinge_side(
+        &self,
+        h: &Hinge,
+        e: u32,
+        r: &[V],
+        last: bool,
+    ) -> (V, f64, Option<usize>, Option<usize>) {
+        if e == NO_ELEM {
+            return (V::from_f64(h.dir), 1.0, None, None);
+        }
+        let (a, b) = self.ends(e as usize);
+        let d = r[b] - r[a];
+        let l = d.norm();
+        if last {
+            (d / l, l, Some(a), Some(b))
+        } else {
+            (d / l, l, Some(b), Some(a))
+        }
+    }
+
+    /// The bending forces of hinge `h` at `r`: (block-local node, force) for its far
+    /// node before, its own node and its far node after (a held side left out).
+    pub(super) fn hinge_forces(&self, h: &Hinge, r: &[V]) -> Vec<(usize, V)> {
+        let (q1, l1, far1, mid1) = self.hinge_side(h, h.prev, r, true);
+        let (q2, l2, far2, mid2) = self.hinge_side(h, h.next, r, false);
+        let (mut f1, mut f2) = bending_hinge(q1, l1, q2, l2, h.k);
+        let mut out = Vec::with_capacity(3);
+        match far1 {
+            Some(a) => out.push((a, f1)),
+            None => f1 = V::zero(),
+        }
+        match far2 {
+            Some(b) => out.push((b, f2)),
+            None => f2 = V::zero(),
+        }
+        if let Some(m) = mid1.or(mid2) {
+            out.push((m, -(f1 + f2)));
+        }
+        out
+    }
+
+    /// The bending energy of hinge `h` at `r`, J.
+    pub(super) fn hinge_energy(&self, h: &Hinge, r: &[V]) -> f64 {
+        let (q1, ..) = self.hinge_side(h, h.prev, r, true);
+        let (q2, ..) = self.hinge_side(h, h.next, r, false);
+        bending_energy(q1, q2, h.k)
     }
 
     /// What makes the static force at block-local node `li` (state `r`) not a finite
@@ -479,6 +550,28 @@ impl<'a> Sys<'a> {
                 kn.set_column(k, &(vec3(df) * (-1.0 / (xp - xm))));
             }
             add(li, li, &kn);
+        }
+        // Bending hinges: central differences of each hinge's forces with respect to
+        // its nodes (at most three, the held ones left out).
+        for h in self.hinges {
+            let nodes: Vec<usize> = self.hinge_forces(h, r).iter().map(|x| x.0).collect();
+            let mut p = r.to_vec();
+            for &j in &nodes {
+                let hstep = 1e-6 * self.mean_l0();
+                for k in 0..3 {
+                    let x = *comp(&mut p[j], k);
+                    *comp(&mut p[j], k) = x + hstep;
+                    let fp = self.hinge_forces(h, &p);
+                    *comp(&mut p[j], k) = x - hstep;
+                    let fm = self.hinge_forces(h, &p);
+                    *comp(&mut p[j], k) = x;
+                    for ((i, a), (_, b)) in fp.iter().zip(&fm) {
+                        let mut blk = M3::zeros();
+                        blk.set_column(k, &(vec3(*a - *b) * (-1.0 / (2.0 * hstep))));
+                        add(*i, j, &blk);
+                    }
+                }
+            }
         }
     }
 

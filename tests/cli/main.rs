@@ -15,6 +15,7 @@ mod examples;
 mod fatigue;
 mod fuzz_scenarios;
 mod logging;
+mod moordyn_bending;
 mod moordyn_bodies;
 mod moordyn_curves;
 mod moordyn_input;

@@ -282,7 +282,8 @@ fn dropped_features_are_warnings_naming_the_line() {
     let c = convert_text(&text, Path::new("model.dat"), &ConvertOptions::default()).unwrap();
     let n = line_of(&text, "rope       0.08");
     let at: Vec<_> = c.warnings.iter().filter(|w| w.line == n).collect();
-    assert!(at.iter().any(|w| w.message.contains("EI = 250")), "{at:?}");
+    // The bending stiffness is modelled now: no warning about it.
+    assert!(!at.iter().any(|w| w.message.contains("EI")), "{at:?}");
     // The tangential added mass is no longer dropped (below): no warning about it.
     assert!(!at.iter().any(|w| w.message.contains("CaAx")), "{at:?}");
     // The chain and rope differ in diameter: the seabed's per-metre values can only
@@ -291,7 +292,7 @@ fn dropped_features_are_warnings_naming_the_line() {
         .warnings
         .iter()
         .any(|w| w.message.contains("\"rope\" (d = 0.08 m)")));
-    // The EI is kept for the ANCF reference.
+    // The EI is converted, and the lumped-mass model bends with it.
     let sc = Scenario::parse(&c.toml, Path::new("model.dat")).unwrap();
     let rope = sc
         .model

@@ -112,6 +112,7 @@ pub fn straight_cable(
             elem_lines: Vec::new(),
         }],
         nodes,
+        clamps: Vec::new(),
     }
 }
 

@@ -626,6 +626,7 @@ fn hanging_cable(current: [f64; 3], bend: f64) -> (Layout, Vec<[f64; 3]>) {
             output_positions: false,
             elem_lines: Vec::new(),
         }],
+        clamps: Vec::new(),
     };
     Layout::build(&def).unwrap()
 }

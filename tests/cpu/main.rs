@@ -11,6 +11,7 @@ mod common;
 mod ale;
 mod ancf;
 mod axial;
+mod bending;
 mod bodies;
 mod body_knots;
 mod body_statics;

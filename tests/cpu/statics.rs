@@ -81,6 +81,7 @@ fn single_line(pts: &[[f64; 3]], length: f64, depth: f64, current: [f64; 3]) -> 
             output_positions: true,
             elem_lines: Vec::new(),
         }],
+        clamps: Vec::new(),
     }
 }
 

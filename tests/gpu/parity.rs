@@ -188,6 +188,7 @@ fn net_model() -> (Layout, Vec<[f64; 3]>) {
         currents: vec![Current::uniform([0.3, -0.2, 0.0])],
         nodes,
         cables,
+        clamps: Vec::new(),
     };
     Layout::build(&def).unwrap()
 }

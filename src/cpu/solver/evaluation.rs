@@ -121,26 +121,45 @@ impl CpuSolver {
     }
 
     /// Elastic strain energy `sum 1/2 EA l0 eps^2` over stretched elements (a tabulated
-    /// line's `l0 int T deps`), J.
+    /// line's `l0 int T deps`), and the bending energy `k phi^2 / 2` of the bending
+    /// hinges, J.
     pub fn strain_energy(&self) -> f64 {
         let lay = &self.layout;
         let l0s = self.element_l0();
-        (0..lay.n_elements())
-            .map(|e| {
-                let l = (self.r[lay.elem_b[e] as usize] - self.r[lay.elem_a[e] as usize]).norm();
-                let l0 = l0s[e];
-                let c = &self.coefs[lay.elem_line[e] as usize];
-                let eps = l / l0 - 1.0;
-                let line = &lay.line_types[lay.elem_line[e] as usize];
-                if let Some(rows) = line.ea_curve.as_deref() {
-                    // The curve's work from zero strain.
-                    l0 * crate::physics::tabulated_work(rows, 0.0, eps)
-                } else if eps > 0.0 || c.compression > 0.0 {
-                    0.5 * c.ea * l0 * eps * eps
-                } else {
-                    0.0
-                }
+        let tangent = |e: u32, dir: [f64; 3]| {
+            if e == crate::model::NO_ELEM {
+                crate::math::V3::<f64>::from_f64(dir)
+            } else {
+                let e = e as usize;
+                let d = self.r[lay.elem_b[e] as usize] - self.r[lay.elem_a[e] as usize];
+                d / d.norm()
+            }
+        };
+        let bending: f64 = self
+            .hinges
+            .iter()
+            .map(|h| {
+                crate::physics::bending_energy(tangent(h.prev, h.dir), tangent(h.next, h.dir), h.k)
             })
-            .sum()
+            .sum();
+        bending
+            + (0..lay.n_elements())
+                .map(|e| {
+                    let l =
+                        (self.r[lay.elem_b[e] as usize] - self.r[lay.elem_a[e] as usize]).norm();
+                    let l0 = l0s[e];
+                    let c = &self.coefs[lay.elem_line[e] as usize];
+                    let eps = l / l0 - 1.0;
+                    let line = &lay.line_types[lay.elem_line[e] as usize];
+                    if let Some(rows) = line.ea_curve.as_deref() {
+                        // The curve's work from zero strain.
+                        l0 * crate::physics::tabulated_work(rows, 0.0, eps)
+                    } else if eps > 0.0 || c.compression > 0.0 {
+                        0.5 * c.ea * l0 * eps * eps
+                    } else {
+                        0.0
+                    }
+                })
+                .sum::<f64>()
     }
 }
