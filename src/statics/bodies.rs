@@ -463,11 +463,12 @@ impl Eval<'_> {
         let lay = self.lay;
         let seabed = seabed_coefs(lay);
         let mut out = vec![[0.0; 3]; lay.n_nodes()];
+        let hinges = lay.hinges();
         for (bi, b) in lay.blocks.iter().enumerate() {
             if !self.which[bi] {
                 continue;
             }
-            let sys = Sys::new(lay, &self.coefs, seabed, *b);
+            let sys = Sys::new(lay, &self.coefs, seabed, *b, &hinges);
             let (n0, n1) = (b.node_start as usize, b.node_end as usize);
             let r: Vec<V> = pos[n0..n1].iter().map(|p| V::from_f64(*p)).collect();
             let mut f = vec![V::zero(); r.len()];

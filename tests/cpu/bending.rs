@@ -42,6 +42,7 @@ fn beam(ea: f64) -> LineType {
         cat: 0.0,
         ei: EI,
         allow_compression: false,
+        ea_curve: None,
     }
 }
 
