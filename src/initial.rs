@@ -11,8 +11,20 @@ use rayon::prelude::*;
 /// Builds the layout and the initial state (catenary first guesses relaxed to the
 /// discrete static equilibrium). Returns the layout, positions and the largest
 /// residual force left by the relaxation.
+///
+/// A run with winch cables has no bending in the lumped-mass model yet: its layout is
+/// built with every line type's `ei` at zero (the ANCF reference keeps it), as the
+/// steppers' `with_winches` do, so that the step plan and the statics agree with them.
 pub fn prepare(sc: &Scenario) -> Result<(Layout, Vec<[f64; 3]>, f64), Error> {
-    let (mut lay, mut pos) = Layout::build(&sc.model)?;
+    let (mut lay, mut pos) = if sc.winches.is_empty() {
+        Layout::build(&sc.model)?
+    } else {
+        let mut def = sc.model.clone();
+        for lt in &mut def.line_types {
+            lt.ei = 0.0;
+        }
+        Layout::build(&def)?
+    };
     let residual = apply(sc, &mut lay, &mut pos)?;
     Ok((lay, pos, residual))
 }
@@ -119,10 +131,7 @@ pub fn apply_with(
                 .any(|&e| lay.elem_line[e as usize] as usize != cable.line_type);
             if !sections {
                 let w = lt.wet_weight_per_length(env.gravity, env.water_density);
-                return (
-                    ci,
-                    lift(catenary_positions(a, b, length, n, lt.ea, w, bed)),
-                );
+                return (ci, lift(catenary_positions(a, b, length, n, lt.ea, w, bed)));
             }
             // Several sections: one catenary of the length-weighted wet weight and the
             // series stiffness as the first guess, each node at its arc length along it.
@@ -134,15 +143,8 @@ pub fn apply_with(
                 compliance += l0 / t.ea;
             }
             let fine = (4 * n).max(64);
-            let curve = catenary_positions(
-                a,
-                b,
-                length,
-                fine,
-                length / compliance,
-                wl / length,
-                bed,
-            );
+            let curve =
+                catenary_positions(a, b, length, fine, length / compliance, wl / length, bed);
             let mut out = Vec::with_capacity(n + 1);
             let mut arc = 0.0;
             for k in 0..=n {

@@ -11,8 +11,7 @@ use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{
     bending_hinge, glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force,
     seabed_height, seabed_slope_damping, seabed_slope_force, seabed_slope_normal,
-    tabulated_tension,
-    wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
+    tabulated_tension, wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
 };
 use crate::step::{blow_up, StepFailure};
 

@@ -532,9 +532,21 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         enc.copy_buffer_to_buffer(&old.buf.state, 0, &self.inst.buf.state, 0, bytes);
         // So do the free bodies, the failures and the released constraints' flags.
         let body_bytes = (self.inst.body_values.max(1) * std::mem::size_of::<R>()) as u64;
-        enc.copy_buffer_to_buffer(&old.buf.body_rows, 0, &self.inst.buf.body_rows, 0, body_bytes);
+        enc.copy_buffer_to_buffer(
+            &old.buf.body_rows,
+            0,
+            &self.inst.buf.body_rows,
+            0,
+            body_bytes,
+        );
         let react_bytes = (self.inst.n_routes.max(1) * std::mem::size_of::<[R; 4]>()) as u64;
-        enc.copy_buffer_to_buffer(&old.buf.reactions, 0, &self.inst.buf.reactions, 0, react_bytes);
+        enc.copy_buffer_to_buffer(
+            &old.buf.reactions,
+            0,
+            &self.inst.buf.reactions,
+            0,
+            react_bytes,
+        );
         self.inst.params.n_fail = old.params.n_fail;
         self.ctx.queue.submit([enc.finish()]);
         self.write_routes(lay, host, 0.0);

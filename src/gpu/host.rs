@@ -448,12 +448,7 @@ pub(super) fn free_state_of<R: GpuReal>(f: &FreeHost, rec: &[R]) -> crate::body:
     let mut b = init.clone();
     let x = |j: usize| rec[j].f64();
     let s = 24;
-    b.x_g = init.x_g
-        + Vector3::new(
-            x(s) + x(s + 3),
-            x(s + 1) + x(s + 4),
-            x(s + 2) + x(s + 5),
-        );
+    b.x_g = init.x_g + Vector3::new(x(s) + x(s + 3), x(s + 1) + x(s + 4), x(s + 2) + x(s + 5));
     b.v_g = Vector3::new(x(s + 6), x(s + 7), x(s + 8));
     b.q = UnitQuaternion::new_normalize(Quaternion::new(x(s + 12), x(s + 9), x(s + 10), x(s + 11)));
     b.w = Vector3::new(x(s + 13), x(s + 14), x(s + 15));

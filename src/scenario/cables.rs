@@ -284,14 +284,13 @@ pub(super) fn parse(
         let end = ends::parse_end(p, &f("end"), &c.end, &END_KEYS, point_index, bodies)?;
         let ei = model.line_types[lt].ei;
         if ei > 0.0 && c.winch.is_some() {
-            return Err(err(
-                p,
+            super::warnings::warn(format!(
+                "{}: {}: line type \"{}\" has bending stiffness ei = {ei:e} N m^2, but a run \
+                 with winch cables has no bending in the lumped-mass model yet: ei is used \
+                 by the ANCF reference only in this run",
+                p.display(),
                 f("winch"),
-                format!(
-                    "line type \"{}\" has bending stiffness ei = {ei:e} N m^2: winch cables \
-                     have no bending yet; give this cable a line type with ei = 0",
-                    c.line_type
-                ),
+                c.line_type
             ));
         }
         for (k, (t, spec)) in [(&c.start, &start), (&c.end, &end)].into_iter().enumerate() {

@@ -53,7 +53,13 @@ pub fn choose_backend(
         crate::gpu::solver::unsupported(lay, opts)
             .or_else(|| crate::gpu::solver::unsupported_winches(&sc.model, &sc.winches))
             .or_else(|| crate::gpu::solver::unsupported_failures(lay, &sc.failures))
-
+            .or_else(|| {
+                // A run with winch cables has no bending in the lumped-mass model.
+                sc.winches
+                    .is_empty()
+                    .then(|| crate::gpu::solver::unsupported_bending(lay))
+                    .flatten()
+            })
     };
     let need_f64 = precision == Some(Precision::F64);
     let p = precision.unwrap_or_default();

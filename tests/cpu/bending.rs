@@ -383,15 +383,16 @@ fn vibrating_beam_matches_ancf_and_first_frequency() {
 #[test]
 fn gpu_path_refuses_bending() {
     let (lay, _) = Layout::build(&beam_model(1e7, 4, true)).unwrap();
-    let why = cablesim::gpu::solver::unsupported(&lay, &SolverOptions::default()).unwrap();
+    assert_eq!(
+        cablesim::gpu::solver::unsupported(&lay, &SolverOptions::default()),
+        None
+    );
+    let why = cablesim::gpu::solver::unsupported_bending(&lay).unwrap();
     assert!(why.contains("bending") && why.contains("beam"), "{why}");
     let mut flat = beam_model(1e7, 4, true);
     flat.line_types[0].ei = 0.0;
     let (lay0, _) = Layout::build(&flat).unwrap();
-    assert_eq!(
-        cablesim::gpu::solver::unsupported(&lay0, &SolverOptions::default()),
-        None
-    );
+    assert_eq!(cablesim::gpu::solver::unsupported_bending(&lay0), None);
 }
 
 /// The bending forces are conservative: a bent beam in a vacuum, pinned at both ends,

@@ -344,7 +344,8 @@ fn a_scenario_with_free_bodies_and_failures_writes_the_same_outputs_on_the_gpu()
     // Leg 0 by time (the rope may fail too: the run's initial relaxation leaves its
     // clump off its rest, as on both paths).
     assert!(
-        fa.iter().any(|f| f["cable"] == "leg0" && f["trigger"] == "time"),
+        fa.iter()
+            .any(|f| f["cable"] == "leg0" && f["trigger"] == "time"),
         "{fa:?}"
     );
     assert_eq!(fa.len(), fb.len(), "{fa:?} against {fb:?}");

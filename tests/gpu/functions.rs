@@ -22,8 +22,8 @@ use cablesim::physics::{
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-mod free_body;
 mod axial;
+mod free_body;
 mod routes;
 use axial::*;
 use routes::*;

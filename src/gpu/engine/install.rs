@@ -448,10 +448,17 @@ impl<R: GpuReal> GpuEngine<R> {
             let rec = free_records::<R>(host, &states, list_at);
             body_init[free_at..free_at + rec.len()].copy_from_slice(&rec);
         }
-        let staging_bytes = [state_bytes, loads_bytes, out_bytes, react_bytes, 16, body_bytes]
-            .iter()
-            .map(|&b| align_up(b, 256))
-            .sum();
+        let staging_bytes = [
+            state_bytes,
+            loads_bytes,
+            out_bytes,
+            react_bytes,
+            16,
+            body_bytes,
+        ]
+        .iter()
+        .map(|&b| align_up(b, 256))
+        .sum();
         let zeros = |n: u64| vec![0u8; n as usize];
         let buf = Buffers {
             params: init("params", bytemuck::bytes_of(&params), ro | U::COPY_DST),
@@ -635,18 +642,24 @@ impl<R: GpuReal> GpuEngine<R> {
         let per_body: Vec<Vec<BodyRow<R>>> = host
             .bodies
             .par_iter()
-            .map(|b| match host.free.iter().find(|f| std::sync::Arc::ptr_eq(&f.body, b)) {
-                Some(f) => {
-                    let xr = f.xr();
-                    (0..=n)
-                        .map(|k| pin_row(b, xr, (step0 + k) as f64 * dt))
-                        .collect()
+            .map(|b| {
+                match host
+                    .free
+                    .iter()
+                    .find(|f| std::sync::Arc::ptr_eq(&f.body, b))
+                {
+                    Some(f) => {
+                        let xr = f.xr();
+                        (0..=n)
+                            .map(|k| pin_row(b, xr, (step0 + k) as f64 * dt))
+                            .collect()
+                    }
+                    None => body_rows(
+                        b,
+                        step0 as f64 * dt,
+                        (0..=n).map(|k| (step0 + k) as f64 * dt),
+                    ),
                 }
-                None => body_rows(
-                    b,
-                    step0 as f64 * dt,
-                    (0..=n).map(|k| (step0 + k) as f64 * dt),
-                ),
             })
             .collect();
         let rows: Vec<BodyRow<R>> = (0..=n as usize)
