@@ -203,8 +203,9 @@ impl FreeRun {
                 .ok()
                 .map(|k| (lumps[k].1, lumps[k].2))
         };
+        let mut ls = Vec::new();
         for e in &mut self.bodies {
-            e.step(lay, t, dt, lump, |i| r[i])?;
+            e.step(lay, t, dt, lump, |i| r[i], &mut ls)?;
             for (h, p) in e.points() {
                 r[h.node] = V::from_f64(p.r);
                 v[h.node] = V::from_f64(p.v);
@@ -233,12 +234,13 @@ impl FreeEntry {
         dt: f64,
         lump: impl Fn(usize) -> Option<(V, Sym3<f64>)>,
         pos: impl Fn(usize) -> V,
+        ls: &mut Vec<Lump>,
     ) -> Result<(), String> {
         let fluid = Fluid {
             rho: lay.env.water_density,
             g: lay.env.gravity,
         };
-        let mut ls = Vec::with_capacity(self.held.len());
+        ls.clear();
         for h in &self.held {
             // The force and mass of each held node (the passes' values at step n).
             let Some((f, m)) = lump(h.node) else {
@@ -263,7 +265,7 @@ impl FreeEntry {
             FreeKind::Pinned => (Some(self.body.pin(t)), Some(self.body.pin(t + dt))),
         };
         self.state
-            .step(t, dt, fluid, u, &ls, pin, pin_next)
+            .step(t, dt, fluid, u, ls, pin, pin_next)
             .map_err(|m| format!("body '{}': {m}", self.body.name))
     }
 }

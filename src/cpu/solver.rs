@@ -996,9 +996,10 @@ impl CpuSolver {
                         Water::new(),
                         Lumps::new(),
                         Vec::new(),
+                        Vec::new(),
                     )
                 },
-                |(scr, wbuf, lumps, tg), unit| {
+                |(scr, wbuf, lumps, tg, ls), unit| {
                     if scr.len() < unit.blocks.len() {
                         scr.resize_with(unit.blocks.len(), Default::default);
                     }
@@ -1054,6 +1055,7 @@ impl CpuSolver {
                                     |node| lumps.iter().find(|l| l.0 == node).map(|l| (l.1, l.2)),
                                     // SAFETY: the unit's own nodes.
                                     |i| unsafe { *r.at(i) },
+                                    ls,
                                 )
                                 .map_err(|m| Err((m, t + dt)))?;
                             for (h, p) in entry.points() {

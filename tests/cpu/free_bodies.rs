@@ -508,14 +508,16 @@ end = { body = "arm", at = [0.0, 0.0, -1.0] }
     assert_eq!(fa.len(), fb.len());
     for (x, y) in fa.iter().zip(&fb) {
         assert_eq!((&x.cable, x.time), (&y.cable, y.time));
-        assert!((x.tension - y.tension).abs() <= 1e-9 * y.tension, "{x:?} {y:?}");
+        assert!(
+            (x.tension - y.tension).abs() <= 1e-9 * y.tension,
+            "{x:?} {y:?}"
+        );
     }
-    let worst = a
-        .r
-        .iter()
-        .zip(&b.r)
-        .map(|(x, y)| (*x - *y).norm())
-        .fold(0.0, f64::max);
+    let worst =
+        a.r.iter()
+            .zip(&b.r)
+            .map(|(x, y)| (*x - *y).norm())
+            .fold(0.0, f64::max);
     eprintln!("free bodies, chain path against general passes: nodes within {worst:.3e} m");
     assert!(worst < 1e-7, "nodes apart by {worst:e} m");
     let (ba, bb) = (a.dynamic_bodies(), b.dynamic_bodies());
@@ -529,6 +531,10 @@ end = { body = "arm", at = [0.0, 0.0, -1.0] }
         let da = (0..3)
             .map(|k| (x.angles[k] - y.angles[k]).abs())
             .fold(0.0, f64::max);
-        assert!(d < 1e-7 && da < 1e-7, "body '{}': {d:e} m, {da:e} rad", x.body.name);
+        assert!(
+            d < 1e-7 && da < 1e-7,
+            "body '{}': {d:e} m, {da:e} rad",
+            x.body.name
+        );
     }
 }

@@ -51,6 +51,9 @@ pub(crate) struct ChainScratch {
     /// keeps about those.
     wc: ChainConsts,
     ale: AleScratch,
+    /// Whether the block has a uniform line (`UniformLine::fits`), found when the
+    /// scratch was prepared for it.
+    uniform_line: bool,
 }
 
 /// What one evaluation writes.
@@ -437,6 +440,7 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
         wc,
         ale: asc,
         wb,
+        uniform_line,
     } = sc;
     // One view of the block for the run: its columns from one base pointer (constant
     // offsets with a fixed stride).
@@ -554,14 +558,18 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
     let mut under = None;
     let still = !WAVES;
     // In still water, a chain of one line type under one uniform current.
-    let uni = if still { UniformLine::<L>::of(c) } else { None };
+    if !prepared {
+        *uniform_line = UniformLine::<L>::fits(c);
+    }
+    let fits = *uniform_line;
+    let uni = (still && fits).then(|| UniformLine::<L>::make(c));
     // Behind a reference the optimiser cannot see through (`black_box`), so that the
     // element loop reads its lanes as memory operands: a local it could see into was
     // split into values that were copied from one stack slot to another every step.
     let uni = std::hint::black_box(uni.as_ref());
     // In waves, the same for the element loop that interpolates the waves in its lanes
     // (`elements_fused`, which adds them to this current).
-    let wuni = if still { None } else { UniformLine::<L>::of(c) };
+    let wuni = (!still && fits).then(|| UniformLine::<L>::make(c));
     // As `uni`.
     let wuni = std::hint::black_box(wuni.as_ref());
     // SAFETY: the stages' columns (`x`, `xs`, `wc`, `wk`, `a`) were made

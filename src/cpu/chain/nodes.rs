@@ -237,6 +237,10 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize, St: Stride>(
         }
     }
     for &(i, ri) in &c.constrained {
+        // Held on a free body: its target below.
+        if held.iter().any(|h| h.0 == i) {
+            continue;
+        }
         let d = route_accel(lay, opts, time, ri, |q| (get!(p[q], i), get!(p[3 + q], i)));
         for (q, dq) in d.into_iter().enumerate() {
             // SAFETY: an acceleration column, not reached otherwise here.
