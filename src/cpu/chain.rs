@@ -28,7 +28,7 @@ pub(crate) mod lanes;
 pub(crate) mod net;
 mod nodes;
 mod winch;
-pub(crate) use advance::{advance_chain, ChainScratch};
+pub(crate) use advance::{advance_chain, ChainScratch, Held as ChainHeld};
 pub(crate) use consts::ChainConsts;
 pub(crate) use lanes::column_stride;
 pub(crate) use net::{advance_net, advance_net_threaded, NetConsts, NetScratch};

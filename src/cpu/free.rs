@@ -50,8 +50,24 @@ pub(crate) struct FreeRun {
     pub targets: Vec<Option<RouteState>>,
     /// Per block: whether it has a node held on a free body.
     pub touched: Vec<bool>,
-    /// Per block: the block-local indices of its held nodes.
-    pub held_local: Vec<Vec<usize>>,
+    /// Per block: its held nodes, block-local, and their routes.
+    pub held_local: Vec<Vec<(usize, usize)>>,
+    /// The bodies and blocks that step together: each unit is a connected group of
+    /// free bodies and the blocks holding nodes on them (a body's lines; a line between
+    /// two bodies joins them), stepped step by step apart from the other units.
+    pub units: Vec<Unit>,
+    /// Per block: the unit it is in (`None`: no node of it was ever held on a free
+    /// body; kept when a failure lets a node go).
+    pub unit_of: Vec<Option<usize>>,
+}
+
+/// Free bodies and blocks that step together ([`FreeRun::units`]).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Unit {
+    /// Its blocks, in order.
+    pub blocks: Vec<usize>,
+    /// Its bodies (indices into [`FreeRun::bodies`]).
+    pub bodies: Vec<usize>,
 }
 
 impl FreeRun {
@@ -83,15 +99,64 @@ impl FreeRun {
         if bodies.is_empty() {
             return None;
         }
-        let mut touched = vec![false; lay.blocks.len()];
-        let mut held_local = vec![Vec::new(); lay.blocks.len()];
+        let nb = lay.blocks.len();
+        let mut touched = vec![false; nb];
+        let mut held_local = vec![Vec::new(); nb];
+        // Units: a union-find over blocks, each body joining the blocks it holds.
+        let mut parent: Vec<usize> = (0..nb).collect();
+        fn root(p: &mut [usize], mut i: usize) -> usize {
+            while p[i] != i {
+                p[i] = p[p[i]];
+                i = p[i];
+            }
+            i
+        }
+        let mut body_block = Vec::with_capacity(bodies.len());
         for e in &bodies {
+            let mut first = None;
             for h in &e.held {
                 let bi = lay
                     .blocks
                     .partition_point(|b| (b.node_end as usize) <= h.node);
                 touched[bi] = true;
-                held_local[bi].push(h.node - lay.blocks[bi].node_start as usize);
+                held_local[bi].push((h.node - lay.blocks[bi].node_start as usize, h.route));
+                match first {
+                    None => first = Some(bi),
+                    Some(f) => {
+                        let (a, b) = (root(&mut parent, f), root(&mut parent, bi));
+                        parent[a] = b;
+                    }
+                }
+            }
+            body_block.push(first);
+        }
+        let mut unit_of = vec![None; nb];
+        let mut units: Vec<Unit> = Vec::new();
+        for bi in (0..nb).filter(|&bi| touched[bi]) {
+            let r = root(&mut parent, bi);
+            let u = match unit_of[r] {
+                Some(u) => u,
+                None => {
+                    units.push(Unit::default());
+                    unit_of[r] = Some(units.len() - 1);
+                    units.len() - 1
+                }
+            };
+            units[u].blocks.push(bi);
+        }
+        for bi in (0..nb).filter(|&bi| touched[bi]) {
+            let r = root(&mut parent, bi);
+            unit_of[bi] = unit_of[r];
+        }
+        for (k, first) in body_block.iter().enumerate() {
+            // A body holding nothing steps with the first unit (or alone, in a unit of
+            // no blocks).
+            match first.and_then(|bi| unit_of[bi]) {
+                Some(u) => units[u].bodies.push(k),
+                None => units.push(Unit {
+                    blocks: Vec::new(),
+                    bodies: vec![k],
+                }),
             }
         }
         let mut run = Self {
@@ -99,6 +164,8 @@ impl FreeRun {
             targets: vec![None; lay.routes.len()],
             touched,
             held_local,
+            units,
+            unit_of,
         };
         run.refresh_targets();
         Some(run)
@@ -126,47 +193,80 @@ impl FreeRun {
         r: &mut [V],
         v: &mut [V],
     ) -> Result<(), String> {
-        let fluid = Fluid {
-            rho: lay.env.water_density,
-            g: lay.env.gravity,
+        // Sorted by node: each held node's lump found by bisection (a fleet's bodies
+        // hold thousands of nodes).
+        let mut lumps = lumps.to_vec();
+        lumps.sort_unstable_by_key(|l| l.0);
+        let lump = |node: usize| {
+            lumps
+                .binary_search_by_key(&node, |l| l.0)
+                .ok()
+                .map(|k| (lumps[k].1, lumps[k].2))
         };
+        let mut ls = Vec::new();
         for e in &mut self.bodies {
-            let mut ls = Vec::with_capacity(e.held.len());
-            for h in &e.held {
-                // The force and mass of each held node (the passes' values at step n).
-                let Some((_, f, m)) = lumps.iter().find(|l| l.0 == h.node) else {
-                    return Err(format!(
-                        "body '{}': no load for its node {}",
-                        e.body.name, h.node
-                    ));
-                };
-                ls.push(Lump {
-                    r: r[h.node].to_f64(),
-                    m: [[m.xx, m.xy, m.xz], [m.xy, m.yy, m.yz], [m.xz, m.yz, m.zz]],
-                    f: f.to_f64(),
-                });
-            }
-            let x = e.state.reference();
-            let u = lay
-                .currents
-                .first()
-                .map_or([0.0; 3], |c| c.at(x.z).to_f64());
-            let (pin, pin_next) = match e.state.kind {
-                FreeKind::Free => (None, None),
-                FreeKind::Pinned => (Some(e.body.pin(t)), Some(e.body.pin(t + dt))),
-            };
-            e.state
-                .step(t, dt, fluid, u, &ls, pin, pin_next)
-                .map_err(|m| format!("body '{}': {m}", e.body.name))?;
-            let s = e.state.body_state();
-            for h in &e.held {
-                let p = attachment(&s, h.at);
+            e.step(lay, t, dt, lump, |i| r[i], &mut ls)?;
+            for (h, p) in e.points() {
                 r[h.node] = V::from_f64(p.r);
                 v[h.node] = V::from_f64(p.v);
                 self.targets[h.route] = Some(p);
             }
         }
         Ok(())
+    }
+}
+
+impl FreeEntry {
+    /// Each held node and its point on the body now (where it goes after a step, and
+    /// its target from then on).
+    pub fn points(&self) -> impl Iterator<Item = (&Held, RouteState)> + '_ {
+        let s = self.state.body_state();
+        self.held.iter().map(move |h| (h, attachment(&s, h.at)))
+    }
+
+    /// Advances the body by `dt` from `t`: `lump(node)` gives each held node's force
+    /// and mass block at the step's start, `pos(node)` its position. The held nodes
+    /// go to [`Self::points`] then. `Err` names the body.
+    pub fn step(
+        &mut self,
+        lay: &Layout,
+        t: f64,
+        dt: f64,
+        lump: impl Fn(usize) -> Option<(V, Sym3<f64>)>,
+        pos: impl Fn(usize) -> V,
+        ls: &mut Vec<Lump>,
+    ) -> Result<(), String> {
+        let fluid = Fluid {
+            rho: lay.env.water_density,
+            g: lay.env.gravity,
+        };
+        ls.clear();
+        for h in &self.held {
+            // The force and mass of each held node (the passes' values at step n).
+            let Some((f, m)) = lump(h.node) else {
+                return Err(format!(
+                    "body '{}': no load for its node {}",
+                    self.body.name, h.node
+                ));
+            };
+            ls.push(Lump {
+                r: pos(h.node).to_f64(),
+                m: [[m.xx, m.xy, m.xz], [m.xy, m.yy, m.yz], [m.xz, m.yz, m.zz]],
+                f: f.to_f64(),
+            });
+        }
+        let x = self.state.reference();
+        let u = lay
+            .currents
+            .first()
+            .map_or([0.0; 3], |c| c.at(x.z).to_f64());
+        let (pin, pin_next) = match self.state.kind {
+            FreeKind::Free => (None, None),
+            FreeKind::Pinned => (Some(self.body.pin(t)), Some(self.body.pin(t + dt))),
+        };
+        self.state
+            .step(t, dt, fluid, u, ls, pin, pin_next)
+            .map_err(|m| format!("body '{}': {m}", self.body.name))
     }
 }
 
@@ -183,7 +283,7 @@ impl FreeRun {
             .blocks
             .partition_point(|b| (b.node_end as usize) <= node);
         let li = node - lay.blocks[bi].node_start as usize;
-        self.held_local[bi].retain(|&x| x != li);
+        self.held_local[bi].retain(|x| x.0 != li);
         self.touched[bi] = !self.held_local[bi].is_empty();
     }
 }

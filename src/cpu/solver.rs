@@ -11,8 +11,8 @@ mod waves;
 pub use checkpoint::CpuCheckpoint;
 
 use super::chain::{
-    advance_chain, advance_net, advance_net_threaded, ChainConsts, ChainScratch, NetConsts,
-    NetScratch,
+    advance_chain, advance_net, advance_net_threaded, ChainConsts, ChainHeld, ChainScratch,
+    NetConsts, NetScratch,
 };
 use super::free::{end_tension, Failure, FreeRun};
 use super::passes::{advance_block, implicit_dt, node_accel_of, Ctx, GeneralTopo, NodeScratch};
@@ -505,7 +505,24 @@ impl CpuSolver {
         }
         let pending = self.failures.iter().any(|f| f.fired.is_none());
         if self.free.is_none() && !pending {
-            return self.advance_blocks(nsteps).map(|_| ());
+            return self.advance_blocks(nsteps, false).map(|_| ());
+        }
+        if self.units_ok() {
+            // The units several steps a call (one while failures are pending), the
+            // other blocks as without bodies.
+            let mut k = 0;
+            while k < nsteps {
+                let pending = self.failures.iter().any(|f| f.fired.is_none());
+                let n = if pending { 1 } else { nsteps - k };
+                let step0 = self.steps;
+                self.advance_units(step0, n)?;
+                self.advance_blocks(n, true)?;
+                if pending {
+                    self.check_failures();
+                }
+                k += n;
+            }
+            return Ok(());
         }
         if self.free.is_some() && self.opts.scheme != Scheme::Symplectic {
             return Err(Error::Model(format!(
@@ -517,7 +534,7 @@ impl CpuSolver {
         // each step.
         for k in 0..nsteps {
             let t = self.t;
-            let lumps = self.advance_blocks(1)?;
+            let lumps = self.advance_blocks(1, false)?;
             if let Some(free) = self.free.as_deref_mut() {
                 free.step(
                     &self.layout,
@@ -537,7 +554,7 @@ impl CpuSolver {
             if pending {
                 self.check_failures();
                 if self.free.is_none() && self.failures.iter().all(|f| f.fired.is_some()) {
-                    return self.advance_blocks(nsteps - k - 1).map(|_| ());
+                    return self.advance_blocks(nsteps - k - 1, false).map(|_| ());
                 }
             }
         }
@@ -670,7 +687,14 @@ impl CpuSolver {
 
     /// Advances every block `nsteps` steps; with free bodies (one step), returns the
     /// force and mass block of each node held on one at the step's starting state.
-    fn advance_blocks(&mut self, nsteps: u64) -> Result<Vec<(usize, V, Sym3<f64>)>, Error> {
+    ///
+    /// With `skip_units`, the blocks of the free bodies' units are left alone
+    /// ([`Self::advance_units`] steps them).
+    fn advance_blocks(
+        &mut self,
+        nsteps: u64,
+        skip_units: bool,
+    ) -> Result<Vec<(usize, V, Sym3<f64>)>, Error> {
         let step0 = self.steps;
         let dt = self.opts.dt;
         let ctx = Ctx {
@@ -690,6 +714,8 @@ impl CpuSolver {
             .as_deref()
             .map(|f| (&f.touched[..], &f.held_local[..]));
         let is_touched = |bi: usize| touched.is_some_and(|(t, _)| t[bi]);
+        let unit_of = self.free.as_deref().map(|f| &f.unit_of[..]);
+        let skipped = |bi: usize| skip_units && unit_of.is_some_and(|u| u[bi].is_some());
         let blocks = &self.layout.blocks;
         let chain_consts = &self.chain_consts;
         let ale_state = self.ale.as_deref();
@@ -766,7 +792,7 @@ impl CpuSolver {
                 let mut net_scratch = NetScratch::default();
                 for (bi, b) in blocks[ch.clone()].iter().enumerate() {
                     let waves = wb.next();
-                    if threaded[ch.start + bi] {
+                    if threaded[ch.start + bi] || skipped(ch.start + bi) {
                         continue;
                     }
                     let ale = ale_of(ale_state, ch.start + bi);
@@ -780,7 +806,7 @@ impl CpuSolver {
                         let held = &touched.expect("free bodies").1[ch.start + bi];
                         let saved: Vec<(usize, V, V)> = held
                             .iter()
-                            .map(|&li| (li, r[n0 + li], v[n0 + li]))
+                            .map(|&(li, _)| (li, r[n0 + li], v[n0 + li]))
                             .collect();
                         advance_block(
                             &ctx,
@@ -853,6 +879,7 @@ impl CpuSolver {
                             step0,
                             dt,
                             nsteps,
+                            ChainHeld::default(),
                         )?,
                         _ => advance_block(
                             &ctx,
@@ -914,6 +941,147 @@ impl CpuSolver {
         self.node_steps += nsteps * self.layout.n_nodes() as u64;
         self.t = (self.steps as f64) * dt;
         result.map_err(|f| self.name_failure(f))
+    }
+
+    /// Whether the free bodies' units can step on their own, several steps a call
+    /// ([`Self::advance_units`]): every block of a unit on the chain fast path
+    /// (symplectic scheme, GLMF, a flat seabed, no bending or tabulated curves, no
+    /// winches). Otherwise the run steps one step a call, the held blocks on the
+    /// general passes.
+    fn units_ok(&self) -> bool {
+        let Some(f) = self.free.as_deref() else {
+            return false;
+        };
+        self.use_chain_kernel
+            && self.opts.formulation == Formulation::Glmf
+            && self.opts.scheme == Scheme::Symplectic
+            && self.layout.env.seabed.grid.is_none()
+            && self.ale.is_none()
+            && f.units
+                .iter()
+                .flat_map(|u| &u.blocks)
+                .all(|&bi| self.layout.blocks[bi].is_chain && self.chain_consts[bi].is_some())
+    }
+
+    /// Steps the free bodies' units `nsteps` steps from step `step0`, in parallel: in
+    /// each unit, at each step, every block one step on the chain fast path (its
+    /// scratch kept from step to step, its held nodes' forces and mass blocks at the
+    /// step's start collected), then each body with its held nodes lumped in, its held
+    /// nodes placed on its points. The blocks outside the units are not touched, nor
+    /// the step count.
+    fn advance_units(&mut self, step0: u64, nsteps: u64) -> Result<(), Error> {
+        let dt = self.opts.dt;
+        let free = self.free.as_deref_mut().expect("free bodies");
+        let lay = &self.layout;
+        let opts = &self.opts;
+        let chain_consts = &self.chain_consts;
+        // SAFETY (every use below): each block, body and held route is in one unit
+        // only, and a unit reaches only its own: the units' parallel tasks touch
+        // disjoint entries of these buffers, which nothing else reaches meanwhile.
+        let r = Shared(self.r.as_mut_ptr());
+        let v = Shared(self.v.as_mut_ptr());
+        let wave = Shared(self.wave_blocks.as_mut_ptr());
+        let has_waves = !self.wave_blocks.is_empty();
+        let bodies = Shared(free.bodies.as_mut_ptr());
+        let targets = Shared(free.targets.as_mut_ptr());
+        let held_local = &free.held_local;
+        type Lumps = Vec<(usize, V, Sym3<f64>)>;
+        let res: Result<(), Result<StepFailure, (String, f64)>> = free
+            .units
+            .par_iter()
+            .map_init(
+                || {
+                    (
+                        Vec::<ChainScratch>::new(),
+                        Water::new(),
+                        Lumps::new(),
+                        Vec::new(),
+                        Vec::new(),
+                    )
+                },
+                |(scr, wbuf, lumps, tg, ls), unit| {
+                    if scr.len() < unit.blocks.len() {
+                        scr.resize_with(unit.blocks.len(), Default::default);
+                    }
+                    for k in 0..nsteps {
+                        let step = step0 + k;
+                        let t = step as f64 * dt;
+                        lumps.clear();
+                        for (j, &bi) in unit.blocks.iter().enumerate() {
+                            let b = lay.blocks[bi];
+                            let (n0, n1) = (b.node_start as usize, b.node_end as usize);
+                            tg.clear();
+                            for &(li, route) in &held_local[bi] {
+                                // SAFETY: the unit's own route.
+                                if let Some(d) = unsafe { *targets.at(route) } {
+                                    tg.push((li, d));
+                                }
+                            }
+                            // SAFETY: the unit's own block.
+                            let (rb, vb) = unsafe { (r.slice(n0, n1), v.slice(n0, n1)) };
+                            let waves = has_waves.then(|| unsafe { &mut *wave.at(bi) });
+                            let cc = chain_consts[bi].as_ref().expect("a unit's chain");
+                            advance_chain(
+                                cc,
+                                lay,
+                                opts,
+                                &mut scr[j],
+                                &[],
+                                rb,
+                                vb,
+                                n0,
+                                waves,
+                                wbuf,
+                                step,
+                                dt,
+                                1,
+                                ChainHeld {
+                                    targets: tg,
+                                    lumps: Some(lumps),
+                                    prepared: k > 0,
+                                },
+                            )
+                            .map_err(Ok)?;
+                        }
+                        for &e in &unit.bodies {
+                            // SAFETY: the unit's own body.
+                            let entry = unsafe { &mut *bodies.at(e) };
+                            let lumps = &*lumps;
+                            entry
+                                .step(
+                                    lay,
+                                    t,
+                                    dt,
+                                    |node| lumps.iter().find(|l| l.0 == node).map(|l| (l.1, l.2)),
+                                    // SAFETY: the unit's own nodes.
+                                    |i| unsafe { *r.at(i) },
+                                    ls,
+                                )
+                                .map_err(|m| Err((m, t + dt)))?;
+                            for (h, p) in entry.points() {
+                                // SAFETY: the unit's own nodes and routes.
+                                unsafe {
+                                    *r.at(h.node) = V::from_f64(p.r);
+                                    *v.at(h.node) = V::from_f64(p.v);
+                                    *targets.at(h.route) = Some(p);
+                                }
+                            }
+                        }
+                    }
+                    Ok(())
+                },
+            )
+            .collect();
+        match res {
+            Ok(()) => Ok(()),
+            Err(Ok(f)) => Err(self.name_failure(f)),
+            Err(Err((m, time))) => Err(Error::Diverged {
+                cable: m,
+                node: 0,
+                time,
+                what: "a free body's state".into(),
+            }),
+        }
     }
 
     /// Turns a failure in packed indices into an error naming cable, node and time.
@@ -981,6 +1149,41 @@ impl MeshStepper for CpuSolver {
             }
         }
         Ok(())
+    }
+}
+
+/// A buffer's base pointer shared by the free bodies' units' tasks
+/// ([`CpuSolver::advance_units`]), which reach disjoint entries of it.
+struct Shared<T>(*mut T);
+impl<T> Clone for Shared<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<T> Copy for Shared<T> {}
+// SAFETY: the tasks reach disjoint entries (the caller's contract).
+unsafe impl<T: Send> Send for Shared<T> {}
+// SAFETY: as above.
+unsafe impl<T: Send> Sync for Shared<T> {}
+
+impl<T> Shared<T> {
+    /// Entry `i`.
+    ///
+    /// # Safety
+    /// `i` is in the buffer, and no other task reaches it meanwhile.
+    unsafe fn at(self, i: usize) -> *mut T {
+        // SAFETY: the caller's.
+        unsafe { self.0.add(i) }
+    }
+
+    /// Entries `a..b`.
+    ///
+    /// # Safety
+    /// As [`Shared::at`], for each; the slice is the only way to them while it lives.
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn slice<'a>(self, a: usize, b: usize) -> &'a mut [T] {
+        // SAFETY: the caller's.
+        unsafe { std::slice::from_raw_parts_mut(self.0.add(a), b - a) }
     }
 }
 

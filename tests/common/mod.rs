@@ -2,6 +2,8 @@
 //! `tests/gpu`, `tests/cli`), each of which includes this file as `mod common`.
 #![allow(dead_code)]
 
+pub mod free_bodies;
+
 use cablesim::model::{
     CableDef, Current, Environment, LineType, ModelDef, NodeDef, PointMass, Route, Seabed,
 };

@@ -456,3 +456,85 @@ end = {{ free = [0.0, 1.0, -10.5], mass = 20.0 }}
     let last = rows.last().unwrap();
     assert!(last[5].abs() < 5.0, "decaying: roll {}", last[5]);
 }
+
+/// The free bodies' units (each body with the blocks of its lines, stepped several
+/// steps a call on the chain fast path, `CpuSolver::advance_units`) step as the
+/// general passes do, one step a call: the buoy on three legs (one failing at a time)
+/// and the pinned arm with its rope, joined here by a tie line between the two bodies
+/// (one unit of two bodies and five blocks) and, apart, the rope's own unit. Nodes
+/// and bodies within round-off of each other after 1 s, the failures at the same step.
+#[test]
+fn free_bodies_step_on_the_chain_path_as_on_the_general_passes() {
+    use cablesim::cpu::CpuSolver;
+    use cablesim::options::SolverOptions;
+    let dir = tempfile::tempdir().unwrap();
+    let mut text = super::common::free_bodies::buoy_and_arm(1.0, 0.4, 1.0e9);
+    text += r#"
+[[cables]]
+name = "tie"
+line_type = "rope"
+length = 33.0
+segments = 10
+start = { body = "buoy", at = [0.0, 0.0, 0.5] }
+end = { body = "arm", at = [0.0, 0.0, -1.0] }
+"#;
+    write(dir.path(), "s.toml", &text);
+    let sc = Scenario::load(dir.path().join("s.toml")).unwrap();
+    let (lay, pos, _) = cablesim::sim::prepare(&sc).unwrap();
+    let bound = cablesim::stability::stable_step(&lay, Default::default(), Default::default());
+    let opts = SolverOptions {
+        dt: 0.8 * bound.dt,
+        ..Default::default()
+    };
+    let steps = (1.0 / opts.dt).round() as u64;
+    let run = |chain: bool| {
+        let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+        s.use_chain_kernel = chain;
+        s.set_failures(&sc.failures).unwrap();
+        let mut done = 0;
+        for n in [1u64, 700, 299, 1000].iter().cycle() {
+            let n = (*n).min(steps - done);
+            if n == 0 {
+                break;
+            }
+            s.advance(n).unwrap();
+            done += n;
+        }
+        s
+    };
+    let (a, b) = (run(true), run(false));
+    let (fa, fb) = (a.failure_events(), b.failure_events());
+    assert_eq!(fa.len(), 1, "{fa:?}");
+    assert_eq!(fa.len(), fb.len());
+    for (x, y) in fa.iter().zip(&fb) {
+        assert_eq!((&x.cable, x.time), (&y.cable, y.time));
+        assert!(
+            (x.tension - y.tension).abs() <= 1e-9 * y.tension,
+            "{x:?} {y:?}"
+        );
+    }
+    let worst =
+        a.r.iter()
+            .zip(&b.r)
+            .map(|(x, y)| (*x - *y).norm())
+            .fold(0.0, f64::max);
+    eprintln!("free bodies, chain path against general passes: nodes within {worst:.3e} m");
+    assert!(worst < 1e-7, "nodes apart by {worst:e} m");
+    let (ba, bb) = (a.dynamic_bodies(), b.dynamic_bodies());
+    assert_eq!(ba.len(), 2);
+    let start = CpuSolver::new(lay.clone(), &pos, opts).dynamic_bodies();
+    let k = ba.iter().position(|b| b.body.name == "buoy").unwrap();
+    let moved = (ba[k].state.x - start[k].state.x).norm();
+    assert!(moved > 0.1, "the buoy should move off its start: {moved} m");
+    for (x, y) in ba.iter().zip(&bb) {
+        let d = (x.state.x - y.state.x).norm();
+        let da = (0..3)
+            .map(|k| (x.angles[k] - y.angles[k]).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            d < 1e-7 && da < 1e-7,
+            "body '{}': {d:e} m, {da:e} rad",
+            x.body.name
+        );
+    }
+}

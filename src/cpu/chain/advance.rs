@@ -14,9 +14,25 @@ use super::nodes::{nodes, point_surface, Masses};
 use super::winch::{ale_constants, ale_tension, AleScratch};
 use crate::ale::AleElem;
 use crate::cpu::water::{BlockWaves, Water};
-use crate::model::Layout;
+use crate::math::{Sym3, V3};
+use crate::model::{Layout, RouteState};
 use crate::options::{Scheme, SolverOptions};
 use crate::step::{diverged, StepFailure};
+
+/// What a call adds for a block with nodes held on free bodies (`cpu::free`).
+#[derive(Default)]
+pub(crate) struct Held<'a> {
+    /// The held nodes (block-local) and their targets, their bodies' points now: they
+    /// take the targets' accelerations in place of their routes'.
+    pub targets: &'a [(usize, RouteState)],
+    /// Where each held node's force and mass block at the step's start go (packed
+    /// node, force, mass block), for its body to lump in; the call steps one step.
+    pub lumps: Option<&'a mut Vec<(usize, V3<f64>, Sym3<f64>)>>,
+    /// The scratch holds this block from the previous call (its padded constants and
+    /// per-run columns): only the state is read in again. A block stepped one step at a
+    /// time with its bodies keeps its scratch (`ChainScratch` per block of a unit).
+    pub prepared: bool,
+}
 
 /// Structure-of-arrays state and scratch of one chain, reused across blocks.
 #[derive(Default)]
@@ -35,6 +51,9 @@ pub(crate) struct ChainScratch {
     /// keeps about those.
     wc: ChainConsts,
     ale: AleScratch,
+    /// Whether the block has a uniform line (`UniformLine::fits`), found when the
+    /// scratch was prepared for it.
+    uniform_line: bool,
 }
 
 /// What one evaluation writes.
@@ -186,6 +205,7 @@ pub(crate) fn advance_chain(
     step0: u64,
     dt: f64,
     nsteps: u64,
+    held: Held<'_>,
 ) -> Result<(), StepFailure> {
     #[cfg(target_arch = "x86_64")]
     {
@@ -193,7 +213,7 @@ pub(crate) fn advance_chain(
             // SAFETY: the CPU has AVX-512 (F, DQ, VL), checked just above.
             return unsafe {
                 advance_chain_avx512(
-                    c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+                    c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps, held,
                 )
             };
         }
@@ -201,13 +221,13 @@ pub(crate) fn advance_chain(
             // SAFETY: the CPU has AVX2, checked just above.
             return unsafe {
                 advance_chain_avx2(
-                    c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+                    c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps, held,
                 )
             };
         }
     }
     advance_chain_body::<4>(
-        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps, held,
     )
 }
 
@@ -228,9 +248,10 @@ unsafe fn advance_chain_avx2(
     step0: u64,
     dt: f64,
     nsteps: u64,
+    held: Held<'_>,
 ) -> Result<(), StepFailure> {
     advance_chain_body::<4>(
-        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps, held,
     )
 }
 
@@ -252,9 +273,10 @@ unsafe fn advance_chain_avx512(
     step0: u64,
     dt: f64,
     nsteps: u64,
+    held: Held<'_>,
 ) -> Result<(), StepFailure> {
     advance_chain_body::<8>(
-        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps,
+        c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps, held,
     )
 }
 
@@ -274,6 +296,7 @@ fn advance_chain_body<const L: usize>(
     step0: u64,
     dt: f64,
     nsteps: u64,
+    held: Held<'_>,
 ) -> Result<(), StepFailure> {
     // A short chain's block at the fixed stride (its columns at constant offsets from
     // one base register), a long one's at its padded length.
@@ -285,7 +308,7 @@ fn advance_chain_body<const L: usize>(
     macro_rules! scheme {
         ($waves:literal, $friction:literal, $st:expr) => {
             advance_chain_scheme::<$waves, $friction, L, _>(
-                c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps, $st,
+                c, lay, opts, sc, ale, r, v, n0, waves, wbuf, step0, dt, nsteps, $st, held,
             )
         };
     }
@@ -325,6 +348,7 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
     dt: f64,
     nsteps: u64,
     st: St,
+    held: Held<'_>,
 ) -> Result<(), StepFailure> {
     let n = c.n;
     let nc = chunks_for::<L>(n);
@@ -335,41 +359,78 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
     }
     // Every column padded to whole chunks of lanes (module `lanes`), with zeros.
     let len = padded_len(n);
-    sc.wc.copy_padded_from(c, len);
-    resize(&mut sc.x, len);
-    resize(&mut sc.w.u, len);
-    resize(&mut sc.w.aw, len);
-    for v in [&mut sc.w.eta, &mut sc.w.hmw, &mut sc.w.haw] {
-        v.clear();
-        v.resize(len, 0.0);
+    let Held {
+        targets: held,
+        mut lumps,
+        prepared,
+    } = held;
+    debug_assert!(!prepared || (sc.wc.n == n && sc.x[0].len() == len));
+    debug_assert!(lumps.is_none() || nsteps == 1);
+    // The lumps this call adds name block-local nodes until the end.
+    let lump0 = lumps.as_ref().map_or(0, |l| l.len());
+    if prepared {
+        // The scratch is this block's from the last call: the state only.
+        for i in 0..n {
+            sc.x[0][i] = r[i].x;
+            sc.x[1][i] = r[i].y;
+            sc.x[2][i] = r[i].z;
+            sc.x[3][i] = v[i].x;
+            sc.x[4][i] = v[i].y;
+            sc.x[5][i] = v[i].z;
+        }
+    } else {
+        prepare_scratch::<WAVES, St>(c, lay, opts, sc, ale, r, v, len, st);
     }
-    // `st` is `len` or more (the caller's choice).
-    sc.wb.reset(col::COUNT, st.get());
-    {
-        let wv = sc.wb.view(st);
-        // SAFETY: two distinct columns of the block, reached only here.
-        let (pm, pwz) = unsafe { (wv.col_mut(col::PM), wv.col_mut(col::PWZ)) };
-        pm[..len].copy_from_slice(&sc.wc.pm[..len]);
-        pwz[..len].copy_from_slice(&sc.wc.pwz[..len]);
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn prepare_scratch<const WAVES: bool, St: Stride>(
+        c: &ChainConsts,
+        lay: &Layout,
+        opts: &SolverOptions,
+        sc: &mut ChainScratch,
+        ale: &[AleElem],
+        r: &[crate::math::V3<f64>],
+        v: &[crate::math::V3<f64>],
+        len: usize,
+        st: St,
+    ) {
+        let n = c.n;
+        sc.wc.copy_padded_from(c, len);
+        resize(&mut sc.x, len);
+        resize(&mut sc.w.u, len);
+        resize(&mut sc.w.aw, len);
+        for v in [&mut sc.w.eta, &mut sc.w.hmw, &mut sc.w.haw] {
+            v.clear();
+            v.resize(len, 0.0);
+        }
+        // `st` is `len` or more (the caller's choice).
+        sc.wb.reset(col::COUNT, st.get());
+        {
+            let wv = sc.wb.view(st);
+            // SAFETY: two distinct columns of the block, reached only here.
+            let (pm, pwz) = unsafe { (wv.col_mut(col::PM), wv.col_mut(col::PWZ)) };
+            pm[..len].copy_from_slice(&sc.wc.pm[..len]);
+            pwz[..len].copy_from_slice(&sc.wc.pwz[..len]);
+        }
+        if opts.scheme != Scheme::Symplectic {
+            resize(&mut sc.xs, len);
+            resize(&mut sc.x0, len);
+            resize(&mut sc.sum, len);
+        }
+        for i in 0..n {
+            sc.x[0][i] = r[i].x;
+            sc.x[1][i] = r[i].y;
+            sc.x[2][i] = r[i].z;
+            sc.x[3][i] = v[i].x;
+            sc.x[4][i] = v[i].y;
+            sc.x[5][i] = v[i].z;
+        }
+        if c.uniform.is_some() && !WAVES {
+            currents(c, &lay.currents, &sc.x, &mut sc.w.u);
+        }
+        // Always: the scratch may hold the previous block's variable elements.
+        sc.ale.prepare(c, lay, ale);
     }
-    if opts.scheme != Scheme::Symplectic {
-        resize(&mut sc.xs, len);
-        resize(&mut sc.x0, len);
-        resize(&mut sc.sum, len);
-    }
-    for i in 0..n {
-        sc.x[0][i] = r[i].x;
-        sc.x[1][i] = r[i].y;
-        sc.x[2][i] = r[i].z;
-        sc.x[3][i] = v[i].x;
-        sc.x[4][i] = v[i].y;
-        sc.x[5][i] = v[i].z;
-    }
-    if c.uniform.is_some() && !WAVES {
-        currents(c, &lay.currents, &sc.x, &mut sc.w.u);
-    }
-    // Always: the scratch may hold the previous block's variable elements.
-    sc.ale.prepare(c, lay, ale);
     let ChainScratch {
         x,
         xs,
@@ -379,6 +440,7 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
         wc,
         ale: asc,
         wb,
+        uniform_line,
     } = sc;
     // One view of the block for the run: its columns from one base pointer (constant
     // offsets with a fixed stride).
@@ -405,6 +467,8 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
         wbuf: &mut Water,
         sc: &mut Work,
         wv: &ColumnsView<'_, St>,
+        held: &[(usize, RouteState)],
+        lumps: Option<&mut Vec<(usize, V3<f64>, Sym3<f64>)>>,
     ) {
         let Work {
             u,
@@ -485,7 +549,7 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
             cl: &c.cl,
             mukl: &c.mukl,
         };
-        unsafe { nodes::<FRICTION, L, St>(c, lay, opts, time, state, &m, asc, wv) };
+        unsafe { nodes::<FRICTION, L, St>(c, lay, opts, time, state, &m, asc, wv, held, lumps) };
     }
     let mut result = Ok(());
     let mut bad = 0;
@@ -494,14 +558,18 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
     let mut under = None;
     let still = !WAVES;
     // In still water, a chain of one line type under one uniform current.
-    let uni = if still { UniformLine::<L>::of(c) } else { None };
+    if !prepared {
+        *uniform_line = UniformLine::<L>::fits(c);
+    }
+    let fits = *uniform_line;
+    let uni = (still && fits).then(|| UniformLine::<L>::make(c));
     // Behind a reference the optimiser cannot see through (`black_box`), so that the
     // element loop reads its lanes as memory operands: a local it could see into was
     // split into values that were copied from one stack slot to another every step.
     let uni = std::hint::black_box(uni.as_ref());
     // In waves, the same for the element loop that interpolates the waves in its lanes
     // (`elements_fused`, which adds them to this current).
-    let wuni = if still { None } else { UniformLine::<L>::of(c) };
+    let wuni = (!still && fits).then(|| UniformLine::<L>::make(c));
     // As `uni`.
     let wuni = std::hint::black_box(wuni.as_ref());
     // SAFETY: the stages' columns (`x`, `xs`, `wc`, `wk`, `a`) were made
@@ -514,8 +582,22 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
             match opts.scheme {
                 Scheme::Symplectic => {
                     eval::<WAVES, FRICTION, L, St>(
-                        wc, asc, lay, opts, ale, x, time, under, uni, wuni, &mut waves, wbuf, wk,
+                        wc,
+                        asc,
+                        lay,
+                        opts,
+                        ale,
+                        x,
+                        time,
+                        under,
+                        uni,
+                        wuni,
+                        &mut waves,
+                        wbuf,
+                        wk,
                         &wv,
+                        held,
+                        lumps.as_deref_mut(),
                     );
                     let (b, u) = symplectic_update::<L, St>(
                         x,
@@ -531,8 +613,22 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
                 Scheme::Rk2 => {
                     let h = 0.5 * dt;
                     eval::<WAVES, FRICTION, L, St>(
-                        wc, asc, lay, opts, ale, x, time, None, uni, wuni, &mut waves, wbuf, wk,
+                        wc,
+                        asc,
+                        lay,
+                        opts,
+                        ale,
+                        x,
+                        time,
+                        None,
+                        uni,
+                        wuni,
+                        &mut waves,
+                        wbuf,
+                        wk,
                         &wv,
+                        held,
+                        lumps.as_deref_mut(),
                     );
                     for q in 0..3 {
                         xpvh(&mut xs[q][..n], &x[q], &x[3 + q], h);
@@ -553,6 +649,8 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
                         wbuf,
                         wk,
                         &wv,
+                        held,
+                        None,
                     );
                     let (pos, vel) = x.split_at_mut(3);
                     for q in 0..3 {
@@ -587,6 +685,12 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
                             wbuf,
                             wk,
                             &wv,
+                            held,
+                            if stage == 0 {
+                                lumps.as_deref_mut()
+                            } else {
+                                None
+                            },
                         );
                         let (spos, svel) = xs.split_at_mut(3);
                         for q in 0..3 {
@@ -626,6 +730,11 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
     for i in 0..n {
         r[i] = crate::math::V3::new(x[0][i], x[1][i], x[2][i]);
         v[i] = crate::math::V3::new(x[3][i], x[4][i], x[5][i]);
+    }
+    if let Some(l) = lumps {
+        for e in &mut l[lump0..] {
+            e.0 += n0;
+        }
     }
     result.map_err(|(i, time)| diverged(opts, r[i], v[i], n0 + i, time))
 }

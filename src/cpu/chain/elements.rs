@@ -41,27 +41,30 @@ impl<const L: usize> Default for UniformLine<L> {
 }
 
 impl<const L: usize> UniformLine<L> {
-    /// The block's, when its current is uniform and every element has the same `EA`,
-    /// damping, compression factor and drag coefficients (to the bit).
-    pub(super) fn of(c: &ChainConsts) -> Option<Self> {
+    /// Whether block `c` has a uniform line: its current is uniform and every element
+    /// has the same `EA`, damping, compression factor and drag coefficients (to the
+    /// bit); then [`Self::make`] makes it.
+    pub(super) fn fits(c: &ChainConsts) -> bool {
         let ne = c.l0.len();
         let same = |v: &[f64]| v[..ne].iter().all(|x| x.to_bits() == v[0].to_bits());
-        let u = c.uniform?;
-        if ne == 0
-            || ![&c.ea, &c.eac, &c.comp, &c.drag_n, &c.drag_t]
+        c.uniform.is_some()
+            && ne != 0
+            && [&c.ea, &c.eac, &c.comp, &c.drag_n, &c.drag_t]
                 .into_iter()
                 .all(|v| same(v))
-        {
-            return None;
-        }
-        Some(UniformLine {
+    }
+
+    /// The uniform line of block `c`, which [`Self::fits`].
+    pub(super) fn make(c: &ChainConsts) -> Self {
+        let u = c.uniform.expect("a uniform current");
+        UniformLine {
             u: [[u[0]; L], [u[1]; L], [u[2]; L]],
             ea: [c.ea[0]; L],
             eac: [c.eac[0]; L],
             comp: [c.comp[0]; L],
             dn: [c.drag_n[0]; L],
             dt: [c.drag_t[0]; L],
-        })
+        }
     }
 }
 

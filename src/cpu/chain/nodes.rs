@@ -10,7 +10,8 @@ use super::lanes::{chunks_for, col, keep_chunks, lanes, lanes_next, ColumnsView,
 use super::winch::{ale_mass_flow, extra_forces_clear, AleScratch};
 use crate::cpu::passes::implicit_dt;
 use crate::cpu::water::node_water;
-use crate::model::Layout;
+use crate::math::{Sym3, V3};
+use crate::model::{Layout, RouteState};
 use crate::options::SolverOptions;
 use crate::physics::point_wetted_fraction;
 
@@ -119,10 +120,15 @@ pub(super) fn seabed_load<const FRICTION: bool>(
 /// The few nodes with extra forces (point drag, a point's water-acceleration load,
 /// mass flow) have them added to their force before the solve, as on the general path.
 ///
+/// Nodes held on a free body (`held`: block-local node and its target, the body's
+/// point now) take the target's acceleration as a route's; with `lumps`, each one's
+/// force and mass block ([`held_load`]) is pushed there (block-local node first), for
+/// its body to lump in (`cpu::free`).
+///
 /// # Safety
 /// Every column of `c`, `p`, `m` and `wv` has at least
 /// [`super::lanes::padded_len`]`(c.n)` entries, no slice of `wv`'s columns lives
-/// during the call, and `L` is 4 or 8.
+/// during the call, `L` is 4 or 8, and every node of `held` is below `c.n`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize, St: Stride>(
@@ -134,6 +140,8 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize, St: Stride>(
     m: &Masses,
     asc: &AleScratch,
     wv: &ColumnsView<'_, St>,
+    held: &[(usize, RouteState)],
+    lumps: Option<&mut Vec<(usize, V3<f64>, Sym3<f64>)>>,
 ) {
     // SAFETY (every use): the nodes of `c`'s lists and of the variable elements
     // (checked by `AleScratch::prepare`) are below `c.n`, and the caller's columns
@@ -203,6 +211,12 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize, St: Stride>(
     }
     if extra {
         kernel!(true);
+        if let Some(out) = lumps {
+            for &(i, _) in held {
+                // SAFETY: as this function's; the extra forces are still in their columns.
+                out.push(unsafe { held_load::<FRICTION, St>(c, i, p, m, wv) });
+            }
+        }
         // SAFETY: the extra forces' columns, not reached otherwise after the node loop.
         let mut xf: [&mut [f64]; 3] = unsafe {
             [
@@ -215,8 +229,18 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize, St: Stride>(
         unsafe { extra_forces_clear(asc, &mut xf) };
     } else {
         kernel!(false);
+        if let Some(out) = lumps {
+            for &(i, _) in held {
+                // SAFETY: as this function's.
+                out.push(unsafe { held_load::<FRICTION, St>(c, i, p, m, wv) });
+            }
+        }
     }
     for &(i, ri) in &c.constrained {
+        // Held on a free body: its target below.
+        if held.iter().any(|h| h.0 == i) {
+            continue;
+        }
         let d = route_accel(lay, opts, time, ri, |q| (get!(p[q], i), get!(p[3 + q], i)));
         for (q, dq) in d.into_iter().enumerate() {
             // SAFETY: an acceleration column, not reached otherwise here.
@@ -224,6 +248,88 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize, St: Stride>(
             *set!(aq, i) = dq;
         }
     }
+    // Held on a free body: the body's point now is the target (in place of the route).
+    for (i, d) in held {
+        let i = *i;
+        let d = target_accel(opts, d, |q| (get!(p[q], i), get!(p[3 + q], i)));
+        for (q, dq) in d.into_iter().enumerate() {
+            // SAFETY: an acceleration column, not reached otherwise here.
+            let aq = unsafe { wv.col_mut(col::AX + q) };
+            *set!(aq, i) = dq;
+        }
+    }
+}
+
+/// The force on chain node `i` from everything but its constraint (its two padded
+/// elements' tensions and loads, its point's weight and extra forces, the seabed's load
+/// with its damping explicit) and its mass block (half masses, added masses, point
+/// mass): what the node loop solves, as the general path's `node_accel_of` forms them,
+/// for a node held on a free body. Returns `(i, force, mass block)`.
+///
+/// # Safety
+/// As [`nodes`], `i < c.n`, after the element pass and before the extra forces are
+/// cleared.
+#[inline(never)]
+unsafe fn held_load<const FRICTION: bool, St: Stride>(
+    c: &ChainConsts,
+    i: usize,
+    p: &[Vec<f64>; 6],
+    m: &Masses,
+    wv: &ColumnsView<'_, St>,
+) -> (usize, V3<f64>, Sym3<f64>) {
+    use col::{FX, PM, PWZ, TEN, TX, XFX};
+    // SAFETY: the caller's columns; padded elements `i` and `i + 1` exist.
+    let at = |q: usize, k: usize| unsafe { *wv.col(q).get_unchecked(k) };
+    let (j, k) = (i, i + 1);
+    let tj = [at(TX, j), at(TX + 1, j), at(TX + 2, j)];
+    let tk = [at(TX, k), at(TX + 1, k), at(TX + 2, k)];
+    let (tnj, tnk) = (at(TEN, j), at(TEN, k));
+    let mut g = [0.0; 3];
+    for q in 0..3 {
+        g[q] = at(FX + q, j) + at(FX + q, k) - tnj * tj[q] + tnk * tk[q] + at(XFX + q, i);
+    }
+    g[2] += at(PWZ, i);
+    if FRICTION || c.zb.is_finite() {
+        let (sb, _, _) = seabed_load::<FRICTION>(
+            c.zb - p[2][i],
+            [p[3][i], p[4][i], p[5][i]],
+            m.kl[i],
+            m.cl[i],
+            m.mukl[i],
+            c.v_eps,
+        );
+        for q in 0..3 {
+            g[q] += sb[q];
+        }
+    }
+    let (haj, hak) = (m.ha[j], m.ha[k]);
+    let mut mm = Sym3::scalar(at(PM, i) + m.hm[j] + m.hm[k] + haj + hak);
+    // `s I - a t t^T` for each element: `add_normal_projection` less its `a I`.
+    for (a, t) in [(haj, tj), (hak, tk)] {
+        mm.xx -= a * t[0] * t[0];
+        mm.yy -= a * t[1] * t[1];
+        mm.zz -= a * t[2] * t[2];
+        mm.xy -= a * t[0] * t[1];
+        mm.xz -= a * t[0] * t[2];
+        mm.yz -= a * t[1] * t[2];
+    }
+    (i, V3::new(g[0], g[1], g[2]), mm)
+}
+
+/// The Baumgarte acceleration of a node held on target `d`; `state(q)` is its
+/// position and velocity along axis `q`.
+#[inline(always)]
+pub(super) fn target_accel(
+    opts: &SolverOptions,
+    d: &RouteState,
+    state: impl Fn(usize) -> (f64, f64),
+) -> [f64; 3] {
+    let bg = opts.baumgarte;
+    let axis = |q: usize| {
+        let (r, v) = state(q);
+        d.a[q] - bg.beta * (v - d.v[q]) - bg.alpha * (r - d.r[q])
+    };
+    [axis(0), axis(1), axis(2)]
 }
 
 /// Point-mass drag on node `pd.0` (a `point_drag` entry) at height `z`, velocity `v`,
