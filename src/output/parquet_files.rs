@@ -52,7 +52,8 @@ struct PqFile {
     /// Bytes on disk at the end of each whole row group (the magic number's end
     /// first).
     ends: Vec<u64>,
-    /// What the footer needed, when writing it failed.
+    /// What the footer needs, once the writer is gone (its own footer's write
+    /// failed, or the file is being cut back after a write error).
     failed_close: Option<Footer>,
 }
 
@@ -171,30 +172,46 @@ impl PqFile {
         self.ends.len() - 1
     }
 
-    /// After a failed write: the file cut back to its first `groups` row groups, with
-    /// a footer that lists them (a file closed whole is left as it is).
-    fn salvage(&mut self, groups: usize) {
-        let parts = match (self.w.take(), self.failed_close.take()) {
-            (Some(w), _) => Footer::of(&w),
-            (None, Some(parts)) => parts,
-            (None, None) => return,
+    /// After a failed write: the file cut back to at most its first `groups` row
+    /// groups, with a footer that lists them; returns the row groups it keeps (a file
+    /// closed whole is left as it is). On a full disk the footer may not fit in the
+    /// room the cut-back freed (it lists every row group kept): then the file is cut
+    /// back one row group further, which frees that group's bytes and shortens the
+    /// footer, until it fits.
+    fn salvage(&mut self, groups: usize) -> usize {
+        if let Some(w) = self.w.take() {
+            self.failed_close = Some(Footer::of(&w));
+        }
+        let Some(parts) = self.failed_close.as_ref() else {
+            return self.whole();
         };
-        let len = self.ends[groups];
-        let footer = match parts.bytes(groups) {
-            Ok(b) => b,
-            Err(e) => {
-                log::warn!("{}: no footer could be formed: {e}", self.path.display());
-                return;
+        let mut last = None;
+        for g in (0..=groups.min(self.whole())).rev() {
+            let footer = match parts.bytes(g) {
+                Ok(b) => b,
+                Err(e) => {
+                    log::warn!("{}: no footer could be formed: {e}", self.path.display());
+                    return 0;
+                }
+            };
+            match GuardedFile::reopen(&self.path, self.cap)
+                .and_then(|mut f| f.cut_back(self.ends[g], &footer))
+            {
+                Ok(()) => return g,
+                Err(e) if e.kind() == std::io::ErrorKind::StorageFull => last = Some(e),
+                Err(e) => {
+                    last = Some(e);
+                    break;
+                }
             }
-        };
-        let r =
-            GuardedFile::reopen(&self.path, self.cap).and_then(|mut g| g.cut_back(len, &footer));
-        if let Err(e) = r {
+        }
+        if let Some(e) = last {
             log::warn!(
                 "{}: could not be closed after the write error ({e}): it has no footer",
                 self.path.display()
             );
         }
+        0
     }
 }
 
@@ -513,10 +530,18 @@ impl Tables for ParquetTables {
             .min()
             .unwrap_or(0)
             .min(self.group_times.len());
+        // A file that had to give up row groups for its footer's room sets what all
+        // keep: the others are cut back to match (their footers only shrink).
+        let mut kept = whole;
         for f in self.files.iter_mut().flatten() {
-            f.salvage(whole);
+            kept = kept.min(f.salvage(whole));
         }
-        whole.checked_sub(1).map(|k| self.group_times[k])
+        if kept < whole {
+            for f in self.files.iter_mut().flatten() {
+                f.salvage(kept);
+            }
+        }
+        kept.checked_sub(1).map(|k| self.group_times[k])
     }
 }
 

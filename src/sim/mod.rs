@@ -156,7 +156,7 @@ impl Simulation {
         Self::build(scenario, overrides, Instant::now())
     }
 
-    fn build(sc: Scenario, ov: &Overrides, started: Instant) -> Result<Self, Error> {
+    fn build(mut sc: Scenario, ov: &Overrides, started: Instant) -> Result<Self, Error> {
         let model = ov.model.unwrap_or(sc.sim.model);
         let backend = ov.backend.unwrap_or(sc.sim.backend);
         let precision = ov.precision.or(sc.sim.precision);
@@ -246,6 +246,13 @@ impl Simulation {
             }
         };
         let points = point_ends(&sc);
+        if let Engine::Lumped(..) = engine {
+            // The scenario's node list (initial positions, point masses, routes: some
+            // 200 bytes a node) has been packed into the layout and the solver's state;
+            // kept, it would be half the memory of a big fleet's run (docs/src/output.md,
+            // "Memory"). The ANCF model reads it as it runs.
+            sc.model.nodes = Vec::new();
+        }
         Ok(Self {
             points,
             reach_watch,
@@ -262,6 +269,8 @@ impl Simulation {
     }
 
     /// The scenario (with its own settings; the overrides are not written into it).
+    /// For the lumped-mass model its node list (`model.nodes`) is empty once the run is
+    /// set up: the nodes live in the solver's layout and state.
     pub fn scenario(&self) -> &Scenario {
         &self.scenario
     }
