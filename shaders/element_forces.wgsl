@@ -1,5 +1,7 @@
 // Stage 1 of a step, `element_forces`: per element, the GLMF loads
-// (shared/prelude.wgsl: element_step, glmf_element) from the state of its two nodes.
+// (shared/prelude.wgsl: element_step, glmf_element) from the state of its two nodes,
+// and with BENDING its bending shear (shared/step.wgsl: element_shear) from the
+// states of up to four nodes.
 // CPU twin: cpu::stepper element_pass.
 
 @compute @workgroup_size(64)
@@ -14,5 +16,16 @@ fn element_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
     if WAVES {
         sr = wave_sea_rows(blk.wave_rows, step.k);
     }
-    elem_loads[e] = element_step(e, ep, lines[ep.line], blk.oz, state[ep.a], state[ep.b], step.k, sr);
+    let sa = state[ep.a];
+    let sb = state[ep.b];
+    elem_loads[e] = element_step(e, ep, lines[ep.line], blk.oz, sa, sb, step.k, sr);
+    if BENDING {
+        // The bending shear, left in the element's second row (shared/step.wgsl
+        // element_shear, shear_of).
+        let hr = elems[params.n_elems + e];
+        let sh = element_shear(hr, state[hinge_node(hr.a, ep.a)], sa, sb, state[hinge_node(hr.b, ep.b)]);
+        elem_loads[params.n_elems + e].tx = sh.x;
+        elem_loads[params.n_elems + e].ty = sh.y;
+        elem_loads[params.n_elems + e].tz = sh.z;
+    }
 }

@@ -7,7 +7,8 @@
 // `node_start + j` (its state in registers) and element `elem_start + j`; the node
 // states its elements need and the element loads its nodes gather are exchanged
 // through workgroup memory, with two barriers a step:
-//   element: loads of element j from the published states of its two nodes;
+//   element: loads of element j from the published states of its two nodes (and
+//            with BENDING its shear, from up to four: shared/step.wgsl element_shear);
 //   barrier (with the blow-up flag of the previous step, read uniformly);
 //   node: gather over node j's incidence list from the workgroup's loads, solve,
 //         update, check, publish the new state;
@@ -47,6 +48,14 @@ struct WgState {
 
 var<workgroup> wg_state: array<WgState, FUSED_WG>;
 var<workgroup> wg_loads: array<ElemLoads, FUSED_WG>;
+// Bending: element j's shear (shared/step.wgsl element_shear), FUSED_WG entries with
+// BENDING, one unused entry without (BEND_WG from the generated header).
+struct WgShear {
+    x: R,
+    y: R,
+    z: R,
+}
+var<workgroup> wg_shear: array<WgShear, BEND_WG>;
 // Set (atomically, any invocation) when a node of the block fails this step.
 var<workgroup> wg_fail: atomic<u32>;
 // Stop flag, written by invocation 0 and read with workgroupUniformLoad.
@@ -87,16 +96,26 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
         wg_state[j] = wg_pack(s);
     }
     var ep: ElemParams;
+    var hr: ElemParams;
     var lp: LineParams;
     var oz = R(0.0);
     var la = 0u;
     var lb = 0u;
+    // Bending: the far nodes of the hinges at the element's two ends (its own nodes
+    // where there is none).
+    var lp_a = 0u;
+    var lp_b = 0u;
     if has_elem {
         ep = elems[e];
         lp = lines[ep.line];
         oz = blocks[ep.block].oz;
         la = ep.a - blk.node_start;
         lb = ep.b - blk.node_start;
+        if BENDING {
+            hr = elems[params.n_elems + e];
+            lp_a = hinge_node(hr.a, ep.a) - blk.node_start;
+            lp_b = hinge_node(hr.b, ep.b) - blk.node_start;
+        }
     }
     // The block's sea's rows at the dispatch's first step (read once: whether the sea
     // has waves and the rows between bands are the same at every step; wave_sea_rows).
@@ -110,7 +129,13 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
     for (var k = step.k; k < step.end; k += 1u) {
         if has_elem {
             sr.r = blk.wave_rows + k;
-            wg_loads[j] = element_step(e, ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k, sr);
+            let sa = wg_unpack(wg_state[la]);
+            let sb = wg_unpack(wg_state[lb]);
+            wg_loads[j] = element_step(e, ep, lp, oz, sa, sb, k, sr);
+            if BENDING {
+                let sh = element_shear(hr, wg_unpack(wg_state[lp_a]), sa, sb, wg_unpack(wg_state[lp_b]));
+                wg_shear[j] = WgShear(sh.x, sh.y, sh.z);
+            }
         }
         if j == 0u {
             wg_stop = atomicLoad(&wg_fail);
@@ -124,7 +149,12 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
             var nf = gather_begin(nd, s, blk, w);
             for (var q = nd.inc_start; q < nd.inc_end; q += 1u) {
                 let entry = inc[q];
-                nf = gather_add(nf, wg_loads[(entry >> 1u) - blk.elem_start], entry);
+                let le = (entry >> 1u) - blk.elem_start;
+                var sh = vec3<R>(R(0.0), R(0.0), R(0.0));
+                if BENDING {
+                    sh = vec3<R>(wg_shear[le].x, wg_shear[le].y, wg_shear[le].z);
+                }
+                nf = gather_add(nf, wg_loads[le], sh, entry);
             }
             nf = gather_end(i, nd, s, nf, blk, k, w);
             free_lump_store(i, nd, nf);

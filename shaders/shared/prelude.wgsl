@@ -17,6 +17,8 @@ const NO_CONSTRAINT: u32 = 0xffffffffu;
 // ElemParams.winch and NodeParams.winch of everything that is not a variable element
 // of a winch cable (or one of its two nodes).
 const NO_WINCH: u32 = 0xffffffffu;
+// No bending hinge on this side of an element (its hinge row: see ElemParams).
+const NO_HINGE: u32 = 0xffffffffu;
 const ROUTE_FIXED: u32 = 0u;
 const ROUTE_LINE: u32 = 1u;
 const ROUTE_CIRCLE: u32 = 2u;
@@ -98,6 +100,15 @@ struct LineParams {
 // zero in f64). The variable element of a winch cable has winch = 2 x its winch
 // index (+ 1 when the winch node is b) and takes its l0 from `payout`; every other
 // element has NO_WINCH. Rust: ElemParams.
+//
+// A run with bending stiffness (BENDING in the header) has a second row per element,
+// its *hinge row*, at elems[params.n_elems + e] (gpu::engine::install hinge_rows;
+// shared/step.wgsl element_shear): `a` the far node of the element before it, whose
+// hinge is at its node a (NO_HINGE: none; its own node a at a clamped end), `b` the
+// far node of the element after it (hinge at its node b; its own node b at a clamped
+// end), `line` and `current` the row of current_pts that holds the held direction
+// of a clamped end a or b (in ux, uy, uz; NO_HINGE where that side is no clamp),
+// `l0` and `l0_lo` the stiffness EI / lbar of the hinge at node a and at node b.
 struct ElemParams {
     a: u32,
     b: u32,
@@ -636,6 +647,77 @@ fn glmf_element_wet(c: LineParams, d: vec3<R>, stretch: R, va: vec3<R>, vb: vec3
     let half_mass = (c.mass + c.added_mass_t * wet) * l0 * R(0.5);
     let half_added = (c.added_mass - c.added_mass_t) * l0 * R(0.5) * wet;
     return Element(t, tension, total * R(0.5), half_mass, half_added);
+}
+
+// ---- Bending (physics::bending; docs/src/model/bending.md) ----
+
+// atan(x) for 0 <= x <= 1 in either precision (WGSL has no f64 atan): above 0.66
+// reduced by atan(x) = pi/4 + atan((x - 1) / (x + 1)), then Cephes' rational
+// approximation x + x^3 P(x^2) / Q(x^2) on |x| <= 0.66 (within an f64 ulp).
+fn bending_atan(x0: R) -> R {
+    var x = x0;
+    var y = R(0.0);
+    var lo = R(0.0);
+    if x > R(0.66) {
+        y = R(0.5) * PIO2_HI;
+        lo = R(0.5) * PIO2_LO;
+        x = (x - R(1.0)) / (x + R(1.0));
+    }
+    let z = x * x;
+    let p = (((R(-8.750608600031904122785e-1) * z + R(-1.615753718733365076637e1)) * z
+        + R(-7.500855792314704667340e1)) * z + R(-1.228866684490136173410e2)) * z
+        + R(-6.485021904942025371773e1);
+    let q = ((((z + R(2.485846490142306297962e1)) * z + R(1.650270098316988542046e2)) * z
+        + R(4.328810604912902668951e2)) * z + R(4.853903996359136964868e2)) * z
+        + R(1.945506571482613964425e2);
+    return y + ((x * (z * p / q) + x) + lo);
+}
+
+// atan2(s, c) for s >= 0 (an angle in [0, pi]) from bending_atan.
+fn bending_atan2(s: R, c: R) -> R {
+    if c >= s {
+        return bending_atan(s / c);
+    }
+    if -c >= s {
+        return (R(2.0) * PIO2_HI - bending_atan(s / -c)) + R(2.0) * PIO2_LO;
+    }
+    let t = c / s;
+    let a = select(-bending_atan(-t), bending_atan(t), t >= R(0.0));
+    return (PIO2_HI - a) + PIO2_LO;
+}
+
+// The angle phi between unit tangents q1, q2 and phi / sin(phi) (1 at phi = 0, by its
+// series below sin(phi) = 1e-4) (physics::bending_angle).
+fn bending_angle(q1: vec3<R>, q2: vec3<R>) -> vec2<R> {
+    let c = dot(q1, q2);
+    let s = norm3(cross(q1, q2));
+    let phi = bending_atan2(s, c);
+    var g: R;
+    if s < R(1e-4) {
+        g = R(1.0) + phi * phi / R(6.0);
+    } else {
+        g = phi / s;
+    }
+    return vec2<R>(phi, g);
+}
+
+// The forces of a bending hinge of stiffness k = EI / lbar between the element before
+// it (unit tangent q1, length l1) and the one after it (q2, l2): on the far node of
+// the element before (f1, index 0) and on the far node of the element after (f2,
+// index 1); the hinge's own node takes -(f1 + f2) (physics::bending_hinge).
+fn bending_hinge(q1: vec3<R>, l1: R, q2: vec3<R>, l2: R, k: R) -> array<vec3<R>, 2> {
+    let c = dot(q1, q2);
+    let g = bending_angle(q1, q2).y;
+    let kg = k * g;
+    let f1 = (q2 - q1 * c) * (-kg / l1);
+    let f2 = (q1 - q2 * c) * (kg / l2);
+    return array<vec3<R>, 2>(f1, f2);
+}
+
+// The energy k phi^2 / 2 of a hinge of stiffness k = EI / lbar (physics::bending_energy).
+fn bending_energy(q1: vec3<R>, q2: vec3<R>, k: R) -> R {
+    let phi = bending_angle(q1, q2).x;
+    return R(0.5) * k * phi * phi;
 }
 
 // Seabed contact on a node penetrating by `pen` (seabed z minus node z, m) with

@@ -108,6 +108,75 @@ fn variable_element(ep: ElemParams, lp: LineParams, py: Payout, d: vec3<R>, va: 
     return ten;
 }
 
+// Node b's position less node a's, from their compensated positions.
+fn node_diff(sa: NodeState, sb: NodeState) -> vec3<R> {
+    return (sb.r_hi.xyz - sa.r_hi.xyz) + (sb.r_lo.xyz - sa.r_lo.xyz);
+}
+
+// The held direction of a clamped end, row `row` of current_pts (ElemParams).
+fn clamp_dir(row: u32) -> vec3<R> {
+    let p = current_pts[row];
+    return vec3<R>(p.ux, p.uy, p.uz);
+}
+
+// The node an element's hinge row `x` names on one side, or `own` without a hinge
+// there (so that the state read is always in range).
+fn hinge_node(x: u32, own: u32) -> u32 {
+    return select(own, x, x != NO_HINGE);
+}
+
+// The bending shear of an element with hinge row `hr` (ElemParams) from the states of
+// its nodes a (`sa`) and b (`sb`), of the far node of the element before it (`sp`)
+// and of the far node of the element after it (`sn`): the force f2 of the hinge at
+// its node a (where it is the element after) less the force f1 of the hinge at its
+// node b (where it is the element before), each from bending_hinge. Node b receives
+// +shear, node a -shear (gather_add). CPU twin: cpu::passes bending_pass, which adds
+// each hinge's f2 and -f1 to the shears of its two elements.
+fn element_shear(hr: ElemParams, sp: NodeState, sa: NodeState, sb: NodeState, sn: NodeState) -> vec3<R> {
+    var shear = vec3<R>(R(0.0), R(0.0), R(0.0));
+    if hr.a == NO_HINGE && hr.b == NO_HINGE {
+        return shear;
+    }
+    let d = node_diff(sa, sb);
+    let l = norm3(d);
+    let t = d / l;
+    if hr.a != NO_HINGE {
+        var q1: vec3<R>;
+        var l1 = R(1.0);
+        if hr.line != NO_HINGE {
+            q1 = clamp_dir(hr.line);
+        } else {
+            let d1 = node_diff(sp, sa);
+            l1 = norm3(d1);
+            q1 = d1 / l1;
+        }
+        shear += bending_hinge(q1, l1, t, l, hr.l0)[1];
+    }
+    if hr.b != NO_HINGE {
+        var q2: vec3<R>;
+        var l2 = R(1.0);
+        if hr.current != NO_HINGE {
+            q2 = clamp_dir(hr.current);
+        } else {
+            let d2 = node_diff(sb, sn);
+            l2 = norm3(d2);
+            q2 = d2 / l2;
+        }
+        shear -= bending_hinge(t, l, q2, l2, hr.l0_lo)[0];
+    }
+    return shear;
+}
+
+// The bending shear of element `e` as the two-pass element stage left it: the first
+// three values of elem_loads[params.n_elems + e] (zero without BENDING).
+fn shear_of(e: u32) -> vec3<R> {
+    if BENDING {
+        let x = elem_loads[params.n_elems + e];
+        return vec3<R>(x.tx, x.ty, x.tz);
+    }
+    return vec3<R>(R(0.0), R(0.0), R(0.0));
+}
+
 struct NodeForce {
     f: vec3<R>,
     m: Sym3,
@@ -141,12 +210,18 @@ fn gather_begin(nd: NodeParams, s: NodeState, blk: BlockParams, w: WaveKin) -> N
     return NodeForce(vec3<R>(R(0.0), R(0.0), wz), sym3_scalar(nd.point_mass - dry * nd.point_added), zero);
 }
 
-// Adds the loads `el` of the element of incidence entry `entry` (element * 2 + side).
-fn gather_add(nf: NodeForce, el: ElemLoads, entry: u32) -> NodeForce {
+// Adds the loads `el` and bending shear `shear` (element_shear; zero without
+// bending) of the element of incidence entry `entry` (element * 2 + side): node a
+// takes f_half + (T t - shear), node b f_half - (T t - shear).
+fn gather_add(nf: NodeForce, el: ElemLoads, shear: vec3<R>, entry: u32) -> NodeForce {
     var f = nf.f;
     let sign = select(R(1.0), R(-1.0), (entry & 1u) == 1u);
     let t = vec3<R>(el.tx, el.ty, el.tz);
-    f += vec3<R>(el.fx, el.fy, el.fz) + t * (sign * el.tension);
+    if BENDING {
+        f += vec3<R>(el.fx, el.fy, el.fz) + (t * el.tension - shear) * sign;
+    } else {
+        f += vec3<R>(el.fx, el.fy, el.fz) + t * (sign * el.tension);
+    }
     return NodeForce(f, sym3_add_element(nf.m, el.half_mass, el.half_added, t), nf.c);
 }
 
@@ -202,7 +277,7 @@ fn gather_node(i: u32, nd: NodeParams, s: NodeState, k: u32) -> NodeForce {
     var nf = gather_begin(nd, s, blk, w);
     for (var j = nd.inc_start; j < nd.inc_end; j += 1u) {
         let entry = inc[j];
-        nf = gather_add(nf, elem_loads[entry >> 1u], entry);
+        nf = gather_add(nf, elem_loads[entry >> 1u], shear_of(entry >> 1u), entry);
     }
     return gather_end(i, nd, s, nf, blk, k, w);
 }

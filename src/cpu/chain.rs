@@ -18,10 +18,12 @@
 //!
 //! Its parts: [`consts`] (the block's constants as columns), [`lanes`] (the columns as
 //! whole chunks of lanes), [`elements`] (the element pass), [`nodes`] (the node pass
-//! and its mass solve), [`advance`] (scratch, AVX-512 / AVX2 dispatch, time schemes), [`winch`] (winch cables' variable elements), [`net`] (the
+//! and its mass solve), [`advance`] (scratch, AVX-512 / AVX2 dispatch, time schemes), [`winch`] (winch cables' variable elements), [`bending`] (a chain's
+//! bending hinges, as extra forces of the node pass), [`net`] (the
 //! same kernels over a network's blocks).
 
 mod advance;
+pub(crate) mod bending;
 mod consts;
 pub(crate) mod elements;
 pub(crate) mod lanes;

@@ -86,8 +86,8 @@ pub struct CpuSolver {
     failures: Vec<Failure>,
     /// Every bending hinge (`Layout::hinges`; empty without bending stiffness).
     hinges: Vec<crate::model::Hinge>,
-    /// Per block: whether it has a bending hinge (such a block takes the general
-    /// passes: the chain and network fast paths have no bending).
+    /// Per block: whether it has a bending hinge (a chain takes its hinges into its
+    /// fast path, `chain::bending`; a network takes the general passes).
     bent: Vec<bool>,
 }
 
@@ -374,12 +374,24 @@ impl CpuSolver {
         self.drop_bent_consts();
     }
 
-    /// Blocks with bending hinges take the general passes: no fast-path constants.
+    /// Blocks with bending hinges: a chain's fast-path constants take its hinges
+    /// (`chain::bending`); a network takes the general passes (no network constants).
     fn drop_bent_consts(&mut self) {
         for (bi, &bent) in self.bent.iter().enumerate() {
             if bent {
-                self.chain_consts[bi] = None;
                 self.net_consts[bi] = None;
+                if let Some(c) = self.chain_consts[bi].as_mut() {
+                    let b = &self.layout.blocks[bi];
+                    let h = crate::model::block_hinges(
+                        &self.hinges,
+                        b.elem_start as usize,
+                        b.elem_end as usize,
+                    );
+                    match crate::cpu::chain::bending::ChainBend::new(&self.layout, b, h) {
+                        Some(bd) => c.bend = Some(Box::new(bd)),
+                        None => self.chain_consts[bi] = None,
+                    }
+                }
             }
         }
     }

@@ -647,7 +647,10 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             self.dispatch(&mut pass, &self.pipe_eval, self.inst.n_nodes);
         }
         ctx.queue.submit([enc.finish()]);
-        let loads_bytes = (self.inst.n_elems * std::mem::size_of::<ElemLoads<R>>()) as u64;
+        // With bending, the elements' shears follow their loads (shaders' shear_of).
+        let bending = lay.has_bending();
+        let load_rows = if bending { 2 } else { 1 } * self.inst.n_elems;
+        let loads_bytes = (load_rows * std::mem::size_of::<ElemLoads<R>>()) as u64;
         let out_bytes = (self.inst.n_nodes * std::mem::size_of::<NodeOut<R>>()) as u64;
         let react_bytes = (self.inst.n_routes * std::mem::size_of::<[R; 4]>()) as u64;
         let out = self.read_back(&[
@@ -660,7 +663,13 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         if st.beyond != 0 {
             self.note_beyond_margin(step, (u32::MAX - st.beyond_step) as u64)?;
         }
-        let loads: Vec<ElemLoads<R>> = decode(&out[0][..loads_bytes as usize]);
+        let mut loads: Vec<ElemLoads<R>> = decode(&out[0][..loads_bytes as usize]);
+        let shears = loads.split_off(self.inst.n_elems);
+        let shear = |e: usize| {
+            shears.get(e).map_or(crate::math::V3::zero(), |l| {
+                crate::math::V3::new(l.tx.f64(), l.ty.f64(), l.tz.f64())
+            })
+        };
         let nout: Vec<NodeOut<R>> = decode(&out[1][..out_bytes as usize]);
         let react: Vec<[R; 4]> = decode(&out[2][..react_bytes as usize]);
         Ok(Evaluation {
@@ -670,13 +679,14 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             reaction: react.iter().map(|x| v3(x)).collect(),
             elements: loads
                 .iter()
-                .map(|l| crate::physics::ElementLoads {
+                .enumerate()
+                .map(|(e, l)| crate::physics::ElementLoads {
                     t: crate::math::V3::new(l.tx.f64(), l.ty.f64(), l.tz.f64()),
                     tension: l.tension.f64(),
                     f_half: crate::math::V3::new(l.fx.f64(), l.fy.f64(), l.fz.f64()),
                     half_mass: l.half_mass.f64(),
                     half_added: l.half_added.f64(),
-                    shear: crate::math::V3::zero(),
+                    shear: shear(e),
                 })
                 .collect(),
         })

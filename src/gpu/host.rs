@@ -476,3 +476,114 @@ pub(super) fn pin_row<R: GpuReal>(body: &Body, xr: [f64; 3], t: f64) -> BodyRow<
         ..Default::default()
     }
 }
+
+/// `ElemParams` fields of a hinge row's side without a hinge (WGSL `NO_HINGE`).
+pub const NO_HINGE: u32 = u32::MAX;
+
+/// The bending hinges of a layout ([`Layout::hinges`]) as the shaders read them: per
+/// element its *hinge row* (an [`ElemParams`] at `elems[n_elems + e]`, read by
+/// `shaders/shared/step.wgsl` `element_shear`) and the held directions of clamped
+/// ends (rows of `current_pts` from `clamp_row0` on). In a hinge row `a` is the far
+/// node of the element before (the hinge at its node a; its own node a at a clamp),
+/// `b` the far node of the element after (the hinge at its node b), `line` and
+/// `current` the clamp rows of its ends a and b, `l0` and `l0_lo` the two hinges'
+/// stiffness `EI / lbar`; [`NO_HINGE`] where a side has none.
+///
+/// Each element computes its own shear from these (a gather, no atomics): both
+/// hinges beside it are evaluated by both their elements. So a hinge must join the
+/// node b of its element before to the node a of its element after (as `Hinge`
+/// says), and an element can have one hinge at each end: a hinge across two cables
+/// that meet end to start fits, one that meets end to end or start to start, or a
+/// third hinge at one element end (three cables bending through one point), does not
+/// (the error says which).
+#[derive(Clone, Debug, Default)]
+pub struct HingeRows {
+    /// Per element: `(far node a, far node b, clamp a, clamp b, k a, k b)`.
+    pub rows: Vec<(u32, u32, u32, u32, f64, f64)>,
+    /// The held directions of clamped ends, in clamp row order.
+    pub clamps: Vec<[f64; 3]>,
+}
+
+impl HingeRows {
+    /// The hinge rows of `lay`, clamp rows numbered from `clamp_row0`, or why the
+    /// shaders cannot hold its hinges.
+    pub fn new(lay: &Layout, clamp_row0: u32) -> Result<Self, String> {
+        let n = lay.n_elements();
+        let mut rows = vec![(NO_HINGE, NO_HINGE, NO_HINGE, NO_HINGE, 0.0, 0.0); n];
+        let mut clamps = Vec::new();
+        let name = |e: u32| {
+            let c = &lay.cables[lay.elem_cable[e as usize] as usize];
+            let j = c.elements.iter().position(|&x| x == e).unwrap_or(0);
+            format!("cable '{}' element {j}", c.name)
+        };
+        for h in lay.hinges() {
+            let (p, q) = (h.prev, h.next);
+            let none = crate::model::NO_ELEM;
+            if p != none && q != none && lay.elem_b[p as usize] != lay.elem_a[q as usize] {
+                return Err(format!(
+                    "a bending hinge between {} and {} that do not meet end to start \
+                     (the GPU path's hinge rows hold that form only)",
+                    name(p),
+                    name(q)
+                ));
+            }
+            let mut clamp = || {
+                clamps.push(h.dir);
+                clamp_row0 + clamps.len() as u32 - 1
+            };
+            if q != none {
+                let r = &mut rows[q as usize];
+                if r.0 != NO_HINGE {
+                    return Err(format!(
+                        "two bending hinges at the start of {} (the GPU path holds one \
+                         hinge at each element end)",
+                        name(q)
+                    ));
+                }
+                if p != none {
+                    r.0 = lay.elem_a[p as usize];
+                } else {
+                    r.0 = lay.elem_a[q as usize];
+                    r.2 = clamp();
+                }
+                r.4 = h.k;
+            }
+            if p != none {
+                let r = &mut rows[p as usize];
+                if r.1 != NO_HINGE {
+                    return Err(format!(
+                        "two bending hinges at the end of {} (the GPU path holds one \
+                         hinge at each element end)",
+                        name(p)
+                    ));
+                }
+                if q != none {
+                    r.1 = lay.elem_b[q as usize];
+                } else {
+                    r.1 = lay.elem_b[p as usize];
+                    r.3 = clamp();
+                }
+                r.5 = h.k;
+            }
+        }
+        Ok(Self { rows, clamps })
+    }
+
+    /// The rows as `ElemParams` in precision `R`.
+    pub fn params<R: GpuReal>(&self) -> Vec<ElemParams<R>> {
+        self.rows
+            .iter()
+            .map(|&(a, b, ca, cb, ka, kb)| ElemParams {
+                a,
+                b,
+                line: ca,
+                current: cb,
+                block: 0,
+                winch: NO_WINCH,
+                l0: R::c(ka),
+                l0_lo: R::c(kb),
+                diameter: R::c(0.0),
+            })
+            .collect()
+    }
+}

@@ -22,13 +22,14 @@ pub(super) const WORKGROUP: u32 = 64;
 pub const MAX_FUSED_WORKGROUP: u32 = 256;
 
 /// Bytes of workgroup memory the fused kernel needs per invocation at precision `p`:
-/// a node state and an element's loads, 9 scalars each.
-pub(super) fn fused_bytes_per_lane(p: Precision) -> u32 {
+/// a node state and an element's loads, 9 scalars each, and with `bending` the
+/// element's shear, 3 more.
+pub(super) fn fused_bytes_per_lane(p: Precision, bending: bool) -> u32 {
     let r = match p {
         Precision::F32 => 4,
         Precision::F64 => 8,
     };
-    2 * 9 * r
+    (2 * 9 + if bending { 3 } else { 0 }) * r
 }
 
 /// How [`GpuSolver::advance`](super::solver::GpuSolver::advance) steps the layout.
@@ -91,7 +92,7 @@ pub fn fused_workgroup(
         .map(|b| (b.node_end - b.node_start).max(b.elem_end - b.elem_start))
         .max()
         .unwrap_or(1);
-    let per_lane = fused_bytes_per_lane(p);
+    let per_lane = fused_bytes_per_lane(p, lay.has_bending());
     let cap = MAX_FUSED_WORKGROUP
         .min(limits.max_compute_invocations_per_workgroup)
         .min(limits.max_compute_workgroup_size_x)

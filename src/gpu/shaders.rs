@@ -83,9 +83,9 @@ impl Stage {
 
 /// The generated header: the scalar alias and precision-specific constants, with the
 /// fused kernel's workgroup size [`DEFAULT_FUSED_WORKGROUP`] and all the waves' code in
-/// (`WAVES = true`, `WAVE_POINTS = true`).
+/// (`WAVES = true`, `WAVE_POINTS = true`), without bending (`BENDING = false`).
 pub fn header(p: Precision) -> String {
-    header_with(p, DEFAULT_FUSED_WORKGROUP, true, true)
+    header_with(p, DEFAULT_FUSED_WORKGROUP, true, true, false)
 }
 
 /// The generated header with the fused kernel's workgroup size `fused_wg` and
@@ -103,7 +103,19 @@ pub fn header(p: Precision) -> String {
 /// `gather_end`): false only where no node of the layout has a point mass with drag,
 /// displaced or added mass (a chain's lines), where those branches are never taken.
 /// It counts only with `waves`.
-pub fn header_with(p: Precision, fused_wg: u32, waves: bool, wave_points: bool) -> String {
+///
+/// `const BENDING: bool = bending`: whether the run has bending stiffness, whose
+/// hinge rows and shears then follow the elements' rows in `elems` and `elem_loads`
+/// (`shaders/shared/step.wgsl`: `element_shear`); `BEND_WG`, the fused kernel's
+/// shears in workgroup memory, is `fused_wg` with bending and 1 without, so a run
+/// without bending keeps its workgroup memory and its code.
+pub fn header_with(
+    p: Precision,
+    fused_wg: u32,
+    waves: bool,
+    wave_points: bool,
+    bending: bool,
+) -> String {
     let pio2 = std::f64::consts::FRAC_PI_2;
     let (ty, hi, lo, splitter, compensated, least_exp2) = match p {
         Precision::F32 => {
@@ -144,27 +156,32 @@ pub fn header_with(p: Precision, fused_wg: u32, waves: bool, wave_points: bool) 
          // Whether the run has waves (false: the waves branches fold away).\n\
          const WAVES: bool = {waves};\n\
          // Whether some node's point mass takes wave loads (false: those fold away).\n\
-         const WAVE_POINTS: bool = {wave_points};\n\n"
+         const WAVE_POINTS: bool = {wave_points};\n\
+         // Whether the run has bending stiffness (its hinge rows and shears).\n\
+         const BENDING: bool = {bending};\n\
+         const BEND_WG: u32 = {bend_wg}u;\n\n",
+        bend_wg = if bending { fused_wg } else { 1 }
     )
 }
 
-/// The complete WGSL of `stage` at precision `p`: header (waves' code in), prelude,
-/// stage body.
+/// The complete WGSL of `stage` at precision `p`: header (waves' code in, no
+/// bending), prelude, stage body.
 pub fn source(stage: Stage, p: Precision) -> String {
-    source_with(stage, p, DEFAULT_FUSED_WORKGROUP, true, true)
+    source_with(stage, p, DEFAULT_FUSED_WORKGROUP, true, true, false)
 }
 
 /// The complete WGSL of `stage` at precision `p` with the fused kernel's workgroup
 /// size `fused_wg` and the waves' branches in (`waves`; the point masses' with
-/// `wave_points`) or folded away (see [`header_with`]).
+/// `wave_points`) or folded away, with or without bending (see [`header_with`]).
 pub fn source_with(
     stage: Stage,
     p: Precision,
     fused_wg: u32,
     waves: bool,
     wave_points: bool,
+    bending: bool,
 ) -> String {
-    let mut s = header_with(p, fused_wg, waves, wave_points);
+    let mut s = header_with(p, fused_wg, waves, wave_points, bending);
     s.push_str(PRELUDE);
     s.push('\n');
     s.push_str(STEP);

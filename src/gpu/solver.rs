@@ -45,21 +45,19 @@ use crate::sea::{SeaSet, SeaState};
 use crate::step::{diverged, Evaluation, StepFailure, WinchStatus};
 
 // The public items of the split-out modules, at the paths they have always had.
-pub use super::host::{body_rows, rebased_route, route_samples, NodeStates};
+pub use super::host::{body_rows, rebased_route, route_samples, HingeRows, NodeStates, NO_HINGE};
 pub use super::kernel::{fused_workgroup, GpuKernel, MAX_FUSED_WORKGROUP, STEPS_PER_SUBMISSION};
 
-/// Bending stiffness, which the GPU path does not do yet, or `None` (a run with winch
-/// cables has none in the lumped-mass model: [`GpuSolver::with_winches`]).
+/// The bending hinges the GPU path cannot hold, or `None` (it runs bending stiffness
+/// and clamped ends: [`HingeRows`]; a run with winch cables has no bending in the
+/// lumped-mass model: [`GpuSolver::with_winches`]).
 pub fn unsupported_bending(lay: &Layout) -> Option<String> {
-    let &l = lay
-        .elem_line
-        .iter()
-        .find(|&&l| lay.line_types[l as usize].ei > 0.0)?;
-    let lt = &lay.line_types[l as usize];
-    Some(format!(
-        "bending stiffness (line type '{}', ei = {:e} N m^2; the CPU path runs it)",
-        lt.name, lt.ei
-    ))
+    if !lay.has_bending() {
+        return None;
+    }
+    HingeRows::new(lay, 0)
+        .err()
+        .map(|why| format!("{why}; the CPU path runs it"))
 }
 
 /// What the GPU solver does not do yet, or `None`.

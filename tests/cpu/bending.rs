@@ -379,20 +379,38 @@ fn vibrating_beam_matches_ancf_and_first_frequency() {
     let _ = (t_an, diff);
 }
 
-/// The GPU path has no bending yet: it says so (and `--backend auto` takes the CPU).
+/// The GPU path runs bending (its hinge rows hold every hinge of a cable, clamped
+/// ends included: tests/gpu/bending.rs compares its runs with these), so
+/// `--backend auto` need not fall back for it.
 #[test]
-fn gpu_path_refuses_bending() {
-    let (lay, _) = Layout::build(&beam_model(1e7, 4, true)).unwrap();
+fn gpu_path_takes_bending() {
+    let mut def = beam_model(1e7, 4, false);
+    def.clamps.push(Clamp {
+        cable: 0,
+        end_b: false,
+        tangent: [1.0, 0.0, 0.0],
+    });
+    let (lay, _) = Layout::build(&def).unwrap();
     assert_eq!(
         cablesim::gpu::solver::unsupported(&lay, &SolverOptions::default()),
         None
     );
-    let why = cablesim::gpu::solver::unsupported_bending(&lay).unwrap();
-    assert!(why.contains("bending") && why.contains("beam"), "{why}");
-    let mut flat = beam_model(1e7, 4, true);
-    flat.line_types[0].ei = 0.0;
-    let (lay0, _) = Layout::build(&flat).unwrap();
-    assert_eq!(cablesim::gpu::solver::unsupported_bending(&lay0), None);
+    assert_eq!(cablesim::gpu::solver::unsupported_bending(&lay), None);
+    let rows = cablesim::gpu::solver::HingeRows::new(&lay, 7).unwrap();
+    // Four elements: the clamp at node 0 and three interior hinges; the clamp's
+    // direction in the first clamp row.
+    assert_eq!(rows.clamps, vec![[1.0, 0.0, 0.0]]);
+    let none = cablesim::gpu::solver::NO_HINGE;
+    let e = &lay.cables[0].elements;
+    let r0 = rows.rows[e[0] as usize];
+    assert_eq!((r0.2, r0.3), (7, none));
+    assert_eq!(r0.1, lay.elem_b[e[1] as usize]);
+    let r3 = rows.rows[e[3] as usize];
+    assert_eq!((r3.0, r3.1), (lay.elem_a[e[2] as usize], none));
+    // The interior hinges' stiffness EI / l0; the clamp's over half an element.
+    let l0 = L / 4.0;
+    assert!((r3.4 - EI / l0).abs() < 1e-9 * EI);
+    assert!((r0.4 - EI / (0.5 * l0)).abs() < 1e-9 * EI);
 }
 
 /// The bending forces are conservative: a bent beam in a vacuum, pinned at both ends,
@@ -436,4 +454,83 @@ fn bending_conserves_energy() {
     // The beam swings: most of the energy goes through kinetic and back.
     assert!(ke_max > 0.4 * e0, "{ke_max} of {e0}");
     assert!(worst < 1e-2, "energy drift {worst}");
+}
+
+/// The chain fast path (`cpu::chain::bending`: the hinges' forces as extra forces of
+/// its node pass, the arctangent a rational function) agrees with the general path
+/// (`bending_pass`) to round-off: the beam pinned, and cantilevered from either end, each released straight to swing, the time of 3000 symplectic steps, every
+/// scheme. And a block with bending takes the fast path (its constants have the
+/// hinges): the two runs are not the same bits.
+#[test]
+fn chain_fast_path_bends_as_the_general_path() {
+    use cablesim::options::Scheme;
+    let cases: Vec<(&str, ModelDef)> = {
+        let pinned = beam_model(1e8, 20, true);
+        let mut cantilever = beam_model(1e8, 20, false);
+        cantilever.clamps.push(Clamp {
+            cable: 0,
+            end_b: false,
+            tangent: [1.0, 0.0, 0.0],
+        });
+        // The mirror image: clamped at end b along x, end a free.
+        let mut mirrored = beam_model(1e8, 20, true);
+        mirrored.nodes[0].route = None;
+        mirrored.clamps.push(Clamp {
+            cable: 0,
+            end_b: true,
+            tangent: [1.0, 0.0, 0.0],
+        });
+        vec![
+            ("pinned", pinned),
+            ("cantilever", cantilever),
+            ("cantilever clamped at end b", mirrored),
+        ]
+    };
+    for (name, def) in cases {
+        let (lay, pos) = Layout::build(&def).unwrap();
+        assert!(lay.blocks[0].is_chain);
+        // The same time for every scheme: 3000 symplectic steps at half its bound.
+        let duration = 1500.0 * stable_step(&lay, Scheme::Symplectic, Baumgarte::default()).dt;
+        for scheme in [Scheme::Symplectic, Scheme::Rk2, Scheme::Rk4] {
+            let bound = stable_step(&lay, scheme, Baumgarte::default());
+            let opts = SolverOptions {
+                dt: 0.5 * bound.dt,
+                scheme,
+                ..Default::default()
+            };
+            let steps = (duration / opts.dt).ceil() as u64;
+            let mut fast = CpuSolver::new(lay.clone(), &pos, opts);
+            let mut slow = CpuSolver::new(lay.clone(), &pos, opts);
+            slow.use_chain_kernel = false;
+            fast.advance(steps).unwrap();
+            slow.advance(steps).unwrap();
+            let moved = fast
+                .r
+                .iter()
+                .zip(&pos)
+                .map(|(r, p)| (r.z - p[2]).abs())
+                .fold(0.0, f64::max);
+            let worst = fast
+                .r
+                .iter()
+                .zip(&slow.r)
+                .map(|(a, b)| (*a - *b).norm())
+                .fold(0.0, f64::max);
+            let worst_v = fast
+                .v
+                .iter()
+                .zip(&slow.v)
+                .map(|(a, b)| (*a - *b).norm())
+                .fold(0.0, f64::max);
+            eprintln!(
+                "{name}, {scheme:?}: moved {moved:.3e} m; fast and general paths differ by {worst:.2e} m, {worst_v:.2e} m/s"
+            );
+            assert!(moved > 1e-3, "{name}: the beam should swing, moved {moved} m");
+            assert!(worst > 0.0, "{name}: the same bits: the fast path did not run");
+            assert!(
+                worst < 1e-9 && worst_v < 1e-7,
+                "{name}, {scheme:?}: fast and general paths differ by {worst:e} m, {worst_v:e} m/s"
+            );
+        }
+    }
 }

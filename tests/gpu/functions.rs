@@ -23,9 +23,11 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 mod axial;
+mod bending;
 mod free_body;
 mod routes;
 use axial::*;
+use bending::*;
 use routes::*;
 mod seabed_grid;
 use seabed_grid::*;
@@ -725,6 +727,7 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_route::<R>(ctx, p, &mut rng);
     check_current::<R>(ctx, p, &mut rng);
     check_tabulated::<R>(ctx, p, &mut rng);
+    check_bending::<R>(ctx, p, &mut rng);
 }
 
 #[test]

@@ -17,6 +17,7 @@ mod common;
 
 mod axial;
 mod backend;
+mod bending;
 mod bodies;
 mod compare;
 mod examples_waves;

@@ -8,20 +8,27 @@ use cablesim::model::{Layout, PointMass, Route};
 use cablesim::options::SolverOptions;
 use std::collections::HashSet;
 
-/// Parses and validates `stage` at `p` with the waves' code in or out (`waves`; the
-/// point masses' too).
-fn validate_with(stage: Stage, p: Precision, waves: bool) -> naga::Module {
-    validate_points(stage, p, waves, waves)
+/// Parses and validates `stage` at `p` with the waves' code in or out (`waves`), the
+/// point masses' waves code in or out on its own (`wave_points`).
+fn validate_points(stage: Stage, p: Precision, waves: bool, wave_points: bool) -> naga::Module {
+    validate_bending(stage, p, waves, wave_points, false)
 }
 
-/// [`validate_with`], the point masses' waves code in or out on its own (`wave_points`).
-fn validate_points(stage: Stage, p: Precision, waves: bool, wave_points: bool) -> naga::Module {
+/// [`validate_points`] with bending stiffness's code in or out (`bending`).
+fn validate_bending(
+    stage: Stage,
+    p: Precision,
+    waves: bool,
+    wave_points: bool,
+    bending: bool,
+) -> naga::Module {
     let src = shaders::source_with(
         stage,
         p,
         shaders::DEFAULT_FUSED_WORKGROUP,
         waves,
         wave_points,
+        bending,
     );
     let module = naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| {
         panic!(
@@ -51,8 +58,11 @@ fn validate_points(stage: Stage, p: Precision, waves: bool, wave_points: bool) -
 #[test]
 fn every_stage_validates_at_both_precisions() {
     for p in [Precision::F32, Precision::F64] {
-        for (stage, waves) in Stage::ALL.into_iter().flat_map(|s| [(s, true), (s, false)]) {
-            let m = validate_with(stage, p, waves);
+        for (stage, waves, bending) in Stage::ALL
+            .into_iter()
+            .flat_map(|s| [(s, true, false), (s, false, false), (s, true, true), (s, false, true)])
+        {
+            let m = validate_bending(stage, p, waves, waves, bending);
             let entries: Vec<&str> = m.entry_points.iter().map(|e| e.name.as_str()).collect();
             for want in stage.entry_points() {
                 assert!(

@@ -404,7 +404,13 @@ fn advance_chain_scheme<const WAVES: bool, const FRICTION: bool, const L: usize,
             v.resize(len, 0.0);
         }
         // `st` is `len` or more (the caller's choice).
-        sc.wb.reset(col::COUNT, st.get());
+        // A chain with bending has the bending pass's columns after the rest.
+        let ncols = if c.bend.is_some() {
+            super::bending::COUNT
+        } else {
+            col::COUNT
+        };
+        sc.wb.reset(ncols, st.get());
         {
             let wv = sc.wb.view(st);
             // SAFETY: two distinct columns of the block, reached only here.

@@ -70,6 +70,8 @@ pub(crate) struct ChainConsts {
     pub(super) zb: f64,
     pub(super) friction: bool,
     pub(super) v_eps: f64,
+    /// The chain's bending hinges (`None` without bending stiffness).
+    pub(crate) bend: Option<Box<super::bending::ChainBend>>,
 }
 
 impl ChainConsts {
@@ -210,6 +212,7 @@ impl ChainConsts {
             zb,
             friction,
             v_eps,
+            bend,
         } = self;
         *n = o.n;
         for (d, s) in [
@@ -242,6 +245,7 @@ impl ChainConsts {
         line.clone_from(&o.line);
         *uniform = o.uniform;
         constrained.clone_from(&o.constrained);
+        bend.clone_from(&o.bend);
         point_drag.clone_from(&o.point_drag);
         point_volume.clone_from(&o.point_volume);
         (*sb_k, *sb_c, *sb_mu, *zb, *friction, *v_eps) =
@@ -279,6 +283,9 @@ impl ChainConsts {
         ] {
             debug_assert!(v.len() <= len);
             v.resize(len, 0.0);
+        }
+        if let Some(b) = self.bend.as_deref_mut() {
+            b.kh.resize(len, 0.0);
         }
     }
 

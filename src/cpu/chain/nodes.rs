@@ -156,6 +156,14 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize, St: Stride>(
             unsafe { $col.get_unchecked_mut($i) }
         };
     }
+    // Bending: every node's hinge forces into the extra forces' columns (`=`; what
+    // follows adds to them), from the tangents the element pass left.
+    let bend = c.bend.is_some();
+    if let Some(bd) = c.bend.as_deref() {
+        // SAFETY: the caller's columns; a block with bending has the bending columns
+        // (`advance_chain`), and `bd.kh` is padded with the rest.
+        unsafe { super::bending::bending_forces(c.n, bd, p, wv) };
+    }
     // SAFETY: the extra forces' columns, not reached otherwise until the node loop.
     let mut xf: [&mut [f64]; 3] = unsafe {
         [
@@ -167,7 +175,7 @@ pub(super) unsafe fn nodes<const FRICTION: bool, const L: usize, St: Stride>(
     // Winch cables: the mass-flow forces of Eq. 39 on the variable element's free nodes
     // (crate::ale; a held winch node's acceleration is its route's).
     // SAFETY: as above.
-    let mut extra = unsafe { ale_mass_flow(asc, p, &mut xf) };
+    let mut extra = unsafe { ale_mass_flow(asc, p, &mut xf) } || bend;
     let mut add = |xf: &mut [&mut [f64]; 3], i: usize, f: [f64; 3]| {
         for (x, fq) in xf.iter_mut().zip(f) {
             *set!(x, i) += fq;

@@ -13,8 +13,8 @@ use super::{
 use crate::error::Error;
 use crate::gpu::context::GpuContext;
 use crate::gpu::host::{
-    body_rows, free_records, pin_row, rebased_route, route_samples, split, Host, FAIL_STRIDE,
-    FREE_STRIDE,
+    body_rows, free_records, pin_row, rebased_route, route_samples, split, HingeRows, Host,
+    FAIL_STRIDE, FREE_STRIDE,
 };
 use crate::gpu::kernel::{fused_workgroup, STEPS_PER_SUBMISSION, WORKGROUP};
 use crate::gpu::layout::*;
@@ -33,8 +33,8 @@ use std::marker::PhantomData;
 use wgpu::util::DeviceExt;
 
 /// The fused kernel's pipeline of workgroup size `wg`, with the waves' branches
-/// (`waves`; those of point masses too with `wave_points`) or without
-/// (shaders::header_with).
+/// (`waves`; those of point masses too with `wave_points`) or without, with or
+/// without bending (shaders::header_with).
 fn fused_pipeline(
     dev: &wgpu::Device,
     pl: &wgpu::PipelineLayout,
@@ -42,11 +42,13 @@ fn fused_pipeline(
     wg: u32,
     waves: bool,
     wave_points: bool,
+    bending: bool,
 ) -> wgpu::ComputePipeline {
     let m = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(Stage::FusedSteps.file()),
         source: wgpu::ShaderSource::Wgsl(
-            shaders::source_with(Stage::FusedSteps, precision, wg, waves, wave_points).into(),
+            shaders::source_with(Stage::FusedSteps, precision, wg, waves, wave_points, bending)
+                .into(),
         ),
     });
     dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -135,10 +137,22 @@ impl<R: GpuReal> GpuEngine<R> {
         } else {
             Precision::F32
         };
+        // Bending stiffness: its hinge rows and shears (shaders::header_with).
+        let bending = lay.has_bending();
         let module = |stage: Stage| {
             dev.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(stage.file()),
-                source: wgpu::ShaderSource::Wgsl(shaders::source(stage, precision).into()),
+                source: wgpu::ShaderSource::Wgsl(
+                    shaders::source_with(
+                        stage,
+                        precision,
+                        shaders::DEFAULT_FUSED_WORKGROUP,
+                        true,
+                        true,
+                        bending,
+                    )
+                    .into(),
+                ),
             })
         };
         let m_elem = module(Stage::ElementForces);
@@ -166,7 +180,7 @@ impl<R: GpuReal> GpuEngine<R> {
         let pipe_fused = fused_workgroup(lay, precision, &ctx.limits, !host.winches.is_empty())
             .map(|wg| FusedPipelines {
                 wg,
-                still: fused_pipeline(dev, &pl, precision, wg, false, false),
+                still: fused_pipeline(dev, &pl, precision, wg, false, false, bending),
                 waves: None,
             });
         let use_fused = pipe_fused.is_ok();
@@ -226,6 +240,7 @@ impl<R: GpuReal> GpuEngine<R> {
                     f.wg,
                     true,
                     layout_has_wave_points(lay),
+                    lay.has_bending(),
                 ));
             }
         }
@@ -340,6 +355,23 @@ impl<R: GpuReal> GpuEngine<R> {
                 }
             }
         }
+        // Bending: a hinge row per element after the elements' rows, the held
+        // directions of clamped ends as rows of current_pts (HingeRows).
+        let bending = lay.has_bending();
+        let hinges = if bending {
+            HingeRows::new(lay, current_pts.len() as u32)
+                .expect("checked by gpu::solver::unsupported_bending")
+        } else {
+            HingeRows::default()
+        };
+        for d in &hinges.clamps {
+            current_pts.push(CurrentPoint {
+                z: R::c(0.0),
+                ux: R::c(d[0]),
+                uy: R::c(d[1]),
+                uz: R::c(d[2]),
+            });
+        }
         let lines: Vec<LineParams<R>> = lay
             .line_coefs
             .iter()
@@ -359,7 +391,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 table: R::c(table as f64),
             })
             .collect();
-        let elems: Vec<ElemParams<R>> = (0..lay.n_elements())
+        let mut elems: Vec<ElemParams<R>> = (0..lay.n_elements())
             .map(|e| ElemParams {
                 a: lay.elem_a[e],
                 b: lay.elem_b[e],
@@ -372,6 +404,7 @@ impl<R: GpuReal> GpuEngine<R> {
                 diameter: R::c(lay.line_types[lay.elem_line[e] as usize].diameter),
             })
             .collect();
+        elems.extend(hinges.params::<R>());
         let nodes: Vec<NodeParams<R>> = (0..lay.n_nodes())
             .map(|i| NodeParams {
                 inc_start: lay.inc_start[i],
@@ -432,7 +465,9 @@ impl<R: GpuReal> GpuEngine<R> {
         let ro = U::STORAGE;
         let rw = U::STORAGE | U::COPY_SRC | U::COPY_DST;
         let state_bytes = (n_nodes.max(1) * std::mem::size_of::<NodeState<R>>()) as u64;
-        let loads_bytes = (n_elems.max(1) * std::mem::size_of::<ElemLoads<R>>()) as u64;
+        // With bending, a second row per element holds its shear (shaders' shear_of).
+        let load_rows = if bending { 2 * n_elems } else { n_elems };
+        let loads_bytes = (load_rows.max(1) * std::mem::size_of::<ElemLoads<R>>()) as u64;
         let out_bytes = (n_nodes.max(1) * std::mem::size_of::<NodeOut<R>>()) as u64;
         let react_bytes = (n_routes.max(1) * std::mem::size_of::<[R; 4]>()) as u64;
         let payout_bytes = ((STEPS_PER_SUBMISSION as usize * n_winch).max(1)
