@@ -18,6 +18,7 @@ mod common;
 mod axial;
 mod backend;
 mod bodies;
+mod cage;
 mod compare;
 mod examples_waves;
 mod f32_vs_f64;
