@@ -69,6 +69,7 @@ fn fish_farm_volume_falls_with_current_speed() {
         mean_after(&slow, t0, |n| n.force[0].hypot(n.force[1])),
         mean_after(&fast, t0, |n| n.force[0].hypot(n.force[1])),
     );
+    eprintln!("volume ratio {v_slow} at 0.2 m/s, {v_fast} at 0.6 m/s; drag {d_slow} N, {d_fast} N");
     assert!(v_fast < v_slow && v_slow < 1.0, "volume ratios {v_slow}, {v_fast}");
     assert!(v_fast > 0.3, "{v_fast}");
     // The drag grows with the speed (about as its square, less as the net yields).
@@ -101,13 +102,13 @@ fn fish_farm_collar_floats_at_its_freeboard() {
         (l.mass_per_length - rho * PI * l.diameter.powi(2) / 4.0) * g
     };
     // The collar: 400 mm pipe, 24 mm wall, HDPE 950 kg/m^3.
-    let (d, t) = (0.4, 0.024);
+    let (d, t) = (0.4f64, 0.024);
     let m_collar = 950.0 * PI / 4.0 * (d * d - (d - 2.0 * t).powi(2));
     let l_collar = length("cage.collar.");
     // 32 knots, 2 elements between two: the 64-gon of radius 10 m.
-    assert!((l_collar - 64.0 * 2.0 * 10.0 * (PI / 64.0).sin()).abs() < 1e-9);
+    assert!((l_collar - 64.0 * 2.0 * 10.0 * (PI / 64.0).sin()).abs() < 1e-6);
     // The sinker tube: 250 mm, 23 mm wall, flooded, 15 kg/m of ballast.
-    let (dt, tt) = (0.25, 0.023);
+    let (dt, tt) = (0.25f64, 0.023);
     let bore = PI / 4.0 * (dt - 2.0 * tt).powi(2);
     let m_tube = 950.0 * PI / 4.0 * (dt * dt - (dt - 2.0 * tt).powi(2)) + 15.0 + rho * bore;
     let w_tube = (m_tube - rho * PI * dt * dt / 4.0) * g * length("cage.tube.");
@@ -143,8 +144,9 @@ fn fish_farm_collar_floats_at_its_freeboard() {
     assert!(pull > 0.0, "{pull}");
     let freeboard = d * (1.0 - (load + pull) / capacity);
     let z = mean_after(&sink, t0, |n| n.collar_z);
+    eprintln!("collar at {z} m, hand calculation {freeboard} m (load {load} N, bridles {pull} N, buoyancy {capacity} N)");
     assert!(
-        (z - freeboard).abs() < 0.01,
+        (z - freeboard).abs() < 0.005,
         "collar at {z} m, the hand calculation {freeboard} m (load {load} N, bridles {pull} N, \
          buoyancy {capacity} N)"
     );

@@ -118,6 +118,7 @@ fn the_net_hangs_from_the_collar_ring() {
             line("tube", 0.25, 60.0, 1e5),
             line("chain", 0.02, 8.0, 0.0),
         ],
+        currents: vec![cablesim::model::Current::uniform([0.0; 3])],
         ..Default::default()
     };
     let spec = cylinder(n, 4, 10.0, 6.0);
