@@ -87,19 +87,37 @@ fn cage_outputs_match_on_both_paths() {
         dt: Some(dt),
         ..Overrides::default()
     });
+    // Nets amplify round-off (slack twines: tests/gpu/examples_waves.rs): the CPU's
+    // own envelope is the same run with the step changed by 1e-13 of itself.
+    let (_, nudged) = run(Overrides {
+        backend: Some(Backend::Cpu),
+        dt: Some(dt * (1.0 + 1e-13)),
+        ..Overrides::default()
+    });
     assert_eq!(cpu.frames.len(), gpu.frames.len());
     let last = &cpu.frames.last().unwrap().nets[0];
     // The cage moved: the comparison is of a deformed, loaded cage.
     assert!((last.volume_ratio - 1.0).abs() > 1e-6 && last.force[0] > 100.0, "{last:?}");
-    for (a, b) in cpu.frames.iter().zip(&gpu.frames) {
-        let (a, b) = (&a.nets[0], &b.nets[0]);
-        assert_eq!(a.name, b.name);
-        let rel = |x: f64, y: f64, s: f64| (x - y).abs() / s;
-        let drag = a.force[0].hypot(a.force[1]).max(1.0);
-        assert!(rel(a.volume, b.volume, a.volume) < 1e-9, "{a:?} {b:?}");
-        assert!(rel(a.force[0], b.force[0], drag) < 1e-6, "{a:?} {b:?}");
-        assert!(rel(a.force[1], b.force[1], drag) < 1e-6, "{a:?} {b:?}");
-        assert!((a.collar_z - b.collar_z).abs() < 1e-9, "{a:?} {b:?}");
-        assert_eq!(a.current, b.current);
+    // The largest differences of volume (relative), drag (relative to the drag) and
+    // collar height (m) between two runs.
+    let diff = |x: &MemorySink, y: &MemorySink| -> [f64; 3] {
+        let mut d = [0.0f64; 3];
+        for (a, b) in x.frames.iter().zip(&y.frames) {
+            let (a, b) = (&a.nets[0], &b.nets[0]);
+            assert_eq!((&a.name, a.current), (&b.name, b.current));
+            let drag = a.force[0].hypot(a.force[1]).max(1.0);
+            d[0] = d[0].max((a.volume - b.volume).abs() / a.volume);
+            d[1] = d[1].max((a.force[0] - b.force[0]).hypot(a.force[1] - b.force[1]) / drag);
+            d[2] = d[2].max((a.collar_z - b.collar_z).abs());
+        }
+        d
+    };
+    let (g, e) = (diff(&gpu, &cpu), diff(&nudged, &cpu));
+    eprintln!("GPU against CPU: {g:?}; the CPU's envelope: {e:?}");
+    for k in 0..3 {
+        assert!(g[k] <= 10.0 * e[k] + 1e-9, "{k}: GPU {g:?}, envelope {e:?}");
     }
+    // And the outputs are no accident of the state: the frames differ from each other.
+    let (f1, f2) = (&cpu.frames[1].nets[0], &cpu.frames[2].nets[0]);
+    assert!((f1.force[0] - f2.force[0]).abs() > 1e3 * g[1] * f2.force[0].abs(), "{f1:?} {f2:?}");
 }
