@@ -65,7 +65,11 @@ impl Pipe {
             diameter: self.diameter,
             mass_per_length: self.density * self.wall_area()
                 + self.ballast
-                + if self.flooded { water_density * bore } else { 0.0 },
+                + if self.flooded {
+                    water_density * bore
+                } else {
+                    0.0
+                },
             ea: self.youngs_modulus * self.wall_area(),
             damping: 0.0,
             cn: self.cn,
@@ -171,7 +175,8 @@ pub fn enclosed_volume(knots: &[[f64; 3]], around: usize) -> f64 {
     }
     let p = |i: usize| -> [f64; 3] { [0, 1, 2].map(|d| knots[i][d] - o[d]) };
     let triple = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
-        a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2])
+        a[0] * (b[1] * c[2] - b[2] * c[1])
+            + a[1] * (b[2] * c[0] - b[0] * c[2])
             + a[2] * (b[0] * c[1] - b[1] * c[0])
     };
     let mut six_v = 0.0;
@@ -212,7 +217,9 @@ pub fn add_cage(def: &mut ModelDef, spec: &NetSpec, cage: &CageSpec) -> Result<N
     } = spec.shape
     else {
         if cage.collar.is_some() || cage.sinker_tube.is_some() {
-            return Err(bad("a collar or a sinker tube needs a cylindrical net".into()));
+            return Err(bad(
+                "a collar or a sinker tube needs a cylindrical net".into()
+            ));
         }
         let first = def.cables.len();
         let n = super::add_net(def, spec)?;
@@ -247,7 +254,8 @@ pub fn add_cage(def: &mut ModelDef, spec: &NetSpec, cage: &CageSpec) -> Result<N
     };
     let twines = first..first + n_twines;
     // Knot (row, col) is the first node of twine NAME.h<row>.<col>.
-    let knot = |def: &ModelDef, row: usize, col: usize| def.cables[first + row * around + col].nodes[0];
+    let knot =
+        |def: &ModelDef, row: usize, col: usize| def.cables[first + row * around + col].nodes[0];
     let generated: Vec<[f64; 3]> = (0..rows)
         .flat_map(|row| (0..around).map(move |col| (row, col)))
         .map(|(row, col)| spec.shape.knot(row, col))
@@ -257,14 +265,25 @@ pub fn add_cage(def: &mut ModelDef, spec: &NetSpec, cage: &CageSpec) -> Result<N
     let collar_start = def.cables.len();
     if let Some(ring) = &cage.collar {
         let ends: Vec<usize> = (0..around).map(|c| knot(&*def, 0, c)).collect();
-        add_ring(def, spec, "collar", ring, &ends, [top[0], top[1]], radius, top[2])?;
+        add_ring(
+            def,
+            spec,
+            "collar",
+            ring,
+            &ends,
+            [top[0], top[1]],
+            radius,
+            top[2],
+        )?;
     }
     let collar = collar_start..def.cables.len();
     let tube_start = def.cables.len();
     let mut chains = tube_start..tube_start;
     if let Some(t) = &cage.sinker_tube {
         if t.every == 0 || t.chain_segments == 0 {
-            return Err(bad("the sinker tube's chains need every >= 1 and segments >= 1".into()));
+            return Err(bad(
+                "the sinker tube's chains need every >= 1 and segments >= 1".into(),
+            ));
         }
         let z = top[2] - depth - t.chain_length;
         let first_node = def.nodes.len();
@@ -278,7 +297,16 @@ pub fn add_cage(def: &mut ModelDef, spec: &NetSpec, cage: &CageSpec) -> Result<N
             });
         }
         let ends: Vec<usize> = (first_node..first_node + around).collect();
-        add_ring(def, spec, "tube", &t.ring, &ends, [top[0], top[1]], t.radius, z)?;
+        add_ring(
+            def,
+            spec,
+            "tube",
+            &t.ring,
+            &ends,
+            [top[0], top[1]],
+            t.radius,
+            z,
+        )?;
         let chain_start = def.cables.len();
         for col in (0..around).step_by(t.every) {
             let (a, b) = (knot(&*def, rows - 1, col), ends[col]);
@@ -338,7 +366,11 @@ fn add_ring(
             let a = 2.0 * PI * (col as f64 + k as f64 / s as f64) / n as f64;
             nodes.push(def.nodes.len());
             def.nodes.push(NodeDef {
-                position: [centre[0] + radius * a.cos(), centre[1] + radius * a.sin(), z],
+                position: [
+                    centre[0] + radius * a.cos(),
+                    centre[1] + radius * a.sin(),
+                    z,
+                ],
                 point: PointMass::default(),
                 route: None,
                 label: None,
@@ -461,8 +493,11 @@ pub fn flotation(def: &ModelDef, info: &NetInfo) -> Option<Flotation> {
             }
         }
     }
-    let load =
-        collar_weight + line_weight(&info.twines) + line_weight(&info.tube) + line_weight(&info.chains) + points;
+    let load = collar_weight
+        + line_weight(&info.twines)
+        + line_weight(&info.tube)
+        + line_weight(&info.chains)
+        + points;
     Some(Flotation {
         capacity,
         load,

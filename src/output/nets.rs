@@ -9,7 +9,12 @@ use crate::step::Evaluation;
 
 /// The states of the cylindrical nets among `nets` (a panel encloses nothing and is left
 /// out) from the packed positions `r` and the evaluation `ev` of the same state.
-pub fn net_states(lay: &Layout, ev: &Evaluation, r: &[[f64; 3]], nets: &[NetInfo]) -> Vec<NetState> {
+pub fn net_states(
+    lay: &Layout,
+    ev: &Evaluation,
+    r: &[[f64; 3]],
+    nets: &[NetInfo],
+) -> Vec<NetState> {
     nets.iter()
         .filter(|n| n.reference_volume > 0.0)
         .map(|n| {
@@ -31,7 +36,9 @@ pub fn net_states(lay: &Layout, ev: &Evaluation, r: &[[f64; 3]], nets: &[NetInfo
             // The collar's nodes, each once (a ring cable's last node is the next one's
             // first), or the top knots.
             let ring: Vec<usize> = if n.collar.is_empty() {
-                (0..n.around).map(|col| lay.cables[n.knot_cable(0, col)].nodes[0] as usize).collect()
+                (0..n.around)
+                    .map(|col| lay.cables[n.knot_cable(0, col)].nodes[0] as usize)
+                    .collect()
             } else {
                 lay.cables[n.collar.clone()]
                     .iter()

@@ -432,7 +432,10 @@ fn fill(table: &str, col: &str, s: &Snapshot, o: &mut Out) {
 
 /// Node rows a frame adds (what [`GROUP_ROWS`] counts).
 fn rows(s: &Snapshot) -> usize {
-    s.cables.iter().map(|c| c.positions.len()).sum::<usize>() + s.bodies.len() + s.points.len() + s.nets.len()
+    s.cables.iter().map(|c| c.positions.len()).sum::<usize>()
+        + s.bodies.len()
+        + s.points.len()
+        + s.nets.len()
 }
 
 /// The Parquet tables of a run (`end_forces.parquet`, `tensions.parquet`, ...: the

@@ -588,7 +588,11 @@ pub fn fatigue(path: &Path, rows: &[(String, f64)], what: &str) -> Result<(), Er
 pub fn nets(path: &Path, volume: &[Series], drag: &[Series], sweep: bool) -> Result<(), Error> {
     draw_png(path, |root| {
         let panels = root.split_evenly((1, 2));
-        let x = if sweep { "current speed (m/s)" } else { "time (s)" };
+        let x = if sweep {
+            "current speed (m/s)"
+        } else {
+            "time (s)"
+        };
         lines(
             &panels[0],
             "Cage volume",
@@ -597,7 +601,14 @@ pub fn nets(path: &Path, volume: &[Series], drag: &[Series], sweep: bool) -> Res
             volume,
             Axes::FromZero,
         )?;
-        lines(&panels[1], "Drag on the net", x, "drag (kN)", drag, Axes::FromZero)?;
+        lines(
+            &panels[1],
+            "Drag on the net",
+            x,
+            "drag (kN)",
+            drag,
+            Axes::FromZero,
+        )?;
         Ok(())
     })
 }

@@ -100,8 +100,8 @@ pub fn parse(
             let col = ((a / (2.0 * std::f64::consts::PI) * around as f64).round() as i64)
                 .rem_euclid(around as i64) as usize;
             let kp = spec.shape.knot(0, col);
-            let dist = ((x[0] - kp[0]).powi(2) + (x[1] - kp[1]).powi(2) + (x[2] - kp[2]).powi(2))
-                .sqrt();
+            let dist =
+                ((x[0] - kp[0]).powi(2) + (x[1] - kp[1]).powi(2) + (x[2] - kp[2]).powi(2)).sqrt();
             if dist > 0.5 * spacing {
                 return Err(err(
                     p,
@@ -218,10 +218,13 @@ fn ring_line_type(
             f,
             "give the ring either `line_type` or `pipe`, one of them",
         )),
-        (Some(l), None) => line_types
-            .get(l)
-            .copied()
-            .ok_or_else(|| err(p, format!("{f}.line_type"), format!("unknown line type \"{l}\""))),
+        (Some(l), None) => line_types.get(l).copied().ok_or_else(|| {
+            err(
+                p,
+                format!("{f}.line_type"),
+                format!("unknown line type \"{l}\""),
+            )
+        }),
         (None, Some(r)) => {
             let g = |k: &str| format!("{f}.pipe.{k}");
             let diameter = positive(p, &g("diameter"), r.diameter)?;

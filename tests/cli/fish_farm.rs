@@ -51,7 +51,9 @@ fn mean_after(sink: &MemorySink, t0: f64, f: impl Fn(&cablesim::output::NetState
 }
 
 /// In current the cage deflects: the volume it encloses falls as the current rises, and
-/// the drag on its net grows; at the start (the cage as generated) the ratio is 1.
+/// the drag on its net grows; at the start (the cage as generated) the ratio is 1. The
+/// runs are short (16 s) and the cage not settled (docs/src/cage.md, "A current
+/// sweep"): what is asserted is the order, at the same time after the start.
 #[test]
 fn fish_farm_volume_falls_with_current_speed() {
     let (t, t0) = (16.0, 10.0);
@@ -59,7 +61,11 @@ fn fish_farm_volume_falls_with_current_speed() {
     let fast = run(&with_current(0.6), t);
     for s in [&slow, &fast] {
         let first = &s.frames[0].nets[0];
-        assert!((first.volume_ratio - 1.0).abs() < 1e-9, "{}", first.volume_ratio);
+        assert!(
+            (first.volume_ratio - 1.0).abs() < 1e-9,
+            "{}",
+            first.volume_ratio
+        );
     }
     let (v_slow, v_fast) = (
         mean_after(&slow, t0, |n| n.volume_ratio),
@@ -70,10 +76,16 @@ fn fish_farm_volume_falls_with_current_speed() {
         mean_after(&fast, t0, |n| n.force[0].hypot(n.force[1])),
     );
     eprintln!("volume ratio {v_slow} at 0.2 m/s, {v_fast} at 0.6 m/s; drag {d_slow} N, {d_fast} N");
-    assert!(v_fast < v_slow && v_slow < 1.0, "volume ratios {v_slow}, {v_fast}");
+    assert!(
+        v_fast < v_slow && v_slow < 1.0,
+        "volume ratios {v_slow}, {v_fast}"
+    );
     assert!(v_fast > 0.3, "{v_fast}");
     // The drag grows with the speed (about as its square, less as the net yields).
-    assert!(d_fast > 3.0 * d_slow && d_slow > 0.0, "drag {d_slow} N, {d_fast} N");
+    assert!(
+        d_fast > 3.0 * d_slow && d_slow > 0.0,
+        "drag {d_slow} N, {d_fast} N"
+    );
     // Along the current.
     let fx = mean_after(&fast, t0, |n| n.force[0]);
     assert!(fx > 0.99 * d_fast, "{fx} of {d_fast}");
@@ -201,7 +213,10 @@ fn fish_farm_bad_cage_keys() {
 /// A collar too small for what hangs from it: a warning with the freeboard.
 #[test]
 fn fish_farm_collar_that_cannot_float_warns() {
-    let sinks = example().replace("diameter = 0.4, wall = 0.024", "diameter = 0.12, wall = 0.008");
+    let sinks = example().replace(
+        "diameter = 0.4, wall = 0.024",
+        "diameter = 0.12, wall = 0.008",
+    );
     let (sc, warnings) =
         cablesim::scenario::collect_warnings(|| Scenario::parse(&sinks, Path::new(EXAMPLE)));
     sc.unwrap();
@@ -209,10 +224,16 @@ fn fish_farm_collar_that_cannot_float_warns() {
         .iter()
         .find(|w| w.contains("cannot float"))
         .unwrap_or_else(|| panic!("{warnings:?}"));
-    assert!(w.contains("nets[0] (\"cage\").collar") && w.contains("freeboard -"), "{w}");
+    assert!(
+        w.contains("nets[0] (\"cage\").collar") && w.contains("freeboard -"),
+        "{w}"
+    );
     // The example's collar floats with reserve: no such warning.
     let (sc, warnings) =
         cablesim::scenario::collect_warnings(|| Scenario::parse(&example(), Path::new(EXAMPLE)));
     sc.unwrap();
-    assert!(!warnings.iter().any(|w| w.contains("collar")), "{warnings:?}");
+    assert!(
+        !warnings.iter().any(|w| w.contains("collar")),
+        "{warnings:?}"
+    );
 }

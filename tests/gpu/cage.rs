@@ -97,7 +97,10 @@ fn cage_outputs_match_on_both_paths() {
     assert_eq!(cpu.frames.len(), gpu.frames.len());
     let last = &cpu.frames.last().unwrap().nets[0];
     // The cage moved: the comparison is of a deformed, loaded cage.
-    assert!((last.volume_ratio - 1.0).abs() > 1e-6 && last.force[0] > 100.0, "{last:?}");
+    assert!(
+        (last.volume_ratio - 1.0).abs() > 1e-6 && last.force[0] > 100.0,
+        "{last:?}"
+    );
     // The largest differences of volume (relative), drag (relative to the drag) and
     // collar height (m) between two runs.
     let diff = |x: &MemorySink, y: &MemorySink| -> [f64; 3] {
@@ -119,5 +122,8 @@ fn cage_outputs_match_on_both_paths() {
     }
     // And the outputs are no accident of the state: the frames differ from each other.
     let (f1, f2) = (&cpu.frames[1].nets[0], &cpu.frames[2].nets[0]);
-    assert!((f1.force[0] - f2.force[0]).abs() > 1e3 * g[1] * f2.force[0].abs(), "{f1:?} {f2:?}");
+    assert!(
+        (f1.force[0] - f2.force[0]).abs() > 1e3 * g[1] * f2.force[0].abs(),
+        "{f1:?} {f2:?}"
+    );
 }

@@ -150,7 +150,10 @@ fn gpu_matches_cpu_in_f64_on_every_example_with_waves() {
         // winch cables has none in its lumped-mass model.
         let m = &sc.model;
         if sc.winches.is_empty() && m.cables.iter().any(|c| m.line_types[c.line_type].ei > 0.0) {
-            eprintln!("{}: bending, which the GPU path does not run yet: skipped", path.display());
+            eprintln!(
+                "{}: bending, which the GPU path does not run yet: skipped",
+                path.display()
+            );
             continue;
         }
         assert!(!sc.sea.is_still(), "{}: no waves", path.display());

@@ -144,7 +144,10 @@ fn the_net_hangs_from_the_collar_ring() {
     assert_eq!(info.collar.len(), n);
     assert_eq!(info.tube.len(), n);
     assert_eq!(info.chains.len(), n / 3);
-    assert!(def.nodes.iter().all(|d| d.route.is_none()), "nothing is held");
+    assert!(
+        def.nodes.iter().all(|d| d.route.is_none()),
+        "nothing is held"
+    );
     // Each collar cable runs from top knot col to the next, through nodes on the circle.
     for col in 0..n {
         let c = &def.cables[info.collar.start + col];
@@ -221,5 +224,7 @@ fn pipe_line_type() {
         ..p
     }
     .line_type("t".into(), 1025.0);
-    assert!((flooded.mass_per_length - (950.0 * a + 15.0 + 1025.0 * PI / 4.0 * d * d)).abs() < 1e-9);
+    assert!(
+        (flooded.mass_per_length - (950.0 * a + 15.0 + 1025.0 * PI / 4.0 * d * d)).abs() < 1e-9
+    );
 }
