@@ -19,6 +19,18 @@ pub struct Clamp {
     pub tangent: [f64; 3],
 }
 
+/// Two cables joined end to end at a shared node that bend as one: the hinge there
+/// joins the last element of `prev` (whose end b is the node) and the first element of
+/// `next` (whose end a is the node), as a hinge inside a cable does. A ring of several
+/// cables (a net cage's collar or sinker tube, `super::cage`) is closed by them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Joint {
+    /// The cable that ends at the node (index into `ModelDef::cables`).
+    pub prev: usize,
+    /// The cable that starts there.
+    pub next: usize,
+}
+
 /// A hinge: the node between packed element `prev` (which ends there) and packed
 /// element `next` (which starts there) of one cable, or a clamped end, where one of
 /// them is [`NO_ELEM`] and `dir` stands for its tangent.
@@ -55,7 +67,9 @@ impl Layout {
 
     /// Every hinge of the layout, ordered by [`Hinge::anchor`]: the interior nodes of
     /// each cable whose elements on both sides have `EI > 0` (`EI` their mean there),
-    /// and its clamped ends (`Layout::clamps`) where its end element has `EI > 0`.
+    /// its clamped ends (`Layout::clamps`) where its end element has `EI > 0`, and the
+    /// joints between cables (`Layout::joints`) whose two elements there have `EI > 0`
+    /// and share the node (end b of the one, end a of the other).
     /// Pinned and free ends are no hinge: the moment there is zero.
     pub fn hinges(&self) -> Vec<Hinge> {
         let ei = |e: u32| self.line_types[self.elem_line[e as usize] as usize].ei;
@@ -100,6 +114,23 @@ impl Layout {
                     });
                 }
             }
+        }
+        for j in &self.joints {
+            let (Some(pc), Some(nc)) = (self.cables.get(j.prev), self.cables.get(j.next)) else {
+                continue;
+            };
+            let (Some(&p), Some(&n)) = (pc.elements.last(), nc.elements.first()) else {
+                continue;
+            };
+            if pc.nodes.last() != nc.nodes.first() || ei(p) <= 0.0 || ei(n) <= 0.0 {
+                continue;
+            }
+            out.push(Hinge {
+                prev: p,
+                next: n,
+                k: 0.5 * (ei(p) + ei(n)) / (0.5 * (l0(p) + l0(n))),
+                dir: [0.0; 3],
+            });
         }
         out.sort_by_key(|h| h.anchor());
         out

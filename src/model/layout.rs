@@ -77,6 +77,8 @@ pub struct ModelDef {
     pub cables: Vec<CableDef>,
     /// Cable ends whose direction is held (bending, `super::bending`).
     pub clamps: Vec<super::Clamp>,
+    /// Cables joined end to end that bend as one (bending, `super::bending`).
+    pub joints: Vec<super::Joint>,
 }
 
 /// A cable in the packed layout.
@@ -182,6 +184,8 @@ pub struct Layout {
     pub routes: Vec<Route>,
     /// Cable ends whose direction is held (`ModelDef::clamps`).
     pub clamps: Vec<super::Clamp>,
+    /// Cables joined end to end that bend as one (`ModelDef::joints`).
+    pub joints: Vec<super::Joint>,
 }
 
 impl Layout {
@@ -566,6 +570,7 @@ impl Layout {
             constraint_node: Vec::new(),
             routes: Vec::new(),
             clamps: def.clamps.clone(),
+            joints: def.joints.clone(),
         };
         let mut positions = vec![[0.0; 3]; nn];
         for (old, nd) in def.nodes.iter().enumerate() {

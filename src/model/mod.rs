@@ -2,6 +2,7 @@
 
 mod bathymetry;
 pub mod bending;
+pub mod cage;
 pub(crate) mod environment;
 mod failure;
 mod layout;
@@ -10,7 +11,7 @@ pub mod net;
 pub(crate) mod route;
 
 pub use bathymetry::Bathymetry;
-pub use bending::{block_hinges, Clamp, Hinge, NO_ELEM};
+pub use bending::{block_hinges, Clamp, Hinge, Joint, NO_ELEM};
 pub use environment::{Current, Environment, Seabed};
 pub use failure::{EndFailure, FailureEvent};
 pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};

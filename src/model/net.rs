@@ -65,7 +65,7 @@ pub struct NetSpec {
 
 impl NetShape {
     /// Knots across (or around) and down.
-    fn counts(&self) -> (usize, usize) {
+    pub(crate) fn counts(&self) -> (usize, usize) {
         match *self {
             NetShape::Panel { columns, rows, .. } => (columns, rows),
             NetShape::Cylinder { around, rows, .. } => (around, rows),
@@ -73,7 +73,7 @@ impl NetShape {
     }
 
     /// Position of knot `(row, col)`.
-    fn knot(&self, row: usize, col: usize) -> [f64; 3] {
+    pub(crate) fn knot(&self, row: usize, col: usize) -> [f64; 3] {
         match *self {
             NetShape::Panel {
                 columns,
@@ -107,6 +107,18 @@ impl NetShape {
 /// Appends net `spec` to `def`: its knots and twine nodes, and its twines as cables.
 /// Returns the number of cables added. Errors name the net and what is wrong.
 pub fn add_net(def: &mut ModelDef, spec: &NetSpec) -> Result<usize, Error> {
+    add_net_at(def, spec, None)
+}
+
+/// [`add_net`], with the top row held (`top` `None`) or hanging from what it is joined
+/// to (`Some`: a cage's collar, `super::cage`): then no top knot is held, and
+/// `top[col]`, where given, is an existing node (a `[[points]]` entry) that serves as
+/// knot `(0, col)` instead of a new one, keeping its own route and point mass.
+pub fn add_net_at(
+    def: &mut ModelDef,
+    spec: &NetSpec,
+    top: Option<&[Option<usize>]>,
+) -> Result<usize, Error> {
     let bad = |m: String| Error::Model(format!("net '{}': {m}", spec.name));
     let (nc, nr) = spec.shape.counts();
     let closed = matches!(spec.shape, NetShape::Cylinder { .. });
@@ -128,11 +140,15 @@ pub fn add_net(def: &mut ModelDef, spec: &NetSpec) -> Result<usize, Error> {
     if spec.segments == 0 {
         return Err(bad("segments must be at least 1".into()));
     }
-    let first = def.nodes.len();
-    let knot = |row: usize, col: usize| first + row * nc + col;
+    let mut knots = Vec::with_capacity(nr * nc);
     for row in 0..nr {
         for col in 0..nc {
             let p = spec.shape.knot(row, col);
+            if let Some(&Some(shared)) = top.and_then(|t| t.get(col)).filter(|_| row == 0) {
+                knots.push(shared);
+                continue;
+            }
+            knots.push(def.nodes.len());
             def.nodes.push(NodeDef {
                 position: p,
                 point: if row == nr - 1 {
@@ -140,11 +156,12 @@ pub fn add_net(def: &mut ModelDef, spec: &NetSpec) -> Result<usize, Error> {
                 } else {
                     PointMass::default()
                 },
-                route: (row == 0).then_some(Route::Fixed { position: p }),
+                route: (row == 0 && top.is_none()).then_some(Route::Fixed { position: p }),
                 label: Some(format!("{}.knot{row}.{col}", spec.name)),
             });
         }
     }
+    let knot = |row: usize, col: usize| knots[row * nc + col];
     let mut added = 0;
     let mut twine = |def: &mut ModelDef, a: usize, b: usize, name: String| {
         let (pa, pb) = (def.nodes[a].position, def.nodes[b].position);

@@ -192,6 +192,23 @@ impl CsvTables {
                             )?;
                         }
                     }
+                    "nets" => {
+                        for n in &s.nets {
+                            let f = n.force;
+                            writeln!(
+                                w,
+                                "{t},{},{},{},{},{},{},{},{}",
+                                quoted(q, &n.name),
+                                n.volume,
+                                n.volume_ratio,
+                                f[0],
+                                f[1],
+                                f[0].hypot(f[1]),
+                                n.collar_z,
+                                n.current
+                            )?;
+                        }
+                    }
                     other => unreachable!("table {other}"),
                 }
                 Ok(())

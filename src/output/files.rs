@@ -165,6 +165,7 @@ pub const OWN_FILES: &[&str] = &[
     "winches.csv",
     "bodies.csv",
     "points.csv",
+    "nets.csv",
     "final_state.csv",
     "end_forces.parquet",
     "tensions.parquet",
@@ -172,6 +173,7 @@ pub const OWN_FILES: &[&str] = &[
     "winches.parquet",
     "bodies.parquet",
     "points.parquet",
+    "nets.parquet",
     "final_state.parquet",
     "fatigue.csv",
 ];

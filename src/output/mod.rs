@@ -12,6 +12,7 @@ mod fatigue;
 mod files;
 mod guard;
 mod memory;
+mod nets;
 #[cfg(feature = "parquet")]
 mod parquet_files;
 mod sink;
@@ -23,9 +24,10 @@ pub use fanout::FanOut;
 pub use fatigue::FatigueSink;
 pub use files::{FileSink, LOCK_FILE, MARKER_FILE, OWN_DIRS, OWN_FILES};
 pub use memory::MemorySink;
+pub use nets::net_states;
 #[cfg(feature = "parquet")]
 pub use parquet_files::{read_parquet, Column, ParquetTable};
-pub use sink::{BodyState, CableState, OutputSink, PointState, Snapshot};
+pub use sink::{BodyState, CableState, NetState, OutputSink, PointState, Snapshot};
 pub use summary::{
     summary_text, write_summary, CableSummary, EndForces, Extremes, FailedStart, Summary,
     TensionExtreme, WinchSummary,

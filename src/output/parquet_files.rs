@@ -418,6 +418,21 @@ fn fill(table: &str, col: &str, s: &Snapshot, o: &mut Out) {
                 }
             }
         }
+        "nets" => {
+            for n in &s.nets {
+                match col {
+                    "time" => o.f(time),
+                    "net" => o.t(&n.name, 1),
+                    "volume" => o.f(n.volume),
+                    "volume_ratio" => o.f(n.volume_ratio),
+                    "fx" => o.f(n.force[0]),
+                    "fy" => o.f(n.force[1]),
+                    "drag" => o.f(n.force[0].hypot(n.force[1])),
+                    "collar_z" => o.f(n.collar_z),
+                    _ => o.f(n.current),
+                }
+            }
+        }
         "final_state" => {
             for c in &s.cables {
                 match col {
@@ -434,7 +449,10 @@ fn fill(table: &str, col: &str, s: &Snapshot, o: &mut Out) {
 
 /// Node rows a frame adds (what [`GROUP_ROWS`] counts).
 fn rows(s: &Snapshot) -> usize {
-    s.cables.iter().map(|c| c.positions.len()).sum::<usize>() + s.bodies.len() + s.points.len()
+    s.cables.iter().map(|c| c.positions.len()).sum::<usize>()
+        + s.bodies.len()
+        + s.points.len()
+        + s.nets.len()
 }
 
 /// The Parquet tables of a run (`end_forces.parquet`, `tensions.parquet`, ...: the

@@ -33,6 +33,29 @@ pub struct Snapshot {
     /// Per shared point (`[[points]]` that cables attach to), in scenario order; empty
     /// for the ANCF model.
     pub points: Vec<PointState>,
+    /// Per cylindrical net (`[[nets]]` of `shape = "cylinder"`), in scenario order: its
+    /// volume and the water's force on it (`nets.csv`); empty for the ANCF model.
+    pub nets: Vec<NetState>,
+}
+
+/// A cylindrical net's (a cage's) enclosed volume and the water's force on it, at one
+/// time (`crate::model::cage`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NetState {
+    /// Name.
+    pub name: String,
+    /// The volume its knots enclose, closed by its top and bottom rows' polygons
+    /// ([`crate::model::cage::enclosed_volume`]), m^3.
+    pub volume: f64,
+    /// `volume` over the volume of the net as generated (its knots on the cylinder).
+    pub volume_ratio: f64,
+    /// The water's horizontal force on its twines (drag and the water-acceleration
+    /// load, summed over their elements; the weight has none), N.
+    pub force: [f64; 2],
+    /// The mean height of its collar's nodes (of its top knots without a collar), m.
+    pub collar_z: f64,
+    /// The speed of its current at its top knots' centre, m/s.
+    pub current: f64,
 }
 
 /// A shared point's (`[[points]]`: buoy, knot) position and the load on it, at one time.

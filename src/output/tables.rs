@@ -29,7 +29,7 @@ use Kind::{Int, Text, F64};
 
 impl Table {
     /// The per-frame tables, in the order every writer keeps them.
-    pub const ALL: [Table; 6] = [
+    pub const ALL: [Table; 7] = [
         Table {
             name: "end_forces",
             columns: &[
@@ -103,6 +103,20 @@ impl Table {
                 ("fz", "N", F64),
             ],
         },
+        Table {
+            name: "nets",
+            columns: &[
+                ("time", "s", F64),
+                ("net", "-", Text),
+                ("volume", "m^3", F64),
+                ("volume_ratio", "-", F64),
+                ("fx", "N", F64),
+                ("fy", "N", F64),
+                ("drag", "N", F64),
+                ("collar_z", "m", F64),
+                ("current", "m/s", F64),
+            ],
+        },
     ];
 
     /// `bodies` of a run with free or pinned bodies: with their velocities (the
@@ -161,6 +175,7 @@ impl Table {
             "winches" => s.cables.iter().any(|c| c.winch.is_some()),
             "bodies" => !s.bodies.is_empty(),
             "points" => !s.points.is_empty(),
+            "nets" => !s.nets.is_empty(),
             _ => true,
         }
     }

@@ -582,3 +582,33 @@ pub fn fatigue(path: &Path, rows: &[(String, f64)], what: &str) -> Result<(), Er
         Ok(())
     })
 }
+
+/// `nets.png` (against time) or `cage_sweep.png` (against the current speed): each net's
+/// volume ratio and the drag on it, in two panels.
+pub fn nets(path: &Path, volume: &[Series], drag: &[Series], sweep: bool) -> Result<(), Error> {
+    draw_png(path, |root| {
+        let panels = root.split_evenly((1, 2));
+        let x = if sweep {
+            "current speed (m/s)"
+        } else {
+            "time (s)"
+        };
+        lines(
+            &panels[0],
+            "Cage volume",
+            x,
+            "volume / volume as generated (-)",
+            volume,
+            Axes::FromZero,
+        )?;
+        lines(
+            &panels[1],
+            "Drag on the net",
+            x,
+            "drag (kN)",
+            drag,
+            Axes::FromZero,
+        )?;
+        Ok(())
+    })
+}

@@ -371,3 +371,97 @@ pub fn fatigue(path: &Path) -> Result<(Vec<(String, f64)>, &'static str), Error>
         },
     ))
 }
+
+/// `nets.csv`: per net, its volume ratio and the drag on it (kN) against time.
+pub fn net_series(path: &Path) -> Result<(Vec<Series>, Vec<Series>), Error> {
+    let (mut vol, mut drag): (Vec<Series>, Vec<Series>) = (Vec::new(), Vec::new());
+    for row in rows(path)? {
+        let t = num(path, &row, "time")?;
+        let net = row
+            .get("net")
+            .cloned()
+            .ok_or_else(|| bad(path, "no column `net`"))?;
+        let v = num(path, &row, "volume_ratio")?;
+        let d = num(path, &row, "drag")? / 1e3;
+        for (out, y) in [(&mut vol, v), (&mut drag, d)] {
+            match out.iter_mut().find(|s| s.label == net) {
+                Some(s) => s.points.push((t, y)),
+                None => out.push(Series {
+                    label: net.clone(),
+                    points: vec![(t, y)],
+                }),
+            }
+        }
+    }
+    Ok((vol, drag))
+}
+
+/// A sweep of runs: the folders right inside `dir` that hold a `nets.csv`, each a run
+/// (`dir` itself holds none). Per net, its volume ratio and drag (kN) against the
+/// current speed, one point per run: each the mean over the run's second half of
+/// output times (the first half left to the start's transient). `None` with fewer than
+/// two such runs.
+pub fn net_sweep(dir: &Path) -> Result<Option<(Vec<Series>, Vec<Series>)>, Error> {
+    if dir.join("nets.csv").exists() {
+        return Ok(None);
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(None);
+    };
+    let mut runs: Vec<std::path::PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path().join("nets.csv")))
+        .filter(|p| p.exists())
+        .collect();
+    runs.sort();
+    if runs.len() < 2 {
+        return Ok(None);
+    }
+    let (mut vol, mut drag): (Vec<Series>, Vec<Series>) = (Vec::new(), Vec::new());
+    for path in &runs {
+        let rows = rows(path)?;
+        let end = rows
+            .iter()
+            .filter_map(|r| opt_num(r, "time"))
+            .fold(f64::NEG_INFINITY, f64::max);
+        // net -> (sums of current, ratio, drag; count)
+        let mut acc: Vec<(String, [f64; 3], f64)> = Vec::new();
+        for row in &rows {
+            let t = num(path, row, "time")?;
+            if t < 0.5 * end {
+                continue;
+            }
+            let net = row
+                .get("net")
+                .cloned()
+                .ok_or_else(|| bad(path, "no column `net`"))?;
+            let x = [
+                num(path, row, "current")?,
+                num(path, row, "volume_ratio")?,
+                num(path, row, "drag")? / 1e3,
+            ];
+            match acc.iter_mut().find(|a| a.0 == net) {
+                Some(a) => {
+                    (0..3).for_each(|k| a.1[k] += x[k]);
+                    a.2 += 1.0;
+                }
+                None => acc.push((net, x, 1.0)),
+            }
+        }
+        for (net, s, n) in acc {
+            let (u, v, d) = (s[0] / n, s[1] / n, s[2] / n);
+            for (out, y) in [(&mut vol, v), (&mut drag, d)] {
+                match out.iter_mut().find(|s| s.label == net) {
+                    Some(s) => s.points.push((u, y)),
+                    None => out.push(Series {
+                        label: net.clone(),
+                        points: vec![(u, y)],
+                    }),
+                }
+            }
+        }
+    }
+    for s in vol.iter_mut().chain(drag.iter_mut()) {
+        s.points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    Ok(Some((vol, drag)))
+}

@@ -11,7 +11,9 @@
 //! the study's first mooring condition, the intact one) and, for a study of several
 //! conditions, `conditions.png` (the governing utilisation of each condition, with its
 //! line and sea state). With a `fatigue.csv` (a run's or a study's), `fatigue.png`: the
-//! damage per line and location.
+//! damage per line and location. With a `nets.csv`, `nets.png`: each cage's volume ratio
+//! and drag against time; from a folder of runs (folders holding a `nets.csv` each, a
+//! sweep of current speeds), `cage_sweep.png`: both against the current speed.
 
 mod charts;
 pub mod data;
@@ -42,6 +44,18 @@ pub fn plot_dir(dir: &Path, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, E
     if bodies.exists() {
         let p = out.join("bodies.png");
         charts::bodies(&p, &data::body_motion(&bodies)?)?;
+        written.push(p);
+    }
+    let nets = dir.join("nets.csv");
+    if nets.exists() {
+        let (v, d) = data::net_series(&nets)?;
+        let p = out.join("nets.png");
+        charts::nets(&p, &v, &d, false)?;
+        written.push(p);
+    }
+    if let Some((v, d)) = data::net_sweep(dir)? {
+        let p = out.join("cage_sweep.png");
+        charts::nets(&p, &v, &d, true)?;
         written.push(p);
     }
     let pos = dir.join("positions.csv");
@@ -89,7 +103,9 @@ pub fn plot_dir(dir: &Path, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, E
                  ones; run again with `--format csv`, or plot the Parquet files with pandas"
                     .into()
             } else {
-                "nothing to plot: no end_forces.csv, positions.csv or study.csv/members.csv".into()
+                "nothing to plot: no end_forces.csv, positions.csv, study.csv/members.csv, \
+                 or folders of runs with a nets.csv each"
+                    .into()
             },
         });
     }

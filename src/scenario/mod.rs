@@ -11,6 +11,7 @@
 mod arrays;
 mod bodies;
 mod cables;
+mod cage;
 mod ends;
 mod environment;
 mod fatigue;
@@ -33,7 +34,7 @@ mod winch;
 
 use crate::ale::Winch;
 use crate::error::Error;
-use crate::model::{add_net, ModelDef};
+use crate::model::ModelDef;
 pub use crate::options::Backend;
 use crate::options::{AncfSettings, Baumgarte, CableModel, Formulation, Precision, Scheme};
 pub use ends::EndKind;
@@ -125,6 +126,9 @@ pub struct Scenario {
     pub limits: Limits,
     /// The cable ends that may fail during the run.
     pub failures: Vec<crate::model::EndFailure>,
+    /// The `[[nets]]`, in scenario order: where their knots and parts are, for
+    /// `nets.csv` (`crate::model::cage`).
+    pub nets: Vec<crate::model::cage::NetInfo>,
 }
 
 /// A named shared point (`[[points]]`).
@@ -285,6 +289,7 @@ impl Scenario {
             &mut model,
         )?;
         // [[nets]]
+        let mut nets = Vec::with_capacity(raw.nets.len());
         for (i, net) in raw.nets.iter().enumerate() {
             let field = format!("nets[{i}] (\"{}\")", net.name);
             let spec =
@@ -301,7 +306,11 @@ impl Scenario {
                     },
                 )?;
             let first = model.cables.len();
-            add_net(&mut model, &spec).map_err(|e| err(p, &field, e.to_string()))?;
+            let cage = cage::parse(p, &field, net, &spec, &lt_index, &points.index, &mut model)?;
+            let info = crate::model::cage::add_cage(&mut model, &spec, &cage)
+                .map_err(|e| err(p, &field, e.to_string()))?;
+            cage::check_flotation(p, &field, &model, &info);
+            nets.push(info);
             for (k, c) in model.cables[first..].iter().enumerate() {
                 if names.insert(c.name.clone(), first + k).is_some() {
                     return Err(err(
@@ -404,6 +413,7 @@ impl Scenario {
             fatigue,
             limits,
             failures,
+            nets,
         })
     }
 }

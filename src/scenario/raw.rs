@@ -51,6 +51,47 @@ pub struct RawNet {
     pub current: Option<[f64; 3]>,
     pub current_profile: Option<Vec<[f64; 4]>>,
     pub output_positions: Option<bool>,
+    // A cage's parts (`super::cage`; docs/src/cage.md).
+    pub collar: Option<RawCollar>,
+    pub sinker_tube: Option<RawSinkerTube>,
+}
+
+/// `[nets.collar]`: the floating collar a cylindrical net hangs from.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawCollar {
+    pub line_type: Option<String>,
+    pub pipe: Option<RawPipe>,
+    pub segments: Option<i64>,
+    pub points: Option<Vec<String>>,
+}
+
+/// `[nets.sinker_tube]`: a heavy ring on chains below a cylindrical net.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawSinkerTube {
+    pub line_type: Option<String>,
+    pub pipe: Option<RawPipe>,
+    pub segments: Option<i64>,
+    pub radius: Option<f64>,
+    pub chain_line_type: String,
+    pub chain_length: f64,
+    pub every: Option<i64>,
+    pub chain_segments: Option<i64>,
+}
+
+/// A pipe given by its section and material (`model::cage::Pipe`).
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RawPipe {
+    pub diameter: f64,
+    pub wall: f64,
+    pub density: Option<f64>,
+    pub youngs_modulus: Option<f64>,
+    pub flooded: Option<bool>,
+    pub ballast: Option<f64>,
+    pub cn: Option<f64>,
+    pub cm: Option<f64>,
 }
 
 /// The point mass at each bottom knot of a net.

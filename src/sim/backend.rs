@@ -139,7 +139,12 @@ pub enum LumpedStepper {
 
 /// What [`LumpedStepper::snapshot_parts`] reads at an output time: the cables', the
 /// bodies' and the shared points' states.
-pub type SnapshotParts = (Vec<CableState>, Vec<BodyState>, Vec<PointState>);
+pub type SnapshotParts = (
+    Vec<CableState>,
+    Vec<BodyState>,
+    Vec<PointState>,
+    Vec<crate::output::NetState>,
+);
 
 impl LumpedStepper {
     /// Builds the chosen solver at rest at `pos` (packed order of `lay`), in the seas
@@ -352,6 +357,7 @@ impl LumpedStepper {
         &mut self,
         t: f64,
         points: &[(String, usize, bool)],
+        nets: &[crate::model::cage::NetInfo],
     ) -> Result<SnapshotParts, Error> {
         let ev = self.evaluate()?;
         let (r, v) = self.state()?;
@@ -365,6 +371,7 @@ impl LumpedStepper {
             self.cables_from(&ev, &r, &v),
             bodies,
             self.points_from(points, &ev, &r),
+            crate::output::net_states(self.layout(), &ev, &r, nets),
         ))
     }
 

@@ -403,10 +403,10 @@ impl Simulation {
     pub fn snapshot(&mut self) -> Result<Snapshot, Error> {
         let time = self.time();
         let steps = self.steps();
-        let (cables, bodies, points) = match &mut self.engine {
-            Engine::Lumped(s, _) => s.snapshot_parts(time, &self.points)?,
+        let (cables, bodies, points, nets) = match &mut self.engine {
+            Engine::Lumped(s, _) => s.snapshot_parts(time, &self.points, &self.scenario.nets)?,
             // The ANCF backend follows body ends but does not report body or point loads.
-            Engine::Ancf(f) => (f.cables()?, Vec::new(), Vec::new()),
+            Engine::Ancf(f) => (f.cables()?, Vec::new(), Vec::new(), Vec::new()),
         };
         let snap = Snapshot {
             time,
@@ -414,6 +414,7 @@ impl Simulation {
             cables,
             bodies,
             points,
+            nets,
         };
         if let Some(w) = &mut self.reach_watch {
             w.check(&snap);

@@ -152,6 +152,12 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
                 cable: k.cable + ca0,
                 ..*k
             }));
+        model
+            .joints
+            .extend(sc.model.joints.iter().map(|j| crate::model::Joint {
+                prev: j.prev + ca0,
+                next: j.next + ca0,
+            }));
         initial.extend(sc.initial.iter().copied());
         points.extend(sc.points.iter().map(|p| NamedPoint {
             name: packed_name(prefix, &p.name),
@@ -182,6 +188,8 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
         vtk: false,
         output_format: Default::default(),
         failures,
+        // A study reports no nets' volumes.
+        nets: Vec::new(),
         // The study counts its members' fatigue itself (`study::run`).
         fatigue: None,
         // Each member passed its own budget; the packed run is their sum.

@@ -13,6 +13,7 @@ mod end_to_end;
 mod estimates;
 mod examples;
 mod fatigue;
+mod fish_farm;
 mod fuzz_scenarios;
 mod logging;
 mod moordyn_bending;

@@ -488,6 +488,7 @@ fn cable_names_with_commas_quotes_and_newlines_are_quoted() {
             })
             .collect(),
         bodies: Vec::new(),
+        nets: Vec::new(),
     };
     // Two output times: the second writes the names the sink quoted at the first.
     let mut sink = FileSink::new(dir.path());

@@ -115,6 +115,7 @@ pub fn straight_cable(
         }],
         nodes,
         clamps: Vec::new(),
+        joints: Vec::new(),
     }
 }
 

@@ -19,6 +19,7 @@ mod axial;
 mod backend;
 mod bending;
 mod bodies;
+mod cage;
 mod compare;
 mod examples_waves;
 mod f32_vs_f64;

@@ -25,6 +25,7 @@ mod fatigue;
 mod gpu_wave_schedule;
 mod math;
 mod model_bathymetry;
+mod model_cage;
 mod model_environment;
 mod model_net;
 mod model_route;

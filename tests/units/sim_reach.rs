@@ -55,6 +55,7 @@ fn the_watch_finds_a_node_above_the_reach() {
         ],
         bodies: Vec::new(),
         points: Vec::new(),
+        nets: Vec::new(),
     };
     assert_eq!(w.breach(&snap(-10.5)), None);
     assert_eq!(w.breach(&snap(-9.0)), Some((1, 1, -9.0)));
