@@ -14,5 +14,5 @@ fn element_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
     if WAVES {
         sr = wave_sea_rows(blk.wave_rows, step.k);
     }
-    elem_loads[e] = element_step(e, ep, lines[ep.line], blk.oz, state[ep.a], state[ep.b], step.k, sr);
+    elem_loads[e] = element_step(e, ep, lines[ep.line], blk.oz, state[ep.a], state[ep.b], step.k, sr, elem_loads[e].visco);
 }

@@ -91,7 +91,10 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
     var oz = R(0.0);
     var la = 0u;
     var lb = 0u;
+    // The element's internal state (viscoelastic lines), in a register for the dispatch.
+    var xv = R(0.0);
     if has_elem {
+        xv = elem_loads[e].visco;
         ep = elems[e];
         lp = lines[ep.line];
         oz = blocks[ep.block].oz;
@@ -110,7 +113,9 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
     for (var k = step.k; k < step.end; k += 1u) {
         if has_elem {
             sr.r = blk.wave_rows + k;
-            wg_loads[j] = element_step(e, ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k, sr);
+            let el = element_step(e, ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k, sr, xv);
+            xv = el.visco;
+            wg_loads[j] = el;
         }
         if j == 0u {
             wg_stop = atomicLoad(&wg_fail);
@@ -141,5 +146,8 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
     }
     if has_node {
         state[i] = s;
+    }
+    if has_elem {
+        elem_loads[e].visco = xv;
     }
 }

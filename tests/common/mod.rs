@@ -26,6 +26,7 @@ pub fn wire() -> LineType {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 
@@ -44,6 +45,7 @@ pub fn rope() -> LineType {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 
@@ -278,6 +280,7 @@ pub fn froude_krylov_case(
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let def = straight_cable(
         env,

@@ -46,7 +46,8 @@ fn v3out(k: u32, v: vec3<R>) {
 
 fn line_in(b: u32) -> LineParams {
     return LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
-        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u], R(0.0));
+        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u], R(0.0),
+        R(0.0), R(0.0), R(0.0), R(0.0));
 }
 
 // The water-acceleration load of case i: line constants, tangent, acceleration, l0 wet.
