@@ -16,7 +16,8 @@
 // (shared/prelude.wgsl: element_step, gather_begin/gather_add/gather_end,
 // node_advance, node_check), so the two paths agree to the last bit unless the
 // compiler contracts differently. Global memory is read once per dispatch (state,
-// parameters) and written once (state), except current tables, routes and body rows,
+// parameters, the elements' internal states in elem_loads) and written once (state,
+// those internal states), except current tables, routes and body rows,
 // read per step. A blow-up stops the block at the failing step (its state stays there) and
 // raises `status.failed` (see Status), after which later dispatches do nothing.
 // FUSED_WG comes from the generated header.
@@ -45,8 +46,22 @@ struct WgState {
     vz: R,
 }
 
+// An element's loads in workgroup memory: ElemLoads less its internal state (which
+// stays in the element's invocation), 9 scalars.
+struct WgLoads {
+    tx: R,
+    ty: R,
+    tz: R,
+    tension: R,
+    fx: R,
+    fy: R,
+    fz: R,
+    half_mass: R,
+    half_added: R,
+}
+
 var<workgroup> wg_state: array<WgState, FUSED_WG>;
-var<workgroup> wg_loads: array<ElemLoads, FUSED_WG>;
+var<workgroup> wg_loads: array<WgLoads, FUSED_WG>;
 // Set (atomically, any invocation) when a node of the block fails this step.
 var<workgroup> wg_fail: atomic<u32>;
 // Stop flag, written by invocation 0 and read with workgroupUniformLoad.
@@ -54,6 +69,14 @@ var<workgroup> wg_stop: u32;
 
 fn wg_pack(s: NodeState) -> WgState {
     return WgState(s.r_hi.x, s.r_hi.y, s.r_hi.z, s.r_lo.x, s.r_lo.y, s.r_lo.z, s.v.x, s.v.y, s.v.z);
+}
+
+fn wg_pack_loads(l: ElemLoads) -> WgLoads {
+    return WgLoads(l.tx, l.ty, l.tz, l.tension, l.fx, l.fy, l.fz, l.half_mass, l.half_added);
+}
+
+fn wg_unpack_loads(w: WgLoads) -> ElemLoads {
+    return ElemLoads(w.tx, w.ty, w.tz, w.tension, w.fx, w.fy, w.fz, w.half_mass, w.half_added, R(0.0));
 }
 
 fn wg_unpack(w: WgState) -> NodeState {
@@ -115,7 +138,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
             sr.r = blk.wave_rows + k;
             let el = element_step(e, ep, lp, oz, wg_unpack(wg_state[la]), wg_unpack(wg_state[lb]), k, sr, xv);
             xv = el.visco;
-            wg_loads[j] = el;
+            wg_loads[j] = wg_pack_loads(el);
         }
         if j == 0u {
             wg_stop = atomicLoad(&wg_fail);
@@ -129,7 +152,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
             var nf = gather_begin(nd, s, blk, w);
             for (var q = nd.inc_start; q < nd.inc_end; q += 1u) {
                 let entry = inc[q];
-                nf = gather_add(nf, wg_loads[(entry >> 1u) - blk.elem_start], entry);
+                nf = gather_add(nf, wg_unpack_loads(wg_loads[(entry >> 1u) - blk.elem_start]), entry);
             }
             nf = gather_end(i, nd, s, nf, blk, k, w);
             free_lump_store(i, nd, nf);

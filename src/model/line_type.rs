@@ -43,8 +43,10 @@ pub struct LineType {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ea_curve: Option<Vec<[f64; 2]>>,
     /// The static-dynamic (viscoelastic) model of a fibre rope (`physics::visco`):
-    /// `ea` is then the static stiffness `EA_s`, and `damping` is zero.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// `ea` is then the static stiffness `EA_s`, and `damping` is zero. Formed from the
+    /// scenario keys `ea_dynamic`, `ea_dynamic_slope`, `ba_static`, `ba_dynamic`
+    /// (`scenario::materials`), not a key of its own.
+    #[serde(skip)]
     pub viscoelastic: Option<Viscoelastic>,
 }
 

@@ -29,6 +29,8 @@ use axial::*;
 use routes::*;
 mod seabed_grid;
 use seabed_grid::*;
+mod visco;
+use visco::*;
 
 const KERNELS: &str = r#"
 @group(1) @binding(0) var<storage, read> tin: array<R>;
@@ -726,6 +728,7 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_route::<R>(ctx, p, &mut rng);
     check_current::<R>(ctx, p, &mut rng);
     check_tabulated::<R>(ctx, p, &mut rng);
+    check_visco::<R>(ctx, p, &mut rng);
 }
 
 #[test]

@@ -33,6 +33,7 @@ mod shaders;
 mod step_functions;
 mod surface;
 mod wave_breach;
+mod visco;
 mod wave_inputs;
 mod wave_parity;
 mod waves;
