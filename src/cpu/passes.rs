@@ -732,9 +732,19 @@ fn advance_block_in<T: Topo>(
                     xs[k] = x[k] + elems[k].rate * h;
                 }
                 fill_water(&mut waves, t + h, rs, vs, wbuf);
-                accelerations(ctx, topo, b, ale, rs, vs, &xs, t + h, wbuf, elems, |li, a| {
-                    s[li].acc = a
-                })?;
+                accelerations(
+                    ctx,
+                    topo,
+                    b,
+                    ale,
+                    rs,
+                    vs,
+                    &xs,
+                    t + h,
+                    wbuf,
+                    elems,
+                    |li, a| s[li].acc = a,
+                )?;
                 for k in 0..ne {
                     x[k] += elems[k].rate * dt;
                 }
@@ -765,9 +775,19 @@ fn advance_block_in<T: Topo>(
                         .enumerate()
                 {
                     fill_water(&mut waves, t + tau, rs, vs, wbuf);
-                    accelerations(ctx, topo, b, ale, rs, vs, &xs, t + tau, wbuf, elems, |li, a| {
-                        s[li].acc = a
-                    })?;
+                    accelerations(
+                        ctx,
+                        topo,
+                        b,
+                        ale,
+                        rs,
+                        vs,
+                        &xs,
+                        t + tau,
+                        wbuf,
+                        elems,
+                        |li, a| s[li].acc = a,
+                    )?;
                     for k in 0..ne {
                         xsum[k] += elems[k].rate * w;
                         if stage < 3 {

@@ -596,7 +596,10 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
                 ),
             )
         } else if visco.is_some() {
-            (ba, format!("BA = {} N s (line {}): BA_s|BA_d", t.ba, t.line))
+            (
+                ba,
+                format!("BA = {} N s (line {}): BA_s|BA_d", t.ba, t.line),
+            )
         } else if let (true, Some(cv)) = (ba < 0.0, curve) {
             // A curve: MoorDyn takes the last row's secant for the damping ratio.
             let zeta = -ba;

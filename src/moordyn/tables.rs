@@ -230,7 +230,12 @@ fn visco_cells(
     }
     let ks = num("EA", "EA_s", ea[0])?;
     if !(ks > 0.0) {
-        return Err(err_at(p, l, name("EA"), format!("EA_s must be positive, got {ks}")));
+        return Err(err_at(
+            p,
+            l,
+            name("EA"),
+            format!("EA_s must be positive, got {ks}"),
+        ));
     }
     let kd = num("EA", if ea.len() == 2 { "EA_d" } else { "EA_Dc" }, ea[1])?;
     if !(kd > ks) {

@@ -415,7 +415,11 @@ impl RawLineType {
         };
         let kd = finite("ea_dynamic", kd)?;
         if !(kd > 0.0) {
-            return Err(err(p, f("ea_dynamic"), format!("must be positive, got {kd}")));
+            return Err(err(
+                p,
+                f("ea_dynamic"),
+                format!("must be positive, got {kd}"),
+            ));
         }
         if self.ea_curve.is_some() || self.ea_curve_file.is_some() {
             return Err(err(
@@ -456,7 +460,11 @@ impl RawLineType {
         };
         let c1 = finite("ba_static", c1)?;
         if !(c1 > 0.0) {
-            return Err(err(p, f("ba_static"), format!("must be positive, got {c1}")));
+            return Err(err(
+                p,
+                f("ba_static"),
+                format!("must be positive, got {c1}"),
+            ));
         }
         let c2 = finite("ba_dynamic", self.ba_dynamic.unwrap_or(0.0))?;
         if c2 < 0.0 {

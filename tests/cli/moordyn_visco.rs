@@ -57,15 +57,23 @@ fn moordyn_viscoelastic_cells_convert_and_run() {
     // No damping time constant for a viscoelastic line (the seabed's `damping` is N s/m).
     assert!(!c.toml.contains("  # s\n"), "{}", c.toml);
     let sc = Scenario::parse(&c.toml, &dir.join("model.toml")).unwrap();
-    let v0 = sc.model.line_types[0].viscoelastic.expect("poly is viscoelastic");
+    let v0 = sc.model.line_types[0]
+        .viscoelastic
+        .expect("poly is viscoelastic");
     assert_eq!(v0.ea_dynamic, 1.586e8);
     assert_eq!(v0.ea_dynamic_slope, 0.0);
     assert_eq!((v0.ba_static, v0.ba_dynamic), (4e9, 11e6));
-    let v1 = sc.model.line_types[1].viscoelastic.expect("polym is viscoelastic");
+    let v1 = sc.model.line_types[1]
+        .viscoelastic
+        .expect("polym is viscoelastic");
     assert_eq!(v1.ea_dynamic_slope, 0.4);
     // BA_s = -0.8: MoorDyn's damping ratio, zeta (L/N) sqrt(EA_s m); BA_d = 0.
     let want = 0.8 * (295.0 / 20.0) * (1.424e8f64 * 22.42).sqrt();
-    assert!((v1.ba_static - want).abs() < 1e-9 * want, "{}", v1.ba_static);
+    assert!(
+        (v1.ba_static - want).abs() < 1e-9 * want,
+        "{}",
+        v1.ba_static
+    );
     assert_eq!(v1.ba_dynamic, 0.0);
 
     // It runs as it is (the file, not the TOML), on the CPU, for 2 s.
@@ -95,8 +103,14 @@ fn moordyn_bad_viscoelastic_cells_are_refused() {
     let row = "1.424e+08|1.586e+08       4E9|11E6";
     for (cells, what) in [
         ("1.424e+08|1.2e+08       4E9|11E6", "must exceed the static"),
-        ("1.424e+08|1.586e+08|-0.4   4E9|11E6", "EA_D_Lm must not be negative"),
-        ("1.424e+08|1.586e+08       4E9|-11E6", "BA_d must not be negative"),
+        (
+            "1.424e+08|1.586e+08|-0.4   4E9|11E6",
+            "EA_D_Lm must not be negative",
+        ),
+        (
+            "1.424e+08|1.586e+08       4E9|-11E6",
+            "BA_d must not be negative",
+        ),
         ("1.424e+08|1.586e+08       0|11E6", "static damping BA_s"),
         ("1.424e+08|1.586e+08|0.4|3   4E9|11E6", "at most 3"),
         ("1.424e+08       4E9|11E6", "more (|-separated) values"),

@@ -75,7 +75,15 @@ fn k1(ks: f64, k2: f64) -> f64 {
 /// The element at rest at strain `eps0`, then held at `eps1` from t = 0 (both ends on
 /// fixed routes: the nodes do not move, only the state relaxes). Returns the tension
 /// at times `dt * every * j`, j = 0..=n.
-fn step_response(rope: Rope, eps0: f64, eps1: f64, scheme: Scheme, dt: f64, every: u64, n: usize) -> Vec<f64> {
+fn step_response(
+    rope: Rope,
+    eps0: f64,
+    eps1: f64,
+    scheme: Scheme,
+    dt: f64,
+    every: u64,
+    n: usize,
+) -> Vec<f64> {
     let (lay, mut pos) = element(rope, eps1);
     let target = pos[1];
     pos[1][0] = L0 * (1.0 + eps0);
@@ -152,7 +160,11 @@ fn rope_element_under_a_step_stretch_relaxes_as_the_closed_form() {
         // (2 s = several tau).
         assert!(got[0] - POLY.ks * eps0 > 1.5 * jump, "first {}", got[0]);
         assert!(tau < 0.5);
-        assert!((got[n] - POLY.ks * eps1).abs() < 1e-3 * jump, "last {}", got[n]);
+        assert!(
+            (got[n] - POLY.ks * eps1).abs() < 1e-3 * jump,
+            "last {}",
+            got[n]
+        );
     }
 }
 
@@ -209,8 +221,14 @@ fn rope_element_under_a_sinusoidal_stretch_has_the_closed_form_dynamic_stiffness
     // Between the static and the high-frequency stiffness, with a phase.
     assert!(kr > 1.2 * POLY.ks && kr < POLY.kd, "Re K {kr}");
     assert!(ki / kr > 0.2, "phase {}", (ki / kr).atan());
-    assert!((re - kr).abs() < 3e-3 * kmag, "Re K: got {re}, closed form {kr}");
-    assert!((im - ki).abs() < 3e-3 * kmag, "Im K: got {im}, closed form {ki}");
+    assert!(
+        (re - kr).abs() < 3e-3 * kmag,
+        "Re K: got {re}, closed form {kr}"
+    );
+    assert!(
+        (im - ki).abs() < 3e-3 * kmag,
+        "Im K: got {im}, closed form {ki}"
+    );
     assert!(
         (mean - POLY.ks * em).abs() < 1e-3 * POLY.ks * em,
         "mean {mean}"
@@ -306,7 +324,10 @@ initial = "catenary"
     let ev0 = cpu.evaluate().unwrap();
     for e in 0..lay.n_elements() {
         let (a, b) = (lay.elem_a[e] as usize, lay.elem_b[e] as usize);
-        let d: f64 = (0..3).map(|k| (pos[b][k] - pos[a][k]).powi(2)).sum::<f64>().sqrt();
+        let d: f64 = (0..3)
+            .map(|k| (pos[b][k] - pos[a][k]).powi(2))
+            .sum::<f64>()
+            .sqrt();
         let eps = d / lay.elem_l0[e] - 1.0;
         assert!(eps > 1e-4, "element {e} strain {eps}");
         let want = 2.0e7 * eps;
@@ -359,17 +380,57 @@ end = {{ fixed = [9.0, 0.0, -50.0] }}
 fn rope_bad_input_names_the_key() {
     let base = "ea = 1e6\nea_dynamic = 3e6\nba_static = 1e6";
     for (keys, key, what) in [
-        ("ea = 1e6\nea_dynamic = -3e6\nba_static = 1e6", "ea_dynamic", "positive"),
-        ("ea = 1e6\nea_dynamic = 0.5e6\nba_static = 1e6", "ea_dynamic", "exceed the static"),
-        ("ea = 1e6\nea_dynamic = 1e6\nba_static = 1e6", "ea_dynamic", "exceed the static"),
-        ("ea = 1e6\nea_dynamic = 3e6\nba_static = 0.0", "ba_static", "positive"),
-        ("ea = 1e6\nea_dynamic = 3e6\nba_static = -1.0", "ba_static", "positive"),
-        ("ea = 1e6\nea_dynamic = 3e6", "ba_static", "needs `ba_static`"),
-        (&format!("{base}\nba_dynamic = -1.0"), "ba_dynamic", "negative"),
-        (&format!("{base}\nea_dynamic_slope = -0.1"), "ea_dynamic_slope", "negative"),
+        (
+            "ea = 1e6\nea_dynamic = -3e6\nba_static = 1e6",
+            "ea_dynamic",
+            "positive",
+        ),
+        (
+            "ea = 1e6\nea_dynamic = 0.5e6\nba_static = 1e6",
+            "ea_dynamic",
+            "exceed the static",
+        ),
+        (
+            "ea = 1e6\nea_dynamic = 1e6\nba_static = 1e6",
+            "ea_dynamic",
+            "exceed the static",
+        ),
+        (
+            "ea = 1e6\nea_dynamic = 3e6\nba_static = 0.0",
+            "ba_static",
+            "positive",
+        ),
+        (
+            "ea = 1e6\nea_dynamic = 3e6\nba_static = -1.0",
+            "ba_static",
+            "positive",
+        ),
+        (
+            "ea = 1e6\nea_dynamic = 3e6",
+            "ba_static",
+            "needs `ba_static`",
+        ),
+        (
+            &format!("{base}\nba_dynamic = -1.0"),
+            "ba_dynamic",
+            "negative",
+        ),
+        (
+            &format!("{base}\nea_dynamic_slope = -0.1"),
+            "ea_dynamic_slope",
+            "negative",
+        ),
         (&format!("{base}\ndamping = 0.1"), "damping", "ba_static"),
-        (&format!("{base}\nallow_compression = true"), "allow_compression", "slack"),
-        ("ea = 1e6\nba_static = 1e6", "ba_static", "give `ea_dynamic`"),
+        (
+            &format!("{base}\nallow_compression = true"),
+            "allow_compression",
+            "slack",
+        ),
+        (
+            "ea = 1e6\nba_static = 1e6",
+            "ba_static",
+            "give `ea_dynamic`",
+        ),
         (
             "ea_curve = [[0.01, 1e4], [0.02, 3e4]]\nea_dynamic = 3e6\nba_static = 1e6",
             "ea_dynamic",

@@ -80,7 +80,10 @@ fn gpu_run(
         let _ = gpu.evaluate().unwrap();
     }
     let x = gpu.visco_states().unwrap();
-    (Snapshot::gpu(format!("GPU {} {}", p.name(), kernel.name()), &mut gpu), x)
+    (
+        Snapshot::gpu(format!("GPU {} {}", p.name(), kernel.name()), &mut gpu),
+        x,
+    )
 }
 
 fn compare(p: Precision) {
@@ -114,7 +117,10 @@ fn compare(p: Precision) {
         .iter()
         .zip(&x0)
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    assert!(xmax > 1e-3 && changed > 1e-3, "{name}: states {xmax}, changed {changed}");
+    assert!(
+        xmax > 1e-3 && changed > 1e-3,
+        "{name}: states {xmax}, changed {changed}"
+    );
     for c in &lay.cables {
         let moved = c
             .nodes
@@ -150,17 +156,28 @@ fn compare(p: Precision) {
             .iter()
             .zip(&x_cpu)
             .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        eprintln!("{name} ({}): states within {dx:.3e} (largest {xmax:.3e})", kernel.name());
+        eprintln!(
+            "{name} ({}): states within {dx:.3e} (largest {xmax:.3e})",
+            kernel.name()
+        );
         match p {
             Precision::F64 => {
-                assert!(dx < 1e-9 * xmax, "{name} ({}): states differ by {dx}", kernel.name());
+                assert!(
+                    dx < 1e-9 * xmax,
+                    "{name} ({}): states differ by {dx}",
+                    kernel.name()
+                );
                 let bounds =
                     RoundOff::new(&lay, &reference, steps, eps, ea, l0_min, 2.0 / bound.dt);
                 let d = bounds.check(&name, &lay, &g, &reference);
                 eprintln!("{name} ({}): {}", kernel.name(), d.report(&lay));
             }
             Precision::F32 => {
-                assert!(dx < 1e-2 * xmax, "{name} ({}): states differ by {dx}", kernel.name());
+                assert!(
+                    dx < 1e-2 * xmax,
+                    "{name} ({}): states differ by {dx}",
+                    kernel.name()
+                );
                 let check = Check::new(&name, &lay, &g, &reference);
                 nodes_within_length(&check, &g.r, &reference.r, 1e-4);
                 let tmax: Vec<f64> = lay

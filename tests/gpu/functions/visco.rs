@@ -30,9 +30,17 @@ pub(super) fn check_visco<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut 
         let ks = 10f64.powf(rng.gen_range(5.0..8.0));
         let kd = ks * rng.gen_range(1.2..5.0);
         // Half the cases with a load-dependent dynamic stiffness.
-        let slope = if i % 2 == 0 { 0.0 } else { rng.gen_range(0.0..50.0) };
+        let slope = if i % 2 == 0 {
+            0.0
+        } else {
+            rng.gen_range(0.0..50.0)
+        };
         let c1 = ks * rng.gen_range(0.01..10.0);
-        let c2 = if i % 3 == 0 { 0.0 } else { c1 * rng.gen_range(0.0..1.0) };
+        let c2 = if i % 3 == 0 {
+            0.0
+        } else {
+            c1 * rng.gen_range(0.0..1.0)
+        };
         let eps = rng.gen_range(-0.01..0.1);
         let epsdot = rng.gen_range(-0.5..0.5);
         let s = eps * rng.gen_range(0.0..1.0) + rng.gen_range(-0.005..0.005);
@@ -55,8 +63,17 @@ pub(super) fn check_visco<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut 
         let cond = 4.0 * (1.0 + k2 / (k2 - ks));
         let rate_scale = (k2 * eps.abs() + (k1 + k2) * s.abs() + c2 * epsdot.abs()) / (c1 + c2);
         w.check("rate", i, out[2 * i + 1].f64(), rate, cond * rate_scale);
-        w.check("T", i, out[2 * i].f64(), t, cond * (k1 * s.abs() + c1 * rate_scale));
+        w.check(
+            "T",
+            i,
+            out[2 * i].f64(),
+            t,
+            cond * (k1 * s.abs() + c1 * rate_scale),
+        );
     }
-    assert!(slack && loaded, "cases: slack {slack}, load-dependent {loaded}");
+    assert!(
+        slack && loaded,
+        "cases: slack {slack}, load-dependent {loaded}"
+    );
     w.report(p);
 }
