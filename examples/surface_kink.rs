@@ -96,6 +96,7 @@ fn rope(zf: f64) -> (Layout, Vec<[f64; 3]>) {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let (a, b, n, length) = ([-60.0, 0.0, -DEPTH], [0.0, 0.0, zf], 20usize, 80.0);
     let nodes = (0..=n)

@@ -228,16 +228,20 @@ def serde_keys(text):
     """Field names of the structs deriving Deserialize in `text`."""
     keys = set()
     for m in re.finditer(r"#\[derive\([^)]*Deserialize[^)]*\)\][^{]*?struct\s+\w+\s*\{(.*?)\n\}", text, re.S):
-        rename = None
+        rename, skip = None, False
         for line in m.group(1).splitlines():
             r = re.search(r'#\[serde\([^]]*\brename\s*=\s*"(' + KEY + r')"', line)
             if r:
                 rename = r.group(1)
+            # A `#[serde(skip)]` field is no key.
+            if re.search(r"#\[serde\(\s*skip\s*\)\]", line):
+                skip = True
             f = re.match(r"\s*pub\s+(" + KEY + r")\s*:", line)
             if f:
                 # A `#[serde(rename = "...")]` before the field names its key.
-                keys.add(rename or f.group(1))
-                rename = None
+                if not skip:
+                    keys.add(rename or f.group(1))
+                rename, skip = None, False
     return keys
 
 

@@ -18,7 +18,7 @@ fn element_forces(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let sa = state[ep.a];
     let sb = state[ep.b];
-    elem_loads[e] = element_step(e, ep, lines[ep.line], blk.oz, sa, sb, step.k, sr);
+    elem_loads[e] = element_step(e, ep, lines[ep.line], blk.oz, sa, sb, step.k, sr, elem_loads[e].visco);
     if BENDING {
         // The bending shear, left in the element's second row (shared/step.wgsl
         // element_shear, shear_of).

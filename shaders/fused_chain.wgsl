@@ -17,7 +17,8 @@
 // (shared/prelude.wgsl: element_step, gather_begin/gather_add/gather_end,
 // node_advance, node_check), so the two paths agree to the last bit unless the
 // compiler contracts differently. Global memory is read once per dispatch (state,
-// parameters) and written once (state), except current tables, routes and body rows,
+// parameters, the elements' internal states in elem_loads) and written once (state,
+// those internal states), except current tables, routes and body rows,
 // read per step. A blow-up stops the block at the failing step (its state stays there) and
 // raises `status.failed` (see Status), after which later dispatches do nothing.
 // FUSED_WG comes from the generated header.
@@ -46,8 +47,22 @@ struct WgState {
     vz: R,
 }
 
+// An element's loads in workgroup memory: ElemLoads less its internal state (which
+// stays in the element's invocation), 9 scalars.
+struct WgLoads {
+    tx: R,
+    ty: R,
+    tz: R,
+    tension: R,
+    fx: R,
+    fy: R,
+    fz: R,
+    half_mass: R,
+    half_added: R,
+}
+
 var<workgroup> wg_state: array<WgState, FUSED_WG>;
-var<workgroup> wg_loads: array<ElemLoads, FUSED_WG>;
+var<workgroup> wg_loads: array<WgLoads, FUSED_WG>;
 // Bending: element j's shear (shared/step.wgsl element_shear), FUSED_WG entries with
 // BENDING, one unused entry without (BEND_WG from the generated header).
 struct WgShear {
@@ -63,6 +78,14 @@ var<workgroup> wg_stop: u32;
 
 fn wg_pack(s: NodeState) -> WgState {
     return WgState(s.r_hi.x, s.r_hi.y, s.r_hi.z, s.r_lo.x, s.r_lo.y, s.r_lo.z, s.v.x, s.v.y, s.v.z);
+}
+
+fn wg_pack_loads(l: ElemLoads) -> WgLoads {
+    return WgLoads(l.tx, l.ty, l.tz, l.tension, l.fx, l.fy, l.fz, l.half_mass, l.half_added);
+}
+
+fn wg_unpack_loads(w: WgLoads) -> ElemLoads {
+    return ElemLoads(w.tx, w.ty, w.tz, w.tension, w.fx, w.fy, w.fz, w.half_mass, w.half_added, R(0.0));
 }
 
 fn wg_unpack(w: WgState) -> NodeState {
@@ -105,7 +128,10 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
     // where there is none).
     var lp_a = 0u;
     var lp_b = 0u;
+    // The element's internal state (viscoelastic lines), in a register for the dispatch.
+    var xv = R(0.0);
     if has_elem {
+        xv = elem_loads[e].visco;
         ep = elems[e];
         lp = lines[ep.line];
         oz = blocks[ep.block].oz;
@@ -131,7 +157,9 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
             sr.r = blk.wave_rows + k;
             let sa = wg_unpack(wg_state[la]);
             let sb = wg_unpack(wg_state[lb]);
-            wg_loads[j] = element_step(e, ep, lp, oz, sa, sb, k, sr);
+            let el = element_step(e, ep, lp, oz, sa, sb, k, sr, xv);
+            xv = el.visco;
+            wg_loads[j] = wg_pack_loads(el);
             if BENDING {
                 let sh = element_shear(hr, wg_unpack(wg_state[lp_a]), sa, sb, wg_unpack(wg_state[lp_b]));
                 wg_shear[j] = WgShear(sh.x, sh.y, sh.z);
@@ -154,7 +182,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
                 if BENDING {
                     sh = vec3<R>(wg_shear[le].x, wg_shear[le].y, wg_shear[le].z);
                 }
-                nf = gather_add(nf, wg_loads[le], sh, entry);
+                nf = gather_add(nf, wg_unpack_loads(wg_loads[le]), sh, entry);
             }
             nf = gather_end(i, nd, s, nf, blk, k, w);
             free_lump_store(i, nd, nf);
@@ -171,5 +199,8 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
     }
     if has_node {
         state[i] = s;
+    }
+    if has_elem {
+        elem_loads[e].visco = xv;
     }
 }

@@ -56,6 +56,8 @@ enum Term {
     Friction,
     /// Bending waves, with the node's shortest element and its length.
     Bending(usize, f64),
+    /// The decay of a viscoelastic element's state, with the element and its length.
+    Visco(usize, f64),
 }
 
 impl Term {
@@ -83,6 +85,10 @@ impl Term {
             ),
             Term::Bending(e, l0) => format!(
                 "bending waves at cable '{cable}' node {node} {}",
+                element(e, l0)
+            ),
+            Term::Visco(e, l0) => format!(
+                "the viscoelastic state's decay at cable '{cable}' node {node} {}",
                 element(e, l0)
             ),
             Term::SeabedStiffness => format!("seabed stiffness at cable '{cable}' node {node}"),
@@ -129,6 +135,15 @@ impl Term {
                      [[line_types]], or give cable '{cable}' fewer `segments` (the step \
                      grows with the element length squared)",
                     c.ea_c / c.ea
+                )
+            }
+            Term::Visco(e, _) => {
+                let t = lay.elem_line[e] as usize;
+                format!(
+                    "the static branch of viscoelastic line type '{}' relaxes faster than \
+                     the step can follow (in (ba_static + ba_dynamic) / (K1 + K2)): raise \
+                     `ba_static` in [[line_types]]",
+                    lay.line_types[t].name
                 )
             }
             Term::Bending(e, l0) => {
@@ -265,13 +280,40 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
             // Weight the node would rest on the seabed with, for the friction term.
             let mut wet = (-lay.node_point_weight_z[i]).max(0.0);
             let mut shortest = (f64::INFINITY, 0usize);
+            // The fastest decay of a viscoelastic element's state here (rate, element, l0).
+            let mut visco_rate = (0.0, 0usize, 0.0);
             for &inc in lay.incidence(i) {
                 let e = (inc >> 1) as usize;
                 let l0 = lay.elem_l0[e];
                 let c = &lay.line_coefs[lay.elem_line[e] as usize];
                 m += 0.5 * c.mass * l0;
-                k += 2.0 * c.ea / l0;
-                kc += 2.0 * c.ea_c / l0;
+                match lay.line_types[lay.elem_line[e] as usize].viscoelastic {
+                    None => {
+                        k += 2.0 * c.ea / l0;
+                        kc += 2.0 * c.ea_c / l0;
+                    }
+                    Some(vm) => {
+                        // A viscoelastic element: its stiffness and damping at high
+                        // frequency, and its state's decay (physics::visco).
+                        let ks = lay.line_types[lay.elem_line[e] as usize].ea;
+                        let k2 = crate::physics::visco::visco_step_stiffness(
+                            ks,
+                            vm.ea_dynamic,
+                            vm.ea_dynamic_slope,
+                        );
+                        let (kh, ch, rate) = crate::physics::visco::visco_step_bounds(
+                            ks,
+                            k2,
+                            vm.ba_static,
+                            vm.ba_dynamic,
+                        );
+                        k += 2.0 * kh / l0;
+                        kc += 2.0 * ch / l0;
+                        if rate > visco_rate.0 {
+                            visco_rate = (rate, e, l0);
+                        }
+                    }
+                }
                 lt += 0.5 * l0;
                 wet += (-0.5 * c.wet_weight_z * l0).max(0.0);
                 if l0 < shortest.0 {
@@ -300,6 +342,16 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
                         0,
                     ));
                 }
+            }
+            if visco_rate.0 > 0.0 {
+                parts.push((
+                    Mode {
+                        omega2: 0.0,
+                        gamma: visco_rate.0,
+                    },
+                    Term::Visco(visco_rate.1, visco_rate.2),
+                    0,
+                ));
             }
             if bend[i] > 0.0 {
                 parts.push((

@@ -22,6 +22,7 @@ pub fn fleet(n_cables: usize, segments: usize) -> (Layout, Vec<[f64; 3]>) {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let mut def = ModelDef {
         env: Environment::default(),

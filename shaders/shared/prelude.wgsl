@@ -51,6 +51,10 @@ struct Params {
     // Line failures, and where their records start in `body_rows`.
     n_fail: u32,
     fail_at: u32,
+    // 1 while the element pass runs for an evaluation: the elements' internal states
+    // (viscoelastic lines) are not advanced then.
+    evaluate: u32,
+    pad_eval: u32,
     dt: R,
     alpha: R,
     beta: R,
@@ -94,6 +98,13 @@ struct LineParams {
     // 1 + the index in current_ranges of the line's strain-tension curve (its rows in
     // current_pts: z the strain, ux the tension), 0 without one (physics::axial).
     table: R,
+    // Viscoelastic lines (physics::visco; ea is the static stiffness): the dynamic
+    // stiffness and its slope against the mean tension, the static branch's and the
+    // dynamic spring's damping (ba_s = 0: not a viscoelastic line).
+    ea_d: R,
+    ea_d_slope: R,
+    ba_s: R,
+    ba_d: R,
 }
 
 // One element; its unstretched length is the compensated pair l0 + l0_lo (l0_lo is
@@ -292,6 +303,9 @@ struct ElemLoads {
     fz: R,
     half_mass: R,
     half_added: R,
+    // The element's internal state (a viscoelastic line's static-branch strain): the
+    // element pass reads it and writes it advanced by the step (not while evaluating).
+    visco: R,
 }
 
 // Per node, written by the evaluate pass: total force and acceleration. While
@@ -552,6 +566,32 @@ fn tabulated_tension(rg: CurrentRange, eps: R) -> R {
         y1 = p1.ux;
     }
     return y0 + (eps - x0) * ((y1 - y0) / (x1 - x0));
+}
+
+// The dynamic stiffness of a viscoelastic line at static-branch strain `s`
+// (physics::visco_dynamic_stiffness): `kd` when constant (`slope` 0) or in
+// compression, else the larger root for the mean tension K1 s.
+fn visco_dynamic_stiffness(ks: R, kd: R, slope: R, s: R) -> R {
+    if slope == R(0.0) || s < R(0.0) {
+        return kd;
+    }
+    let q = ks * (R(1.0) + slope * s);
+    let d = kd - q;
+    return R(0.5) * (kd + q + sqrt(d * d + R(4.0) * kd * ks * slope * s));
+}
+
+// The axial force and the state's rate (x, y) of a viscoelastic element at strain
+// `eps`, strain rate `epsdot` and state `s` (physics::visco_tension): the static
+// branch K1 with c1 in series with the dynamic spring K2 with c2.
+fn visco_tension(ks: R, kd: R, slope: R, c1: R, c2: R, eps: R, epsdot: R, s: R) -> vec2<R> {
+    let k2 = visco_dynamic_stiffness(ks, kd, slope, s);
+    let k1 = k2 * ks / (k2 - ks);
+    let rate = (k2 * eps - (k1 + k2) * s + c2 * epsdot) / (c1 + c2);
+    var elastic = R(0.0);
+    if eps > R(0.0) {
+        elastic = k1 * s;
+    }
+    return vec2<R>(elastic + c1 * rate, rate);
 }
 
 // Fraction of a straight element of diameter `d` under water from the submergences

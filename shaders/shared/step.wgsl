@@ -11,8 +11,10 @@ fn submergence(oz: R, s: NodeState) -> R {
 
 // The GLMF loads of element `e` (`ep`, line `lp`, its block's origin height `oz`) from
 // the states `sa`, `sb` of its nodes a and b at step `k` of the submission (the row of
-// `payout` of a winch cable's variable element). CPU twin: cpu::stepper element_pass.
-fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeState, k: u32, sr: SeaRows) -> ElemLoads {
+// `payout` of a winch cable's variable element) and its internal state `x` (a
+// viscoelastic line's, returned advanced by the step by explicit Euler unless the pass
+// evaluates; zero for every other line). CPU twin: cpu::passes element_pass.
+fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb: NodeState, k: u32, sr: SeaRows, x: R) -> ElemLoads {
     // A winch cable's variable element takes l0_v(t) of this step (crate::ale).
     var l0 = ep.l0;
     var l0_lo = ep.l0_lo;
@@ -65,12 +67,23 @@ fn element_step(e: u32, ep: ElemParams, lp: LineParams, oz: R, sa: NodeState, sb
         let rg = current_ranges[u32(lp.table) - 1u];
         tension = tabulated_tension(rg, stretch / l0) + lp.ea_c * (dot(el.t, sb.v.xyz - sa.v.xyz) / l0);
     }
+    var xn = x;
+    if lp.ba_s > R(0.0) {
+        // A viscoelastic line: the tension of the model at the state x, which advances
+        // with the step's rate (cpu::passes visco_pass; no winch cable has one).
+        let vt = visco_tension(lp.ea, lp.ea_d, lp.ea_d_slope, lp.ba_s, lp.ba_d, stretch / l0,
+            dot(el.t, sb.v.xyz - sa.v.xyz) / l0, x);
+        tension = vt.x;
+        if params.evaluate == 0u {
+            xn = x + vt.y * params.dt;
+        }
+    }
     if var_elem {
         tension = variable_element(ep, lp, py, d, sa.v.xyz, sb.v.xyz, tension);
     }
     return ElemLoads(
         el.t.x, el.t.y, el.t.z, tension,
-        el.f_half.x, el.f_half.y, el.f_half.z, el.half_mass, el.half_added,
+        el.f_half.x, el.f_half.y, el.f_half.z, el.half_mass, el.half_added, xn,
     );
 }
 

@@ -133,6 +133,7 @@
 //!     name: "wire".into(), diameter: 0.04, mass_per_length: 5.0265, ea: 6.2832e7,
 //!     damping: 1e-5, cn: 1.0, ct: 0.01, cm: 0.2, cat: 0.0, ei: 10.0, allow_compression: false,
 //!     ea_curve: None,
+//!     viscoelastic: None,
 //! };
 //! let top = Route::Circle {
 //!     center: [-20.0, 0.0, 0.0], radius: 20.0, period: 62.8, axis: [0.0, 0.0, 1.0],

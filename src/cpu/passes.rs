@@ -11,7 +11,8 @@ use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{
     bending_hinge, glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force,
     seabed_height, seabed_slope_damping, seabed_slope_force, seabed_slope_normal,
-    tabulated_tension, wetted_fraction, Coefs, ElementInput, ElementLoads, SeabedCoefs,
+    tabulated_tension, visco_tension, wetted_fraction, Coefs, ElementInput, ElementLoads,
+    SeabedCoefs,
 };
 use crate::step::{blow_up, StepFailure};
 
@@ -217,7 +218,9 @@ pub(super) fn element_input<T: Topo>(
     (inp, wet)
 }
 
-/// Pass 1 over one block: element loads. `r`, `v`, `out` are block-local slices.
+/// Pass 1 over one block: element loads. `r`, `v`, `out` are block-local slices, and
+/// so is `x`, the elements' internal states (viscoelastic lines: `physics::visco`;
+/// empty in a run without them), whose rates the pass leaves in `out[k].rate`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn element_pass<T: Topo>(
@@ -227,6 +230,7 @@ pub(super) fn element_pass<T: Topo>(
     ale: &[AleElem],
     r: &[V],
     v: &[V],
+    x: &[f64],
     t: f64,
     w: &[f64],
     out: &mut [ElementLoads<f64>],
@@ -289,10 +293,53 @@ pub(super) fn element_pass<T: Topo>(
             }
         }
     }
+    if !x.is_empty() {
+        visco_pass(ctx, topo, r, v, x, l0s, lines, out);
+    }
     if !ctx.hinges.is_empty() {
         bending_pass(ctx, topo, e0, r, out);
     }
     Ok(())
+}
+
+/// Replaces the tension of every element of a viscoelastic line by the model's
+/// (`physics::visco`) at its state `x[k]`, and leaves the state's rate in `rate`
+/// (winch cables of such a line are refused where the scenario is read).
+#[cold]
+#[allow(clippy::too_many_arguments)]
+fn visco_pass<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    r: &[V],
+    v: &[V],
+    x: &[f64],
+    l0s: &[f64],
+    lines: &[u32],
+    out: &mut [ElementLoads<f64>],
+) {
+    let lay = ctx.lay;
+    for (k, o) in out.iter_mut().enumerate() {
+        let lt = &lay.line_types[lines[k] as usize];
+        let Some(vm) = lt.viscoelastic else {
+            continue;
+        };
+        let (a, bn) = topo.ends(k);
+        let l0 = l0s[k];
+        let eps = (r[bn] - r[a]).norm() / l0 - 1.0;
+        let epsdot = o.t.dot(v[bn] - v[a]) / l0;
+        let (ten, rate) = visco_tension(
+            lt.ea,
+            vm.ea_dynamic,
+            vm.ea_dynamic_slope,
+            vm.ba_static,
+            vm.ba_dynamic,
+            eps,
+            epsdot,
+            x[k],
+        );
+        o.tension = ten;
+        o.rate = rate;
+    }
 }
 
 /// Replaces the tension of every element of a tabulated line by the curve's (winch
@@ -550,12 +597,13 @@ fn accelerations<T: Topo>(
     ale: &[AleElem],
     r: &[V],
     v: &[V],
+    x: &[f64],
     t: f64,
     w: &[f64],
     elems: &mut [ElementLoads<f64>],
     mut store: impl FnMut(usize, V),
 ) -> Result<(), StepFailure> {
-    element_pass(ctx, topo, b, ale, r, v, t, w, elems)?;
+    element_pass(ctx, topo, b, ale, r, v, x, t, w, elems)?;
     for li in 0..r.len() {
         let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, w, elems);
         store(li, a);
@@ -564,7 +612,9 @@ fn accelerations<T: Topo>(
 }
 
 /// Advances one block by `nsteps` steps starting at step number `step0`, with the
-/// chain fast path where the block is one chain in node order.
+/// chain fast path where the block is one chain in node order. `x` holds the block's
+/// elements' internal states (empty without viscoelastic lines), advanced by the same
+/// scheme as the nodes.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn advance_block(
     ctx: &Ctx,
@@ -572,6 +622,7 @@ pub(super) fn advance_block(
     ale: &[AleElem],
     r: &mut [V],
     v: &mut [V],
+    x: &mut [f64],
     s: &mut [NodeScratch],
     elems: &mut [ElementLoads<f64>],
     rs: &mut Vec<V>,
@@ -585,7 +636,7 @@ pub(super) fn advance_block(
     if b.is_chain {
         let topo = ChainTopo { n_nodes: r.len() };
         advance_block_in(
-            ctx, &topo, b, ale, r, v, s, elems, rs, vs, waves, wbuf, step0, dt, nsteps,
+            ctx, &topo, b, ale, r, v, x, s, elems, rs, vs, waves, wbuf, step0, dt, nsteps,
         )
     } else {
         let topo = GeneralTopo {
@@ -594,7 +645,7 @@ pub(super) fn advance_block(
             e0: b.elem_start as usize,
         };
         advance_block_in(
-            ctx, &topo, b, ale, r, v, s, elems, rs, vs, waves, wbuf, step0, dt, nsteps,
+            ctx, &topo, b, ale, r, v, x, s, elems, rs, vs, waves, wbuf, step0, dt, nsteps,
         )
     }
 }
@@ -616,6 +667,7 @@ fn advance_block_in<T: Topo>(
     ale: &[AleElem],
     r: &mut [V],
     v: &mut [V],
+    x: &mut [f64],
     s: &mut [NodeScratch],
     elems: &mut [ElementLoads<f64>],
     rs: &mut Vec<V>,
@@ -638,13 +690,21 @@ fn advance_block_in<T: Topo>(
         time: t,
         what,
     };
+    // The elements' internal states of the Runge-Kutta stages: the stage's state, the
+    // state at the step's start, the weighted sum of the rates (empty without).
+    let ne = x.len();
+    let (mut xs, mut x0, mut xsum) = (x.to_vec(), vec![0.0; ne], vec![0.0; ne]);
     for k in 0..nsteps {
         // Time from the step count, not by accumulation: output times stay exact.
         let t = (step0 + k) as f64 * dt;
         match ctx.opts.scheme {
             Scheme::Symplectic => {
                 fill_water(&mut waves, t, r, v, wbuf);
-                element_pass(ctx, topo, b, ale, r, v, t, wbuf, elems)?;
+                element_pass(ctx, topo, b, ale, r, v, x, t, wbuf, elems)?;
+                // The internal states by explicit Euler, from this step's rates.
+                for (xk, el) in x.iter_mut().zip(elems.iter()) {
+                    *xk += el.rate * dt;
+                }
                 // The element pass has read every position and velocity of this step,
                 // so each node can be updated as soon as its acceleration is known.
                 for li in 0..n {
@@ -661,17 +721,33 @@ fn advance_block_in<T: Topo>(
             Scheme::Rk2 => {
                 let h = 0.5 * dt;
                 fill_water(&mut waves, t, r, v, wbuf);
-                accelerations(ctx, topo, b, ale, r, v, t, wbuf, elems, |li, a| {
+                accelerations(ctx, topo, b, ale, r, v, x, t, wbuf, elems, |li, a| {
                     s[li].acc = a
                 })?;
                 for li in 0..n {
                     rs[li] = r[li] + v[li] * h;
                     vs[li] = v[li] + s[li].acc * h;
                 }
+                for k in 0..ne {
+                    xs[k] = x[k] + elems[k].rate * h;
+                }
                 fill_water(&mut waves, t + h, rs, vs, wbuf);
-                accelerations(ctx, topo, b, ale, rs, vs, t + h, wbuf, elems, |li, a| {
-                    s[li].acc = a
-                })?;
+                accelerations(
+                    ctx,
+                    topo,
+                    b,
+                    ale,
+                    rs,
+                    vs,
+                    &xs,
+                    t + h,
+                    wbuf,
+                    elems,
+                    |li, a| s[li].acc = a,
+                )?;
+                for k in 0..ne {
+                    x[k] += elems[k].rate * dt;
+                }
                 for li in 0..n {
                     r[li] += vs[li] * dt;
                     v[li] += s[li].acc * dt;
@@ -690,15 +766,34 @@ fn advance_block_in<T: Topo>(
                 }
                 rs.copy_from_slice(r);
                 vs.copy_from_slice(v);
+                x0.copy_from_slice(x);
+                xs.copy_from_slice(x);
+                xsum.fill(0.0);
                 for (stage, (tau, w, next)) in
                     [(0.0, 1.0, h), (h, 2.0, h), (h, 2.0, dt), (dt, 1.0, 0.0)]
                         .into_iter()
                         .enumerate()
                 {
                     fill_water(&mut waves, t + tau, rs, vs, wbuf);
-                    accelerations(ctx, topo, b, ale, rs, vs, t + tau, wbuf, elems, |li, a| {
-                        s[li].acc = a
-                    })?;
+                    accelerations(
+                        ctx,
+                        topo,
+                        b,
+                        ale,
+                        rs,
+                        vs,
+                        &xs,
+                        t + tau,
+                        wbuf,
+                        elems,
+                        |li, a| s[li].acc = a,
+                    )?;
+                    for k in 0..ne {
+                        xsum[k] += elems[k].rate * w;
+                        if stage < 3 {
+                            xs[k] = x0[k] + elems[k].rate * next;
+                        }
+                    }
                     for li in 0..n {
                         let x = &mut s[li];
                         x.sr += vs[li] * w;
@@ -708,6 +803,9 @@ fn advance_block_in<T: Topo>(
                             vs[li] = x.v0 + x.acc * next;
                         }
                     }
+                }
+                for k in 0..ne {
+                    x[k] = x0[k] + xsum[k] * (dt / 6.0);
                 }
                 for li in 0..n {
                     r[li] = s[li].r0 + s[li].sr * (dt / 6.0);

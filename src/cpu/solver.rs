@@ -53,6 +53,9 @@ pub struct CpuSolver {
     uniform_current: Vec<Option<V>>,
     elems: Vec<ElementLoads<f64>>,
     scratch: Vec<NodeScratch>,
+    /// Per element: its internal state (a viscoelastic line's static-branch strain,
+    /// `physics::visco`); empty without viscoelastic lines.
+    visco: Vec<f64>,
     /// Per block: constants of the chain fast path (`None` for networks).
     chain_consts: Vec<Option<ChainConsts>>,
     /// Use the vectorised fast path for chain blocks (GLMF only). On by default; the
@@ -130,6 +133,7 @@ impl CpuSolver {
             elem_in_cable: Vec::new(),
             elems: Vec::new(),
             scratch: Vec::new(),
+            visco: Vec::new(),
             chunks: Vec::new(),
             layout: Layout::build(&ModelDef::default())
                 .expect("an empty model packs")
@@ -309,6 +313,10 @@ impl CpuSolver {
             .collect();
         self.elems = vec![ElementLoads::default(); layout.n_elements()];
         self.scratch = vec![NodeScratch::default(); layout.n_nodes()];
+        // The viscoelastic elements start at rest at their initial lengths.
+        self.visco = crate::physics::visco::visco_rest_states(&layout, |e| {
+            (r[layout.elem_b[e] as usize] - r[layout.elem_a[e] as usize]).norm()
+        });
         self.hinges = layout.hinges();
         self.bent = layout
             .blocks
@@ -418,6 +426,22 @@ impl CpuSolver {
             })
             .collect();
         self.drop_bent_consts();
+    }
+
+    /// The elements' internal states (a viscoelastic line's static-branch strain,
+    /// `physics::visco`, packed element order; zero for every other element), empty
+    /// without viscoelastic lines.
+    pub fn visco_states(&self) -> &[f64] {
+        &self.visco
+    }
+
+    /// The internal states of elements `e0..e1` (empty without viscoelastic lines).
+    fn visco_block(&self, e0: usize, e1: usize) -> &[f64] {
+        if self.visco.is_empty() {
+            &[]
+        } else {
+            &self.visco[e0..e1]
+        }
     }
 
     /// The variable elements of block `bi` (none without winches).
@@ -773,6 +797,7 @@ impl CpuSolver {
                 &mut self.scratch[..],
                 &mut self.elems[..],
             );
+            let mut xv = &mut self.visco[..];
             let mut wb = &mut self.wave_blocks[..];
             for ch in &self.chunks {
                 let (b0, b1) = (blocks[ch.start], blocks[ch.end - 1]);
@@ -782,8 +807,10 @@ impl CpuSolver {
                 let (v1, v2) = v.split_at_mut(nn);
                 let (s1, s2) = s.split_at_mut(nn);
                 let (e1, e2) = el.split_at_mut(ne);
+                let (x1, x2) = xv.split_at_mut(if xv.is_empty() { 0 } else { ne });
                 let (w1, w2) = wb.split_at_mut(if wb.is_empty() { 0 } else { ch.len() });
-                parts.push((ch.clone(), r1, v1, s1, e1, w1));
+                parts.push((ch.clone(), r1, v1, s1, e1, x1, w1));
+                xv = x2;
                 wb = w2;
                 r = r2;
                 v = v2;
@@ -793,7 +820,7 @@ impl CpuSolver {
         }
         let result: Result<Vec<Vec<(usize, V, Sym3<f64>)>>, StepFailure> = parts
             .into_par_iter()
-            .map(|(ch, r, v, s, el, wb)| {
+            .map(|(ch, r, v, s, el, xv, wb)| {
                 let mut lumps = Vec::new();
                 let base = blocks[ch.start];
                 // Stage buffers of the Runge-Kutta schemes, reused across the chunk's blocks.
@@ -812,6 +839,11 @@ impl CpuSolver {
                     let n1 = (b.node_end - base.node_start) as usize;
                     let e0 = (b.elem_start - base.elem_start) as usize;
                     let e1 = (b.elem_end - base.elem_start) as usize;
+                    let xb: &mut [f64] = if xv.is_empty() {
+                        &mut []
+                    } else {
+                        &mut xv[e0..e1]
+                    };
                     if is_touched(ch.start + bi) {
                         // Held on a free body: the general passes (one step), then the
                         // held nodes' forces and mass blocks at the step's start.
@@ -826,6 +858,7 @@ impl CpuSolver {
                             ale,
                             &mut r[n0..n1],
                             &mut v[n0..n1],
+                            xb,
                             &mut s[n0..n1],
                             &mut el[e0..e1],
                             &mut rs,
@@ -899,6 +932,7 @@ impl CpuSolver {
                             ale,
                             &mut r[n0..n1],
                             &mut v[n0..n1],
+                            xb,
                             &mut s[n0..n1],
                             &mut el[e0..e1],
                             &mut rs,

@@ -63,6 +63,10 @@ pub(super) trait Engine: Send {
     fn download(&mut self, host: &Host) -> Result<NodeStates, Error>;
     /// Writes positions and velocities.
     fn upload(&mut self, host: &Host, r: &[[f64; 3]], v: &[[f64; 3]]);
+    /// Writes the elements' internal states (viscoelastic lines, packed element order).
+    fn write_visco(&mut self, x: &[f64]);
+    /// Reads the elements' internal states back.
+    fn read_visco(&mut self) -> Result<Vec<f64>, Error>;
     /// Starts the waves' kinematics cache afresh at the next step (after the state was
     /// put back to an earlier time).
     fn restart_waves(&mut self);
@@ -490,6 +494,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             return Err(Error::Gpu(format!("rebuilding the buffers: {e}")));
         }
         self.upload(host, r, v);
+        self.write_visco_rest(lay, r);
         Ok(())
     }
 
@@ -600,6 +605,29 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
         }
     }
 
+    fn write_visco(&mut self, x: &[f64]) {
+        // The element pass rewrites every other member of the loads before they are read.
+        let loads: Vec<ElemLoads<R>> = x
+            .iter()
+            .map(|&x| ElemLoads {
+                visco: R::c(x),
+                ..Default::default()
+            })
+            .collect();
+        if !loads.is_empty() {
+            self.ctx
+                .queue
+                .write_buffer(&self.inst.buf.elem_loads, 0, bytemuck::cast_slice(&loads));
+        }
+    }
+
+    fn read_visco(&mut self) -> Result<Vec<f64>, Error> {
+        let bytes = (self.inst.n_elems * std::mem::size_of::<ElemLoads<R>>()) as u64;
+        let out = self.read_back(&[(&self.inst.buf.elem_loads, bytes.max(4))])?;
+        let loads: Vec<ElemLoads<R>> = decode(&out[0][..bytes as usize]);
+        Ok(loads.iter().map(|l| l.visco.f64()).collect())
+    }
+
     fn evaluate(&mut self, lay: &Layout, host: &Host, step: u64) -> Result<Evaluation, Error> {
         let ctx = &self.ctx.clone();
         self.write_routes(lay, host, step as f64 * self.dt64);
@@ -618,11 +646,14 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                 .write_buffer(&self.inst.buf.wave_steps, 0, bytemuck::cast_slice(&rows));
         }
         self.inst.params.step_base = 0;
+        // The element pass leaves the elements' internal states as they are.
+        self.inst.params.evaluate = 1;
         ctx.queue.write_buffer(
             &self.inst.buf.params,
             0,
             bytemuck::bytes_of(&self.inst.params),
         );
+        self.inst.params.evaluate = 0;
         // The refresh below watches the bands as a step's does: its breaches beyond
         // the margin counted afresh (the rest of the status left as the last advance
         // call left it) and read back with the loads.
@@ -687,6 +718,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                     half_mass: l.half_mass.f64(),
                     half_added: l.half_added.f64(),
                     shear: shear(e),
+                    rate: 0.0,
                 })
                 .collect(),
         })

@@ -138,6 +138,11 @@ gpu_struct! {
         n_fail: u32,
         /// Where their records start in `body_rows` (values of `R`).
         fail_at: u32,
+        /// 1 while the element pass runs for an evaluation (output): the elements'
+        /// internal states are not advanced then (viscoelastic lines); 0 while stepping.
+        evaluate: u32,
+        /// Padding.
+        pad_eval: u32,
         /// Time step, s.
         dt: R,
         /// Baumgarte position gain, s^-2.
@@ -209,6 +214,15 @@ gpu_struct! {
         /// rows packed in `current_pts` after the current profiles', `z` the strain and
         /// `ux` the tension), 0 without one.
         table: R,
+        /// Viscoelastic lines (`physics::visco`; `ea` is the static stiffness): the
+        /// dynamic stiffness `EA_d`, N (at zero mean tension with a slope).
+        ea_d: R,
+        /// The slope of the dynamic stiffness against the mean tension.
+        ea_d_slope: R,
+        /// The static branch's damping `BA_s`, N s (0: not a viscoelastic line).
+        ba_s: R,
+        /// The dynamic spring's damping `BA_d`, N s.
+        ba_d: R,
     }
 }
 
@@ -512,6 +526,10 @@ gpu_struct! {
         half_mass: R,
         /// Half normal added mass, kg.
         half_added: R,
+        /// The element's internal state (a viscoelastic line's static-branch strain,
+        /// `physics::visco`): the element pass reads it and writes it advanced by the
+        /// step; zero for every other line.
+        visco: R,
     }
 }
 

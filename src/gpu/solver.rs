@@ -571,6 +571,17 @@ impl GpuSolver {
         self.engine.download(&self.host)
     }
 
+    /// Reads back the elements' internal states (a viscoelastic line's static-branch
+    /// strain, `physics::visco`; zero for every other element), packed element order;
+    /// empty without viscoelastic lines.
+    pub fn visco_states(&mut self) -> Result<Vec<f64>, Error> {
+        if self.layout.has_visco() {
+            self.engine.read_visco()
+        } else {
+            Ok(Vec::new())
+        }
+    }
+
     /// The state now, to go back to with [`GpuSolver::restore`] (read back from the
     /// device). With winches it also keeps the host's side of the mesh (layout, host
     /// data, winch state), since a remeshing after it replaces them.
@@ -596,11 +607,17 @@ impl GpuSolver {
                 constraints: self.layout.node_constraint.clone(),
             }))
         };
+        let visco = if self.layout.has_visco() {
+            self.engine.read_visco()?
+        } else {
+            Vec::new()
+        };
         Ok(GpuCheckpoint {
             steps: self.steps,
             node_steps: self.node_steps,
             r,
             v,
+            visco,
             mesh,
             free,
         })
@@ -623,6 +640,9 @@ impl GpuSolver {
         self.node_steps = cp.node_steps;
         self.t = self.steps as f64 * self.opts.dt;
         self.engine.upload(&self.host, &cp.r, &cp.v);
+        if !cp.visco.is_empty() {
+            self.engine.write_visco(&cp.visco);
+        }
         if let Some(f) = &cp.free {
             self.engine.write_free(&f.rec, &f.flags);
             self.free_states.clone_from(&f.states);
@@ -695,6 +715,8 @@ pub struct GpuCheckpoint {
     node_steps: u64,
     r: Vec<[f64; 3]>,
     v: Vec<[f64; 3]>,
+    /// The elements' internal states (viscoelastic lines; empty without).
+    visco: Vec<f64>,
     /// With winches: the mesh then.
     mesh: Option<Box<SavedMesh>>,
     /// With free bodies or failures: their records then.

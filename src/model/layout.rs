@@ -202,16 +202,21 @@ impl Layout {
     pub fn incidence(&self, i: usize) -> &[u32] {
         &self.inc[self.inc_start[i] as usize..self.inc_start[i + 1] as usize]
     }
-    /// Whether any element of block `b` has a tabulated strain-tension curve (such
-    /// blocks take the CPU path's general passes, not the chain and network fast paths).
+    /// Whether any element of block `b` has a tabulated strain-tension curve or the
+    /// viscoelastic model (such blocks take the CPU path's general passes, not the
+    /// chain and network fast paths).
     pub fn block_has_curves(&self, b: &Block) -> bool {
-        self.line_types.iter().any(|lt| lt.ea_curve.is_some())
-            && (b.elem_start..b.elem_end).any(|e| {
-                self.line_types[self.elem_line[e as usize] as usize]
-                    .ea_curve
-                    .is_some()
-            })
+        let special = |lt: &LineType| lt.ea_curve.is_some() || lt.viscoelastic.is_some();
+        self.line_types.iter().any(special)
+            && (b.elem_start..b.elem_end)
+                .any(|e| special(&self.line_types[self.elem_line[e as usize] as usize]))
     }
+    /// Whether any line type is viscoelastic (the solvers then carry one state per
+    /// element: `physics::visco`).
+    pub fn has_visco(&self) -> bool {
+        self.line_types.iter().any(|lt| lt.viscoelastic.is_some())
+    }
+
     /// Where a packed node sits, for messages: `(cable name, node index in cable)`.
     pub fn describe_node(&self, i: usize) -> (String, usize) {
         let c = self.node_cable[i] as usize;

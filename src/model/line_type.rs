@@ -42,6 +42,32 @@ pub struct LineType {
     /// slope (the stable step and the internal damping `EA c` take it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ea_curve: Option<Vec<[f64; 2]>>,
+    /// The static-dynamic (viscoelastic) model of a fibre rope (`physics::visco`):
+    /// `ea` is then the static stiffness `EA_s`, and `damping` is zero. Formed from the
+    /// scenario keys `ea_dynamic`, `ea_dynamic_slope`, `ba_static`, `ba_dynamic`
+    /// (`scenario::materials`), not a key of its own.
+    #[serde(skip)]
+    pub viscoelastic: Option<Viscoelastic>,
+}
+
+/// The viscoelastic (static-dynamic) axial model of a fibre rope
+/// (docs/src/model/axial.md#viscoelastic-fibre-rope; MoorDyn's `EA_s|EA_d` and
+/// `EA_s|EA_Dc|EA_D_Lm` with `BA_s|BA_d`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Viscoelastic {
+    /// The dynamic stiffness `EA_d`, N; with `ea_dynamic_slope`, its value at zero mean
+    /// tension `EA_Dc`.
+    pub ea_dynamic: f64,
+    /// The slope `EA_D_Lm` of the dynamic stiffness against the mean tension (-): 0 for
+    /// a constant dynamic stiffness.
+    #[serde(default)]
+    pub ea_dynamic_slope: f64,
+    /// The static branch's damping `BA_s`, N s (on the strain rate).
+    pub ba_static: f64,
+    /// The dynamic spring's damping `BA_d`, N s.
+    #[serde(default)]
+    pub ba_dynamic: f64,
 }
 
 fn default_cn() -> f64 {

@@ -15,6 +15,6 @@ pub use bending::{block_hinges, Clamp, Hinge, Joint, NO_ELEM};
 pub use environment::{Current, Environment, Seabed};
 pub use failure::{EndFailure, FailureEvent};
 pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};
-pub use line_type::{LineCoefs, LineType};
+pub use line_type::{LineCoefs, LineType, Viscoelastic};
 pub use net::{add_net, NetShape, NetSpec};
 pub use route::{circle_basis, Route, RouteState};

@@ -303,10 +303,14 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
     // Line types.
     let mut types: HashMap<&str, (usize, f64, f64)> = HashMap::new();
     let mut curves: HashMap<&str, super::tables::EaCurve> = HashMap::new();
+    let mut viscos: HashMap<&str, super::tables::MdVisco> = HashMap::new();
     for (i, t) in file.line_types.iter().enumerate() {
-        let (ea, ba, curve) = check_type(p, t, file.version, &mut warn)?;
+        let (ea, ba, curve, visco) = check_type(p, t, file.version, &mut warn)?;
         if let Some(c) = curve {
             curves.insert(t.name.as_str(), c);
+        }
+        if let Some(v) = visco {
+            viscos.insert(t.name.as_str(), v);
         }
         if types.insert(t.name.as_str(), (i, ea, ba)).is_some() {
             return Err(err_at(
@@ -576,7 +580,27 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         let t = &file.line_types[ti];
         let seg = l.length / l.segments as f64;
         let curve = curves.get(t.name.as_str());
-        let (c, note) = if let (true, Some(cv)) = (ba < 0.0, curve) {
+        let visco = viscos.get(t.name.as_str());
+        // A viscoelastic line's `c` is its static damping BA_s (N s), not a time constant.
+        let (c, note) = if let (true, Some(_)) = (ba < 0.0, visco) {
+            let zeta = -ba;
+            (
+                zeta * seg * (ea * t.mass).sqrt(),
+                format!(
+                    "BA_s = {} (line {}): damping ratio zeta = {}; MoorDyn sets BA_s = zeta \
+                     (L/N) sqrt(EA_s m) with L/N = {} m",
+                    t.ba,
+                    t.line,
+                    f(zeta),
+                    f(seg)
+                ),
+            )
+        } else if visco.is_some() {
+            (
+                ba,
+                format!("BA = {} N s (line {}): BA_s|BA_d", t.ba, t.line),
+            )
+        } else if let (true, Some(cv)) = (ba < 0.0, curve) {
             // A curve: MoorDyn takes the last row's secant for the damping ratio.
             let zeta = -ba;
             (
@@ -924,7 +948,34 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
             }
         }
         let _ = writeln!(w, "# {}", lt.note);
-        let _ = writeln!(w, "damping = {}  # s", f(lt.c));
+        match viscos.get(t.name.as_str()) {
+            Some(v) => {
+                let _ = writeln!(
+                    w,
+                    "# Viscoelastic (EA = \"{}\"): ea is the static stiffness EA_s.",
+                    t.ea
+                );
+                if v.slope != 0.0 {
+                    let _ = writeln!(
+                        w,
+                        "ea_dynamic = {}  # N, EA_Dc: the dynamic stiffness at zero mean tension",
+                        f(v.ea_dynamic)
+                    );
+                    let _ = writeln!(
+                        w,
+                        "ea_dynamic_slope = {}  # EA_D_Lm: EA_d = EA_Dc + EA_D_Lm * mean tension",
+                        f(v.slope)
+                    );
+                } else {
+                    let _ = writeln!(w, "ea_dynamic = {}  # N, EA_d", f(v.ea_dynamic));
+                }
+                let _ = writeln!(w, "ba_static = {}  # N s, BA_s", f(lt.c));
+                let _ = writeln!(w, "ba_dynamic = {}  # N s, BA_d", f(v.ba_dynamic));
+            }
+            None => {
+                let _ = writeln!(w, "damping = {}  # s", f(lt.c));
+            }
+        }
         let (cd, cdax, ca, caax) = match file.version {
             Version::V1 => ("Cdn", "Cdt", "Can", "Cat"),
             Version::V2 => ("Cd", "CdAx", "Ca", "CaAx"),

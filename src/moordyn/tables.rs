@@ -160,15 +160,155 @@ fn read_ea_curve(p: &Path, line: usize, what: &str, entry: &str) -> Result<EaCur
     })
 }
 
+/// The viscoelastic cells of a line type: EA `EA_s|EA_d` or `EA_s|EA_Dc|EA_D_Lm`,
+/// BA `BA_s|BA_d` (MoorDyn's `ELASTIC_VISCO_CTE` and `ELASTIC_VISCO_MEAN`).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct MdVisco {
+    /// `EA_d`, or `EA_Dc` with a slope, N.
+    pub ea_dynamic: f64,
+    /// `EA_D_Lm` (0 for `EA_s|EA_d`).
+    pub slope: f64,
+    /// `BA_d`, N s (0 when the BA cell has one value, as MoorDyn takes it).
+    pub ba_dynamic: f64,
+}
+
+/// Reads the `|` cells of a line type's EA and BA columns (`None` for a plain EA):
+/// numbers only, two or three in EA, at most as many in BA as in EA, two at most,
+/// `EA_s` positive, the dynamic stiffness above it, the slope and `BA_d` at least
+/// zero. Returns `EA_s`, `BA_s` as written and the rest.
+fn visco_cells(
+    p: &Path,
+    t: &LineTypeRow,
+    name: &dyn Fn(&str) -> String,
+) -> Result<Option<(f64, f64, MdVisco)>, Error> {
+    let l = t.line;
+    let ea: Vec<&str> = t.ea.split('|').collect();
+    let ba: Vec<&str> = t.ba.split('|').collect();
+    if ea.len() == 1 {
+        if ba.len() > 1 {
+            return Err(err_at(
+                p,
+                l,
+                name("BA/-zeta"),
+                format!(
+                    "\"{}\": a BA cell cannot have more (|-separated) values than its EA cell \
+                     \"{}\"",
+                    t.ba, t.ea
+                ),
+            ));
+        }
+        return Ok(None);
+    }
+    let num = |col: &str, what: &str, s: &str| {
+        s.trim().parse::<f64>().ok().filter(|x| x.is_finite()).ok_or_else(|| {
+            err_at(
+                p,
+                l,
+                name(col),
+                format!("{what} of \"{s}\" must be a finite number (a curve file is not supported with the viscoelastic model)"),
+            )
+        })
+    };
+    if ea.len() > 3 {
+        return Err(err_at(
+            p,
+            l,
+            name("EA"),
+            format!(
+                "\"{}\": at most 3 (|-separated) values, EA_s|EA_d or EA_s|EA_Dc|EA_D_Lm",
+                t.ea
+            ),
+        ));
+    }
+    if ba.len() > 2 || ba.len() > ea.len() {
+        return Err(err_at(
+            p,
+            l,
+            name("BA/-zeta"),
+            format!("\"{}\": at most BA_s|BA_d", t.ba),
+        ));
+    }
+    let ks = num("EA", "EA_s", ea[0])?;
+    if !(ks > 0.0) {
+        return Err(err_at(
+            p,
+            l,
+            name("EA"),
+            format!("EA_s must be positive, got {ks}"),
+        ));
+    }
+    let kd = num("EA", if ea.len() == 2 { "EA_d" } else { "EA_Dc" }, ea[1])?;
+    if !(kd > ks) {
+        return Err(err_at(
+            p,
+            l,
+            name("EA"),
+            format!(
+                "the dynamic stiffness {kd} must exceed the static EA_s = {ks} (\"{}\")",
+                t.ea
+            ),
+        ));
+    }
+    let slope = if ea.len() == 3 {
+        num("EA", "EA_D_Lm", ea[2])?
+    } else {
+        0.0
+    };
+    if slope < 0.0 {
+        return Err(err_at(
+            p,
+            l,
+            name("EA"),
+            format!("EA_D_Lm must not be negative, got {slope}"),
+        ));
+    }
+    let bs = num("BA/-zeta", "BA_s", ba[0])?;
+    let bd = if ba.len() == 2 {
+        num("BA/-zeta", "BA_d", ba[1])?
+    } else {
+        0.0
+    };
+    if bd < 0.0 {
+        return Err(err_at(
+            p,
+            l,
+            name("BA/-zeta"),
+            format!("BA_d must not be negative (MoorDyn takes no ratio for it), got {bd}"),
+        ));
+    }
+    if bs == 0.0 {
+        return Err(err_at(
+            p,
+            l,
+            name("BA/-zeta"),
+            format!(
+                "\"{}\": a viscoelastic line needs a static damping BA_s (N s, or a negative \
+                 damping ratio), got 0",
+                t.ba
+            ),
+        ));
+    }
+    Ok(Some((
+        ks,
+        bs,
+        MdVisco {
+            ea_dynamic: kd,
+            slope,
+            ba_dynamic: bd,
+        },
+    )))
+}
+
 /// A line type checked for what cablesim can run: (EA, BA as written, the
 /// strain-tension curve when EA names a curve file; EA is then the curve's largest
-/// slope). Its columns are named as the file's `version` names them.
+/// slope; the viscoelastic cells, with EA the static `EA_s` and BA `BA_s`). Its
+/// columns are named as the file's `version` names them.
 pub(super) fn check_type(
     p: &Path,
     t: &LineTypeRow,
     version: Version,
     warn: &mut Vec<Warning>,
-) -> Result<(f64, f64, Option<EaCurve>), Error> {
+) -> Result<(f64, f64, Option<EaCurve>, Option<MdVisco>), Error> {
     let l = t.line;
     let name = |c: &str| format!("line type \"{}\" {c}", t.name);
     let pos = |c: &str, x: f64| {
@@ -180,7 +320,13 @@ pub(super) fn check_type(
     };
     pos("Diam", t.diam)?;
     pos("Mass/m", t.mass)?;
+    let visco = if t.ea.starts_with("SYROPE:") {
+        None
+    } else {
+        visco_cells(p, t, &name)?
+    };
     let (ea, curve) = match t.ea.parse::<f64>() {
+        _ if visco.is_some() => (visco.map_or(0.0, |v| v.0), None),
         Ok(x) if x.is_finite() => (pos("EA", x)?, None),
         Ok(_) => {
             return Err(err_at(
@@ -196,8 +342,8 @@ pub(super) fn check_type(
                 l,
                 name("EA"),
                 format!(
-                    "\"{}\": viscoelastic (EA_s|EA_d) or Syrope stiffness is not supported \
-                     yet (give one EA in N, or a strain-tension curve file)",
+                    "\"{}\": the Syrope model is not supported (give one EA in N, a \
+                     strain-tension curve file, or the viscoelastic EA_s|EA_d)",
                     t.ea
                 ),
             ))
@@ -208,6 +354,7 @@ pub(super) fn check_type(
         }
     };
     let ba = match t.ba.parse::<f64>() {
+        _ if visco.is_some() => visco.map_or(0.0, |v| v.1),
         Ok(x) if x.is_finite() => x,
         _ => {
             return Err(err_at(
@@ -246,5 +393,5 @@ pub(super) fn check_type(
             ),
         });
     }
-    Ok((ea, ba, curve))
+    Ok((ea, ba, curve, visco.map(|v| v.2)))
 }

@@ -96,6 +96,9 @@ pub struct ElementLoads<T> {
     /// The bending shear of the element (`super::bending`), N: node b receives
     /// `+shear`, node a `-shear` (zero without bending stiffness).
     pub shear: V3<T>,
+    /// The rate of the element's internal state: a viscoelastic line's `sdot`
+    /// (`super::visco`), 1/s; zero for every other line.
+    pub rate: T,
 }
 
 /// External load parts of an element, kept apart for the frame comparisons and tests.
@@ -222,5 +225,6 @@ pub fn glmf_element_wet<T: Real>(
         half_mass: (c.mass + c.added_mass_t * wet) * e.l0 * half,
         half_added: (c.added_mass - c.added_mass_t) * e.l0 * half * wet,
         shear: V3::zero(),
+        rate: T::zero(),
     }
 }

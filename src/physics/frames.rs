@@ -398,6 +398,7 @@ pub fn frame_element_with<T: Real>(
         half_mass: (c.mass + c.added_mass_t) * e.l0 * half,
         half_added: (c.added_mass - c.added_mass_t) * e.l0 * half,
         shear: V3::zero(),
+        rate: T::zero(),
     };
     if !(out.t.is_finite()
         && out.tension.is_finite()

@@ -7,6 +7,7 @@ pub mod element;
 pub mod frames;
 pub mod seabed;
 pub mod surface;
+pub mod visco;
 
 pub use axial::{tabulated_max_slope, tabulated_slope, tabulated_tension, tabulated_work};
 pub use bending::{bending_angle, bending_energy, bending_hinge, hinge_stiffness};
@@ -19,3 +20,4 @@ pub use seabed::{
     seabed_slope_normal, SeabedCoefs,
 };
 pub use surface::{point_wetted_fraction, sphere_radius, wetted_fraction};
+pub use visco::{visco_dynamic_stiffness, visco_rest_state, visco_tension};

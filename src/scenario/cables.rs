@@ -253,6 +253,13 @@ pub(super) fn parse(
                 "a winch cable cannot have a line type with a strain-tension curve yet",
             ));
         }
+        if c.winch.is_some() && model.line_types[lt].viscoelastic.is_some() {
+            return Err(err(
+                p,
+                f("winch"),
+                "a winch cable cannot have a viscoelastic line type yet",
+            ));
+        }
         let length: f64 = parts.iter().map(|s| s.1).sum();
         let n: usize = parts.iter().map(|s| s.2).sum();
         if n > 1_000_000 {

@@ -242,6 +242,19 @@ pub struct RawLineType {
     /// the scenario file; `#` starts a comment).
     #[serde(default)]
     pub ea_curve_file: Option<String>,
+    /// Viscoelastic fibre rope: the dynamic stiffness `EA_d`, N (`ea` is then the
+    /// static one); with `ea_dynamic_slope`, its value at zero mean tension.
+    #[serde(default)]
+    pub ea_dynamic: Option<f64>,
+    /// The slope of the dynamic stiffness against the mean tension (-).
+    #[serde(default)]
+    pub ea_dynamic_slope: Option<f64>,
+    /// The static branch's damping `BA_s`, N s.
+    #[serde(default)]
+    pub ba_static: Option<f64>,
+    /// The dynamic spring's damping `BA_d`, N s (default 0).
+    #[serde(default)]
+    pub ba_dynamic: Option<f64>,
 }
 
 /// Reads a strain-tension curve file: a row of two numbers (whitespace or a comma
@@ -364,7 +377,109 @@ impl RawLineType {
             ei: self.ei,
             allow_compression: self.allow_compression,
             ea_curve: curve.map(|c| c.0),
+            viscoelastic: self.viscoelastic(p, &f)?,
         })
+    }
+
+    /// The viscoelastic model of the keys `ea_dynamic`, `ea_dynamic_slope`,
+    /// `ba_static`, `ba_dynamic` (`None` without them), checked for what can run:
+    /// positive stiffness and static damping, a dynamic stiffness above the static
+    /// one, a slope and a dynamic damping at least zero. The errors name the key.
+    fn viscoelastic(
+        &self,
+        p: &Path,
+        f: &dyn Fn(&str) -> String,
+    ) -> Result<Option<crate::model::Viscoelastic>, Error> {
+        let Some(kd) = self.ea_dynamic else {
+            for (k, x) in [
+                ("ea_dynamic_slope", self.ea_dynamic_slope),
+                ("ba_static", self.ba_static),
+                ("ba_dynamic", self.ba_dynamic),
+            ] {
+                if x.is_some() {
+                    return Err(err(
+                        p,
+                        f(k),
+                        format!("`{k}` belongs to a viscoelastic line: give `ea_dynamic` too"),
+                    ));
+                }
+            }
+            return Ok(None);
+        };
+        let finite = |k: &str, x: f64| {
+            if x.is_finite() {
+                Ok(x)
+            } else {
+                Err(err(p, f(k), format!("must be finite, got {x}")))
+            }
+        };
+        let kd = finite("ea_dynamic", kd)?;
+        if !(kd > 0.0) {
+            return Err(err(
+                p,
+                f("ea_dynamic"),
+                format!("must be positive, got {kd}"),
+            ));
+        }
+        if self.ea_curve.is_some() || self.ea_curve_file.is_some() {
+            return Err(err(
+                p,
+                f("ea_dynamic"),
+                "a viscoelastic line has one static `ea`, not a strain-tension curve",
+            ));
+        }
+        if self.allow_compression {
+            return Err(err(
+                p,
+                f("allow_compression"),
+                "a viscoelastic line is slack in compression",
+            ));
+        }
+        if self.damping != 0.0 {
+            return Err(err(
+                p,
+                f("damping"),
+                "a viscoelastic line's damping is `ba_static` and `ba_dynamic` (N s), not \
+                 `damping`",
+            ));
+        }
+        let slope = finite("ea_dynamic_slope", self.ea_dynamic_slope.unwrap_or(0.0))?;
+        if slope < 0.0 {
+            return Err(err(
+                p,
+                f("ea_dynamic_slope"),
+                format!("must not be negative, got {slope}"),
+            ));
+        }
+        let Some(c1) = self.ba_static else {
+            return Err(err(
+                p,
+                f("ba_static"),
+                "a viscoelastic line needs `ba_static`, the static branch's damping (N s)",
+            ));
+        };
+        let c1 = finite("ba_static", c1)?;
+        if !(c1 > 0.0) {
+            return Err(err(
+                p,
+                f("ba_static"),
+                format!("must be positive, got {c1}"),
+            ));
+        }
+        let c2 = finite("ba_dynamic", self.ba_dynamic.unwrap_or(0.0))?;
+        if c2 < 0.0 {
+            return Err(err(
+                p,
+                f("ba_dynamic"),
+                format!("must not be negative, got {c2}"),
+            ));
+        }
+        Ok(Some(crate::model::Viscoelastic {
+            ea_dynamic: kd,
+            ea_dynamic_slope: slope,
+            ba_static: c1,
+            ba_dynamic: c2,
+        }))
     }
 }
 
@@ -390,6 +505,18 @@ pub(super) fn line_types(
         non_negative(p, &f("cm"), lt.cm)?;
         non_negative(p, &f("cat"), lt.cat)?;
         non_negative(p, &f("ei"), lt.ei)?;
+        if let Some(v) = lt.viscoelastic {
+            if !(v.ea_dynamic > lt.ea) {
+                return Err(err(
+                    p,
+                    f("ea_dynamic"),
+                    format!(
+                        "the dynamic stiffness must exceed the static `ea` = {}, got {}",
+                        lt.ea, v.ea_dynamic
+                    ),
+                ));
+            }
+        }
         if lt_index.insert(lt.name.clone(), i).is_some() {
             return Err(err(
                 p,

@@ -117,6 +117,15 @@ pub fn cable_config(
             ));
         }
     }
+    if def.line_types[c.line_type].viscoelastic.is_some() {
+        return Err(unsupported(
+            sc,
+            ci,
+            "has no viscoelastic (static-dynamic) axial model, and this cable's line type \
+             has `ea_dynamic`"
+                .to_string(),
+        ));
+    }
     if def.line_types[c.line_type].cat != 0.0 {
         return Err(unsupported(
             sc,

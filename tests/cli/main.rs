@@ -20,6 +20,7 @@ mod moordyn_bending;
 mod moordyn_bodies;
 mod moordyn_curves;
 mod moordyn_input;
+mod moordyn_visco;
 mod moordyn_waves;
 mod output_formats;
 mod robust_inputs;

@@ -214,10 +214,10 @@ fn unsupported_features_are_errors_naming_the_line() {
         (
             v2_with(
                 "chain      0.1     150.0      1.0e9 ",
-                "chain      0.1     150.0      1.0e9|2.0e9 ",
+                "chain      0.1     150.0      SYROPE:owc.txt|2.0e9|0.4 ",
             ),
             "chain      0.1",
-            "viscoelastic",
+            "Syrope",
         ),
         (
             v2_with("3   Coupled ", "3   Body1   "),

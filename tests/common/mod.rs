@@ -28,6 +28,7 @@ pub fn wire() -> LineType {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 
@@ -46,6 +47,7 @@ pub fn rope() -> LineType {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 
@@ -281,6 +283,7 @@ pub fn froude_krylov_case(
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let def = straight_cable(
         env,

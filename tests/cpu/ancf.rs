@@ -38,6 +38,7 @@ fn rod(mass_per_length: f64) -> LineType {
         ei: 1e4,
         allow_compression: true,
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 
@@ -229,6 +230,7 @@ fn case2_line(ei: f64) -> LineType {
         ei,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 

@@ -43,6 +43,7 @@ fn beam(ea: f64) -> LineType {
         ei: EI,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 

@@ -55,6 +55,7 @@ fn line_type(rng: &mut ChaCha8Rng) -> LineType {
         ei: 0.0,
         allow_compression: rng.gen_bool(0.2),
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 
@@ -265,6 +266,7 @@ fn line() -> Coefs<f64> {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     Coefs::from_line(&LineCoefs::new(&lt, 1025.0, 9.81))
 }
@@ -591,6 +593,7 @@ fn hanging_cable(current: [f64; 3], bend: f64) -> (Layout, Vec<[f64; 3]>) {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let n = 11;
     let pos: Vec<[f64; 3]> = (0..n)

@@ -32,6 +32,7 @@ mod statics;
 mod stiff_statics;
 mod study;
 mod study_validation;
+mod visco;
 mod water_surface;
 mod waves_output;
 mod waves_steppers;

@@ -29,6 +29,7 @@ fn chain() -> LineType {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 

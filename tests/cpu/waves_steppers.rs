@@ -242,6 +242,7 @@ fn neutrally_buoyant_sphere_follows_the_water() {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let z0 = -30.0;
     let mut def = straight_cable(

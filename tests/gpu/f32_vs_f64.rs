@@ -491,6 +491,7 @@ fn line_types() -> Vec<LineType> {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let rope = LineType {
         name: "rope".into(),
@@ -505,6 +506,7 @@ fn line_types() -> Vec<LineType> {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let wire = LineType {
         damping: 2e-4,

@@ -31,6 +31,8 @@ use bending::*;
 use routes::*;
 mod seabed_grid;
 use seabed_grid::*;
+mod visco;
+use visco::*;
 
 const KERNELS: &str = r#"
 @group(1) @binding(0) var<storage, read> tin: array<R>;
@@ -48,7 +50,8 @@ fn v3out(k: u32, v: vec3<R>) {
 
 fn line_in(b: u32) -> LineParams {
     return LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
-        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u], R(0.0));
+        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u], R(0.0),
+        R(0.0), R(0.0), R(0.0), R(0.0));
 }
 
 // The water-acceleration load of case i: line constants, tangent, acceleration, l0 wet.
@@ -728,6 +731,7 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_current::<R>(ctx, p, &mut rng);
     check_tabulated::<R>(ctx, p, &mut rng);
     check_bending::<R>(ctx, p, &mut rng);
+    check_visco::<R>(ctx, p, &mut rng);
 }
 
 #[test]

@@ -42,6 +42,7 @@ fn line_types() -> Vec<LineType> {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let rope = LineType {
         name: "rope".into(),
@@ -56,6 +57,7 @@ fn line_types() -> Vec<LineType> {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let wire = LineType {
         damping: 1e-4,

@@ -34,6 +34,7 @@ mod seabed_grid;
 mod shaders;
 mod step_functions;
 mod surface;
+mod visco;
 mod wave_breach;
 mod wave_inputs;
 mod wave_parity;

@@ -58,7 +58,7 @@ fn t_variable(@builtin(global_invocation_id) gid: vec3<u32>) {
     // (The water-acceleration load and the added masses, tangential or not, are not
     // read here.)
     let lp = LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u], R(0.0),
-        tin[b + 5u], tin[b + 6u], R(0.0), tin[b + 7u], tin[b + 8u], R(0.0));
+        tin[b + 5u], tin[b + 6u], R(0.0), tin[b + 7u], tin[b + 8u], R(0.0), R(0.0), R(0.0), R(0.0), R(0.0));
     let ep = ElemParams(2u * i, 2u * i + 1u, 0u, 0u, 0u, u32(tin[b + 22u]), tin[b + 18u], R(0.0), R(0.0)); // l0_lo, diameter: unused here
     let py = Payout(tin[b + 18u], R(0.0), tin[b + 19u], tin[b + 20u], R(0.0));
     let ten = variable_element(ep, lp, py, v3in(b + 9u), v3in(b + 12u), v3in(b + 15u), tin[b + 21u]);
@@ -384,6 +384,7 @@ fn check_gather<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
                 fy: R::c(f[1]),
                 fz: R::c(f[2]),
                 half_mass: R::c(rng.gen_range(0.5..50.0)),
+                visco: R::c(0.0),
                 half_added: R::c(rng.gen_range(0.0..50.0)),
             }
         })

@@ -60,7 +60,8 @@ fn t_element_wet(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let b = i * 29u;
     let c = LineParams(tin[b], tin[b + 1u], tin[b + 2u], tin[b + 3u], tin[b + 4u],
-        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u], R(0.0));
+        tin[b + 5u], tin[b + 6u], tin[b + 7u], tin[b + 8u], tin[b + 9u], tin[b + 10u], R(0.0),
+        R(0.0), R(0.0), R(0.0), R(0.0));
     let d = v3in(b + 11u);
     let el = glmf_element_wet(c, d, norm3(d) - tin[b + 20u], v3in(b + 14u), v3in(b + 17u),
         tin[b + 20u], v3in(b + 21u), v3in(b + 24u), tin[b + 27u], tin[b + 28u]);

@@ -52,6 +52,7 @@ fn splice_equals_a_full_rebuild() {
         ei: 0.0,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let mut def = ModelDef {
         env: Environment::default(),

@@ -25,6 +25,7 @@ fn line(ei: f64, compression: bool) -> LineType {
         ei,
         allow_compression: compression,
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 

@@ -10,7 +10,8 @@ type V = V3<f64>;
 /// it carries from step to step (a fixed mesh in still water: element loads and scratch
 /// are recomputed each step); with them the blocks' kinematics caches in waves (a
 /// fixed mesh too: what else the solver holds does not change from step to step); the
-/// whole solver where the mesh changes (winch cables: mesh and payout).
+/// whole solver where the mesh changes (winch cables: mesh and payout) or the elements
+/// carry a state of their own (viscoelastic lines).
 #[derive(Clone)]
 pub struct CpuCheckpoint {
     /// Steps taken.
@@ -51,7 +52,8 @@ impl std::fmt::Debug for CpuCheckpoint {
 impl CpuSolver {
     /// The state now, to go back to with [`CpuSolver::restore`].
     pub fn checkpoint(&self) -> Option<CpuCheckpoint> {
-        let saved = if self.ale.is_some() || !self.failures.is_empty() {
+        // Viscoelastic lines carry a state per element: the whole solver.
+        let saved = if self.ale.is_some() || !self.failures.is_empty() || !self.visco.is_empty() {
             Saved::Whole(Box::new(self.clone()))
         } else if !self.wave_blocks.is_empty() {
             Saved::Waves {

@@ -215,8 +215,23 @@ impl<R: GpuReal> GpuEngine<R> {
             _r: PhantomData,
         };
         engine.upload(host, positions, &vec![[0.0; 3]; positions.len()]);
+        engine.write_visco_rest(lay, positions);
         engine.write_routes(lay, host, 0.0);
         Ok(engine)
+    }
+
+    /// The viscoelastic elements' states at rest at positions `r`
+    /// (`physics::visco::visco_rest_states`, as the CPU path starts), written to the
+    /// device; nothing without viscoelastic lines.
+    pub(super) fn write_visco_rest(&mut self, lay: &Layout, r: &[[f64; 3]]) {
+        let x = crate::physics::visco::visco_rest_states(lay, |e| {
+            let (a, b) = (r[lay.elem_a[e] as usize], r[lay.elem_b[e] as usize]);
+            let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+        });
+        if !x.is_empty() {
+            self.write_visco(&x);
+        }
     }
 
     /// Adds the fused kernel's pipeline with the waves' code (`WAVES = true`) if there
@@ -288,6 +303,8 @@ impl<R: GpuReal> GpuEngine<R> {
             free_at: free_at as u32,
             n_fail: 0,
             fail_at: fail_at as u32,
+            evaluate: 0,
+            pad_eval: 0,
             dt: R::c(opts.dt),
             alpha: R::c(opts.baumgarte.alpha),
             beta: R::c(opts.baumgarte.beta),
@@ -376,7 +393,8 @@ impl<R: GpuReal> GpuEngine<R> {
             .line_coefs
             .iter()
             .zip(&line_table)
-            .map(|(c, &table)| LineParams {
+            .zip(&lay.line_types)
+            .map(|((c, &table), lt)| LineParams {
                 ea: R::c(c.ea),
                 ea_c: R::c(c.ea_c),
                 drag_n: R::c(c.drag_n),
@@ -389,6 +407,10 @@ impl<R: GpuReal> GpuEngine<R> {
                 wet_weight_z: R::c(c.wet_weight_z),
                 compression: R::c(c.compression),
                 table: R::c(table as f64),
+                ea_d: R::c(lt.viscoelastic.map_or(0.0, |v| v.ea_dynamic)),
+                ea_d_slope: R::c(lt.viscoelastic.map_or(0.0, |v| v.ea_dynamic_slope)),
+                ba_s: R::c(lt.viscoelastic.map_or(0.0, |v| v.ba_static)),
+                ba_d: R::c(lt.viscoelastic.map_or(0.0, |v| v.ba_dynamic)),
             })
             .collect();
         let mut elems: Vec<ElemParams<R>> = (0..lay.n_elements())
