@@ -321,6 +321,7 @@ impl AleState {
                 }],
                 // A winch cable has no bending stiffness (refused by the scenario).
                 clamps: Vec::new(),
+                screens: Default::default(),
             };
             let (one, _, _) = Layout::build_indexed(&one_def)?;
             let b = lay.blocks[bi];

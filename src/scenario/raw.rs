@@ -51,6 +51,14 @@ pub struct RawNet {
     pub current: Option<[f64; 3]>,
     pub current_profile: Option<Vec<[f64; 4]>>,
     pub output_positions: Option<bool>,
+    // Screen-model loads (docs/src/model/screen.md; `super::nets::screen`).
+    pub loads: Option<String>,
+    pub screen_model: Option<String>,
+    pub solidity: Option<f64>,
+    pub mesh: Option<f64>,
+    pub twine_diameter: Option<f64>,
+    pub viscosity: Option<f64>,
+    pub wake: Option<String>,
 }
 
 /// The point mass at each bottom knot of a net.

@@ -152,6 +152,7 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
                 cable: k.cable + ca0,
                 ..*k
             }));
+        model.screens.append(&sc.model.screens, nd0 as u32, lt0);
         initial.extend(sc.initial.iter().copied());
         points.extend(sc.points.iter().map(|p| NamedPoint {
             name: packed_name(prefix, &p.name),

@@ -113,6 +113,7 @@ pub fn straight_cable(
         }],
         nodes,
         clamps: Vec::new(),
+        screens: Default::default(),
     }
 }
 

@@ -627,6 +627,7 @@ fn hanging_cable(current: [f64; 3], bend: f64) -> (Layout, Vec<[f64; 3]>) {
             elem_lines: Vec::new(),
         }],
         clamps: Vec::new(),
+        screens: Default::default(),
     };
     Layout::build(&def).unwrap()
 }

@@ -82,6 +82,7 @@ fn single_line(pts: &[[f64; 3]], length: f64, depth: f64, current: [f64; 3]) -> 
             elem_lines: Vec::new(),
         }],
         clamps: Vec::new(),
+        screens: Default::default(),
     }
 }
 

@@ -29,6 +29,8 @@ use axial::*;
 use routes::*;
 mod seabed_grid;
 use seabed_grid::*;
+mod screen;
+use screen::*;
 
 const KERNELS: &str = r#"
 @group(1) @binding(0) var<storage, read> tin: array<R>;
@@ -725,6 +727,7 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_route::<R>(ctx, p, &mut rng);
     check_current::<R>(ctx, p, &mut rng);
     check_tabulated::<R>(ctx, p, &mut rng);
+    check_screen::<R>(ctx, p, &mut rng);
 }
 
 #[test]

@@ -189,6 +189,7 @@ fn net_model() -> (Layout, Vec<[f64; 3]>) {
         nodes,
         cables,
         clamps: Vec::new(),
+        screens: Default::default(),
     };
     Layout::build(&def).unwrap()
 }
