@@ -249,12 +249,14 @@ fn screen_panel_share(co: ScreenCoefs, blk: BlockParams, cur: u32, s0: NodeState
     return screen_panel_force(co, p0, p1, p2, p3, s0.v.xyz, s1.v.xyz, s2.v.xyz, s3.v.xyz, u) * R(0.25);
 }
 
-// The mean wave velocity at step k over the four nodes a..d (zero without waves).
+// The mean wave velocity at step k over the four nodes a..d (zero without waves; a
+// layout with screen knots has WAVE_POINTS set: gpu::engine layout_has_wave_points).
 fn screen_waves(a: u32, b: u32, c: u32, d: u32, k: u32) -> vec3<R> {
-    if !WAVES {
-        return vec3<R>(R(0.0), R(0.0), R(0.0));
+    var uw = vec3<R>(R(0.0), R(0.0), R(0.0));
+    if WAVES && WAVE_POINTS {
+        uw = (((node_waves(a, k).u + node_waves(b, k).u) + node_waves(c, k).u) + node_waves(d, k).u) * R(0.25);
     }
-    return (((node_waves(a, k).u + node_waves(b, k).u) + node_waves(c, k).u) + node_waves(d, k).u) * R(0.25);
+    return uw;
 }
 
 // Acceleration of node `i`: free (mass block solve) or driven onto its route with

@@ -64,14 +64,17 @@ fn fused_pipeline(
 }
 
 /// Whether some node of `lay` has a point mass that takes wave loads (drag, displaced
-/// or added mass: the shaders' `point_waves` test); without one the fused kernel's
+/// or added mass: the shaders' `point_waves` test), or is a screen net's knot (whose
+/// panels read their corners' waves: `screen_waves`); without one the fused kernel's
 /// waves pipeline leaves the point masses' waves code out (`WAVE_POINTS = false`).
 pub(in crate::gpu) fn layout_has_wave_points(lay: &Layout) -> bool {
-    lay.node_point_drag
-        .iter()
-        .chain(&lay.node_point_displaced)
-        .chain(&lay.node_point_added)
-        .any(|&x| x != 0.0)
+    !lay.screen.is_empty()
+        || lay
+            .node_point_drag
+            .iter()
+            .chain(&lay.node_point_displaced)
+            .chain(&lay.node_point_added)
+            .any(|&x| x != 0.0)
 }
 
 impl<R: GpuReal> GpuEngine<R> {
