@@ -74,5 +74,93 @@ fn bench_bending(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_cpu, bench_bending);
+/// The net cage of `examples/net_cage.toml` (128 x 32 knots, one element a twine, in
+/// still water with a 0.3 m/s current) stepped with Morison twines and with the screen
+/// model (Kristiansen and Faltinsen, Cheng's wake), on the network fast path, one
+/// thread: the screen model's cost per node-step (docs/src/model/screen.md).
+fn bench_net_screen(c: &mut Criterion) {
+    use cablesim::model::{
+        add_net, Current, Environment, Layout, LineType, ModelDef, NetShape, NetSpec, PointMass,
+        ScreenModel, ScreenNet, WakeModel,
+    };
+    let mut g = c.benchmark_group("net_cage");
+    g.sample_size(10);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    for screen in [false, true] {
+        let mut def = ModelDef {
+            env: Environment::default(),
+            line_types: vec![LineType {
+                name: "twine".into(),
+                diameter: 0.012,
+                mass_per_length: 0.15,
+                ea: 5.0e4,
+                damping: 1e-4,
+                cn: 1.2,
+                ct: 0.01,
+                cm: 1.0,
+                cat: 0.0,
+                ei: 0.0,
+                allow_compression: false,
+                ea_curve: None,
+                viscoelastic: None,
+            }],
+            currents: vec![Current::uniform([0.3, 0.0, 0.0])],
+            ..Default::default()
+        };
+        add_net(
+            &mut def,
+            &NetSpec {
+                name: "cage".into(),
+                line_type: 0,
+                current: 0,
+                shape: NetShape::Cylinder {
+                    around: 128,
+                    rows: 32,
+                    radius: 10.0,
+                    depth: 8.0,
+                    top: [0.0, 0.0, -0.5],
+                },
+                segments: 1,
+                sinker: PointMass {
+                    mass: 20.0,
+                    volume: 0.0025,
+                    drag_area: 0.02,
+                    added_mass_coef: 0.0,
+                },
+                output_positions: false,
+                screen: screen.then_some(ScreenNet {
+                    model: ScreenModel::KristiansenFaltinsen,
+                    solidity: 0.2,
+                    twine_diameter: 2e-3,
+                    viscosity: 1e-6,
+                    wake: WakeModel::Cheng,
+                    axis: [0.0, 0.0],
+                }),
+            },
+        )
+        .unwrap();
+        let (lay, pos) = Layout::build(&def).unwrap();
+        let nodes = lay.n_nodes() as u64;
+        let steps = 200;
+        let mut s = CpuSolver::new(
+            lay,
+            &pos,
+            SolverOptions {
+                dt: 2e-4,
+                ..Default::default()
+            },
+        );
+        g.throughput(Throughput::Elements(nodes * steps));
+        let name = if screen { "screen" } else { "morison" };
+        g.bench_function(name, |b| {
+            b.iter(|| pool.install(|| s.advance(steps).unwrap()))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench_cpu, bench_bending, bench_net_screen);
 criterion_main!(benches);

@@ -130,6 +130,7 @@ fn rope(zf: f64) -> (Layout, Vec<[f64; 3]>) {
         nodes,
         clamps: Vec::new(),
         joints: Vec::new(),
+        screens: Default::default(),
     };
     let (lay, mut pos) = Layout::build(&def).unwrap();
     relax(&lay, &mut pos, &RelaxOptions::default()).unwrap();

@@ -96,6 +96,26 @@ fn wg_unpack(w: WgState) -> NodeState {
     );
 }
 
+// The share of the panels of screen-net knot `i` of block `blk` from the published
+// states (element_forces.wgsl: screen_knot_force, from workgroup memory).
+fn screen_knot_force_wg(i: u32, nd: NodeParams, blk: BlockParams, k: u32) -> vec3<R> {
+    let co = screen_coefs_at(nd.screen_net);
+    let n0 = blk.node_start;
+    var f = vec3<R>(R(0.0), R(0.0), R(0.0));
+    for (var q = 0u; q < 4u; q += 1u) {
+        let a = screen_corner(i, nd.screen, q, 0u);
+        let b = screen_corner(i, nd.screen, q, 1u);
+        let c = screen_corner(i, nd.screen, q, 2u);
+        let d = screen_corner(i, nd.screen, q, 3u);
+        if a == NO_KNOT || b == NO_KNOT || c == NO_KNOT || d == NO_KNOT {
+            continue;
+        }
+        f += screen_panel_share(co, blk, nd.current, wg_unpack(wg_state[a - n0]), wg_unpack(wg_state[b - n0]),
+            wg_unpack(wg_state[c - n0]), wg_unpack(wg_state[d - n0]), screen_waves(a, b, c, d, k));
+    }
+    return f;
+}
+
 @compute @workgroup_size(FUSED_WG)
 fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_index) j: u32) {
     let b = wid.x;
@@ -165,6 +185,11 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
                 wg_shear[j] = WgShear(sh.x, sh.y, sh.z);
             }
         }
+        // A screen net's knot: its panels' share, from the states this step starts from.
+        var fs = vec3<R>(R(0.0), R(0.0), R(0.0));
+        if has_node && nd.screen != NO_KNOT {
+            fs = screen_knot_force_wg(i, nd, blk, k);
+        }
         if j == 0u {
             wg_stop = atomicLoad(&wg_fail);
         }
@@ -184,6 +209,7 @@ fn fused_steps(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_
                 }
                 nf = gather_add(nf, wg_unpack_loads(wg_loads[le]), sh, entry);
             }
+            nf.f += fs;
             nf = gather_end(i, nd, s, nf, blk, k, w);
             free_lump_store(i, nd, nf);
             s = node_advance(nd, s, nf, R(k) * params.dt, k);

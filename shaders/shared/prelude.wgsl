@@ -19,6 +19,8 @@ const NO_CONSTRAINT: u32 = 0xffffffffu;
 const NO_WINCH: u32 = 0xffffffffu;
 // No bending hinge on this side of an element (its hinge row: see ElemParams).
 const NO_HINGE: u32 = 0xffffffffu;
+// No knot: a node of no screen-model net, or a knot's missing grid neighbour.
+const NO_KNOT: u32 = 0xffffffffu;
 const ROUTE_FIXED: u32 = 0u;
 const ROUTE_LINE: u32 = 1u;
 const ROUTE_CIRCLE: u32 = 2u;
@@ -143,6 +145,11 @@ struct NodeParams {
     block: u32,
     current: u32,
     winch: u32,
+    // A knot of a screen-model net: the first of its 8 grid neighbours' nodes in
+    // `inc` (after the incidence entries; NO_KNOT where the grid ends), else NO_KNOT;
+    // and the first of its net's 2 rows in `current_pts` (screen_coefs_at).
+    screen: u32,
+    screen_net: u32,
     point_mass: R,
     point_weight_z: R,
     point_drag: R,
@@ -1031,4 +1038,144 @@ fn constraint_target(c: u32, tau: R, k: u32) -> RouteState {
         return body_point(q, body_row_at(params.free_at + q.body * FREE_STRIDE + FREE_ROW));
     }
     return route_eval(q, tau);
+}
+
+
+// ---- Screen-model net loads (Rust twins: physics::screen; docs/src/model/screen.md).
+
+// One screen net's constants (Rust: physics::ScreenCoefs): coefficient set (0
+// Aarsnes, 1 Loland, 2 Kristiansen-Faltinsen), wake rule (0 none, 1 Loland, 2 Cheng),
+// solidity, the twines' Reynolds number per unit speed d_w / (nu (1 - Sn)), half the
+// water density, and the vertical axis whose downstream side is in the wake
+// (relative to the block origin).
+struct ScreenCoefs {
+    model: u32,
+    wake: u32,
+    sn: R,
+    re_scale: R,
+    half_rho: R,
+    axis_x: R,
+    axis_y: R,
+}
+
+// The twine's (circular cylinder's) drag coefficient at Reynolds number re: the
+// degree-7 polynomial in log10(Re), re-centred at 2.5, log10(Re) held to [1, 4].
+fn screen_cylinder_cd(re: R) -> R {
+    let y = screen_log10(min(max(re, R(10.0)), R(1.0e4))) - R(2.5);
+    var p = R(0.12479);
+    p = p * y + R(-0.265115);
+    p = p * y + R(-0.3477225);
+    p = p * y + R(0.83019125);
+    p = p * y + R(0.220573125);
+    p = p * y + R(-0.4381015625);
+    p = p * y + R(-0.39100046875);
+    p = p * y + R(1.244830859375);
+    return p;
+}
+
+// log10(x) for x in [10, 1e4] (no library logarithm in f64): x = 2^k m by five exact
+// divisions by powers of two, m in (1/sqrt 2, sqrt 2], then ln m = 2 atanh(z),
+// z = (m - 1) / (m + 1), by its series to z^21. No loop (a loop's iterations count
+// against lavapipe's budget in the fused kernel).
+fn screen_log10(x: R) -> R {
+    let sqrt2 = R(1.41421356237309504880);
+    var m = x;
+    var k = R(0.0);
+    if m > R(256.0) * sqrt2 { m = m / R(256.0); k += R(8.0); }
+    if m > R(16.0) * sqrt2 { m = m / R(16.0); k += R(4.0); }
+    if m > R(4.0) * sqrt2 { m = m / R(4.0); k += R(2.0); }
+    if m > R(2.0) * sqrt2 { m = m / R(2.0); k += R(1.0); }
+    if m > R(1.0) * sqrt2 { m = m / R(2.0); k += R(1.0); }
+    let z = (m - R(1.0)) / (m + R(1.0));
+    let w = z * z;
+    var a = R(1.0) / R(21.0);
+    a = a * w + R(1.0) / R(19.0);
+    a = a * w + R(1.0) / R(17.0);
+    a = a * w + R(1.0) / R(15.0);
+    a = a * w + R(1.0) / R(13.0);
+    a = a * w + R(1.0) / R(11.0);
+    a = a * w + R(1.0) / R(9.0);
+    a = a * w + R(1.0) / R(7.0);
+    a = a * w + R(1.0) / R(5.0);
+    a = a * w + R(1.0) / R(3.0);
+    a = a * w + R(1.0);
+    let ln = k * R(0.69314718055994530942) + R(2.0) * z * a;
+    return ln * R(0.43429448190325182765);
+}
+
+// (C_D, g) of coefficient set `model` for solidity sn, twine Reynolds number re and
+// c = cos(theta) (theta between the panel normal and the flow); C_L = g sin(2 theta).
+fn screen_coefficients(model: u32, sn: R, re: R, c: R) -> vec2<R> {
+    let s2 = sn * sn;
+    let s3 = sn * sn * sn;
+    if model == 0u {
+        let cd = R(0.04) + (R(-0.04) + sn - R(1.24) * s2 + R(13.7) * s3) * c;
+        let g = R(0.57) * sn - R(3.54) * s2 + R(10.1) * s3;
+        return vec2<R>(cd, g);
+    } else if model == 1u {
+        let cd = R(0.04) + (R(-0.04) + R(0.33) * sn + R(6.54) * s2 - R(4.88) * s3) * c;
+        let g = R(-0.05) * sn + R(2.3) * s2 - R(1.76) * s3;
+        return vec2<R>(cd, g);
+    }
+    let cdc = screen_cylinder_cd(re);
+    let q = R(1.0) - sn;
+    let cd0 = cdc * sn * (R(2.0) - sn) / (R(2.0) * q * q);
+    let cn45 = cdc * sn / (R(2.0) * q * q);
+    let cl45 = R(3.14159265358979323846) * cn45 / (R(8.0) + cn45);
+    let cl0 = (R(0.5) * cd0 - cl45) * R(0.70710678118654752440);
+    let cd = cd0 * (R(0.9) * c + R(0.1) * (R(4.0) * c * c * c - R(3.0) * c));
+    let g = cl0 * (R(1.0) + R(0.2) * (R(2.0) * c * c - R(1.0)));
+    return vec2<R>(cd, g);
+}
+
+// The flow-reduction factor behind the net (0 to 1) for a panel whose normal makes
+// c = cos(theta) with the flow, twine Reynolds number re.
+fn screen_wake_factor(co: ScreenCoefs, re: R, c: R) -> R {
+    var r = R(1.0);
+    if co.wake == 1u {
+        r = R(1.0) - R(0.46) * screen_coefficients(co.model, co.sn, re, R(1.0)).x;
+    } else if co.wake == 2u {
+        r = (c + R(0.05) - R(0.38) * co.sn) / (c + R(0.05));
+    }
+    return min(max(r, R(0.0)), R(1.0));
+}
+
+// The screen-model force on the panel with corners p0..p3 (in order around it),
+// corner velocities v0..v3, in water moving at u at its centre: drag along the
+// relative flow, lift across it towards the side the panel faces, the flow slowed
+// by the wake factor where the panel is downstream of the axis.
+fn screen_panel_force(co: ScreenCoefs, p0: vec3<R>, p1: vec3<R>, p2: vec3<R>, p3: vec3<R>,
+        v0: vec3<R>, v1: vec3<R>, v2: vec3<R>, v3: vec3<R>, u: vec3<R>) -> vec3<R> {
+    let zero = vec3<R>(R(0.0), R(0.0), R(0.0));
+    let vbar = (v0 + v1 + v2 + v3) * R(0.25);
+    let nv = cross(p2 - p0, p3 - p1) * R(0.5);
+    let area = norm3(nv);
+    if area <= R(0.0) {
+        return zero;
+    }
+    let n = nv * (R(1.0) / area);
+    var w = u;
+    if co.wake != 0u {
+        let cx = (p0.x + p1.x + p2.x + p3.x) * R(0.25);
+        let cy = (p0.y + p1.y + p2.y + p3.y) * R(0.25);
+        if (cx - co.axis_x) * u.x + (cy - co.axis_y) * u.y > R(0.0) {
+            let u0 = u - vbar;
+            let s0 = norm3(u0);
+            if s0 > R(0.0) {
+                let c0 = min(abs(dot(n, u0)) / s0, R(1.0));
+                w = u * screen_wake_factor(co, co.re_scale * s0, c0);
+            }
+        }
+    }
+    let ur = w - vbar;
+    let s = norm3(ur);
+    if s <= R(0.0) {
+        return zero;
+    }
+    let nu = dot(n, ur);
+    let c = min(abs(nu) / s, R(1.0));
+    let nd = select(n, -n, nu < R(0.0));
+    let k = screen_coefficients(co.model, co.sn, co.re_scale * s, c);
+    let lift = (nd * (s * s) - ur * (s * c)) * (R(2.0) * c * k.y);
+    return (ur * (k.x * s) + lift) * (co.half_rho * area);
 }

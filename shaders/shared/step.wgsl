@@ -282,8 +282,9 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
 }
 
 // Force and mass block of node `i`: its elements' loads and half masses gathered over
-// the incidence list from `elem_loads` (no atomics), point-mass weight and drag,
-// seabed contact.
+// the incidence list from `elem_loads` (no atomics), a screen net's knot's share of
+// its panels (left in node_out by the element pass: element_forces), point-mass
+// weight and drag, seabed contact.
 fn gather_node(i: u32, nd: NodeParams, s: NodeState, k: u32) -> NodeForce {
     let blk = blocks[nd.block];
     let w = point_waves(i, nd, k);
@@ -292,7 +293,58 @@ fn gather_node(i: u32, nd: NodeParams, s: NodeState, k: u32) -> NodeForce {
         let entry = inc[j];
         nf = gather_add(nf, elem_loads[entry >> 1u], shear_of(entry >> 1u), entry);
     }
+    if nd.screen != NO_KNOT {
+        nf.f += node_out[i].force.xyz;
+    }
     return gather_end(i, nd, s, nf, blk, k, w);
+}
+
+// ---- Screen-model nets: a knot's share of the panels it is a corner of (CPU twin:
+// cpu::screen screen_knot_force). The stages gather it from their own memory of the
+// states (element_forces.wgsl, fused_chain.wgsl) with these.
+
+// The constants of the net whose two rows start at row q of current_pts
+// (gpu::engine::install packs them).
+fn screen_coefs_at(q: u32) -> ScreenCoefs {
+    let a = current_pts[q];
+    let b = current_pts[q + 1u];
+    return ScreenCoefs(u32(a.z), u32(a.ux), a.uy, a.uz, b.z, b.ux, b.uy);
+}
+
+// Corner c (0 top-left, 1 top-right, 2 bottom-right, 3 bottom-left) of grid cell q
+// (0 up-left, 1 up-right, 2 down-right, 3 down-left) of knot `i`, whose 8 neighbours
+// start at inc[rec]; NO_KNOT where the grid has none (model::screen KNOT_PANELS).
+fn screen_corner(i: u32, rec: u32, q: u32, c: u32) -> u32 {
+    var t = array<u32, 16>(0u, 1u, 8u, 7u, 1u, 2u, 3u, 8u, 8u, 3u, 4u, 5u, 7u, 8u, 5u, 6u);
+    let j = t[q * 4u + c];
+    if j == 8u {
+        return i;
+    }
+    return inc[rec + j];
+}
+
+// A quarter of the force of the panel whose corners have states s0..s3 (relative to
+// the origin of block `blk`), in current profile `cur` at the height of its centre
+// plus `uw`, the mean of its corners' wave velocities.
+fn screen_panel_share(co: ScreenCoefs, blk: BlockParams, cur: u32, s0: NodeState, s1: NodeState,
+        s2: NodeState, s3: NodeState, uw: vec3<R>) -> vec3<R> {
+    let p0 = s0.r_hi.xyz + s0.r_lo.xyz;
+    let p1 = s1.r_hi.xyz + s1.r_lo.xyz;
+    let p2 = s2.r_hi.xyz + s2.r_lo.xyz;
+    let p3 = s3.r_hi.xyz + s3.r_lo.xyz;
+    let zc = blk.oz + (p0.z + p1.z + p2.z + p3.z) * R(0.25);
+    let u = current_at(cur, zc) + uw;
+    return screen_panel_force(co, p0, p1, p2, p3, s0.v.xyz, s1.v.xyz, s2.v.xyz, s3.v.xyz, u) * R(0.25);
+}
+
+// The mean wave velocity at step k over the four nodes a..d (zero without waves; a
+// layout with screen knots has WAVE_POINTS set: gpu::engine layout_has_wave_points).
+fn screen_waves(a: u32, b: u32, c: u32, d: u32, k: u32) -> vec3<R> {
+    var uw = vec3<R>(R(0.0), R(0.0), R(0.0));
+    if WAVES && WAVE_POINTS {
+        uw = (((node_waves(a, k).u + node_waves(b, k).u) + node_waves(c, k).u) + node_waves(d, k).u) * R(0.25);
+    }
+    return uw;
 }
 
 // Acceleration of node `i`: free (mass block solve) or driven onto its route with

@@ -322,6 +322,7 @@ impl AleState {
                 // A winch cable has no bending stiffness (refused by the scenario).
                 clamps: Vec::new(),
                 joints: Vec::new(),
+                screens: Default::default(),
             };
             let (one, _, _) = Layout::build_indexed(&one_def)?;
             let b = lay.blocks[bi];

@@ -26,6 +26,7 @@
 pub(crate) mod chain;
 mod free;
 mod passes;
+mod screen;
 mod solver;
 mod threaded;
 mod water;

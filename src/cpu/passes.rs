@@ -2,6 +2,7 @@
 //! `cpu`): the element pass, the node pass, and the time schemes over one block, with
 //! the block's connectivity behind [`Topo`].
 
+use super::screen::screen_block_forces;
 use super::water::{node_water, BlockWaves, Water};
 use crate::ale::{mass_flow_forces, AleElem};
 use crate::math::{Sym3, V3};
@@ -431,7 +432,8 @@ pub(super) fn node_mass<T: Topo>(
 }
 
 /// Pass 2 for one node: gathered force, mass block, and acceleration (free or
-/// Baumgarte-constrained). `r`, `v`, `elems` are block-local, `li` block-local too.
+/// Baumgarte-constrained). `r`, `v`, `elems` are block-local, `li` block-local too;
+/// `screen` the block's screen-net knot forces (empty without screen nets).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn node_accel<T: Topo>(
@@ -445,9 +447,17 @@ pub(super) fn node_accel<T: Topo>(
     t: f64,
     w: &[f64],
     elems: &[ElementLoads<f64>],
+    screen: &[(usize, V)],
 ) -> (V, V, Sym3<f64>) {
     let wn = (!w.is_empty()).then(|| node_water(w, li));
     node_accel_of(ctx, topo, b, li, r[li], v[li], t, wn, elems, |trib, f| {
+        // Screen-model nets: the knot's share of its panels' loads
+        // (super::screen::screen_block_forces, sorted by node).
+        if !screen.is_empty() {
+            if let Ok(j) = screen.binary_search_by_key(&li, |p| p.0) {
+                *f += screen[j].1;
+            }
+        }
         // Winch cables: the variable element's share of the tributary length, and the
         // mass-flow forces of Eq. 39 on its two nodes (crate::ale).
         for ae in ale {
@@ -604,8 +614,12 @@ fn accelerations<T: Topo>(
     mut store: impl FnMut(usize, V),
 ) -> Result<(), StepFailure> {
     element_pass(ctx, topo, b, ale, r, v, x, t, w, elems)?;
+    let mut screen = Vec::new();
+    if ctx.lay.block_has_screen(b) {
+        screen_block_forces(ctx.lay, b.node_start as usize, r, v, w, &mut screen);
+    }
     for li in 0..r.len() {
-        let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, w, elems);
+        let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, w, elems, &screen);
         store(li, a);
     }
     Ok(())
@@ -683,6 +697,8 @@ fn advance_block_in<T: Topo>(
         wbuf.clear();
     }
     let n = r.len();
+    let has_screen = ctx.lay.block_has_screen(b);
+    let mut screen = Vec::new();
     rs.resize(n, V::zero());
     vs.resize(n, V::zero());
     let diverged = |li: usize, t: f64, what: String| StepFailure::Diverged {
@@ -705,10 +721,15 @@ fn advance_block_in<T: Topo>(
                 for (xk, el) in x.iter_mut().zip(elems.iter()) {
                     *xk += el.rate * dt;
                 }
-                // The element pass has read every position and velocity of this step,
-                // so each node can be updated as soon as its acceleration is known.
+                if has_screen {
+                    screen_block_forces(ctx.lay, n0, r, v, wbuf, &mut screen);
+                }
+                // The element pass (and the screen loads) have read every position and
+                // velocity of this step, so each node can be updated as soon as its
+                // acceleration is known.
                 for li in 0..n {
-                    let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, wbuf, elems);
+                    let (a, _, _) =
+                        node_accel(ctx, topo, b, ale, li, r, v, t, wbuf, elems, &screen);
                     let vn = v[li] + a * dt;
                     let rn = r[li] + vn * dt;
                     v[li] = vn;

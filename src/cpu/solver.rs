@@ -786,6 +786,7 @@ impl CpuSolver {
                     && !is_touched(bi)
                     && !self.layout.block_has_curves(b)
                     && !self.bent[bi]
+                    && !self.layout.block_has_screen(b)
             })
             .collect();
         // Split the state into disjoint per-chunk slices.

@@ -219,6 +219,9 @@ struct Installed<R: GpuReal> {
     wave_cache: wgpu::Buffer,
     n_nodes: usize,
     n_elems: usize,
+    /// Invocations of the element pass: the elements, or the nodes where there are
+    /// more and some node is a screen net's knot (`element_forces.wgsl`).
+    n_elem_threads: usize,
     n_routes: usize,
     n_blocks: usize,
     /// The most steps of one fused dispatch ([`fused_max_steps`](super::wave_schedule::fused_max_steps)).
@@ -340,7 +343,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                                 self.dispatch_refresh(&mut pass);
                                 self.timings.dispatches += 3;
                             }
-                            self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
+                            self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elem_threads);
                             self.dispatch(&mut pass, &self.pipe_node, self.inst.n_nodes);
                             self.dispatch_bodies(&mut pass);
                         }
@@ -674,7 +677,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
             if self.waves.is_some() {
                 self.dispatch_refresh(&mut pass);
             }
-            self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elems);
+            self.dispatch(&mut pass, &self.pipe_elem, self.inst.n_elem_threads);
             self.dispatch(&mut pass, &self.pipe_eval, self.inst.n_nodes);
         }
         ctx.queue.submit([enc.finish()]);

@@ -267,6 +267,11 @@ gpu_struct! {
         /// The winch index of a node of a variable element (its material node `m` or
         /// its winch node `w`), or `u32::MAX`.
         winch: u32,
+        /// A knot of a screen-model net: where its 8 grid neighbours start in `inc`,
+        /// else `u32::MAX`.
+        screen: u32,
+        /// A knot's net: the first of its 2 rows in `current_pts`, else `u32::MAX`.
+        screen_net: u32,
         /// Point mass plus its added mass, kg.
         point_mass: R,
         /// z component of the point's weight less buoyancy, N.

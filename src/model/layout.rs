@@ -79,6 +79,8 @@ pub struct ModelDef {
     pub clamps: Vec<super::Clamp>,
     /// Cables joined end to end that bend as one (bending, `super::bending`).
     pub joints: Vec<super::Joint>,
+    /// Nets loaded by a screen model (`super::screen`), knots by described node.
+    pub screens: super::Screens,
 }
 
 /// A cable in the packed layout.
@@ -186,6 +188,8 @@ pub struct Layout {
     pub clamps: Vec<super::Clamp>,
     /// Cables joined end to end that bend as one (`ModelDef::joints`).
     pub joints: Vec<super::Joint>,
+    /// Screen-model nets (`ModelDef::screens`), knots by packed node, sorted.
+    pub screen: super::Screens,
 }
 
 impl Layout {
@@ -217,6 +221,10 @@ impl Layout {
         self.line_types.iter().any(|lt| lt.viscoelastic.is_some())
     }
 
+    /// Whether block `b` holds knots of a screen-model net.
+    pub fn block_has_screen(&self, b: &Block) -> bool {
+        !self.screen.knots_in(b.node_start, b.node_end).is_empty()
+    }
     /// Where a packed node sits, for messages: `(cable name, node index in cable)`.
     pub fn describe_node(&self, i: usize) -> (String, usize) {
         let c = self.node_cable[i] as usize;
@@ -383,6 +391,16 @@ impl Layout {
             es..ee_old,
             std::iter::repeat_n(current, e_new),
         );
+        // Screen knots after the block move with their nodes (none is in a winch block).
+        let shift = |x: &mut u32| {
+            if *x != super::screen::NO_KNOT && *x as usize >= ne_old {
+                *x = sh(*x, dn);
+            }
+        };
+        for k in &mut self.screen.knots {
+            shift(&mut k.node);
+            k.around.iter_mut().for_each(shift);
+        }
         // Constraints, cables, blocks.
         for x in &mut self.constraint_node {
             if *x as usize >= ne_old {
@@ -576,6 +594,7 @@ impl Layout {
             routes: Vec::new(),
             clamps: def.clamps.clone(),
             joints: def.joints.clone(),
+            screen: def.screens.mapped(|n| new_index[n as usize]),
         };
         let mut positions = vec![[0.0; 3]; nn];
         for (old, nd) in def.nodes.iter().enumerate() {

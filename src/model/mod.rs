@@ -9,6 +9,7 @@ mod layout;
 mod line_type;
 pub mod net;
 pub(crate) mod route;
+pub mod screen;
 
 pub use bathymetry::Bathymetry;
 pub use bending::{block_hinges, Clamp, Hinge, Joint, NO_ELEM};
@@ -18,3 +19,4 @@ pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMas
 pub use line_type::{LineCoefs, LineType, Viscoelastic};
 pub use net::{add_net, NetShape, NetSpec};
 pub use route::{circle_basis, Route, RouteState};
+pub use screen::{ScreenKnot, ScreenModel, ScreenNet, Screens, WakeModel, NO_KNOT};

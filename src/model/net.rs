@@ -61,6 +61,10 @@ pub struct NetSpec {
     pub sinker: PointMass,
     /// Whether the twines' node positions are written out.
     pub output_positions: bool,
+    /// Screen-model loads on the netting (`super::screen`), or `None`: the twines'
+    /// Morison drag. With a screen model the twines keep their mass, weight, buoyancy
+    /// and added mass but lose their drag; `axis` is set here (the cylinder's axis).
+    pub screen: Option<super::ScreenNet>,
 }
 
 impl NetShape {
@@ -162,6 +166,52 @@ pub fn add_net_at(
         }
     }
     let knot = |row: usize, col: usize| knots[row * nc + col];
+    // Screen loads: the knots and their grid neighbours, and the twines' line type
+    // without drag (a copy, so that other cables of the line type keep theirs).
+    let mut line_type = spec.line_type;
+    if let Some(sn) = spec.screen {
+        let axis = match spec.shape {
+            NetShape::Cylinder { top, .. } => [top[0], top[1]],
+            NetShape::Panel { .. } => {
+                if sn.wake != super::WakeModel::None {
+                    return Err(bad(
+                        "wake shielding needs a closed net (shape = \"cylinder\"): a plane \
+                         panel has no downstream side of its own"
+                            .into(),
+                    ));
+                }
+                [0.0, 0.0]
+            }
+        };
+        let net = def.screens.nets.len() as u32;
+        def.screens.nets.push(super::ScreenNet { axis, ..sn });
+        let at = |row: i64, col: i64| -> u32 {
+            let col = if closed { col.rem_euclid(nc as i64) } else { col };
+            if row < 0 || row >= nr as i64 || col < 0 || col >= nc as i64 {
+                super::NO_KNOT
+            } else {
+                knot(row as usize, col as usize) as u32
+            }
+        };
+        for row in 0..nr as i64 {
+            for col in 0..nc as i64 {
+                let around = [(-1, -1), (-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1)]
+                    .map(|(dr, dc)| at(row + dr, col + dc));
+                def.screens.knots.push(super::ScreenKnot {
+                    node: at(row, col),
+                    net,
+                    around,
+                });
+            }
+        }
+        let mut lt = def.line_types[spec.line_type].clone();
+        lt.name = format!("{} (net '{}', screen loads)", lt.name, spec.name);
+        lt.cn = 0.0;
+        lt.ct = 0.0;
+        def.line_types.push(lt);
+        line_type = def.line_types.len() - 1;
+        def.screens.twine_lines.push((line_type, spec.line_type));
+    }
     let mut added = 0;
     let mut twine = |def: &mut ModelDef, a: usize, b: usize, name: String| {
         let (pa, pb) = (def.nodes[a].position, def.nodes[b].position);
@@ -183,7 +233,7 @@ pub fn add_net_at(
         nodes.push(b);
         def.cables.push(CableDef {
             name,
-            line_type: spec.line_type,
+            line_type,
             nodes,
             l0: vec![bar / n as f64; n],
             current: spec.current,

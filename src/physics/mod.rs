@@ -5,6 +5,7 @@ pub mod bending;
 pub mod catenary;
 pub mod element;
 pub mod frames;
+pub mod screen;
 pub mod seabed;
 pub mod surface;
 pub mod visco;
@@ -18,6 +19,9 @@ pub use element::{
 pub use seabed::{
     seabed_damping, seabed_force, seabed_height, seabed_slope_damping, seabed_slope_force,
     seabed_slope_normal, SeabedCoefs,
+};
+pub use screen::{
+    screen_coefficients, screen_cylinder_cd, screen_panel_force, screen_wake_factor, ScreenCoefs,
 };
 pub use surface::{point_wetted_fraction, sphere_radius, wetted_fraction};
 pub use visco::{visco_dynamic_stiffness, visco_rest_state, visco_tension};

@@ -4,7 +4,7 @@
 use super::raw::RawNet;
 use super::{current, err, finite, non_negative, positive};
 use crate::error::Error;
-use crate::model::{ModelDef, NetShape, NetSpec, PointMass};
+use crate::model::{ModelDef, NetShape, NetSpec, PointMass, ScreenModel, ScreenNet, WakeModel};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -112,6 +112,15 @@ pub fn parse(
             top: n.top,
         }
     };
+    let screen = screen(p, &f, n, model.line_types[line_type].diameter)?;
+    if !closed && screen.is_some_and(|s| s.wake != WakeModel::None) {
+        return Err(err(
+            p,
+            f("wake"),
+            "wake shielding needs a closed net (shape = \"cylinder\"): a plane panel has no \
+             downstream side of its own",
+        ));
+    }
     Ok(NetSpec {
         name: n.name.clone(),
         line_type,
@@ -120,5 +129,128 @@ pub fn parse(
         segments: segments as usize,
         sinker,
         output_positions: n.output_positions.unwrap_or_else(|| output(&n.name)),
+        screen,
     })
+}
+
+/// The screen-model keys of net `n` (`f` names a key): `None` for Morison twines.
+/// `diameter` is the line type's, the default twine diameter.
+fn screen(
+    p: &Path,
+    f: &dyn Fn(&str) -> String,
+    n: &RawNet,
+    diameter: f64,
+) -> Result<Option<ScreenNet>, Error> {
+    let loads = n.loads.as_deref().unwrap_or("morison");
+    match loads {
+        "morison" => {
+            let given = [
+                ("screen_model", n.screen_model.is_some()),
+                ("solidity", n.solidity.is_some()),
+                ("mesh", n.mesh.is_some()),
+                ("twine_diameter", n.twine_diameter.is_some()),
+                ("viscosity", n.viscosity.is_some()),
+                ("wake", n.wake.is_some()),
+            ];
+            if let Some((k, _)) = given.iter().find(|g| g.1) {
+                return Err(err(
+                    p,
+                    f(k),
+                    "is a key of the screen model: it needs loads = \"screen\"",
+                ));
+            }
+            return Ok(None);
+        }
+        "screen" => {}
+        other => {
+            return Err(err(
+                p,
+                f("loads"),
+                format!("must be \"morison\" or \"screen\", got \"{other}\""),
+            ))
+        }
+    }
+    let model = match n.screen_model.as_deref() {
+        None => {
+            return Err(err(
+                p,
+                f("screen_model"),
+                "is required with loads = \"screen\": \"aarsnes\", \"loland\" or \
+                 \"kristiansen_faltinsen\"",
+            ))
+        }
+        Some(s) => ScreenModel::parse(s).ok_or_else(|| {
+            err(
+                p,
+                f("screen_model"),
+                format!(
+                    "must be \"aarsnes\", \"loland\" or \"kristiansen_faltinsen\", got \"{s}\""
+                ),
+            )
+        })?,
+    };
+    let twine_diameter = match n.twine_diameter {
+        Some(d) => positive(p, &f("twine_diameter"), d)?,
+        None => diameter,
+    };
+    let solidity = match (n.solidity, n.mesh) {
+        (Some(_), Some(_)) => {
+            return Err(err(
+                p,
+                f("mesh"),
+                "give the netting by solidity or by mesh, not both",
+            ))
+        }
+        (None, None) => {
+            return Err(err(
+                p,
+                f("solidity"),
+                "loads = \"screen\" needs the netting's solidity (or its mesh)",
+            ))
+        }
+        (Some(sn), None) => {
+            if !(sn > 0.0 && sn < 1.0) {
+                return Err(err(
+                    p,
+                    f("solidity"),
+                    format!("must be between 0 and 1 (exclusive), got {sn}"),
+                ));
+            }
+            sn
+        }
+        (None, Some(mesh)) => {
+            let mesh = positive(p, &f("mesh"), mesh)?;
+            if mesh <= twine_diameter {
+                return Err(err(
+                    p,
+                    f("mesh"),
+                    format!(
+                        "{mesh} m is not coarser than the twine ({twine_diameter} m): the \
+                         meshes would be closed"
+                    ),
+                ));
+            }
+            let x = twine_diameter / mesh;
+            2.0 * x - x * x
+        }
+    };
+    let viscosity = positive(p, &f("viscosity"), n.viscosity.unwrap_or(1.0e-6))?;
+    let wake = match n.wake.as_deref() {
+        None => WakeModel::None,
+        Some(s) => WakeModel::parse(s).ok_or_else(|| {
+            err(
+                p,
+                f("wake"),
+                format!("must be \"none\", \"loland\" or \"cheng\", got \"{s}\""),
+            )
+        })?,
+    };
+    Ok(Some(ScreenNet {
+        model,
+        solidity,
+        twine_diameter,
+        viscosity,
+        wake,
+        axis: [0.0, 0.0],
+    }))
 }

@@ -54,6 +54,14 @@ pub struct RawNet {
     // A cage's parts (`super::cage`; docs/src/cage.md).
     pub collar: Option<RawCollar>,
     pub sinker_tube: Option<RawSinkerTube>,
+    // Screen-model loads (docs/src/model/screen.md; `super::nets::screen`).
+    pub loads: Option<String>,
+    pub screen_model: Option<String>,
+    pub solidity: Option<f64>,
+    pub mesh: Option<f64>,
+    pub twine_diameter: Option<f64>,
+    pub viscosity: Option<f64>,
+    pub wake: Option<String>,
 }
 
 /// `[nets.collar]`: the floating collar a cylindrical net hangs from.

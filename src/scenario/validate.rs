@@ -448,6 +448,13 @@ pub fn unused_line_types(p: &Path, model: &ModelDef, line_field: impl Fn(usize) 
             used[lt] = true;
         }
     }
+    // A screen net's twines use a copy of their line type (model::net).
+    for &(copy, original) in &model.screens.twine_lines {
+        if used[copy] {
+            used[original] = true;
+        }
+        used[copy] = true;
+    }
     for (i, u) in used.iter().enumerate() {
         if !u {
             super::warnings::warn(format!(

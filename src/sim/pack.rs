@@ -158,6 +158,7 @@ pub fn pack(members: &[(String, Scenario)]) -> Result<Packed, Error> {
                 prev: j.prev + ca0,
                 next: j.next + ca0,
             }));
+        model.screens.append(&sc.model.screens, nd0 as u32, lt0);
         initial.extend(sc.initial.iter().copied());
         points.extend(sc.points.iter().map(|p| NamedPoint {
             name: packed_name(prefix, &p.name),

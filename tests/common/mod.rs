@@ -118,6 +118,7 @@ pub fn straight_cable(
         nodes,
         clamps: Vec::new(),
         joints: Vec::new(),
+        screens: Default::default(),
     }
 }
 

@@ -631,6 +631,7 @@ fn hanging_cable(current: [f64; 3], bend: f64) -> (Layout, Vec<[f64; 3]>) {
         }],
         clamps: Vec::new(),
         joints: Vec::new(),
+        screens: Default::default(),
     };
     Layout::build(&def).unwrap()
 }

@@ -27,6 +27,7 @@ mod nets;
 mod packed;
 mod parallel;
 mod seabed_implicit;
+mod screen;
 mod seabed_slope;
 mod statics;
 mod stiff_statics;

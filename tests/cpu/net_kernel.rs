@@ -65,6 +65,7 @@ fn net(k: usize, seg: usize, top: f64) -> ModelDef {
                 added_mass_coef: 1.0,
             },
             output_positions: false,
+            screen: None,
         },
     )
     .unwrap();

@@ -50,6 +50,7 @@ fn net(k: usize, seg: usize) -> ModelDef {
                 added_mass_coef: 1.0,
             },
             output_positions: false,
+            screen: None,
         },
     )
     .unwrap();

@@ -84,6 +84,7 @@ fn single_line(pts: &[[f64; 3]], length: f64, depth: f64, current: [f64; 3]) -> 
         }],
         clamps: Vec::new(),
         joints: Vec::new(),
+        screens: Default::default(),
     }
 }
 

@@ -33,6 +33,8 @@ mod seabed_grid;
 use seabed_grid::*;
 mod visco;
 use visco::*;
+mod screen;
+use screen::*;
 
 const KERNELS: &str = r#"
 @group(1) @binding(0) var<storage, read> tin: array<R>;
@@ -732,6 +734,7 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_tabulated::<R>(ctx, p, &mut rng);
     check_bending::<R>(ctx, p, &mut rng);
     check_visco::<R>(ctx, p, &mut rng);
+    check_screen::<R>(ctx, p, &mut rng);
 }
 
 #[test]

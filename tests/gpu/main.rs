@@ -30,6 +30,7 @@ mod fused;
 mod layout;
 mod packed;
 mod parity;
+mod screen;
 mod seabed_grid;
 mod shaders;
 mod step_functions;

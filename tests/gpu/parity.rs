@@ -190,6 +190,7 @@ fn net_model() -> (Layout, Vec<[f64; 3]>) {
         cables,
         clamps: Vec::new(),
         joints: Vec::new(),
+        screens: Default::default(),
     };
     Layout::build(&def).unwrap()
 }

@@ -433,6 +433,8 @@ fn check_gather<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
             constraint: u32::MAX,
             block: block as u32,
             current: (i % 2) as u32,
+            screen: u32::MAX,
+            screen_net: u32::MAX,
             winch: if i % 4 == 1 {
                 rng.gen_range(0..n_winch as u32)
             } else {

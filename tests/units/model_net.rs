@@ -24,6 +24,7 @@ fn cylinder_is_closed_and_held_at_the_top() {
             ..Default::default()
         },
         output_positions: false,
+        screen: None,
     };
     let n = add_net(&mut def, &spec).unwrap();
     assert_eq!(n, 12 * 5 + 12 * 4);

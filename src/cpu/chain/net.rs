@@ -74,6 +74,8 @@ pub(crate) struct NetConsts {
     eslot: [Vec<u8>; 2],
     /// The one-thread step's order and tile buffers.
     plan1: Plan,
+    /// Whether the block holds no knot of a screen-model net.
+    screen_empty: bool,
 }
 
 impl NetConsts {
@@ -123,6 +125,7 @@ impl NetConsts {
             width,
             eslot,
             plan1,
+            screen_empty: !lay.block_has_screen(b),
         })
     }
 
@@ -235,6 +238,9 @@ struct Work {
     pwz: Vec<f64>,
     ex: [Vec<f64>; 3],
     acc: [Vec<f64>; 3],
+    /// Screen-model nets: each knot's share of its panels' loads at the step's start
+    /// (block-local node, sorted), added to `ex` by the node pass.
+    screen: Vec<(usize, [f64; 3])>,
 }
 
 impl Work {
@@ -630,6 +636,31 @@ unsafe fn advance_net_avx2(
     advance_net_body::<4>(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
 }
 
+/// The screen-net knot forces of the block from its columns `x` (block-local, the
+/// block's first node `n0`), into `out` (`Work::screen`).
+#[inline(never)]
+fn screen_tile_forces(
+    lay: &Layout,
+    n0: usize,
+    n: usize,
+    x: &[Vec<f64>; 6],
+    w: &[f64],
+    out: &mut Vec<(usize, [f64; 3])>,
+) {
+    out.clear();
+    let col = |q: usize, i: usize| V3::new(x[q][i - n0], x[q + 1][i - n0], x[q + 2][i - n0]);
+    for k in lay.screen.knots_in(n0 as u32, (n0 + n) as u32) {
+        let f = crate::cpu::screen::screen_knot_force(
+            lay,
+            k,
+            |i| col(0, i),
+            |i| col(3, i),
+            |i| (!w.is_empty()).then(|| node_water(w, i - n0).1),
+        );
+        out.push((k.node as usize - n0, f.to_f64()));
+    }
+}
+
 /// `L`: the lanes of the element and fold loops' chunks (4 with AVX2, 8 with AVX-512).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
@@ -661,6 +692,7 @@ fn advance_net_body<const L: usize>(
         work,
     } = sc;
     work.size(nc.ne().min(TILE));
+    work.screen.clear();
     let mut result = Ok(());
     for k in 0..nsteps {
         let time = (step0 + k) as f64 * dt;
@@ -672,6 +704,9 @@ fn advance_net_body<const L: usize>(
             }
             // The surface moved: the node pass's flags were for still water's.
             flag_tiles(&x[2], eta, under);
+        }
+        if !nc.screen_empty {
+            screen_tile_forces(lay, n0, n, x, wbuf, &mut work.screen);
         }
         // SAFETY: `el` is this block's loads in `plan`'s buffers (`load`), and only
         // this loop uses them, one op at a time.

@@ -48,6 +48,17 @@ impl CpuSolver {
                 &mut elems[e0..e1],
             )
             .map_err(|f| self.name_failure(f))?;
+            let mut screen = Vec::new();
+            if lay.block_has_screen(b) {
+                crate::cpu::screen::screen_block_forces(
+                    lay,
+                    n0,
+                    &self.r[n0..n1],
+                    &self.v[n0..n1],
+                    &w,
+                    &mut screen,
+                );
+            }
             for i in n0..n1 {
                 let (a, f, m) = node_accel(
                     &ctx,
@@ -60,6 +71,7 @@ impl CpuSolver {
                     self.t,
                     &w,
                     &elems[e0..e1],
+                    &screen,
                 );
                 ev.acc[i] = a.to_f64();
                 ev.force[i] = f.to_f64();

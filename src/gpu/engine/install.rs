@@ -23,7 +23,7 @@ use crate::gpu::wave_schedule::{
     fused_max_steps, SeaSchedules, WAVE_CACHE_STRIDE, WAVE_DUE_STRIDE, WAVE_ELEM_ROWS,
     WAVE_ELEM_STRIDE,
 };
-use crate::model::Layout;
+use crate::model::{Layout, NO_KNOT};
 use crate::options::Precision;
 use crate::options::SolverOptions;
 use crate::sea::bands::{warn_beyond_margin, BandCensus};
@@ -66,14 +66,17 @@ fn fused_pipeline(
 }
 
 /// Whether some node of `lay` has a point mass that takes wave loads (drag, displaced
-/// or added mass: the shaders' `point_waves` test); without one the fused kernel's
+/// or added mass: the shaders' `point_waves` test), or is a screen net's knot (whose
+/// panels read their corners' waves: `screen_waves`); without one the fused kernel's
 /// waves pipeline leaves the point masses' waves code out (`WAVE_POINTS = false`).
 pub(in crate::gpu) fn layout_has_wave_points(lay: &Layout) -> bool {
-    lay.node_point_drag
-        .iter()
-        .chain(&lay.node_point_displaced)
-        .chain(&lay.node_point_added)
-        .any(|&x| x != 0.0)
+    !lay.screen.is_empty()
+        || lay
+            .node_point_drag
+            .iter()
+            .chain(&lay.node_point_displaced)
+            .chain(&lay.node_point_added)
+            .any(|&x| x != 0.0)
 }
 
 impl<R: GpuReal> GpuEngine<R> {
@@ -389,6 +392,36 @@ impl<R: GpuReal> GpuEngine<R> {
                 uz: R::c(d[2]),
             });
         }
+        // Screen-model nets ride in the same buffer: two rows per net (its constants,
+        // the wake's axis relative to its block's origin: WGSL screen_coefs_at), and
+        // each knot's 8 grid neighbours in `inc` after the incidence entries.
+        let mut node_screen = vec![(NO_KNOT, NO_KNOT); lay.n_nodes()];
+        let mut inc = lay.inc.clone();
+        if !lay.screen.is_empty() {
+            let mut net_row = vec![u32::MAX; lay.screen.nets.len()];
+            for k in &lay.screen.knots {
+                let net = k.net as usize;
+                if net_row[net] == u32::MAX {
+                    let o = host.origin[host.node_block[k.node as usize] as usize];
+                    let co = lay.screen.nets[net].coefs(env.water_density, [o[0], o[1]]);
+                    net_row[net] = current_pts.len() as u32;
+                    current_pts.push(CurrentPoint {
+                        z: R::c(co.model as f64),
+                        ux: R::c(co.wake as f64),
+                        uy: R::c(co.sn),
+                        uz: R::c(co.re_scale),
+                    });
+                    current_pts.push(CurrentPoint {
+                        z: R::c(co.half_rho),
+                        ux: R::c(co.axis_x),
+                        uy: R::c(co.axis_y),
+                        uz: R::c(0.0),
+                    });
+                }
+                node_screen[k.node as usize] = (inc.len() as u32, net_row[net]);
+                inc.extend_from_slice(&k.around);
+            }
+        }
         let lines: Vec<LineParams<R>> = lay
             .line_coefs
             .iter()
@@ -435,6 +468,8 @@ impl<R: GpuReal> GpuEngine<R> {
                 block: host.node_block[i],
                 current: lay.node_current[i],
                 winch: host.node_winch[i],
+                screen: node_screen[i].0,
+                screen_net: node_screen[i].1,
                 point_mass: R::c(lay.node_point_mass[i]),
                 point_weight_z: R::c(lay.node_point_weight_z[i]),
                 point_drag: R::c(lay.node_point_drag[i]),
@@ -556,7 +591,7 @@ impl<R: GpuReal> GpuEngine<R> {
         let lines_b = init("lines", &bytes_or_one(&lines), ro);
         let elems_b = init("elems", &bytes_or_one(&elems), ro);
         let nodes_b = init("nodes", &bytes_or_one(&nodes), ro);
-        let inc_b = init("inc", &bytes_or_one(&lay.inc), ro);
+        let inc_b = init("inc", &bytes_or_one(&inc), ro);
         let blocks_b = init("blocks", &bytes_or_one(&blocks), ro);
         let pts_b = init("current_pts", &bytes_or_one(&current_pts), ro);
         let ranges_b = init("current_ranges", &bytes_or_one(&current_ranges), ro);
@@ -651,6 +686,11 @@ impl<R: GpuReal> GpuEngine<R> {
             bind_group,
             n_nodes,
             n_elems,
+            n_elem_threads: if lay.screen.is_empty() {
+                n_elems
+            } else {
+                n_elems.max(n_nodes)
+            },
             n_routes,
             n_blocks,
             fused_max_steps: fused_max_steps(lay),

@@ -89,6 +89,8 @@ pub(super) fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mu
             } else {
                 u32::MAX
             },
+            screen: u32::MAX,
+            screen_net: u32::MAX,
             ..Default::default()
         });
         if driven {

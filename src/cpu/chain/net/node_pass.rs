@@ -90,6 +90,13 @@ pub(super) fn node_pass<const FRICTION: bool>(
             e[j] += fq;
         }
     }
+    // Screen-model nets: each knot's share of its panels' loads (super::Work::screen).
+    let screen = listed(&g.screen, |p| p.0, &nr);
+    for &(i, f) in screen {
+        for (e, fq) in g.ex.iter_mut().zip(f) {
+            e[i - n0] += fq;
+        }
+    }
     if !w.is_empty() {
         for pv in point_volume {
             let j = pv.0 - n0;
@@ -131,6 +138,7 @@ pub(super) fn node_pass<const FRICTION: bool>(
         .iter()
         .map(|p| &p.0)
         .chain(point_volume.iter().map(|p| &p.0))
+        .chain(screen.iter().map(|p| &p.0))
     {
         for q in 0..3 {
             g.ex[q][i - n0] = 0.0;
