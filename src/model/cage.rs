@@ -79,6 +79,7 @@ impl Pipe {
             ei: self.youngs_modulus * self.second_moment(),
             allow_compression: true,
             ea_curve: None,
+            viscoelastic: None,
         }
     }
 }

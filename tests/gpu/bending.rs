@@ -44,6 +44,7 @@ fn beam(n: usize, pinned_b: bool, clamps: &[(bool, [f64; 3])]) -> ModelDef {
         ei: 1e7,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     };
     let (a, b) = ([0.0, 0.0, Z0], [L, 0.0, Z0]);
     let mut def = straight_cable(

@@ -24,6 +24,7 @@ fn cylinder(around: usize, rows: usize, radius: f64, depth: f64) -> NetSpec {
             ..Default::default()
         },
         output_positions: false,
+        screen: None,
     }
 }
 
@@ -41,6 +42,7 @@ fn line(name: &str, d: f64, m: f64, ei: f64) -> LineType {
         ei,
         allow_compression: false,
         ea_curve: None,
+        viscoelastic: None,
     }
 }
 
