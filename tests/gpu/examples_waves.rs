@@ -146,16 +146,6 @@ fn gpu_matches_cpu_in_f64_on_every_example_with_waves() {
     for path in examples {
         let (text, added) = with_sea(&std::fs::read_to_string(&path).unwrap());
         let sc = Scenario::parse(&edited(&text, false), &path).unwrap();
-        // Bending (a fish farm's collar) runs on the CPU path only, so far; a run with
-        // winch cables has none in its lumped-mass model.
-        let m = &sc.model;
-        if sc.winches.is_empty() && m.cables.iter().any(|c| m.line_types[c.line_type].ei > 0.0) {
-            eprintln!(
-                "{}: bending, which the GPU path does not run yet: skipped",
-                path.display()
-            );
-            continue;
-        }
         assert!(!sc.sea.is_still(), "{}: no waves", path.display());
         let net = text.contains("[[nets]]");
         let lengths: Vec<f64> = sc.model.cables.iter().map(|c| c.l0.iter().sum()).collect();
