@@ -186,7 +186,11 @@ pub fn add_net_at(
         let net = def.screens.nets.len() as u32;
         def.screens.nets.push(super::ScreenNet { axis, ..sn });
         let at = |row: i64, col: i64| -> u32 {
-            let col = if closed { col.rem_euclid(nc as i64) } else { col };
+            let col = if closed {
+                col.rem_euclid(nc as i64)
+            } else {
+                col
+            };
             if row < 0 || row >= nr as i64 || col < 0 || col >= nc as i64 {
                 super::NO_KNOT
             } else {
@@ -195,8 +199,17 @@ pub fn add_net_at(
         };
         for row in 0..nr as i64 {
             for col in 0..nc as i64 {
-                let around = [(-1, -1), (-1, 0), (-1, 1), (0, 1), (1, 1), (1, 0), (1, -1), (0, -1)]
-                    .map(|(dr, dc)| at(row + dr, col + dc));
+                let around = [
+                    (-1, -1),
+                    (-1, 0),
+                    (-1, 1),
+                    (0, 1),
+                    (1, 1),
+                    (1, 0),
+                    (1, -1),
+                    (0, -1),
+                ]
+                .map(|(dr, dc)| at(row + dr, col + dc));
                 def.screens.knots.push(super::ScreenKnot {
                     node: at(row, col),
                     net,

@@ -5,8 +5,7 @@
 //! without atomics: every knot takes a quarter of each of its panels.
 
 use crate::physics::screen::{
-    SCREEN_AARSNES, SCREEN_KRISTIANSEN_FALTINSEN, SCREEN_LOLAND, WAKE_CHENG, WAKE_LOLAND,
-    WAKE_NONE,
+    SCREEN_AARSNES, SCREEN_KRISTIANSEN_FALTINSEN, SCREEN_LOLAND, WAKE_CHENG, WAKE_LOLAND, WAKE_NONE,
 };
 use crate::physics::ScreenCoefs;
 

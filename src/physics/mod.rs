@@ -16,12 +16,12 @@ pub use element::{
     axial_force, froude_krylov, glmf_element, glmf_element_wet, glmf_external, glmf_external_wet,
     Coefs, ElementInput, ElementLoads, ExternalLoads,
 };
+pub use screen::{
+    screen_coefficients, screen_cylinder_cd, screen_panel_force, screen_wake_factor, ScreenCoefs,
+};
 pub use seabed::{
     seabed_damping, seabed_force, seabed_height, seabed_slope_damping, seabed_slope_force,
     seabed_slope_normal, SeabedCoefs,
-};
-pub use screen::{
-    screen_coefficients, screen_cylinder_cd, screen_panel_force, screen_wake_factor, ScreenCoefs,
 };
 pub use surface::{point_wetted_fraction, sphere_radius, wetted_fraction};
 pub use visco::{visco_dynamic_stiffness, visco_rest_state, visco_tension};

@@ -75,7 +75,13 @@ pub fn screen_log10<T: Real>(x: T) -> T {
     let mut m = x;
     let mut k = T::zero();
     // (threshold over sqrt 2, divisor, its exponent)
-    for (t, p, e) in [(256.0, 256.0, 8.0), (16.0, 16.0, 4.0), (4.0, 4.0, 2.0), (2.0, 2.0, 1.0), (1.0, 2.0, 1.0)] {
+    for (t, p, e) in [
+        (256.0, 256.0, 8.0),
+        (16.0, 16.0, 4.0),
+        (4.0, 4.0, 2.0),
+        (2.0, 2.0, 1.0),
+        (1.0, 2.0, 1.0),
+    ] {
         if m > T::c(t) * sqrt2 {
             m = m / T::c(p);
             k += T::c(e);

@@ -526,8 +526,14 @@ fn chain_fast_path_bends_as_the_general_path() {
             eprintln!(
                 "{name}, {scheme:?}: moved {moved:.3e} m; fast and general paths differ by {worst:.2e} m, {worst_v:.2e} m/s"
             );
-            assert!(moved > 1e-3, "{name}: the beam should swing, moved {moved} m");
-            assert!(worst > 0.0, "{name}: the same bits: the fast path did not run");
+            assert!(
+                moved > 1e-3,
+                "{name}: the beam should swing, moved {moved} m"
+            );
+            assert!(
+                worst > 0.0,
+                "{name}: the same bits: the fast path did not run"
+            );
             assert!(
                 worst < 1e-9 && worst_v < 1e-7,
                 "{name}, {scheme:?}: fast and general paths differ by {worst:e} m, {worst_v:e} m/s"

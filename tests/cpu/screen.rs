@@ -113,7 +113,12 @@ fn cases() -> Vec<(ScreenModel, f64, [f64; 2], [f64; 2])> {
     vec![
         (ScreenModel::Aarsnes, 0.5, [0.7701, 0.0], [0.5563, 0.1935]),
         (ScreenModel::Loland, 0.5, [0.6981, 0.0], [0.5053, 0.1861]),
-        (ScreenModel::KristiansenFaltinsen, 0.5, [0.665, 0.0], [0.376, 0.129]),
+        (
+            ScreenModel::KristiansenFaltinsen,
+            0.5,
+            [0.665, 0.0],
+            [0.376, 0.129],
+        ),
     ]
 }
 
@@ -130,7 +135,10 @@ fn screen_panel_normal_to_the_current_has_the_models_drag() {
             "{model:?}: drag {} N, the model's {drag} N",
             f.y
         );
-        assert!(f.x.abs() < 1e-9 * drag && f.z.abs() < 1e-9 * drag, "{model:?}: {f:?}");
+        assert!(
+            f.x.abs() < 1e-9 * drag && f.z.abs() < 1e-9 * drag,
+            "{model:?}: {f:?}"
+        );
     }
 }
 
@@ -152,10 +160,25 @@ fn screen_panel_at_45_degrees_has_the_models_drag_and_lift() {
         let side = f - dir * drag;
         // Lift across the flow towards the side the panel faces: (-1, 1, 0) / sqrt 2.
         let lift = side.dot(V3::new(-h, h, 0.0));
-        println!("{model:?}: drag {drag:.4} N ({:.4}), lift {lift:.4} N ({:.4})", cd * q, cl * q);
-        assert!((drag - cd * q).abs() <= 5e-3 * cd * q, "{model:?}: drag {drag}, expected {}", cd * q);
-        assert!((lift - cl * q).abs() <= 5e-3 * cl * q, "{model:?}: lift {lift}, expected {}", cl * q);
-        assert!((side - V3::new(-h, h, 0.0) * lift).norm() < 1e-9 * q, "{model:?}: {side:?}");
+        println!(
+            "{model:?}: drag {drag:.4} N ({:.4}), lift {lift:.4} N ({:.4})",
+            cd * q,
+            cl * q
+        );
+        assert!(
+            (drag - cd * q).abs() <= 5e-3 * cd * q,
+            "{model:?}: drag {drag}, expected {}",
+            cd * q
+        );
+        assert!(
+            (lift - cl * q).abs() <= 5e-3 * cl * q,
+            "{model:?}: lift {lift}, expected {}",
+            cl * q
+        );
+        assert!(
+            (side - V3::new(-h, h, 0.0) * lift).norm() < 1e-9 * q,
+            "{model:?}: {side:?}"
+        );
     }
 }
 
@@ -207,8 +230,16 @@ fn wake_slows_the_flow_on_the_downstream_side_of_a_cage() {
     let (def, _) = cage(WakeModel::Loland);
     let f = forces_at_rest(&def);
     let (down, up) = (knot(&f, 2), knot(&f, 10));
-    println!("r = {r:.4}: downstream {down:.5} N, upstream {up:.5} N, ratio {:.5}", down / up);
-    assert!((down / up - r * r).abs() < 1e-9, "ratio {} against r^2 {}", down / up, r * r);
+    println!(
+        "r = {r:.4}: downstream {down:.5} N, upstream {up:.5} N, ratio {:.5}",
+        down / up
+    );
+    assert!(
+        (down / up - r * r).abs() < 1e-9,
+        "ratio {} against r^2 {}",
+        down / up,
+        r * r
+    );
     let (def, _) = cage(WakeModel::None);
     let f = forces_at_rest(&def);
     assert!((knot(&f, 2) / knot(&f, 10) - 1.0).abs() < 1e-9);
@@ -230,7 +261,12 @@ fn cheng_wake_factor_depends_on_the_panels_angle() {
         let t = V3::new(-a.sin(), a.cos(), 0.0);
         let z = V3::new(0.0, 0.0, 1.0);
         let c = V3::new(5.0, 0.0, -3.0);
-        let p = [c - t * 0.5 + z * 0.5, c + t * 0.5 + z * 0.5, c + t * 0.5 - z * 0.5, c - t * 0.5 - z * 0.5];
+        let p = [
+            c - t * 0.5 + z * 0.5,
+            c + t * 0.5 + z * 0.5,
+            c + t * 0.5 - z * 0.5,
+            c - t * 0.5 - z * 0.5,
+        ];
         assert!(((p[2] - p[0]).cross(p[3] - p[1]).dot(n)).abs() > 0.99);
         let mut co = ScreenCoefs {
             model: ScreenModel::Loland.code(),
@@ -295,7 +331,12 @@ fn screen_net_fast_path_matches_the_general_path() {
     let steps = (2.0 / dt) as u64;
     fast.advance(steps).unwrap();
     slow.advance(steps).unwrap();
-    let dr = fast.r.iter().zip(&slow.r).map(|(a, b)| (*a - *b).norm()).fold(0.0, f64::max);
+    let dr = fast
+        .r
+        .iter()
+        .zip(&slow.r)
+        .map(|(a, b)| (*a - *b).norm())
+        .fold(0.0, f64::max);
     let moved = fast
         .r
         .iter()
@@ -348,28 +389,80 @@ fn screen_keys_are_read_and_bad_ones_named() {
     assert_eq!(s.nets[0].model, ScreenModel::Aarsnes);
     assert_eq!(s.nets[0].twine_diameter, 0.004);
     // The twines lose their drag coefficients, not their mass.
-    let lt = sc.model.cables.iter().map(|c| &sc.model.line_types[c.line_type]).next().unwrap();
+    let lt = sc
+        .model
+        .cables
+        .iter()
+        .map(|c| &sc.model.line_types[c.line_type])
+        .next()
+        .unwrap();
     assert_eq!((lt.cn, lt.ct, lt.mass_per_length), (0.0, 0.0, 0.02));
     // Solidity from the mesh: 2 d / l - (d / l)^2.
     let m = Scenario::parse(&PANEL.replace("solidity = 0.347", "mesh = 0.02"), path).unwrap();
     let x: f64 = 0.004 / 0.02;
     assert!((m.model.screens.nets[0].solidity - (2.0 * x - x * x)).abs() < 1e-15);
     let cases = [
-        ("solidity = 0.347", "solidity = 1.2", "solidity: must be between 0 and 1"),
-        ("solidity = 0.347", "solidity = 0.0", "solidity: must be between 0 and 1"),
-        ("solidity = 0.347", "mesh = 0.003", "mesh: 0.003 m is not coarser than the twine"),
-        ("solidity = 0.347", "solidity = 0.3\nmesh = 0.02", "mesh: give the netting by solidity or by mesh"),
-        ("solidity = 0.347", "", "solidity: loads = \"screen\" needs the netting's solidity"),
-        ("screen_model = \"aarsnes\"", "screen_model = \"fridman\"", "screen_model: must be \"aarsnes\""),
-        ("screen_model = \"aarsnes\"", "", "screen_model: is required"),
-        ("loads = \"screen\"", "loads = \"porous\"", "loads: must be \"morison\" or \"screen\""),
-        ("loads = \"screen\"", "", "screen_model: is a key of the screen model"),
-        ("solidity = 0.347", "solidity = 0.347\nwake = \"loland\"", "wake: wake shielding needs a closed net"),
-        ("solidity = 0.347", "solidity = 0.347\nwake = \"behind\"", "wake: must be \"none\""),
+        (
+            "solidity = 0.347",
+            "solidity = 1.2",
+            "solidity: must be between 0 and 1",
+        ),
+        (
+            "solidity = 0.347",
+            "solidity = 0.0",
+            "solidity: must be between 0 and 1",
+        ),
+        (
+            "solidity = 0.347",
+            "mesh = 0.003",
+            "mesh: 0.003 m is not coarser than the twine",
+        ),
+        (
+            "solidity = 0.347",
+            "solidity = 0.3\nmesh = 0.02",
+            "mesh: give the netting by solidity or by mesh",
+        ),
+        (
+            "solidity = 0.347",
+            "",
+            "solidity: loads = \"screen\" needs the netting's solidity",
+        ),
+        (
+            "screen_model = \"aarsnes\"",
+            "screen_model = \"fridman\"",
+            "screen_model: must be \"aarsnes\"",
+        ),
+        (
+            "screen_model = \"aarsnes\"",
+            "",
+            "screen_model: is required",
+        ),
+        (
+            "loads = \"screen\"",
+            "loads = \"porous\"",
+            "loads: must be \"morison\" or \"screen\"",
+        ),
+        (
+            "loads = \"screen\"",
+            "",
+            "screen_model: is a key of the screen model",
+        ),
+        (
+            "solidity = 0.347",
+            "solidity = 0.347\nwake = \"loland\"",
+            "wake: wake shielding needs a closed net",
+        ),
+        (
+            "solidity = 0.347",
+            "solidity = 0.347\nwake = \"behind\"",
+            "wake: must be \"none\"",
+        ),
     ];
     for (from, to, says) in cases {
         assert!(PANEL.contains(from), "{from}");
-        let e = Scenario::parse(&PANEL.replace(from, to), path).unwrap_err().to_string();
+        let e = Scenario::parse(&PANEL.replace(from, to), path)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(says), "{to}: {e}");
     }
 }

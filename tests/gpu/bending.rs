@@ -143,7 +143,11 @@ fn compare(p: Precision) {
         ("cantilever", beam(20, false, &[(false, [1.0, 0.0, 0.0])])),
         (
             "beam clamped at both ends",
-            beam(16, true, &[(false, [1.0, 0.2, 0.3]), (true, [1.0, -0.1, -0.4])]),
+            beam(
+                16,
+                true,
+                &[(false, [1.0, 0.2, 0.3]), (true, [1.0, -0.1, -0.4])],
+            ),
         ),
         ("hanging cable", hanging()),
     ];
@@ -178,7 +182,10 @@ fn compare(p: Precision) {
             .map(|(a, b)| super::compare::dist(*a, *b))
             .fold(0.0, f64::max);
         eprintln!("{name}, {case}: {steps} steps of {:.3e} s; without EI the nodes end up to {moved:.3e} m away", opts.dt);
-        assert!(moved > 1e-3 * length, "{case}: bending moved the nodes {moved} m only");
+        assert!(
+            moved > 1e-3 * length,
+            "{case}: bending moved the nodes {moved} m only"
+        );
         for kernel in [GpuKernel::TwoPass, GpuKernel::Fused] {
             let g = gpu_run(&ctx, &lay, &pos, opts, p, kernel, steps);
             let label = format!("{name}, {case}");
@@ -195,7 +202,10 @@ fn compare(p: Precision) {
                     // The end forces (what end_forces.csv reports): the supports'
                     // reactions, where the bending shear is most of the load.
                     let (fg, fc) = (end_forces(&lay, &g.eval), end_forces(&lay, &reference.eval));
-                    let fmax = fc.iter().map(|f| super::compare::norm(*f)).fold(0.0, f64::max);
+                    let fmax = fc
+                        .iter()
+                        .map(|f| super::compare::norm(*f))
+                        .fold(0.0, f64::max);
                     let f = check.within("end forces", "N", Place::CableEnd, &fg, &fc, |k| {
                         0.01 * super::compare::norm(fc[k]) + 1e-3 * fmax
                     });

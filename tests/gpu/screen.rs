@@ -73,17 +73,41 @@ fn cases() -> Vec<(&'static str, ModelDef)> {
         top: [1.0, -3.0, -1.0],
     };
     vec![
-        ("panel aarsnes", net(panel, [h, h, 0.0], ScreenModel::Aarsnes, WakeModel::None)),
-        ("panel loland", net(panel, [h, h, 0.0], ScreenModel::Loland, WakeModel::None)),
+        (
+            "panel aarsnes",
+            net(panel, [h, h, 0.0], ScreenModel::Aarsnes, WakeModel::None),
+        ),
+        (
+            "panel loland",
+            net(panel, [h, h, 0.0], ScreenModel::Loland, WakeModel::None),
+        ),
         (
             "panel kristiansen_faltinsen",
-            net(panel, [h, h, 0.0], ScreenModel::KristiansenFaltinsen, WakeModel::None),
+            net(
+                panel,
+                [h, h, 0.0],
+                ScreenModel::KristiansenFaltinsen,
+                WakeModel::None,
+            ),
         ),
         (
             "cage kristiansen_faltinsen, cheng wake",
-            net(cage, [0.3, 0.4, 0.0], ScreenModel::KristiansenFaltinsen, WakeModel::Cheng),
+            net(
+                cage,
+                [0.3, 0.4, 0.0],
+                ScreenModel::KristiansenFaltinsen,
+                WakeModel::Cheng,
+            ),
         ),
-        ("cage aarsnes, loland wake", net(cage, [-0.5, 0.1, 0.0], ScreenModel::Aarsnes, WakeModel::Loland)),
+        (
+            "cage aarsnes, loland wake",
+            net(
+                cage,
+                [-0.5, 0.1, 0.0],
+                ScreenModel::Aarsnes,
+                WakeModel::Loland,
+            ),
+        ),
     ]
 }
 
@@ -123,7 +147,9 @@ fn check(p: Precision) {
                 }
             }
             let total = (sc[0].powi(2) + sc[1].powi(2) + sc[2].powi(2)).sqrt();
-            let dtot = ((sc[0] - sg[0]).powi(2) + (sc[1] - sg[1]).powi(2) + (sc[2] - sg[2]).powi(2)).sqrt();
+            let dtot =
+                ((sc[0] - sg[0]).powi(2) + (sc[1] - sg[1]).powi(2) + (sc[2] - sg[2]).powi(2))
+                    .sqrt();
             println!(
                 "{what} ({}, {kernel:?}): total load {total:.5} N, GPU - CPU {dtot:.2e} N, \
                  worst node {worst:.2e} N of {scale:.3e}",
@@ -132,7 +158,10 @@ fn check(p: Precision) {
             assert!(total > 0.1, "{what}: the net must be loaded: {total} N");
             match p {
                 Precision::F64 => {
-                    assert!(worst <= 1e-12 * scale, "{what}: node loads differ by {worst:e} N");
+                    assert!(
+                        worst <= 1e-12 * scale,
+                        "{what}: node loads differ by {worst:e} N"
+                    );
                     assert!(dtot <= 1e-12 * total, "{what}: total differs by {dtot:e} N");
                 }
                 _ => assert!(dtot <= 5e-3 * total, "{what}: total differs by {dtot:e} N"),
@@ -151,7 +180,10 @@ fn check(p: Precision) {
                 }
                 println!("  {steps} steps: |dr| {dr:.2e} m, moved {moved:.4} m");
                 assert!(moved > 1e-3, "{what}: the net must move: {moved} m");
-                assert!(dr < 1e-9, "{what} ({kernel:?}): GPU and CPU differ by {dr:e} m");
+                assert!(
+                    dr < 1e-9,
+                    "{what} ({kernel:?}): GPU and CPU differ by {dr:e} m"
+                );
             }
         }
     }

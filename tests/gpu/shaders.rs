@@ -58,10 +58,14 @@ fn validate_bending(
 #[test]
 fn every_stage_validates_at_both_precisions() {
     for p in [Precision::F32, Precision::F64] {
-        for (stage, waves, bending) in Stage::ALL
-            .into_iter()
-            .flat_map(|s| [(s, true, false), (s, false, false), (s, true, true), (s, false, true)])
-        {
+        for (stage, waves, bending) in Stage::ALL.into_iter().flat_map(|s| {
+            [
+                (s, true, false),
+                (s, false, false),
+                (s, true, true),
+                (s, false, true),
+            ]
+        }) {
             let m = validate_bending(stage, p, waves, waves, bending);
             let entries: Vec<&str> = m.entry_points.iter().map(|e| e.name.as_str()).collect();
             for want in stage.entry_points() {

@@ -66,7 +66,11 @@ impl ChainBend {
 #[inline(always)]
 fn atan_ratio(num: f64, den: f64) -> f64 {
     let big = num > 0.66 * den;
-    let x = if big { (num - den) / (num + den) } else { num / den };
+    let x = if big {
+        (num - den) / (num + den)
+    } else {
+        num / den
+    };
     let (y, lo) = if big {
         (FRAC_PI_4, 0.5 * 6.123233995736766e-17)
     } else {

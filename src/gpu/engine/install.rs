@@ -47,8 +47,15 @@ fn fused_pipeline(
     let m = dev.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(Stage::FusedSteps.file()),
         source: wgpu::ShaderSource::Wgsl(
-            shaders::source_with(Stage::FusedSteps, precision, wg, waves, wave_points, bending)
-                .into(),
+            shaders::source_with(
+                Stage::FusedSteps,
+                precision,
+                wg,
+                waves,
+                wave_points,
+                bending,
+            )
+            .into(),
         ),
     });
     dev.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {

@@ -88,8 +88,17 @@ pub(super) fn check_bending<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mu
         let (f1, f2) = bending_hinge(q1, l1, q2, l2, k);
         w.v("f1", i, &o[2..5], f1, k * (1.0 + g) / l1);
         w.v("f2", i, &o[5..8], f2, k * (1.0 + g) / l2);
-        w.check("energy", i, o[8], bending_energy(q1, q2, k), k * (phi + phi * phi));
+        w.check(
+            "energy",
+            i,
+            o[8],
+            bending_energy(q1, q2, k),
+            k * (phi + phi * phi),
+        );
     }
-    assert!(seen[0] && seen[1], "both branches of phi / sin(phi): {seen:?}");
+    assert!(
+        seen[0] && seen[1],
+        "both branches of phi / sin(phi): {seen:?}"
+    );
     w.report(p);
 }
