@@ -177,14 +177,7 @@ pub(super) unsafe fn bending_forces<St: Stride>(
         )
     };
     let ne = n.saturating_sub(1);
-    {
-        let (x, y, z) = (&p[0][..n], &p[1][..n], &p[2][..n]);
-        let il = &mut il[1..ne + 1];
-        for k in 0..ne {
-            let d = [x[k + 1] - x[k], y[k + 1] - y[k], z[k + 1] - z[k]];
-            il[k] = 1.0 / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        }
-    }
+    inverse_lengths(&p[0][..n], &p[1][..n], &p[2][..n], &mut il[1..ne + 1]);
     // SAFETY: as above.
     let (f1x, f1y, f1z, f2x, f2y, f2z) = unsafe {
         (
@@ -196,30 +189,22 @@ pub(super) unsafe fn bending_forces<St: Stride>(
             &mut wv.col_mut(F2 + 2)[..len],
         )
     };
-    // The interior hinges, nodes 1..n-1: node i joins padded elements i and i + 1.
+    let il = &*il;
+    // The interior hinges, nodes 1..n-1: node i joins padded elements i and i + 1;
+    // its pair at entry i + 1.
     if n >= 3 {
         let m = n - 2;
-        let (q1x, q1y, q1z, il1) = (&tx[1..m + 1], &ty[1..m + 1], &tz[1..m + 1], &il[1..m + 1]);
-        let (q2x, q2y, q2z, il2) = (&tx[2..m + 2], &ty[2..m + 2], &tz[2..m + 2], &il[2..m + 2]);
-        let kh = &bd.kh[1..m + 1];
-        // Node i at entry i + 1.
-        let (a1x, a1y, a1z) = (&mut f1x[2..m + 2], &mut f1y[2..m + 2], &mut f1z[2..m + 2]);
-        let (a2x, a2y, a2z) = (&mut f2x[2..m + 2], &mut f2y[2..m + 2], &mut f2z[2..m + 2]);
-        for i in 0..m {
-            let (f1, f2) = hinge(
-                [q1x[i], q1y[i], q1z[i]],
-                il1[i],
-                [q2x[i], q2y[i], q2z[i]],
-                il2[i],
-                kh[i],
-            );
-            a1x[i] = f1[0];
-            a1y[i] = f1[1];
-            a1z[i] = f1[2];
-            a2x[i] = f2[0];
-            a2y[i] = f2[1];
-            a2z[i] = f2[2];
-        }
+        hinge_loop(
+            [&tx[1..m + 1], &ty[1..m + 1], &tz[1..m + 1], &il[1..m + 1]],
+            [&tx[2..m + 2], &ty[2..m + 2], &tz[2..m + 2], &il[2..m + 2]],
+            &bd.kh[1..m + 1],
+            &mut f1x[2..m + 2],
+            &mut f1y[2..m + 2],
+            &mut f1z[2..m + 2],
+            &mut f2x[2..m + 2],
+            &mut f2y[2..m + 2],
+            &mut f2z[2..m + 2],
+        );
     }
     // The clamped ends: the held direction in place of the missing element (length
     // 1); the force on the missing far node is dropped, so the held node takes the
@@ -257,14 +242,74 @@ pub(super) unsafe fn bending_forces<St: Stride>(
             &mut wv.col_mut(col::XFX + 2)[..len],
         )
     };
-    let node = |out: &mut [f64], f1: &[f64], f2: &[f64]| {
-        let out = &mut out[..n];
-        let (f2b, own1, own2, f1a) = (&f2[..n], &f1[1..n + 1], &f2[1..n + 1], &f1[2..n + 2]);
-        for i in 0..n {
-            out[i] = (f2b[i] + f1a[i]) - (own1[i] + own2[i]);
-        }
-    };
-    node(xfx, f1x, f2x);
-    node(xfy, f1y, f2y);
-    node(xfz, f1z, f2z);
+    let (f1x, f1y, f1z, f2x, f2y, f2z) = (&*f1x, &*f1y, &*f1z, &*f2x, &*f2y, &*f2z);
+    node_sum(&mut xfx[..n], &f2x[..n], &f1x[1..n + 1], &f2x[1..n + 1], &f1x[2..n + 2]);
+    node_sum(&mut xfy[..n], &f2y[..n], &f1y[1..n + 1], &f2y[1..n + 1], &f1y[2..n + 2]);
+    node_sum(&mut xfz[..n], &f2z[..n], &f1z[1..n + 1], &f2z[1..n + 1], &f1z[2..n + 2]);
+}
+
+// The loops, each array a parameter of its own: `&mut [f64]` parameters are known not
+// to alias (the columns come from one block through raw pointers, which the compiler
+// cannot tell apart), which is what lets it vectorise them whole.
+
+/// `il[k] = 1 / |r[k + 1] - r[k]|` over the chain's elements.
+#[inline(always)]
+fn inverse_lengths(x: &[f64], y: &[f64], z: &[f64], il: &mut [f64]) {
+    let ne = il.len();
+    let (xa, ya, za) = (&x[..ne], &y[..ne], &z[..ne]);
+    let (xb, yb, zb) = (&x[1..ne + 1], &y[1..ne + 1], &z[1..ne + 1]);
+    for k in 0..ne {
+        let d = [xb[k] - xa[k], yb[k] - ya[k], zb[k] - za[k]];
+        il[k] = 1.0 / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    }
+}
+
+/// Each interior hinge's pair: tangents and inverse lengths `a` of the element before
+/// and `b` of the one after, stiffness `kh`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn hinge_loop(
+    a: [&[f64]; 4],
+    b: [&[f64]; 4],
+    kh: &[f64],
+    f1x: &mut [f64],
+    f1y: &mut [f64],
+    f1z: &mut [f64],
+    f2x: &mut [f64],
+    f2y: &mut [f64],
+    f2z: &mut [f64],
+) {
+    let m = kh.len();
+    let [q1x, q1y, q1z, il1] = a;
+    let [q2x, q2y, q2z, il2] = b;
+    let (q1x, q1y, q1z, il1) = (&q1x[..m], &q1y[..m], &q1z[..m], &il1[..m]);
+    let (q2x, q2y, q2z, il2) = (&q2x[..m], &q2y[..m], &q2z[..m], &il2[..m]);
+    let (f1x, f1y, f1z) = (&mut f1x[..m], &mut f1y[..m], &mut f1z[..m]);
+    let (f2x, f2y, f2z) = (&mut f2x[..m], &mut f2y[..m], &mut f2z[..m]);
+    for i in 0..m {
+        let (f1, f2) = hinge(
+            [q1x[i], q1y[i], q1z[i]],
+            il1[i],
+            [q2x[i], q2y[i], q2z[i]],
+            il2[i],
+            kh[i],
+        );
+        f1x[i] = f1[0];
+        f1y[i] = f1[1];
+        f1z[i] = f1[2];
+        f2x[i] = f2[0];
+        f2y[i] = f2[1];
+        f2z[i] = f2[2];
+    }
+}
+
+/// Each node's sum: `f2` of the hinge before it, `f1` of the hinge after it, less its
+/// own pair.
+#[inline(always)]
+fn node_sum(out: &mut [f64], f2b: &[f64], own1: &[f64], own2: &[f64], f1a: &[f64]) {
+    let n = out.len();
+    let (f2b, own1, own2, f1a) = (&f2b[..n], &own1[..n], &own2[..n], &f1a[..n]);
+    for i in 0..n {
+        out[i] = (f2b[i] + f1a[i]) - (own1[i] + own2[i]);
+    }
 }
