@@ -243,9 +243,27 @@ pub(super) unsafe fn bending_forces<St: Stride>(
         )
     };
     let (f1x, f1y, f1z, f2x, f2y, f2z) = (&*f1x, &*f1y, &*f1z, &*f2x, &*f2y, &*f2z);
-    node_sum(&mut xfx[..n], &f2x[..n], &f1x[1..n + 1], &f2x[1..n + 1], &f1x[2..n + 2]);
-    node_sum(&mut xfy[..n], &f2y[..n], &f1y[1..n + 1], &f2y[1..n + 1], &f1y[2..n + 2]);
-    node_sum(&mut xfz[..n], &f2z[..n], &f1z[1..n + 1], &f2z[1..n + 1], &f1z[2..n + 2]);
+    node_sum(
+        &mut xfx[..n],
+        &f2x[..n],
+        &f1x[1..n + 1],
+        &f2x[1..n + 1],
+        &f1x[2..n + 2],
+    );
+    node_sum(
+        &mut xfy[..n],
+        &f2y[..n],
+        &f1y[1..n + 1],
+        &f2y[1..n + 1],
+        &f1y[2..n + 2],
+    );
+    node_sum(
+        &mut xfz[..n],
+        &f2z[..n],
+        &f1z[1..n + 1],
+        &f2z[1..n + 1],
+        &f1z[2..n + 2],
+    );
 }
 
 // The loops, each array a parameter of its own: `&mut [f64]` parameters are known not
