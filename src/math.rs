@@ -41,8 +41,10 @@ impl Real for f32 {
     }
 }
 
-/// A 3-vector.
+/// A 3-vector (laid out as `[T; 3]`, so that a slice of them can be read as one of
+/// arrays without a copy: [`as_arrays`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
 pub struct V3<T> {
     /// x component.
     pub x: T,
@@ -50,6 +52,17 @@ pub struct V3<T> {
     pub y: T,
     /// z component (up).
     pub z: T,
+}
+
+// SAFETY: `V3<f64>` is `repr(C)` with three `f64` fields and no padding: every bit
+// pattern is valid, as for `[f64; 3]`.
+unsafe impl bytemuck::Zeroable for V3<f64> {}
+unsafe impl bytemuck::Pod for V3<f64> {}
+
+/// `v` as `[x, y, z]` arrays, without a copy (an output time of a large fleet reads
+/// the CPU solver's state this way).
+pub fn as_arrays(v: &[V3<f64>]) -> &[[f64; 3]] {
+    bytemuck::cast_slice(v)
 }
 
 impl<T: Real> V3<T> {

@@ -44,8 +44,32 @@ pub struct Evaluation {
     pub tension: Vec<f64>,
     /// Per constraint: the force the cable exerts on its support, `F_k - M_k a_k`, N.
     pub reaction: Vec<[f64; 3]>,
-    /// Per element: its loads (tangent, axial force, half external load, half masses).
+    /// Per element: its loads (tangent, axial force, half external load, half masses);
+    /// with [`Self::picked`], only those elements', in its order. Read them through
+    /// [`Self::element`].
     pub elements: Vec<ElementLoads<f64>>,
+    /// The elements [`Self::elements`] holds, ascending, when it holds only some (the
+    /// outputs' evaluation keeps those the outputs read, not every element's 104 bytes);
+    /// `None`: every element.
+    pub picked: Option<Vec<u32>>,
+}
+
+impl Evaluation {
+    /// Element `e`'s loads.
+    ///
+    /// # Panics
+    /// If the evaluation holds only some elements and not `e`.
+    pub fn element(&self, e: u32) -> &ElementLoads<f64> {
+        match &self.picked {
+            None => &self.elements[e as usize],
+            Some(p) => {
+                let k = p
+                    .binary_search(&e)
+                    .expect("an element the evaluation was asked to keep");
+                &self.elements[k]
+            }
+        }
+    }
 }
 
 /// Where a winch cable stands (ALE-GLMF, [`crate::ale`]).

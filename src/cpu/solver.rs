@@ -311,8 +311,11 @@ impl CpuSolver {
             .iter()
             .map(|c| (c.table.len() <= 1).then(|| c.at(0.0)))
             .collect();
-        self.elems = vec![ElementLoads::default(); layout.n_elements()];
-        self.scratch = vec![NodeScratch::default(); layout.n_nodes()];
+        // The general passes' node scratch and element loads (120 and 104 bytes a node
+        // and an element) are allocated at the first step that takes those passes
+        // (`Self::advance_blocks`): a fleet on the fast paths never needs them.
+        self.elems = Vec::new();
+        self.scratch = Vec::new();
         // The viscoelastic elements start at rest at their initial lengths.
         self.visco = crate::physics::visco::visco_rest_states(&layout, |e| {
             (r[layout.elem_b[e] as usize] - r[layout.elem_a[e] as usize]).norm()
@@ -789,6 +792,20 @@ impl CpuSolver {
                     && !self.layout.block_has_screen(b)
             })
             .collect();
+        // Whether a block takes the general passes (which need the node scratch and the
+        // element loads; the fast paths keep their own): allocate those on first need.
+        let general = blocks.iter().enumerate().any(|(bi, _)| {
+            !skipped(bi)
+                && (is_touched(bi)
+                    || (threaded[bi] && net_of(bi).is_none())
+                    || (!threaded[bi]
+                        && net_of(bi).is_none()
+                        && !(fast && chain_consts[bi].is_some())))
+        });
+        if general && self.scratch.is_empty() {
+            self.scratch = vec![NodeScratch::default(); self.layout.n_nodes()];
+            self.elems = vec![ElementLoads::default(); self.layout.n_elements()];
+        }
         // Split the state into disjoint per-chunk slices.
         let mut parts = Vec::with_capacity(self.chunks.len());
         {
@@ -806,8 +823,8 @@ impl CpuSolver {
                 let ne = (b1.elem_end - b0.elem_start) as usize;
                 let (r1, r2) = r.split_at_mut(nn);
                 let (v1, v2) = v.split_at_mut(nn);
-                let (s1, s2) = s.split_at_mut(nn);
-                let (e1, e2) = el.split_at_mut(ne);
+                let (s1, s2) = s.split_at_mut(if s.is_empty() { 0 } else { nn });
+                let (e1, e2) = el.split_at_mut(if el.is_empty() { 0 } else { ne });
                 let (x1, x2) = xv.split_at_mut(if xv.is_empty() { 0 } else { ne });
                 let (w1, w2) = wb.split_at_mut(if wb.is_empty() { 0 } else { ch.len() });
                 parts.push((ch.clone(), r1, v1, s1, e1, x1, w1));

@@ -724,6 +724,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                     rate: 0.0,
                 })
                 .collect(),
+            picked: None,
         })
     }
 }

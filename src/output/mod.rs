@@ -39,6 +39,27 @@ use crate::math::{Sym3, V3};
 use crate::model::{CableInfo, Layout, NO_CONSTRAINT};
 use crate::step::Evaluation;
 
+/// The elements whose loads the outputs read ([`end_forces`], [`net_states`]),
+/// ascending: every cable's two end elements and the twines of the nets that report a
+/// volume. An output time's evaluation keeps these only
+/// ([`crate::cpu::CpuSolver::evaluate_keeping`]).
+pub fn elements_read(lay: &Layout, nets: &[crate::model::cage::NetInfo]) -> Vec<u32> {
+    let mut picked: Vec<u32> = lay
+        .cables
+        .iter()
+        .filter(|c| !c.elements.is_empty())
+        .flat_map(|c| [c.elements[0], c.elements[c.elements.len() - 1]])
+        .collect();
+    for n in nets.iter().filter(|n| n.reference_volume > 0.0) {
+        for c in &lay.cables[n.twines.clone()] {
+            picked.extend_from_slice(&c.elements);
+        }
+    }
+    picked.sort_unstable();
+    picked.dedup();
+    picked
+}
+
 /// The forces a cable exerts at its two end nodes.
 ///
 /// - An end node that only this cable's end element touches: if it is held, the
@@ -57,7 +78,7 @@ pub fn end_forces(lay: &Layout, ev: &Evaluation, cable: &CableInfo) -> EndForces
         if k != NO_CONSTRAINT && lay.incidence(i).len() == 1 {
             return ev.reaction[k as usize];
         }
-        let el = &ev.elements[elem as usize];
+        let el = ev.element(elem);
         let a = V3::from_f64(ev.acc[i]);
         let mut m = Sym3::scalar(el.half_mass);
         m.add_normal_projection(el.half_added, el.t);

@@ -28,7 +28,7 @@ pub fn net_states(
             let mut force = [0.0; 2];
             for c in &lay.cables[n.twines.clone()] {
                 for &e in &c.elements {
-                    let f = ev.elements[e as usize].f_half;
+                    let f = ev.element(e).f_half;
                     force[0] += 2.0 * f.x;
                     force[1] += 2.0 * f.y;
                 }

@@ -359,19 +359,37 @@ impl LumpedStepper {
         points: &[(String, usize, bool)],
         nets: &[crate::model::cage::NetInfo],
     ) -> Result<SnapshotParts, Error> {
-        let ev = self.evaluate()?;
-        let (r, v) = self.state()?;
+        let ev = match self {
+            LumpedStepper::Cpu(s) => {
+                let picked = crate::output::elements_read(s.layout(), nets);
+                s.evaluate_keeping(Some(picked))?
+            }
+            LumpedStepper::Gpu(s) => s.evaluate()?,
+        };
+        // The CPU state read in place (a copy of it would cost 48 bytes a node).
+        let read_back = match self {
+            LumpedStepper::Gpu(s) => Some(s.state()?),
+            LumpedStepper::Cpu(_) => None,
+        };
+        let (r, v) = match (&*self, &read_back) {
+            (_, Some((r, v))) => (&r[..], &v[..]),
+            (LumpedStepper::Cpu(s), None) => (
+                crate::math::as_arrays(&s.r),
+                crate::math::as_arrays(&s.v),
+            ),
+            (LumpedStepper::Gpu(_), None) => unreachable!("the GPU's state is read back above"),
+        };
         let bodies = if self.has_bodies() {
             let dynamic = self.dynamic_bodies();
-            crate::body::output::body_states(self.layout(), t, &r, &ev, &dynamic)
+            crate::body::output::body_states(self.layout(), t, r, &ev, &dynamic)
         } else {
             Vec::new()
         };
         Ok((
-            self.cables_from(&ev, &r, &v),
+            self.cables_from(&ev, r, v),
             bodies,
-            self.points_from(points, &ev, &r),
-            crate::output::net_states(self.layout(), &ev, &r, nets),
+            self.points_from(points, &ev, r),
+            crate::output::net_states(self.layout(), &ev, r, nets),
         ))
     }
 

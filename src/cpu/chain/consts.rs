@@ -168,7 +168,42 @@ impl ChainConsts {
         };
         c.friction = has_seabed && env.seabed.friction > 0.0;
         c.v_eps = env.seabed.friction_velocity;
+        c.shrink();
         c
+    }
+
+    /// Gives back the room the columns' growth left (a 50-element column grows to 64):
+    /// a fleet holds thousands of these.
+    fn shrink(&mut self) {
+        for col in [
+            &mut self.l0,
+            &mut self.il0,
+            &mut self.ea,
+            &mut self.eac,
+            &mut self.comp,
+            &mut self.drag_n,
+            &mut self.drag_t,
+            &mut self.half_wz,
+            &mut self.half_bz,
+            &mut self.half_fk,
+            &mut self.half_fkt,
+            &mut self.hmd,
+            &mut self.hat,
+            &mut self.diameter,
+            &mut self.pm,
+            &mut self.pwz,
+            &mut self.kl,
+            &mut self.cl,
+            &mut self.mukl,
+            &mut self.trib,
+        ] {
+            col.shrink_to_fit();
+        }
+        self.current.shrink_to_fit();
+        self.line.shrink_to_fit();
+        self.constrained.shrink_to_fit();
+        self.point_drag.shrink_to_fit();
+        self.point_volume.shrink_to_fit();
     }
 }
 

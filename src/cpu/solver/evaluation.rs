@@ -18,6 +18,14 @@ impl CpuSolver {
     /// exact sum in exact mode. So the loads reported are those the solver integrates,
     /// within the cache's tolerance of the exact sum, and outputs do not change the run.
     pub fn evaluate(&mut self) -> Result<Evaluation, Error> {
+        self.evaluate_keeping(None)
+    }
+
+    /// [`Self::evaluate`], keeping the loads of the elements `picked` (ascending) only,
+    /// or of every element (`None`): the outputs read a few elements' loads (the cables'
+    /// end elements, the nets' twines), and a fleet's full copy would cost 104 bytes an
+    /// element at every output time. Tensions are kept for every element.
+    pub fn evaluate_keeping(&mut self, picked: Option<Vec<u32>>) -> Result<Evaluation, Error> {
         self.cover_waves_now();
         let ctx = self.ctx();
         let lay = &self.layout;
@@ -26,15 +34,28 @@ impl CpuSolver {
             force: vec![[0.0; 3]; lay.n_nodes()],
             tension: vec![0.0; lay.n_elements()],
             reaction: vec![[0.0; 3]; lay.routes.len()],
-            elements: Vec::new(),
+            elements: Vec::with_capacity(picked.as_ref().map_or(0, |p| p.len())),
+            picked: None,
         };
-        let mut elems = vec![ElementLoads::default(); lay.n_elements()];
+        // One block's element loads at a time (every element's, without picks).
+        let mut elems = vec![
+            ElementLoads::default();
+            if picked.is_some() {
+                lay.blocks.iter().map(|b| (b.elem_end - b.elem_start) as usize).max().unwrap_or(0)
+            } else {
+                lay.n_elements()
+            }
+        ];
+        let mut next_pick = 0;
         for (bi, b) in lay.blocks.iter().enumerate() {
             let ale = self.ale_block(bi);
             let (n0, n1) = (b.node_start as usize, b.node_end as usize);
             let (e0, e1) = (b.elem_start as usize, b.elem_end as usize);
             let topo = GeneralTopo { lay, n0, e0 };
             let w = self.water_now(bi, n0, n1);
+            // The block's loads sit at `base..` of `elems`.
+            let base = if picked.is_some() { 0 } else { e0 };
+            let elems = &mut elems[base..base + (e1 - e0)];
             element_pass(
                 &ctx,
                 &topo,
@@ -45,7 +66,7 @@ impl CpuSolver {
                 self.visco_block(e0, e1),
                 self.t,
                 &w,
-                &mut elems[e0..e1],
+                elems,
             )
             .map_err(|f| self.name_failure(f))?;
             let mut screen = Vec::new();
@@ -70,7 +91,7 @@ impl CpuSolver {
                     &self.v[n0..n1],
                     self.t,
                     &w,
-                    &elems[e0..e1],
+                    elems,
                     &screen,
                 );
                 ev.acc[i] = a.to_f64();
@@ -80,11 +101,20 @@ impl CpuSolver {
                     ev.reaction[c as usize] = (f - m.mul_vec(a)).to_f64();
                 }
             }
+            for (k, el) in elems.iter().enumerate() {
+                ev.tension[e0 + k] = el.tension;
+            }
+            if let Some(p) = &picked {
+                while next_pick < p.len() && (p[next_pick] as usize) < e1 {
+                    ev.elements.push(elems[p[next_pick] as usize - e0]);
+                    next_pick += 1;
+                }
+            }
         }
-        for (e, el) in elems.iter().enumerate() {
-            ev.tension[e] = el.tension;
+        match picked {
+            Some(p) => ev.picked = Some(p),
+            None => ev.elements = elems,
         }
-        ev.elements = elems;
         Ok(ev)
     }
 
