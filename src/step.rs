@@ -36,9 +36,11 @@ pub enum StepFailure {
 /// Loads and reactions of one state, evaluated without stepping.
 #[derive(Clone, Debug, Default)]
 pub struct Evaluation {
-    /// Per node: acceleration, m/s^2.
+    /// Per node: acceleration, m/s^2; with [`Self::picked`], only the picked elements'
+    /// end nodes', in the order of [`Self::picked_nodes`]. Read them through
+    /// [`Self::node_acc`].
     pub acc: Vec<[f64; 3]>,
-    /// Per node: total force on the node, N.
+    /// Per node: total force on the node, N (empty with [`Self::picked`]).
     pub force: Vec<[f64; 3]>,
     /// Per element: axial force, N.
     pub tension: Vec<f64>,
@@ -52,9 +54,29 @@ pub struct Evaluation {
     /// outputs' evaluation keeps those the outputs read, not every element's 104 bytes);
     /// `None`: every element.
     pub picked: Option<Vec<u32>>,
+    /// With [`Self::picked`]: the picked elements' end nodes, ascending (whose
+    /// accelerations [`Self::acc`] holds).
+    pub picked_nodes: Vec<u32>,
 }
 
 impl Evaluation {
+    /// Node `i`'s acceleration, m/s^2.
+    ///
+    /// # Panics
+    /// If the evaluation holds only some nodes' and not `i`'s.
+    pub fn node_acc(&self, i: u32) -> [f64; 3] {
+        match &self.picked {
+            None => self.acc[i as usize],
+            Some(_) => {
+                let k = self
+                    .picked_nodes
+                    .binary_search(&i)
+                    .expect("an end node of an element the evaluation was asked to keep");
+                self.acc[k]
+            }
+        }
+    }
+
     /// Element `e`'s loads.
     ///
     /// # Panics

@@ -725,6 +725,7 @@ impl<R: GpuReal> Engine for GpuEngine<R> {
                 })
                 .collect(),
             picked: None,
+            picked_nodes: Vec::new(),
         })
     }
 }

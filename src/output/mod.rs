@@ -79,7 +79,7 @@ pub fn end_forces(lay: &Layout, ev: &Evaluation, cable: &CableInfo) -> EndForces
             return ev.reaction[k as usize];
         }
         let el = ev.element(elem);
-        let a = V3::from_f64(ev.acc[i]);
+        let a = V3::from_f64(ev.node_acc(node));
         let mut m = Sym3::scalar(el.half_mass);
         m.add_normal_projection(el.half_added, el.t);
         (el.f_half + (el.t * el.tension - el.shear) * sign - m.mul_vec(a)).to_f64()

@@ -29,14 +29,31 @@ impl CpuSolver {
         self.cover_waves_now();
         let ctx = self.ctx();
         let lay = &self.layout;
+        // With picks: the accelerations of the picked elements' end nodes only, and no
+        // node forces (the outputs read neither elsewhere).
+        let picked_nodes: Vec<u32> = match &picked {
+            Some(p) => {
+                let mut n: Vec<u32> = p
+                    .iter()
+                    .flat_map(|&e| [lay.elem_a[e as usize], lay.elem_b[e as usize]])
+                    .collect();
+                n.sort_unstable();
+                n.dedup();
+                n
+            }
+            None => Vec::new(),
+        };
+        let full = picked.is_none();
         let mut ev = Evaluation {
-            acc: vec![[0.0; 3]; lay.n_nodes()],
-            force: vec![[0.0; 3]; lay.n_nodes()],
+            acc: vec![[0.0; 3]; if full { lay.n_nodes() } else { picked_nodes.len() }],
+            force: vec![[0.0; 3]; if full { lay.n_nodes() } else { 0 }],
             tension: vec![0.0; lay.n_elements()],
             reaction: vec![[0.0; 3]; lay.routes.len()],
             elements: Vec::with_capacity(picked.as_ref().map_or(0, |p| p.len())),
             picked: None,
+            picked_nodes: Vec::new(),
         };
+        let mut next_node = 0;
         // One block's element loads at a time (every element's, without picks).
         let mut elems = vec![
             ElementLoads::default();
@@ -94,8 +111,13 @@ impl CpuSolver {
                     elems,
                     &screen,
                 );
-                ev.acc[i] = a.to_f64();
-                ev.force[i] = f.to_f64();
+                if full {
+                    ev.acc[i] = a.to_f64();
+                    ev.force[i] = f.to_f64();
+                } else if picked_nodes.get(next_node) == Some(&(i as u32)) {
+                    ev.acc[next_node] = a.to_f64();
+                    next_node += 1;
+                }
                 let c = lay.node_constraint[i];
                 if c != NO_CONSTRAINT {
                     ev.reaction[c as usize] = (f - m.mul_vec(a)).to_f64();
@@ -112,7 +134,10 @@ impl CpuSolver {
             }
         }
         match picked {
-            Some(p) => ev.picked = Some(p),
+            Some(p) => {
+                ev.picked = Some(p);
+                ev.picked_nodes = picked_nodes;
+            }
             None => ev.elements = elems,
         }
         Ok(ev)
