@@ -26,7 +26,7 @@
 pub(crate) mod chain;
 mod free;
 mod passes;
-mod screen;
+pub(crate) mod screen;
 mod solver;
 mod threaded;
 mod water;

@@ -8,11 +8,13 @@ use crate::model::Layout;
 use crate::step::Evaluation;
 
 /// The states of the cylindrical nets among `nets` (a panel encloses nothing and is left
-/// out) from the packed positions `r` and the evaluation `ev` of the same state.
+/// out) from the packed positions `r`, velocities `v` and the evaluation `ev` of the same
+/// state.
 pub fn net_states(
     lay: &Layout,
     ev: &Evaluation,
     r: &[[f64; 3]],
+    v: &[[f64; 3]],
     nets: &[NetInfo],
 ) -> Vec<NetState> {
     nets.iter()
@@ -33,6 +35,11 @@ pub fn net_states(
                     force[1] += 2.0 * f.y;
                 }
             }
+            // A screen-model net: its panels' loads, each whole (the sum of its knots'
+            // quarters), from the state and the current.
+            let fs = crate::cpu::screen::screen_net_force(lay, r, v, &knots_nodes(lay, n));
+            force[0] += fs[0];
+            force[1] += fs[1];
             // The collar's nodes, each once (a ring cable's last node is the next one's
             // first), or the top knots.
             let ring: Vec<usize> = if n.collar.is_empty() {
@@ -57,5 +64,13 @@ pub fn net_states(
                 current: (u.x * u.x + u.y * u.y + u.z * u.z).sqrt(),
             }
         })
+        .collect()
+}
+
+/// The packed nodes of the knots of net `n`.
+fn knots_nodes(lay: &Layout, n: &NetInfo) -> Vec<usize> {
+    (0..n.rows)
+        .flat_map(|row| (0..n.around).map(move |col| (row, col)))
+        .map(|(row, col)| lay.cables[n.knot_cable(row, col)].nodes[0] as usize)
         .collect()
 }

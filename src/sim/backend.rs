@@ -389,7 +389,7 @@ impl LumpedStepper {
             self.cables_from(&ev, r, v),
             bodies,
             self.points_from(points, &ev, r),
-            crate::output::net_states(self.layout(), &ev, r, nets),
+            crate::output::net_states(self.layout(), &ev, r, v, nets),
         ))
     }
 

@@ -249,6 +249,63 @@ fn wake_slows_the_flow_on_the_downstream_side_of_a_cage() {
 }
 
 #[test]
+fn nets_csv_drag_holds_the_screen_panels_loads() {
+    // A cylindrical screen cage at rest in its generated shape (neutral twines, no
+    // Morison drag on them) in a current at 45 degrees with Cheng's wake: the water's
+    // horizontal force on it is the screen loads alone, so `nets.csv`'s force (the
+    // output's sum of whole panels) equals the sum of the knots' forces the solver
+    // evaluates (each knot a quarter of its panels), and is not small.
+    use cablesim::model::cage::{add_cage, CageSpec};
+    let u = 0.4;
+    let b = std::f64::consts::FRAC_PI_4;
+    let mut def = ModelDef {
+        env: Environment {
+            depth: 200.0,
+            ..Environment::default()
+        },
+        line_types: vec![neutral_twine()],
+        currents: vec![Current {
+            table: vec![(0.0, [u * b.cos(), u * b.sin(), 0.0])],
+        }],
+        ..Default::default()
+    };
+    let spec = NetSpec {
+        name: "cage".into(),
+        line_type: 0,
+        current: 0,
+        shape: NetShape::Cylinder {
+            around: 16,
+            rows: 4,
+            radius: 2.0,
+            depth: 3.0,
+            top: [1.0, -3.0, -1.0],
+        },
+        segments: 1,
+        sinker: PointMass::default(),
+        output_positions: false,
+        screen: Some(screen(ScreenModel::Aarsnes, WakeModel::Cheng)),
+    };
+    let info = add_cage(&mut def, &spec, &CageSpec::default()).unwrap();
+    let (lay, pos) = Layout::build(&def).unwrap();
+    let opts = SolverOptions {
+        dt: 1e-4,
+        ..Default::default()
+    };
+    let mut s = CpuSolver::new(lay.clone(), &pos, opts);
+    let ev = s.evaluate().unwrap();
+    let f = total(&ev.force);
+    let r: Vec<[f64; 3]> = s.r.iter().map(|x| x.to_f64()).collect();
+    let v: Vec<[f64; 3]> = s.v.iter().map(|x| x.to_f64()).collect();
+    let st = cablesim::output::net_states(&lay, &ev, &r, &v, &[info]);
+    let out = st[0].force;
+    println!("knots' sum ({:.6}, {:.6}) N, nets.csv ({:.6}, {:.6}) N", f.x, f.y, out[0], out[1]);
+    // The Aarsnes drag of the whole cage's projected area is some tens of N.
+    assert!(f.x > 1.0 && f.y > 1.0, "the cage must feel the current: {f:?}");
+    let tol = 1e-9 * (f.x * f.x + f.y * f.y).sqrt();
+    assert!((out[0] - f.x).abs() < tol && (out[1] - f.y).abs() < tol);
+}
+
+#[test]
 fn cheng_wake_factor_depends_on_the_panels_angle() {
     // One panel downstream of the axis, normal at angle a to the flow; the same panel
     // with the wake off: the force ratio is r(a)^2, r = (cos a + 0.05 - 0.38 Sn) /

@@ -37,6 +37,7 @@
 
 use super::consts::ChainConsts;
 use super::elements::element_kernel;
+use crate::cpu::screen::{BlockPanels, PanelScratch};
 use crate::cpu::water::{node_water, BlockWaves, Water};
 use crate::math::V3;
 use crate::model::{Block, Layout};
@@ -74,8 +75,8 @@ pub(crate) struct NetConsts {
     eslot: [Vec<u8>; 2],
     /// The one-thread step's order and tile buffers.
     plan1: Plan,
-    /// Whether the block holds no knot of a screen-model net.
-    screen_empty: bool,
+    /// The block's screen-net panels (empty where it holds no knot of one).
+    screen: BlockPanels,
 }
 
 impl NetConsts {
@@ -125,7 +126,7 @@ impl NetConsts {
             width,
             eslot,
             plan1,
-            screen_empty: !lay.block_has_screen(b),
+            screen: BlockPanels::new(lay, n0, n0 + n),
         })
     }
 
@@ -241,6 +242,8 @@ struct Work {
     /// Screen-model nets: each knot's share of its panels' loads at the step's start
     /// (block-local node, sorted), added to `ex` by the node pass.
     screen: Vec<(usize, [f64; 3])>,
+    /// Screen-model nets: the panel pass's scratch ([`BlockPanels::panel_forces`]).
+    panel: PanelScratch,
 }
 
 impl Work {
@@ -636,29 +639,26 @@ unsafe fn advance_net_avx2(
     advance_net_body::<4>(nc, lay, opts, sc, r, v, n0, waves, wbuf, step0, dt, nsteps)
 }
 
-/// The screen-net knot forces of the block from its columns `x` (block-local, the
-/// block's first node `n0`), into `out` (`Work::screen`).
+/// The screen-net knot forces of the block from its columns `x` (block-local), into
+/// `out` (`Work::screen`): the panels' forces into `sc`, then each knot's share.
 #[inline(never)]
 fn screen_tile_forces(
+    nc: &NetConsts,
     lay: &Layout,
-    n0: usize,
-    n: usize,
     x: &[Vec<f64>; 6],
     w: &[f64],
+    sc: &mut PanelScratch,
     out: &mut Vec<(usize, [f64; 3])>,
 ) {
-    out.clear();
-    let col = |q: usize, i: usize| V3::new(x[q][i - n0], x[q + 1][i - n0], x[q + 2][i - n0]);
-    for k in lay.screen.knots_in(n0 as u32, (n0 + n) as u32) {
-        let f = crate::cpu::screen::screen_knot_force(
-            lay,
-            k,
-            |i| col(0, i),
-            |i| col(3, i),
-            |i| (!w.is_empty()).then(|| node_water(w, i - n0).1),
-        );
-        out.push((k.node as usize - n0, f.to_f64()));
-    }
+    let col = |q: usize, i: usize| V3::new(x[q][i], x[q + 1][i], x[q + 2][i]);
+    nc.screen.panel_forces(
+        lay,
+        sc,
+        |i| col(0, i),
+        |i| col(3, i),
+        |i| (!w.is_empty()).then(|| node_water(w, i).1),
+    );
+    nc.screen.gather(sc, out, |f| f.to_f64());
 }
 
 /// `L`: the lanes of the element and fold loops' chunks (4 with AVX2, 8 with AVX-512).
@@ -705,8 +705,8 @@ fn advance_net_body<const L: usize>(
             // The surface moved: the node pass's flags were for still water's.
             flag_tiles(&x[2], eta, under);
         }
-        if !nc.screen_empty {
-            screen_tile_forces(lay, n0, n, x, wbuf, &mut work.screen);
+        if !nc.screen.is_empty() {
+            screen_tile_forces(nc, lay, x, wbuf, &mut work.panel, &mut work.screen);
         }
         // SAFETY: `el` is this block's loads in `plan`'s buffers (`load`), and only
         // this loop uses them, one op at a time.
