@@ -95,7 +95,8 @@ impl Term {
             Term::SeabedDamping => format!("seabed damping at cable '{cable}' node {node}"),
             Term::Friction => format!(
                 "seabed friction (mu = {}, v_eps = {} m/s) at cable '{cable}' node {node}",
-                sb.friction, sb.friction_velocity
+                sb.friction.max(sb.mu_axial()),
+                sb.friction_velocity
             ),
         }
     }
@@ -385,11 +386,13 @@ pub fn stable_step(lay: &Layout, scheme: Scheme, bg: Baumgarte) -> StepBound {
             }
             // Regularised friction is a viscous damper of slope mu F_N / v_eps below
             // v_eps; F_N is about the node's wet weight when it rests on the seabed.
-            if contact_damping_bounds && has_seabed && lt > 0.0 && sb.friction > 0.0 && wet > 0.0 {
+            // With the friction split, the larger of the two coefficients.
+            let mu = sb.friction.max(sb.mu_axial());
+            if contact_damping_bounds && has_seabed && lt > 0.0 && mu > 0.0 && wet > 0.0 {
                 parts.push((
                     Mode {
                         omega2: 0.0,
-                        gamma: sb.friction * wet / (sb.friction_velocity * m),
+                        gamma: mu * wet / (sb.friction_velocity * m),
                     },
                     Term::Friction,
                     2,

@@ -66,6 +66,8 @@ struct Params {
     seabed_c: R,
     seabed_mu: R,
     seabed_v_eps: R,
+    // The axial friction coefficient (seabed_mu is the transverse one; equal: isotropic).
+    seabed_mu_axial: R,
     // 1.0, read at run time: keeps the compiler from folding compensated sums.
     one: R,
     // Gravity, m/s^2 (the dry weight of what is above the water surface).
@@ -1178,4 +1180,25 @@ fn screen_panel_force(co: ScreenCoefs, p0: vec3<R>, p1: vec3<R>, p2: vec3<R>, p3
     let k = screen_coefficients(co.model, co.sn, co.re_scale * s, c);
     let lift = (nd * (s * s) - ur * (s * c)) * (R(2.0) * c * k.y);
     return (ur * (k.x * s) + lift) * (co.half_rho * area);
+}
+
+// The axial part of the seabed friction (physics::seabed_friction_axis): a node of a line
+// with tangent `t` (the sum of its elements' unit tangents), elastic normal force
+// `fnorm` along the seabed's unit normal `n`, moving at `v`: (q, d) with q the line's
+// unit direction within the seabed plane and d = (mu_a - mu_t) F_N / max(|v_t|, v_eps);
+// the friction gains -d (v.q) q and the implicit damping d q q^T. Zero off the seabed
+// or where the line stands normal to it.
+fn seabed_friction_axis(fnorm: R, n: vec3<R>, v: vec3<R>, t: vec3<R>) -> vec4<R> {
+    if !(fnorm > R(0.0)) {
+        return vec4<R>(R(0.0));
+    }
+    let qp = t - n * dot(t, n);
+    let ql = norm3(qp);
+    if !(ql > R(1e-4) * norm3(t)) {
+        return vec4<R>(R(0.0));
+    }
+    let q = qp * (R(1.0) / ql);
+    let vt = v - n * dot(v, n);
+    let d = (params.seabed_mu_axial - params.seabed_mu) * fnorm / max(norm3(vt), params.seabed_v_eps);
+    return vec4<R>(q, d);
 }

@@ -196,6 +196,10 @@ struct NodeForce {
     // The seabed's damping slopes (seabed_damping), which node_advance takes
     // implicitly; zero off the seabed.
     c: vec3<R>,
+    // The friction split along the line: the sum of the node's elements' unit tangents
+    // while gathering (gather_add), then (q, d) of seabed_friction_axis (gather_end),
+    // which node_advance adds as dt d q q^T; zero where the friction is isotropic.
+    ax: vec4<R>,
 }
 
 // The waves over node `i` at step `k` as its point mass's loads read them
@@ -220,7 +224,7 @@ fn gather_begin(nd: NodeParams, s: NodeState, blk: BlockParams, w: WaveKin) -> N
     let dry = R(1.0) - point_wetted_fraction(w.eta + submergence(blk.oz, s), nd.point_radius);
     let wz = nd.point_weight_z - dry * (nd.point_displaced * params.gravity);
     let zero = vec3<R>(R(0.0), R(0.0), R(0.0));
-    return NodeForce(vec3<R>(R(0.0), R(0.0), wz), sym3_scalar(nd.point_mass - dry * nd.point_added), zero);
+    return NodeForce(vec3<R>(R(0.0), R(0.0), wz), sym3_scalar(nd.point_mass - dry * nd.point_added), zero, vec4<R>(R(0.0)));
 }
 
 // Adds the loads `el` and bending shear `shear` (element_shear; zero without
@@ -235,7 +239,11 @@ fn gather_add(nf: NodeForce, el: ElemLoads, shear: vec3<R>, entry: u32) -> NodeF
     } else {
         f += vec3<R>(el.fx, el.fy, el.fz) + t * (sign * el.tension);
     }
-    return NodeForce(f, sym3_add_element(nf.m, el.half_mass, el.half_added, t), nf.c);
+    var ax = nf.ax;
+    if params.seabed_mu_axial != params.seabed_mu {
+        ax += vec4<R>(t, R(1.0));
+    }
+    return NodeForce(f, sym3_add_element(nf.m, el.half_mass, el.half_added, t), nf.c, ax);
 }
 
 // The end of node `i`'s gather (block `blk`, state `s`, step `k` of the submission,
@@ -266,10 +274,17 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
         }
     }
     var c = nf.c;
+    // The friction split along the line, on a node of one or two elements (a net's
+    // knot has no line direction: isotropic, mu_t): cpu::passes node_accel_of.
+    let split = params.seabed_mu_axial != params.seabed_mu && nf.ax.w < R(2.5);
+    var ax = vec4<R>(R(0.0));
     if params.seabed == 1u {
         let pen = (blk.zb - s.r_hi.z) - s.r_lo.z;
         f += seabed_force(pen, trib, v);
         c = seabed_damping(pen, trib, v);
+        if split {
+            ax = seabed_friction_axis(params.seabed_k * trib * pen, vec3<R>(R(0.0), R(0.0), R(1.0)), v, nf.ax.xyz);
+        }
     } else if params.seabed > 1u {
         // The seabed grid: along its normal; c carries (c_n, c_t, 0), which
         // node_advance turns into the damping matrix with the normal looked up again.
@@ -277,8 +292,13 @@ fn gather_end(i: u32, nd: NodeParams, s: NodeState, nf: NodeForce, blk: BlockPar
         let gap = ((g.x - blk.oz) - s.r_hi.z) - s.r_lo.z;
         f += seabed_slope_force(gap, trib, v, g);
         c = vec3<R>(seabed_slope_damping(gap, trib, v, g), R(0.0));
+        if split {
+            let n = seabed_slope_normal(g);
+            ax = seabed_friction_axis(params.seabed_k * trib * gap * n.z, n, v, nf.ax.xyz);
+        }
     }
-    return NodeForce(f, nf.m, c);
+    f -= ax.xyz * (ax.w * dot(v, ax.xyz));
+    return NodeForce(f, nf.m, c, ax);
 }
 
 // Force and mass block of node `i`: its elements' loads and half masses gathered over
@@ -385,6 +405,17 @@ fn node_advance(nd: NodeParams, s: NodeState, nf: NodeForce, tau: R, k: u32) -> 
         nfi.m.xx += params.dt * nf.c.x;
         nfi.m.yy += params.dt * nf.c.y;
         nfi.m.zz += params.dt * nf.c.z;
+    }
+    if nf.ax.w != R(0.0) {
+        // The axial friction's slope: + dt d q q^T (cpu::passes node_accel_of).
+        let q = nf.ax.xyz;
+        let d = params.dt * nf.ax.w;
+        nfi.m.xx += d * q.x * q.x;
+        nfi.m.yy += d * q.y * q.y;
+        nfi.m.zz += d * q.z * q.z;
+        nfi.m.xy += d * q.x * q.y;
+        nfi.m.xz += d * q.x * q.z;
+        nfi.m.yz += d * q.y * q.z;
     }
     let a = node_accel(nd, s, nfi, tau, k);
     let vn = s.v.xyz + a * params.dt;

@@ -180,6 +180,7 @@ impl Model {
             k: env.seabed.stiffness,
             c: env.seabed.damping,
             mu: env.seabed.friction,
+            mu_axial: env.seabed.mu_axial(),
             v_eps: env.seabed.friction_velocity,
         });
 

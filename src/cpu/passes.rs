@@ -11,9 +11,9 @@ use crate::options::{Formulation, Scheme, SolverOptions};
 use crate::physics::frames::{frame_element, frenet_virtual_node};
 use crate::physics::{
     bending_hinge, glmf_element_wet, point_wetted_fraction, seabed_damping, seabed_force,
-    seabed_height, seabed_slope_damping, seabed_slope_force, seabed_slope_normal,
-    tabulated_tension, visco_tension, wetted_fraction, Coefs, ElementInput, ElementLoads,
-    SeabedCoefs,
+    seabed_friction_axis, seabed_height, seabed_slope_damping, seabed_slope_force,
+    seabed_slope_normal, tabulated_tension, visco_tension, wetted_fraction, Coefs, ElementInput,
+    ElementLoads, SeabedCoefs,
 };
 use crate::step::{blow_up, StepFailure};
 
@@ -540,6 +540,31 @@ pub(super) fn node_accel_of<T: Topo>(
         None => seabed_force(&ctx.seabed, trib, ri, vi),
         Some(g) => seabed_slope_force(&ctx.seabed, trib, ri, vi, g),
     };
+    // Friction split along and across the line: the axial part `-d (v.q) q` on a node
+    // of one or two elements (a net's knot has no line direction: isotropic, mu_t).
+    let mut axis = (V::zero(), 0.0);
+    if ctx.seabed.mu_axial != ctx.seabed.mu {
+        let mut t = V::zero();
+        let mut n_inc = 0;
+        for (e, _) in topo.incident(li) {
+            t += elems[e].t;
+            n_inc += 1;
+        }
+        if n_inc <= 2 {
+            let (n, fnorm) = match slope {
+                None => (
+                    V::new(0.0, 0.0, 1.0),
+                    ctx.seabed.k * trib * (ctx.seabed.z - ri.z),
+                ),
+                Some(g) => {
+                    let n = seabed_slope_normal(g);
+                    (n, ctx.seabed.k * trib * (g.x - ri.z) * n.z)
+                }
+            };
+            axis = seabed_friction_axis(&ctx.seabed, fnorm, n, vi, t);
+            f -= axis.0 * (axis.1 * vi.dot(axis.0));
+        }
+    }
     let c = lay.node_constraint[i];
     let a = if c == NO_CONSTRAINT {
         if ctx.implicit_dt > 0.0 {
@@ -562,6 +587,16 @@ pub(super) fn node_accel_of<T: Topo>(
                     mi.zz += cn;
                     mi.add_normal_projection(ct - cn, seabed_slope_normal(g));
                 }
+            }
+            if axis.1 != 0.0 {
+                // The axial friction's slope: + dt d q q^T.
+                let (q, d) = (axis.0, axis.1 * ctx.implicit_dt);
+                mi.xx += d * q.x * q.x;
+                mi.yy += d * q.y * q.y;
+                mi.zz += d * q.z * q.z;
+                mi.xy += d * q.x * q.y;
+                mi.xz += d * q.x * q.z;
+                mi.yz += d * q.y * q.z;
             }
             mi.solve(f)
         } else {

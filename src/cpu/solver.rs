@@ -388,6 +388,13 @@ impl CpuSolver {
     /// Blocks with bending hinges: a chain's fast-path constants take its hinges
     /// (`chain::bending`); a network takes the general passes (no network constants).
     fn drop_bent_consts(&mut self) {
+        // Seabed friction split along and across the line: the general passes, which
+        // take the line direction at each node (the fast paths' friction is isotropic).
+        if self.layout.env.seabed.split_friction() {
+            self.chain_consts.iter_mut().for_each(|c| *c = None);
+            self.net_consts.iter_mut().for_each(|c| *c = None);
+            return;
+        }
         for (bi, &bent) in self.bent.iter().enumerate() {
             if bent {
                 self.net_consts[bi] = None;
@@ -525,6 +532,7 @@ impl CpuSolver {
                 k: e.seabed.stiffness,
                 c: e.seabed.damping,
                 mu: e.seabed.friction,
+                mu_axial: e.seabed.mu_axial(),
                 v_eps: e.seabed.friction_velocity,
             },
             opts: self.opts,

@@ -161,6 +161,8 @@ gpu_struct! {
         seabed_mu: R,
         /// Friction regularisation velocity, m/s.
         seabed_v_eps: R,
+        /// Axial seabed friction coefficient (`seabed_mu` the transverse one).
+        seabed_mu_axial: R,
         /// Always 1.0 (read at run time, so compensated sums are not folded away).
         one: R,
         /// Gravity, m/s^2 (the dry weight of what is above the water surface).

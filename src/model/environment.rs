@@ -13,9 +13,18 @@ pub struct Seabed {
     /// Normal damping `C`, N s/m per m of cable.
     #[serde(default = "default_c")]
     pub damping: f64,
-    /// Coulomb friction coefficient `mu`.
+    /// Coulomb friction coefficient `mu`: in every direction, or across the line
+    /// (transverse) where `friction_axial` differs. Set by `friction` or
+    /// `friction_transverse` (the scenario reader resolves the latter into this).
     #[serde(default)]
     pub friction: f64,
+    /// The transverse coefficient `mu_t` as the scenario gives it (`None`: `friction`).
+    /// Resolved into `friction` when the scenario is read.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_transverse: Option<f64>,
+    /// The axial coefficient `mu_a` (along the line); `None`: `friction`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_axial: Option<f64>,
     /// Regularisation velocity `v_eps` of the friction law, m/s: below it friction
     /// grows linearly with sliding speed instead of jumping (so a line at rest feels none).
     #[serde(default = "default_v_eps")]
@@ -24,6 +33,18 @@ pub struct Seabed {
     /// `z = -depth` (docs/src/model/seabed.md). Not a key of `[environment.seabed]`.
     #[serde(skip)]
     pub grid: Option<&'static super::Bathymetry>,
+}
+
+impl Seabed {
+    /// The axial friction coefficient `mu_a` (`friction` unless `friction_axial`).
+    pub fn mu_axial(&self) -> f64 {
+        self.friction_axial.unwrap_or(self.friction)
+    }
+
+    /// Whether the friction differs along and across the line.
+    pub fn split_friction(&self) -> bool {
+        self.mu_axial() != self.friction
+    }
 }
 
 fn default_k() -> f64 {
@@ -42,6 +63,8 @@ impl Default for Seabed {
             stiffness: default_k(),
             damping: default_c(),
             friction: 0.0,
+            friction_transverse: None,
+            friction_axial: None,
             friction_velocity: default_v_eps(),
             grid: None,
         }

@@ -554,16 +554,17 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         });
     }
     let mu = o.mu.map(|x| x.0).unwrap_or(0.0);
-    if let (Some((ma, l)), Some((mt, _))) = (o.mu_axial, o.mu) {
-        if ma != mt {
-            warn.push(Warning {
-                line: l,
-                message: format!(
-                    "MU_KA = {ma} differs from MU_KT = {mt}: cablesim's friction is isotropic \
-                     on the seabed plane; MU_KT is used"
-                ),
-            });
-        }
+    // MoorDyn-F's MU_KT / MU_KA (each 0 unless given) take the place of MoorDyn-C's
+    // FrictionCoefficient.
+    let split_mu = o.mu_transverse.is_some() || o.mu_axial.is_some();
+    if let (true, Some((m, l))) = (split_mu, o.mu) {
+        warn.push(Warning {
+            line: l,
+            message: format!(
+                "FrictionCoefficient = {m} is left out: MU_KT / MU_KA (MoorDyn-F's \
+                 transverse and axial coefficients) are given and used"
+            ),
+        });
     }
 
     // cablesim line types: one per MoorDyn type and damping time constant.
@@ -848,8 +849,28 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         f(o.cbot.0),
         src(o.cbot.1, "cBot")
     );
-    match o.mu {
-        Some((m, l)) => {
+    let given = |x: Option<(f64, usize)>, key: &str| match x {
+        Some((m, l)) => (m, format!("{key}, line {l}")),
+        None => (0.0, format!("no {key} option: MoorDyn-F's default")),
+    };
+    match (split_mu, o.mu) {
+        (true, _) => {
+            let (mt, st) = given(o.mu_transverse, "MU_KT");
+            let (ma, sa) = given(o.mu_axial, "MU_KA");
+            let _ = writeln!(w, "friction_transverse = {}  # {st}", f(mt));
+            let _ = writeln!(w, "friction_axial = {}  # {sa}", f(ma));
+            let fd = o.fric_damp.map(|x| x.0).unwrap_or(200.0);
+            let _ = writeln!(
+                w,
+                "# MoorDyn-F's friction along and across the line is each a damping mu CV v \
+                 (CV = {}) capped at mu times the contact force; cablesim's is mu times the \
+                 contact force, linear below friction_velocity (its default), with the two \
+                 coefficients weighting the axial and transverse parts of the sliding \
+                 velocity (docs/src/model/seabed.md). Both vanish at rest.",
+                f(fd)
+            );
+        }
+        (false, Some((m, l))) => {
             let _ = writeln!(w, "friction = {}  # line {l}", f(m));
             let fd = o.fric_damp.map(|x| x.0).unwrap_or(200.0);
             let _ = writeln!(
@@ -860,7 +881,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
                 f(fd)
             );
         }
-        None => {
+        (false, None) => {
             let _ = writeln!(w, "friction = {}  # no FrictionCoefficient option", f(mu));
         }
     }

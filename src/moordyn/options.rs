@@ -15,7 +15,11 @@ pub(super) struct Opts {
     pub(super) depth: Option<(f64, usize)>,
     pub(super) kbot: (f64, usize),
     pub(super) cbot: (f64, usize),
+    /// `FrictionCoefficient` (MoorDyn-C): isotropic.
     pub(super) mu: Option<(f64, usize)>,
+    /// `MU_KT` (MoorDyn-F): transverse, default 0.
+    pub(super) mu_transverse: Option<(f64, usize)>,
+    /// `MU_KA` (MoorDyn-F): axial, default 0.
     pub(super) mu_axial: Option<(f64, usize)>,
     /// `SeafloorFile`: the grid file found (absolute), its value as written, its line.
     pub(super) seafloor: Option<(std::path::PathBuf, String, usize)>,
@@ -61,6 +65,7 @@ pub(super) fn read_options(
         kbot: (3.0e6, 0),
         cbot: (3.0e5, 0),
         mu: None,
+        mu_transverse: None,
         mu_axial: None,
         seafloor: None,
         fric_damp: None,
@@ -114,7 +119,8 @@ pub(super) fn read_options(
             },
             "kbot" | "kb" => o.kbot = (n()?, l),
             "cbot" | "cb" => o.cbot = (n()?, l),
-            "frictioncoefficient" | "mu_kt" => o.mu = Some((n()?, l)),
+            "frictioncoefficient" => o.mu = Some((n()?, l)),
+            "mu_kt" => o.mu_transverse = Some((n()?, l)),
             "mu_ka" => o.mu_axial = Some((n()?, l)),
             "fricdamp" | "cv" => o.fric_damp = Some((n()?, l)),
             "statdynfricscale" | "mc" => {

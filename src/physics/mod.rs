@@ -20,7 +20,7 @@ pub use screen::{
     screen_coefficients, screen_cylinder_cd, screen_panel_force, screen_wake_factor, ScreenCoefs,
 };
 pub use seabed::{
-    seabed_damping, seabed_force, seabed_height, seabed_slope_damping, seabed_slope_force,
+    seabed_damping, seabed_force, seabed_friction_axis, seabed_height, seabed_slope_damping, seabed_slope_force,
     seabed_slope_normal, SeabedCoefs,
 };
 pub use surface::{point_wetted_fraction, sphere_radius, wetted_fraction};

@@ -12,8 +12,11 @@ pub struct SeabedCoefs<T> {
     pub k: T,
     /// Damping per metre of cable, N s/m^2.
     pub c: T,
-    /// Friction coefficient.
+    /// Friction coefficient: across the line (transverse), and in every direction
+    /// where `mu_axial` equals it.
     pub mu: T,
+    /// Friction coefficient along the line (axial); [`seabed_friction_axis`].
+    pub mu_axial: T,
     /// Friction regularisation velocity, m/s.
     pub v_eps: T,
 }
@@ -188,4 +191,39 @@ pub fn seabed_slope_damping<T: Real>(
 #[inline]
 pub fn seabed_slope_normal<T: Real>(g: V3<T>) -> V3<T> {
     slope_normal(g)
+}
+
+/// The axial part of an anisotropic seabed friction (docs/src/model/seabed.md): on a
+/// node of a line whose tangent is `t` (any length; the sum of its elements' unit
+/// tangents), in contact with elastic normal force `fnorm` (`K lt p`, 0 off the
+/// seabed) along the seabed's unit normal `n`, moving at `v`. Returns `(q, d)`: `q`
+/// the line's direction within the seabed plane (unit; zero where the line stands
+/// normal to the seabed) and `d = (mu_a - mu_t) F_N / max(|v_t|, v_eps)`, with
+/// `v_t = v - (v.n) n` the sliding velocity. The friction is then the isotropic law
+/// of [`seabed_force`] / [`seabed_slope_force`] with `mu = mu_t` plus `-d (v.q) q`, and
+/// its implicit damping matrix gains `d q q^T`: together
+/// `-F_N (mu_a v_a + mu_t v_T) / max(|v_t|, v_eps)` (`v_a = (v.q) q`, `v_T = v_t - v_a`),
+/// which is `mu_a F_N` when sliding along the line, `mu_t F_N` across it, and today's
+/// isotropic law when `mu_a = mu_t` (`d = 0`).
+#[inline]
+pub fn seabed_friction_axis<T: Real>(
+    s: &SeabedCoefs<T>,
+    fnorm: T,
+    n: V3<T>,
+    v: V3<T>,
+    t: V3<T>,
+) -> (V3<T>, T) {
+    let zero = (V3::zero(), T::zero());
+    if !(fnorm > T::zero()) {
+        return zero;
+    }
+    let qp = t - n * t.dot(n);
+    let ql = qp.norm();
+    if !(ql > T::c(1e-4) * t.norm()) {
+        return zero;
+    }
+    let q = qp * (T::one() / ql);
+    let vt = v - n * v.dot(n);
+    let d = (s.mu_axial - s.mu) * fnorm / vt.norm().max(s.v_eps);
+    (q, d)
 }

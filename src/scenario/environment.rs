@@ -36,6 +36,22 @@ pub(super) fn environment(p: &Path, e: &RawEnvironment) -> Result<(Environment, 
     non_negative(p, "environment.seabed.stiffness", sb.stiffness)?;
     non_negative(p, "environment.seabed.damping", sb.damping)?;
     non_negative(p, "environment.seabed.friction", sb.friction)?;
+    if let Some(mt) = sb.friction_transverse.take() {
+        if sb.friction != 0.0 {
+            return Err(err(
+                p,
+                "environment.seabed.friction_transverse",
+                "give either friction (both directions) or friction_transverse, not both"
+                    .to_string(),
+            ));
+        }
+        // Each of the split keys defaults to `friction` (here 0, not given).
+        sb.friction_axial = Some(sb.friction_axial.unwrap_or(sb.friction));
+        sb.friction = non_negative(p, "environment.seabed.friction_transverse", mt)?;
+    }
+    if let Some(ma) = sb.friction_axial {
+        non_negative(p, "environment.seabed.friction_axial", ma)?;
+    }
     positive(
         p,
         "environment.seabed.friction_velocity",

@@ -318,6 +318,7 @@ fn seabed_coefs(layout: &Layout) -> SeabedCoefs<f64> {
         k: e.seabed.stiffness,
         c: e.seabed.damping,
         mu: e.seabed.friction,
+        mu_axial: e.seabed.mu_axial(),
         v_eps: e.seabed.friction_velocity,
     }
 }

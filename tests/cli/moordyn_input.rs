@@ -588,3 +588,47 @@ fn default_option_values_fall_back_with_a_warning() {
     let sc = Scenario::parse(&c.toml, Path::new("model.dat")).unwrap();
     close(sc.model.env.depth, 80.0, "depth from the lowest point");
 }
+
+/// MoorDyn-F's `MU_KT` and `MU_KA` become `friction_transverse` and `friction_axial`
+/// (each 0 unless given, as in MoorDyn-F), in the converted file and in the scenario it
+/// loads as; a `FrictionCoefficient` beside them is left out with a warning naming its
+/// line; `FrictionCoefficient` alone stays the one coefficient.
+#[test]
+fn mu_kt_and_mu_ka_convert_to_split_friction() {
+    let with = |opts: &str| V2.replace("0.4     FrictionCoefficient\n", opts);
+    let (toml, sc) = convert(&with("0.9     MU_KT\n0.3     MU_KA\n"));
+    let sb = sc.model.env.seabed;
+    close(sb.friction, 0.9, "mu_t");
+    close(sb.mu_axial(), 0.3, "mu_a");
+    assert!(sb.split_friction());
+    assert!(
+        toml.contains("friction_transverse = 0.9") && toml.contains("friction_axial = 0.3"),
+        "{toml}"
+    );
+    // MU_KT alone: MoorDyn-F's MU_KA is 0.
+    let (_, sc) = convert(&with("0.7     mu_kT\n"));
+    let sb = sc.model.env.seabed;
+    close(sb.friction, 0.7, "mu_t");
+    assert_eq!(sb.mu_axial(), 0.0);
+    // FrictionCoefficient beside them: left out, with a warning at its line.
+    let text = with("0.4     FrictionCoefficient\n0.9     MU_KT\n0.3     MU_KA\n");
+    let line = text
+        .lines()
+        .position(|l| l.contains("FrictionCoefficient"))
+        .unwrap()
+        + 1;
+    let c = convert_text(&text, Path::new("model.dat"), &ConvertOptions::default()).unwrap();
+    assert!(
+        c.warnings
+            .iter()
+            .any(|w| w.line == line && w.message.contains("FrictionCoefficient")),
+        "{:?}",
+        c.warnings
+    );
+    let sc = Scenario::parse(&c.toml, Path::new("model.dat")).unwrap();
+    close(sc.model.env.seabed.friction, 0.9, "mu_t");
+    // FrictionCoefficient alone: the same both ways.
+    let (_, sc) = convert(V2);
+    assert!(!sc.model.env.seabed.split_friction());
+    close(sc.model.env.seabed.mu_axial(), 0.4, "mu");
+}

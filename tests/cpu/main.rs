@@ -27,6 +27,7 @@ mod nets;
 mod packed;
 mod parallel;
 mod screen;
+mod seabed_friction;
 mod seabed_implicit;
 mod seabed_slope;
 mod statics;

@@ -143,6 +143,19 @@ fn t_seabed_slope(@builtin(global_invocation_id) gid: vec3<u32>) {
     v3out(b + 5u, seabed_slope_normal(g));
 }
 
+// The friction's axial split of case i: fnorm, n, v, t; out: (q, d).
+@compute @workgroup_size(64)
+fn t_seabed_friction_axis(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if i >= arrayLength(&tin) / 10u {
+        return;
+    }
+    let b = i * 10u;
+    let o = seabed_friction_axis(tin[b], v3in(b + 1u), v3in(b + 4u), v3in(b + 7u));
+    v3out(i * 4u, o.xyz);
+    tout[i * 4u + 3u] = o.w;
+}
+
 @compute @workgroup_size(64)
 fn t_mass(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = gid.x;
@@ -560,16 +573,21 @@ fn check_stretch<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rn
 }
 
 pub(crate) fn params<R: GpuReal>(k: f64, c: f64, mu: f64, v_eps: f64) -> Vec<u8> {
-    let p = Params::<R> {
+    bytemuck::bytes_of(&params_struct::<R>(k, c, mu, v_eps)).to_vec()
+}
+
+/// The seabed's run constants (the plane, isotropic friction `mu`).
+pub(crate) fn params_struct<R: GpuReal>(k: f64, c: f64, mu: f64, v_eps: f64) -> Params<R> {
+    Params::<R> {
         seabed: 1,
         seabed_k: R::c(k),
         seabed_c: R::c(c),
         seabed_mu: R::c(mu),
         seabed_v_eps: R::c(v_eps),
+        seabed_mu_axial: R::c(mu),
         one: R::c(1.0),
         ..Default::default()
-    };
-    bytemuck::bytes_of(&p).to_vec()
+    }
 }
 
 fn check_seabed<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng) {
@@ -582,6 +600,7 @@ fn check_seabed<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
             k: r(k),
             c: r(c),
             mu: r(mu),
+            mu_axial: r(mu),
             v_eps: r(v_eps),
         }
     };
@@ -727,6 +746,7 @@ fn check_all<R: GpuReal>(ctx: &GpuContext, p: Precision) {
     check_seabed::<R>(ctx, p, &mut rng);
     check_seabed_grid::<R>(ctx, p, &mut rng);
     check_seabed_slope::<R>(ctx, p, &mut rng);
+    check_seabed_friction_axis::<R>(ctx, p, &mut rng);
     check_mass::<R>(ctx, p, &mut rng);
     check_sincos::<R>(ctx, p, &mut rng);
     check_route::<R>(ctx, p, &mut rng);

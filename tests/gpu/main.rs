@@ -31,6 +31,7 @@ mod layout;
 mod packed;
 mod parity;
 mod screen;
+mod seabed_friction;
 mod seabed_grid;
 mod shaders;
 mod step_functions;

@@ -95,7 +95,7 @@ fn t_advance(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let b = i * 22u;
     let m = Sym3(tin[b + 12u], tin[b + 13u], tin[b + 14u], tin[b + 15u], tin[b + 16u], tin[b + 17u]);
-    let sn = node_advance(nodes[i], state_in(b), NodeForce(v3in(b + 9u), m, v3in(b + 19u)), tin[b + 18u], 0u); // step 0 of a submission: no body rows here
+    let sn = node_advance(nodes[i], state_in(b), NodeForce(v3in(b + 9u), m, v3in(b + 19u), vec4<R>(R(0.0))), tin[b + 18u], 0u); // step 0 of a submission: no body rows here
     let o = i * 9u;
     v3out(o, sn.r_hi.xyz);
     v3out(o + 3u, sn.r_lo.xyz);
@@ -299,6 +299,7 @@ fn run_params<R: GpuReal>(
         seabed_c: R::c(sb.c),
         seabed_mu: R::c(sb.mu),
         seabed_v_eps: R::c(sb.v_eps),
+        seabed_mu_axial: R::c(sb.mu_axial),
         one: R::c(1.0),
         ..Default::default()
     };
@@ -352,6 +353,7 @@ fn check_gather<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mut ChaCha8Rng
         k: r(3e6),
         c: r(3e4),
         mu: r(0.6),
+        mu_axial: r(0.6),
         v_eps: r(0.01),
     };
     let (profiles, pts, ranges) = currents::<R>();

@@ -95,6 +95,7 @@ fn coefs(mu: f64) -> SeabedCoefs<f64> {
         k: 3e6,
         c: 3e4,
         mu,
+        mu_axial: mu,
         v_eps: 0.01,
     }
 }

@@ -324,6 +324,7 @@ impl<R: GpuReal> GpuEngine<R> {
             seabed_c: R::c(env.seabed.damping),
             seabed_mu: R::c(env.seabed.friction),
             seabed_v_eps: R::c(env.seabed.friction_velocity),
+            seabed_mu_axial: R::c(env.seabed.mu_axial()),
             one: R::c(1.0),
             gravity: R::c(env.gravity),
             water_density: R::c(env.water_density),

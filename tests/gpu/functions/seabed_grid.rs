@@ -5,7 +5,8 @@
 
 use super::*;
 use cablesim::physics::{
-    seabed_height, seabed_slope_damping, seabed_slope_force, seabed_slope_normal,
+    seabed_friction_axis, seabed_height, seabed_slope_damping, seabed_slope_force,
+    seabed_slope_normal,
 };
 
 /// A random grid `nx` by `ny` (uneven ticks), packed, rounded to `R` and back.
@@ -52,6 +53,7 @@ fn grid_buffers<R: GpuReal>(g: &[f64]) -> Vec<(u32, Vec<u8>)> {
         seabed_c: R::c(3e4),
         seabed_mu: R::c(0.6),
         seabed_v_eps: R::c(0.01),
+        seabed_mu_axial: R::c(0.6),
         one: R::c(1.0),
         ..Default::default()
     };
@@ -119,6 +121,7 @@ pub(super) fn check_seabed_slope<R: GpuReal>(ctx: &GpuContext, p: Precision, rng
         k: r(3e6),
         c: r(3e4),
         mu: r(0.6),
+        mu_axial: r(0.6),
         v_eps: r(0.01),
     };
     let n = 500;
@@ -167,5 +170,76 @@ pub(super) fn check_seabed_slope<R: GpuReal>(ctx: &GpuContext, p: Precision, rng
         w.v("normal", i, &o[5..8], nrm, 1.0);
     }
     assert!(contact > n / 2, "{contact} of {n} in contact");
+    w.report(p);
+}
+
+/// `seabed_friction_axis` (the friction's axial split) against its Rust twin: random
+/// normal forces (some zero or negative: off the seabed), seabed normals, velocities
+/// (some below `v_eps`) and line tangents (some normal to the seabed: no axis).
+pub(super) fn check_seabed_friction_axis<R: GpuReal>(
+    ctx: &GpuContext,
+    p: Precision,
+    rng: &mut ChaCha8Rng,
+) {
+    let r = |x: f64| R::c(x).f64();
+    let (mu_t, mu_a, v_eps) = (0.6, 0.3, 0.01);
+    let sc = SeabedCoefs {
+        z: 0.0,
+        k: r(3e6),
+        c: r(3e4),
+        mu: r(mu_t),
+        mu_axial: r(mu_a),
+        v_eps: r(v_eps),
+    };
+    let n = 500;
+    let mut x = Vec::new();
+    for i in 0..n {
+        x.push(if i % 7 == 0 {
+            -rng.gen_range(0.0..1e3)
+        } else {
+            rng.gen_range(0.0..1e4)
+        });
+        let g = V3::new(0.0, rng.gen_range(-0.4..0.4), rng.gen_range(-0.4..0.4));
+        let nrm = seabed_slope_normal(g);
+        x.extend([nrm.x, nrm.y, nrm.z]);
+        let vs = if i % 5 == 0 { 0.005 } else { 1.0 };
+        x.extend(rv(rng, vs));
+        if i % 11 == 0 {
+            x.extend([nrm.x * 2.0, nrm.y * 2.0, nrm.z * 2.0]);
+        } else {
+            x.extend(rv(rng, 2.0));
+        }
+    }
+    let (xr, x) = to_r::<R>(&x);
+    let mut prm = params_struct::<R>(3e6, 3e4, mu_t, v_eps);
+    prm.seabed_mu_axial = R::c(mu_a);
+    let out = run::<R>(
+        ctx,
+        p,
+        "t_seabed_friction_axis",
+        &[(0, bytemuck::bytes_of(&prm).to_vec())],
+        &xr,
+        n,
+        4 * n,
+    );
+    let mut w = Worst::new::<R>("seabed_friction_axis");
+    let (mut split, mut none) = (0, 0);
+    for i in 0..n {
+        let a = &x[10 * i..10 * (i + 1)];
+        let v3 = |k: usize| V3::new(a[k], a[k + 1], a[k + 2]);
+        let (q, d) = seabed_friction_axis(&sc, a[0], v3(1), v3(4), v3(7));
+        if d != 0.0 {
+            split += 1;
+        } else {
+            none += 1;
+        }
+        let o: Vec<f64> = out[4 * i..4 * (i + 1)].iter().map(|v| v.f64()).collect();
+        w.v("q", i, &o[0..3], q, 1.0);
+        w.check("d", i, o[3], d, (mu_t - mu_a) * a[0].abs() / v_eps);
+    }
+    assert!(
+        split > n / 2 && none > n / 20,
+        "{split} split, {none} without"
+    );
     w.report(p);
 }

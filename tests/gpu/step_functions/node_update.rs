@@ -17,6 +17,7 @@ pub(super) fn check_advance<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: &mu
         k: 0.0,
         c: 0.0,
         mu: 0.0,
+        mu_axial: 0.0,
         v_eps: 1.0,
     };
     let (mut nodes, mut routes, mut x, mut cases) =
@@ -265,6 +266,7 @@ pub(super) fn check_node_check<R: GpuReal>(ctx: &GpuContext, p: Precision, rng: 
         k: 0.0,
         c: 0.0,
         mu: 0.0,
+        mu_axial: 0.0,
         v_eps: 1.0,
     };
     let out = run(
