@@ -10,7 +10,7 @@
 
 use super::kinematics::{rotation, BodyState, MeanPose};
 use crate::math::V3;
-use nalgebra::{Matrix3, Matrix6, Rotation3, UnitQuaternion, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix6, Quaternion, Rotation3, UnitQuaternion, Vector3, Vector6};
 
 type V = V3<f64>;
 type Vec3 = Vector3<f64>;
@@ -137,6 +137,41 @@ pub struct Pin {
     pub v: [f64; 3],
     /// Acceleration, m/s^2.
     pub a: [f64; 3],
+}
+
+/// The time derivative of a free body's state ([`FreeBody::rates`]), and weighted
+/// sums of them (the Runge-Kutta schemes' combination).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rates {
+    /// Velocity of the centre of gravity, m/s.
+    pub v_g: Vec3,
+    /// Acceleration of the centre of gravity, m/s^2.
+    pub a_g: Vec3,
+    /// Rate of the attitude quaternion, 1/s.
+    pub dq: Quaternion<f64>,
+    /// Angular acceleration, global axes, rad/s^2.
+    pub alpha: Vec3,
+}
+
+impl Default for Rates {
+    fn default() -> Self {
+        Self {
+            v_g: Vec3::zeros(),
+            a_g: Vec3::zeros(),
+            dq: Quaternion::new(0.0, 0.0, 0.0, 0.0),
+            alpha: Vec3::zeros(),
+        }
+    }
+}
+
+impl Rates {
+    /// `self += w k`.
+    pub fn add_scaled(&mut self, k: &Rates, w: f64) {
+        self.v_g += k.v_g * w;
+        self.a_g += k.a_g * w;
+        self.dq += k.dq * w;
+        self.alpha += k.alpha * w;
+    }
 }
 
 /// Whether all six degrees of freedom are free, or the translation is prescribed.
@@ -530,6 +565,64 @@ impl FreeBody {
             return Err(format!("its state is not finite at t = {} s", t + dt));
         }
         Ok(())
+    }
+
+    /// The time derivative of the state at time `t` (a Runge-Kutta stage's rates):
+    /// the velocity and acceleration of the centre of gravity, the quaternion's rate
+    /// `q' = (0, w) q / 2` (`w` in global axes) and the angular acceleration. Also sets
+    /// [`Self::last_acc`]. A pinned body's translation rates are not used
+    /// ([`Self::advanced`] takes it from the pin).
+    pub fn rates(
+        &mut self,
+        t: f64,
+        fluid: Fluid,
+        u: [f64; 3],
+        lumps: &[Lump],
+        pin: Option<Pin>,
+    ) -> Result<Rates, String> {
+        let (ap, alpha) = self.accelerations(t, fluid, u, lumps, pin)?;
+        self.last_acc = (ap, alpha);
+        let a_g = match self.kind {
+            FreeKind::Free => ap,
+            FreeKind::Pinned => Vec3::zeros(),
+        };
+        Ok(Rates {
+            v_g: self.v_g,
+            a_g,
+            dq: Quaternion::from_imag(self.w) * self.q.into_inner() * 0.5,
+            alpha,
+        })
+    }
+
+    /// The state `h` along the rates `k` from this one (a Runge-Kutta stage, or the
+    /// step's end with `k` the weighted sum of the stages' rates): the quaternion
+    /// normalised, a pinned body's translation from its pin `pin` at the stage's time.
+    /// `Err` when the state is not finite.
+    pub fn advanced(&self, k: &Rates, h: f64, pin: Option<Pin>) -> Result<Self, String> {
+        let mut b = self.clone();
+        b.w = self.w + k.alpha * h;
+        b.q = UnitQuaternion::new_normalize(self.q.into_inner() + k.dq * h);
+        match (self.kind, pin) {
+            (FreeKind::Free, _) => {
+                b.x_g = self.x_g + k.v_g * h;
+                b.v_g = self.v_g + k.a_g * h;
+            }
+            (FreeKind::Pinned, Some(pn)) => {
+                let c = b.q * v3(self.spec.cg);
+                b.x_g = v3(pn.x) + c;
+                b.v_g = v3(pn.v) + b.w.cross(&c);
+            }
+            (FreeKind::Pinned, None) => return Err("a pinned body needs its pin's motion".into()),
+        }
+        let q = b.q.into_inner();
+        if !(b.x_g.iter().all(|x| x.is_finite())
+            && b.v_g.iter().all(|x| x.is_finite())
+            && b.w.iter().all(|x| x.is_finite())
+            && q.coords.iter().all(|x| x.is_finite()))
+        {
+            return Err("its state is not finite".into());
+        }
+        Ok(b)
     }
 
     /// The load on the body at rest (every velocity zero) at time `t`, about its

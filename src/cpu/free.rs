@@ -9,7 +9,7 @@
 //! place of the route), so an output-time evaluation reports their reactions against
 //! the body's own motion.
 
-use crate::body::free::{Fluid, FreeBody, FreeKind, Lump};
+use crate::body::free::{Fluid, FreeBody, FreeKind, Lump, Pin};
 use crate::body::kinematics::attachment;
 use crate::body::Body;
 use crate::math::{Sym3, V3};
@@ -255,19 +255,36 @@ impl FreeEntry {
                 f: f.to_f64(),
             });
         }
-        let x = self.state.reference();
-        let u = lay
-            .currents
-            .first()
-            .map_or([0.0; 3], |c| c.at(x.z).to_f64());
-        let (pin, pin_next) = match self.state.kind {
-            FreeKind::Free => (None, None),
-            FreeKind::Pinned => (Some(self.body.pin(t)), Some(self.body.pin(t + dt))),
-        };
+        let u = current_at(lay, &self.state);
+        let (pin, pin_next) = (self.pin(t), self.pin(t + dt));
         self.state
             .step(t, dt, fluid, u, ls, pin, pin_next)
             .map_err(|m| format!("body '{}': {m}", self.body.name))
     }
+
+    /// A pinned body's pin at time `t` (`None` for a free body).
+    pub fn pin(&self, t: f64) -> Option<Pin> {
+        match self.state.kind {
+            FreeKind::Free => None,
+            FreeKind::Pinned => Some(self.body.pin(t)),
+        }
+    }
+}
+
+/// The water and gravity of the layout.
+pub(crate) fn fluid_of(lay: &Layout) -> Fluid {
+    Fluid {
+        rho: lay.env.water_density,
+        g: lay.env.gravity,
+    }
+}
+
+/// The current at body `b`'s reference point (the layout's first profile).
+pub(crate) fn current_at(lay: &Layout, b: &FreeBody) -> [f64; 3] {
+    let x = b.reference();
+    lay.currents
+        .first()
+        .map_or([0.0; 3], |c| c.at(x.z).to_f64())
 }
 
 impl FreeRun {

@@ -648,16 +648,65 @@ fn accelerations<T: Topo>(
     elems: &mut [ElementLoads<f64>],
     mut store: impl FnMut(usize, V),
 ) -> Result<(), StepFailure> {
+    accelerations_of(ctx, topo, b, ale, r, v, x, t, w, elems, |li, a, _, _| {
+        store(li, a)
+    })
+}
+
+/// [`accelerations`], handing each node's force and mass block too.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn accelerations_of<T: Topo>(
+    ctx: &Ctx,
+    topo: &T,
+    b: &Block,
+    ale: &[AleElem],
+    r: &[V],
+    v: &[V],
+    x: &[f64],
+    t: f64,
+    w: &[f64],
+    elems: &mut [ElementLoads<f64>],
+    mut store: impl FnMut(usize, V, V, Sym3<f64>),
+) -> Result<(), StepFailure> {
     element_pass(ctx, topo, b, ale, r, v, x, t, w, elems)?;
     let mut screen = Vec::new();
     if ctx.lay.block_has_screen(b) {
         screen_block_forces(ctx.lay, b.node_start as usize, r, v, w, &mut screen);
     }
     for li in 0..r.len() {
-        let (a, _, _) = node_accel(ctx, topo, b, ale, li, r, v, t, w, elems, &screen);
-        store(li, a);
+        let (a, f, m) = node_accel(ctx, topo, b, ale, li, r, v, t, w, elems, &screen);
+        store(li, a, f, m);
     }
     Ok(())
+}
+
+/// [`accelerations`] of a block at state `(r, v, x)` through its own topology, handing
+/// each node's acceleration, force and mass block to `store` (the free bodies' stages
+/// under the Runge-Kutta schemes: `super::solver`'s `free_rk`).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn block_accelerations(
+    ctx: &Ctx,
+    b: &Block,
+    r: &[V],
+    v: &[V],
+    x: &[f64],
+    t: f64,
+    w: &[f64],
+    elems: &mut [ElementLoads<f64>],
+    mut store: impl FnMut(usize, V, V, Sym3<f64>),
+) -> Result<(), StepFailure> {
+    if b.is_chain {
+        let topo = ChainTopo { n_nodes: r.len() };
+        accelerations_of(ctx, &topo, b, &[], r, v, x, t, w, elems, &mut store)
+    } else {
+        let topo = GeneralTopo {
+            lay: ctx.lay,
+            n0: b.node_start as usize,
+            e0: b.elem_start as usize,
+        };
+        accelerations_of(ctx, &topo, b, &[], r, v, x, t, w, elems, &mut store)
+    }
 }
 
 /// Advances one block by `nsteps` steps starting at step number `step0`, with the
@@ -702,7 +751,13 @@ pub(super) fn advance_block(
 /// Fills `buf` with the block's water values at `t` for nodes at `r`, `v` (left empty
 /// in still water).
 #[inline(always)]
-fn fill_water(waves: &mut Option<&mut BlockWaves>, t: f64, r: &[V], v: &[V], buf: &mut Water) {
+pub(super) fn fill_water(
+    waves: &mut Option<&mut BlockWaves>,
+    t: f64,
+    r: &[V],
+    v: &[V],
+    buf: &mut Water,
+) {
     if let Some(wb) = waves.as_deref_mut() {
         wb.fill(t, r.len(), |i| (r[i].to_f64(), v[i].to_f64()), buf);
     }

@@ -6,6 +6,7 @@
 
 mod checkpoint;
 mod evaluation;
+mod free_rk;
 mod waves;
 
 pub use checkpoint::CpuCheckpoint;
@@ -572,10 +573,22 @@ impl CpuSolver {
             return Ok(());
         }
         if self.free.is_some() && self.opts.scheme != Scheme::Symplectic {
-            return Err(Error::Model(format!(
-                "free or pinned bodies step with symplectic Euler only so far, not {}",
-                self.opts.scheme.name()
-            )));
+            // The Runge-Kutta schemes: the units through the stages with their bodies
+            // (one step a call while failures are pending), the other blocks as
+            // without bodies.
+            let mut k = 0;
+            while k < nsteps {
+                let pending = self.failures.iter().any(|f| f.fired.is_none());
+                let n = if pending { 1 } else { nsteps - k };
+                let step0 = self.steps;
+                self.advance_units_rk(step0, n)?;
+                self.advance_blocks(n, true)?;
+                if pending {
+                    self.check_failures();
+                }
+                k += n;
+            }
+            return Ok(());
         }
         // The lines and the bodies step by step together; failures are checked after
         // each step.
@@ -611,35 +624,13 @@ impl CpuSolver {
     /// The cable ends that may fail during the run (each held by a fixed point, a
     /// route or a body). `Err` names an end that is not held or a cable not found.
     pub fn set_failures(&mut self, failures: &[crate::model::EndFailure]) -> Result<(), Error> {
-        let lay = &self.layout;
         let mut out = Vec::with_capacity(failures.len());
         for f in failures {
-            let c = lay
-                .cables
-                .iter()
-                .find(|c| c.name == f.cable)
-                .ok_or_else(|| {
-                    Error::Model(format!(
-                        "a failure names cable '{}', which the run does not have",
-                        f.cable
-                    ))
-                })?;
-            let (node, elem) = if f.at_start {
-                (c.nodes[0], c.elements[0])
-            } else {
-                (c.nodes[c.nodes.len() - 1], c.elements[c.elements.len() - 1])
-            };
-            if lay.node_constraint[node as usize] == NO_CONSTRAINT {
-                return Err(Error::Model(format!(
-                    "cable '{}': its {} end is not held, so it cannot fail",
-                    f.cable,
-                    if f.at_start { "start" } else { "end" }
-                )));
-            }
+            let site = f.site(&self.layout).map_err(Error::Model)?;
             out.push(Failure {
                 spec: f.clone(),
-                node: node as usize,
-                elem: elem as usize,
+                node: site.node,
+                elem: site.elem,
                 fired: None,
             });
         }

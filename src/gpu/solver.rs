@@ -480,34 +480,12 @@ impl GpuSolver {
         let lay = &self.layout;
         let mut out = Vec::with_capacity(failures.len());
         for f in failures {
-            let c = lay
-                .cables
-                .iter()
-                .find(|c| c.name == f.cable)
-                .ok_or_else(|| {
-                    Error::Model(format!(
-                        "a failure names cable '{}', which the run does not have",
-                        f.cable
-                    ))
-                })?;
-            let (node, elem) = if f.at_start {
-                (c.nodes[0], c.elements[0])
-            } else {
-                (c.nodes[c.nodes.len() - 1], c.elements[c.elements.len() - 1])
-            };
-            let k = lay.node_constraint[node as usize];
-            if k == crate::model::NO_CONSTRAINT {
-                return Err(Error::Model(format!(
-                    "cable '{}': its {} end is not held, so it cannot fail",
-                    f.cable,
-                    if f.at_start { "start" } else { "end" }
-                )));
-            }
+            let site = f.site(lay).map_err(Error::Model)?;
             out.push(GpuFailure {
                 spec: f.clone(),
-                node: node as usize,
-                elem: elem as usize,
-                constraint: k as usize,
+                node: site.node,
+                elem: site.elem,
+                constraint: site.constraint,
                 fired: None,
             });
         }
@@ -747,14 +725,7 @@ struct SavedMesh {
 /// they fire at the same step, by tension they would not, and that case stays on the
 /// CPU.
 pub fn unsupported_failures(lay: &Layout, failures: &[crate::model::EndFailure]) -> Option<String> {
-    let node = |f: &crate::model::EndFailure| {
-        let c = lay.cables.iter().find(|c| c.name == f.cable)?;
-        Some(if f.at_start {
-            c.nodes[0]
-        } else {
-            c.nodes[c.nodes.len() - 1]
-        })
-    };
+    let node = |f: &crate::model::EndFailure| f.site(lay).ok().map(|s| s.node);
     failures.iter().enumerate().find_map(|(i, a)| {
         let na = node(a)?;
         let shared = failures

@@ -14,7 +14,7 @@ pub mod screen;
 pub use bathymetry::Bathymetry;
 pub use bending::{block_hinges, Clamp, Hinge, Joint, NO_ELEM};
 pub use environment::{Current, Environment, Seabed};
-pub use failure::{EndFailure, FailureEvent};
+pub use failure::{EndFailure, FailureEvent, FailureSite};
 pub use layout::{Block, CableDef, CableInfo, Layout, ModelDef, NodeDef, PointMass, NO_CONSTRAINT};
 pub use line_type::{LineCoefs, LineType, Viscoelastic};
 pub use net::{add_net, NetShape, NetSpec};

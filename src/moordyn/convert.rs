@@ -725,19 +725,7 @@ pub fn convert(file: &MoorDynFile, path: &Path, opts: &ConvertOptions) -> Result
         }
     };
     let _ = writeln!(w, "output_interval = {}", f(out_int));
-    let dynamic_bodies = bodies
-        .iter()
-        .any(|b| matches!(b.kind, BodyKind::Free | BodyKind::Pinned));
     match &o.scheme {
-        Some((sch, l))
-            if dynamic_bodies && ["RK2", "RK4"].contains(&sch.to_uppercase().as_str()) =>
-        {
-            let _ = writeln!(
-                w,
-                "# tScheme {sch} (line {l}): cablesim steps free and pinned bodies with \
-                 symplectic Euler only (its default), which is used."
-            );
-        }
         Some((sch, l)) => match sch.to_uppercase().as_str() {
             "RK2" => {
                 let _ = writeln!(w, "scheme = \"rk2\"  # tScheme RK2, line {l}");
