@@ -156,7 +156,12 @@ impl BlockPanels {
     /// [`BlockPanels::panel_forces`]), into `out` as `(block-local node, force)`
     /// sorted by node; cleared first.
     #[inline]
-    pub(crate) fn gather<F>(&self, sc: &PanelScratch, out: &mut Vec<(usize, F)>, conv: impl Fn(V) -> F) {
+    pub(crate) fn gather<F>(
+        &self,
+        sc: &PanelScratch,
+        out: &mut Vec<(usize, F)>,
+        conv: impl Fn(V) -> F,
+    ) {
         out.clear();
         for &(node, ps) in &self.knots {
             let mut f = V::zero();
@@ -289,7 +294,17 @@ fn panel_run_any(
             }
         };
     }
-    pick!((A, N), (A, WL), (A, C), (L, N), (L, WL), (L, C), (K, N), (K, WL), (K, C))
+    pick!(
+        (A, N),
+        (A, WL),
+        (A, C),
+        (L, N),
+        (L, WL),
+        (L, C),
+        (K, N),
+        (K, WL),
+        (K, C)
+    )
 }
 
 /// The loop of [`panel_run`] for coefficient set `M` and wake rule `W`.

@@ -802,6 +802,7 @@ impl CpuSolver {
                         && !(fast && chain_consts[bi].is_some())))
         });
         if general && self.scratch.is_empty() {
+            // As `Self::general_buffers` (field by field: `ctx` borrows the layout).
             self.scratch = vec![NodeScratch::default(); self.layout.n_nodes()];
             self.elems = vec![ElementLoads::default(); self.layout.n_elements()];
         }
@@ -1004,6 +1005,15 @@ impl CpuSolver {
         self.node_steps += nsteps * self.layout.n_nodes() as u64;
         self.t = (self.steps as f64) * dt;
         result.map_err(|f| self.name_failure(f))
+    }
+
+    /// Allocates the general passes' node scratch and element loads, if not yet done
+    /// (`Self::install_state` leaves them empty: a run on the fast paths never needs them).
+    fn general_buffers(&mut self) {
+        if self.scratch.is_empty() {
+            self.scratch = vec![NodeScratch::default(); self.layout.n_nodes()];
+            self.elems = vec![ElementLoads::default(); self.layout.n_elements()];
+        }
     }
 
     /// Whether the free bodies' units can step on their own, several steps a call

@@ -20,8 +20,8 @@ pub use screen::{
     screen_coefficients, screen_cylinder_cd, screen_panel_force, screen_wake_factor, ScreenCoefs,
 };
 pub use seabed::{
-    seabed_damping, seabed_force, seabed_friction_axis, seabed_height, seabed_slope_damping, seabed_slope_force,
-    seabed_slope_normal, SeabedCoefs,
+    seabed_damping, seabed_force, seabed_friction_axis, seabed_height, seabed_slope_damping,
+    seabed_slope_force, seabed_slope_normal, SeabedCoefs,
 };
 pub use surface::{point_wetted_fraction, sphere_radius, wetted_fraction};
 pub use visco::{visco_dynamic_stiffness, visco_rest_state, visco_tension};

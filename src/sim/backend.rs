@@ -373,10 +373,9 @@ impl LumpedStepper {
         };
         let (r, v) = match (&*self, &read_back) {
             (_, Some((r, v))) => (&r[..], &v[..]),
-            (LumpedStepper::Cpu(s), None) => (
-                crate::math::as_arrays(&s.r),
-                crate::math::as_arrays(&s.v),
-            ),
+            (LumpedStepper::Cpu(s), None) => {
+                (crate::math::as_arrays(&s.r), crate::math::as_arrays(&s.v))
+            }
             (LumpedStepper::Gpu(_), None) => unreachable!("the GPU's state is read back above"),
         };
         let bodies = if self.has_bodies() {

@@ -173,13 +173,6 @@ impl Simulation {
             log::warn!("the ANCF model runs on the CPU in f64: precision is ignored");
         }
         let (mut lay, mut pos) = crate::model::Layout::build(&sc.model)?;
-        if model == CableModel::LumpedMass {
-            // The scenario's node list (initial positions, point masses, routes: some
-            // 200 bytes a node) is packed into the layout and `pos` now; kept through the
-            // set-up, it would be a third of a big fleet's peak memory (docs/src/output.md,
-            // "Memory"). The ANCF model reads it as it runs.
-            sc.model.nodes = Vec::new();
-        }
         let mut opts = SolverOptions {
             formulation,
             scheme,
@@ -253,6 +246,13 @@ impl Simulation {
             }
         };
         let points = point_ends(&sc);
+        if let Engine::Lumped(..) = engine {
+            // The scenario's node list (initial positions, point masses, routes: some
+            // 200 bytes a node) has been packed into the layout and the solver's state;
+            // kept, it would be half the memory of a big fleet's run (docs/src/output.md,
+            // "Memory"). The ANCF model reads it as it runs; winch cables' set-up reads it.
+            sc.model.nodes = Vec::new();
+        }
         Ok(Self {
             points,
             reach_watch,

@@ -298,9 +298,15 @@ fn nets_csv_drag_holds_the_screen_panels_loads() {
     let v: Vec<[f64; 3]> = s.v.iter().map(|x| x.to_f64()).collect();
     let st = cablesim::output::net_states(&lay, &ev, &r, &v, &[info]);
     let out = st[0].force;
-    println!("knots' sum ({:.6}, {:.6}) N, nets.csv ({:.6}, {:.6}) N", f.x, f.y, out[0], out[1]);
+    println!(
+        "knots' sum ({:.6}, {:.6}) N, nets.csv ({:.6}, {:.6}) N",
+        f.x, f.y, out[0], out[1]
+    );
     // The Aarsnes drag of the whole cage's projected area is some tens of N.
-    assert!(f.x > 1.0 && f.y > 1.0, "the cage must feel the current: {f:?}");
+    assert!(
+        f.x > 1.0 && f.y > 1.0,
+        "the cage must feel the current: {f:?}"
+    );
     let tol = 1e-9 * (f.x * f.x + f.y * f.y).sqrt();
     assert!((out[0] - f.x).abs() < tol && (out[1] - f.y).abs() < tol);
 }

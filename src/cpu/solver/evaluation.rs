@@ -45,7 +45,14 @@ impl CpuSolver {
         };
         let full = picked.is_none();
         let mut ev = Evaluation {
-            acc: vec![[0.0; 3]; if full { lay.n_nodes() } else { picked_nodes.len() }],
+            acc: vec![
+                [0.0; 3];
+                if full {
+                    lay.n_nodes()
+                } else {
+                    picked_nodes.len()
+                }
+            ],
             force: vec![[0.0; 3]; if full { lay.n_nodes() } else { 0 }],
             tension: vec![0.0; lay.n_elements()],
             reaction: vec![[0.0; 3]; lay.routes.len()],
@@ -58,7 +65,11 @@ impl CpuSolver {
         let mut elems = vec![
             ElementLoads::default();
             if picked.is_some() {
-                lay.blocks.iter().map(|b| (b.elem_end - b.elem_start) as usize).max().unwrap_or(0)
+                lay.blocks
+                    .iter()
+                    .map(|b| (b.elem_end - b.elem_start) as usize)
+                    .max()
+                    .unwrap_or(0)
             } else {
                 lay.n_elements()
             }

@@ -68,6 +68,8 @@ impl CpuSolver {
     /// units are not touched, nor the step count.
     pub(super) fn advance_units_rk(&mut self, step0: u64, nsteps: u64) -> Result<(), Error> {
         let dt = self.opts.dt;
+        // The units' blocks take the general passes: their element loads.
+        self.general_buffers();
         let (tableau, div) = rk_tableau(self.opts.scheme).expect("a Runge-Kutta scheme");
         let seabed = self.ctx().seabed;
         let res = (|| -> Result<(), Failed> {
